@@ -1,0 +1,104 @@
+#pragma once
+// Reading JSON input (job and machine files) with errors that name the JSON path and line.
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace camgen::json {
+
+// Maps JSON pointers ("/operations/2/holes/5") of a text to 1-based line numbers.
+class LineMap {
+public:
+    LineMap() = default;
+    // Scans `text`, which must already be valid JSON.
+    explicit LineMap(std::string_view text);
+    // Line where the value at `pointer` starts (for an object member: its key); 0 if unknown.
+    int line_of(std::string_view pointer) const;
+
+private:
+    std::vector<std::pair<std::string, int>> entries_;  // sorted by pointer
+};
+
+// Where an input came from: its name for messages and its line map.
+struct Source {
+    std::string name;   // file name, or "<stdin>"
+    LineMap lines;
+};
+
+// Parses JSON text; a syntax error (NaN, Infinity, trailing commas, ...) becomes an InputError
+// naming the line and column.
+nlohmann::json parse(std::string_view text, const std::string& source_name);
+
+// Escapes a key for use in a JSON pointer ("~" -> "~0", "/" -> "~1").
+std::string pointer_escape(std::string_view key);
+
+// Throws InputError at `path`, with the line looked up in `source`.
+[[noreturn]] void fail(const Source& source, const std::string& path, const std::string& detail);
+
+// The closest of `candidates` to `word` by edit distance, if close enough to be a likely typo.
+std::optional<std::string> did_you_mean(std::string_view word,
+                                        const std::vector<std::string>& candidates);
+
+// Checked access to the members of one JSON object. Every key that is read is remembered;
+// finish() reports any other key as unknown, with a "did you mean" hint.
+class Fields {
+public:
+    // Throws if `value` is not an object.
+    Fields(const nlohmann::json& value, std::string path, const Source& source);
+
+    const std::string& path() const { return path_; }
+    // "/path/key"
+    std::string path_of(std::string_view key) const;
+    bool has(std::string_view key) const;
+
+    // Numbers must be finite. `required` variants throw when the key is missing.
+    double number(std::string_view key);
+    std::optional<double> optional_number(std::string_view key);
+    int integer(std::string_view key);
+    std::optional<int> optional_integer(std::string_view key);
+    std::string string(std::string_view key);
+    std::optional<std::string> optional_string(std::string_view key);
+    bool boolean(std::string_view key, bool fallback);
+    // A member of any type (marked as read); nullptr if absent.
+    const nlohmann::json* member(std::string_view key);
+    // A required member of any type.
+    const nlohmann::json& required(std::string_view key);
+
+    // One of a fixed set of strings, mapped to a value; the error lists the choices.
+    template <class E>
+    E choice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> options,
+             std::optional<E> fallback = std::nullopt) {
+        auto text = fallback ? optional_string(key) : std::optional<std::string>(string(key));
+        if (!text) return *fallback;
+        std::vector<std::string> names;
+        for (const auto& [name, value] : options) {
+            if (name == *text) return value;
+            names.emplace_back(name);
+        }
+        fail_choice(key, *text, names);
+    }
+
+    // Throws InputError at /path/key (or at /path when key is empty).
+    [[noreturn]] void fail(std::string_view key, const std::string& detail) const;
+    // Reports keys that were never read. Call after reading every known key.
+    void finish() const;
+
+private:
+    [[noreturn]] void fail_choice(std::string_view key, const std::string& got,
+                                  const std::vector<std::string>& names) const;
+    const nlohmann::json& value_;
+    std::string path_;
+    const Source& source_;
+    mutable std::set<std::string, std::less<>> read_;
+};
+
+// Checked number at an arbitrary path (array elements): finite, else InputError.
+double number_at(const nlohmann::json& value, const std::string& path, const Source& source);
+
+}  // namespace camgen::json

@@ -1,0 +1,56 @@
+#pragma once
+// Writes NC blocks: sequence numbers, word separator, line break, comments. Buffers the text
+// and hands it to the stream in large pieces.
+#include <ostream>
+#include <string>
+#include <string_view>
+
+#include "camgen/nc/format.hpp"
+
+namespace camgen::nc {
+
+enum class CommentStyle { parentheses, semicolon };
+
+// How blocks look (CNC-Calc globals: linebreak, variableDelimeter, showSequenceNumbers, ...).
+struct BlockStyle {
+    std::string line_break = "\n";
+    std::string separator = " ";
+    bool sequence_numbers = false;
+    long sequence_start = 10;
+    long sequence_increment = 5;
+    std::string sequence_prefix = "N";
+    CommentStyle comment_style = CommentStyle::parentheses;
+    int comment_max_length = 0;  // 0: no limit
+};
+
+class BlockWriter {
+public:
+    BlockWriter(BlockStyle style, std::ostream& out);
+    ~BlockWriter();
+    BlockWriter(const BlockWriter&) = delete;
+    BlockWriter& operator=(const BlockWriter&) = delete;
+
+    // Adds a word to the block being built; empty words are skipped.
+    BlockWriter& add(std::string_view word);
+    // Ends the block: writes it with its sequence number, unless it is empty.
+    void end();
+    // Writes a comment on a line of its own (no sequence number).
+    void comment(std::string_view text);
+    // Writes a line as it is (no sequence number): "%", "_", program frames.
+    void raw(std::string_view line);
+    // Hands buffered text to the stream. Throws IoError when the stream failed.
+    void flush();
+    const BlockStyle& style() const { return style_; }
+    // Comment text made safe for the style: no nested delimiters, no line breaks.
+    std::string clean_comment(std::string_view text) const;
+
+private:
+    void maybe_flush();
+    BlockStyle style_;
+    std::ostream& out_;
+    std::string buffer_;
+    std::string block_;
+    long sequence_;
+};
+
+}  // namespace camgen::nc

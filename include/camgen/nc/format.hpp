@@ -1,0 +1,69 @@
+#pragma once
+// Number formatting for NC words, after CNC-Calc's createFormat / createVariable.
+// One formatter for every number camgen writes: never an exponent, never "-0", the decimal
+// mark of the machine, independent of the process locale.
+#include <optional>
+#include <string>
+
+namespace camgen::nc {
+
+// The fields of CNC-Calc's createFormat, plus the machine's decimal mark.
+struct FormatSpec {
+    std::string prefix;          // written before the number
+    int width = 0;               // minimum digits of the integer part
+    bool zeropad = false;        // pad the integer part with '0' (else with spaces)
+    int decimals = 0;            // maximum decimals (exact count when force_decimal)
+    double scale = 1.0;          // the value is multiplied by this first
+    bool force_decimal = false;  // always write `decimals` decimals (3 -> 3.000)
+    bool force_sign = false;     // write '+' before positive values
+    char decimal_mark = '.';
+};
+
+// Turns numbers into text. Rounding: half away from zero, applied to the shortest decimal
+// representation of value x scale (so 2.0005 with 3 decimals is 2.001, as a person reads it).
+class Format {
+public:
+    Format() = default;
+    explicit Format(FormatSpec spec);
+
+    const FormatSpec& spec() const { return spec_; }
+    // Appends prefix and number to `out`. Throws std::logic_error for NaN or infinity.
+    void append(std::string& out, double value) const;
+    std::string format(double value) const;
+    // The value a control reads back from the text, in input units (rounded, unscaled).
+    double rounded(double value) const;
+    // True when the value formats as zero.
+    bool is_zero(double value) const;
+
+private:
+    FormatSpec spec_;
+};
+
+// A modal NC word (CNC-Calc createVariable): remembers the last text it wrote and writes
+// nothing when the same text would be written again, unless forced or reset.
+class Word {
+public:
+    Word() = default;
+    Word(std::string prefix, Format format, bool force = false);
+
+    // The word's text ("X12.5"), or "" when it is modal and unchanged.
+    std::string format(double value);
+    // The word's text, written even when unchanged; becomes the last value.
+    std::string force(double value);
+    // Forget the last value: the next format() writes (the control's state is unknown).
+    void reset();
+    // Record `value` as if it had been written (the control knows it by other means).
+    void set_last(double value);
+    // The last value written or recorded, if any.
+    std::optional<double> last() const { return last_value_; }
+    const Format& fmt() const { return format_; }
+
+private:
+    std::string prefix_;
+    Format format_;
+    bool force_ = false;
+    std::string last_text_;
+    std::optional<double> last_value_;
+};
+
+}  // namespace camgen::nc

@@ -1,0 +1,112 @@
+// The ISO (Fanuc-style) dialect: %, O-number, G-code program frame, T.. M6, S.. M3, G43 H,
+// canned cycles G73/G74/G76-G89 with G98/G99 and G80.
+#include "machines/iso.hpp"
+
+#include <fmt/format.h>
+
+#include "camgen/json_util.hpp"
+
+namespace camgen {
+
+namespace {
+
+double cycle_code(CycleKind kind) {
+    switch (kind) {
+        case CycleKind::drill: return 81;
+        case CycleKind::dwell: return 82;
+        case CycleKind::deep: return 83;
+        case CycleKind::chip_break: return 73;
+        case CycleKind::tap: return 84;
+        case CycleKind::tap_left: return 74;
+        case CycleKind::ream: return 85;
+        case CycleKind::bore_stop: return 86;
+        case CycleKind::bore_dwell: return 89;
+    }
+    return 81;
+}
+
+}  // namespace
+
+IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
+    : Post(machine, out, std::move(options)) {
+    json::Source source{machine.source, json::LineMap{}};
+    json::Fields f(machine.dialect_settings, "/settings", source);
+    program_number_ = f.optional_integer("programNumber").value_or(1000);
+    percent_ = f.boolean("percentLines", true);
+    length_offset_ = f.boolean("toolLengthOffset", true);
+    tool_change_ = f.boolean("toolChange", true);
+    end_code_ = f.optional_string("endCode").value_or("M30");
+    f.finish();
+}
+
+void IsoPost::on_open() {
+    if (percent_) out_.raw("%");
+    if (program_number_ > 0) {
+        std::string line = fmt::format("O{:04}", program_number_);
+        if (!options_.program_name.empty())
+            line += " (" + out_.clean_comment(options_.program_name) + ")";
+        out_.raw(line);
+    } else if (!options_.program_name.empty()) {
+        out_.comment(options_.program_name);
+    }
+    out_.add(g(17)).add(g(machine_.units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
+    plane_.set_last(17);
+}
+
+void IsoPost::on_close() {
+    out_.add(end_code_).end();
+    if (percent_) out_.raw("%");
+}
+
+void IsoPost::on_tool_change(const ToolChange& tool) {
+    if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+    if (tool_change_) out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
+    length_offset_pending_ = length_offset_;
+}
+
+void IsoPost::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off) {
+        out_.add(m(5)).end();
+        return;
+    }
+    if (machine_.limits.max_rpm > 0 && s.rpm > machine_.limits.max_rpm)
+        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", s.rpm,
+                             machine_.name, machine_.limits.max_rpm));
+    out_.add("S" + rpm_fmt_.format(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+}
+
+void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add("P" + dwell_fmt_.format(seconds)).end(); }
+
+void IsoPost::on_rapid(const Vec3& to) {
+    if (length_offset_pending_ && z_.last() != to.z) {
+        // The first Z move after a tool change carries the tool length offset.
+        std::string xs = x_.format(to.x), ys = y_.format(to.y);
+        out_.add(motion_word(0)).add(xs).add(ys).add(g(43)).add(z_.force(to.z)).add(fmt::format("H{}", tool_)).end();
+        length_offset_pending_ = false;
+        return;
+    }
+    Post::on_rapid(to);
+}
+
+void IsoPost::on_drilling_header(const DrillCycle&, const DrillingCycleSpec&) {}
+
+void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec&, Vec2 at, bool first) {
+    std::string xs = x_.force(at.x), ys = y_.force(at.y);
+    if (!first) {
+        out_.add(xs).add(ys).end();
+        return;
+    }
+    const DrillParams& p = c.params;
+    // G98 returns to the Z the tool had before the cycle: the retract plane, where the
+    // operation put it. G99 returns to R.
+    out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
+    out_.add(z_.force(c.bottom_z)).add("R" + xyz_fmt_.format(c.safe_z));
+    if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.first_depth)
+        out_.add("Q" + xyz_fmt_.format(*p.first_depth));
+    if (p.bottom_dwell && *p.bottom_dwell > 0) out_.add("P" + dwell_fmt_.format(*p.bottom_dwell));
+    out_.add(feed_word(c.feed)).end();
+}
+
+void IsoPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { out_.add(g(80)).end(); }
+
+}  // namespace camgen

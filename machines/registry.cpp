@@ -1,0 +1,18 @@
+// The dialects camgen can write, by the name a machine file gives in "dialect".
+#include <fmt/format.h>
+
+#include "camgen/error.hpp"
+#include "camgen/post.hpp"
+#include "machines/iso.hpp"
+#include "machines/nccad.hpp"
+
+namespace camgen {
+
+std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options) {
+    if (machine.dialect == "iso") return std::make_unique<IsoPost>(machine, out, std::move(options));
+    if (machine.dialect == "nccad") return std::make_unique<NccadPost>(machine, out, std::move(options));
+    throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: iso, nccad", machine.dialect), 0,
+                     machine.source);
+}
+
+}  // namespace camgen

@@ -1,0 +1,327 @@
+#include "camgen/post.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/error.hpp"
+#include "camgen/longhand.hpp"
+
+namespace camgen {
+
+namespace {
+constexpr double deg = 180.0 / std::numbers::pi;
+
+template <class... Ts>
+struct overloaded : Ts... {
+    using Ts::operator()...;
+};
+
+bool contains(const std::vector<DrillField>& v, DrillField f) {
+    return std::find(v.begin(), v.end(), f) != v.end();
+}
+}  // namespace
+
+Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
+    : machine_(machine),
+      options_(std::move(options)),
+      out_(machine.block, out),
+      xyz_fmt_(machine.format("xyz")),
+      ijk_fmt_(machine.format("ijk")),
+      feed_fmt_(machine.format("feed")),
+      rpm_fmt_(machine.format("rpm")),
+      dwell_fmt_(machine.format("dwell")),
+      angle_fmt_(machine.format("angle")),
+      code_fmt_(machine.format("code")),
+      x_("X", xyz_fmt_),
+      y_("Y", xyz_fmt_),
+      z_("Z", xyz_fmt_),
+      feed_("F", feed_fmt_),
+      motion_("G", code_fmt_),
+      plane_("G", code_fmt_) {}
+
+Post::~Post() = default;
+
+void Post::open() {
+    opened_ = true;
+    if (!options_.snippet) on_open();
+}
+
+void Post::close() {
+    if (!options_.snippet) on_close();
+    out_.flush();
+}
+
+std::string Post::g(double code) const { return "G" + code_fmt_.format(code); }
+std::string Post::m(double code) const { return "M" + code_fmt_.format(code); }
+
+void Post::warn(const std::string& message) {
+    ++warnings_;
+    if (options_.warnings) *options_.warnings << "camgen: warning: " << message << '\n';
+}
+
+void Post::fail(const std::string& key, const std::string& detail) const {
+    throw InputError(op_path_ + key, detail);
+}
+
+std::string Post::feed_word(double mm_per_min) {
+    const MachineLimits& lim = machine_.limits;
+    double f = mm_per_min;
+    if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", f));
+    if (f > lim.max_feed) {
+        warn(fmt::format("{}: feed {} mm/min is above the limit of machine {}; clamped to {} mm/min",
+                         op_path_, f, machine_.name, lim.max_feed));
+        f = lim.max_feed;
+    } else if (f < lim.min_feed) {
+        warn(fmt::format("{}: feed {} mm/min is below the minimum of machine {}; raised to {} mm/min",
+                         op_path_, f, machine_.name, lim.min_feed));
+        f = lim.min_feed;
+    }
+    if (feed_fmt_.is_zero(f))
+        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
+    return feed_.format(f);
+}
+
+std::string Post::motion_word(double code) {
+    return machine_.modal_motion ? motion_.format(code) : motion_.force(code);
+}
+
+void Post::reset_modal_axes() {
+    x_.reset();
+    y_.reset();
+    z_.reset();
+    motion_.reset();
+}
+
+void Post::on_operation_start(const OperationStart& op) {
+    if (!op.name.empty()) on_comment(op.name);
+}
+
+void Post::on_comment(const std::string& text) { out_.comment(text); }
+
+void Post::on_rapid(const Vec3& to) {
+    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
+    if (xs.empty() && ys.empty() && zs.empty()) return;
+    out_.add(motion_word(0)).add(xs).add(ys).add(zs).end();
+}
+
+void Post::rapid_from_unknown(const Vec3& to) {
+    std::string xs = x_.force(to.x), ys = y_.force(to.y);
+    out_.add(motion_word(0)).add(xs).add(ys).end();
+    z_.reset();
+    on_rapid(to);
+}
+
+void Post::on_compensation(CompensationSide side) { pending_compensation_ = side; }
+
+void Post::on_linear(const Vec3& to, double feed) {
+    std::string comp;
+    if (pending_compensation_) {
+        switch (*pending_compensation_) {
+            case CompensationSide::off: comp = g(40); break;
+            case CompensationSide::left: comp = g(41) + machine_.block.separator + "D" + std::to_string(tool_); break;
+            case CompensationSide::right: comp = g(42) + machine_.block.separator + "D" + std::to_string(tool_); break;
+        }
+    }
+    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
+    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
+    std::string fs = feed_word(feed);
+    out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
+    if (pending_compensation_) compensation_ = *pending_compensation_;
+    pending_compensation_.reset();
+}
+
+void Post::on_circular(const ArcGeometry& arc, double feed) {
+    const ArcSettings& s = machine_.arcs;
+    std::string plane;
+    if (machine_.arcs.planes.size() > 1)
+        plane = plane_.format(arc.plane == Plane::xy ? 17 : arc.plane == Plane::xz ? 18 : 19);
+    std::string motion = motion_word(arc.direction == ArcDirection::cw ? 2 : 3);
+    std::string fs = feed_word(feed);
+    if (s.format == ArcFormat::nccad_angle) {
+        // nccad: G02 D<sweep> I J, no end point: the control computes it. Remember the end.
+        nc::Word i("I", ijk_fmt_, true), j("J", ijk_fmt_, true);
+        out_.add(motion).add("D" + angle_fmt_.format(arc.sweep * deg))
+            .add(i.format(arc.centre.x - arc.start.x))
+            .add(j.format(arc.centre.y - arc.start.y))
+            .add(fs)
+            .end();
+        x_.set_last(arc.end.x);
+        y_.set_last(arc.end.y);
+        return;
+    }
+    // End point: the plane's two axes are written on every arc block when force_xy.
+    bool fx = s.force_xy && arc.plane != Plane::yz;
+    bool fy = s.force_xy && arc.plane != Plane::xz;
+    bool fz = s.force_xy && arc.plane != Plane::xy;
+    std::string xs = fx ? x_.force(arc.end.x) : x_.format(arc.end.x);
+    std::string ys = fy ? y_.force(arc.end.y) : y_.format(arc.end.y);
+    std::string zs = fz ? z_.force(arc.end.z) : z_.format(arc.end.z);
+    out_.add(plane).add(motion).add(xs).add(ys).add(zs);
+    if (s.format == ArcFormat::radius) {
+        double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
+        out_.add("R" + xyz_fmt_.format(r));
+    } else {
+        Vec3 c = arc.centre;
+        if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
+        if (arc.plane != Plane::yz) out_.add("I" + ijk_fmt_.format(c.x));
+        if (arc.plane != Plane::xz) out_.add("J" + ijk_fmt_.format(c.y));
+        if (arc.plane != Plane::xy) out_.add("K" + ijk_fmt_.format(c.z));
+    }
+    out_.add(fs).end();
+}
+
+void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) {
+    throw InputError("/drilling/cycles", fmt::format("the {} dialect cannot write canned cycle {}",
+                                                     machine_.dialect, spec.name), 0, machine_.source);
+}
+void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
+void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
+    const DrillParams& p = cycle.params;
+    std::vector<DrillField> f;
+    if (cycle.safe_z != cycle.retract_z) f.push_back(DrillField::safe_distance);
+    if (p.plunging_feedrate) f.push_back(DrillField::plunging_feedrate);
+    if (p.retract_feedrate) f.push_back(DrillField::retract_feedrate);
+    if (p.first_depth) f.push_back(DrillField::first_depth);
+    if (p.degression_type != DegressionType::none) f.push_back(DrillField::degression_type);
+    if (p.degression) f.push_back(DrillField::degression);
+    if (p.minimum_depth) f.push_back(DrillField::minimum_depth);
+    if (p.pecking_retract) f.push_back(DrillField::pecking_retract);
+    if (p.first_feedrate_factor && *p.first_feedrate_factor != 1.0) f.push_back(DrillField::first_feedrate_factor);
+    if (p.top_dwell && *p.top_dwell > 0.0) f.push_back(DrillField::top_dwell);
+    if (p.bottom_dwell && *p.bottom_dwell > 0.0) f.push_back(DrillField::bottom_dwell);
+    if (p.pitch) f.push_back(DrillField::pitch);
+    if (p.tapping_speed) f.push_back(DrillField::tapping_speed);
+    if (p.retract_speed) f.push_back(DrillField::retract_speed);
+    return f;
+}
+
+const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
+    if (cycle.output == CycleOutput::longhand) return nullptr;
+    const DrillingCycleSpec* spec = machine_.canned_cycle(cycle.kind);
+    std::vector<std::string> missing;
+    if (spec)
+        for (DrillField f : drill_fields_used(cycle))
+            if (!contains(spec->fields, f)) missing.emplace_back(drill_field_name(f));
+    if (cycle.output == CycleOutput::automatic) return spec && missing.empty() ? spec : nullptr;
+    if (!spec)
+        throw InputError(cycle.path + "/output",
+                         fmt::format("machine {} has no canned cycle for \"{}\"; use \"auto\" or \"longhand\"",
+                                     machine_.name, cycle_kind_name(cycle.kind)));
+    if (!missing.empty()) {
+        std::vector<std::string> offered;
+        for (DrillField f : spec->fields) offered.emplace_back(drill_field_name(f));
+        throw InputError(cycle.path + "/output",
+                         fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, spec->name,
+                                     fmt::join(missing, ", "), offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));
+    }
+    return spec;
+}
+
+void Post::handle_drill_cycle(const DrillCycle& cycle) {
+    if (!pos_known_) throw std::logic_error("drilling cycle from an unknown position");
+    cycle_ = cycle;
+    cycle_spec_ = choose_canned(cycle);
+    first_point_ = true;
+    if (cycle_spec_) on_drilling_header(cycle, *cycle_spec_);
+}
+
+void Post::handle_drill_point(Vec2 at) {
+    if (!cycle_) throw std::logic_error("drilling point outside a cycle");
+    if (cycle_spec_) {
+        on_drilling_point(*cycle_, *cycle_spec_, at, first_point_);
+        pos_ = {at.x, at.y, cycle_->retract_z};
+    } else {
+        for (const Event& e : longhand_moves(*cycle_, pos_, at, {machine_.peck_clearance})) replay(e);
+    }
+    first_point_ = false;
+}
+
+void Post::handle_drill_end() {
+    if (!cycle_) throw std::logic_error("drilling end outside a cycle");
+    if (cycle_spec_) {
+        on_drilling_footer(*cycle_, *cycle_spec_);
+        // The control left the cycle at the retract plane; what it last read was the bottom.
+        z_.reset();
+        motion_.reset();
+    }
+    cycle_.reset();
+    cycle_spec_ = nullptr;
+}
+
+void Post::handle_arc(const Arc& arc) {
+    if (!pos_known_) throw std::logic_error("arc from an unknown position");
+    ArcGeometry geo = resolve_arc(pos_, arc);
+    const ArcSettings& s = machine_.arcs;
+    PlanePoint a = to_plane(geo.start, arc.plane), b = to_plane(geo.end, arc.plane);
+    bool helical = std::abs(a.w - b.w) > 1e-9;
+    bool plane_ok = std::find(s.planes.begin(), s.planes.end(), arc.plane) != s.planes.end();
+    if (!plane_ok || (helical && !s.helical)) {
+        int n = segments_for_tolerance(geo.radius, geo.sweep, s.chord_tolerance);
+        for (const Vec3& p : linearize_arc(geo, n)) {
+            on_linear(p, arc.feed);
+            pos_ = p;
+        }
+        return;
+    }
+    double max_sweep = std::clamp(s.max_sweep, 1.0, 360.0) / deg;
+    int pieces = static_cast<int>(std::ceil(geo.sweep / max_sweep - 1e-9));
+    // A radius word cannot say "full circle": such arcs need at least two blocks.
+    if (s.format == ArcFormat::radius && geo.sweep >= 2.0 * std::numbers::pi - 1e-9) pieces = std::max(pieces, 2);
+    for (const ArcGeometry& piece : split_arc(geo, std::max(pieces, 1))) on_circular(piece, arc.feed);
+    pos_ = arc.to;
+}
+
+void Post::replay(const Event& event) {
+    std::visit(overloaded{
+                   [&](const Rapid& r) {
+                       if (pos_known_) on_rapid(r.to); else rapid_from_unknown(r.to);
+                       pos_ = r.to;
+                       pos_known_ = true;
+                   },
+                   [&](const Linear& l) {
+                       if (!pos_known_) throw std::logic_error("feed move from an unknown position");
+                       on_linear(l.to, l.feed);
+                       pos_ = l.to;
+                   },
+                   [&](const Dwell& d) { on_dwell(d.seconds); },
+                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const auto&) { throw std::logic_error("unexpected event in a longhand cycle"); },
+               },
+               event);
+}
+
+void Post::emit(const Event& event) {
+    if (!opened_) open();
+    std::visit(overloaded{
+                   [&](const OperationStart& op) {
+                       op_path_ = op.path;
+                       on_operation_start(op);
+                   },
+                   [&](const OperationEnd&) { on_operation_end(); },
+                   [&](const ToolChange& t) {
+                       tool_ = t.number;
+                       tool_diameter_ = t.diameter;
+                       on_tool_change(t);
+                       pos_known_ = false;
+                       reset_modal_axes();
+                   },
+                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Rapid& r) { replay(r); },
+                   [&](const Linear& l) { replay(l); },
+                   [&](const Arc& a) { handle_arc(a); },
+                   [&](const Dwell& d) { on_dwell(d.seconds); },
+                   [&](const Compensation& c) { on_compensation(c.side); },
+                   [&](const DrillCycle& c) { handle_drill_cycle(c); },
+                   [&](const DrillPoint& p) { handle_drill_point(p.at); },
+                   [&](const DrillEnd&) { handle_drill_end(); },
+                   [&](const Comment& c) { on_comment(c.text); },
+               },
+               event);
+}
+
+}  // namespace camgen

@@ -1,0 +1,11 @@
+# Runs camgen on one sample for one machine, then golden_diff against the golden file.
+get_filename_component(dir ${ACTUAL} DIRECTORY)
+file(MAKE_DIRECTORY ${dir})
+execute_process(COMMAND ${CAMGEN} ${JOB} --machine ${MACHINE} -o ${ACTUAL} RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "camgen failed (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${DIFF} ${EXPECTED} ${ACTUAL} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "golden file mismatch")
+endif()
