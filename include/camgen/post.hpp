@@ -6,6 +6,7 @@
 // here; a dialect overrides only what differs.
 #include <memory>
 #include <optional>
+#include <set>
 #include <ostream>
 #include <string>
 
@@ -102,6 +103,7 @@ private:
     const DrillingCycleSpec* cycle_spec_ = nullptr;  // canned spec for the current cycle
     bool first_point_ = true;
     int warnings_ = 0;
+    std::set<std::pair<std::string, double>> warned_feeds_;
     bool opened_ = false;
 };
 

@@ -1,0 +1,141 @@
+// The command line: exit codes, messages with JSON path and line, atomic output files.
+#include <filesystem>
+#include <fstream>
+
+#include <doctest/doctest.h>
+
+#include "camgen/cli.hpp"
+#include "support.hpp"
+
+namespace fs = std::filesystem;
+using namespace camgen;
+
+namespace {
+
+struct Run {
+    int code;
+    std::string out;
+    std::string err;
+};
+
+Run run(std::vector<std::string> args, const std::string& stdin_text = "") {
+    std::vector<const char*> argv{"camgen"};
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::istringstream in(stdin_text);
+    std::ostringstream out, err;
+    int code = run_cli(static_cast<int>(argv.size()), argv.data(), in, out, err);
+    return {code, out.str(), err.str()};
+}
+
+fs::path scratch(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / ("camgen-cli-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+const std::string sample = CAMGEN_SOURCE_DIR "/samples/plate.json";
+
+}  // namespace
+
+TEST_CASE("posting a sample to stdout and to a file") {
+    Run r = run({sample, "--machine", "wabeco"});
+    CHECK(r.code == 0);
+    CHECK(r.out.rfind("_\n_\n", 0) == 0);
+    fs::path dir = scratch("ok");
+    Run f = run({sample, "--machine", "fanuc", "-o", (dir / "plate.nc").string()});
+    CHECK(f.code == 0);
+    CHECK(test::read_file((dir / "plate.nc").string()).rfind("%\nO1000", 0) == 0);
+    // Only the program is left in the folder: no temporary files.
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}) == 1);
+}
+
+TEST_CASE("a job from standard input") {
+    Run r = run({"-", "--machine", "fanuc"}, test::read_file(sample));
+    CHECK(r.code == 0);
+    CHECK(r.out.find("G81") != std::string::npos);
+}
+
+TEST_CASE("--events prints one JSON object per line") {
+    Run r = run({sample, "--events"});
+    CHECK(r.code == 0);
+    auto lines = test::lines_of(r.out);
+    REQUIRE(lines.size() > 5);
+    for (const auto& l : lines) CHECK(nlohmann::json::parse(l).contains("event"));
+    CHECK(nlohmann::json::parse(lines[0])["event"] == "operation-start");
+    CHECK(r.out.find(R"({"event":"drill-point","at":[90.0,40.0]})") != std::string::npos);
+}
+
+TEST_CASE("--list-machines and --describe-machine") {
+    Run r = run({"--list-machines"});
+    CHECK(r.code == 0);
+    CHECK(r.out.find("wabeco") != std::string::npos);
+    CHECK(r.out.find("fanuc") != std::string::npos);
+    Run d = run({"--describe-machine", "wabeco"});
+    CHECK(d.code == 0);
+    CHECK(d.out.find("canned G81") != std::string::npos);
+    CHECK(d.out.find("0.1 mm/s") != std::string::npos);
+}
+
+TEST_CASE("usage errors exit 2") {
+    CHECK(run({}).code == 2);
+    CHECK(run({sample}).code == 2);  // no machine
+    Run u = run({sample, "--machine", "wabecco"});
+    CHECK(u.code == 2);
+    CHECK(u.err.find("did you mean \"wabeco\"") != std::string::npos);
+    CHECK(run({sample, "--machine", "fanuc", "--bogus"}).code == 2);
+    CHECK(run({"--version"}).code == 0);
+}
+
+TEST_CASE("an invalid job exits 1 with path and line, and -o leaves no file behind") {
+    fs::path dir = scratch("bad");
+    struct Case {
+        const char* name;
+        std::string json;
+        std::string expect;
+    };
+    std::string good = test::read_file(sample);
+    std::vector<Case> cases = {
+        {"wrong type", R"({"clearance": "high", "tools": [], "operations": []})", "/clearance"},
+        {"unknown key", "{\n \"clearance\": 5,\n \"tols\": []\n}", ":3: /tols: unknown key \"tols\" (did you mean \"tools\"?)"},
+        {"missing tool", R"({"clearance": 5, "tools": [{"number": 1, "diameter": 3, "rpm": 100}],
+"operations": [{"type": "drill", "tool": 2, "endDepth": 1, "plungingFeedrate": 10, "holes": [[0,0]]}]})",
+         ":2: /operations/0/tool"},
+        {"NaN", R"({"clearance": NaN})", "NaN"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.name);
+        fs::path job = dir / "job.json";
+        write(job, c.json);
+        fs::path out = dir / "out.knc";
+        Run r = run({job.string(), "--machine", "wabeco", "-o", out.string()});
+        CHECK(r.code == 1);
+        CHECK(r.err.find(c.expect) != std::string::npos);
+        CHECK(r.err.find("job.json") != std::string::npos);
+        CHECK(!fs::exists(out));
+        CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}) == 1);
+    }
+}
+
+TEST_CASE("an error while posting keeps an existing output file and names the line") {
+    fs::path dir = scratch("keep");
+    fs::path out = dir / "part.knc";
+    write(out, "previous program\n");
+    fs::path job = dir / "job.json";
+    write(job, R"({"clearance": 5,
+"tools": [{"number": 1, "diameter": 6, "rpm": 2000, "direction": "ccw"}],
+"operations": [
+  {"type": "drill", "tool": 1, "endDepth": 3, "plungingFeedrate": 50, "holes": [[0, 0]]}]})");
+    Run r = run({job.string(), "--machine", "wabeco", "-o", out.string()});
+    CHECK(r.code == 1);
+    CHECK(r.err.find("job.json:4: /operations/0") != std::string::npos);
+    CHECK(test::read_file(out.string()) == "previous program\n");
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}) == 2);
+}
+
+TEST_CASE("an unreadable job or unwritable output exits 3") {
+    CHECK(run({"/nonexistent/job.json", "--machine", "fanuc"}).code == 3);
+    CHECK(run({sample, "--machine", "fanuc", "-o", "/nonexistent/dir/out.nc"}).code == 3);
+}
