@@ -14,77 +14,110 @@ Format::Format(FormatSpec spec) : spec_(std::move(spec)) {
 
 namespace {
 
-// Digits of |v| in fixed notation, rounded half away from zero to `decimals` places.
-// Returns integer digits and fraction digits (fraction has exactly `decimals` digits).
+constexpr unsigned long long pow10[] = {1ULL, 10ULL, 100ULL, 1000ULL, 10000ULL, 100000ULL, 1000000ULL,
+                                        10000000ULL, 100000000ULL, 1000000000ULL, 10000000000ULL,
+                                        100000000000ULL, 1000000000000ULL};
+
+// |v| rounded to `decimals` places: the integer digits, then exactly `decimals` fraction
+// digits, in one buffer.
 struct Decimal {
-    std::string integer;
-    std::string fraction;
+    char digits[400];
+    int integer_length = 0;
+    int fraction_length = 0;
     bool negative = false;
+
+    bool zero() const {
+        for (int i = 0; i < integer_length + fraction_length; ++i)
+            if (digits[i] != '0') return false;
+        return true;
+    }
 };
 
-Decimal round_decimal(double v, int decimals) {
-    // Shortest round-trip representation in fixed notation: never an exponent.
-    char buf[400];
-    auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+// Exact path: round the shortest decimal text of v (std::to_chars, fixed notation: never an
+// exponent) half away from zero, digit by digit.
+void round_text(double v, int decimals, Decimal& d) {
+    char text[400];
+    auto res = std::to_chars(text, text + sizeof text, v, std::chars_format::fixed);
     if (res.ec != std::errc()) throw std::logic_error("number too large to format");
-    std::string_view text(buf, static_cast<size_t>(res.ptr - buf));
-    Decimal d;
-    if (!text.empty() && text.front() == '-') {
-        d.negative = true;
-        text.remove_prefix(1);
-    }
-    auto point = text.find('.');
-    d.integer = std::string(text.substr(0, point));
-    std::string frac = point == std::string_view::npos ? std::string() : std::string(text.substr(point + 1));
-    bool round_up = frac.size() > static_cast<size_t>(decimals) && frac[static_cast<size_t>(decimals)] >= '5';
-    frac.resize(static_cast<size_t>(decimals), '0');
+    const char* p = text;
+    const char* end = res.ptr;
+    d.negative = *p == '-';
+    if (d.negative) ++p;
+    int n = 0;
+    while (p < end && *p != '.') d.digits[n++] = *p++;
+    d.integer_length = n;
+    if (p < end) ++p;  // the point
+    int kept = 0;
+    while (p < end && kept < decimals) d.digits[n++] = *p++, ++kept;
+    bool round_up = p < end && *p >= '5';
+    for (; kept < decimals; ++kept) d.digits[n++] = '0';
+    d.fraction_length = decimals;
     if (round_up) {
-        std::string digits = d.integer + frac;
-        int i = static_cast<int>(digits.size()) - 1;
-        while (i >= 0 && digits[static_cast<size_t>(i)] == '9') digits[static_cast<size_t>(i--)] = '0';
-        if (i < 0)
-            digits.insert(digits.begin(), '1');
-        else
-            ++digits[static_cast<size_t>(i)];
-        d.integer = digits.substr(0, digits.size() - static_cast<size_t>(decimals));
-        frac = digits.substr(digits.size() - static_cast<size_t>(decimals));
+        int i = n - 1;
+        while (i >= 0 && d.digits[i] == '9') d.digits[i--] = '0';
+        if (i >= 0) {
+            ++d.digits[i];
+        } else {  // 9.99 -> 10.00: one more integer digit
+            for (int k = n; k > 0; --k) d.digits[k] = d.digits[k - 1];
+            d.digits[0] = '1';
+            ++d.integer_length;
+        }
     }
-    d.fraction = std::move(frac);
-    if (d.integer.empty()) d.integer = "0";
-    return d;
 }
 
-bool all_zero(const Decimal& d) {
-    for (char c : d.integer)
-        if (c != '0') return false;
-    for (char c : d.fraction)
-        if (c != '0') return false;
-    return true;
+// The digits of value x scale. Fast path: when the scaled value is small enough for double
+// arithmetic to be exact to far below half a unit, and not close to a rounding boundary,
+// rounding the binary value gives the same digits as rounding its decimal text.
+Decimal digits_of(const FormatSpec& spec, double value) {
+    double v = value * spec.scale;
+    if (!std::isfinite(value) || !std::isfinite(v))
+        throw std::logic_error("refusing to write a number that is not finite");
+    Decimal d;
+    double scaled = std::abs(v) * static_cast<double>(pow10[spec.decimals]);
+    double whole = std::floor(scaled);
+    double frac = scaled - whole;
+    if (!(scaled < 1e9) || std::abs(frac - 0.5) < 1e-6) {
+        round_text(v, spec.decimals, d);
+        return d;
+    }
+    unsigned long long n = static_cast<unsigned long long>(whole) + (frac > 0.5 ? 1 : 0);
+    d.negative = v < 0;
+    unsigned long long integer = n / pow10[spec.decimals];
+    unsigned long long fraction = n % pow10[spec.decimals];
+    char tmp[24];
+    int i = 24;
+    do {
+        tmp[--i] = static_cast<char>('0' + integer % 10);
+        integer /= 10;
+    } while (integer);
+    d.integer_length = 24 - i;
+    for (int k = 0; k < d.integer_length; ++k) d.digits[k] = tmp[i + k];
+    d.fraction_length = spec.decimals;
+    for (int k = spec.decimals - 1; k >= 0; --k) {
+        d.digits[d.integer_length + k] = static_cast<char>('0' + fraction % 10);
+        fraction /= 10;
+    }
+    return d;
 }
 
 }  // namespace
 
 void Format::append(std::string& out, double value) const {
-    if (!std::isfinite(value)) throw std::logic_error("refusing to write a number that is not finite");
-    double v = value * spec_.scale;
-    if (!std::isfinite(v)) throw std::logic_error("refusing to write a number that is not finite");
-    Decimal d = round_decimal(v, spec_.decimals);
-    bool zero = all_zero(d);
+    Decimal d = digits_of(spec_, value);
     out += spec_.prefix;
-    if (d.negative && !zero)
+    if (d.negative && !d.zero())
         out += '-';
     else if (spec_.force_sign)
         out += '+';
-    if (static_cast<int>(d.integer.size()) < spec_.width)
-        out.append(static_cast<size_t>(spec_.width) - d.integer.size(), spec_.zeropad ? '0' : ' ');
-    out += d.integer;
-    std::string& frac = d.fraction;
-    if (!spec_.force_decimal) {
-        while (!frac.empty() && frac.back() == '0') frac.pop_back();
-    }
-    if (!frac.empty()) {
+    if (d.integer_length < spec_.width)
+        out.append(static_cast<size_t>(spec_.width - d.integer_length), spec_.zeropad ? '0' : ' ');
+    out.append(d.digits, static_cast<size_t>(d.integer_length));
+    int frac = d.fraction_length;
+    if (!spec_.force_decimal)
+        while (frac > 0 && d.digits[d.integer_length + frac - 1] == '0') --frac;
+    if (frac > 0) {
         out += spec_.decimal_mark;
-        out += frac;
+        out.append(d.digits + d.integer_length, static_cast<size_t>(frac));
     }
 }
 
@@ -95,18 +128,18 @@ std::string Format::format(double value) const {
 }
 
 double Format::rounded(double value) const {
-    Decimal d = round_decimal(value * spec_.scale, spec_.decimals);
-    std::string text = d.integer + "." + d.fraction;
+    Decimal d = digits_of(spec_, value);
     double r = 0.0;
+    std::string text(d.digits, static_cast<size_t>(d.integer_length));
+    text += '.';
+    text.append(d.digits + d.integer_length, static_cast<size_t>(d.fraction_length));
     std::from_chars(text.data(), text.data() + text.size(), r);
     if (d.negative) r = -r;
     if (r == 0.0) r = 0.0;  // no -0
     return r / spec_.scale;
 }
 
-bool Format::is_zero(double value) const {
-    return all_zero(round_decimal(value * spec_.scale, spec_.decimals));
-}
+bool Format::is_zero(double value) const { return digits_of(spec_, value).zero(); }
 
 Word::Word(std::string prefix, Format format, bool force)
     : prefix_(std::move(prefix)), format_(std::move(format)), force_(force) {}

@@ -1,5 +1,8 @@
 // Number formatting (CNC-Calc createFormat / createVariable) at its edges.
+#include <charconv>
 #include <clocale>
+#include <cmath>
+#include <random>
 #include <limits>
 #include <sstream>
 #include <locale>
@@ -145,4 +148,58 @@ TEST_CASE("block writer: sequence numbers, separator, line break, comments") {
         w.comment("line one\nline two");
     }
     CHECK(semi.str() == "G1X2\n; line one line two\n");
+}
+
+namespace {
+
+// Reference rounding for the property test: round the shortest decimal text of v half away
+// from zero at `decimals`, by digit arithmetic on the text; trailing zeros stripped.
+std::string reference_format(double v, int decimals) {
+    char buf[400];
+    auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+    std::string t(buf, r.ptr);
+    bool neg = t[0] == '-';
+    if (neg) t.erase(0, 1);
+    auto dot = t.find('.');
+    std::string ip = t.substr(0, dot), fp = dot == std::string::npos ? "" : t.substr(dot + 1);
+    fp.resize(std::max<size_t>(fp.size(), static_cast<size_t>(decimals) + 1), '0');
+    bool up = fp[static_cast<size_t>(decimals)] >= '5';
+    std::string digits = ip + fp.substr(0, static_cast<size_t>(decimals));
+    if (up) {
+        int i = static_cast<int>(digits.size()) - 1;
+        for (; i >= 0 && digits[static_cast<size_t>(i)] == '9'; --i) digits[static_cast<size_t>(i)] = '0';
+        if (i < 0) digits.insert(0, "1"); else ++digits[static_cast<size_t>(i)];
+    }
+    std::string ipart = digits.substr(0, digits.size() - static_cast<size_t>(decimals));
+    std::string fpart = digits.substr(digits.size() - static_cast<size_t>(decimals));
+    while (!fpart.empty() && fpart.back() == '0') fpart.pop_back();
+    while (ipart.size() > 1 && ipart[0] == '0') ipart.erase(0, 1);
+    std::string out = ipart + (fpart.empty() ? "" : "." + fpart);
+    if (neg && out != "0") out = "-" + out;
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("property: the fast path rounds exactly like the decimal text of the value") {
+    std::mt19937_64 rng(12345);
+    std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+    std::uniform_int_distribution<int> exponent(-6, 8), decimals(0, 6), ties(0, 3);
+    int mismatches = 0;
+    for (int i = 0; i < 200000; ++i) {
+        int dec = decimals(rng);
+        double v = mantissa(rng) * std::pow(10.0, exponent(rng));
+        // A quarter of the cases sit exactly on a written half (x.xxx5), the hard case.
+        if (ties(rng) == 0) v = (std::round(v * std::pow(10.0, dec)) + 0.5 * (v < 0 ? -1 : 1)) / std::pow(10.0, dec);
+        FormatSpec s;
+        s.decimals = dec;
+        std::string got = Format(s).format(v);
+        std::string want = reference_format(v, dec);
+        if (got != want && mismatches++ == 0) {
+            CAPTURE(v);
+            CAPTURE(dec);
+            CHECK(got == want);
+        }
+    }
+    CHECK(mismatches == 0);
 }
