@@ -24,6 +24,7 @@ DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
         c.bottom_z -= tool.diameter / 2.0 / std::tan(half);
     }
     c.spindle_rpm = tool.rpm;
+    c.spindle_direction = tool.direction;
     bool tapping = p.kind == CycleKind::tap || p.kind == CycleKind::tap_left;
     c.feed = tapping ? p.pitch.value_or(0.0) * p.tapping_speed.value_or(tool.rpm) : p.plunging_feedrate.value_or(0.0);
     return c;
