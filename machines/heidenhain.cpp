@@ -19,7 +19,7 @@ namespace {
 
 // Q213 takes at most 99 chip breaks; Q208 at this value is a rapid retraction (FMAX).
 constexpr int max_breaks = 99;
-constexpr double fmax_feed = 99999.999;
+constexpr double fmax_feed = 99999.0;
 
 bool tapping(CycleKind k) { return k == CycleKind::tap || k == CycleKind::tap_left; }
 bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_break; }

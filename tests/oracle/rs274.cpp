@@ -140,13 +140,18 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
     fs::create_directories(dir);
     static int counter = 0;
     fs::path ngc = dir / fmt::format("p{}.ngc", counter++);
-    fs::path err = ngc;
+    fs::path err = ngc, tools = ngc;
     err.replace_extension(".err");
+    tools.replace_extension(".tbl");
     {
         std::ofstream f(ngc);
         f << program;
+        // Tools 1 to 99, zero length: rs274's built-in table lacks some numbers.
+        std::ofstream t(tools);
+        for (int i = 1; i < 100; ++i) t << fmt::format("T{} P{} Z0 D1 ;tool {}\n", i, i, i);
     }
-    std::string command = fmt::format("'{}' -g '{}' </dev/null 2>'{}'", rs274, ngc.string(), err.string());
+    std::string command = fmt::format("'{}' -t '{}' -g '{}' </dev/null 2>'{}'", rs274, tools.string(), ngc.string(),
+                                      err.string());
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) throw std::runtime_error("cannot run " + rs274);
     std::string canon;
@@ -159,6 +164,9 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
                                              message, program));
     fs::remove(ngc);
     fs::remove(err);
+    fs::remove(tools);
+    std::error_code ec;
+    fs::remove(dir, ec);  // only when empty: another run may still use it
     return parse_canon(canon);
 }
 

@@ -6,6 +6,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -210,4 +212,31 @@ TEST_CASE("FreeCAD 0.20 grbl defect: G83 under G98 from Z10 with R2 feeds its fi
     REQUIRE(first_feed < b.size());
     CHECK(b[first_feed - 1].to.z == 2.0);  // the move before the first feed ends at R
     CHECK(b[first_feed].to.z == -1.0);
+}
+
+TEST_CASE("every linuxcnc golden file runs through rs274; G33.1 is a rigid tap to the hole bottom") {
+    const std::string rs274 = rs274_path();
+    namespace fs = std::filesystem;
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(CAMGEN_SOURCE_DIR "/tests/golden/linuxcnc")) {
+        if (entry.path().extension() != ".ngc") continue;
+        ++files;
+        std::ifstream f(entry.path());
+        std::stringstream text;
+        text << f.rdbuf();
+        INFO(entry.path().string());
+        std::vector<Step> steps;
+        REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274, text.str()));
+        CHECK_FALSE(steps.empty());
+        if (entry.path().stem() == "tapping") {
+            int taps = 0;
+            for (const Step& s : steps)
+                if (s.kind == Step::Kind::rigid_tap) {
+                    ++taps;
+                    CHECK(s.to.z == -12.0);
+                }
+            CHECK(taps == 2);
+        }
+    }
+    CHECK(files >= 3);
 }
