@@ -1,5 +1,5 @@
 // The ISO (Fanuc-style) dialect: %, O-number, G-code program frame, T.. M6, S.. M3, G43 H,
-// canned cycles G73/G74/G76-G89 with G98/G99 and G80.
+// canned cycles G73/G74/G81-G89 with G98/G99 and G80, LinuxCNC G33.1 rigid tapping.
 #include "machines/iso.hpp"
 
 #include <fmt/format.h>
@@ -34,7 +34,12 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     program_number_ = f.optional_integer("programNumber").value_or(1000);
     percent_ = f.boolean("percentLines", true);
     length_offset_ = f.boolean("toolLengthOffset", true);
-    tool_change_ = f.boolean("toolChange", true);
+    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
+        tool_change_ = tc->get<bool>() ? IsoToolChange::m6 : IsoToolChange::none;
+    else
+        tool_change_ = f.choice<IsoToolChange>(
+            "toolChange", {{"m6", IsoToolChange::m6}, {"pause", IsoToolChange::pause}, {"none", IsoToolChange::none}},
+            IsoToolChange::m6);
     end_code_ = f.optional_string("endCode").value_or("M30");
     f.finish();
 }
@@ -59,8 +64,21 @@ void IsoPost::on_close() {
 }
 
 void IsoPost::on_tool_change(const ToolChange& tool) {
-    if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
-    if (tool_change_) out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
+    switch (tool_change_) {
+        case IsoToolChange::m6:
+            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+            out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
+            break;
+        case IsoToolChange::pause:
+            // No tool changer (GRBL has no M6): the spindle is off; stop and tell the operator.
+            out_.comment(fmt::format("Insert tool {}{}", tool.number,
+                                     tool.description.empty() ? "" : ": " + tool.description));
+            out_.add(m(0)).end();
+            break;
+        case IsoToolChange::none:
+            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+            break;
+    }
     length_offset_pending_ = length_offset_;
 }
 
@@ -88,9 +106,34 @@ void IsoPost::on_rapid(const Vec3& to) {
     Post::on_rapid(to);
 }
 
-void IsoPost::on_drilling_header(const DrillCycle&, const DrillingCycleSpec&) {}
+std::optional<SpindleState> IsoPost::tapping_direction(const DrillCycle& c) {
+    if (c.kind == CycleKind::tap_left && c.spindle_direction != SpindleDirection::ccw) return SpindleState::ccw;
+    if (c.kind == CycleKind::tap && c.spindle_direction != SpindleDirection::cw) return SpindleState::cw;
+    return std::nullopt;
+}
 
-void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec&, Vec2 at, bool first) {
+void IsoPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) {
+    // G84/G74 and G33.1 tap in the direction the spindle runs when they start.
+    if (auto dir = tapping_direction(c)) on_spindle(Spindle{*dir, c.spindle_rpm});
+    // G98 returns to the Z the tool had before the cycle: make sure that is the retract plane.
+    if (c.retract_z > c.safe_z && pos_.z != c.retract_z) {
+        on_rapid({pos_.x, pos_.y, c.retract_z});
+        pos_.z = c.retract_z;
+    }
+}
+
+void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
+    if (spec.name == "G33.1") {
+        // LinuxCNC rigid tapping: from R, synchronised down to Z, spindle reversal and back to
+        // R in one move; the control restores the spindle direction.
+        on_rapid({at.x, at.y, pos_.z});
+        on_rapid({at.x, at.y, c.safe_z});
+        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add("K" + xyz_fmt_.format(*c.params.pitch)).end();
+        motion_.reset();
+        z_.set_last(c.safe_z);
+        on_rapid({at.x, at.y, c.retract_z});
+        return;
+    }
     std::string xs = x_.force(at.x), ys = y_.force(at.y);
     if (!first) {
         out_.add(xs).add(ys).end();
@@ -107,6 +150,10 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec&, V
     out_.add(feed_word(c.feed)).end();
 }
 
-void IsoPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { out_.add(g(80)).end(); }
+void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    if (spec.name != "G33.1") out_.add(g(80)).end();
+    if (tapping_direction(c)) on_spindle(Spindle{c.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw,
+                                                 c.spindle_rpm});
+}
 
 }  // namespace camgen

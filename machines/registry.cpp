@@ -3,15 +3,19 @@
 
 #include "camgen/error.hpp"
 #include "camgen/post.hpp"
+#include "machines/heidenhain.hpp"
 #include "machines/iso.hpp"
 #include "machines/nccad.hpp"
+#include "machines/sinumerik.hpp"
 
 namespace camgen {
 
 std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options) {
     if (machine.dialect == "iso") return std::make_unique<IsoPost>(machine, out, std::move(options));
     if (machine.dialect == "nccad") return std::make_unique<NccadPost>(machine, out, std::move(options));
-    throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: iso, nccad", machine.dialect), 0,
+    if (machine.dialect == "sinumerik") return std::make_unique<SinumerikPost>(machine, out, std::move(options));
+    if (machine.dialect == "heidenhain") return std::make_unique<HeidenhainPost>(machine, out, std::move(options));
+    throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: heidenhain, iso, nccad, sinumerik", machine.dialect), 0,
                      machine.source);
 }
 

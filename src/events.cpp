@@ -55,6 +55,7 @@ std::string event_to_json(const Event& event) {
                        j = {{"event", "drill-cycle"},  {"cycle", cycle_kind_name(e.kind)}, {"path", e.path},
                             {"retractZ", e.retract_z}, {"referenceZ", e.reference_z},     {"safeZ", e.safe_z},
                             {"bottomZ", e.bottom_z},   {"feed", e.feed},                  {"rpm", e.spindle_rpm}};
+                       if (e.spindle_direction == SpindleDirection::ccw) j["direction"] = "ccw";
                        const DrillParams& p = e.params;
                        put_optional(j, "firstDepth", p.first_depth);
                        if (p.degression_type != DegressionType::none)

@@ -62,20 +62,27 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
     auto bottom_dwell = [&] {
         if (p.bottom_dwell && *p.bottom_dwell > 0.0) ev.emplace_back(Dwell{*p.bottom_dwell});
     };
-    // Out of the hole to the feed-start plane, then to the retract plane.
+    // From the feed-start plane up to the retract plane, when they differ.
+    auto rapid_to_retract = [&] {
+        if (cycle.retract_z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.retract_z)});
+    };
+    // Out of the hole: at the retract feed to the feed-start plane, else at rapid.
     auto retract_out = [&](std::optional<double> feed) {
         if (feed) {
             ev.emplace_back(Linear{at(cycle.safe_z), *feed});
-            if (cycle.retract_z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.retract_z)});
+            rapid_to_retract();
         } else {
             ev.emplace_back(Rapid{at(cycle.retract_z)});
         }
     };
-    double first_feed = cycle.feed * p.first_feedrate_factor.value_or(1.0);
+    const double first_feed = cycle.feed * p.first_feedrate_factor.value_or(1.0);
+    const SpindleState forward =
+        cycle.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
 
     switch (cycle.kind) {
         case CycleKind::drill:
         case CycleKind::dwell:
+            // G81 / G82: feed to the bottom, dwell, rapid out.
             top_dwell();
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
@@ -83,8 +90,10 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             break;
         case CycleKind::deep:
         case CycleKind::chip_break: {
-            std::vector<double> depths = peck_depths(cycle);
-            double back_off = p.pecking_retract.value_or(options.peck_clearance);
+            // G83: after each peck rapid to R, rapid down to clearance above the last peck.
+            // G73: after each peck rapid up by the back-off only.
+            const std::vector<double> depths = peck_depths(cycle);
+            const double back_off = p.pecking_retract.value_or(options.peck_clearance);
             top_dwell();
             for (size_t k = 0; k < depths.size(); ++k) {
                 ev.emplace_back(Linear{at(depths[k]), k == 0 ? first_feed : cycle.feed});
@@ -103,39 +112,50 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
         }
         case CycleKind::tap:
         case CycleKind::tap_left: {
-            SpindleState in = cycle.kind == CycleKind::tap ? SpindleState::cw : SpindleState::ccw;
-            SpindleState out = cycle.kind == CycleKind::tap ? SpindleState::ccw : SpindleState::cw;
-            double pitch = p.pitch.value_or(0.0);
-            double rpm_in = p.tapping_speed.value_or(cycle.spindle_rpm);
-            double rpm_out = p.retract_speed.value_or(rpm_in);
-            if (p.tapping_speed) ev.emplace_back(Spindle{in, rpm_in});
+            // G84 / G74 (Fanuc order): feed in at pitch x speed, dwell, reverse, feed out to R,
+            // restore the spindle, rapid to the retract plane.
+            const SpindleState in = cycle.kind == CycleKind::tap ? SpindleState::cw : SpindleState::ccw;
+            const SpindleState out = cycle.kind == CycleKind::tap ? SpindleState::ccw : SpindleState::cw;
+            const double pitch = p.pitch.value_or(0.0);
+            const double rpm_in = p.tapping_speed.value_or(cycle.spindle_rpm);
+            const double rpm_out = p.retract_speed.value_or(rpm_in);
+            if (p.tapping_speed || in != forward) ev.emplace_back(Spindle{in, rpm_in});
             ev.emplace_back(Linear{at(cycle.bottom_z), pitch * rpm_in});
             bottom_dwell();
             ev.emplace_back(Spindle{out, rpm_out});
             ev.emplace_back(Linear{at(cycle.safe_z), pitch * rpm_out});
-            ev.emplace_back(Spindle{in, cycle.spindle_rpm});
-            if (cycle.retract_z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.retract_z)});
+            ev.emplace_back(Spindle{forward, cycle.spindle_rpm});
+            rapid_to_retract();
             break;
         }
         case CycleKind::ream:
+            // G85: feed in, feed out to R (at the retract feed when set), rapid on.
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
             ev.emplace_back(Linear{at(cycle.safe_z), p.retract_feedrate.value_or(cycle.feed)});
-            if (cycle.retract_z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.retract_z)});
+            rapid_to_retract();
             break;
         case CycleKind::bore_stop:
+            // G86: feed in, dwell, spindle stop, rapid out, spindle on again.
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
             ev.emplace_back(Spindle{SpindleState::off, 0.0});
             ev.emplace_back(Rapid{at(cycle.retract_z)});
-            ev.emplace_back(Spindle{SpindleState::cw, cycle.spindle_rpm});
+            ev.emplace_back(Spindle{forward, cycle.spindle_rpm});
             break;
-        case CycleKind::bore_dwell:
+        case CycleKind::bore_dwell: {
+            // G89: feed in, dwell, feed out - to R (Fanuc) or to the retract level (LinuxCNC).
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
-            ev.emplace_back(Linear{at(cycle.safe_z), p.retract_feedrate.value_or(cycle.feed)});
-            if (cycle.retract_z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.retract_z)});
+            const double out_feed = p.retract_feedrate.value_or(cycle.feed);
+            if (options.bore_dwell_feed_out == BoreDwellFeedOut::to_retract) {
+                ev.emplace_back(Linear{at(cycle.retract_z), out_feed});
+            } else {
+                ev.emplace_back(Linear{at(cycle.safe_z), out_feed});
+                rapid_to_retract();
+            }
             break;
+        }
     }
     return ev;
 }

@@ -124,6 +124,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         }
         m.block.sequence_numbers = gf.boolean("showSequenceNumbers", false);
         if (auto v = gf.optional_integer("sequenceNumberStart")) m.block.sequence_start = *v;
+        if (auto v = gf.optional_string("sequenceNumberPrefix")) m.block.sequence_prefix = *v;
         if (auto v = gf.optional_integer("sequenceNumberIncrement")) {
             if (*v < 1) gf.fail("sequenceNumberIncrement", "sequenceNumberIncrement must be >= 1");
             m.block.sequence_increment = *v;
@@ -205,6 +206,9 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (!(*v > 0)) df.fail("peckClearance", "peckClearance must be > 0");
             m.peck_clearance = *v;
         }
+        m.bore_dwell_feed_out = df.choice<BoreDwellFeedOut>(
+            "boreDwellFeedOut", {{"safe", BoreDwellFeedOut::to_safe}, {"retract", BoreDwellFeedOut::to_retract}},
+            BoreDwellFeedOut::to_safe);
         if (const auto* cycles = df.member("cycles")) {
             if (!cycles->is_array()) df.fail("cycles", "expected an array");
             for (size_t i = 0; i < cycles->size(); ++i) {
@@ -308,6 +312,8 @@ std::string describe_machine(const Machine& m) {
     line("minFeed", fmt::format("{} mm/min", m.limits.min_feed));
     line("rapidRate", fmt::format("{} mm/min", m.limits.rapid_rate));
     line("peckClearance", fmt::format("{} mm", m.peck_clearance));
+    line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
+                                                                                 : "to the retract level");
     s += "drilling cycles (MillDrillingFields)\n";
     for (CycleKind k : {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break, CycleKind::tap,
                         CycleKind::tap_left, CycleKind::ream, CycleKind::bore_stop, CycleKind::bore_dwell}) {

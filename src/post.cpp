@@ -179,6 +179,7 @@ void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) 
                                                      machine_.dialect, spec.name), 0, machine_.source);
 }
 void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
+std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
@@ -208,7 +209,8 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
     if (spec)
         for (DrillField f : drill_fields_used(cycle))
             if (!contains(spec->fields, f)) missing.emplace_back(drill_field_name(f));
-    if (cycle.output == CycleOutput::automatic) return spec && missing.empty() ? spec : nullptr;
+    std::optional<std::string> limit = spec && missing.empty() ? canned_limit(cycle, *spec) : std::nullopt;
+    if (cycle.output == CycleOutput::automatic) return spec && missing.empty() && !limit ? spec : nullptr;
     if (!spec)
         throw InputError(cycle.path + "/output",
                          fmt::format("machine {} has no canned cycle for \"{}\"; use \"auto\" or \"longhand\"",
@@ -220,6 +222,9 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
                          fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, spec->name,
                                      fmt::join(missing, ", "), offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));
     }
+    if (limit)
+        throw InputError(cycle.path + "/output", fmt::format("machine {}'s {} cannot carry this cycle: {}",
+                                                             machine_.name, spec->name, *limit));
     return spec;
 }
 
@@ -237,7 +242,7 @@ void Post::handle_drill_point(Vec2 at) {
         on_drilling_point(*cycle_, *cycle_spec_, at, first_point_);
         pos_ = {at.x, at.y, cycle_->retract_z};
     } else {
-        for (const Event& e : longhand_moves(*cycle_, pos_, at, {machine_.peck_clearance})) replay(e);
+        for (const Event& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
     }
     first_point_ = false;
 }

@@ -95,6 +95,7 @@ struct DrillCycle {
     double bottom_z = 0.0;
     double feed = 0.0;                 // mm/min, plunge (for taps: pitch x tapping rpm)
     double spindle_rpm = 0.0;          // the spindle speed the operation runs at
+    SpindleDirection spindle_direction = SpindleDirection::cw;  // the operation's spindle direction
     DrillParams params;                // the parameters as the job set them (for field checks)
     friend bool operator==(const DrillCycle&, const DrillCycle&) = default;
 };

@@ -73,7 +73,7 @@ struct DrillOp {
     std::string comment;
     int tool = 0;
     DrillParams params;
-    std::vector<Vec2> holes;   // in drilling order (already reordered when order = shortest)
+    std::vector<Vec2> holes;   // as the job gives them; expand() reorders them for order = shortest
     HoleOrder order = HoleOrder::as_given;
 };
 

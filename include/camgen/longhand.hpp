@@ -8,9 +8,15 @@
 
 namespace camgen {
 
+// Where a bore-dwell (G89) cycle's feed out of the hole ends. Fanuc feeds out to the
+// feed-start plane R and rapids on to the retract level; LinuxCNC 2.9 feeds all the way out
+// to the retract level (its G98/G99 "clear Z").
+enum class BoreDwellFeedOut { to_safe, to_retract };
+
 // Motion settings of the control being emulated.
 struct LonghandOptions {
-    double peck_clearance = 1.0;  // mm above the previous peck where the rapid re-approach stops
+    double peck_clearance = 1.0;  // mm: G83 re-approach stop above the last peck; G73 back-off
+    BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;
 };
 
 // The depths at which successive pecks end, from safe_z down to bottom_z: first depth,
@@ -18,9 +24,10 @@ struct LonghandOptions {
 // cycles without pecking. Throws InputError when the pecks could not reach the bottom.
 std::vector<double> peck_depths(const DrillCycle& cycle);
 
-// The moves that drill one hole at `hole`, starting from `from` (the tool above the hole's
-// neighbourhood at or above retract_z): rapid in XY, rapid to safe_z, the cycle, and the
-// final retract to retract_z. Spindle events appear only for tapping and bore-stop.
+// The moves that drill one hole at `hole`, starting from `from`, as LinuxCNC/Fanuc canned
+// cycles move: if `from` is below safe_z (R), rapid up to it first; rapid in XY; rapid down to
+// safe_z; the cycle; the final retract to retract_z (the G98 level, or R for G99). Pecks are
+// measured from safe_z. Spindle events appear only for tapping and bore-stop.
 std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options);
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camgen/job.hpp"
+#include "camgen/longhand.hpp"
 #include "camgen/nc/block_writer.hpp"
 #include "camgen/nc/format.hpp"
 
@@ -74,6 +75,7 @@ struct Machine {
     MachineLimits limits;
     ArcSettings arcs;
     double peck_clearance = 1.0;       // mm, re-approach clearance of longhand deep/chip-break
+    BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;  // longhand G89 feed-out end
     std::vector<DrillingCycleSpec> drilling;
     nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
     std::string source;                // where it was read from, for messages
@@ -82,6 +84,8 @@ struct Machine {
     nc::Format format(const std::string& key) const;
     // The machine's canned cycle of this kind, if any.
     const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
+    // How longhand cycles move on this machine (so that they equal its canned cycles).
+    LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
 };
 
 // A machine file compiled into the program.

@@ -60,6 +60,10 @@ protected:
     virtual void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec,
                                    Vec2 at, bool first);
     virtual void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec);
+    // Why the canned `spec` cannot carry this cycle although it has every field the cycle
+    // uses (a value the control cannot express, e.g. a degression factor where it takes only
+    // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
+    virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
 
     // ---- shared helpers ----
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
@@ -70,7 +74,7 @@ protected:
     // Forget modal state that the control may have changed (after a cycle, a tool change).
     void reset_modal_axes();
     // Writes a block of an unknown-position rapid: XY first, then Z.
-    void rapid_from_unknown(const Vec3& to);
+    virtual void rapid_from_unknown(const Vec3& to);
     void warn(const std::string& message);
     // InputError at the current operation's path (plus `key`).
     [[noreturn]] void fail(const std::string& key, const std::string& detail) const;

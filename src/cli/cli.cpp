@@ -19,6 +19,7 @@
 #include "camgen/operations.hpp"
 #include "camgen/output.hpp"
 #include "camgen/post.hpp"
+#include "camgen/stats.hpp"
 
 #ifndef CAMGEN_VERSION
 #define CAMGEN_VERSION "0.0.0"
@@ -35,6 +36,7 @@ struct Options {
     bool snippet = false;
     bool events = false;
     bool list_machines = false;
+    bool stats = false;
     std::string describe;
     std::string units;
 };
@@ -74,10 +76,24 @@ InputError locate(const InputError& e, const std::string& source, const std::str
     return e.located(source == "-" ? "<stdin>" : source, line);
 }
 
+// Sends every event to two sinks (the post and the statistics).
+struct TeeSink : EventSink {
+    EventSink& a;
+    EventSink& b;
+    TeeSink(EventSink& first, EventSink& second) : a(first), b(second) {}
+    void emit(const Event& e) override {
+        a.emit(e);
+        b.emit(e);
+    }
+};
+
 void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err) {
     if (o.events) {
         EventPrinter printer(out);
-        expand_job(job, printer);
+        StatsSink stats;
+        TeeSink tee(printer, stats);
+        expand_job(job, tee);
+        if (o.stats) err << "camgen: " << format_stats(stats.stats()) << '\n';
         return;
     }
     Machine machine = load_machine(o.machine);
@@ -87,9 +103,12 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.program_name = job.name;
     po.warnings = &err;
     std::unique_ptr<Post> post = make_post(machine, out, po);
+    StatsSink stats(machine.longhand());
+    TeeSink tee(*post, stats);
     post->open();
-    expand_job(job, *post);
+    expand_job(job, tee);
     post->close();
+    if (o.stats) err << "camgen: " << format_stats(stats.stats()) << '\n';
 }
 
 }  // namespace
@@ -108,6 +127,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                    "Output file, written atomically (default -: standard output); wabeco/kosy programs end in .knc");
     app.add_flag("--snippet", o.snippet, "Clipboard export: no program start or end blocks");
     app.add_flag("--events", o.events, "Print the machine-independent events, one JSON object per line");
+    app.add_flag("--stats", o.stats, "Print the rapid and feed path lengths and the hole count to standard error");
     app.add_option("--units", o.units, "Output units, overriding the machine file")->check(CLI::IsMember({"mm", "inch"}));
     app.add_flag("--list-machines", o.list_machines, "List the built-in machines");
     app.add_option("--describe-machine", o.describe, "Print a machine's settings and drilling cycle table");

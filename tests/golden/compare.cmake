@@ -1,7 +1,21 @@
 # Runs camgen on one sample for one machine, then golden_diff against the golden file.
+# When tests/golden/<machine>/<sample>.err exists instead, the machine cannot run the job:
+# camgen must fail with exactly that message (the job's path written as samples/<name>.json).
 get_filename_component(dir ${ACTUAL} DIRECTORY)
 file(MAKE_DIRECTORY ${dir})
 execute_process(COMMAND ${CAMGEN} ${JOB} --machine ${MACHINE} -o ${ACTUAL} RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(EXISTS ${EXPECTED_ERROR})
+  get_filename_component(job_name ${JOB} NAME)
+  string(REPLACE "${JOB}" "samples/${job_name}" err "${err}")
+  file(READ ${EXPECTED_ERROR} expected)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "camgen succeeded, but ${EXPECTED_ERROR} expects: ${expected}")
+  endif()
+  if(NOT err STREQUAL expected)
+    message(FATAL_ERROR "camgen failed with\n${err}but ${EXPECTED_ERROR} expects\n${expected}")
+  endif()
+  return()
+endif()
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "camgen failed (${rc}): ${err}")
 endif()

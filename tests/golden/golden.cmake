@@ -1,5 +1,7 @@
 # Golden tests: every sample posted for every machine must equal
-# tests/golden/<machine>/<sample>.<ext> byte for byte. scripts/update-golden rewrites them.
+# tests/golden/<machine>/<sample>.<ext> byte for byte, or fail with the message in
+# tests/golden/<machine>/<sample>.err when the machine cannot run it. scripts/update-golden
+# rewrites them.
 add_executable(golden_diff ${CMAKE_SOURCE_DIR}/tests/golden/golden_diff.cpp)
 file(GLOB CAMGEN_SAMPLES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/samples/*.json)
 foreach(machine_file ${CAMGEN_MACHINE_FILES})
@@ -12,6 +14,7 @@ foreach(machine_file ${CAMGEN_MACHINE_FILES})
     add_test(NAME golden/${machine}/${sample}
       COMMAND ${CMAKE_COMMAND} -DCAMGEN=$<TARGET_FILE:camgen> -DDIFF=$<TARGET_FILE:golden_diff> -DJOB=${sample_file} -DMACHINE=${machine}
               -DEXPECTED=${CMAKE_SOURCE_DIR}/tests/golden/${machine}/${sample}.${ext}
+              -DEXPECTED_ERROR=${CMAKE_SOURCE_DIR}/tests/golden/${machine}/${sample}.err
               -DACTUAL=${CMAKE_BINARY_DIR}/golden/${machine}/${sample}.${ext}
               -P ${CMAKE_SOURCE_DIR}/tests/golden/compare.cmake)
   endforeach()

@@ -1,0 +1,274 @@
+(drilling)
+G17 G21 G90 G94
+(spot a rotated grid, dwell 0.5 s)
+(Insert tool 1: 10 mm spot drill - spot drill 90 deg)
+M0
+S1500 M3
+G0 X10 Y10
+Z20
+Z5
+Z2
+G1 Z-2 F100
+G4 P0.5
+G0 Z5
+X29.696 Y13.473
+Z2
+G1 Z-2
+G4 P0.5
+G0 Z5
+X49.392 Y16.946
+Z2
+G1 Z-2
+G4 P0.5
+G0 Z5
+X7.395 Y24.772
+Z2
+G1 Z-2
+G4 P0.5
+G0 Z5
+X27.091 Y28.245
+Z2
+G1 Z-2
+G4 P0.5
+G0 Z5
+X46.788 Y31.718
+Z2
+G1 Z-2
+G4 P0.5
+G0 Z5
+Z20
+M5
+(through holes, shortest order)
+(Insert tool 2: 6 mm drill - HSS jobber)
+M0
+S1200 M3
+G0 X10 Y10
+Z20
+Z5
+Z1
+G1 Z-9.803 F120
+G0 Z5
+X30
+Z1
+G1 Z-9.803
+G0 Z5
+X50
+Z1
+G1 Z-9.803
+G0 Z5
+Y50
+Z1
+G1 Z-9.803
+G0 Z5
+X70
+Z1
+G1 Z-9.803
+G0 Z5
+X90
+Z1
+G1 Z-9.803
+G0 Z5
+Z20
+M5
+(deep holes on a bolt circle, full retract)
+(Insert tool 3: 5 mm drill - long series)
+M0
+S1800 M3
+G0 X60.607 Y40.607
+Z20
+Z10
+Z2
+G1 Z-4 F150
+G0 Z2
+Z-3.5
+G1 Z-10
+G0 Z2
+Z-9.5
+G1 Z-16
+G0 Z2
+Z-15.5
+G1 Z-20
+G0 Z10
+X39.393
+Z2
+G1 Z-4
+G0 Z2
+Z-3.5
+G1 Z-10
+G0 Z2
+Z-9.5
+G1 Z-16
+G0 Z2
+Z-15.5
+G1 Z-20
+G0 Z10
+Y19.393
+Z2
+G1 Z-4
+G0 Z2
+Z-3.5
+G1 Z-10
+G0 Z2
+Z-9.5
+G1 Z-16
+G0 Z2
+Z-15.5
+G1 Z-20
+G0 Z10
+X60.607
+Z2
+G1 Z-4
+G0 Z2
+Z-3.5
+G1 Z-10
+G0 Z2
+Z-9.5
+G1 Z-16
+G0 Z2
+Z-15.5
+G1 Z-20
+G0 Z10
+Z20
+(deep holes with degression, first feed halved)
+X20 Y40
+Z10
+Z1
+G4 P0.2
+G1 Z-5 F80
+G0 Z1
+G4 P0.2
+Z-4.5
+G1 Z-9 F160
+G0 Z1
+G4 P0.2
+Z-8.5
+G1 Z-11.5
+G0 Z1
+G4 P0.2
+Z-11
+G1 Z-14
+G0 Z1
+G4 P0.2
+Z-13.5
+G1 Z-15
+G0 Z10
+X80
+Z1
+G4 P0.2
+G1 Z-5 F80
+G0 Z1
+G4 P0.2
+Z-4.5
+G1 Z-9 F160
+G0 Z1
+G4 P0.2
+Z-8.5
+G1 Z-11.5
+G0 Z1
+G4 P0.2
+Z-11
+G1 Z-14
+G0 Z1
+G4 P0.2
+Z-13.5
+G1 Z-15
+G0 Z10
+Z20
+M5
+(chip breaking along a line)
+(Insert tool 4: 3 mm drill - stub)
+M0
+S2500 M3
+G0 X10 Y55
+Z20
+Z3
+Z1
+G1 Z-1.5 F90
+G0 Z-1
+G1 Z-4
+G0 Z-3.5
+G1 Z-6.5
+G0 Z-6
+G1 Z-7
+G0 Z3
+X25
+Z1
+G1 Z-1.5
+G0 Z-1
+G1 Z-4
+G0 Z-3.5
+G1 Z-6.5
+G0 Z-6
+G1 Z-7
+G0 Z3
+X40
+Z1
+G1 Z-1.5
+G0 Z-1
+G1 Z-4
+G0 Z-3.5
+G1 Z-6.5
+G0 Z-6
+G1 Z-7
+G0 Z3
+Z20
+(chip breaking with a 0.3 mm back-off)
+X60
+Z3
+Z1
+G1 Z-1
+G0 Z-0.7
+G1 Z-2.6
+G0 Z-2.3
+G1 Z-3.88
+G0 Z-3.58
+G1 Z-4.904
+G0 Z-4.604
+G1 Z-5.904
+G0 Z-5.604
+G1 Z-6
+G0 Z3
+Z20
+M5
+(ream, fast feed out)
+(Insert tool 5: 8 mm reamer - H7 reamer)
+M0
+S400 M3
+G0 X30 Y10
+Z20
+Z5
+Z2
+G1 Z-10 F60
+Z2 F300
+G0 Z5
+X70 Y50
+Z2
+G1 Z-10 F60
+Z2 F300
+G0 Z5
+Z20
+M5
+(bore, dwell, stop the spindle, rapid out)
+(Insert tool 6: 20 mm boring bar - boring head)
+M0
+S800 M3
+G0 X50 Y30
+Z20
+Z5
+Z2
+G1 Z-12 F40
+G4 P0.3
+M5
+G0 Z5
+S800 M3
+Z20
+(bore, dwell 1 s, feed out)
+Z10
+Z2
+G1 Z-14
+G4 P1
+Z2
+G0 Z10
+Z20
+M5
+M2

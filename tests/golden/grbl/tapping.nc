@@ -1,0 +1,49 @@
+(tapping)
+G17 G21 G90 G94
+(tap M8 x 1.25)
+(Insert tool 7: 8 mm tap - M8 right-hand tap)
+M0
+S300 M3
+G0 X10 Y10
+Z20
+Z5
+Z3
+G1 Z-12 F375
+S300 M4
+Z3
+S300 M3
+G0 Z5
+X30
+Z3
+G1 Z-12
+S300 M4
+Z3
+S300 M3
+G0 Z5
+Z20
+M5
+(tap M6 x 1 left-hand, slow in, fast out)
+(Insert tool 8: 6 mm tap - M6 left-hand tap)
+M0
+S300 M3
+G0 X10 Y40
+Z20
+Z5
+Z3
+S200 M4
+G1 Z-10 F200
+S400 M3
+Z3 F400
+S300 M3
+G0 Z5
+X30
+Z3
+S200 M4
+G1 Z-10 F200
+S400 M3
+Z3 F400
+S300 M3
+G0 Z5
+Z20
+M5
+M2
