@@ -93,6 +93,10 @@ protected:
 
 private:
     void handle_arc(const Arc& arc);
+    // Writes one arc block whose rounded words keep the control on the circle, or breaks it.
+    void write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth);
+    // Where the control stands at the start of an arc block (see arc_actual_end_).
+    Vec3 arc_control_start(const Vec3& start) const;
     void handle_drill_cycle(const DrillCycle& cycle);
     void handle_drill_point(Vec2 at);
     void handle_drill_end();
@@ -105,6 +109,9 @@ private:
     int warnings_ = 0;
     std::set<std::pair<std::string, double>> warned_feeds_;
     bool opened_ = false;
+    std::optional<double> op_tolerance_;       // the current operation's tolerance, mm
+    std::optional<Vec3> arc_actual_end_;       // where the control ended the last arc block
+    Vec3 arc_believed_end_;                    // ... and where the post's modal words think it is
 };
 
 // The post for a machine, by its dialect. Throws InputError for an unknown dialect.

@@ -184,10 +184,11 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK_FALSE(c.plunge_feed.has_value());
     CHECK(c.start == Vec2{0, 0});
     REQUIRE(c.elements.size() == 2);
-    CHECK(std::get<PathLine>(c.elements[0]).end == Vec2{10, 0});
+    CHECK(std::get<PathLine>(c.elements[0]).end == Vec3{10, 0, -2});  // [x, y] is at the depth
     const auto& arc = std::get<PathArc>(c.elements[1]);
-    CHECK(arc.end == Vec2{0, 0});
-    CHECK(arc.centre == Vec2{5, 0});
+    CHECK(arc.end == Vec3{0, 0, -2});
+    CHECK(arc.centre == Vec3{5, 0, -2});
+    CHECK(arc.plane == Plane::xy);
     CHECK(arc.direction == ArcDirection::ccw);
     CHECK(c.element_paths == std::vector<std::string>{"/operations/2/path/0", "/operations/2/path/1"});
 }
@@ -268,8 +269,8 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
     CHECK(c.depth == doctest::Approx(-2.54));
     CHECK(c.feed == doctest::Approx(254));
     CHECK(*c.plunge_feed == doctest::Approx(127));
-    check_point(std::get<PathLine>(c.elements[0]).end, 25.4, 0);
-    check_point(std::get<PathArc>(c.elements[1]).centre, 12.7, 0);
+    check_point({std::get<PathLine>(c.elements[0]).end.x, std::get<PathLine>(c.elements[0]).end.y}, 25.4, 0);
+    check_point({std::get<PathArc>(c.elements[1]).centre.x, std::get<PathArc>(c.elements[1]).centre.y}, 12.7, 0);
 }
 
 TEST_CASE("hole patterns") {
@@ -715,7 +716,7 @@ TEST_CASE("contour operations") {
     CHECK(c.tool == 3);
     REQUIRE(c.elements.size() == 1);
     const auto& full = std::get<PathArc>(c.elements[0]);
-    CHECK(full.end == Vec2{10, 0});  // end == start: a full circle
+    CHECK(full.end == Vec3{10, 0, -1});  // end == start: a full circle
     CHECK(full.direction == ArcDirection::cw);
     CHECK(c.element_paths == std::vector<std::string>{"/operations/0/path/0"});
 
@@ -736,10 +737,10 @@ TEST_CASE("contour operations") {
         {"line": [1, 0]},
         {"line": [2, 0], "arc": {"end": [0, 0], "centre": [1, 0], "direction": "cw"}}
       ])"),
-                "/operations/0/path/1", 13, "exactly one of \"line\" or \"arc\"");
+                "/operations/0/path/1", 13, "exactly one of \"line\", \"arc\" or \"helix\"");
     check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
       "path": [{}])"),
-                "/operations/0/path/0", 11, "exactly one of \"line\" or \"arc\"");
+                "/operations/0/path/0", 11, "exactly one of \"line\", \"arc\" or \"helix\"");
     check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
       "path": [{"lines": [1, 0]}])"),
                 "/operations/0/path/0/lines", 11, "unknown key \"lines\" (did you mean \"line\"?)");
