@@ -191,6 +191,9 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
     const Plane plane = piece.plane;
     const double sign = piece.direction == ArcDirection::ccw ? 1.0 : -1.0;
     const double tol = f.tolerance;
+    // The rounded ends alone may be half a grid step off in each axis, so the control's
+    // midpoint is held to the tolerance plus that.
+    const double mid_tol = tol + grid_step(f.xyz) * std::numbers::sqrt2 / 2.0;
     const PlanePoint s3 = to_plane(control_start, plane), e3 = to_plane(piece.end, plane), c3 = to_plane(piece.centre, plane);
     const P2 S{s3.u, s3.v};
     const P2 E{f.xyz.rounded(e3.u), f.xyz.rounded(e3.v)};
@@ -258,7 +261,7 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
                 double radius_error = std::abs(rs - re), sweep = sweep_to_end(c);
                 // With unequal radii a control runs a spiral: halfway it is at the mean radius.
                 double m_error = norm(c + rotate(S - c, sign * sweep / 2.0) * ((rs + re) / (2.0 * rs)) - M);
-                if (radius_error > tol || m_error > tol) return;
+                if (radius_error > tol || m_error > mid_tol) return;
                 accept(c, rs, sweep, E, radius_error + m_error);
             };
             const P2 plain = relative ? C - S : C;
@@ -281,7 +284,7 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
                 if (d2 < -1e-12) return;  // the control would stop: radius too small
                 P2 c = mid_chord + left * (side * std::sqrt(std::max(d2, 0.0)));
                 double sweep = sweep_to_end(c), m_error = mid_error(c, sweep);
-                if (m_error > tol) return;
+                if (m_error > mid_tol) return;
                 accept(c, r, sweep, E, m_error);
             };
             candidate(f.xyz.rounded(piece.radius));
@@ -298,7 +301,7 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
                 P2 c = S + w;
                 P2 end = c + rotate(S - c, sign * sweep);
                 double end_error = norm(end - E), m_error = mid_error(c, sweep);
-                if (end_error > tol || m_error > tol) return;
+                if (end_error > tol || m_error > mid_tol) return;
                 accept(c, norm(w), sweep, end, end_error + m_error);
             };
             const double d0 = f.angle.rounded(piece.sweep * deg);
