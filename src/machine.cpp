@@ -341,8 +341,9 @@ std::string describe_machine(const Machine& m) {
     line("arc tolerance", fmt::format("{} mm (start and end radii after rounding)", m.tolerance));
     line("chordTolerance", fmt::format("{} mm{}", m.arcs.chord_tolerance,
                                        m.arcs.tolerance_mode == ChordToleranceMode::operation ? ", or the operation's if smaller" : ""));
-    line("arcs as lines", fmt::format("radius above {}; at least {} segment(s), each at most {}", limit(m.arcs.max_radius),
-                                      m.arcs.min_segments, limit(m.arcs.max_segment_length)));
+    line("arcs as lines", fmt::format("radius above {}; at least {} segment(s), {}", limit(m.arcs.max_radius), m.arcs.min_segments,
+                                      m.arcs.max_segment_length ? fmt::format("each at most {} mm", *m.arcs.max_segment_length)
+                                                                : std::string("any length")));
     line("arcs as one line", fmt::format("radius below {}, length below {}", limit(m.arcs.min_radius), limit(m.arcs.min_length)));
     line("feed unit", m.feed_unit == FeedUnit::per_minute ? (m.units == Units::mm ? "mm/min" : "in/min") : "0.1 mm/s");
     for (const std::string& n : m.notes) line("note", n);

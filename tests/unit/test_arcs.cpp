@@ -671,3 +671,59 @@ TEST_CASE("fanuc writes the 3-turn helix as three full-turn helical blocks") {
     CHECK(p.text.find("X150.000 Y0.000 Z-5.000 I0.000 J2.000\n") != std::string::npos);
     CHECK(p.text.find("X150.000 Y0.000 Z-7.000 I0.000 J2.000\n") != std::string::npos);
 }
+
+// ---------------------------------------------------------------- machine file keys
+
+TEST_CASE("machine file: arc settings are read, checked, and described") {
+    auto machine = [](const std::string& arcs) {
+        return parse_machine(R"({"description": "t", "dialect": "iso", "extension": "nc",
+  "arcs": )" + arcs + "}",
+                             "t", "t.json");
+    };
+    Machine m = machine(R"({"format": "radius", "maxSweep": 90, "helical": false, "planes": ["xy", "yz"],
+    "chordTolerance": 0.01, "chordToleranceMode": "absolute", "maxRadius": 500, "minRadius": 0.05,
+    "minLength": 0.1, "minSegments": 4, "maxSegmentLength": 2, "forceXY": false})");
+    CHECK(m.arcs.format == ArcFormat::radius);
+    CHECK(m.arcs.max_sweep == 90);
+    CHECK(!m.arcs.helical);
+    CHECK(m.arcs.planes == std::vector<Plane>{Plane::xy, Plane::yz});
+    CHECK(m.arcs.chord_tolerance == 0.01);
+    CHECK(m.arcs.tolerance_mode == ChordToleranceMode::absolute);
+    CHECK(m.arcs.max_radius == 500);
+    CHECK(m.arcs.min_radius == 0.05);
+    CHECK(m.arcs.min_length == 0.1);
+    CHECK(m.arcs.min_segments == 4);
+    CHECK(m.arcs.max_segment_length == 2);
+    CHECK(!m.arcs.force_xy);
+    std::string d = describe_machine(m);
+    CHECK(d.find("radius above 500 mm; at least 4 segment(s), each at most 2 mm") != std::string::npos);
+    CHECK(d.find("radius below 0.05 mm, length below 0.1 mm") != std::string::npos);
+    CHECK(d.find("xy, yz (others as lines)") != std::string::npos);
+    // Defaults: no limits, the operation's tolerance may tighten the machine's.
+    Machine plain = machine("{}");
+    CHECK(!plain.arcs.max_radius);
+    CHECK(!plain.arcs.min_radius);
+    CHECK(!plain.arcs.min_length);
+    CHECK(plain.arcs.min_segments == 1);
+    CHECK(plain.arcs.tolerance_mode == ChordToleranceMode::operation);
+    CHECK(plain.tolerance == 0.002);
+
+    auto error = [&](const std::string& arcs, const std::string& path, const std::string& text) {
+        try {
+            machine(arcs);
+            FAIL("expected an error for " << arcs);
+        } catch (const InputError& e) {
+            CHECK(e.path() == path);
+            CHECK(std::string(e.what()).find(text) != std::string::npos);
+        }
+    };
+    error(R"({"maxRadius": 0})", "/arcs/maxRadius", "maxRadius must be > 0");
+    error(R"({"minLength": -1})", "/arcs/minLength", "minLength must be > 0");
+    error(R"({"minSegments": 0})", "/arcs/minSegments", "minSegments must be between 1 and 100000");
+    error(R"({"minRadius": 5, "maxRadius": 2})", "/arcs/minRadius", "minRadius must be below maxRadius");
+    error(R"({"chordToleranceMode": "relative"})", "/arcs/chordToleranceMode", "\"relative\" is not one of");
+    error(R"({"format": "nccad-angle", "maxSweep": 180, "planes": ["xy"]})", "/arcs/helical", "cannot write a helix");
+    error(R"({"format": "nccad-angle", "maxSweep": 180, "helical": false})", "/arcs/planes", "XY arcs only");
+    error(R"({"format": "nccad-angle", "helical": false, "planes": ["xy"]})", "/arcs/maxSweep", "at most 180 degrees");
+    error(R"({"maxSegmentLenght": 2})", "/arcs/maxSegmentLenght", "did you mean \"maxSegmentLength\"");
+}
