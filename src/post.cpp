@@ -263,7 +263,10 @@ void Post::handle_arc(const Arc& arc) {
     switch (plan.treatment) {
         case ArcTreatment::one_line: on_linear(arc.to, arc.feed); break;
         case ArcTreatment::lines:
-            for (const Vec3& p : linearize_arc(geo, plan.count)) on_linear(p, arc.feed);
+            for (const Vec3& p : linearize_arc(geo, plan.count)) {
+                on_linear(p, arc.feed);
+                pos_ = p;
+            }
             break;
         case ArcTreatment::arcs:
             for (const ArcGeometry& piece : split_arc(geo, plan.count)) write_arc_block(piece, arc.feed, tolerance, 0);
@@ -292,18 +295,24 @@ void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_t
     switch (fit.result) {
         case ArcFitResult::ok:
             on_circular(fit.block, feed);
+            pos_ = piece.end;
             arc_actual_end_ = fit.control_end;
             arc_believed_end_ = piece.end;
             break;
-        case ArcFitResult::degenerate: on_linear(piece.end, feed); break;
+        case ArcFitResult::degenerate:
+            on_linear(piece.end, feed);
+            pos_ = piece.end;
+            break;
         case ArcFitResult::no_fit:
             // Rounding would take the control off the circle: halves have shorter chords and
             // are less sensitive; after a few halvings, straight moves.
             if (depth < 4) {
                 for (const ArcGeometry& half : split_arc(piece, 2)) write_arc_block(half, feed, chord_tolerance, depth + 1);
             } else {
-                for (const Vec3& p : linearize_arc(piece, segment_count(piece, machine_.arcs, chord_tolerance)))
+                for (const Vec3& p : linearize_arc(piece, segment_count(piece, machine_.arcs, chord_tolerance))) {
                     on_linear(p, feed);
+                    pos_ = p;
+                }
             }
             break;
     }

@@ -103,8 +103,9 @@ enum class ArcFitResult {
 // One arc block as it will be written: `block` has start = the control's start, the centre
 // (and for the radius form `radius`, for the nccad form `sweep`) adjusted so that their
 // rounded words describe a circle through the control's start and the rounded end whose
-// radii agree within the tolerance, and whose midpoint lies within the tolerance of the
-// intended arc's; `control_end` is where the control will stop.
+// radii agree within the tolerance, and whose midpoint lies within the tolerance (plus half a
+// grid diagonal of the rounded ends) of the intended arc's; `control_end` is where the control
+// will stop. Plainly rounded words are kept when they pass; only otherwise are neighbours tried.
 struct ArcFit {
     ArcFitResult result = ArcFitResult::ok;
     ArcGeometry block;

@@ -51,7 +51,9 @@ protected:
     virtual void on_rapid(const Vec3& to);
     // A feed move; the base writes G1, pending compensation, axis words and F.
     virtual void on_linear(const Vec3& to, double feed);
-    // One arc block, already split to the machine's maximum sweep and in a supported plane.
+    // One arc block, already split to the machine's maximum sweep and in a supported plane,
+    // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
+    // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
     virtual void on_circular(const ArcGeometry& arc, double feed);
     // Compensation is retained and written by the next linear move (CNC-Calc rule).
     virtual void on_compensation(CompensationSide side);

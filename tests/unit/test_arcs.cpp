@@ -727,3 +727,14 @@ TEST_CASE("machine file: arc settings are read, checked, and described") {
     error(R"({"format": "nccad-angle", "helical": false, "planes": ["xy"]})", "/arcs/maxSweep", "at most 180 degrees");
     error(R"({"maxSegmentLenght": 2})", "/arcs/maxSegmentLenght", "did you mean \"maxSegmentLength\"");
 }
+
+TEST_CASE("fanuc breaks the 1522 mm arc into 11 chords within its tolerance") {
+    auto big = sample_path("fanuc", 2, {100, 0, -1});
+    REQUIRE(big.size() == 13);
+    std::vector<NcMove> chords(big.begin() + 2, big.end());
+    ArcGeometry large = arc_from({100, 20, -1}, {178, 22, -1}, {100, 1542, -1}, ArcDirection::ccw);
+    double d = deviation_from_arc(large, sampled(chords, 8));
+    CHECK(d <= load_machine("fanuc").arcs.chord_tolerance + 0.0007);
+    // 11 chords of 0.0512708 / 11 = 0.00466098 rad: sagitta 1522 (1 - cos(0.00233049)) = 0.004133.
+    CHECK(d > 0.004);
+}
