@@ -28,7 +28,10 @@ void put_optional(nlohmann::ordered_json& j, const char* key, const std::optiona
 std::string event_to_json(const Event& event) {
     nlohmann::ordered_json j;
     std::visit(overloaded{
-                   [&](const OperationStart& e) { j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}}; },
+                   [&](const OperationStart& e) {
+                       j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}};
+                       put_optional(j, "tolerance", e.tolerance);
+                   },
                    [&](const OperationEnd&) { j = {{"event", "operation-end"}}; },
                    [&](const ToolChange& e) {
                        j = {{"event", "tool-change"}, {"tool", e.number}, {"diameter", e.diameter}, {"description", e.description}};

@@ -1,3 +1,5 @@
+#include <type_traits>
+
 #include <fmt/format.h>
 
 #include "camgen/operations.hpp"
@@ -49,7 +51,9 @@ void expand_job(const Job& job, EventSink& sink) {
                     sink.emit(Spindle{SpindleState::off, 0.0});
                     state = SpindleState::off;
                 }
-                sink.emit(OperationStart{default_name(op), o.path});
+                std::optional<double> tolerance;
+                if constexpr (std::is_same_v<std::decay_t<decltype(o)>, ContourOp>) tolerance = o.tolerance;
+                sink.emit(OperationStart{default_name(op), o.path, tolerance});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "camgen/arcs.hpp"
 #include "camgen/error.hpp"
 #include "camgen/json_util.hpp"
 
@@ -90,6 +91,18 @@ private:
                 camgen::json::number_at(value[1], path + "/1", source_) * scale_};
     }
     Vec2 point(Fields& f, std::string_view key) { return point(f.required(key), f.path_of(key)); }
+    // A point [x, y] (at Z `z`, mm) or [x, y, z].
+    Vec3 point3(const Json& value, const std::string& path, double z) const {
+        if (!value.is_array() || (value.size() != 2 && value.size() != 3))
+            camgen::json::fail(source_, path, "expected a point [x, y] or [x, y, z], got " + describe(value));
+        Vec3 p{camgen::json::number_at(value[0], path + "/0", source_) * scale_,
+               camgen::json::number_at(value[1], path + "/1", source_) * scale_, z};
+        if (value.size() == 3) p.z = camgen::json::number_at(value[2], path + "/2", source_) * scale_;
+        return p;
+    }
+    Vec3 point3(Fields& f, std::string_view key, double z) { return point3(f.required(key), f.path_of(key), z); }
+    PathArc read_arc(Fields& a, const Vec3& current, double depth);
+    PathHelix read_helix(Fields& h, const Vec3& current);
     const Json& array(Fields& f, std::string_view key) {
         const Json& value = f.required(key);
         if (!value.is_array()) f.fail(key, "expected an array, got " + describe(value));
@@ -174,7 +187,7 @@ Operation JobReader::read_operation(const Json& value, const std::string& path) 
                        "retractSpeed", "drillTip", "output", "order", "holes", "grid",
                        "boltCircle", "line"});
     } else {
-        known_keys(f, {"type", "tool", "comment", "depth", "feed", "plungeFeed", "start", "path"});
+        known_keys(f, {"type", "tool", "comment", "depth", "feed", "plungeFeed", "tolerance", "start", "path"});
     }
     const int tool = f.integer("tool");
     if (!job_.tools.count(tool)) f.fail("tool", fmt::format("tool {} is not in /tools", tool));
@@ -484,45 +497,123 @@ ContourOp JobReader::read_contour(Fields& f, int tool_number) {
     if (op.feed <= 0) f.fail("feed", "feed must be > 0");
     op.plunge_feed = optional_length(f, "plungeFeed");
     if (op.plunge_feed && *op.plunge_feed <= 0) f.fail("plungeFeed", "plungeFeed must be > 0");
+    op.tolerance = optional_length(f, "tolerance");
+    if (op.tolerance && *op.tolerance <= 0) f.fail("tolerance", "tolerance must be > 0");
     op.start = point(f, "start");
 
     const Json& elements = array(f, "path");
     if (elements.empty()) f.fail("path", "a contour path needs at least one element");
     const std::string base = f.path_of("path");
-    Vec2 current = op.start;
+    Vec3 current{op.start.x, op.start.y, op.depth};
+    auto below_clearance = [&](Fields& at, std::string_view key, double z, const char* what) {
+        if (z >= job_.clearance)
+            at.fail(key, fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, show(z),
+                                     show(job_.clearance)));
+    };
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
         Fields e(elements[k], path, source_);
-        known_keys(e, {"line", "arc"});
-        const bool line = e.has("line");
-        if (line == e.has("arc"))
-            e.fail("", "a path element needs exactly one of \"line\" or \"arc\"");
-        if (line) {
-            const Vec2 end = point(e, "line");
+        known_keys(e, {"line", "arc", "helix"});
+        const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
+        if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
+        if (e.has("line")) {
+            const Vec3 end = point3(e, "line", op.depth);
+            below_clearance(e, "line", end.z, "the line's end");
             op.elements.emplace_back(PathLine{end});
             current = end;
-        } else {
+        } else if (e.has("arc")) {
             Fields a(e.required("arc"), e.path_of("arc"), source_);
-            known_keys(a, {"end", "centre", "direction"});
-            PathArc arc;
-            arc.end = point(a, "end");
-            arc.centre = point(a, "centre");
-            arc.direction = a.choice<ArcDirection>(
-                "direction", {{"cw", ArcDirection::cw}, {"ccw", ArcDirection::ccw}});
-            const double r_start = std::hypot(current.x - arc.centre.x, current.y - arc.centre.y);
-            const double r_end = std::hypot(arc.end.x - arc.centre.x, arc.end.y - arc.centre.y);
-            if (std::abs(r_start - r_end) > arc_radius_tolerance)
-                a.fail("", fmt::format("start is {:.3f} mm from the centre but end is {:.3f} mm",
-                                       r_start, r_end));
-            if (r_start <= min_arc_radius)
-                a.fail("", fmt::format("the arc radius is {:.4f} mm; it must be more than {} mm",
-                                       r_start, min_arc_radius));
+            PathArc arc = read_arc(a, current, op.depth);
             op.elements.emplace_back(arc);
             current = arc.end;
+        } else {
+            Fields h(e.required("helix"), e.path_of("helix"), source_);
+            PathHelix helix = read_helix(h, current);
+            op.elements.emplace_back(helix);
+            current.z = helix.end_z;
         }
         op.element_paths.push_back(path);
     }
     return op;
+}
+
+PathArc JobReader::read_arc(Fields& a, const Vec3& current, double depth) {
+    known_keys(a, {"end", "centre", "direction", "plane"});
+    PathArc arc;
+    arc.plane = a.choice<Plane>("plane", {{"xy", Plane::xy}, {"xz", Plane::xz}, {"yz", Plane::yz}}, Plane::xy);
+    const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
+    const char* normal_axis = arc.plane == Plane::xy ? "z" : arc.plane == Plane::xz ? "y" : "x";
+    arc.end = point3(a, "end", depth);
+    const Json& centre = a.required("centre");
+    if (arc.plane != Plane::xy && !(centre.is_array() && centre.size() == 3))
+        a.fail("centre", fmt::format("an {} arc needs its centre as [x, y, z], got {}", plane_name, describe(centre)));
+    arc.centre = point3(centre, a.path_of("centre"), current.z);
+    // The centre's coordinate along the normal axis is the start's: a centre elsewhere on the
+    // axis would be a different arc.
+    const double c_normal = to_plane(arc.centre, arc.plane).w, s_normal = to_plane(current, arc.plane).w;
+    if (std::abs(c_normal - s_normal) > arc_radius_tolerance)
+        a.fail("centre", fmt::format("the centre's {} ({}) must be the start's {} ({}) in an {} arc", normal_axis,
+                                     show(c_normal), normal_axis, show(s_normal), plane_name));
+    arc.centre = from_plane({to_plane(arc.centre, arc.plane).u, to_plane(arc.centre, arc.plane).v, s_normal}, arc.plane);
+    arc.direction = a.choice<ArcDirection>("direction", {{"cw", ArcDirection::cw}, {"ccw", ArcDirection::ccw}});
+    const PlanePoint s = to_plane(current, arc.plane), e = to_plane(arc.end, arc.plane), c = to_plane(arc.centre, arc.plane);
+    const double r_start = std::hypot(s.u - c.u, s.v - c.v);
+    const double r_end = std::hypot(e.u - c.u, e.v - c.v);
+    if (std::abs(r_start - r_end) > arc_radius_tolerance)
+        a.fail("", fmt::format("start is {:.3f} mm from the centre but end is {:.3f} mm{}", r_start, r_end,
+                               arc.plane == Plane::xy ? "" : fmt::format(" (in the {} plane)", plane_name)));
+    if (r_start <= min_arc_radius)
+        a.fail("", fmt::format("the arc radius is {:.4f} mm; it must be more than {} mm", r_start, min_arc_radius));
+    // The highest point of the arc: an arc in XZ or YZ may rise above its ends.
+    const ArcGeometry g = resolve_arc(current, Arc{arc.end, arc.centre, arc.direction, arc.plane, 0.0, 0});
+    double top = std::max(current.z, arc.end.z);
+    if (arc.plane != Plane::xy) {
+        const double up = arc.plane == Plane::xz ? 0.0 : std::numbers::pi / 2;  // angle of +Z in (u, v)
+        double delta = arc.direction == ArcDirection::ccw ? up - g.start_angle : g.start_angle - up;
+        delta = std::fmod(delta, 2 * std::numbers::pi);
+        if (delta < 0) delta += 2 * std::numbers::pi;
+        if (delta <= g.sweep) top = std::max(top, (arc.plane == Plane::xz ? c.u : c.v) + r_start);
+    }
+    if (top >= job_.clearance)
+        a.fail("", fmt::format("the arc reaches Z {}, at or above the clearance (Z {})", show(top), show(job_.clearance)));
+    return arc;
+}
+
+PathHelix JobReader::read_helix(Fields& h, const Vec3& current) {
+    known_keys(h, {"centre", "direction", "depth", "turns", "pitch"});
+    PathHelix helix;
+    helix.centre = point(h, "centre");
+    helix.direction = h.choice<ArcDirection>("direction", {{"cw", ArcDirection::cw}, {"ccw", ArcDirection::ccw}});
+    const double radius = std::hypot(current.x - helix.centre.x, current.y - helix.centre.y);
+    if (radius <= min_arc_radius)
+        h.fail("centre", fmt::format("the helix radius is {:.4f} mm; it must be more than {} mm", radius, min_arc_radius));
+    const bool has_depth = h.has("depth"), has_turns = h.has("turns"), has_pitch = h.has("pitch");
+    if (int(has_depth) + int(has_turns) + int(has_pitch) != 2)
+        h.fail("", "a helix needs exactly two of \"depth\" (end Z), \"turns\" and \"pitch\" (Z travel per turn, down)");
+    std::optional<double> pitch = optional_length(h, "pitch");
+    if (pitch && *pitch <= 0) h.fail("pitch", "pitch must be > 0 (the helix goes down by it each turn)");
+    if (has_turns) {
+        const int turns = h.integer("turns");
+        if (turns < 1 || turns > 100000) h.fail("turns", "turns must be a whole number from 1 to 100000");
+        helix.turns = turns;
+    }
+    if (has_depth) {
+        helix.end_z = length(h, "depth");
+        if (std::abs(helix.end_z - current.z) < 1e-9)
+            h.fail("depth", fmt::format("the helix starts and ends at Z {}; a helix must change Z (use an arc for a circle)",
+                                        show(current.z)));
+        if (helix.end_z >= job_.clearance)
+            h.fail("depth", fmt::format("depth is at or above the clearance (Z {}, clearance at Z {})", show(helix.end_z),
+                                        show(job_.clearance)));
+        if (pitch) {
+            const double turns = std::ceil(std::abs(helix.end_z - current.z) / *pitch - 1e-9);
+            if (turns > 100000) h.fail("pitch", "pitch is too small: more than 100000 turns");
+            helix.turns = static_cast<int>(turns);
+        }
+    } else {
+        helix.end_z = current.z - helix.turns * *pitch;
+    }
+    return helix;
 }
 
 std::string default_name(const std::string& source_name) {

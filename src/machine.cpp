@@ -184,6 +184,25 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (!(*v > 0)) af.fail("chordTolerance", "chordTolerance must be > 0");
             m.arcs.chord_tolerance = *v;
         }
+        m.arcs.tolerance_mode = af.choice<ChordToleranceMode>(
+            "chordToleranceMode", {{"absolute", ChordToleranceMode::absolute}, {"operation", ChordToleranceMode::operation}},
+            ChordToleranceMode::operation);
+        auto positive = [&](const char* key, std::optional<double>& out) {
+            if (auto v = af.optional_number(key)) {
+                if (!(*v > 0)) af.fail(key, fmt::format("{} must be > 0 (leave it out for no limit)", key));
+                out = *v;
+            }
+        };
+        positive("maxRadius", m.arcs.max_radius);
+        positive("minRadius", m.arcs.min_radius);
+        positive("minLength", m.arcs.min_length);
+        positive("maxSegmentLength", m.arcs.max_segment_length);
+        if (m.arcs.max_radius && m.arcs.min_radius && *m.arcs.min_radius >= *m.arcs.max_radius)
+            af.fail("minRadius", "minRadius must be below maxRadius");
+        if (auto v = af.optional_integer("minSegments")) {
+            if (*v < 1 || *v > 100000) af.fail("minSegments", "minSegments must be between 1 and 100000");
+            m.arcs.min_segments = *v;
+        }
         if (const auto* planes = af.member("planes")) {
             if (!planes->is_array()) af.fail("planes", "expected an array of \"xy\", \"xz\", \"yz\"");
             m.arcs.planes.clear();
@@ -198,8 +217,21 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         }
         af.finish();
     }
-    if (m.arcs.format == ArcFormat::nccad_angle && m.arcs.max_sweep > 180.0)
-        json::fail(source, "/arcs/maxSweep", "the nccad angle form takes at most 180 degrees per block");
+    if (m.arcs.format == ArcFormat::nccad_angle) {
+        // G02 D<angle> I J has no end point and no K: it cannot say "helix" or "other plane".
+        if (m.arcs.max_sweep > 180.0)
+            json::fail(source, "/arcs/maxSweep", "the nccad angle form takes at most 180 degrees per block");
+        if (m.arcs.helical) json::fail(source, "/arcs/helical", "the nccad angle form cannot write a helix; set \"helical\": false");
+        if (m.arcs.planes != std::vector<Plane>{Plane::xy})
+            json::fail(source, "/arcs/planes", "the nccad angle form writes XY arcs only; set \"planes\": [\"xy\"]");
+    }
+    if (const auto* n = f.member("notes")) {
+        if (!n->is_array()) f.fail("notes", "expected an array of strings");
+        for (size_t i = 0; i < n->size(); ++i) {
+            if (!(*n)[i].is_string()) json::fail(source, fmt::format("/notes/{}", i), "expected a string");
+            m.notes.push_back((*n)[i].get<std::string>());
+        }
+    }
     if (const auto* d = f.member("drilling")) {
         json::Fields df(*d, "/drilling", source);
         if (auto v = df.optional_number("peckClearance")) {
@@ -306,7 +338,19 @@ std::string describe_machine(const Machine& m) {
     const char* arcs[] = {"I/J/K relative to start", "I/J/K absolute centre", "radius R", "nccad angle D with I/J"};
     line("arcs", fmt::format("{}, at most {} degrees a block, helices {}", arcs[static_cast<int>(m.arcs.format)], m.arcs.max_sweep,
                              m.arcs.helical ? "allowed" : "as lines"));
+    std::vector<std::string> planes;
+    for (Plane p : m.arcs.planes) planes.emplace_back(p == Plane::xy ? "xy" : p == Plane::xz ? "xz" : "yz");
+    line("arc planes", fmt::format("{} (others as lines)", fmt::join(planes, ", ")));
+    auto limit = [](const std::optional<double>& v) { return v ? fmt::format("{} mm", *v) : std::string("none"); };
+    line("arc tolerance", fmt::format("{} mm (start and end radii after rounding)", m.tolerance));
+    line("chordTolerance", fmt::format("{} mm{}", m.arcs.chord_tolerance,
+                                       m.arcs.tolerance_mode == ChordToleranceMode::operation ? ", or the operation's if smaller" : ""));
+    line("arcs as lines", fmt::format("radius above {}; at least {} segment(s), {}", limit(m.arcs.max_radius), m.arcs.min_segments,
+                                      m.arcs.max_segment_length ? fmt::format("each at most {} mm", *m.arcs.max_segment_length)
+                                                                : std::string("any length")));
+    line("arcs as one line", fmt::format("radius below {}, length below {}", limit(m.arcs.min_radius), limit(m.arcs.min_length)));
     line("feed unit", m.feed_unit == FeedUnit::per_minute ? (m.units == Units::mm ? "mm/min" : "in/min") : "0.1 mm/s");
+    for (const std::string& n : m.notes) line("note", n);
     s += "limits\n";
     line("maxFeed", fmt::format("{} mm/min", m.limits.max_feed));
     line("minFeed", fmt::format("{} mm/min", m.limits.min_feed));

@@ -261,25 +261,66 @@ void Post::handle_drill_end() {
 
 void Post::handle_arc(const Arc& arc) {
     if (!pos_known_) throw std::logic_error("arc from an unknown position");
-    ArcGeometry geo = resolve_arc(pos_, arc);
+    const ArcGeometry geo = resolve_arc(pos_, arc);
     const ArcSettings& s = machine_.arcs;
-    PlanePoint a = to_plane(geo.start, arc.plane), b = to_plane(geo.end, arc.plane);
-    bool helical = std::abs(a.w - b.w) > 1e-9;
-    bool plane_ok = std::find(s.planes.begin(), s.planes.end(), arc.plane) != s.planes.end();
-    if (!plane_ok || (helical && !s.helical)) {
-        int n = segments_for_tolerance(geo.radius, geo.sweep, s.chord_tolerance);
-        for (const Vec3& p : linearize_arc(geo, n)) {
-            on_linear(p, arc.feed);
-            pos_ = p;
-        }
-        return;
+    const double tolerance = effective_chord_tolerance(s, op_tolerance_);
+    const ArcPlan plan = plan_arc(geo, s, tolerance);
+    switch (plan.treatment) {
+        case ArcTreatment::one_line: on_linear(arc.to, arc.feed); break;
+        case ArcTreatment::lines:
+            for (const Vec3& p : linearize_arc(geo, plan.count)) {
+                on_linear(p, arc.feed);
+                pos_ = p;
+            }
+            break;
+        case ArcTreatment::arcs:
+            for (const ArcGeometry& piece : split_arc(geo, plan.count)) write_arc_block(piece, arc.feed, tolerance, 0);
+            break;
     }
-    double max_sweep = std::clamp(s.max_sweep, 1.0, 360.0) / deg;
-    int pieces = static_cast<int>(std::ceil(geo.sweep / max_sweep - 1e-9));
-    // A radius word cannot say "full circle": such arcs need at least two blocks.
-    if (s.format == ArcFormat::radius && geo.sweep >= 2.0 * std::numbers::pi - 1e-9) pieces = std::max(pieces, 2);
-    for (const ArcGeometry& piece : split_arc(geo, std::max(pieces, 1))) on_circular(piece, arc.feed);
     pos_ = arc.to;
+}
+
+Vec3 Post::arc_control_start(const Vec3& start) const {
+    Vec3 c{xyz_fmt_.rounded(start.x), xyz_fmt_.rounded(start.y), xyz_fmt_.rounded(start.z)};
+    if (!arc_actual_end_) return c;
+    // After an nccad angle arc the control stands where it computed the end, which is not
+    // exactly the rounded end: an axis no later block has written is still there.
+    auto unwritten = [&](const nc::Word& w, double believed) {
+        return w.last() && xyz_fmt_.format(*w.last()) == xyz_fmt_.format(believed);
+    };
+    if (unwritten(x_, arc_believed_end_.x)) c.x = arc_actual_end_->x;
+    if (unwritten(y_, arc_believed_end_.y)) c.y = arc_actual_end_->y;
+    if (unwritten(z_, arc_believed_end_.z)) c.z = arc_actual_end_->z;
+    return c;
+}
+
+void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth) {
+    const ArcWordFormats formats{xyz_fmt_, ijk_fmt_, angle_fmt_, machine_.arcs.format, machine_.tolerance};
+    const ArcFit fit = fit_arc_block(piece, arc_control_start(piece.start), formats);
+    switch (fit.result) {
+        case ArcFitResult::ok:
+            on_circular(fit.block, feed);
+            pos_ = piece.end;
+            arc_actual_end_ = fit.control_end;
+            arc_believed_end_ = piece.end;
+            break;
+        case ArcFitResult::degenerate:
+            on_linear(piece.end, feed);
+            pos_ = piece.end;
+            break;
+        case ArcFitResult::no_fit:
+            // Rounding would take the control off the circle: halves have shorter chords and
+            // are less sensitive; after a few halvings, straight moves.
+            if (depth < 4) {
+                for (const ArcGeometry& half : split_arc(piece, 2)) write_arc_block(half, feed, chord_tolerance, depth + 1);
+            } else {
+                for (const Vec3& p : linearize_arc(piece, segment_count(piece, machine_.arcs, chord_tolerance))) {
+                    on_linear(p, feed);
+                    pos_ = p;
+                }
+            }
+            break;
+    }
 }
 
 void Post::replay(const Event& event) {
@@ -306,6 +347,7 @@ void Post::emit(const Event& event) {
     std::visit(overloaded{
                    [&](const OperationStart& op) {
                        op_path_ = op.path;
+                       op_tolerance_ = op.tolerance;
                        on_operation_start(op);
                    },
                    [&](const OperationEnd&) { on_operation_end(); },

@@ -14,10 +14,12 @@ namespace camgen {
 enum class SpindleState { cw, ccw, off };
 enum class CompensationSide { off, left, right };
 
-// An operation begins. `path` is its JSON path ("/operations/2"), for messages.
+// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
+// is the operation's own tolerance for arcs that become lines (mm), if it has one.
 struct OperationStart {
     std::string name;
     std::string path;
+    std::optional<double> tolerance;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
 

@@ -50,13 +50,23 @@ struct MachineLimits {
     double max_rpm = 0.0;              // 0: no limit
 };
 
-// Arc output and arc-breaking settings.
+// Where the chord tolerance for arcs that become lines comes from (seeds/arc-breaking-rules.txt):
+// always the machine's, or the operation's tolerance capped by the machine's.
+enum class ChordToleranceMode { absolute, operation };
+
+// Arc output and arc-breaking settings (seeds/arc-breaking-rules.txt). Lengths mm, angles degrees.
 struct ArcSettings {
     ArcFormat format = ArcFormat::ijk_relative;
     double max_sweep = 360.0;          // degrees per block; longer arcs are split evenly
     bool helical = true;               // false: helices become lines
     std::vector<Plane> planes = {Plane::xy, Plane::xz, Plane::yz};  // others become lines
-    double chord_tolerance = 0.005;    // mm, for arcs that become lines
+    double chord_tolerance = 0.005;    // mm (CIRC_TOL): chord deviation of arcs that become lines
+    ChordToleranceMode tolerance_mode = ChordToleranceMode::operation;
+    std::optional<double> max_radius;  // mm; larger arcs become lines
+    std::optional<double> min_radius;  // mm; smaller arcs become one straight move
+    std::optional<double> min_length;  // mm; shorter arcs (helix length) become one straight move
+    int min_segments = 1;              // at least this many lines for an arc that becomes lines
+    std::optional<double> max_segment_length;  // mm; no line of a broken arc is longer
     bool force_xy = true;              // write both end coordinates on every arc block
 };
 
@@ -69,7 +79,9 @@ struct Machine {
     nc::BlockStyle block;
     bool modal_motion = true;          // false: G0/G1/G2/G3 written on every motion block
     char decimal_mark = '.';
-    double tolerance = 0.002;          // mm (CNC-Calc tolerance)
+    double tolerance = 0.002;          // mm (CNC-Calc tolerance): the arc tolerance. After rounding,
+                                       // every arc block's start and end radii agree within it
+    std::vector<std::string> notes;    // free text about the machine's choices, for --describe-machine
     std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle"
     FeedUnit feed_unit = FeedUnit::per_minute;
     MachineLimits limits;

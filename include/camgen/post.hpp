@@ -51,7 +51,9 @@ protected:
     virtual void on_rapid(const Vec3& to);
     // A feed move; the base writes G1, pending compensation, axis words and F.
     virtual void on_linear(const Vec3& to, double feed);
-    // One arc block, already split to the machine's maximum sweep and in a supported plane.
+    // One arc block, already split to the machine's maximum sweep and in a supported plane,
+    // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
+    // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
     virtual void on_circular(const ArcGeometry& arc, double feed);
     // Compensation is retained and written by the next linear move (CNC-Calc rule).
     virtual void on_compensation(CompensationSide side);
@@ -97,6 +99,10 @@ protected:
 
 private:
     void handle_arc(const Arc& arc);
+    // Writes one arc block whose rounded words keep the control on the circle, or breaks it.
+    void write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth);
+    // Where the control stands at the start of an arc block (see arc_actual_end_).
+    Vec3 arc_control_start(const Vec3& start) const;
     void handle_drill_cycle(const DrillCycle& cycle);
     void handle_drill_point(Vec2 at);
     void handle_drill_end();
@@ -109,6 +115,9 @@ private:
     int warnings_ = 0;
     std::set<std::pair<std::string, double>> warned_feeds_;
     bool opened_ = false;
+    std::optional<double> op_tolerance_;       // the current operation's tolerance, mm
+    std::optional<Vec3> arc_actual_end_;       // where the control ended the last arc block
+    Vec3 arc_believed_end_;                    // ... and where the post's modal words think it is
 };
 
 // The post for a machine, by its dialect. Throws InputError for an unknown dialect.

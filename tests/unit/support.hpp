@@ -1,7 +1,9 @@
 #pragma once
 // Helpers shared by the unit tests: run the pipeline in-process, split NC text into words.
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -57,6 +59,137 @@ inline std::string read_file(const std::string& path) {
     std::ostringstream ss;
     ss << f.rdbuf();
     return ss.str();
+}
+
+// ---- a small NC interpreter for arc tests ----
+// It reads what the iso and nccad posts write (G0/G1/G2/G3, G17/G18/G19, X Y Z, I J K, R, D)
+// and works the arcs out on its own, from the words alone: the plane's normal is +Z, +Y, +X for
+// G17, G18, G19, and G3 turns positively about it (right-hand rule), as LinuxCNC and Fanuc
+// define it. It does not use camgen's arc code, so it can check it.
+
+inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator*(Vec3 a, double k) { return {a.x * k, a.y * k, a.z * k}; }
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normal_of(Plane p) { return p == Plane::xy ? Vec3{0, 0, 1} : p == Plane::xz ? Vec3{0, 1, 0} : Vec3{1, 0, 0}; }
+// `v` without its part along the unit vector `n`.
+inline Vec3 flatten(Vec3 v, Vec3 n) { return v - n * dot(v, n); }
+// `v` turned by `angle` radians about the unit vector `n` (Rodrigues).
+inline Vec3 turn(Vec3 v, Vec3 n, double angle) {
+    return v * std::cos(angle) + cross(n, v) * std::sin(angle) + n * (dot(n, v) * (1 - std::cos(angle)));
+}
+
+// One move as the control runs it.
+struct NcMove {
+    std::string line;
+    int g = 0;                 // 0, 1, 2, 3
+    Plane plane = Plane::xy;
+    Vec3 from, to;
+    Vec3 centre;               // arcs: in the start's plane
+    double radius_start = 0, radius_end = 0;
+    double sweep = 0;          // arcs: radians, > 0
+    // The point at fraction t of the move (an arc with unequal radii is a spiral).
+    Vec3 at(double t) const {
+        if (g < 2) return from + (to - from) * t;
+        Vec3 n = normal_of(plane);
+        Vec3 a = flatten(from - centre, n);
+        double r = radius_start + (radius_end - radius_start) * t;
+        Vec3 p = centre + turn(a, n, (g == 3 ? 1 : -1) * sweep * t) * (r / length(a));
+        return p + n * (dot(to - from, n) * t);
+    }
+};
+
+// Interprets NC text; `form` says how arc words are read. Lines that are not motion (program
+// frame, comments, tool and spindle words, messages) are skipped.
+inline std::vector<NcMove> interpret(const std::string& text, ArcFormat form, Vec3 start = {}) {
+    std::vector<NcMove> moves;
+    Vec3 pos = start;
+    int motion = 0;
+    Plane plane = Plane::xy;
+    for (const std::string& raw : lines_of(text)) {
+        if (raw.empty() || raw[0] == '(' || raw[0] == ';' || raw[0] == '%' || raw[0] == '_' || raw[0] == 'O') continue;
+        std::istringstream in(raw);
+        std::map<char, double> w;
+        bool has_motion = false, skip = false;
+        for (std::string word; in >> word;) {
+            char letter = word[0];
+            if (letter == 'M') {  // spindle, messages: no motion
+                skip = true;
+                break;
+            }
+            if (letter == 'N') continue;
+            double value = std::stod(word.substr(1));
+            if (letter == 'G') {
+                int g = static_cast<int>(value);
+                if (g <= 3) motion = g, has_motion = true;
+                else if (g == 17) plane = Plane::xy;
+                else if (g == 18) plane = Plane::xz;
+                else if (g == 19) plane = Plane::yz;
+                else if (g >= 73 && g <= 89) skip = true;  // drilling cycles: not followed here
+                continue;
+            }
+            w[letter] = value;
+        }
+        if (skip) continue;
+        bool axis = w.count('X') || w.count('Y') || w.count('Z') || w.count('D');
+        if (!axis) continue;
+        NcMove m;
+        m.line = raw;
+        m.g = motion;
+        m.plane = plane;
+        m.from = pos;
+        m.to = {w.count('X') ? w['X'] : pos.x, w.count('Y') ? w['Y'] : pos.y, w.count('Z') ? w['Z'] : pos.z};
+        if (motion >= 2) {
+            const Vec3 n = normal_of(plane);
+            const double sign = motion == 3 ? 1.0 : -1.0;
+            // The in-plane words of the centre: I J (G17), I K (G18), J K (G19).
+            Vec3 ijk{w.count('I') ? w['I'] : 0.0, w.count('J') ? w['J'] : 0.0, w.count('K') ? w['K'] : 0.0};
+            if (form == ArcFormat::nccad_angle) {
+                m.centre = pos + Vec3{ijk.x, ijk.y, 0};
+                m.sweep = w['D'] * std::numbers::pi / 180.0;
+                m.to = m.centre + turn(pos - m.centre, n, sign * m.sweep);
+            } else if (form == ArcFormat::radius) {
+                Vec3 chord = flatten(m.to - pos, n);
+                double h = length(chord) / 2, r = w['R'];
+                double d = std::sqrt(std::max(r * r - h * h, 0.0));
+                Vec3 left = cross(n, chord) * (1.0 / length(chord));
+                // R > 0: the short way round, the centre on the side the arc turns to.
+                double side = (sign > 0) == (r > 0) ? 1.0 : -1.0;
+                m.centre = pos + chord * 0.5 + left * (side * d);
+            } else {
+                Vec3 in_plane = flatten(ijk, n);
+                m.centre = form == ArcFormat::ijk_relative ? pos + in_plane : in_plane;
+            }
+            m.centre = flatten(m.centre, n) + n * dot(pos, n);
+            Vec3 a = flatten(pos - m.centre, n), b = flatten(m.to - m.centre, n);
+            m.radius_start = length(a);
+            m.radius_end = length(b);
+            if (form != ArcFormat::nccad_angle) {
+                double angle = std::atan2(dot(n, cross(a, b)), dot(a, b)) * sign;
+                while (angle <= 1e-12) angle += 2 * std::numbers::pi;
+                // End equal to the start (as written): a full circle.
+                if (length(flatten(m.to - pos, n)) == 0.0) angle = 2 * std::numbers::pi;
+                m.sweep = angle;
+            }
+        }
+        moves.push_back(m);
+        pos = m.to;
+    }
+    return moves;
+}
+
+// Posts events (as a snippet) for a machine.
+inline std::string post_events(const Machine& machine, const std::vector<Event>& events) {
+    std::ostringstream out;
+    PostOptions o;
+    o.snippet = true;
+    auto post = make_post(machine, out, o);
+    post->open();
+    for (const Event& e : events) post->emit(e);
+    post->close();
+    return out.str();
 }
 
 }  // namespace camgen::test

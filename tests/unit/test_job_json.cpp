@@ -10,6 +10,7 @@
 
 #include "camgen/error.hpp"
 #include "camgen/job_json.hpp"
+#include "camgen/operations.hpp"
 
 using namespace camgen;
 
@@ -184,10 +185,11 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK_FALSE(c.plunge_feed.has_value());
     CHECK(c.start == Vec2{0, 0});
     REQUIRE(c.elements.size() == 2);
-    CHECK(std::get<PathLine>(c.elements[0]).end == Vec2{10, 0});
+    CHECK(std::get<PathLine>(c.elements[0]).end == Vec3{10, 0, -2});  // [x, y] is at the depth
     const auto& arc = std::get<PathArc>(c.elements[1]);
-    CHECK(arc.end == Vec2{0, 0});
-    CHECK(arc.centre == Vec2{5, 0});
+    CHECK(arc.end == Vec3{0, 0, -2});
+    CHECK(arc.centre == Vec3{5, 0, -2});
+    CHECK(arc.plane == Plane::xy);
     CHECK(arc.direction == ArcDirection::ccw);
     CHECK(c.element_paths == std::vector<std::string>{"/operations/2/path/0", "/operations/2/path/1"});
 }
@@ -268,8 +270,8 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
     CHECK(c.depth == doctest::Approx(-2.54));
     CHECK(c.feed == doctest::Approx(254));
     CHECK(*c.plunge_feed == doctest::Approx(127));
-    check_point(std::get<PathLine>(c.elements[0]).end, 25.4, 0);
-    check_point(std::get<PathArc>(c.elements[1]).centre, 12.7, 0);
+    check_point({std::get<PathLine>(c.elements[0]).end.x, std::get<PathLine>(c.elements[0]).end.y}, 25.4, 0);
+    check_point({std::get<PathArc>(c.elements[1]).centre.x, std::get<PathArc>(c.elements[1]).centre.y}, 12.7, 0);
 }
 
 TEST_CASE("hole patterns") {
@@ -715,7 +717,7 @@ TEST_CASE("contour operations") {
     CHECK(c.tool == 3);
     REQUIRE(c.elements.size() == 1);
     const auto& full = std::get<PathArc>(c.elements[0]);
-    CHECK(full.end == Vec2{10, 0});  // end == start: a full circle
+    CHECK(full.end == Vec3{10, 0, -1});  // end == start: a full circle
     CHECK(full.direction == ArcDirection::cw);
     CHECK(c.element_paths == std::vector<std::string>{"/operations/0/path/0"});
 
@@ -736,10 +738,10 @@ TEST_CASE("contour operations") {
         {"line": [1, 0]},
         {"line": [2, 0], "arc": {"end": [0, 0], "centre": [1, 0], "direction": "cw"}}
       ])"),
-                "/operations/0/path/1", 13, "exactly one of \"line\" or \"arc\"");
+                "/operations/0/path/1", 13, "exactly one of \"line\", \"arc\" or \"helix\"");
     check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
       "path": [{}])"),
-                "/operations/0/path/0", 11, "exactly one of \"line\" or \"arc\"");
+                "/operations/0/path/0", 11, "exactly one of \"line\", \"arc\" or \"helix\"");
     check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
       "path": [{"lines": [1, 0]}])"),
                 "/operations/0/path/0/lines", 11, "unknown key \"lines\" (did you mean \"line\"?)");
@@ -814,4 +816,100 @@ TEST_CASE("read_job_file") {
         CHECK(contains(error.what(), "camgen_no_such_file.json: No such file or directory"));
     }
     CHECK_THROWS_AS(read_job_file(dir.string()), IoError);
+}
+
+TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
+    const Job job = read_job(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0.002, "start": [0, 0],
+      "path": [
+        {"line": [10, 0, -2]},
+        {"arc": {"plane": "xz", "end": [20, 0, -2], "centre": [15, 0, -2], "direction": "cw"}},
+        {"arc": {"plane": "yz", "end": [20, 10, -2], "centre": [20, 5, -2], "direction": "ccw"}},
+        {"arc": {"end": [20, 10, -4], "centre": [20, 5], "direction": "cw"}},
+        {"helix": {"centre": [20, 7], "direction": "ccw", "depth": -9.5, "pitch": 2}},
+        {"helix": {"centre": [20, 7], "direction": "cw", "turns": 2, "pitch": 0.5}},
+        {"line": [0, 0]}
+      ])"),
+                             "c.json");
+    const auto& c = std::get<ContourOp>(job.operations.at(0));
+    CHECK(*c.tolerance == 0.002);
+    REQUIRE(c.elements.size() == 7);
+    CHECK(std::get<PathLine>(c.elements[0]).end == Vec3{10, 0, -2});
+    const auto& xz = std::get<PathArc>(c.elements[1]);
+    CHECK(xz.plane == Plane::xz);
+    CHECK(xz.centre == Vec3{15, 0, -2});
+    CHECK(std::get<PathArc>(c.elements[2]).plane == Plane::yz);
+    // An XY arc whose end is lower: a helical arc; its centre is at the start's Z.
+    const auto& helical = std::get<PathArc>(c.elements[3]);
+    CHECK(helical.end == Vec3{20, 10, -4});
+    CHECK(helical.centre == Vec3{20, 5, -2});
+    // From Z-4 to Z-9.5 at most 2 per turn: 5.5 / 2 = 2.75 -> 3 turns.
+    const auto& h1 = std::get<PathHelix>(c.elements[4]);
+    CHECK(h1.turns == 3);
+    CHECK(h1.end_z == -9.5);
+    CHECK(h1.centre == Vec2{20, 7});
+    // 2 turns of 0.5 down: Z-10.5.
+    const auto& h2 = std::get<PathHelix>(c.elements[5]);
+    CHECK(h2.turns == 2);
+    CHECK(h2.end_z == -10.5);
+    CHECK(h2.direction == ArcDirection::cw);
+    // [x, y] is at the operation's depth again.
+    CHECK(std::get<PathLine>(c.elements[6]).end == Vec3{0, 0, -1});
+
+    // The helix as an event: one Arc, end above/below the start, extra turns counted.
+    struct Recorder : EventSink {
+        std::vector<Event> events;
+        void emit(const Event& e) override { events.push_back(e); }
+    } rec;
+    expand_job(job, rec);
+    std::vector<Arc> arcs;
+    for (const Event& e : rec.events)
+        if (const auto* a = std::get_if<Arc>(&e)) arcs.push_back(*a);
+    REQUIRE(arcs.size() == 5);
+    CHECK(arcs[3] == Arc{{20, 10, -9.5}, {20, 7, -4}, ArcDirection::ccw, Plane::xy, 400, 2});
+    CHECK(arcs[4] == Arc{{20, 10, -10.5}, {20, 7, -9.5}, ArcDirection::cw, Plane::xy, 400, 1});
+    CHECK(std::get<OperationStart>(rec.events.at(0)).tolerance == 0.002);
+}
+
+TEST_CASE("contour: errors of 3D elements name their JSON path") {
+    auto path_of = [](const std::string& elements) {
+        return contour_job(R"(      "depth": -1, "feed": 400, "start": [0, 0],
+      "path": [)" + elements + "]");
+    };
+    check_error(path_of(R"({"line": [1, 2, 3, 4]})"), "/operations/0/path/0/line", 11, "expected a point [x, y] or [x, y, z]");
+    check_error(path_of(R"({"line": [1, 2, 12]})"), "/operations/0/path/0/line", 11, "at or above the clearance");
+    check_error(path_of(R"({"arc": {"plane": "xz", "end": [10, 0, -1], "centre": [5, 0], "direction": "cw"}})"),
+                "/operations/0/path/0/arc/centre", 11, "an xz arc needs its centre as [x, y, z]");
+    check_error(path_of(R"({"arc": {"plane": "xz", "end": [10, 0, -1], "centre": [5, 3, -1], "direction": "cw"}})"),
+                "/operations/0/path/0/arc/centre", 11, "the centre's y (3.000 mm) must be the start's y (0.000 mm) in an xz arc");
+    // Equidistance in the arc's plane: in XZ the start (x 0, z -1) is 5 from (5, -1), the end
+    // (x 10, z -2) is sqrt(25 + 1) = 5.099 from it.
+    check_error(path_of(R"({"arc": {"plane": "xz", "end": [10, 0, -2], "centre": [5, 0, -1], "direction": "cw"}})"),
+                "/operations/0/path/0/arc", 11, "start is 5.000 mm from the centre but end is 5.099 mm (in the xz plane)");
+    // ccw in XZ from (0, z -1) about (5, z -1) goes up over the top (Z 4): above the clearance 10? No: 4 < 10.
+    CHECK_NOTHROW(read_job(path_of(R"({"arc": {"plane": "xz", "end": [10, 0, -1], "centre": [5, 0, -1], "direction": "ccw"}})"), "j.json"));
+    // With radius 12 the top is at Z 11: above the clearance.
+    check_error(path_of(R"({"arc": {"plane": "xz", "end": [24, 0, -1], "centre": [12, 0, -1], "direction": "ccw"}})"),
+                "/operations/0/path/0/arc", 11, "the arc reaches Z 11.000 mm, at or above the clearance");
+    check_error(path_of(R"({"arc": {"plane": "xy", "end": [2, 0], "centre": [1, 0, 4], "direction": "cw"}})"),
+                "/operations/0/path/0/arc/centre", 11, "the centre's z (4.000 mm) must be the start's z (-1.000 mm)");
+    check_error(path_of(R"({"arc": {"plane": "uv", "end": [2, 0], "centre": [1, 0], "direction": "cw"}})"),
+                "/operations/0/path/0/arc/plane", 11, "\"uv\" is not one of");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2}})"),
+                "/operations/0/path/0/helix", 11, "exactly two of \"depth\" (end Z), \"turns\" and \"pitch\"");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "pitch": 1, "depth": -3}})"),
+                "/operations/0/path/0/helix", 11, "exactly two of");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 0, "depth": -3}})"),
+                "/operations/0/path/0/helix/turns", 11, "turns must be a whole number from 1 to 100000");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "pitch": -1}})"),
+                "/operations/0/path/0/helix/pitch", 11, "pitch must be > 0");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "depth": -1}})"),
+                "/operations/0/path/0/helix/depth", 11, "a helix must change Z");
+    check_error(path_of(R"({"helix": {"centre": [0, 0], "direction": "cw", "turns": 2, "depth": -3}})"),
+                "/operations/0/path/0/helix/centre", 11, "the helix radius is 0.0000 mm");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "depth": 12}})"),
+                "/operations/0/path/0/helix/depth", 11, "at or above the clearance");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turn": 2, "depth": -3}})"),
+                "/operations/0/path/0/helix/turn", 11, "unknown key \"turn\" (did you mean \"turns\"?)");
+    check_error(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+                "/operations/0/tolerance", 10, "tolerance must be > 0");
 }
