@@ -76,10 +76,13 @@ struct CompareTolerance {
 };
 
 // Tolerances for comparing a job with a program for `machine`: `position` mm for end points
-// (raised to the machine's own resolution where it writes fewer decimals), and for points
+// (raised to the distance that half a unit of the last decimal on each axis makes, where the
+// machine writes fewer decimals; position 0 asks for exactly that), and for points
 // inside arcs that plus the machine's arc tolerance and chord tolerance (arcs that become
 // lines, arcs whose centres are rounded).
 CompareTolerance compare_tolerance(const Machine& machine, double position = 0.001);
+// The same for a program read with this resolution (read_program's coarsest resolution).
+CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution& resolution, double position = 0.001);
 
 // The first difference between two traces.
 struct Mismatch {

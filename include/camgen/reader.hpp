@@ -34,12 +34,15 @@ struct ReadResolution {
     double dwell = 0.0005;     // s
 };
 
-// Reads an NC program written for `machine`. `source` names the program in messages. Throws
+// Reads an NC program written for `machine`. `source` names the program in messages. When
+// `resolution` is given it receives the coarsest resolution the program used (an ISO program
+// may switch to inch with G20). Throws
 // InputError ("SOURCE:LINE: detail") for any word or code the machine's dialect does not
 // write, for motion the machine cannot make (an arc in a plane it lacks, a helix where it has
 // none) and for motion from an unknown position; nothing is skipped silently. Throws
 // InputError when the machine's dialect has no reader.
-std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source = {});
+std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source = {},
+                                    ReadResolution* resolution = nullptr);
 
 // The resolution of the values in a program for `machine` (in its own units).
 ReadResolution read_resolution(const Machine& machine);

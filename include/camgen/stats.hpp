@@ -52,6 +52,9 @@ struct ProgramStats {
 // Measures a trace. Feeds are clamped to machine.limits, rapids run at limits.rapid_rate.
 ProgramStats compute_stats(const Trace& trace, const Machine& machine);
 
+// A time as people read it: "50.3 s", "2 min 05.3 s", "1 h 02 min 05.3 s".
+std::string format_duration(double seconds);
+
 // The statistics as lines of text, numbers through a fixed formatter (deterministic).
 std::string format_stats(const ProgramStats& stats);
 

@@ -258,9 +258,13 @@ const Path* next_path(const std::vector<Item>& items, size_t i) {
 }  // namespace
 
 CompareTolerance compare_tolerance(const Machine& machine, double position) {
-    ReadResolution res = has_reader(machine.dialect) ? read_resolution(machine) : ReadResolution{};
+    return compare_tolerance(machine, has_reader(machine.dialect) ? read_resolution(machine) : ReadResolution{}, position);
+}
+
+CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution& res, double position) {
     CompareTolerance t;
-    t.position = std::max(position, res.position);
+    // Half a unit on each of three axes is at most sqrt(3) half units away.
+    t.position = std::max(position, res.position * std::sqrt(3.0));
     t.path = t.position + machine.tolerance + machine.arcs.chord_tolerance;
     t.feed = res.feed;
     t.dwell = res.dwell;

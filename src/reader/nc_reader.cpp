@@ -49,6 +49,10 @@ void NcReader::set_units(Units units) {
     if (machine_.units == units) return;
     machine_.units = units;
     load_formats();
+    ReadResolution r = resolution();
+    coarsest_ = {std::max(coarsest_.position, r.position), std::max(coarsest_.offset, r.offset),
+                 std::max(coarsest_.angle, r.angle),       std::max(coarsest_.feed, r.feed),
+                 std::max(coarsest_.rpm, r.rpm),           std::max(coarsest_.dwell, r.dwell)};
 }
 
 ReadResolution NcReader::resolution() const {
@@ -227,6 +231,7 @@ Block NcReader::split(std::string_view line) const {
 
 std::vector<ReadEvent> NcReader::read(std::string_view text) {
     out_.clear();
+    coarsest_ = resolution();
     line_ = 0;
     size_t pos = 0;
     const std::string& seq = machine_.block.sequence_prefix;

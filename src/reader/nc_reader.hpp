@@ -47,8 +47,10 @@ public:
 
     // Reads a whole program.
     std::vector<ReadEvent> read(std::string_view text);
-    // How precisely this dialect states values.
+    // How precisely this dialect states values (in the units in effect).
     virtual ReadResolution resolution() const;
+    // The coarsest resolution in effect anywhere in the program read.
+    ReadResolution coarsest_resolution() const { return coarsest_; }
 
 protected:
     // ---- dialect hooks ----
@@ -141,6 +143,7 @@ private:
     double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
     std::optional<DrillCycle> cycle_;
     std::vector<ReadEvent> out_;
+    ReadResolution coarsest_;
 };
 
 // The reader for a machine's dialect (the table in reader.cpp). Throws InputError when the

@@ -37,8 +37,12 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 
 }  // namespace reader
 
-std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source) {
-    return reader::make_reader(machine, source)->read(text);
+std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source,
+                                    ReadResolution* resolution) {
+    auto reader = reader::make_reader(machine, source);
+    std::vector<ReadEvent> events = reader->read(text);
+    if (resolution) *resolution = reader->coarsest_resolution();
+    return events;
 }
 
 ReadResolution read_resolution(const Machine& machine) { return reader::make_reader(machine, {})->resolution(); }

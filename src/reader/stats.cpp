@@ -30,8 +30,9 @@ double length_of(const Step& s) {
     return std::hypot(g.radius * g.sweep, dw);
 }
 
-// "1 h 02 min 05.3 s", "2 min 05.3 s", "50.3 s".
-std::string duration(double seconds) {
+}  // namespace
+
+std::string format_duration(double seconds) {
     long tenths = std::lround(seconds * 10.0);
     long h = tenths / 36000, m = tenths / 600 % 60;
     double s = static_cast<double>(tenths % 600) / 10.0;
@@ -39,6 +40,8 @@ std::string duration(double seconds) {
     if (m > 0) return fmt::format("{} min {:04.1f} s", m, s);
     return fmt::format("{:.1f} s", s);
 }
+
+namespace {
 
 std::string range(const Box& b, int axis) {
     auto get = [&](const Vec3& v) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
@@ -150,9 +153,9 @@ std::string format_stats(const ProgramStats& st) {
                              st.unmeasured_rapids == 1 ? "" : "s");
     line("rapid path", rapid);
     line("lowest Z", st.lowest_z ? num(*st.lowest_z) + " mm" : std::string("-"));
-    line("time", fmt::format("{} (feed {}, rapid {} at {} mm/min, dwell {}){}", duration(st.total_time()),
-                             duration(st.feed_time), duration(st.rapid_time), num(st.rapid_rate, 0),
-                             duration(st.dwell_time),
+    line("time", fmt::format("{} (feed {}, rapid {} at {} mm/min, dwell {}){}", format_duration(st.total_time()),
+                             format_duration(st.feed_time), format_duration(st.rapid_time), num(st.rapid_rate, 0),
+                             format_duration(st.dwell_time),
                              st.clamped_feeds ? fmt::format("; {} feed move{} clamped to the machine's limits",
                                                             st.clamped_feeds, st.clamped_feeds == 1 ? "" : "s")
                                               : std::string()));
@@ -161,7 +164,7 @@ std::string format_stats(const ProgramStats& st) {
         if (!t.box.empty)
             line("", fmt::format("X {}  Y {}  Z {}", range(t.box, 0), range(t.box, 1), range(t.box, 2)));
         line("", fmt::format("{} hole{}, feed {} mm, rapid {} mm, {}", t.holes, t.holes == 1 ? "" : "s", num(t.feed_length),
-                             num(t.rapid_length), duration(t.time)));
+                             num(t.rapid_length), format_duration(t.time)));
     }
     return out;
 }
