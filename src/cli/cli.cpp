@@ -226,7 +226,15 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             err << "camgen: --plot and --stats read the program back: they need --machine and no --events\n";
             return exit_usage;
         }
-        if (!o.machine.empty() && !o.events) (void)load_machine(o.machine);  // unknown machine: usage error first
+        if (!o.machine.empty() && !o.events) {
+            Machine machine = load_machine(o.machine);  // unknown machine: usage error first
+            if ((!o.plot.empty() || o.stats) && !has_reader(machine.dialect)) {
+                err << fmt::format("camgen: --plot and --stats read the program back, and camgen cannot read the {} "
+                                   "dialect of machine {} yet\n",
+                                   machine.dialect, machine.name);
+                return exit_usage;
+            }
+        }
         std::string text = read_text(o.job, in);
         Job job;
         try {

@@ -232,6 +232,7 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
     // Holes: the drill's size where known, a cross, and the drilling order; holes drilled at
     // the same place by several tools share one label.
     std::vector<std::pair<Vec2, std::vector<std::pair<int, int>>>> labels;  // place -> (number, tool)
+    std::map<std::pair<long, long>, size_t> label_at;
     for (size_t i = 0; i < trace.holes.size(); ++i) {
         const Hole& h = trace.holes[i];
         double r = std::max(diameter[h.tool] / 2.0 * v.scale, 3.0);
@@ -241,22 +242,60 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
                              n(cx), n(cy), n(r), c, c));
         body.add(fmt::format("<path d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", n(cx - r - 3), n(cy), n(cx + r + 3),
                              n(cx), n(cy - r - 3), n(cy + r + 3), c));
-        auto it = std::find_if(labels.begin(), labels.end(), [&](const auto& l) {
-            return std::abs(l.first.x - h.at.x) < 1e-3 && std::abs(l.first.y - h.at.y) < 1e-3;
-        });
-        if (it == labels.end()) labels.push_back({h.at, {}}), it = labels.end() - 1;
-        it->second.push_back({static_cast<int>(i) + 1, h.tool});
+        auto key = std::make_pair(std::lround(h.at.x * 1000.0), std::lround(h.at.y * 1000.0));
+        auto [it, fresh] = label_at.try_emplace(key, labels.size());
+        if (fresh) labels.push_back({h.at, {}});
+        labels[it->second].second.push_back({static_cast<int>(i) + 1, h.tool});
     }
-    for (const auto& [at, numbers] : labels) {
+    // Numbers where they fit: the first and last hole of each tool first, then in drilling
+    // order, leaving out any that would overlap one already placed.
+    std::vector<size_t> order(labels.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::map<int, std::pair<int, int>> first_last;  // tool -> first and last hole number
+    for (size_t i = 0; i < trace.holes.size(); ++i) {
+        auto [it, fresh] = first_last.try_emplace(trace.holes[i].tool, static_cast<int>(i) + 1, static_cast<int>(i) + 1);
+        if (!fresh) it->second.second = static_cast<int>(i) + 1;
+    }
+    auto priority = [&](size_t l) {
+        for (const auto& [number, tool] : labels[l].second)
+            if (number == first_last[tool].first || number == first_last[tool].second) return 0;
+        return 1;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return priority(a) < priority(b); });
+    struct Rect {
+        double x0, y0, x1, y1;
+    };
+    std::map<std::pair<int, int>, std::vector<Rect>> placed;  // by 40 px cell
+    const double cell = 40.0;
+    int left_out = 0;
+    for (size_t l : order) {
+        const auto& [at, numbers] = labels[l];
         double r = 3.0;
         for (const auto& [number, tool] : numbers) r = std::max(r, diameter[tool] / 2.0 * v.scale);
-        std::string spans;
-        for (size_t k = 0; k < numbers.size(); ++k)
+        std::string spans, plain;
+        for (size_t k = 0; k < numbers.size(); ++k) {
             spans += fmt::format("{}<tspan fill=\"{}\">{}</tspan>", k ? "<tspan fill=\"#555\">, </tspan>" : "",
                                  colour_of(numbers[k].second), numbers[k].first);
+            plain += fmt::format("{}{}", k ? ", " : "", numbers[k].first);
+        }
+        double tx = v.x(at.x) + r * 0.75 + 3, ty = v.y(at.y) - r * 0.75 - 3;
+        // Bold 12 px digits are about 8.4 px wide; a little room around each label.
+        Rect box{tx - 3, ty - 13, tx + 8.4 * static_cast<double>(plain.size()) + 3, ty + 4};
+        bool free = true;
+        for (int cx = static_cast<int>(std::floor(box.x0 / cell)); free && cx <= static_cast<int>(std::floor(box.x1 / cell)); ++cx)
+            for (int cy = static_cast<int>(std::floor(box.y0 / cell)); free && cy <= static_cast<int>(std::floor(box.y1 / cell)); ++cy)
+                for (const Rect& o : placed[{cx, cy}])
+                    if (box.x0 < o.x1 && o.x0 < box.x1 && box.y0 < o.y1 && o.y0 < box.y1) free = false;
+        if (!free) {
+            left_out += static_cast<int>(numbers.size());
+            continue;
+        }
+        for (int cx = static_cast<int>(std::floor(box.x0 / cell)); cx <= static_cast<int>(std::floor(box.x1 / cell)); ++cx)
+            for (int cy = static_cast<int>(std::floor(box.y0 / cell)); cy <= static_cast<int>(std::floor(box.y1 / cell)); ++cy)
+                placed[{cx, cy}].push_back(box);
         body.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" font-weight=\"bold\" stroke=\"#fff\" stroke-width=\"3\" "
                              "paint-order=\"stroke\">{}</text>",
-                             n(v.x(at.x) + r * 0.75 + 3), n(v.y(at.y) - r * 0.75 - 3), font, spans));
+                             n(tx), n(ty), font, spans));
     }
 
     // Scale bar under the drawing, left.
@@ -333,11 +372,14 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
         note(fmt::format("+ {} from the tool change, not measured", stats.unmeasured_rapids));
     row("lowest Z", stats.lowest_z ? mm(*stats.lowest_z) + " mm" : std::string("-"));
     row("time", format_duration(stats.total_time()));
-    note(fmt::format("feed {}, rapid {}, dwell {}", format_duration(stats.feed_time), format_duration(stats.rapid_time),
-                     format_duration(stats.dwell_time)));
-    note(fmt::format("rapids at {} mm/min{}", n(stats.rapid_rate, 0),
-                     stats.clamped_feeds ? fmt::format(", {} feeds clamped", stats.clamped_feeds) : std::string()));
+    note(fmt::format("feed {}, dwell {}", format_duration(stats.feed_time), format_duration(stats.dwell_time)));
+    note(fmt::format("rapid {} at {} mm/min", format_duration(stats.rapid_time), n(stats.rapid_rate, 0)));
+    if (stats.clamped_feeds) note(fmt::format("{} feed moves clamped to the machine's limits", stats.clamped_feeds));
     ly += 8;
+    if (left_out > 0) {
+        text(lx, fmt::format("{} hole numbers left out where they would overlap.", left_out), 11, "normal", "#777");
+        ly += 15;
+    }
     text(lx, "No stock outline: the job format has no stock yet.", 11, "normal", "#777");
     ly += 15;
     text(lx, "XY view from above; moves along Z only show as points.", 11, "normal", "#777");

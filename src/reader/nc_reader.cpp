@@ -68,6 +68,8 @@ ReadResolution NcReader::resolution() const {
 
 bool NcReader::message_code(const Word&) const { return false; }
 
+bool NcReader::dotted_word(char) const { return false; }
+
 void NcReader::finish() { drill_end(); }
 
 void NcReader::fail(const std::string& detail) const { throw InputError("", detail, line_, source_); }
@@ -190,13 +192,14 @@ Block NcReader::split(std::string_view line) const {
         size_t start = i++;
         while (i < n && is_blank(line[i])) ++i;  // a format with a width pads with spaces
         std::string number;
+        const char point_mark = dotted_word(w.letter) ? '.' : mark;
         if (i < n && (line[i] == '+' || line[i] == '-')) number += line[i++];
         int digits = 0;
         while (i < n) {
             if (is_digit(line[i])) {
                 number += line[i];
                 ++digits;
-            } else if (line[i] == mark && !w.has_point) {
+            } else if (line[i] == point_mark && !w.has_point) {
                 number += '.';
                 w.has_point = true;
             } else {
@@ -206,7 +209,7 @@ Block NcReader::split(std::string_view line) const {
         }
         w.text = std::string(line.substr(start, i - start));
         if (digits == 0) fail(fmt::format("word {} without a number", w.text.empty() ? std::string(1, c) : w.text));
-        if (i < n && (line[i] == '.' || line[i] == ',') && line[i] != mark)
+        if (i < n && (line[i] == '.' || line[i] == ',') && line[i] != point_mark)
             fail(fmt::format("{}{}...: machine {} writes '{}' as its decimal mark", w.text, line[i], machine_.name, mark));
         const char* first = number.data() + (number[0] == '+' ? 1 : 0);
         auto [p, ec] = std::from_chars(first, number.data() + number.size(), w.value);

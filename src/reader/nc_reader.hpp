@@ -58,6 +58,9 @@ protected:
     virtual bool frame_line(std::string_view line) = 0;
     // True when the rest of the line after this word is message text (nccad M01 <message>).
     virtual bool message_code(const Word& word) const;
+    // True when words of this letter are written with '.' whatever the decimal mark (nccad
+    // O6.1 names output 6, bit 1: not a number).
+    virtual bool dotted_word(char letter) const;
     // Interprets one block (words are already split; the sequence number is removed).
     virtual void block(const Block& block) = 0;
     // The end of the text: close what is open.

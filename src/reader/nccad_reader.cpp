@@ -33,6 +33,7 @@ public:
 protected:
     bool frame_line(std::string_view line) override { return line == "_"; }
     bool message_code(const Word& w) const override { return w.letter == 'M' && code(w.value) == code(1); }
+    bool dotted_word(char letter) const override { return letter == 'O'; }
     void block(const Block& b) override;
 
 private:

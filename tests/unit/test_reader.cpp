@@ -369,3 +369,34 @@ TEST_CASE("arcs compare as positions visited: split, linearized, or slightly off
         }
     }
 }
+
+TEST_CASE("block styles: no separator, decimal comma, sequence numbers, CRLF") {
+    // The reader splits words by letter, so a machine that writes "N10G0X10,5Y2" reads back.
+    for (const char* name : {"fanuc", "wabeco"}) {
+        for (const char* sample : {"plate", "bracket"}) {
+            CAPTURE(name);
+            CAPTURE(sample);
+            Machine m = load_machine(name);
+            m.block.separator = "";
+            m.decimal_mark = ',';
+            m.block.sequence_numbers = true;
+            m.block.line_break = "\r\n";
+            Job job = read_job(read_file(std::string(CAMGEN_SOURCE_DIR "/samples/") + sample + ".json"), "job.json");
+            std::ostringstream out;
+            auto post = make_post(m, out, PostOptions{});
+            post->open();
+            expand_job(job, *post);
+            post->close();
+            std::string text = out.str();
+            CHECK(text.find("X10,5") == std::string::npos);  // (no half millimetres in the samples)
+            CHECK(text.find("\r\nN") != std::string::npos);
+            auto mismatch = compare_traces(trace_job(job, m), trace_program(read_program(text, m), m), compare_tolerance(m, 0.0));
+            CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
+        }
+    }
+    Machine m = load_machine("fanuc");
+    m.block.separator = "";
+    m.decimal_mark = ',';
+    auto ev = read_program("%\nN10G17G21G90G94\nN15T1M6\nN20G0X10,500Y-2,250Z5,000\n", m);
+    CHECK(std::get<Rapid>(ev.back().event).to == Vec3{10.5, -2.25, 5.0});
+}
