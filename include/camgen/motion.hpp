@@ -49,6 +49,7 @@ struct ToolInfo {
     std::string description;
 };
 
+// The motion of a whole program or job.
 struct Trace {
     std::vector<Step> steps;
     std::vector<Hole> holes;      // in drilling order

@@ -33,6 +33,7 @@ struct ToolStats {
     int holes = 0;
 };
 
+// Numbers for a whole program.
 struct ProgramStats {
     double feed_length = 0.0;       // mm
     double rapid_length = 0.0;      // mm, rapids from known positions

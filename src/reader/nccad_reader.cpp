@@ -143,21 +143,24 @@ void NccadReader::block(const Block& b) {
         }
     }
 
+    // The motion of the block's axis words: the modal G00..G03, unless a code of the block's
+    // own (G81, G79, G90, ...) has dealt with them.
     int motion = motion_;
+    bool handled = false;
     if (g) {
         switch (int c = code_of(*g)) {
             case code(0): case code(1): case code(2): case code(3): motion = c; break;
-            case code(90): motion = -2; break;
+            case code(90): handled = true; break;
             case code(76): case code(77):  // reference run, home: the position is the machine's
                 drill_end();
                 forget_position();
                 motion_ = -1;
-                motion = -2;
+                handled = true;
                 break;
             case code(99):
                 drill_end();
                 ended_ = true;
-                motion = -2;
+                handled = true;
                 break;
             case code(81): {
                 // G81 X Y Z<bottom> B<retract plane> F: rapid to B above the hole, feed to Z,
@@ -183,7 +186,7 @@ void NccadReader::block(const Block& b) {
                 drill_cycle(cycle);
                 drill_point({x.value_or(here.x), y.value_or(here.y)});
                 motion_ = -1;
-                motion = -2;
+                handled = true;
                 break;
             }
             case code(79): {
@@ -191,13 +194,13 @@ void NccadReader::block(const Block& b) {
                 Vec3 here = position();
                 std::optional<double> x = length_of('X'), y = length_of('Y');
                 drill_point({x.value_or(here.x), y.value_or(here.y)});
-                motion = -2;
+                handled = true;
                 break;
             }
             default: fail(fmt::format("unknown code {}", g->text));
         }
     }
-    if (motion >= 0 && motion != -2) {
+    if (!handled && motion >= 0) {
         motion_ = motion;
         bool any = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('D');
         if (any || g) drill_end();
@@ -219,7 +222,7 @@ void NccadReader::block(const Block& b) {
             if (!a.d && (!a.i || !a.j)) fail("an nccad arc needs both I and J");
             arc(a);
         }
-    } else if (motion == -1 && !g && (w.count('X') || w.count('Y') || w.count('Z'))) {
+    } else if (!handled && (w.count('X') || w.count('Y') || w.count('Z'))) {
         fail("coordinates without a motion code (G00, G01, G79, ...)");
     }
     for (const auto& [letter, was_used] : used)

@@ -400,3 +400,26 @@ TEST_CASE("block styles: no separator, decimal comma, sequence numbers, CRLF") {
     auto ev = read_program("%\nN10G17G21G90G94\nN15T1M6\nN20G0X10,500Y-2,250Z5,000\n", m);
     CHECK(std::get<Rapid>(ev.back().event).to == Vec3{10.5, -2.25, 5.0});
 }
+
+TEST_CASE("every canned cycle of fanuc reads back as the motion of the job's longhand cycle") {
+    // G82 P, G83 Q under G98 with R below the retract plane, G73, G85, G86 (spindle stop and
+    // restart), G89 P, G84 (spindle reversal, F = pitch x rpm), and a degressive peck that
+    // fanuc writes longhand. The reader expands each canned cycle with longhand_moves.
+    const std::string job = R"({"name": "cycles", "clearance": 10,
+ "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}, {"number": 2, "type": "tap", "diameter": 6, "rpm": 300}],
+ "operations": [
+  {"type": "drill", "tool": 1, "cycle": "dwell", "retractPlane": 2, "endDepth": 2, "plungingFeedrate": 100, "bottomDwell": 0.5, "holes": [[0,0],[10,0]]},
+  {"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 5, "safeDistance": 1, "endDepth": 7, "firstDepth": 2.5, "plungingFeedrate": 100, "holes": [[0,10],[10,10]]},
+  {"type": "drill", "tool": 1, "cycle": "chip-break", "retractPlane": 2, "endDepth": 7, "firstDepth": 3, "plungingFeedrate": 100, "holes": [[0,20],[10,20]]},
+  {"type": "drill", "tool": 1, "cycle": "ream", "retractPlane": 2, "endDepth": 5, "plungingFeedrate": 100, "holes": [[0,30]]},
+  {"type": "drill", "tool": 1, "cycle": "bore-stop", "retractPlane": 2, "endDepth": 5, "plungingFeedrate": 100, "holes": [[0,40]]},
+  {"type": "drill", "tool": 1, "cycle": "bore-dwell", "retractPlane": 2, "endDepth": 5, "plungingFeedrate": 100, "bottomDwell": 1, "holes": [[0,50]]},
+  {"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 2, "endDepth": 9, "firstDepth": 3, "degressionType": "value", "degression": 0.5, "minimumDepth": 1, "plungingFeedrate": 100, "holes": [[20,0]]},
+  {"type": "drill", "tool": 2, "cycle": "tap", "retractPlane": 5, "safeDistance": 2, "endDepth": 8, "pitch": 1, "holes": [[30,0],[30,10]]}
+ ]})";
+    std::string program = post_job(job, "fanuc").text;
+    for (const char* code : {"G82 ", "G83 ", "G73 ", "G85 ", "G86 ", "G89 ", "G84 "}) CHECK(program.find(code) != std::string::npos);
+    CHECK(round_trip(job, program, "fanuc") == "");
+    // A dwell of 0.6 s where the job asks 0.5 s is caught.
+    CHECK(round_trip(job, replace_once(program, "P500", "P600"), "fanuc").find("dwell") != std::string::npos);
+}
