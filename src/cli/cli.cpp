@@ -11,14 +11,17 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "camgen/backplot.hpp"
 #include "camgen/error.hpp"
 #include "camgen/events.hpp"
 #include "camgen/job_json.hpp"
 #include "camgen/json_util.hpp"
 #include "camgen/machine.hpp"
+#include "camgen/motion.hpp"
 #include "camgen/operations.hpp"
 #include "camgen/output.hpp"
 #include "camgen/post.hpp"
+#include "camgen/reader.hpp"
 #include "camgen/stats.hpp"
 
 #ifndef CAMGEN_VERSION
@@ -36,8 +39,18 @@ struct Options {
     bool snippet = false;
     bool events = false;
     bool list_machines = false;
-    bool stats = false;
     std::string describe;
+    std::string units;
+    std::string plot;   // SVG backplot of the program as read back
+    bool stats = false; // statistics of the program as read back, to stderr
+};
+
+// `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg]`
+struct VerifyOptions {
+    std::string program;
+    std::string machine;
+    std::string job;
+    std::string plot;
     std::string units;
 };
 
@@ -76,39 +89,77 @@ InputError locate(const InputError& e, const std::string& source, const std::str
     return e.located(source == "-" ? "<stdin>" : source, line);
 }
 
-// Sends every event to two sinks (the post and the statistics).
-struct TeeSink : EventSink {
-    EventSink& a;
-    EventSink& b;
-    TeeSink(EventSink& first, EventSink& second) : a(first), b(second) {}
-    void emit(const Event& e) override {
-        a.emit(e);
-        b.emit(e);
-    }
-};
+Machine machine_for(const Options& o) {
+    Machine machine = load_machine(o.machine);
+    if (!o.units.empty()) machine.units = o.units == "inch" ? Units::inch : Units::mm;
+    return machine;
+}
 
 void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err) {
     if (o.events) {
         EventPrinter printer(out);
-        StatsSink stats;
-        TeeSink tee(printer, stats);
-        expand_job(job, tee);
-        if (o.stats) err << "camgen: " << format_stats(stats.stats()) << '\n';
+        expand_job(job, printer);
         return;
     }
-    Machine machine = load_machine(o.machine);
-    if (!o.units.empty()) machine.units = o.units == "inch" ? Units::inch : Units::mm;
+    Machine machine = machine_for(o);
     PostOptions po;
     po.snippet = o.snippet;
     po.program_name = job.name;
     po.warnings = &err;
     std::unique_ptr<Post> post = make_post(machine, out, po);
-    StatsSink stats(machine.longhand());
-    TeeSink tee(*post, stats);
     post->open();
-    expand_job(job, tee);
+    expand_job(job, *post);
     post->close();
-    if (o.stats) err << "camgen: " << format_stats(stats.stats()) << '\n';
+}
+
+std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
+
+// Writes the SVG backplot of a trace atomically.
+void write_plot(const std::string& file, const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
+    AtomicFile svg(file);
+    svg.stream() << backplot_svg(trace, stats, options);
+    svg.commit();
+}
+
+// `camgen verify`: reads a program back, prints what it does, and compares it with a job.
+int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
+    Machine machine = load_machine(v.machine);
+    if (!v.units.empty()) machine.units = v.units == "inch" ? Units::inch : Units::mm;
+    if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
+    std::string source = v.program == "-" ? "<stdin>" : v.program;
+    std::string text = read_text(v.program, in);
+    ReadResolution resolution;
+    Trace trace = trace_program(read_program(text, machine, source, &resolution), machine);
+    ProgramStats stats = compute_stats(trace, machine);
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
+    if (!v.plot.empty()) write_plot(v.plot, trace, stats, {base_name(source), machine.name});
+    if (v.job.empty()) return exit_ok;
+    std::string job_text = read_text(v.job, in);
+    Job job;
+    try {
+        job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
+        CompareTolerance tolerance = compare_tolerance(machine, resolution);
+        if (auto m = compare_traces(trace_job(job, machine), trace, tolerance)) {
+            out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
+            return exit_invalid_input;
+        }
+        out << fmt::format("matches job {}: the same moves within {} mm (inside arcs {} mm), the same feeds, dwells, "
+                           "tools and spindle\n",
+                           v.job, fmt::format("{:.4f}", tolerance.position), fmt::format("{:.4f}", tolerance.path));
+    } catch (const InputError& e) {
+        throw locate(e, v.job, job_text);
+    }
+    return exit_ok;
+}
+
+// After posting: read the program back for --stats and --plot.
+void read_back(const std::string& program, const Job& job, const Options& o, std::ostream& err) {
+    Machine machine = machine_for(o);
+    std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
+    Trace trace = trace_program(read_program(program, machine, name), machine);
+    ProgramStats stats = compute_stats(trace, machine);
+    if (o.stats) err << format_stats(stats);
+    if (!o.plot.empty()) write_plot(o.plot, trace, stats, {name, machine.name});
 }
 
 }  // namespace
@@ -127,10 +178,24 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                    "Output file, written atomically (default -: standard output); wabeco/kosy programs end in .knc");
     app.add_flag("--snippet", o.snippet, "Clipboard export: no program start or end blocks");
     app.add_flag("--events", o.events, "Print the machine-independent events, one JSON object per line");
-    app.add_flag("--stats", o.stats, "Print the rapid and feed path lengths and the hole count to standard error");
     app.add_option("--units", o.units, "Output units, overriding the machine file")->check(CLI::IsMember({"mm", "inch"}));
     app.add_flag("--list-machines", o.list_machines, "List the built-in machines");
     app.add_option("--describe-machine", o.describe, "Print a machine's settings and drilling cycle table");
+    app.add_option("--plot", o.plot, "Also write an SVG backplot of the program as read back (XY view)");
+    app.add_flag("--stats", o.stats,
+                 "Also print statistics of the program as read back to standard error: path lengths at feed and "
+                 "rapid, holes, lowest Z, machining time, bounding box per tool");
+
+    VerifyOptions vo;
+    CLI::App* verify = app.add_subcommand(
+        "verify", "Read an NC program back with a machine's settings: statistics, an optional SVG backplot, and with "
+                  "--job a check that it makes the job's motion (exit 1 and the first difference if not)");
+    verify->add_option("program", vo.program, "The NC program; - reads standard input")->required();
+    verify->add_option("-m,--machine", vo.machine, "The machine the program was written for")->required();
+    verify->add_option("--job", vo.job, "The job the program should carry out");
+    verify->add_option("--plot", vo.plot, "Write an SVG backplot of the program (XY view)");
+    verify->add_option("--units", vo.units, "The units the program was written in, if not the machine's (as camgen --units)")
+        ->check(CLI::IsMember({"mm", "inch"}));
 
     try {
         app.parse(argc, argv);
@@ -140,6 +205,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     }
 
     try {
+        if (verify->parsed()) return run_verify(vo, in, out);
         if (o.list_machines) {
             for (const auto& [name, description] : list_machines()) out << fmt::format("{:<12}{}\n", name, description);
             return exit_ok;
@@ -156,20 +222,42 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             err << "camgen: --machine is required (see camgen --list-machines)\n";
             return exit_usage;
         }
-        if (!o.machine.empty() && !o.events) (void)load_machine(o.machine);  // unknown machine: usage error first
+        if ((!o.plot.empty() || o.stats) && (o.events || o.machine.empty())) {
+            err << "camgen: --plot and --stats read the program back: they need --machine and no --events\n";
+            return exit_usage;
+        }
+        if (!o.machine.empty() && !o.events) {
+            Machine machine = load_machine(o.machine);  // unknown machine: usage error first
+            if ((!o.plot.empty() || o.stats) && !has_reader(machine.dialect)) {
+                err << fmt::format("camgen: --plot and --stats read the program back, and camgen cannot read the {} "
+                                   "dialect of machine {} yet\n",
+                                   machine.dialect, machine.name);
+                return exit_usage;
+            }
+        }
         std::string text = read_text(o.job, in);
         Job job;
         try {
             job = read_job(text, o.job == "-" ? "<stdin>" : o.job);
             if (job.name.empty()) job.name = stem_of(o.job);
-            if (o.output == "-") {
-                write_program(job, o, out, err);
-                out.flush();
-            } else {
-                AtomicFile file(o.output);
-                write_program(job, o, file.stream(), err);
-                file.commit();
+            // Reading back needs the text: post into a buffer first.
+            bool read_back_wanted = !o.plot.empty() || o.stats;
+            std::ostringstream buffer;
+            std::ostream* target = &buffer;
+            std::optional<AtomicFile> file;
+            if (!read_back_wanted && o.output == "-") target = &out;
+            if (!read_back_wanted && o.output != "-") target = &file.emplace(o.output).stream();
+            write_program(job, o, *target, err);
+            if (read_back_wanted) {
+                if (o.output == "-") {
+                    out << buffer.str();
+                } else {
+                    file.emplace(o.output).stream() << buffer.str();
+                }
             }
+            if (file) file->commit();
+            else out.flush();
+            if (read_back_wanted) read_back(buffer.str(), job, o, err);
         } catch (const InputError& e) {
             throw locate(e, o.job, text);
         }

@@ -1,0 +1,331 @@
+// Reading the ISO (Fanuc-style) dialect: %, O-number, N sequence numbers, modal G groups
+// (motion, plane, units, distance, feed mode, compensation, length offset, return level),
+// T.. M6, S.. M3/M4/M5, G4 P, arcs by the machine's arc format, and the machine's canned
+// cycles with sticky R/Z/Q/P and G98/G99 (REFERENCE.md §3).
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "src/reader/nc_reader.hpp"
+
+namespace camgen::reader {
+
+namespace {
+
+// The cycle kind of an ISO canned-cycle code, if it is one.
+std::optional<CycleKind> cycle_kind_of(int g) {
+    switch (g) {
+        case code(81): return CycleKind::drill;
+        case code(82): return CycleKind::dwell;
+        case code(83): return CycleKind::deep;
+        case code(73): return CycleKind::chip_break;
+        case code(84): return CycleKind::tap;
+        case code(74): return CycleKind::tap_left;
+        case code(85): return CycleKind::ream;
+        case code(86): return CycleKind::bore_stop;
+        case code(89): return CycleKind::bore_dwell;
+        default: return std::nullopt;
+    }
+}
+
+bool has_field(const DrillingCycleSpec& spec, DrillField f) {
+    return std::find(spec.fields.begin(), spec.fields.end(), f) != spec.fields.end();
+}
+
+class IsoReader : public NcReader {
+public:
+    using NcReader::NcReader;
+
+protected:
+    bool frame_line(std::string_view line) override { return line == "%"; }
+    void block(const Block& b) override;
+
+private:
+    // A G code and the word it was written as, for messages.
+    struct Code {
+        int value = 0;
+        const Word* word = nullptr;
+    };
+    void set_group(std::optional<Code>& group, Code c) const;
+    void motion_block(int mode, const std::map<char, const Word*>& w, std::map<char, bool>& used);
+    void cycle_block(int g, const std::map<char, const Word*>& w, std::map<char, bool>& used);
+    const DrillingCycleSpec* canned_spec(int g) const;
+
+    int motion_ = -1;  // the modal motion code (tenths); -1: none yet
+    Plane plane_ = Plane::xy;
+    bool g98_ = true;  // return to the initial level (LinuxCNC's default)
+    std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
+    std::optional<double> initial_z_;  // Z when the current run of cycle blocks began
+    std::optional<int> selected_tool_;
+    SpindleState spindle_ = SpindleState::off;
+    bool ended_ = false;
+};
+
+void IsoReader::set_group(std::optional<Code>& group, Code c) const {
+    if (group)
+        fail(fmt::format("{} and {} in one block: they belong to the same modal group", group->word->text, c.word->text));
+    group = c;
+}
+
+const DrillingCycleSpec* IsoReader::canned_spec(int g) const {
+    for (const DrillingCycleSpec& spec : machine_.drilling) {
+        if (!spec.canned || spec.name.size() < 2 || spec.name[0] != 'G') continue;
+        if (auto v = parse_number(std::string_view(spec.name).substr(1)); v && code(*v) == g) return &spec;
+    }
+    return nullptr;
+}
+
+void IsoReader::block(const Block& b) {
+    if (ended_) fail("a block after the end of the program");
+    if (b.words.front().letter == 'O') {
+        if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
+        (void)integer_of(b.words.front());
+        return;
+    }
+    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell;
+    std::optional<Code> spindle, tool_change, stop, coolant;
+    std::map<char, const Word*> w;
+    std::map<char, bool> used;
+    for (const Word& x : b.words) {
+        if (x.letter == 'G') {
+            Code c{code_of(x), &x};
+            switch (c.value) {
+                case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
+                case code(17): case code(18): case code(19): set_group(plane, c); break;
+                case code(20): case code(21): set_group(units, c); break;
+                case code(90): break;
+                case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
+                case code(94): set_group(feed_mode, c); break;
+                case code(93): case code(95):
+                    fail(fmt::format("{}: only feed per minute (G94) is read", x.text));
+                case code(40): case code(41): case code(42): set_group(comp, c); break;
+                case code(43): case code(49): set_group(length_offset, c); break;
+                case code(98): case code(99): set_group(return_level, c); break;
+                case code(4): set_group(dwell, c); break;
+                default:
+                    if (cycle_kind_of(c.value)) {
+                        if (!canned_spec(c.value)) {
+                            std::vector<std::string> names;
+                            for (const auto& s : machine_.drilling)
+                                if (s.canned) names.push_back(s.name);
+                            fail(fmt::format("{} is not a canned cycle of machine {} (it has: {})", x.text, machine_.name,
+                                             names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+                        }
+                        set_group(motion, c);
+                        break;
+                    }
+                    fail(fmt::format("unknown code {}", x.text));
+            }
+        } else if (x.letter == 'M') {
+            Code c{code_of(x), &x};
+            switch (c.value) {
+                case code(3): case code(4): case code(5): set_group(spindle, c); break;
+                case code(6): set_group(tool_change, c); break;
+                case code(0): case code(1): case code(2): case code(30): set_group(stop, c); break;
+                case code(7): case code(8): case code(9): set_group(coolant, c); break;
+                default: fail(fmt::format("unknown code {}", x.text));
+            }
+        } else if (std::string_view("XYZIJKRQPFSTHD").find(x.letter) != std::string_view::npos) {
+            if (w.count(x.letter)) fail(fmt::format("two {} words in one block", x.letter));
+            w[x.letter] = &x;
+            used[x.letter] = false;
+        } else {
+            fail(fmt::format("unknown word {}", x.text));
+        }
+    }
+    auto take = [&](char letter) -> const Word* {
+        auto it = w.find(letter);
+        if (it == w.end()) return nullptr;
+        used[letter] = true;
+        return it->second;
+    };
+
+    // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
+    if (const Word* f = take('F')) feed_ = feed(*f);
+    if (const Word* s = take('S')) {
+        rpm_ = rpm(*s);
+        if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
+    }
+    if (const Word* t = take('T')) selected_tool_ = integer_of(*t);
+    if (tool_change) {
+        if (!selected_tool_) fail("M6 without a tool number T");
+        drill_end();
+        tool_ = *selected_tool_;
+        std::string description;
+        std::string prefix = fmt::format("T{} ", tool_);
+        if (last_comment_.rfind(prefix, 0) == 0) description = last_comment_.substr(prefix.size());
+        emit(ToolChange{tool_, diameter_in(description), description});
+        forget_position();
+    }
+    if (spindle) {
+        if (spindle->value == code(5)) {
+            spindle_ = SpindleState::off;
+            emit(Spindle{SpindleState::off, 0.0});
+        } else {
+            if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", spindle->word->text));
+            spindle_ = spindle->value == code(3) ? SpindleState::cw : SpindleState::ccw;
+            emit(Spindle{spindle_, rpm_});
+        }
+    }
+    if (dwell) {
+        const Word* p = take('P');
+        if (!p) fail(fmt::format("{} without its time P", dwell->word->text));
+        emit(Dwell{seconds(*p)});
+    }
+    if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
+    if (units) set_units(units->value == code(20) ? Units::inch : Units::mm);
+    if (comp) {
+        if (comp->value == code(40)) {
+            emit(Compensation{CompensationSide::off});
+        } else {
+            if (!take('D')) fail(fmt::format("{} without its offset number D", comp->word->text));
+            emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right});
+        }
+    }
+    if (length_offset && length_offset->value == code(43) && !take('H'))
+        fail(fmt::format("{} without its offset number H", length_offset->word->text));
+    if (return_level) g98_ = return_level->value == code(98);
+    if (motion) {
+        if (motion->value == code(80)) {
+            drill_end();
+            cycle_r_.reset();
+            cycle_z_.reset();
+            cycle_q_.reset();
+            cycle_p_.reset();
+            initial_z_.reset();
+        }
+        motion_ = motion->value;
+    }
+    bool axes = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('K') ||
+                w.count('R') || w.count('Q') || (w.count('P') && !used['P']);
+    if (axes) {
+        if (motion_ < 0 || motion_ == code(80))
+            fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
+        motion_block(motion_, w, used);
+    }
+    for (const auto& [letter, was_used] : used)
+        if (!was_used) fail(fmt::format("{} has no meaning in this block", w[letter]->text));
+    if (stop && (stop->value == code(2) || stop->value == code(30))) {
+        drill_end();
+        ended_ = true;
+    }
+}
+
+void IsoReader::motion_block(int mode, const std::map<char, const Word*>& w, std::map<char, bool>& used) {
+    auto length_of = [&](char letter) -> std::optional<double> {
+        auto it = w.find(letter);
+        if (it == w.end()) return std::nullopt;
+        used[letter] = true;
+        return length(*it->second);
+    };
+    auto offset_of = [&](char letter) -> std::optional<double> {
+        auto it = w.find(letter);
+        if (it == w.end()) return std::nullopt;
+        used[letter] = true;
+        return offset(*it->second);
+    };
+    if (cycle_kind_of(mode)) {
+        cycle_block(mode, w, used);
+        return;
+    }
+    drill_end();
+    initial_z_.reset();
+    std::optional<double> x = length_of('X'), y = length_of('Y'), z = length_of('Z');
+    if (mode == code(0)) {
+        rapid_to(x, y, z);
+    } else if (mode == code(1)) {
+        linear_to(x, y, z);
+    } else {
+        ArcWords a;
+        a.direction = mode == code(2) ? ArcDirection::cw : ArcDirection::ccw;
+        a.plane = plane_;
+        a.x = x, a.y = y, a.z = z;
+        a.i = offset_of('I'), a.j = offset_of('J'), a.k = offset_of('K');
+        a.r = length_of('R');
+        a.absolute_centre = machine_.arcs.format == ArcFormat::ijk_absolute;
+        if (auto it = w.find('P'); it != w.end()) {
+            // P on an arc: the number of turns (LinuxCNC), 1 for a plain arc.
+            used['P'] = true;
+            int p = integer_of(*it->second);
+            if (p < 1) fail(fmt::format("{}: an arc makes at least one turn", it->second->text));
+            a.turns = p - 1;
+        }
+        arc(a);
+    }
+}
+
+void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::map<char, bool>& used) {
+    const DrillingCycleSpec& spec = *canned_spec(g);
+    const std::string name = spec.name;
+    auto get = [&](char letter) -> const Word* {
+        auto it = w.find(letter);
+        if (it == w.end()) return nullptr;
+        used[letter] = true;
+        return it->second;
+    };
+    if (w.count('I') || w.count('J') || w.count('K')) fail(fmt::format("I/J/K in a {} block", name));
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    Vec3 here = position();
+    if (!initial_z_) initial_z_ = here.z;
+    std::optional<double> x, y;
+    if (const Word* v = get('X')) x = length(*v);
+    if (const Word* v = get('Y')) y = length(*v);
+    if (const Word* v = get('Z')) cycle_z_ = length(*v);
+    if (const Word* v = get('R')) cycle_r_ = length(*v);
+    bool pecks = spec.kind == CycleKind::deep || spec.kind == CycleKind::chip_break;
+    if (const Word* v = get('Q')) {
+        if (!pecks || !has_field(spec, DrillField::first_depth))
+            fail(fmt::format("{}: {} on machine {} takes no peck depth Q", v->text, name, machine_.name));
+        cycle_q_ = length(*v);
+    }
+    if (const Word* v = get('P')) {
+        if (!has_field(spec, DrillField::bottom_dwell))
+            fail(fmt::format("{}: {} on machine {} takes no dwell P", v->text, name, machine_.name));
+        cycle_p_ = seconds(*v);
+    }
+    if (!cycle_z_) fail(fmt::format("{} without its depth Z", name));
+    if (!cycle_r_) fail(fmt::format("{} without its R plane", name));
+    if (!(*cycle_z_ < *cycle_r_)) fail(fmt::format("{}: the bottom Z is not below R", name));
+    if (!feed_) fail(fmt::format("{} without a feed F", name));
+    DrillCycle c;
+    c.kind = spec.kind;
+    c.output = CycleOutput::canned;
+    c.safe_z = *cycle_r_;
+    c.reference_z = *cycle_r_;
+    // G98: back to the Z the tool had before the first cycle block (if above R); G99: to R.
+    c.retract_z = g98_ ? std::max(*initial_z_, *cycle_r_) : *cycle_r_;
+    c.bottom_z = *cycle_z_;
+    c.feed = *feed_;
+    c.spindle_rpm = rpm_;
+    DrillParams& p = c.params;
+    p.kind = spec.kind;
+    p.retract_plane = c.retract_z;
+    p.reference_plane = c.reference_z;
+    p.end_depth = c.bottom_z;
+    p.end_depth_is_absolute = true;
+    p.output = CycleOutput::canned;
+    if (pecks) {
+        if (!cycle_q_) fail(fmt::format("{} without its peck depth Q", name));
+        if (!(*cycle_q_ > 0)) fail(fmt::format("{}: the peck depth Q must be > 0", name));
+        p.first_depth = *cycle_q_;
+    }
+    if (cycle_p_ && has_field(spec, DrillField::bottom_dwell) && *cycle_p_ > 0) p.bottom_dwell = *cycle_p_;
+    if (spec.kind == CycleKind::tap || spec.kind == CycleKind::tap_left) {
+        // A tap's feed is pitch x spindle speed.
+        if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", name));
+        p.pitch = *feed_ / rpm_;
+    } else {
+        p.plunging_feedrate = *feed_;
+    }
+    if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
+    drill_point({x.value_or(here.x), y.value_or(here.y)});
+}
+
+}  // namespace
+
+std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source) {
+    return std::make_unique<IsoReader>(machine, std::move(source));
+}
+
+}  // namespace camgen::reader

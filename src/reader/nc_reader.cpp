@@ -1,0 +1,419 @@
+#include "src/reader/nc_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/error.hpp"
+
+namespace camgen::reader {
+
+namespace {
+
+constexpr double deg = 180.0 / std::numbers::pi;
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+const char* plane_name(Plane p) { return p == Plane::xy ? "XY" : p == Plane::xz ? "XZ" : "YZ"; }
+
+// Half a unit of the last decimal a format writes, in the units the value had before scaling.
+double half_unit(const nc::Format& f) { return 0.5 * std::pow(10.0, -f.spec().decimals) / f.spec().scale; }
+
+}  // namespace
+
+NcReader::NcReader(const Machine& machine, std::string source) : machine_(machine), source_(std::move(source)) {
+    load_formats();
+}
+
+void NcReader::load_formats() {
+    xyz_ = machine_.format("xyz");
+    ijk_ = machine_.format("ijk");
+    feed_fmt_ = machine_.format("feed");
+    rpm_fmt_ = machine_.format("rpm");
+    dwell_fmt_ = machine_.format("dwell");
+    angle_fmt_ = machine_.format("angle");
+}
+
+void NcReader::set_units(Units units) {
+    if (machine_.units == units) return;
+    machine_.units = units;
+    load_formats();
+    ReadResolution r = resolution();
+    coarsest_ = {std::max(coarsest_.position, r.position), std::max(coarsest_.offset, r.offset),
+                 std::max(coarsest_.angle, r.angle),       std::max(coarsest_.feed, r.feed),
+                 std::max(coarsest_.rpm, r.rpm),           std::max(coarsest_.dwell, r.dwell)};
+}
+
+ReadResolution NcReader::resolution() const {
+    ReadResolution r;
+    r.position = half_unit(xyz_);
+    r.offset = half_unit(ijk_);
+    r.angle = half_unit(angle_fmt_);
+    r.feed = half_unit(feed_fmt_);
+    r.rpm = half_unit(rpm_fmt_);
+    r.dwell = half_unit(dwell_fmt_);
+    return r;
+}
+
+bool NcReader::message_code(const Word&) const { return false; }
+
+bool NcReader::dotted_word(char) const { return false; }
+
+void NcReader::finish() { drill_end(); }
+
+void NcReader::fail(const std::string& detail) const { throw InputError("", detail, line_, source_); }
+
+void NcReader::emit(Event event, bool from_unknown, double uncertainty) {
+    out_.push_back(ReadEvent{std::move(event), line_, from_unknown, uncertainty});
+}
+
+// ---- words ----
+
+double NcReader::length(const Word& w) const {
+    const nc::FormatSpec& s = xyz_.spec();
+    if (s.force_decimal && s.decimals > 0 && !w.has_point)
+        fail(fmt::format("{} has no decimal point: machine {} always writes one, and a Fanuc-style control "
+                         "reads {} as {} {}", w.text, machine_.name, w.text,
+                         w.value * std::pow(10.0, -s.decimals), machine_.units == Units::inch ? "inch" : "mm"));
+    return w.value / s.scale;
+}
+
+double NcReader::offset(const Word& w) const {
+    const nc::FormatSpec& s = ijk_.spec();
+    if (s.force_decimal && s.decimals > 0 && !w.has_point)
+        fail(fmt::format("{} has no decimal point: machine {} always writes one", w.text, machine_.name));
+    return w.value / s.scale;
+}
+
+double NcReader::feed(const Word& w) const {
+    if (!(w.value > 0)) fail(fmt::format("{}: a feed must be > 0", w.text));
+    return w.value / feed_fmt_.spec().scale;
+}
+
+double NcReader::rpm(const Word& w) const {
+    if (w.value < 0) fail(fmt::format("{}: a spindle speed must be >= 0", w.text));
+    return w.value / rpm_fmt_.spec().scale;
+}
+
+double NcReader::seconds(const Word& w) const {
+    if (w.value < 0) fail(fmt::format("{}: a dwell must be >= 0", w.text));
+    return w.value / dwell_fmt_.spec().scale;
+}
+
+double NcReader::angle(const Word& w) const { return w.value / angle_fmt_.spec().scale; }
+
+int NcReader::code_of(const Word& w) const {
+    int c = code(w.value);
+    if (std::abs(w.value * 10.0 - c) > 1e-6) fail(fmt::format("{} is not a code", w.text));
+    return c;
+}
+
+int NcReader::integer_of(const Word& w) const {
+    if (w.value < 0 || w.value != std::floor(w.value) || w.value > 1e9)
+        fail(fmt::format("{}: expected a whole number", w.text));
+    return static_cast<int>(w.value);
+}
+
+std::optional<double> NcReader::parse_number(std::string_view text) const {
+    std::string t(trim(text));
+    if (t.empty()) return std::nullopt;
+    for (char& c : t) {
+        if (c == machine_.decimal_mark) c = '.';
+        else if (c == '.' || c == ',') return std::nullopt;
+    }
+    double v = 0.0;
+    const char* b = t.data();
+    if (*b == '+') ++b;
+    auto [p, ec] = std::from_chars(b, t.data() + t.size(), v);
+    if (ec != std::errc() || p != t.data() + t.size()) return std::nullopt;
+    return v;
+}
+
+double NcReader::diameter_in(std::string_view description) {
+    size_t mm = description.find(" mm ");
+    if (mm == std::string_view::npos) mm = description.find(" mm");
+    if (mm == std::string_view::npos || mm == 0) return 0.0;
+    std::string_view number = description.substr(0, mm);
+    double v = 0.0;
+    auto [p, ec] = std::from_chars(number.data(), number.data() + number.size(), v);
+    return ec == std::errc() && p == number.data() + number.size() && v > 0 ? v : 0.0;
+}
+
+// ---- blocks ----
+
+Block NcReader::split(std::string_view line) const {
+    Block b;
+    b.line = line_;
+    const nc::BlockStyle& style = machine_.block;
+    const std::string& sep = style.separator;
+    bool sep_is_text = !sep.empty() && !is_blank(sep[0]);
+    const char mark = machine_.decimal_mark;
+    size_t i = 0, n = line.size();
+    while (i < n) {
+        char c = line[i];
+        if (is_blank(c)) {
+            ++i;
+            continue;
+        }
+        if (sep_is_text && line.compare(i, sep.size(), sep) == 0) {
+            i += sep.size();
+            continue;
+        }
+        if (c == '(' && style.comment_style == nc::CommentStyle::parentheses) {
+            size_t close = line.find(')', i + 1);
+            if (close == std::string_view::npos) fail("a comment '(' without its ')'");
+            std::string_view text = line.substr(i + 1, close - i - 1);
+            if (text.find('(') != std::string_view::npos) fail("'(' inside a comment");
+            b.comments.emplace_back(trim(text));
+            i = close + 1;
+            continue;
+        }
+        if (c == ';' && style.comment_style == nc::CommentStyle::semicolon) {
+            b.comments.emplace_back(trim(line.substr(i + 1)));
+            break;
+        }
+        if (!is_letter(c)) {
+            const char* expect = style.comment_style == nc::CommentStyle::parentheses ? "comments are (...)" : "comments start with ';'";
+            fail(fmt::format("unexpected character '{}' ({})", c, expect));
+        }
+        Word w;
+        w.letter = static_cast<char>(c >= 'a' ? c - 'a' + 'A' : c);
+        size_t start = i++;
+        while (i < n && is_blank(line[i])) ++i;  // a format with a width pads with spaces
+        std::string number;
+        const char point_mark = dotted_word(w.letter) ? '.' : mark;
+        if (i < n && (line[i] == '+' || line[i] == '-')) number += line[i++];
+        int digits = 0;
+        while (i < n) {
+            if (is_digit(line[i])) {
+                number += line[i];
+                ++digits;
+            } else if (line[i] == point_mark && !w.has_point) {
+                number += '.';
+                w.has_point = true;
+            } else {
+                break;
+            }
+            ++i;
+        }
+        w.text = std::string(line.substr(start, i - start));
+        if (digits == 0) fail(fmt::format("word {} without a number", w.text.empty() ? std::string(1, c) : w.text));
+        if (i < n && (line[i] == '.' || line[i] == ',') && line[i] != point_mark)
+            fail(fmt::format("{}{}...: machine {} writes '{}' as its decimal mark", w.text, line[i], machine_.name, mark));
+        const char* first = number.data() + (number[0] == '+' ? 1 : 0);
+        auto [p, ec] = std::from_chars(first, number.data() + number.size(), w.value);
+        if (ec != std::errc()) fail(fmt::format("{} is not a number that fits", w.text));
+        if (w.value == 0.0) w.value = 0.0;  // no -0
+        b.words.push_back(std::move(w));
+        if (message_code(b.words.back())) {
+            std::string_view rest = line.substr(i);
+            if (style.comment_style == nc::CommentStyle::semicolon) {
+                if (size_t semi = rest.find(';'); semi != std::string_view::npos) {
+                    b.comments.emplace_back(trim(rest.substr(semi + 1)));
+                    rest = rest.substr(0, semi);
+                }
+            }
+            b.message = std::string(trim(rest));
+            b.has_message = true;
+            break;
+        }
+    }
+    return b;
+}
+
+std::vector<ReadEvent> NcReader::read(std::string_view text) {
+    out_.clear();
+    coarsest_ = resolution();
+    line_ = 0;
+    size_t pos = 0;
+    const std::string& seq = machine_.block.sequence_prefix;
+    while (pos < text.size()) {
+        size_t nl = text.find('\n', pos);
+        std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        pos = nl == std::string_view::npos ? text.size() : nl + 1;
+        ++line_;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        std::string_view t = trim(line);
+        if (t.empty() || frame_line(t)) continue;
+        Block b = split(line);
+        // A sequence number leads the block; it says nothing about motion.
+        if (!b.words.empty() && seq.size() == 1 && b.words.front().letter == seq[0]) {
+            (void)integer_of(b.words.front());
+            b.words.erase(b.words.begin());
+        }
+        for (const std::string& c : b.comments) {
+            emit(Comment{c});
+            last_comment_ = c;
+        }
+        if (!b.words.empty() || b.has_message) block(b);
+    }
+    finish();
+    return std::move(out_);
+}
+
+// ---- motion ----
+
+void NcReader::forget_position() {
+    known_ = {false, false, false};
+    was_unknown_ = true;
+}
+
+void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z) {
+    if (!x && !y && !z) return;
+    bool was_known = position_known();
+    Vec3 before = position();
+    const std::optional<double>* axes[3] = {&x, &y, &z};
+    for (int a = 0; a < 3; ++a)
+        if (*axes[a]) {
+            pos_[static_cast<size_t>(a)] = **axes[a];
+            known_[static_cast<size_t>(a)] = true;
+        }
+    if (x && y) xy_uncertainty_ = 0.0;
+    if (!position_known()) return;  // still partly unknown: the move cannot be traced yet
+    if (was_known && before == position() && !was_unknown_) return;
+    emit(Rapid{position()}, was_unknown_ || !was_known, xy_uncertainty_);
+    was_unknown_ = false;
+}
+
+void NcReader::linear_to(std::optional<double> x, std::optional<double> y, std::optional<double> z) {
+    if (!x && !y && !z) return;
+    if (!position_known())
+        fail("a feed move from an unknown position (after a tool change or home run the first move must be a "
+             "rapid that sets X, Y and Z)");
+    if (!feed_) fail("a feed move without a feed (F)");
+    Vec3 p = position();
+    if (x) p.x = *x;
+    if (y) p.y = *y;
+    if (z) p.z = *z;
+    pos_ = {p.x, p.y, p.z};
+    if (x && y) xy_uncertainty_ = 0.0;
+    emit(Linear{p, *feed_}, false, xy_uncertainty_);
+}
+
+void NcReader::arc(const ArcWords& a) {
+    const ArcSettings& s = machine_.arcs;
+    if (std::find(s.planes.begin(), s.planes.end(), a.plane) == s.planes.end()) {
+        std::vector<std::string> names;
+        for (Plane p : s.planes) names.emplace_back(plane_name(p));
+        fail(fmt::format("an arc in the {} plane: machine {} makes arcs only in {}", plane_name(a.plane), machine_.name,
+                         names.empty() ? std::string("no plane") : fmt::format("{}", fmt::join(names, ", "))));
+    }
+    if (!position_known())
+        fail("an arc from an unknown position (after a tool change or home run the first move must be a rapid)");
+    if (!feed_) fail("an arc without a feed (F)");
+    const ReadResolution res = resolution();
+    Vec3 start = position(), end = start;
+    if (a.x) end.x = *a.x;
+    if (a.y) end.y = *a.y;
+    if (a.z) end.z = *a.z;
+    PlanePoint ps = to_plane(start, a.plane), pe = to_plane(end, a.plane);
+    PlanePoint pc{0.0, 0.0, ps.w};
+    bool ccw = a.direction == ArcDirection::ccw;
+    // Which of I/J/K hold the plane's (u, v) centre coordinates (to_plane's axis order).
+    const std::optional<double>* cu = a.plane == Plane::xy ? &a.i : a.plane == Plane::xz ? &a.k : &a.j;
+    const std::optional<double>* cv = a.plane == Plane::xy ? &a.j : a.plane == Plane::xz ? &a.i : &a.k;
+    const std::optional<double>* off_plane = a.plane == Plane::xy ? &a.k : a.plane == Plane::xz ? &a.j : &a.i;
+    const char* cu_name = a.plane == Plane::xy ? "I" : a.plane == Plane::xz ? "K" : "J";
+    const char* cv_name = a.plane == Plane::xy ? "J" : a.plane == Plane::xz ? "I" : "K";
+    const char* off_name = a.plane == Plane::xy ? "K" : a.plane == Plane::xz ? "J" : "I";
+    if (*off_plane) fail(fmt::format("{} on an arc in the {} plane", off_name, plane_name(a.plane)));
+
+    if (a.d) {
+        // nccad: G02 D<sweep> I J, the centre relative to the start; the control computes the end.
+        if (a.plane != Plane::xy) fail("a D-form arc outside the XY plane");
+        if (a.x || a.y) fail("a D-form arc with an end point: write either D or X and Y");
+        if (a.z) fail("Z on a D-form arc: nccad cannot make a helix in this form");
+        if (!a.i || !a.j) fail("a D-form arc needs both I and J");
+        double d = *a.d;
+        if (!(d > 0.0 && d <= 360.0)) fail(fmt::format("D{}: the sweep of an arc must be in (0, 360] degrees", d));
+        pc = {ps.u + *a.i, ps.v + *a.j, ps.w};
+        double r = std::hypot(ps.u - pc.u, ps.v - pc.v);
+        if (r == 0.0) fail("a D-form arc of radius 0 (I0 J0)");
+        double a0 = std::atan2(ps.v - pc.v, ps.u - pc.u);
+        double a1 = a0 + (ccw ? 1.0 : -1.0) * d / deg;
+        pe = d >= 360.0 ? ps : PlanePoint{pc.u + r * std::cos(a1), pc.v + r * std::sin(a1), ps.w};
+        // The control turns the rounded start about the rounded centre by the rounded angle:
+        // the end may be off by twice the centre's rounding plus the angle's, beyond the start's.
+        xy_uncertainty_ += 2.0 * std::numbers::sqrt2 * res.offset + r * res.angle / deg;
+    } else if (a.r) {
+        if (*cu || *cv) fail("an arc with both R and a centre (I/J/K)");
+        double du = pe.u - ps.u, dv = pe.v - ps.v, chord = std::hypot(du, dv);
+        if (chord == 0.0) fail("an R arc whose end is its start: R cannot say a full circle");
+        double r = std::abs(*a.r);
+        double slack = machine_.tolerance + 2.0 * res.position;
+        if (chord / 2.0 > r + slack)
+            fail(fmt::format("R{}: the radius is smaller than half the distance to the end ({})", *a.r, chord / 2.0));
+        double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4.0));
+        // Sweeps up to 180 degrees (R > 0): counter-clockwise arcs have their centre on the
+        // left of the chord, clockwise ones on the right; R < 0 means the other side.
+        double side = (ccw ? 1.0 : -1.0) * (*a.r > 0 ? 1.0 : -1.0);
+        pc = {(ps.u + pe.u) / 2.0 - side * h * dv / chord, (ps.v + pe.v) / 2.0 + side * h * du / chord, ps.w};
+    } else {
+        if (a.absolute_centre) {
+            if (!*cu || !*cv)
+                fail(fmt::format("an arc in the {} plane needs both {} and {} (absolute centre)", plane_name(a.plane),
+                                 cu_name, cv_name));
+            pc = {**cu, **cv, ps.w};
+        } else {
+            if (!*cu && !*cv)
+                fail(fmt::format("an arc without its centre ({} and {}) or radius (R)", cu_name, cv_name));
+            pc = {ps.u + cu->value_or(0.0), ps.v + cv->value_or(0.0), ps.w};
+        }
+        double rs = std::hypot(ps.u - pc.u, ps.v - pc.v), re = std::hypot(pe.u - pc.u, pe.v - pc.v);
+        double slack = machine_.tolerance + 2.0 * (res.position + res.offset);
+        if (std::abs(rs - re) > slack)
+            fail(fmt::format("the arc's end is not on its circle: radius {:.4f} from the start, {:.4f} from the end "
+                             "(more than the machine's tolerance {} apart)", rs, re, machine_.tolerance));
+        if (rs == 0.0) fail("an arc of radius 0");
+    }
+    if (pe.w != ps.w || a.turns > 0) {
+        if (!s.helical) fail(fmt::format("a helical arc: machine {} makes no helices", machine_.name));
+    }
+    end = from_plane(pe, a.plane);
+    Arc ev{end, from_plane(pc, a.plane), a.direction, a.plane, *feed_, a.turns};
+    ArcGeometry geo = resolve_arc(start, ev);
+    double sweep = (geo.sweep - 2.0 * std::numbers::pi * a.turns) * deg;
+    if (sweep > s.max_sweep + 1e-3)
+        fail(fmt::format("an arc of {:.3f} degrees in one block: machine {} takes at most {} degrees per block", sweep,
+                         machine_.name, s.max_sweep));
+    bool plane_written = a.plane == Plane::xy ? (a.x && a.y) : a.plane == Plane::xz ? (a.x && a.z) : false;
+    if (plane_written) xy_uncertainty_ = 0.0;
+    pos_ = {end.x, end.y, end.z};
+    emit(ev, false, xy_uncertainty_);
+}
+
+// ---- drilling ----
+
+void NcReader::drill_cycle(const DrillCycle& cycle) {
+    drill_end();
+    cycle_ = cycle;
+    emit(cycle);
+}
+
+void NcReader::drill_point(Vec2 at) {
+    if (!cycle_) throw std::logic_error("drill point outside a cycle");
+    if (!position_known()) fail("a drilling cycle from an unknown position");
+    emit(DrillPoint{at});
+    // DrillCycle's contract: between holes the tool returns to the retract plane.
+    pos_ = {at.x, at.y, cycle_->retract_z};
+    xy_uncertainty_ = 0.0;
+}
+
+void NcReader::drill_end() {
+    if (!cycle_) return;
+    emit(DrillEnd{});
+    cycle_.reset();
+}
+
+}  // namespace camgen::reader

@@ -1,0 +1,160 @@
+#pragma once
+// The reader base (private to src/reader/): splits a program into blocks of words as the
+// machine's block style writes them, and keeps what every dialect shares: the modal position
+// with per-axis knowledge, formats and their scales, feed, arcs in every arc format, drilling
+// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp)
+// says which words and codes exist and what they do, as the post dialects do in machines/.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camgen/arcs.hpp"
+#include "camgen/machine.hpp"
+#include "camgen/nc/format.hpp"
+#include "camgen/reader.hpp"
+
+namespace camgen::reader {
+
+// One word of a block: a letter and the number after it, as written.
+struct Word {
+    char letter = 0;         // upper case
+    double value = 0.0;      // the number as written, before any scale
+    std::string text;        // letter and number as written, for messages ("X10.500")
+    bool has_point = false;  // the number has a decimal mark
+};
+
+// One block: its words in order, comments and message text.
+struct Block {
+    int line = 0;
+    std::vector<Word> words;
+    std::vector<std::string> comments;  // comment texts, in order
+    std::string message;                // text after a message code (nccad M01), trimmed
+    bool has_message = false;
+};
+
+// A G or M code in tenths, so that G33.1 and G81 are both exact: code(81) == 810.
+constexpr int code(double c) { return static_cast<int>(c * 10.0 + (c < 0 ? -0.5 : 0.5)); }
+
+class NcReader {
+public:
+    NcReader(const Machine& machine, std::string source);
+    virtual ~NcReader() = default;
+    NcReader(const NcReader&) = delete;
+    NcReader& operator=(const NcReader&) = delete;
+
+    // Reads a whole program.
+    std::vector<ReadEvent> read(std::string_view text);
+    // How precisely this dialect states values (in the units in effect).
+    virtual ReadResolution resolution() const;
+    // The coarsest resolution in effect anywhere in the program read.
+    ReadResolution coarsest_resolution() const { return coarsest_; }
+
+protected:
+    // ---- dialect hooks ----
+    // A line that is not a block of words ("%", "_"): true when the dialect consumed it.
+    virtual bool frame_line(std::string_view line) = 0;
+    // True when the rest of the line after this word is message text (nccad M01 <message>).
+    virtual bool message_code(const Word& word) const;
+    // True when words of this letter are written with '.' whatever the decimal mark (nccad
+    // O6.1 names output 6, bit 1: not a number).
+    virtual bool dotted_word(char letter) const;
+    // Interprets one block (words are already split; the sequence number is removed).
+    virtual void block(const Block& block) = 0;
+    // The end of the text: close what is open.
+    virtual void finish();
+
+    // ---- shared machinery ----
+    [[noreturn]] void fail(const std::string& detail) const;
+    void emit(Event event, bool from_unknown = false, double uncertainty = 0.0);
+
+    // Values of words in internal units (mm, mm/min, rpm, s, degrees), through the machine's
+    // formats and their scales. Lengths without a decimal point are an error where the format
+    // always writes one (a Fanuc-style control reads X10 as 0.010 mm).
+    double length(const Word& w) const;
+    double offset(const Word& w) const;
+    double feed(const Word& w) const;
+    double rpm(const Word& w) const;
+    double seconds(const Word& w) const;
+    double angle(const Word& w) const;
+    // The word's value as a G/M code in tenths (see code()). Fails for finer values.
+    int code_of(const Word& w) const;
+    // The word's value as a non-negative whole number (tool, H, D, O-number).
+    int integer_of(const Word& w) const;
+    // Parses a number written with the machine's decimal mark (message texts). nullopt if not one.
+    std::optional<double> parse_number(std::string_view text) const;
+
+    // Switches the length and feed formats to these units (ISO G20/G21).
+    void set_units(Units units);
+
+    // Position: absolute mm, each axis known or not.
+    bool position_known() const { return known_[0] && known_[1] && known_[2]; }
+    Vec3 position() const { return {pos_[0], pos_[1], pos_[2]}; }
+    // The control's position is unknown from here (tool change, home or reference run).
+    void forget_position();
+    // A rapid to the given axes (nullopt: unchanged). Emitted once every axis is known; the
+    // first one after forget_position() is marked from_unknown.
+    void rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
+    // A feed move. Fails from an unknown position or without a feed.
+    void linear_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
+
+    // The words of an arc block in internal units (nullopt: not written).
+    struct ArcWords {
+        ArcDirection direction = ArcDirection::cw;
+        Plane plane = Plane::xy;
+        std::optional<double> x, y, z;  // end point
+        std::optional<double> i, j, k;  // centre: offsets from the start or absolute (machine's arc format)
+        std::optional<double> r;        // radius, negative for more than 180 degrees
+        std::optional<double> d;        // nccad sweep in degrees (no end point)
+        bool absolute_centre = false;   // I/J/K are absolute
+        int turns = 0;                  // extra full turns of a helix
+    };
+    // A circular feed move, checked against the machine's arc settings (planes, helices, the
+    // largest sweep per block, both radii equal within the machine's tolerance).
+    void arc(const ArcWords& words);
+
+    // The tool diameter a camgen tool description starts with ("10 mm spot drill"), else 0.
+    static double diameter_in(std::string_view description);
+
+    // The last comment read (camgen writes "T1 10 mm drill" before a tool change).
+    std::string last_comment_;
+    // Current feed (mm/min) if any was programmed; FeedUnit and scale already applied.
+    std::optional<double> feed_;
+    double rpm_ = 0.0;
+    int tool_ = 0;
+
+    // Drilling: a canned cycle and its holes, as events for trace_program to expand.
+    void drill_cycle(const DrillCycle& cycle);
+    void drill_point(Vec2 at);
+    void drill_end();
+    const std::optional<DrillCycle>& current_cycle() const { return cycle_; }
+
+    Machine machine_;  // a copy: G20/G21 change its units
+    std::string source_;
+    int line_ = 0;
+
+private:
+    void load_formats();
+    Block split(std::string_view line) const;
+
+    nc::Format xyz_, ijk_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_;
+    std::array<double, 3> pos_{};
+    std::array<bool, 3> known_{};
+    bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
+    double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
+    std::optional<DrillCycle> cycle_;
+    std::vector<ReadEvent> out_;
+    ReadResolution coarsest_;
+};
+
+// The reader for a machine's dialect (the table in reader.cpp). Throws InputError when the
+// dialect has none.
+std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source);
+
+// The dialect readers.
+std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source);
+std::unique_ptr<NcReader> make_nccad_reader(const Machine& machine, std::string source);
+
+}  // namespace camgen::reader

@@ -1,0 +1,48 @@
+// Round trip: every golden file of every machine (tests/golden/<machine>/<sample>.<ext>), read
+// back with the machine's reader, makes the motion of the job that produced it, within half a
+// unit of the last decimal written. Data-driven: a new machine's or sample's golden files are
+// picked up without a change here.
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include <doctest/doctest.h>
+
+#include "camgen/motion.hpp"
+#include "camgen/reader.hpp"
+#include "support.hpp"
+
+namespace fs = std::filesystem;
+using namespace camgen;
+
+TEST_CASE("every golden file reads back to the motion of its job") {
+    int checked = 0;
+    std::vector<fs::path> files;
+    for (const auto& dir : fs::directory_iterator(CAMGEN_SOURCE_DIR "/tests/golden"))
+        if (dir.is_directory())
+            for (const auto& f : fs::directory_iterator(dir.path())) files.push_back(f.path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& golden : files) {
+        std::string machine_name = golden.parent_path().filename().string();
+        std::string sample = golden.stem().string();
+        CAPTURE(golden.string());
+        fs::path job_file = fs::path(CAMGEN_SOURCE_DIR "/samples") / (sample + ".json");
+        REQUIRE_MESSAGE(fs::exists(job_file), "a golden file without its sample job");
+        Machine machine = load_machine(machine_name);
+        if (!has_reader(machine.dialect)) {
+            MESSAGE("no reader for dialect " << machine.dialect << ": " << golden.string() << " is not read back");
+            continue;
+        }
+        Job job = read_job(test::read_file(job_file.string()), job_file.string());
+        std::vector<ReadEvent> events;
+        REQUIRE_NOTHROW(events = read_program(test::read_file(golden.string()), machine, golden.string()));
+        Trace actual = trace_program(events, machine);
+        Trace expected = trace_job(job, machine);
+        auto mismatch = compare_traces(expected, actual, compare_tolerance(machine, 0.0));
+        CHECK_MESSAGE(!mismatch, (mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : ""));
+        CHECK(actual.holes.size() == expected.holes.size());
+        ++checked;
+    }
+    CHECK(checked >= 4);
+}
