@@ -125,13 +125,11 @@ void HeidenhainPost::on_spindle(const Spindle& s) {
         out_.add("M5").end();
         return;
     }
-    if (machine_.limits.max_rpm > 0 && s.rpm > machine_.limits.max_rpm)
-        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", s.rpm,
-                             machine_.name, machine_.limits.max_rpm));
+    std::string speed = speed_word(s.rpm);  // checks the machine's limit
     if (pending_tool_)
         flush_tool_call(s.rpm);
     else if (s.rpm != speed_)
-        out_.add("TOOL CALL Z").add("S" + rpm_fmt_.format(s.rpm)).end();
+        out_.add("TOOL CALL Z").add(speed).end();
     speed_ = s.rpm;
     out_.add(s.state == SpindleState::cw ? "M3" : "M4").end();
 }

@@ -82,17 +82,6 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
     length_offset_pending_ = length_offset_;
 }
 
-void IsoPost::on_spindle(const Spindle& s) {
-    if (s.state == SpindleState::off) {
-        out_.add(m(5)).end();
-        return;
-    }
-    if (machine_.limits.max_rpm > 0 && s.rpm > machine_.limits.max_rpm)
-        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", s.rpm,
-                             machine_.name, machine_.limits.max_rpm));
-    out_.add("S" + rpm_fmt_.format(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
-}
-
 void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add("P" + dwell_fmt_.format(seconds)).end(); }
 
 void IsoPost::on_rapid(const Vec3& to) {

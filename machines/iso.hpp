@@ -20,7 +20,6 @@ protected:
     void on_open() override;
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
-    void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
     void on_rapid(const Vec3& to) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

@@ -114,31 +114,12 @@ void SinumerikPost::on_tool_change(const ToolChange& tool) {
     out_.add(m(6)).end();
 }
 
-void SinumerikPost::on_spindle(const Spindle& s) {
-    if (s.state == SpindleState::off) {
-        out_.add(m(5)).end();
-        return;
-    }
-    if (machine_.limits.max_rpm > 0 && s.rpm > machine_.limits.max_rpm)
-        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", s.rpm,
-                             machine_.name, machine_.limits.max_rpm));
-    out_.add("S" + rpm_fmt_.format(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
-}
-
 // G4 F: dwell in seconds (G4 S would be spindle revolutions).
 void SinumerikPost::on_dwell(double seconds) { out_.add(g(4)).add("F" + dwell_fmt_.format(seconds)).end(); }
 
-void SinumerikPost::on_linear(const Vec3& to, double feed) {
-    // G41/G42 take no D word here: D1 (the cutting edge) was selected with the tool.
-    std::string comp;
-    if (pending_compensation_)
-        comp = g(*pending_compensation_ == CompensationSide::off ? 40 : *pending_compensation_ == CompensationSide::left ? 41 : 42);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
-    std::string fs = feed_word(feed);
-    out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
-    if (pending_compensation_) compensation_ = *pending_compensation_;
-    pending_compensation_.reset();
+// G41/G42 take no D word here: D1 (the cutting edge) was selected with the tool.
+std::string SinumerikPost::compensation_words(CompensationSide side) const {
+    return g(side == CompensationSide::off ? 40 : side == CompensationSide::left ? 41 : 42);
 }
 
 void SinumerikPost::on_circular(const ArcGeometry& arc, double feed) {

@@ -17,9 +17,8 @@ protected:
     void on_open() override;
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
-    void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
-    void on_linear(const Vec3& to, double feed) override;
+    std::string compensation_words(CompensationSide side) const override;
     void on_circular(const ArcGeometry& arc, double feed) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;

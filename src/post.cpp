@@ -117,15 +117,32 @@ void Post::rapid_from_unknown(const Vec3& to) {
 
 void Post::on_compensation(CompensationSide side) { pending_compensation_ = side; }
 
-void Post::on_linear(const Vec3& to, double feed) {
-    std::string comp;
-    if (pending_compensation_) {
-        switch (*pending_compensation_) {
-            case CompensationSide::off: comp = g(40); break;
-            case CompensationSide::left: comp = g(41) + machine_.block.separator + "D" + std::to_string(tool_); break;
-            case CompensationSide::right: comp = g(42) + machine_.block.separator + "D" + std::to_string(tool_); break;
-        }
+std::string Post::compensation_words(CompensationSide side) const {
+    switch (side) {
+        case CompensationSide::off: return g(40);
+        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(tool_);
+        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(tool_);
     }
+    return {};
+}
+
+std::string Post::speed_word(double rpm) const {
+    if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
+        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
+                             machine_.limits.max_rpm));
+    return "S" + rpm_fmt_.format(rpm);
+}
+
+void Post::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off) {
+        out_.add(m(5)).end();
+        return;
+    }
+    out_.add(speed_word(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+}
+
+void Post::on_linear(const Vec3& to, double feed) {
+    std::string comp = pending_compensation_ ? compensation_words(*pending_compensation_) : std::string();
     std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);

@@ -44,7 +44,8 @@ protected:
     virtual void on_operation_start(const OperationStart& op);
     virtual void on_operation_end() {}
     virtual void on_tool_change(const ToolChange& tool) = 0;
-    virtual void on_spindle(const Spindle& spindle) = 0;
+    // ISO: M5, or S.. M3/M4.
+    virtual void on_spindle(const Spindle& spindle);
     virtual void on_dwell(double seconds) = 0;
     virtual void on_comment(const std::string& text);
     // A rapid to `to`; the base writes G0 with the modal axis words that changed.
@@ -71,6 +72,10 @@ protected:
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
+    // The words that switch cutter radius compensation (G40, G41 D<tool>, G42 D<tool>).
+    virtual std::string compensation_words(CompensationSide side) const;
+    // The S word for a spindle speed; an InputError above the machine's maxRpm.
+    std::string speed_word(double rpm) const;
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
     std::string motion_word(double code);
     // Forget modal state that the control may have changed (after a cycle, a tool change).

@@ -94,3 +94,18 @@ TEST_CASE("G18 and G19 arcs carry the plane word and the right centre words") {
     // G3 is modal: the plane word changes, the motion word need not be repeated.
     CHECK(t.find("G17 X20.000 Y10.000 I5.000 J0.000\n") != std::string::npos);
 }
+
+TEST_CASE("a spindle speed above the machine's maxRpm is an error naming the operation") {
+    const char* job = R"({"clearance": 5, "tools": [{"number": 1, "diameter": 6, "rpm": 30000}],
+      "operations": [{"type": "drill", "tool": 1, "endDepth": 3, "plungingFeedrate": 50, "holes": [[0, 0]]}]})";
+    for (const char* machine : {"fanuc", "linuxcnc", "sinumerik", "heidenhain"}) {
+        CAPTURE(machine);
+        try {
+            post_job(job, machine);
+            FAIL("expected an error");
+        } catch (const InputError& e) {
+            CHECK(e.path() == "/operations/0");
+            CHECK(std::string(e.what()).find("spindle speed 30000 rpm is above the limit of machine") != std::string::npos);
+        }
+    }
+}
