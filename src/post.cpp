@@ -70,13 +70,14 @@ std::string Post::feed_word(double mm_per_min) {
     const MachineLimits& lim = machine_.limits;
     double f = mm_per_min;
     if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", f));
-    bool first = warned_feeds_.insert({op_path_, f}).second;  // one warning per operation and feed
+    // One warning per operation and feed.
+    auto first = [&] { return warned_feeds_.insert({op_path_, f}).second; };
     if (f > lim.max_feed) {
-        if (first) warn(fmt::format("{}: feed {} mm/min is above the limit of machine {}; clamped to {} mm/min",
+        if (first()) warn(fmt::format("{}: feed {} mm/min is above the limit of machine {}; clamped to {} mm/min",
                          op_path_, f, machine_.name, lim.max_feed));
         f = lim.max_feed;
     } else if (f < lim.min_feed) {
-        if (first) warn(fmt::format("{}: feed {} mm/min is below the minimum of machine {}; raised to {} mm/min",
+        if (first()) warn(fmt::format("{}: feed {} mm/min is below the minimum of machine {}; raised to {} mm/min",
                          op_path_, f, machine_.name, lim.min_feed));
         f = lim.min_feed;
     }

@@ -145,6 +145,8 @@ Word::Word(std::string prefix, Format format, bool force)
     : prefix_(std::move(prefix)), format_(std::move(format)), force_(force) {}
 
 std::string Word::format(double value) {
+    // The same number gives the same text: no need to format it again.
+    if (last_value_ && *last_value_ == value && !last_text_.empty()) return force_ ? last_text_ : std::string();
     std::string text = prefix_;
     format_.append(text, value);
     last_value_ = value;
