@@ -139,3 +139,34 @@ TEST_CASE("an unreadable job or unwritable output exits 3") {
     CHECK(run({"/nonexistent/job.json", "--machine", "fanuc"}).code == 3);
     CHECK(run({sample, "--machine", "fanuc", "-o", "/nonexistent/dir/out.nc"}).code == 3);
 }
+
+TEST_CASE("--machine takes the path of a machine file: a decimal comma and no sequence numbers") {
+    fs::path dir = scratch("machine-path");
+    std::string text = test::read_file(CAMGEN_SOURCE_DIR "/machines/fanuc.json");
+    auto replace = [&](const std::string& from, const std::string& to) {
+        auto at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    };
+    replace("\"decimalMark\": \".\"", "\"decimalMark\": \",\"");
+    replace("\"showSequenceNumbers\": true", "\"showSequenceNumbers\": false");
+    write(dir / "myfanuc.json", text);
+    Run r = run({sample, "--machine", (dir / "myfanuc.json").string()});
+    CHECK(r.code == 0);
+    CHECK(r.out.find("G99 G81 X10,000 Y10,000 Z-1,500 R2,000 F80\n") != std::string::npos);
+    CHECK(r.out.find("\nN") == std::string::npos);
+}
+
+TEST_CASE("a broken machine file exits 1 naming the machine file, the JSON path and the line") {
+    fs::path dir = scratch("machine-bad");
+    write(dir / "bad.json", "{\n  \"description\": \"x\",\n  \"dialect\": \"iso\",\n  \"extension\": \"nc\",\n"
+                            "  \"limits\": {\"maxFeed\": -5}\n}\n");
+    Run r = run({sample, "--machine", (dir / "bad.json").string(), "-o", (dir / "out.nc").string()});
+    CHECK(r.code == 1);
+    CHECK(r.err.find("bad.json:5: /limits/maxFeed: maxFeed must be > 0") != std::string::npos);
+    CHECK(!fs::exists(dir / "out.nc"));
+    write(dir / "typo.json", "{\"description\": \"x\", \"dialect\": \"iso\", \"extension\": \"nc\", \"limts\": {}}");
+    Run t = run({sample, "--machine", (dir / "typo.json").string()});
+    CHECK(t.code == 1);
+    CHECK(t.err.find("unknown key \"limts\" (did you mean \"limits\"?)") != std::string::npos);
+}
