@@ -32,6 +32,8 @@ constexpr double max_pattern_holes = 10'000'000;
 // Arc end points may be this far off the circle through the start point, mm.
 constexpr double arc_radius_tolerance = 0.001;
 constexpr double min_arc_radius = 0.0005;
+// Lengths (mm) and feeds (mm/min) beyond this are typos: 1 km, 1 km/min.
+constexpr double max_length = 1e6;
 
 std::string describe(const Json& value) {
     switch (value.type()) {
@@ -77,27 +79,34 @@ private:
     ContourOp read_contour(Fields& f, int tool_number);
     void read_holes(Fields& f, std::vector<Vec2>& holes);
 
-    // A length or feed in the file's units, as mm.
-    double length(Fields& f, std::string_view key) { return f.number(key) * scale_; }
+    // A length or feed in the file's units, as mm, within +-max_length.
+    double checked_length(double value, const std::string& path) const {
+        double mm = value * scale_;
+        if (std::abs(mm) > max_length)
+            camgen::json::fail(source_, path, "a length or feed beyond 1,000,000 mm (or mm/min) is out of range");
+        return mm;
+    }
+    double length(Fields& f, std::string_view key) { return checked_length(f.number(key), f.path_of(key)); }
     std::optional<double> optional_length(Fields& f, std::string_view key) {
         auto v = f.optional_number(key);
-        if (v) *v *= scale_;
+        if (v) *v = checked_length(*v, f.path_of(key));
         return v;
+    }
+    double coordinate(const Json& value, const std::string& path) const {
+        return checked_length(camgen::json::number_at(value, path, source_), path);
     }
     Vec2 point(const Json& value, const std::string& path) const {
         if (!value.is_array() || value.size() != 2)
             camgen::json::fail(source_, path, "expected a point [x, y], got " + describe(value));
-        return {camgen::json::number_at(value[0], path + "/0", source_) * scale_,
-                camgen::json::number_at(value[1], path + "/1", source_) * scale_};
+        return {coordinate(value[0], path + "/0"), coordinate(value[1], path + "/1")};
     }
     Vec2 point(Fields& f, std::string_view key) { return point(f.required(key), f.path_of(key)); }
     // A point [x, y] (at Z `z`, mm) or [x, y, z].
     Vec3 point3(const Json& value, const std::string& path, double z) const {
         if (!value.is_array() || (value.size() != 2 && value.size() != 3))
             camgen::json::fail(source_, path, "expected a point [x, y] or [x, y, z], got " + describe(value));
-        Vec3 p{camgen::json::number_at(value[0], path + "/0", source_) * scale_,
-               camgen::json::number_at(value[1], path + "/1", source_) * scale_, z};
-        if (value.size() == 3) p.z = camgen::json::number_at(value[2], path + "/2", source_) * scale_;
+        Vec3 p{coordinate(value[0], path + "/0"), coordinate(value[1], path + "/1"), z};
+        if (value.size() == 3) p.z = coordinate(value[2], path + "/2");
         return p;
     }
     Vec3 point3(Fields& f, std::string_view key, double z) { return point3(f.required(key), f.path_of(key), z); }
@@ -498,7 +507,8 @@ ContourOp JobReader::read_contour(Fields& f, int tool_number) {
     op.plunge_feed = optional_length(f, "plungeFeed");
     if (op.plunge_feed && *op.plunge_feed <= 0) f.fail("plungeFeed", "plungeFeed must be > 0");
     op.tolerance = optional_length(f, "tolerance");
-    if (op.tolerance && *op.tolerance <= 0) f.fail("tolerance", "tolerance must be > 0");
+    // Finer than any control resolves; a smaller value only multiplies the segments of broken arcs.
+    if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
     op.start = point(f, "start");
 
     const Json& elements = array(f, "path");

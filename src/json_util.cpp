@@ -254,6 +254,9 @@ double checked_number(const nlohmann::json& value, const std::string& path, cons
     if (!value.is_number()) type_error(source, path, "a number", value);
     const double d = value.get<double>();
     if (!std::isfinite(d)) fail(source, path, "expected a finite number, got " + value.dump());
+    // No quantity camgen reads is this large; such a number is a typo, and would only make
+    // the arithmetic downstream meaningless.
+    if (std::abs(d) > 1e9) fail(source, path, "number " + value.dump() + " is out of range (at most 1e9 in size)");
     return d;
 }
 

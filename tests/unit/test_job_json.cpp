@@ -911,5 +911,7 @@ TEST_CASE("contour: errors of 3D elements name their JSON path") {
     check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turn": 2, "depth": -3}})"),
                 "/operations/0/path/0/helix/turn", 11, "unknown key \"turn\" (did you mean \"turns\"?)");
     check_error(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
-                "/operations/0/tolerance", 10, "tolerance must be > 0");
+                "/operations/0/tolerance", 10, "tolerance must be at least 0.0001 mm");
+    check_error(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0.00001, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+                "/operations/0/tolerance", 10, "tolerance must be at least 0.0001 mm");
 }

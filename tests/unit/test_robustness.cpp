@@ -1,0 +1,107 @@
+// Bad numbers anywhere in a job: camgen either posts a program or raises an InputError. It
+// never crashes, hangs, throws anything else, or writes NaN, an exponent or -0.
+#include <filesystem>
+#include <random>
+#include <set>
+#include <cctype>
+
+#include <doctest/doctest.h>
+
+#include "support.hpp"
+
+using namespace camgen;
+using namespace camgen::test;
+
+namespace {
+
+// Pointers to every number in a JSON value, except counts that only make a job larger.
+void numbers(const nlohmann::json& j, const std::string& path, std::vector<std::string>& out) {
+    if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            static const std::set<std::string> skip{"count", "countX", "countY", "turns", "number", "tool"};
+            if (!skip.count(it.key())) numbers(it.value(), path + "/" + it.key(), out);
+        }
+    } else if (j.is_array()) {
+        for (size_t i = 0; i < j.size(); ++i) numbers(j[i], path + "/" + std::to_string(i), out);
+    } else if (j.is_number()) {
+        out.push_back(path);
+    }
+}
+
+// The first number in NC text that has an exponent or is minus zero, or NaN / inf; "" if none.
+// A number here is what follows a word letter or '=': sign, digits, decimal mark, digits.
+std::string bad_number(const std::string& text) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == 'n' && text.compare(i, 3, "nan") == 0) return "nan";
+        if (c == 'i' && text.compare(i, 3, "inf") == 0 && text.compare(i, 4, "info") != 0) return "inf";
+        if (!(std::isupper(static_cast<unsigned char>(c)) || c == '=')) continue;
+        size_t j = i + 1;
+        bool minus = j < text.size() && text[j] == '-';
+        if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
+        size_t digits_start = j;
+        bool nonzero = false;
+        while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' || text[j] == ',')) {
+            if (std::isdigit(static_cast<unsigned char>(text[j])) && text[j] != '0') nonzero = true;
+            ++j;
+        }
+        if (j == digits_start || !std::isdigit(static_cast<unsigned char>(text[digits_start]))) continue;
+        if (j < text.size() && (text[j] == 'e' || text[j] == 'E') && j + 1 < text.size() &&
+            (std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '-' || text[j + 1] == '+'))
+            return text.substr(i, j + 2 - i);
+        if (minus && !nonzero) return text.substr(i, j - i);
+    }
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("the bad-number scanner finds exponents, minus zero and NaN") {
+    CHECK(bad_number("G1 X12.5 Y-0.5 F100\n").empty());
+    CHECK(bad_number("G1 X1e+06\n") == "X1e+");
+    CHECK(bad_number("F1.18e6\n") == "F1.18e6");
+    CHECK(bad_number("G1 X-0 Y1\n") == "X-0");
+    CHECK(bad_number("G1 Z-0.000\n") == "Z-0.000");
+    CHECK(bad_number("Q201=-0 ;DEPTH\n") == "=-0");
+    CHECK(bad_number("G1 X-0.001\n").empty());
+    CHECK(bad_number("G1 Xnan\n") == "nan");
+    CHECK(bad_number("; tool information\n").empty());
+}
+
+TEST_CASE("mutated samples: a program or an InputError, never anything else") {
+    const double values[] = {0.0, -0.0, -1.0, 0.0004, -0.0004, 1e-9, 7.25, 359.9999, 1e6, -1e6, 1e300};
+    std::vector<std::string> machines;
+    for (const auto& [name, description] : list_machines()) machines.push_back(name);
+    std::mt19937 rng(2026);
+    int posted = 0, rejected = 0;
+    for (const char* sample : {"plate", "bracket", "drilling", "arcs"}) {
+        nlohmann::json original =
+            nlohmann::json::parse(read_file(std::string(CAMGEN_SOURCE_DIR "/samples/") + sample + ".json"));
+        std::vector<std::string> leaves;
+        numbers(original, "", leaves);
+        for (int round = 0; round < 60; ++round) {
+            nlohmann::json job = original;
+            for (int k = 0; k < 2; ++k) {
+                auto pointer = nlohmann::json::json_pointer(leaves[rng() % leaves.size()]);
+                job[pointer] = values[rng() % std::size(values)];
+            }
+            std::string text = job.dump();
+            for (const std::string& machine : machines) {
+                CAPTURE(sample);
+                CAPTURE(machine);
+                CAPTURE(text);
+                try {
+                    Posted p = post_job(text, machine);
+                    ++posted;
+                    std::string bad = bad_number(p.text);
+                    CHECK_MESSAGE(bad.empty(), "bad number: " << bad);
+                } catch (const InputError&) {
+                    ++rejected;
+                }
+            }
+        }
+    }
+    // Both outcomes really happened, so the loop exercised the posts and the checks.
+    CHECK(posted > 100);
+    CHECK(rejected > 100);
+}
