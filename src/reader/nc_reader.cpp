@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/error.hpp"
+#include "camgen/longhand.hpp"
 
 namespace camgen::reader {
 
@@ -69,6 +70,8 @@ ReadResolution NcReader::resolution() const {
 bool NcReader::message_code(const Word&) const { return false; }
 
 bool NcReader::dotted_word(char) const { return false; }
+
+bool NcReader::named_word(std::string_view) const { return false; }
 
 void NcReader::finish() { drill_end(); }
 
@@ -189,7 +192,15 @@ Block NcReader::split(std::string_view line) const {
         }
         Word w;
         w.letter = static_cast<char>(c >= 'a' ? c - 'a' + 'A' : c);
-        size_t start = i++;
+        size_t start = i;
+        if (size_t eq = line.find('=', i); eq != std::string_view::npos && eq > i + 1 &&
+                                           std::all_of(line.begin() + i, line.begin() + eq, is_letter) &&
+                                           named_word(line.substr(i, eq - i))) {
+            w.name = std::string(line.substr(i, eq - i));
+            w.letter = 0;
+            i = eq;  // the '=' is skipped below like a letter
+        }
+        ++i;
         while (i < n && is_blank(line[i])) ++i;  // a format with a width pads with spaces
         std::string number;
         const char point_mark = dotted_word(w.letter) ? '.' : mark;
@@ -208,7 +219,7 @@ Block NcReader::split(std::string_view line) const {
             ++i;
         }
         w.text = std::string(line.substr(start, i - start));
-        if (digits == 0) fail(fmt::format("word {} without a number", w.text.empty() ? std::string(1, c) : w.text));
+        if (digits == 0) fail(fmt::format("word {} without a number", w.text));
         if (i < n && (line[i] == '.' || line[i] == ',') && line[i] != point_mark)
             fail(fmt::format("{}{}...: machine {} writes '{}' as its decimal mark", w.text, line[i], machine_.name, mark));
         const char* first = number.data() + (number[0] == '+' ? 1 : 0);
@@ -237,7 +248,6 @@ std::vector<ReadEvent> NcReader::read(std::string_view text) {
     coarsest_ = resolution();
     line_ = 0;
     size_t pos = 0;
-    const std::string& seq = machine_.block.sequence_prefix;
     while (pos < text.size()) {
         size_t nl = text.find('\n', pos);
         std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
@@ -246,20 +256,34 @@ std::vector<ReadEvent> NcReader::read(std::string_view text) {
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         std::string_view t = trim(line);
         if (t.empty() || frame_line(t)) continue;
-        Block b = split(line);
-        // A sequence number leads the block; it says nothing about motion.
-        if (!b.words.empty() && seq.size() == 1 && b.words.front().letter == seq[0]) {
-            (void)integer_of(b.words.front());
-            b.words.erase(b.words.begin());
-        }
-        for (const std::string& c : b.comments) {
-            emit(Comment{c});
-            last_comment_ = c;
-        }
-        if (!b.words.empty() || b.has_message) block(b);
+        this->line(line);
     }
     finish();
     return std::move(out_);
+}
+
+Block NcReader::split_line(std::string_view text) {
+    Block b = split(text);
+    // A sequence number leads the block; it says nothing about motion.
+    const std::string& seq = machine_.block.sequence_prefix;
+    if (!b.words.empty() && seq.size() == 1 && b.words.front().letter == seq[0]) {
+        (void)integer_of(b.words.front());
+        b.words.erase(b.words.begin());
+    }
+    return b;
+}
+
+void NcReader::emit_comments(const Block& b) {
+    for (const std::string& c : b.comments) {
+        emit(Comment{c});
+        last_comment_ = c;
+    }
+}
+
+void NcReader::line(std::string_view text) {
+    Block b = split_line(text);
+    emit_comments(b);
+    if (!b.words.empty() || b.has_message) block(b);
 }
 
 // ---- motion ----
@@ -396,6 +420,11 @@ void NcReader::arc(const ArcWords& a) {
 // ---- drilling ----
 
 void NcReader::drill_cycle(const DrillCycle& cycle) {
+    try {
+        (void)peck_depths(cycle);
+    } catch (const InputError& e) {
+        fail(fmt::format("pecks that cannot reach the bottom of the hole: {}", e.detail()));
+    }
     drill_end();
     cycle_ = cycle;
     emit(cycle);

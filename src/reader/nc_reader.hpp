@@ -18,9 +18,11 @@
 
 namespace camgen::reader {
 
-// One word of a block: a letter and the number after it, as written.
+// One word of a block: a letter (or a named address such as Sinumerik's CR=) and the number
+// after it, as written.
 struct Word {
-    char letter = 0;         // upper case
+    char letter = 0;         // upper case; 0 for a named address
+    std::string name;        // a named address without its '=' ("CR"); empty for a letter
     double value = 0.0;      // the number as written, before any scale
     std::string text;        // letter and number as written, for messages ("X10.500")
     bool has_point = false;  // the number has a decimal mark
@@ -56,6 +58,12 @@ protected:
     // ---- dialect hooks ----
     // A line that is not a block of words ("%", "_"): true when the dialect consumed it.
     virtual bool frame_line(std::string_view line) = 0;
+    // Interprets one line that is not blank and not a frame line. The default splits it into
+    // words (split_line), emits its comments and passes the block on to block(); a dialect
+    // whose lines are not all words (Sinumerik MCALL, Heidenhain conversational) reads its own.
+    virtual void line(std::string_view text);
+    // True when `name=` is an address of the dialect (Sinumerik "CR").
+    virtual bool named_word(std::string_view name) const;
     // True when the rest of the line after this word is message text (nccad M01 <message>).
     virtual bool message_code(const Word& word) const;
     // True when words of this letter are written with '.' whatever the decimal mark (nccad
@@ -68,6 +76,11 @@ protected:
 
     // ---- shared machinery ----
     [[noreturn]] void fail(const std::string& detail) const;
+    // Splits a line into words as the machine's block style writes them, the sequence number
+    // (if the machine writes them) removed.
+    Block split_line(std::string_view text);
+    // Emits a block's comments as Comment events (and remembers the last one).
+    void emit_comments(const Block& block);
     void emit(Event event, bool from_unknown = false, double uncertainty = 0.0);
 
     // Values of words in internal units (mm, mm/min, rpm, s, degrees), through the machine's
@@ -126,6 +139,7 @@ protected:
     int tool_ = 0;
 
     // Drilling: a canned cycle and its holes, as events for trace_program to expand.
+    // drill_cycle checks that the cycle's pecks reach its bottom (an error names the line).
     void drill_cycle(const DrillCycle& cycle);
     void drill_point(Vec2 at);
     void drill_end();

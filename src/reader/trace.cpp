@@ -60,7 +60,7 @@ std::vector<Hole> find_holes(const std::vector<Step>& steps) {
 
 class Tracer {
 public:
-    explicit Tracer(const Machine& machine) : options_{machine.peck_clearance} {}
+    explicit Tracer(const Machine& machine) : options_(machine.longhand()) {}
 
     void add(const ReadEvent& e) {
         line_ = e.line;
