@@ -47,7 +47,7 @@ std::vector<ReadEvent> read_program(std::string_view text, const Machine& machin
 // The resolution of the values in a program for `machine` (in its own units).
 ReadResolution read_resolution(const Machine& machine);
 
-// True when camgen can read programs of this dialect ("iso", "nccad").
+// True when camgen can read programs of this dialect ("iso", "nccad", "sinumerik", "heidenhain").
 bool has_reader(const std::string& dialect);
 
 }  // namespace camgen

@@ -2,8 +2,9 @@
 // The reader base (private to src/reader/): splits a program into blocks of words as the
 // machine's block style writes them, and keeps what every dialect shares: the modal position
 // with per-axis knowledge, formats and their scales, feed, arcs in every arc format, drilling
-// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp)
-// says which words and codes exist and what they do, as the post dialects do in machines/.
+// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp,
+// sinumerik_reader.cpp, heidenhain_reader.cpp) says which words and codes exist and what they
+// do, as the post dialects do in machines/.
 #include <array>
 #include <memory>
 #include <optional>
@@ -170,5 +171,7 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 // The dialect readers.
 std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source);
 std::unique_ptr<NcReader> make_nccad_reader(const Machine& machine, std::string source);
+std::unique_ptr<NcReader> make_sinumerik_reader(const Machine& machine, std::string source);
+std::unique_ptr<NcReader> make_heidenhain_reader(const Machine& machine, std::string source);
 
 }  // namespace camgen::reader
