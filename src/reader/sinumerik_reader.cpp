@@ -361,7 +361,7 @@ void SinumerikReader::block(const Block& b) {
         if (b.words.size() != 2) fail(fmt::format("{} must stand in a block of its own with its F", dwell->word->text));
         emit(Dwell{seconds(*f)});
     }
-    if (const Word* f = take('F')) feed_ = feed(*f);
+    if (const Word* f = dwell ? nullptr : take('F')) feed_ = feed(*f);
     if (const Word* s = take('S')) {
         rpm_ = rpm(*s);
         if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
