@@ -320,20 +320,23 @@ void HeidenhainReader::cycle_defined() {
 
 DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const {
     const CycleDef& d = *cycle_;
-    auto q = [&](int n) { return d.q.at(n); };
+    auto q = [&](int n) { return d.q.at(n); };  // as written
+    // In internal units through the machine's formats (an INCH program writes inches).
+    auto len = [&](int n) { return length_value(q(n)); };
+    auto sec = [&](int n) { return seconds_value(q(n)); };
     auto bad = [&](int n, const std::string& why) -> void { fail(fmt::format("cycle {}: {}: {}", d.number, d.text.at(n), why)); };
     const double unit = resolution().position;
     // Q200, Q201 and Q204 count from the surface Q203 (camgen writes the feed-start plane as
     // the surface when it lies below the reference plane).
     DrillCycle c;
     c.output = CycleOutput::canned;
-    c.reference_z = q(203);
+    c.reference_z = len(203);
     if (q(200) < 0) bad(200, "the set-up clearance must not be negative");
     if (!(q(201) < 0)) bad(201, "the depth must be negative (below the surface)");
     if (q(204) < q(200)) bad(204, "the 2nd set-up clearance is below the set-up clearance");
-    c.safe_z = q(203) + q(200);
-    c.bottom_z = q(203) + q(201);
-    c.retract_z = q(203) + q(204);
+    c.safe_z = len(203) + len(200);
+    c.bottom_z = len(203) + len(201);
+    c.retract_z = len(203) + len(204);
     c.spindle_rpm = rpm;
     c.spindle_direction = spindle == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
     DrillParams& p = c.params;
@@ -344,19 +347,19 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
     p.end_depth_is_absolute = true;
     auto dwell = [&](int n) -> std::optional<double> {
         if (q(n) < 0) bad(n, "a dwell must not be negative");
-        return q(n) > 0 ? std::optional<double>(q(n)) : std::nullopt;
+        return q(n) > 0 ? std::optional<double>(sec(n)) : std::nullopt;
     };
 
     if (d.number == 207) {
         // Rigid tapping: the pitch's sign gives the hand; feed = pitch x the spindle speed.
         if (q(239) == 0) bad(239, "the pitch must not be 0");
         c.kind = q(239) < 0 ? CycleKind::tap_left : CycleKind::tap;
-        p.pitch = std::abs(q(239));
+        p.pitch = std::abs(len(239));
         if (spindle == SpindleState::off || !(rpm > 0)) fail("cycle 207 called with the spindle off");
         c.feed = *p.pitch * rpm;
     } else {
         if (!(q(206) > 0)) bad(206, "the plunging feed must be > 0");
-        c.feed = q(206);
+        c.feed = feed_value(q(206));
         p.plunging_feedrate = c.feed;
         if (!(q(202) > 0)) bad(202, "the plunging depth must be > 0");
         p.bottom_dwell = dwell(211);
@@ -364,7 +367,7 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
         if (d.number == 200) {
             // One plunge: camgen writes the whole depth. The TNC dwells at the top (Q210) only
             // between plunges, so one plunge has no such dwell.
-            if (q(202) < -q(201) - unit)
+            if (len(202) < -len(201) - unit)
                 bad(202, "a plunging depth less than the depth pecks: camgen writes pecking as cycle 203");
             c.kind = p.bottom_dwell ? CycleKind::dwell : CycleKind::drill;
         } else {
@@ -379,22 +382,23 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
             if (breaks < 0 || breaks > max_breaks || breaks != std::floor(breaks))
                 bad(213, fmt::format("the number of chip breaks is a whole number 0..{}", max_breaks));
             c.kind = breaks == 0 ? CycleKind::deep : CycleKind::chip_break;
-            p.first_depth = q(202);
+            p.first_depth = len(202);
             if (q(212) < 0) bad(212, "the decrement must not be negative");
             if (q(212) > 0) {
                 p.degression_type = DegressionType::value;
-                p.degression = q(212);
+                p.degression = len(212);
             }
             if (q(205) < 0) bad(205, "the minimum plunging depth must not be negative");
-            if (q(205) > 0) p.minimum_depth = q(205);
+            if (q(205) > 0) p.minimum_depth = len(205);
             // Q210 acts after full retracts only: with chip breaking camgen makes none.
             if (c.kind == CycleKind::deep) p.top_dwell = dwell(210);
             if (!(q(208) > 0)) bad(208, "the retraction feed must be > 0");
-            if (q(208) != fmax_feed) p.retract_feedrate = q(208);
+            // 99999 as written (whatever the units) is FMAX.
+            if (q(208) != fmax_feed) p.retract_feedrate = feed_value(q(208));
             // Q256 is the back-off of a chip break; full retracts do not use it.
             if (c.kind == CycleKind::chip_break) {
                 if (!(q(256) > 0)) bad(256, "the chip-breaking distance must be > 0");
-                p.pecking_retract = q(256);
+                p.pecking_retract = len(256);
             }
             if (c.kind == CycleKind::chip_break) {
                 size_t pecks = 0;

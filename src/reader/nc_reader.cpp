@@ -116,6 +116,14 @@ double NcReader::seconds(const Word& w) const {
 
 double NcReader::angle(const Word& w) const { return w.value / angle_fmt_.spec().scale; }
 
+double NcReader::length_value(double written) const { return written / xyz_.spec().scale; }
+
+double NcReader::feed_value(double written) const { return written / feed_fmt_.spec().scale; }
+
+double NcReader::seconds_value(double written) const { return written / dwell_fmt_.spec().scale; }
+
+double NcReader::rpm_value(double written) const { return written / rpm_fmt_.spec().scale; }
+
 int NcReader::code_of(const Word& w) const {
     int c = code(w.value);
     if (std::abs(w.value * 10.0 - c) > 1e-6) fail(fmt::format("{} is not a code", w.text));
@@ -433,7 +441,14 @@ void NcReader::drill_cycle(const DrillCycle& cycle) {
 void NcReader::drill_point(Vec2 at) {
     if (!cycle_) throw std::logic_error("drill point outside a cycle");
     if (!position_known()) fail("a drilling cycle from an unknown position");
-    emit(DrillPoint{at});
+    // The control computes the depths of a cycle from rounded parameters: the feed-start
+    // plane may be a sum of two (Sinumerik RFP + SDIS, Heidenhain Q203 + Q200), each peck
+    // adds the rounding of its depth, and a degression the rounding of its value once more
+    // per peck.
+    const double n = static_cast<double>(peck_depths(*cycle_).size());
+    const bool degressive = cycle_->params.degression_type != DegressionType::none;
+    const double uncertainty = resolution().position * (1.0 + n + (degressive ? n * (n - 1.0) / 2.0 : 0.0));
+    emit(DrillPoint{at}, false, uncertainty);
     // DrillCycle's contract: between holes the tool returns to the retract plane.
     pos_ = {at.x, at.y, cycle_->retract_z};
     xy_uncertainty_ = 0.0;

@@ -93,6 +93,12 @@ protected:
     double rpm(const Word& w) const;
     double seconds(const Word& w) const;
     double angle(const Word& w) const;
+    // Numbers written outside address words (cycle parameters), in internal units through the
+    // same formats: a length, a feed, seconds, a spindle speed.
+    double length_value(double written) const;
+    double feed_value(double written) const;
+    double seconds_value(double written) const;
+    double rpm_value(double written) const;
     // The word's value as a G/M code in tenths (see code()). Fails for finer values.
     int code_of(const Word& w) const;
     // The word's value as a non-negative whole number (tool, H, D, O-number).

@@ -157,6 +157,15 @@ DrillCycle SinumerikReader::cycle_now() const {
         if (*call.values[i] < 0) fail(fmt::format("{}: parameter {} = {} must not be negative", name, i + 1, call.texts[i]));
         return *call.values[i] > 0 ? call.values[i] : std::nullopt;
     };
+    // Parameters in internal units through the machine's formats (inch programs write inches).
+    auto dwell_at = [&](size_t i) -> std::optional<double> {
+        auto v = positive(i);
+        return v ? std::optional<double>(seconds_value(*v)) : std::nullopt;
+    };
+    auto length_at = [&](size_t i) -> std::optional<double> {
+        auto v = positive(i);
+        return v ? std::optional<double>(length_value(*v)) : std::nullopt;
+    };
     auto direction = [&](size_t i, const char* what) {
         double v = need(i, what);
         if (v != 3.0 && v != 4.0) fail(fmt::format("{}: {} = {}: 3 (M3) or 4 (M4)", name, what, call.texts[i]));
@@ -166,12 +175,12 @@ DrillCycle SinumerikReader::cycle_now() const {
     // RTP, RFP, SDIS, DP, DPR: SDIS is measured from RFP, DP is absolute.
     DrillCycle c;
     c.output = CycleOutput::canned;
-    c.retract_z = need(0, "the retract plane RTP");
-    c.reference_z = need(1, "the reference plane RFP");
-    const double sdis = need(2, "the safety distance SDIS");
+    c.retract_z = length_value(need(0, "the retract plane RTP"));
+    c.reference_z = length_value(need(1, "the reference plane RFP"));
+    const double sdis = length_value(need(2, "the safety distance SDIS"));
     if (sdis < 0) fail(fmt::format("{}: the safety distance SDIS = {} must not be negative", name, call.texts[2]));
     c.safe_z = c.reference_z + sdis;
-    c.bottom_z = need(3, "the final drilling depth DP");
+    c.bottom_z = length_value(need(3, "the final drilling depth DP"));
     empty(4, "DPR", "camgen writes the depth absolute (DP) and reads no relative depth");
     if (!(c.bottom_z < c.safe_z)) fail(fmt::format("{}: the depth DP is not below RFP + SDIS", name));
     if (c.retract_z < c.safe_z) fail(fmt::format("{}: the retract plane RTP is below RFP + SDIS", name));
@@ -195,7 +204,7 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else if (name == "CYCLE82") {
         c.kind = CycleKind::dwell;
-        p.bottom_dwell = positive(5);
+        p.bottom_dwell = dwell_at(5);
         active_feed();
     } else if (name == "CYCLE83") {
         // FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1.
@@ -204,34 +213,34 @@ DrillCycle SinumerikReader::cycle_now() const {
             fail(fmt::format("{}: VARI = {}: 0 (chip breaking) or 1 (full retract)", name, call.texts[11]));
         const bool full = vari == 1.0;
         c.kind = full ? CycleKind::deep : CycleKind::chip_break;
-        const double fdep = need(5, "the first drilling depth FDEP");
+        const double fdep = length_value(need(5, "the first drilling depth FDEP"));
         empty(6, "FDPR", "camgen writes the first depth absolute (FDEP)");
         if (!(fdep < c.safe_z)) fail(fmt::format("{}: the first depth FDEP = {} is not below RFP + SDIS", name, call.texts[5]));
         p.first_depth = c.safe_z - fdep;
         if (has(7) && *call.values[7] != 0.0) {
             if (*call.values[7] < 0) fail(fmt::format("{}: DAM = {}: camgen reads only a degression value", name, call.texts[7]));
             p.degression_type = DegressionType::value;
-            p.degression = call.values[7];
+            p.degression = length_value(*call.values[7]);
         }
         empty(8, "DTB", "a dwell at every peck depth is no camgen cycle (camgen dwells at the bottom with _DTD)");
         // DTS acts only between full retracts (VARI=1), as the control runs it.
-        if (full) p.top_dwell = positive(9);
+        if (full) p.top_dwell = dwell_at(9);
         if (has(10)) {
             if (!(*call.values[10] > 0 && *call.values[10] <= 1))
                 fail(fmt::format("{}: FRF = {} is not in (0, 1]", name, call.texts[10]));
             p.first_feedrate_factor = call.values[10];
         }
         empty(12, "_AXN", "camgen drills along Z only");
-        if (has(13)) p.minimum_depth = positive(13);
+        if (has(13)) p.minimum_depth = length_at(13);
         if (!full && has(14)) {
             if (!(*call.values[14] > 0)) fail(fmt::format("{}: _VRT = {} must be > 0", name, call.texts[14]));
-            p.pecking_retract = call.values[14];
+            p.pecking_retract = length_value(*call.values[14]);
         }
-        p.bottom_dwell = positive(15);
+        p.bottom_dwell = dwell_at(15);
         if (full) {
             // The re-approach distance of full-retract pecks: camgen's longhand stops the
             // machine's peckClearance above the last peck, and so must the program.
-            double dis1 = need(16, "the advance distance _DIS1 (without it the control picks its own)");
+            double dis1 = length_value(need(16, "the advance distance _DIS1 (without it the control picks its own)"));
             if (std::abs(dis1 - machine_.peck_clearance) > resolution().position)
                 fail(fmt::format("{}: _DIS1 = {}: machine {} re-approaches {} mm above the last peck", name, call.texts[16],
                                  machine_.name, machine_.peck_clearance));
@@ -239,38 +248,38 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else if (name == "CYCLE84") {
         // DTB, SDAC, MPIT, PIT, POSS, SST, SST1.
-        p.bottom_dwell = positive(5);
+        p.bottom_dwell = dwell_at(5);
         c.spindle_direction = direction(6, "SDAC (the spindle direction after the cycle)");
         empty(7, "MPIT", "camgen writes the pitch as PIT");
-        const double pit = need(8, "the pitch PIT");
+        const double pit = length_value(need(8, "the pitch PIT"));
         if (pit == 0.0) fail(fmt::format("{}: the pitch PIT must not be 0", name));
         zero_or_empty(9, "POSS");
         c.kind = pit < 0 ? CycleKind::tap_left : CycleKind::tap;
         p.pitch = std::abs(pit);
-        const double sst = need(10, "the tapping speed SST");
+        const double sst = rpm_value(need(10, "the tapping speed SST"));
         if (!(sst > 0)) fail(fmt::format("{}: the tapping speed SST must be > 0", name));
         p.tapping_speed = sst;
         if (has(11)) {
             if (!(*call.values[11] > 0)) fail(fmt::format("{}: the retract speed SST1 must be > 0", name));
-            p.retract_speed = call.values[11];
+            p.retract_speed = rpm_value(*call.values[11]);
         }
         c.feed = *p.pitch * sst;
         if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S before it", name));
     } else if (name == "CYCLE85") {
         // DTB, FFR, RFF.
         c.kind = CycleKind::ream;
-        p.bottom_dwell = positive(5);
-        c.feed = need(6, "the feed FFR");
+        p.bottom_dwell = dwell_at(5);
+        c.feed = feed_value(need(6, "the feed FFR"));
         if (!(c.feed > 0)) fail(fmt::format("{}: the feed FFR must be > 0", name));
         p.plunging_feedrate = c.feed;
         if (has(7)) {
             if (!(*call.values[7] > 0)) fail(fmt::format("{}: the retract feed RFF must be > 0", name));
-            p.retract_feedrate = call.values[7];
+            p.retract_feedrate = feed_value(*call.values[7]);
         }
     } else if (name == "CYCLE86") {
         // DTB, SDIR, RPA, RPO, RPAP, POSS: out along the hole axis, no lift-off.
         c.kind = CycleKind::bore_stop;
-        p.bottom_dwell = positive(5);
+        p.bottom_dwell = dwell_at(5);
         c.spindle_direction = direction(6, "SDIR (the spindle direction)");
         zero_or_empty(7, "RPA");
         zero_or_empty(8, "RPO");
@@ -279,7 +288,7 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else {  // CYCLE89
         c.kind = CycleKind::bore_dwell;
-        p.bottom_dwell = positive(5);
+        p.bottom_dwell = dwell_at(5);
         active_feed();
     }
     p.kind = c.kind;

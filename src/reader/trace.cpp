@@ -105,7 +105,8 @@ public:
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
-                           for (const Event& m : longhand_moves(*cycle_, pos_, p.at, options_)) add(ReadEvent{m, e.line});
+                           for (const Event& m : longhand_moves(*cycle_, pos_, p.at, options_))
+                               add(ReadEvent{m, e.line, false, e.uncertainty});
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
                        [&](const auto&) {},

@@ -30,6 +30,14 @@ inline std::string round_trip(const std::string& job_json, const std::string& pr
     return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
 }
 
+// The same for a job and a machine already loaded (a machine with changed settings).
+inline std::string round_trip_machine(const Job& job, const std::string& program, const Machine& m) {
+    ReadResolution res;
+    Trace actual = trace_program(read_program(program, m, "prog", &res), m);
+    auto mismatch = compare_traces(trace_job(job, m), actual, compare_tolerance(m, res, 0.0));
+    return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
+}
+
 // The message of the error reading `program` for a machine ("" if none).
 inline std::string error_of(const std::string& program, const std::string& machine_name) {
     try {

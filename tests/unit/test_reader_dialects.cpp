@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include "camgen/motion.hpp"
+#include "camgen/operations.hpp"
+#include "camgen/post.hpp"
 #include "camgen/reader.hpp"
 #include "reader_support.hpp"
 #include "support.hpp"
@@ -311,4 +313,32 @@ TEST_CASE("heidenhain: what the post never writes is an error naming the line") 
     CHECK(error_of(heidenhain_head + "5 M30\n6 END PGM other MM\n", "heidenhain") == "prog.nc:7: END PGM other ends a program named t");
     CHECK(error_of(heidenhain_head + "5 M30\n", "heidenhain") == "prog.nc:6: the program does not end with END PGM");
     CHECK(error_of(heidenhain_head + "5 L X+1 R0 FMAX\n" + end, "heidenhain") == "");
+}
+
+TEST_CASE("inch programs: cycle parameters in inches; Sinumerik FRF stays a factor, Heidenhain Q208 FMAX stays 99999") {
+    const std::string job = R"({"name": "inch", "clearance": 10, "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}],
+ "operations": [{"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 10, "safeDistance": 2, "endDepth": 20,
+   "firstDepth": 5, "firstFeedrateFactor": 0.5, "plungingFeedrate": 100, "holes": [[0, 0]]},
+  {"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 10, "safeDistance": 2, "endDepth": 20,
+   "firstDepth": 5, "plungingFeedrate": 100, "holes": [[10, 0]]}]})";
+    auto post_inch = [&](const std::string& name) {
+        Machine m = load_machine(name);
+        m.units = Units::inch;
+        Job j = read_job(job, "job.json");
+        std::ostringstream out;
+        auto post = make_post(m, out, PostOptions{});
+        post->open();
+        expand_job(j, *post);
+        post->close();
+        CHECK(round_trip_machine(j, out.str(), m) == "");
+        return out.str();
+    };
+    // RTP 10 mm = 0.3937 in, SDIS 2 mm = 0.0787 in, DP -0.7874, FDEP 2 - 5 = -3 mm = -0.1181;
+    // FRF 0.5 whatever the units; _DIS1 the 1 mm clearance = 0.0394 in.
+    CHECK(post_inch("sinumerik").find("CYCLE83(0.3937, 0.0000, 0.0787, -0.7874, , -0.1181, , , , , 0.500, 1, , , , , 0.0394)") !=
+          std::string::npos);
+    // Q206: 100 mm/min = 3.9 in/min; Q208 99999 (FMAX) as written.
+    std::string tnc = post_inch("heidenhain");
+    CHECK(tnc.find("Q206=+3.9 ;") != std::string::npos);
+    CHECK(tnc.find("Q208=+99999 ;") != std::string::npos);
 }

@@ -12,6 +12,8 @@
 #include <doctest/doctest.h>
 
 #include "camgen/motion.hpp"
+#include "camgen/operations.hpp"
+#include "camgen/post.hpp"
 #include "camgen/reader.hpp"
 #include "support.hpp"
 
@@ -55,4 +57,38 @@ TEST_CASE("every golden file reads back to the motion of its job") {
     // 7 machines x 5 samples; kosy and wabeco cannot tap.
     CHECK(checked >= 33);
     CHECK(errors >= 2);
+}
+
+TEST_CASE("every sample posted in inch for every machine reads back to the motion of its job") {
+    // Inch programs state lengths in inches and feeds in in/min, canned-cycle parameters too
+    // (Sinumerik CYCLE8x, Heidenhain Q parameters): all read back through the machine's inch
+    // formats, within half a unit of the last decimal (and what rounded cycle parameters add
+    // up to over the pecks).
+    int checked = 0;
+    for (const auto& [name, description] : list_machines()) {
+        Machine machine = load_machine(name);
+        machine.units = Units::inch;
+        for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
+            if (f.path().extension() != ".json") continue;
+            if (fs::exists(fs::path(CAMGEN_SOURCE_DIR "/tests/golden") / name / (f.path().stem().string() + ".err"))) continue;
+            CAPTURE(name);
+            CAPTURE(f.path().string());
+            Job job = read_job(test::read_file(f.path().string()), f.path().string());
+            std::ostringstream out;
+            PostOptions o;
+            o.program_name = job.name;
+            auto post = make_post(machine, out, o);
+            post->open();
+            expand_job(job, *post);
+            post->close();
+            ReadResolution res;
+            std::vector<ReadEvent> events;
+            REQUIRE_NOTHROW(events = read_program(out.str(), machine, "inch", &res));
+            CHECK(res.position > read_resolution(load_machine(name)).position);  // read in inches
+            auto mismatch = compare_traces(trace_job(job, machine), trace_program(events, machine), compare_tolerance(machine, res, 0.0));
+            CHECK_MESSAGE(!mismatch, (mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : ""));
+            ++checked;
+        }
+    }
+    CHECK(checked >= 33);
 }
