@@ -19,7 +19,7 @@ namespace {
 
 // Q213 takes at most 99 chip breaks; Q208 at this value is a rapid retraction (FMAX).
 constexpr int max_breaks = 99;
-constexpr double fmax_feed = 99999.0;
+constexpr int fmax_feed = 99999;
 
 bool tapping(CycleKind k) { return k == CycleKind::tap || k == CycleKind::tap_left; }
 bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_break; }
@@ -75,7 +75,9 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
              {213, full ? "+0" : fmt::format("+{}", max_breaks), "NR OF BREAKS"},
              {205, len.format(p.minimum_depth.value_or(0.0)), "MIN. PLUNGING DEPTH"},
              {211, dwell(p.bottom_dwell), "DWELL TIME AT DEPTH"},
-             {208, feed.format(!full && p.retract_feedrate ? *p.retract_feedrate : fmax_feed), "RETRACTION FEED RATE"},
+             // 99999 is FMAX in mm and inch programs alike: written as it is, not converted.
+             {208, !full && p.retract_feedrate ? feed.format(*p.retract_feedrate) : fmt::format("+{}", fmax_feed),
+              "RETRACTION FEED RATE"},
              {256, len.format(full ? machine.peck_clearance : p.pecking_retract.value_or(machine.peck_clearance)),
               "DIST FOR CHIP BRKNG"}}};
 }

@@ -31,6 +31,11 @@ std::string join_parameters(std::vector<std::string> p) {
 std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
     const nc::Format len = machine.format("xyz"), sec = machine.format("dwell"), feed = machine.format("feed"),
                      rpm = machine.format("rpm");
+    // FRF is a factor: three decimals whatever the units.
+    nc::FormatSpec factor_spec = machine.format("xyz").spec();
+    factor_spec.scale = 1.0;
+    factor_spec.decimals = 3;
+    const nc::Format factor(factor_spec);
     const DrillParams& p = c.params;
     // SDIS is unsigned: when the feed starts below the surface, the feed-start plane becomes
     // the reference plane (DP and FDEP are absolute, so nothing else changes).
@@ -53,7 +58,7 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
             v.push_back(p.degression_type == DegressionType::value ? len.format(*p.degression) : "");  // DAM
             v.push_back("");                                          // DTB: would dwell at every peck
             v.push_back(full ? dwell(p.top_dwell) : "");              // DTS
-            v.push_back(len.format(p.first_feedrate_factor.value_or(1.0)));  // FRF
+            v.push_back(factor.format(p.first_feedrate_factor.value_or(1.0)));  // FRF
             v.push_back(full ? "1" : "0");                            // VARI
             v.push_back("");                                          // _AXN: tool axis
             v.push_back(p.minimum_depth ? len.format(*p.minimum_depth) : "");  // _MDEP

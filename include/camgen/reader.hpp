@@ -20,7 +20,8 @@ struct ReadEvent {
     bool from_unknown = false;  // a Rapid that starts where the control's position is unknown
                                 // (program start, after a tool change or a home run)
     double uncertainty = 0.0;   // mm the end point may be off beyond the written resolution,
-                                // because the control computes it (nccad D-form arcs)
+                                // because the control computes it (nccad D-form arcs, the
+                                // depths of a canned cycle from its rounded parameters)
 };
 
 // How precisely a program for a machine states values: half a unit of the last decimal written,
@@ -47,7 +48,7 @@ std::vector<ReadEvent> read_program(std::string_view text, const Machine& machin
 // The resolution of the values in a program for `machine` (in its own units).
 ReadResolution read_resolution(const Machine& machine);
 
-// True when camgen can read programs of this dialect ("iso", "nccad").
+// True when camgen can read programs of this dialect ("iso", "nccad", "sinumerik", "heidenhain").
 bool has_reader(const std::string& dialect);
 
 }  // namespace camgen

@@ -63,16 +63,38 @@ struct Item {
     int line() const { return kind == Kind::path ? path.first_line() : step->line; }
 };
 
+// A spindle change counts where it matters: before the next feed move, dwell or tool change,
+// and only if it changes the state then in effect. So a control that reverses its spindle
+// for a tap at the retract plane (LinuxCNC's M4 before G33.1) matches one that reverses at R,
+// and a speed written again unchanged says nothing.
 std::vector<Item> items_of(const Trace& t) {
     std::vector<Item> items;
+    const Step* pending = nullptr;
+    SpindleState state = SpindleState::off;
+    double rpm = 0.0;
+    auto flush_spindle = [&] {
+        if (!pending) return;
+        bool same = pending->spindle == state && (state == SpindleState::off || pending->rpm == rpm);
+        if (!same) items.push_back({Item::Kind::spindle, pending, {}});
+        state = pending->spindle;
+        rpm = pending->rpm;
+        pending = nullptr;
+    };
     for (const Step& s : t.steps) {
         switch (s.kind) {
-            case StepKind::tool_change: items.push_back({Item::Kind::tool, &s, {}}); break;
-            case StepKind::spindle: items.push_back({Item::Kind::spindle, &s, {}}); break;
-            case StepKind::dwell: items.push_back({Item::Kind::dwell, &s, {}}); break;
+            case StepKind::tool_change:
+                flush_spindle();
+                items.push_back({Item::Kind::tool, &s, {}});
+                break;
+            case StepKind::spindle: pending = &s; break;
+            case StepKind::dwell:
+                flush_spindle();
+                items.push_back({Item::Kind::dwell, &s, {}});
+                break;
             case StepKind::rapid:
             case StepKind::feed: {
                 bool rapid = s.kind == StepKind::rapid;
+                if (!rapid) flush_spindle();
                 bool extend = !items.empty() && items.back().kind == Item::Kind::path &&
                               items.back().path.rapid == rapid && s.from_known;
                 if (!extend) {
@@ -87,6 +109,7 @@ std::vector<Item> items_of(const Trace& t) {
             }
         }
     }
+    flush_spindle();
     // A path that goes nowhere from a known start says nothing.
     std::erase_if(items, [](const Item& i) { return i.kind == Item::Kind::path && i.path.start_known && i.path.segs.empty(); });
     return items;
@@ -190,24 +213,34 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
     for (const Sample& s : samples_of(from)) {
         double extra = s.step ? s.step->uncertainty : 0.0;
         bool found = false;
+        std::optional<Mismatch> wrong_feed;
         for (size_t j = k; j < onto.segs.size() && !found; ++j) {
             const Seg& seg = onto.segs[j];
             // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
             // chords or have a rounded centre.
             double limit = (s.vertex && !seg.step->arc ? tol.position : tol.path) + extra + seg.step->uncertainty + eps;
             Hit h = locate(seg, s.p, j == k ? t : 0.0, limit);
-            if (h.d <= limit) {
-                if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > tol.feed + eps) {
+            if (h.d > limit) {
+                if (wrong_feed) break;  // the run of segments the point is near has ended
+                continue;
+            }
+            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > tol.feed + eps) {
+                // A point within the tolerance of a corner lies on both moves that meet there (a
+                // tiny arc written as one short line after a plunge): look on along the moves it
+                // is near for one at its feed before calling it a mismatch.
+                if (!wrong_feed) {
                     const Step& job = from_is_job ? *s.step : *seg.step;
                     const Step& prog = from_is_job ? *seg.step : *s.step;
-                    return Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
-                                                           num(prog.feed), num(job.feed), point(s.p))};
+                    wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
+                                                                 num(prog.feed), num(job.feed), point(s.p))};
                 }
-                k = j;
-                t = h.t;
-                found = true;
+                continue;
             }
+            k = j;
+            t = h.t;
+            found = true;
         }
+        if (!found && wrong_feed) return wrong_feed;
         if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + eps;
         if (found) continue;
         // Where the other path goes on from the last point both share: inside the segment

@@ -1,7 +1,9 @@
 // Reading the ISO (Fanuc-style) dialect: %, O-number, N sequence numbers, modal G groups
 // (motion, plane, units, distance, feed mode, compensation, length offset, return level),
-// T.. M6, S.. M3/M4/M5, G4 P, arcs by the machine's arc format, and the machine's canned
-// cycles with sticky R/Z/Q/P and G98/G99 (REFERENCE.md §3).
+// tool changes as the machine's toolChange setting writes them (T.. M6, or GRBL's
+// "(Insert tool n: ...)" comment and M0), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
+// (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
+// G98/G99 (REFERENCE.md §3), LinuxCNC G33.1 rigid tapping, M2/M30.
 #include <algorithm>
 #include <map>
 
@@ -33,13 +35,35 @@ bool has_field(const DrillingCycleSpec& spec, DrillField f) {
     return std::find(spec.fields.begin(), spec.fields.end(), f) != spec.fields.end();
 }
 
+// How the machine's post writes a tool change (machines/iso.hpp, setting "toolChange").
+enum class ToolChangeStyle { m6, pause, none };
+
+ToolChangeStyle tool_change_style(const Machine& m) {
+    auto it = m.dialect_settings.find("toolChange");
+    if (it == m.dialect_settings.end()) return ToolChangeStyle::m6;
+    if (it->is_boolean()) return it->get<bool>() ? ToolChangeStyle::m6 : ToolChangeStyle::none;
+    if (it->is_string() && it->get<std::string>() == "pause") return ToolChangeStyle::pause;
+    if (it->is_string() && it->get<std::string>() == "none") return ToolChangeStyle::none;
+    return ToolChangeStyle::m6;
+}
+
+// A tool change announced by a comment, to be made by the M0 on the next line.
+struct InsertTool {
+    int number = 0;
+    std::string description;
+    int line = 0;
+};
+
 class IsoReader : public NcReader {
 public:
-    using NcReader::NcReader;
+    IsoReader(const Machine& machine, std::string source)
+        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)) {}
 
 protected:
     bool frame_line(std::string_view line) override { return line == "%"; }
+    void line(std::string_view text) override;
     void block(const Block& b) override;
+    void finish() override;
 
 private:
     // A G code and the word it was written as, for messages.
@@ -50,8 +74,12 @@ private:
     void set_group(std::optional<Code>& group, Code c) const;
     void motion_block(int mode, const std::map<char, const Word*>& w, std::map<char, bool>& used);
     void cycle_block(int g, const std::map<char, const Word*>& w, std::map<char, bool>& used);
+    void rigid_tap(const std::map<char, const Word*>& w, std::map<char, bool>& used);
     const DrillingCycleSpec* canned_spec(int g) const;
+    std::optional<InsertTool> insert_tool(const std::string& comment) const;
 
+    ToolChangeStyle tool_change_;
+    std::optional<InsertTool> pending_insert_;
     int motion_ = -1;  // the modal motion code (tenths); -1: none yet
     Plane plane_ = Plane::xy;
     bool g98_ = true;  // return to the initial level (LinuxCNC's default)
@@ -76,6 +104,53 @@ const DrillingCycleSpec* IsoReader::canned_spec(int g) const {
     return nullptr;
 }
 
+std::optional<InsertTool> IsoReader::insert_tool(const std::string& comment) const {
+    // The pause post's comment: "Insert tool <n>" or "Insert tool <n>: <description>".
+    constexpr std::string_view prefix = "Insert tool ";
+    if (comment.rfind(prefix, 0) != 0) return std::nullopt;
+    std::string_view rest = std::string_view(comment).substr(prefix.size());
+    size_t end = rest.find_first_not_of("0123456789");
+    std::string_view number = rest.substr(0, end);
+    if (number.empty() || number.size() > 9)
+        fail(fmt::format("({}): no tool number after \"Insert tool\"", comment));
+    InsertTool t{std::stoi(std::string(number)), "", line_};
+    if (end != std::string_view::npos) {
+        if (rest.substr(end, 2) != ": " || rest.size() == end + 2)
+            fail(fmt::format("({}): expected \"Insert tool {}: <description>\"", comment, t.number));
+        t.description = std::string(rest.substr(end + 2));
+    }
+    return t;
+}
+
+void IsoReader::line(std::string_view text) {
+    Block b = split_line(text);
+    bool announced_before = pending_insert_.has_value();
+    emit_comments(b);
+    if (tool_change_ == ToolChangeStyle::pause) {
+        for (const std::string& c : b.comments) {
+            auto t = insert_tool(c);
+            if (!t) continue;
+            if (pending_insert_)
+                fail(fmt::format("a second tool change comment before the M0 that makes the one on line {}",
+                                 pending_insert_->line));
+            pending_insert_ = t;
+        }
+    }
+    if (!b.words.empty()) block(b);
+    if (announced_before && pending_insert_)
+        fail(fmt::format("the tool change announced on line {} (Insert tool {}) is not made: machine {} pauses "
+                         "for it with M0 on the next line",
+                         pending_insert_->line, pending_insert_->number, machine_.name));
+}
+
+void IsoReader::finish() {
+    if (pending_insert_)
+        fail(fmt::format("the tool change announced on line {} (Insert tool {}) is not made: the program ends "
+                         "without its M0",
+                         pending_insert_->line, pending_insert_->number));
+    NcReader::finish();
+}
+
 void IsoReader::block(const Block& b) {
     if (ended_) fail("a block after the end of the program");
     if (b.words.front().letter == 'O') {
@@ -92,6 +167,11 @@ void IsoReader::block(const Block& b) {
             Code c{code_of(x), &x};
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
+                case code(33.1):
+                    if (!canned_spec(c.value))
+                        fail(fmt::format("{} (rigid tapping) is not a cycle of machine {}", x.text, machine_.name));
+                    set_group(motion, c);
+                    break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
                 case code(20): case code(21): set_group(units, c); break;
                 case code(90): break;
@@ -147,7 +227,27 @@ void IsoReader::block(const Block& b) {
         rpm_ = rpm(*s);
         if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
     }
-    if (const Word* t = take('T')) selected_tool_ = integer_of(*t);
+    if (const Word* t = take('T')) {
+        if (tool_change_ == ToolChangeStyle::pause)
+            fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
+                             "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
+        selected_tool_ = integer_of(*t);
+    }
+    if (tool_change && tool_change_ == ToolChangeStyle::pause)
+        fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
+                         "and pauses with M0", machine_.name));
+    if (stop && stop->value == code(0) && tool_change_ == ToolChangeStyle::pause) {
+        // GRBL: the spindle is off; the operator changes the tool the comment names.
+        if (!pending_insert_)
+            fail(fmt::format("M0 without the comment (Insert tool <n>: ...) on the line before it: machine {} "
+                             "pauses only to change tools",
+                             machine_.name));
+        drill_end();
+        tool_ = pending_insert_->number;
+        emit(ToolChange{tool_, diameter_in(pending_insert_->description), pending_insert_->description});
+        forget_position();
+        pending_insert_.reset();
+    }
     if (tool_change) {
         if (!selected_tool_) fail("M6 without a tool number T");
         drill_end();
@@ -227,6 +327,10 @@ void IsoReader::motion_block(int mode, const std::map<char, const Word*>& w, std
     };
     if (cycle_kind_of(mode)) {
         cycle_block(mode, w, used);
+        return;
+    }
+    if (mode == code(33.1)) {
+        rigid_tap(w, used);
         return;
     }
     drill_end();
@@ -320,6 +424,49 @@ void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::ma
     }
     if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
     drill_point({x.value_or(here.x), y.value_or(here.y)});
+}
+
+void IsoReader::rigid_tap(const std::map<char, const Word*>& w, std::map<char, bool>& used) {
+    // LinuxCNC G33.1 Z K: from where the tool stands, in to Z synchronised with the spindle
+    // (feed = pitch K x speed), spindle reversed, out to the start Z, the spindle's direction
+    // restored. Tapping left-hand under M4 is the same cycle the other way round. It is read
+    // as the tap the posts would write longhand from that Z.
+    auto get = [&](char letter) -> const Word* {
+        auto it = w.find(letter);
+        if (it == w.end()) return nullptr;
+        used[letter] = true;
+        return it->second;
+    };
+    for (char letter : {'X', 'Y', 'I', 'J', 'R', 'Q', 'P'})
+        if (w.count(letter))
+            fail(fmt::format("{} on G33.1: camgen positions the hole with G0 and taps along Z only", w.at(letter)->text));
+    const Word* zw = get('Z');
+    const Word* kw = get('K');
+    if (!zw || !kw) fail("G33.1 needs the hole bottom Z and the pitch K");
+    if (!position_known()) fail("G33.1 from an unknown position");
+    const double bottom = length(*zw), pitch = length(*kw);
+    const Vec3 here = position();
+    if (!(pitch > 0)) fail(fmt::format("{}: the pitch must be > 0", kw->text));
+    if (!(bottom < here.z)) fail(fmt::format("G33.1 {}: the bottom is not below the start Z", zw->text));
+    if (spindle_ == SpindleState::off || !(rpm_ > 0)) fail("G33.1 with the spindle off: rigid tapping follows the spindle");
+    DrillCycle c;
+    c.kind = spindle_ == SpindleState::cw ? CycleKind::tap : CycleKind::tap_left;
+    c.output = CycleOutput::canned;
+    c.retract_z = c.reference_z = c.safe_z = here.z;
+    c.bottom_z = bottom;
+    c.feed = pitch * rpm_;
+    c.spindle_rpm = rpm_;
+    c.spindle_direction = spindle_ == SpindleState::cw ? SpindleDirection::cw : SpindleDirection::ccw;
+    DrillParams& p = c.params;
+    p.kind = c.kind;
+    p.retract_plane = p.reference_plane = here.z;
+    p.end_depth = bottom;
+    p.end_depth_is_absolute = true;
+    p.pitch = pitch;
+    p.output = CycleOutput::canned;
+    drill_cycle(c);
+    drill_point({here.x, here.y});
+    drill_end();
 }
 
 }  // namespace

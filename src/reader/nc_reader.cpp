@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/error.hpp"
+#include "camgen/longhand.hpp"
 
 namespace camgen::reader {
 
@@ -70,6 +71,8 @@ bool NcReader::message_code(const Word&) const { return false; }
 
 bool NcReader::dotted_word(char) const { return false; }
 
+bool NcReader::named_word(std::string_view) const { return false; }
+
 void NcReader::finish() { drill_end(); }
 
 void NcReader::fail(const std::string& detail) const { throw InputError("", detail, line_, source_); }
@@ -112,6 +115,14 @@ double NcReader::seconds(const Word& w) const {
 }
 
 double NcReader::angle(const Word& w) const { return w.value / angle_fmt_.spec().scale; }
+
+double NcReader::length_value(double written) const { return written / xyz_.spec().scale; }
+
+double NcReader::feed_value(double written) const { return written / feed_fmt_.spec().scale; }
+
+double NcReader::seconds_value(double written) const { return written / dwell_fmt_.spec().scale; }
+
+double NcReader::rpm_value(double written) const { return written / rpm_fmt_.spec().scale; }
 
 int NcReader::code_of(const Word& w) const {
     int c = code(w.value);
@@ -189,7 +200,15 @@ Block NcReader::split(std::string_view line) const {
         }
         Word w;
         w.letter = static_cast<char>(c >= 'a' ? c - 'a' + 'A' : c);
-        size_t start = i++;
+        size_t start = i;
+        if (size_t eq = line.find('=', i); eq != std::string_view::npos && eq > i + 1 &&
+                                           std::all_of(line.begin() + i, line.begin() + eq, is_letter) &&
+                                           named_word(line.substr(i, eq - i))) {
+            w.name = std::string(line.substr(i, eq - i));
+            w.letter = 0;
+            i = eq;  // the '=' is skipped below like a letter
+        }
+        ++i;
         while (i < n && is_blank(line[i])) ++i;  // a format with a width pads with spaces
         std::string number;
         const char point_mark = dotted_word(w.letter) ? '.' : mark;
@@ -208,7 +227,7 @@ Block NcReader::split(std::string_view line) const {
             ++i;
         }
         w.text = std::string(line.substr(start, i - start));
-        if (digits == 0) fail(fmt::format("word {} without a number", w.text.empty() ? std::string(1, c) : w.text));
+        if (digits == 0) fail(fmt::format("word {} without a number", w.text));
         if (i < n && (line[i] == '.' || line[i] == ',') && line[i] != point_mark)
             fail(fmt::format("{}{}...: machine {} writes '{}' as its decimal mark", w.text, line[i], machine_.name, mark));
         const char* first = number.data() + (number[0] == '+' ? 1 : 0);
@@ -237,7 +256,6 @@ std::vector<ReadEvent> NcReader::read(std::string_view text) {
     coarsest_ = resolution();
     line_ = 0;
     size_t pos = 0;
-    const std::string& seq = machine_.block.sequence_prefix;
     while (pos < text.size()) {
         size_t nl = text.find('\n', pos);
         std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
@@ -246,20 +264,34 @@ std::vector<ReadEvent> NcReader::read(std::string_view text) {
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         std::string_view t = trim(line);
         if (t.empty() || frame_line(t)) continue;
-        Block b = split(line);
-        // A sequence number leads the block; it says nothing about motion.
-        if (!b.words.empty() && seq.size() == 1 && b.words.front().letter == seq[0]) {
-            (void)integer_of(b.words.front());
-            b.words.erase(b.words.begin());
-        }
-        for (const std::string& c : b.comments) {
-            emit(Comment{c});
-            last_comment_ = c;
-        }
-        if (!b.words.empty() || b.has_message) block(b);
+        this->line(line);
     }
     finish();
     return std::move(out_);
+}
+
+Block NcReader::split_line(std::string_view text) {
+    Block b = split(text);
+    // A sequence number leads the block; it says nothing about motion.
+    const std::string& seq = machine_.block.sequence_prefix;
+    if (!b.words.empty() && seq.size() == 1 && b.words.front().letter == seq[0]) {
+        (void)integer_of(b.words.front());
+        b.words.erase(b.words.begin());
+    }
+    return b;
+}
+
+void NcReader::emit_comments(const Block& b) {
+    for (const std::string& c : b.comments) {
+        emit(Comment{c});
+        last_comment_ = c;
+    }
+}
+
+void NcReader::line(std::string_view text) {
+    Block b = split_line(text);
+    emit_comments(b);
+    if (!b.words.empty() || b.has_message) block(b);
 }
 
 // ---- motion ----
@@ -396,6 +428,11 @@ void NcReader::arc(const ArcWords& a) {
 // ---- drilling ----
 
 void NcReader::drill_cycle(const DrillCycle& cycle) {
+    try {
+        (void)peck_depths(cycle);
+    } catch (const InputError& e) {
+        fail(fmt::format("pecks that cannot reach the bottom of the hole: {}", e.detail()));
+    }
     drill_end();
     cycle_ = cycle;
     emit(cycle);
@@ -404,7 +441,14 @@ void NcReader::drill_cycle(const DrillCycle& cycle) {
 void NcReader::drill_point(Vec2 at) {
     if (!cycle_) throw std::logic_error("drill point outside a cycle");
     if (!position_known()) fail("a drilling cycle from an unknown position");
-    emit(DrillPoint{at});
+    // The control computes the depths of a cycle from rounded parameters: the feed-start
+    // plane may be a sum of two (Sinumerik RFP + SDIS, Heidenhain Q203 + Q200), each peck
+    // adds the rounding of its depth, and a degression the rounding of its value once more
+    // per peck.
+    const double n = static_cast<double>(peck_depths(*cycle_).size());
+    const bool degressive = cycle_->params.degression_type != DegressionType::none;
+    const double uncertainty = resolution().position * (1.0 + n + (degressive ? n * (n - 1.0) / 2.0 : 0.0));
+    emit(DrillPoint{at}, false, uncertainty);
     // DrillCycle's contract: between holes the tool returns to the retract plane.
     pos_ = {at.x, at.y, cycle_->retract_z};
     xy_uncertainty_ = 0.0;

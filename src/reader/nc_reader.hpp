@@ -2,8 +2,9 @@
 // The reader base (private to src/reader/): splits a program into blocks of words as the
 // machine's block style writes them, and keeps what every dialect shares: the modal position
 // with per-axis knowledge, formats and their scales, feed, arcs in every arc format, drilling
-// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp)
-// says which words and codes exist and what they do, as the post dialects do in machines/.
+// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp,
+// sinumerik_reader.cpp, heidenhain_reader.cpp) says which words and codes exist and what they
+// do, as the post dialects do in machines/.
 #include <array>
 #include <memory>
 #include <optional>
@@ -18,9 +19,11 @@
 
 namespace camgen::reader {
 
-// One word of a block: a letter and the number after it, as written.
+// One word of a block: a letter (or a named address such as Sinumerik's CR=) and the number
+// after it, as written.
 struct Word {
-    char letter = 0;         // upper case
+    char letter = 0;         // upper case; 0 for a named address
+    std::string name;        // a named address without its '=' ("CR"); empty for a letter
     double value = 0.0;      // the number as written, before any scale
     std::string text;        // letter and number as written, for messages ("X10.500")
     bool has_point = false;  // the number has a decimal mark
@@ -56,6 +59,12 @@ protected:
     // ---- dialect hooks ----
     // A line that is not a block of words ("%", "_"): true when the dialect consumed it.
     virtual bool frame_line(std::string_view line) = 0;
+    // Interprets one line that is not blank and not a frame line. The default splits it into
+    // words (split_line), emits its comments and passes the block on to block(); a dialect
+    // whose lines are not all words (Sinumerik MCALL, Heidenhain conversational) reads its own.
+    virtual void line(std::string_view text);
+    // True when `name=` is an address of the dialect (Sinumerik "CR").
+    virtual bool named_word(std::string_view name) const;
     // True when the rest of the line after this word is message text (nccad M01 <message>).
     virtual bool message_code(const Word& word) const;
     // True when words of this letter are written with '.' whatever the decimal mark (nccad
@@ -68,6 +77,11 @@ protected:
 
     // ---- shared machinery ----
     [[noreturn]] void fail(const std::string& detail) const;
+    // Splits a line into words as the machine's block style writes them, the sequence number
+    // (if the machine writes them) removed.
+    Block split_line(std::string_view text);
+    // Emits a block's comments as Comment events (and remembers the last one).
+    void emit_comments(const Block& block);
     void emit(Event event, bool from_unknown = false, double uncertainty = 0.0);
 
     // Values of words in internal units (mm, mm/min, rpm, s, degrees), through the machine's
@@ -79,6 +93,12 @@ protected:
     double rpm(const Word& w) const;
     double seconds(const Word& w) const;
     double angle(const Word& w) const;
+    // Numbers written outside address words (cycle parameters), in internal units through the
+    // same formats: a length, a feed, seconds, a spindle speed.
+    double length_value(double written) const;
+    double feed_value(double written) const;
+    double seconds_value(double written) const;
+    double rpm_value(double written) const;
     // The word's value as a G/M code in tenths (see code()). Fails for finer values.
     int code_of(const Word& w) const;
     // The word's value as a non-negative whole number (tool, H, D, O-number).
@@ -126,6 +146,7 @@ protected:
     int tool_ = 0;
 
     // Drilling: a canned cycle and its holes, as events for trace_program to expand.
+    // drill_cycle checks that the cycle's pecks reach its bottom (an error names the line).
     void drill_cycle(const DrillCycle& cycle);
     void drill_point(Vec2 at);
     void drill_end();
@@ -156,5 +177,7 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 // The dialect readers.
 std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source);
 std::unique_ptr<NcReader> make_nccad_reader(const Machine& machine, std::string source);
+std::unique_ptr<NcReader> make_sinumerik_reader(const Machine& machine, std::string source);
+std::unique_ptr<NcReader> make_heidenhain_reader(const Machine& machine, std::string source);
 
 }  // namespace camgen::reader

@@ -20,6 +20,8 @@ struct DialectReader {
 constexpr DialectReader dialect_readers[] = {
     {"iso", make_iso_reader},
     {"nccad", make_nccad_reader},
+    {"sinumerik", make_sinumerik_reader},
+    {"heidenhain", make_heidenhain_reader},
 };
 
 }  // namespace

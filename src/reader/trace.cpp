@@ -60,7 +60,7 @@ std::vector<Hole> find_holes(const std::vector<Step>& steps) {
 
 class Tracer {
 public:
-    explicit Tracer(const Machine& machine) : options_{machine.peck_clearance} {}
+    explicit Tracer(const Machine& machine) : options_(machine.longhand()) {}
 
     void add(const ReadEvent& e) {
         line_ = e.line;
@@ -105,7 +105,8 @@ public:
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
-                           for (const Event& m : longhand_moves(*cycle_, pos_, p.at, options_)) add(ReadEvent{m, e.line});
+                           for (const Event& m : longhand_moves(*cycle_, pos_, p.at, options_))
+                               add(ReadEvent{m, e.line, false, e.uncertainty});
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
                        [&](const auto&) {},

@@ -9,37 +9,13 @@
 #include "camgen/motion.hpp"
 #include "camgen/reader.hpp"
 #include "camgen/stats.hpp"
+#include "reader_support.hpp"
 #include "support.hpp"
 
 using namespace camgen;
 using namespace camgen::test;
 
 namespace {
-
-std::string replace_once(std::string text, const std::string& from, const std::string& to) {
-    size_t at = text.find(from);
-    REQUIRE_MESSAGE(at != std::string::npos, "no \"" << from << "\" in the program");
-    CHECK_MESSAGE(text.find(from, at + 1) == std::string::npos, "\"" << from << "\" is not unique");
-    return text.replace(at, from.size(), to);
-}
-
-// The first difference between a job and a program for a machine, as "line N: message".
-std::string round_trip(const std::string& job_json, const std::string& program, const std::string& machine_name) {
-    Machine m = load_machine(machine_name);
-    Job job = read_job(job_json, "job.json");
-    Trace actual = trace_program(read_program(program, m, "prog"), m);
-    auto mismatch = compare_traces(trace_job(job, m), actual, compare_tolerance(m, 0.0));
-    return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
-}
-
-std::string error_of(const std::string& program, const std::string& machine_name) {
-    try {
-        (void)read_program(program, load_machine(machine_name), "prog.nc");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 const std::string d_arc_job = R"({"name": "darc", "units": "mm", "clearance": 5,
  "tools": [{"number": 1, "type": "end-mill", "diameter": 4, "rpm": 2000}],
@@ -87,6 +63,20 @@ TEST_CASE("round trip catches a word dropped on a later hole") {
         std::string m = round_trip(job, broken, "wabeco");
         CHECK(m.starts_with("line 14: the job's rapid move from X90.000 Y10.000 Z2.000 to X90.000 Y40.000 Z2.000 is not in the program"));
     }
+    SUBCASE("sinumerik MCALL CYCLE81: Y dropped on the fourth hole line") {
+        std::string good = post_job(job, "sinumerik").text;
+        CHECK(round_trip(job, good, "sinumerik") == "");
+        std::string broken = replace_once(good, "N130 X90.000 Y40.000\n", "N130 X90.000\n");
+        std::string m = round_trip(job, broken, "sinumerik");
+        CHECK(m.starts_with("line 16: the job's rapid move from X90.000 Y10.000 Z2.000 to X90.000 Y40.000 Z2.000 is not in the program"));
+    }
+    SUBCASE("heidenhain cycle 200: Y dropped on the fourth M99 call") {
+        std::string good = post_job(job, "heidenhain").text;
+        CHECK(round_trip(job, good, "heidenhain") == "");
+        std::string broken = replace_once(good, "12 L X+90 Y+40 R0 FMAX M99\n", "12 L X+90 R0 FMAX M99\n");
+        std::string m = round_trip(job, broken, "heidenhain");
+        CHECK(m.starts_with("line 21: the job's rapid move from X90.000 Y10.000 Z2.000 to X90.000 Y40.000 Z2.000 is not in the program"));
+    }
 }
 
 TEST_CASE("round trip catches a wrong arc direction") {
@@ -109,6 +99,18 @@ TEST_CASE("round trip catches a wrong arc direction") {
         CHECK(round_trip(job, good, "wabeco") == "");
         std::string m = round_trip(job, replace_once(good, "G03 D90 I0 J10", "G02 D90 I0 J10"), "wabeco");
         CHECK(m.starts_with("line 12: the job's ccw arc from X60.000 Y0.000 Z-3.000 to X70.000 Y10.000 Z-3.000"));
+    }
+    SUBCASE("sinumerik: G3 written as G2") {
+        std::string good = post_job(job, "sinumerik").text;
+        CHECK(round_trip(job, good, "sinumerik") == "");
+        std::string m = round_trip(job, replace_once(good, "G3 X70.000 Y10.000", "G2 X70.000 Y10.000"), "sinumerik");
+        CHECK(m.starts_with("line 12: the job's ccw arc from X60.000 Y0.000 Z-3.000 to X70.000 Y10.000 Z-3.000"));
+    }
+    SUBCASE("heidenhain: DR+ flipped to DR-") {
+        std::string good = post_job(job, "heidenhain").text;
+        CHECK(round_trip(job, good, "heidenhain") == "");
+        std::string m = round_trip(job, replace_once(good, "C X+70 Y+10 DR+", "C X+70 Y+10 DR-"), "heidenhain");
+        CHECK(m.starts_with("line 11: the job's ccw arc from X60.000 Y0.000 Z-3.000 to X70.000 Y10.000 Z-3.000"));
     }
 }
 

@@ -1,0 +1,462 @@
+// Reading the Sinumerik 840D dialect (machines/sinumerik.cpp): N sequence numbers, "; comments",
+// G17/G18/G19, G70/G71, G90, G94, G0-G3 with I/J/K (relative to the start) or CR=, G4 F<s> dwell,
+// G40/G41/G42, T.. D1 and M6, S.. M3/M4/M5, M30/M2, and the drilling cycles as the post writes
+// them: MCALL CYCLE81..CYCLE89(...), then one G0 X Y block per hole (each calls the cycle at
+// its position, from the Z the tool stands at), then MCALL alone. Each cycle call is read back
+// into the DrillCycle whose longhand moves camgen means by it: the inverse of
+// sinumerik_cycle_call (README "Drilling: canned or longhand").
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "src/reader/nc_reader.hpp"
+
+namespace camgen::reader {
+
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+// The parameters of a standard cycle call, by position (nullopt: left empty, the default).
+struct CycleCall {
+    std::string name;  // "CYCLE83"
+    std::vector<std::optional<double>> values;
+    std::vector<std::string> texts;  // as written, for messages
+    int line = 0;
+};
+
+class SinumerikReader : public NcReader {
+public:
+    using NcReader::NcReader;
+
+protected:
+    bool frame_line(std::string_view) override { return false; }
+    bool named_word(std::string_view name) const override { return name == "CR"; }
+    void line(std::string_view text) override;
+    void block(const Block& b) override;
+    void finish() override;
+
+private:
+    void modal_call(std::string_view call);
+    // The DrillCycle a call of the active modal cycle means, with the feed and spindle now in
+    // effect (CYCLE81/82/83/86/89 drill at the active F).
+    DrillCycle cycle_now() const;
+
+    std::optional<CycleCall> mcall_;
+    int motion_ = -1;
+    Plane plane_ = Plane::xy;
+    std::optional<int> selected_tool_;
+    SpindleState spindle_ = SpindleState::off;
+    bool ended_ = false;
+};
+
+void SinumerikReader::line(std::string_view text) {
+    // "N80 MCALL CYCLE81(...)" is no block of address words: read it here.
+    std::string_view rest = trim(text);
+    if (!rest.empty() && rest.front() == 'N') {
+        size_t digits = rest.find_first_not_of("0123456789", 1);
+        if (digits != 1 && digits != std::string_view::npos && is_blank(rest[digits])) rest = trim(rest.substr(digits));
+    }
+    if (rest.rfind("MCALL", 0) == 0 && (rest.size() == 5 || is_blank(rest[5]) || rest[5] == ';')) {
+        (void)split_line(text.substr(0, text.find("MCALL")));  // checks the sequence number
+        std::string_view call = rest.substr(5);
+        if (size_t semi = call.find(';'); semi != std::string_view::npos) {
+            Block comment;
+            comment.comments.emplace_back(trim(call.substr(semi + 1)));
+            emit_comments(comment);
+            call = call.substr(0, semi);
+        }
+        if (ended_) fail("a block after the end of the program");
+        modal_call(trim(call));
+        return;
+    }
+    NcReader::line(text);
+}
+
+void SinumerikReader::finish() {
+    if (mcall_) fail(fmt::format("the program ends with the modal call {} of line {} still active (MCALL ends it)",
+                                 mcall_->name, mcall_->line));
+    NcReader::finish();
+}
+
+void SinumerikReader::modal_call(std::string_view call) {
+    if (call.empty()) {
+        if (!mcall_) fail("MCALL without a modal cycle call to end");
+        mcall_.reset();
+        drill_end();
+        return;
+    }
+    size_t open = call.find('(');
+    if (open == std::string_view::npos || call.back() != ')')
+        fail(fmt::format("MCALL {}: expected a cycle call NAME(parameters)", call));
+    CycleCall c;
+    c.name = std::string(trim(call.substr(0, open)));
+    c.line = line_;
+    bool known = false;
+    for (const DrillingCycleSpec& s : machine_.drilling) known = known || (s.canned && s.name == c.name);
+    if (!known) {
+        std::vector<std::string> names;
+        for (const DrillingCycleSpec& s : machine_.drilling)
+            if (s.canned && std::find(names.begin(), names.end(), s.name) == names.end()) names.push_back(s.name);
+        fail(fmt::format("{} is not a cycle of machine {} (it has: {})", c.name, machine_.name,
+                         names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+    }
+    std::string_view list = call.substr(open + 1, call.size() - open - 2);
+    for (size_t pos = 0;;) {
+        size_t comma = list.find(',', pos);
+        std::string_view item = trim(list.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos));
+        c.texts.emplace_back(item);
+        if (item.empty()) {
+            c.values.emplace_back();
+        } else {
+            auto v = parse_number(item);
+            if (!v) fail(fmt::format("{}: parameter {} \"{}\" is not a number", c.name, c.values.size() + 1, item));
+            c.values.push_back(v);
+        }
+        if (comma == std::string_view::npos) break;
+        pos = comma + 1;
+    }
+    const std::map<std::string, size_t> counts = {{"CYCLE81", 5}, {"CYCLE82", 6}, {"CYCLE83", 17}, {"CYCLE84", 12},
+                                                  {"CYCLE85", 8}, {"CYCLE86", 11}, {"CYCLE89", 6}};
+    auto count = counts.find(c.name);
+    if (count == counts.end()) fail(fmt::format("camgen cannot read {} calls", c.name));
+    if (c.values.size() > count->second)
+        fail(fmt::format("{} takes at most {} parameters, not {}", c.name, count->second, c.values.size()));
+    c.values.resize(count->second);
+    c.texts.resize(count->second);
+    drill_end();
+    mcall_ = c;
+    (void)cycle_now();  // every parameter is checked where it is written
+}
+
+DrillCycle SinumerikReader::cycle_now() const {
+    const CycleCall& call = *mcall_;
+    const std::string& name = call.name;
+    auto has = [&](size_t i) { return call.values[i].has_value(); };
+    auto need = [&](size_t i, const char* what) {
+        if (!has(i)) fail(fmt::format("{} without {} (parameter {})", name, what, i + 1));
+        return *call.values[i];
+    };
+    auto empty = [&](size_t i, const char* what, const char* why) {
+        if (has(i)) fail(fmt::format("{}: {} = {}: {}", name, what, call.texts[i], why));
+    };
+    auto zero_or_empty = [&](size_t i, const char* what) {
+        if (has(i) && *call.values[i] != 0.0)
+            fail(fmt::format("{}: {} = {}: camgen writes it 0 and reads no other value", name, what, call.texts[i]));
+    };
+    auto positive = [&](size_t i) -> std::optional<double> {
+        if (!has(i)) return std::nullopt;
+        if (*call.values[i] < 0) fail(fmt::format("{}: parameter {} = {} must not be negative", name, i + 1, call.texts[i]));
+        return *call.values[i] > 0 ? call.values[i] : std::nullopt;
+    };
+    // Parameters in internal units through the machine's formats (inch programs write inches).
+    auto dwell_at = [&](size_t i) -> std::optional<double> {
+        auto v = positive(i);
+        return v ? std::optional<double>(seconds_value(*v)) : std::nullopt;
+    };
+    auto length_at = [&](size_t i) -> std::optional<double> {
+        auto v = positive(i);
+        return v ? std::optional<double>(length_value(*v)) : std::nullopt;
+    };
+    auto direction = [&](size_t i, const char* what) {
+        double v = need(i, what);
+        if (v != 3.0 && v != 4.0) fail(fmt::format("{}: {} = {}: 3 (M3) or 4 (M4)", name, what, call.texts[i]));
+        return v == 3.0 ? SpindleDirection::cw : SpindleDirection::ccw;
+    };
+
+    // RTP, RFP, SDIS, DP, DPR: SDIS is measured from RFP, DP is absolute.
+    DrillCycle c;
+    c.output = CycleOutput::canned;
+    c.retract_z = length_value(need(0, "the retract plane RTP"));
+    c.reference_z = length_value(need(1, "the reference plane RFP"));
+    const double sdis = length_value(need(2, "the safety distance SDIS"));
+    if (sdis < 0) fail(fmt::format("{}: the safety distance SDIS = {} must not be negative", name, call.texts[2]));
+    c.safe_z = c.reference_z + sdis;
+    c.bottom_z = length_value(need(3, "the final drilling depth DP"));
+    empty(4, "DPR", "camgen writes the depth absolute (DP) and reads no relative depth");
+    if (!(c.bottom_z < c.safe_z)) fail(fmt::format("{}: the depth DP is not below RFP + SDIS", name));
+    if (c.retract_z < c.safe_z) fail(fmt::format("{}: the retract plane RTP is below RFP + SDIS", name));
+    c.spindle_rpm = rpm_;
+    c.spindle_direction = spindle_ == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
+    DrillParams& p = c.params;
+    p.output = CycleOutput::canned;
+    p.retract_plane = c.retract_z;
+    p.reference_plane = c.reference_z;
+    p.end_depth = c.bottom_z;
+    p.end_depth_is_absolute = true;
+    auto active_feed = [&] {
+        // The cycle drills at the feed in effect where it is called.
+        if (!feed_) fail(fmt::format("{} without a feed F before it", name));
+        c.feed = *feed_;
+        p.plunging_feedrate = c.feed;
+    };
+
+    if (name == "CYCLE81") {
+        c.kind = CycleKind::drill;
+        active_feed();
+    } else if (name == "CYCLE82") {
+        c.kind = CycleKind::dwell;
+        p.bottom_dwell = dwell_at(5);
+        active_feed();
+    } else if (name == "CYCLE83") {
+        // FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1.
+        const double vari = need(11, "VARI");
+        if (vari != 0.0 && vari != 1.0)
+            fail(fmt::format("{}: VARI = {}: 0 (chip breaking) or 1 (full retract)", name, call.texts[11]));
+        const bool full = vari == 1.0;
+        c.kind = full ? CycleKind::deep : CycleKind::chip_break;
+        const double fdep = length_value(need(5, "the first drilling depth FDEP"));
+        empty(6, "FDPR", "camgen writes the first depth absolute (FDEP)");
+        if (!(fdep < c.safe_z)) fail(fmt::format("{}: the first depth FDEP = {} is not below RFP + SDIS", name, call.texts[5]));
+        p.first_depth = c.safe_z - fdep;
+        if (has(7) && *call.values[7] != 0.0) {
+            if (*call.values[7] < 0) fail(fmt::format("{}: DAM = {}: camgen reads only a degression value", name, call.texts[7]));
+            p.degression_type = DegressionType::value;
+            p.degression = length_value(*call.values[7]);
+        }
+        empty(8, "DTB", "a dwell at every peck depth is no camgen cycle (camgen dwells at the bottom with _DTD)");
+        // DTS acts only between full retracts (VARI=1), as the control runs it.
+        if (full) p.top_dwell = dwell_at(9);
+        if (has(10)) {
+            if (!(*call.values[10] > 0 && *call.values[10] <= 1))
+                fail(fmt::format("{}: FRF = {} is not in (0, 1]", name, call.texts[10]));
+            p.first_feedrate_factor = call.values[10];
+        }
+        empty(12, "_AXN", "camgen drills along Z only");
+        if (has(13)) p.minimum_depth = length_at(13);
+        if (!full && has(14)) {
+            if (!(*call.values[14] > 0)) fail(fmt::format("{}: _VRT = {} must be > 0", name, call.texts[14]));
+            p.pecking_retract = length_value(*call.values[14]);
+        }
+        p.bottom_dwell = dwell_at(15);
+        if (full) {
+            // The re-approach distance of full-retract pecks: camgen's longhand stops the
+            // machine's peckClearance above the last peck, and so must the program.
+            double dis1 = length_value(need(16, "the advance distance _DIS1 (without it the control picks its own)"));
+            if (std::abs(dis1 - machine_.peck_clearance) > resolution().position)
+                fail(fmt::format("{}: _DIS1 = {}: machine {} re-approaches {} mm above the last peck", name, call.texts[16],
+                                 machine_.name, machine_.peck_clearance));
+        }
+        active_feed();
+    } else if (name == "CYCLE84") {
+        // DTB, SDAC, MPIT, PIT, POSS, SST, SST1.
+        p.bottom_dwell = dwell_at(5);
+        c.spindle_direction = direction(6, "SDAC (the spindle direction after the cycle)");
+        empty(7, "MPIT", "camgen writes the pitch as PIT");
+        const double pit = length_value(need(8, "the pitch PIT"));
+        if (pit == 0.0) fail(fmt::format("{}: the pitch PIT must not be 0", name));
+        zero_or_empty(9, "POSS");
+        c.kind = pit < 0 ? CycleKind::tap_left : CycleKind::tap;
+        p.pitch = std::abs(pit);
+        const double sst = rpm_value(need(10, "the tapping speed SST"));
+        if (!(sst > 0)) fail(fmt::format("{}: the tapping speed SST must be > 0", name));
+        p.tapping_speed = sst;
+        if (has(11)) {
+            if (!(*call.values[11] > 0)) fail(fmt::format("{}: the retract speed SST1 must be > 0", name));
+            p.retract_speed = rpm_value(*call.values[11]);
+        }
+        c.feed = *p.pitch * sst;
+        if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S before it", name));
+    } else if (name == "CYCLE85") {
+        // DTB, FFR, RFF.
+        c.kind = CycleKind::ream;
+        p.bottom_dwell = dwell_at(5);
+        c.feed = feed_value(need(6, "the feed FFR"));
+        if (!(c.feed > 0)) fail(fmt::format("{}: the feed FFR must be > 0", name));
+        p.plunging_feedrate = c.feed;
+        if (has(7)) {
+            if (!(*call.values[7] > 0)) fail(fmt::format("{}: the retract feed RFF must be > 0", name));
+            p.retract_feedrate = feed_value(*call.values[7]);
+        }
+    } else if (name == "CYCLE86") {
+        // DTB, SDIR, RPA, RPO, RPAP, POSS: out along the hole axis, no lift-off.
+        c.kind = CycleKind::bore_stop;
+        p.bottom_dwell = dwell_at(5);
+        c.spindle_direction = direction(6, "SDIR (the spindle direction)");
+        zero_or_empty(7, "RPA");
+        zero_or_empty(8, "RPO");
+        zero_or_empty(9, "RPAP");
+        zero_or_empty(10, "POSS");
+        active_feed();
+    } else {  // CYCLE89
+        c.kind = CycleKind::bore_dwell;
+        p.bottom_dwell = dwell_at(5);
+        active_feed();
+    }
+    p.kind = c.kind;
+    bool offered = false;
+    for (const DrillingCycleSpec& s : machine_.drilling) offered = offered || (s.canned && s.name == name && s.kind == c.kind);
+    if (!offered)
+        fail(fmt::format("{} as a {} cycle is not a canned cycle of machine {}", name, cycle_kind_name(c.kind), machine_.name));
+    return c;
+}
+
+void SinumerikReader::block(const Block& b) {
+    if (ended_) fail("a block after the end of the program");
+    struct Code {
+        int value = 0;
+        const Word* word = nullptr;
+    };
+    std::optional<Code> motion, plane, units, comp, dwell, spindle, tool_change, stop;
+    std::map<char, const Word*> w;
+    std::map<char, bool> used;
+    const Word* cr = nullptr;
+    auto set_group = [&](std::optional<Code>& group, Code c) {
+        if (group)
+            fail(fmt::format("{} and {} in one block: they belong to the same group", group->word->text, c.word->text));
+        group = c;
+    };
+    for (const Word& x : b.words) {
+        if (x.name == "CR") {
+            if (cr) fail("two CR= words in one block");
+            cr = &x;
+        } else if (x.letter == 'G') {
+            Code c{code_of(x), &x};
+            switch (c.value) {
+                case code(0): case code(1): case code(2): case code(3): set_group(motion, c); break;
+                case code(17): case code(18): case code(19): set_group(plane, c); break;
+                case code(70): case code(71): set_group(units, c); break;
+                case code(90): break;
+                case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
+                case code(94): break;
+                case code(93): case code(95): fail(fmt::format("{}: only feed per minute (G94) is read", x.text));
+                case code(40): case code(41): case code(42): set_group(comp, c); break;
+                case code(4): set_group(dwell, c); break;
+                default: fail(fmt::format("unknown code {}", x.text));
+            }
+        } else if (x.letter == 'M') {
+            Code c{code_of(x), &x};
+            switch (c.value) {
+                case code(3): case code(4): case code(5): set_group(spindle, c); break;
+                case code(6): set_group(tool_change, c); break;
+                case code(0): case code(1): case code(2): case code(30): set_group(stop, c); break;
+                default: fail(fmt::format("unknown code {}", x.text));
+            }
+        } else if (std::string_view("XYZIJKFSTD").find(x.letter) != std::string_view::npos) {
+            if (w.count(x.letter)) fail(fmt::format("two {} words in one block", x.letter));
+            w[x.letter] = &x;
+            used[x.letter] = false;
+        } else {
+            fail(fmt::format("unknown word {}", x.text));
+        }
+    }
+    auto take = [&](char letter) -> const Word* {
+        auto it = w.find(letter);
+        if (it == w.end()) return nullptr;
+        used[letter] = true;
+        return it->second;
+    };
+    auto length_of = [&](char letter) -> std::optional<double> {
+        const Word* v = take(letter);
+        return v ? std::optional<double>(length(*v)) : std::nullopt;
+    };
+    auto offset_of = [&](char letter) -> std::optional<double> {
+        const Word* v = take(letter);
+        return v ? std::optional<double>(offset(*v)) : std::nullopt;
+    };
+
+    // In a G4 block F is the dwell in seconds, not a feed.
+    if (dwell) {
+        const Word* f = take('F');
+        if (!f) fail(fmt::format("{} without its time F (seconds)", dwell->word->text));
+        if (b.words.size() != 2) fail(fmt::format("{} must stand in a block of its own with its F", dwell->word->text));
+        emit(Dwell{seconds(*f)});
+    }
+    if (const Word* f = dwell ? nullptr : take('F')) feed_ = feed(*f);
+    if (const Word* s = take('S')) {
+        rpm_ = rpm(*s);
+        if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
+    }
+    if (const Word* t = take('T')) {
+        selected_tool_ = integer_of(*t);
+        // D: the tool's cutting edge, selected with it.
+        if (const Word* d = take('D'); d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
+    }
+    if (tool_change) {
+        if (!selected_tool_) fail("M6 without a tool selected by T");
+        if (mcall_) fail(fmt::format("a tool change while the modal call {} of line {} is active", mcall_->name, mcall_->line));
+        drill_end();
+        tool_ = *selected_tool_;
+        std::string description;
+        std::string prefix = fmt::format("T{} ", tool_);
+        if (last_comment_.rfind(prefix, 0) == 0) description = last_comment_.substr(prefix.size());
+        emit(ToolChange{tool_, diameter_in(description), description});
+        forget_position();
+    }
+    if (spindle) {
+        if (spindle->value == code(5)) {
+            spindle_ = SpindleState::off;
+            emit(Spindle{SpindleState::off, 0.0});
+        } else {
+            if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", spindle->word->text));
+            spindle_ = spindle->value == code(3) ? SpindleState::cw : SpindleState::ccw;
+            emit(Spindle{spindle_, rpm_});
+        }
+    }
+    if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
+    if (units) set_units(units->value == code(70) ? Units::inch : Units::mm);
+    if (comp) {
+        // G41/G42 take the radius of the cutting edge selected with the tool (D1).
+        emit(Compensation{comp->value == code(40)  ? CompensationSide::off
+                          : comp->value == code(41) ? CompensationSide::left
+                                                    : CompensationSide::right});
+    }
+    if (motion) motion_ = motion->value;
+    bool axes = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('K') || cr;
+    if (axes) {
+        if (motion_ < 0) fail("coordinates before any motion code (G0, G1, ...)");
+        if (mcall_) {
+            // Under a modal call every positioning block drills a hole where it ends.
+            if (motion_ != code(0) || w.count('Z') || w.count('I') || w.count('J') || w.count('K') || cr)
+                fail(fmt::format("under the modal call {} of line {} camgen writes only G0 X Y hole positions",
+                                 mcall_->name, mcall_->line));
+            if (!position_known()) fail(fmt::format("{} from an unknown position", mcall_->name));
+            std::optional<double> x = length_of('X'), y = length_of('Y');
+            rapid_to(x, y, std::nullopt);
+            DrillCycle c = cycle_now();
+            if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
+            Vec3 here = position();
+            drill_point({here.x, here.y});
+        } else {
+            std::optional<double> x = length_of('X'), y = length_of('Y'), z = length_of('Z');
+            if (motion_ == code(0)) {
+                rapid_to(x, y, z);
+            } else if (motion_ == code(1)) {
+                linear_to(x, y, z);
+            } else {
+                ArcWords a;
+                a.direction = motion_ == code(2) ? ArcDirection::cw : ArcDirection::ccw;
+                a.plane = plane_;
+                a.x = x, a.y = y, a.z = z;
+                a.i = offset_of('I'), a.j = offset_of('J'), a.k = offset_of('K');
+                if (cr) a.r = length(*cr);
+                a.absolute_centre = machine_.arcs.format == ArcFormat::ijk_absolute;
+                arc(a);
+            }
+        }
+    }
+    for (const auto& [letter, was_used] : used)
+        if (!was_used) fail(fmt::format("{} has no meaning in this block", w[letter]->text));
+    if (stop && (stop->value == code(2) || stop->value == code(30))) {
+        if (mcall_) fail(fmt::format("the program ends with the modal call {} of line {} still active (MCALL ends it)",
+                                     mcall_->name, mcall_->line));
+        drill_end();
+        ended_ = true;
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<NcReader> make_sinumerik_reader(const Machine& machine, std::string source) {
+    return std::make_unique<SinumerikReader>(machine, std::move(source));
+}
+
+}  // namespace camgen::reader
