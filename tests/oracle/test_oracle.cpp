@@ -2,9 +2,11 @@
 // G99, from a start Z above and below R, the canned program camgen writes for the `linuxcnc`
 // machine and camgen's longhand program for the same cycle are both run through rs274 -g;
 // their traverse and feed end points (within 0.001 mm), feeds, dwells and spindle changes
-// must be identical. rs274 missing is a failure, never a silent pass.
+// must be identical. camgen's own reader must expand the canned programs as rs274 does.
+// rs274 missing is a failure, never a silent pass.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,11 +17,13 @@
 #include "camgen/events.hpp"
 #include "camgen/longhand.hpp"
 #include "camgen/machine.hpp"
+#include "camgen/motion.hpp"
 #include "camgen/post.hpp"
+#include "camgen/reader.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
-using camgen::oracle::Step;
+using OStep = camgen::oracle::Step;
 
 namespace {
 
@@ -87,18 +91,18 @@ std::string post(const DrillCycle& cycle, double start_z, const std::vector<Vec2
     return out.str();
 }
 
-std::string listing(const std::vector<Step>& steps) {
+std::string listing(const std::vector<OStep>& steps) {
     std::string s;
-    for (const Step& st : steps) s += "  " + oracle::describe(st) + "\n";
+    for (const OStep& st : steps) s += "  " + oracle::describe(st) + "\n";
     return s;
 }
 
-void check_same(const std::vector<Step>& canned, const std::vector<Step>& longhand) {
+void check_same(const std::vector<OStep>& canned, const std::vector<OStep>& longhand) {
     INFO("canned (rs274):\n" << listing(canned) << "longhand (rs274):\n" << listing(longhand));
     REQUIRE(canned.size() == longhand.size());
     for (size_t i = 0; i < canned.size(); ++i) {
-        const Step& a = canned[i];
-        const Step& b = longhand[i];
+        const OStep& a = canned[i];
+        const OStep& b = longhand[i];
         INFO("step " << i << ": " << oracle::describe(a) << " vs " << oracle::describe(b));
         CHECK(a.kind == b.kind);
         CHECK(std::abs(a.to.x - b.to.x) <= 0.001);
@@ -181,11 +185,11 @@ TEST_CASE("REFERENCE worked example: G99 G73 X10 Y10 Z-7 R2 Q3 and its longhand"
         while (i < steps.size() && !(steps[i].to.x == 10 && steps[i].to.y == 10)) ++i;
         REQUIRE(i + expected.size() <= steps.size());
         for (size_t k = 0; k < expected.size(); ++k) {
-            const Step& s = steps[i + k];
+            const OStep& s = steps[i + k];
             INFO("step " << k << ": " << oracle::describe(s));
-            CHECK(s.kind == (expected[k].first == 'T' ? Step::Kind::traverse : Step::Kind::feed));
+            CHECK(s.kind == (expected[k].first == 'T' ? OStep::Kind::traverse : OStep::Kind::feed));
             CHECK(s.to.z == doctest::Approx(expected[k].second).epsilon(1e-9));
-            if (s.kind == Step::Kind::feed) CHECK(s.value == 100.0);
+            if (s.kind == OStep::Kind::feed) CHECK(s.value == 100.0);
         }
     }
 }
@@ -207,7 +211,7 @@ TEST_CASE("FreeCAD 0.20 grbl defect: G83 under G98 from Z10 with R2 feeds its fi
     auto b = oracle::run_rs274(rs274, longhand);
     check_same(a, b);
     size_t first_feed = 0;
-    while (first_feed < b.size() && b[first_feed].kind != Step::Kind::feed) ++first_feed;
+    while (first_feed < b.size() && b[first_feed].kind != OStep::Kind::feed) ++first_feed;
     REQUIRE(first_feed > 0);
     REQUIRE(first_feed < b.size());
     CHECK(b[first_feed - 1].to.z == 2.0);  // the move before the first feed ends at R
@@ -225,13 +229,13 @@ TEST_CASE("every linuxcnc golden file runs through rs274; G33.1 is a rigid tap t
         std::stringstream text;
         text << f.rdbuf();
         INFO(entry.path().string());
-        std::vector<Step> steps;
+        std::vector<OStep> steps;
         REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274, text.str()));
         CHECK_FALSE(steps.empty());
         if (entry.path().stem() == "tapping") {
             int taps = 0;
-            for (const Step& s : steps)
-                if (s.kind == Step::Kind::rigid_tap) {
+            for (const OStep& s : steps)
+                if (s.kind == OStep::Kind::rigid_tap) {
                     ++taps;
                     CHECK(s.to.z == -12.0);
                 }
@@ -239,4 +243,83 @@ TEST_CASE("every linuxcnc golden file runs through rs274; G33.1 is a rigid tap t
         }
     }
     CHECK(files >= 3);
+}
+
+namespace {
+
+// The motion camgen's reader makes of a program, in the oracle's normalised form: moves of
+// zero length and zero dwells dropped, feeds with their rate, spindle entries on changes.
+std::vector<OStep> read_with_camgen(const std::string& program, const Machine& machine) {
+    Trace trace = trace_program(read_program(program, machine, "oracle.ngc"), machine);
+    std::vector<OStep> steps;
+    Vec3 at{0, 0, 0};  // rs274 starts at the origin
+    std::string spindle = "off";
+    for (const camgen::Step& s : trace.steps) {
+        switch (s.kind) {
+            case StepKind::rapid:
+            case StepKind::feed: {
+                if (s.to == at) break;
+                OStep o;
+                o.kind = s.kind == StepKind::rapid ? OStep::Kind::traverse : OStep::Kind::feed;
+                o.to = s.to;
+                if (s.kind == StepKind::feed) o.value = s.feed;
+                steps.push_back(o);
+                at = s.to;
+                break;
+            }
+            case StepKind::dwell:
+                if (s.seconds > 0) {
+                    OStep o;
+                    o.kind = OStep::Kind::dwell;
+                    o.value = s.seconds;
+                    steps.push_back(o);
+                }
+                break;
+            case StepKind::spindle: {
+                std::string state = s.spindle == SpindleState::cw ? "cw" : s.spindle == SpindleState::ccw ? "ccw" : "off";
+                if (state == spindle) break;
+                spindle = state;
+                OStep o;
+                o.kind = OStep::Kind::spindle;
+                o.spindle = state;
+                o.value = s.spindle == SpindleState::off ? 0.0 : s.rpm;
+                steps.push_back(o);
+                break;
+            }
+            case StepKind::tool_change: break;
+        }
+    }
+    return steps;
+}
+
+// The steps from the first move that reaches the first hole's XY on: the approach after the
+// tool change differs in how the two sides know the start (rs274 from its origin).
+std::vector<OStep> from_first_hole(const std::vector<OStep>& steps) {
+    auto it = std::find_if(steps.begin(), steps.end(), [](const OStep& s) {
+        return (s.kind == OStep::Kind::traverse || s.kind == OStep::Kind::feed) && s.to.x == holes[0].x && s.to.y == holes[0].y;
+    });
+    return {it, steps.end()};
+}
+
+}  // namespace
+
+TEST_CASE("camgen's reader expands the canned cycles exactly as LinuxCNC does") {
+    const std::string rs274 = rs274_path();
+    const Machine machine = load_machine("linuxcnc");
+    int compared = 0;
+    for (CycleKind kind : {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break,
+                           CycleKind::ream, CycleKind::bore_stop, CycleKind::bore_dwell}) {
+        for (double start_z : {10.0, 0.5}) {
+            const double retract = std::max(start_z, r_plane);
+            const std::string canned = post(make_cycle(kind, retract, CycleOutput::canned), start_z);
+            INFO(fmt::format("{} from Z{}\n{}", code(kind), start_z, canned));
+            REQUIRE(contains(canned, fmt::format(" {} X10 Y10 Z-7 R2", code(kind))));
+            auto oracle_steps = from_first_hole(oracle::run_rs274(rs274, canned));
+            auto camgen_steps = from_first_hole(read_with_camgen(canned, machine));
+            REQUIRE(oracle_steps.size() > 3);
+            check_same(oracle_steps, camgen_steps);
+            ++compared;
+        }
+    }
+    CHECK(compared == 14);
 }
