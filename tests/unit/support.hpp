@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the unit tests: run the pipeline in-process, split NC text into words.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "camgen/cli.hpp"
 #include "camgen/error.hpp"
 #include "camgen/job_json.hpp"
 #include "camgen/machine.hpp"
@@ -52,6 +54,31 @@ inline std::map<char, std::string> words_of(const std::string& line) {
     for (std::string word; in >> word;)
         if (!word.empty()) w[word[0]] = word.substr(1);
     return w;
+}
+
+// The result of running the command line in-process.
+struct Run {
+    int code;
+    std::string out;
+    std::string err;
+};
+
+// Runs camgen with these arguments (after "camgen"), standard input given as text.
+inline Run run(std::vector<std::string> args, const std::string& stdin_text = "") {
+    std::vector<const char*> argv{"camgen"};
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::istringstream in(stdin_text);
+    std::ostringstream out, err;
+    int code = run_cli(static_cast<int>(argv.size()), argv.data(), in, out, err);
+    return {code, out.str(), err.str()};
+}
+
+// An empty scratch folder for one test, under the system's temporary folder.
+inline std::filesystem::path scratch(const std::string& name) {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / ("camgen-test-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
 }
 
 inline std::string read_file(const std::string& path) {

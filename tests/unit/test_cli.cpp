@@ -9,30 +9,10 @@
 
 namespace fs = std::filesystem;
 using namespace camgen;
+using test::Run;
+using test::run;
 
 namespace {
-
-struct Run {
-    int code;
-    std::string out;
-    std::string err;
-};
-
-Run run(std::vector<std::string> args, const std::string& stdin_text = "") {
-    std::vector<const char*> argv{"camgen"};
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::istringstream in(stdin_text);
-    std::ostringstream out, err;
-    int code = run_cli(static_cast<int>(argv.size()), argv.data(), in, out, err);
-    return {code, out.str(), err.str()};
-}
-
-fs::path scratch(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("camgen-cli-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
@@ -44,7 +24,7 @@ TEST_CASE("posting a sample to stdout and to a file") {
     Run r = run({sample, "--machine", "wabeco"});
     CHECK(r.code == 0);
     CHECK(r.out.rfind("_\n_\n", 0) == 0);
-    fs::path dir = scratch("ok");
+    fs::path dir = test::scratch("cli-ok");
     Run f = run({sample, "--machine", "fanuc", "-o", (dir / "plate.nc").string()});
     CHECK(f.code == 0);
     CHECK(test::read_file((dir / "plate.nc").string()).rfind("%\nO1000", 0) == 0);
@@ -90,7 +70,7 @@ TEST_CASE("usage errors exit 2") {
 }
 
 TEST_CASE("an invalid job exits 1 with path and line, and -o leaves no file behind") {
-    fs::path dir = scratch("bad");
+    fs::path dir = test::scratch("cli-bad");
     struct Case {
         const char* name;
         std::string json;
@@ -120,7 +100,7 @@ TEST_CASE("an invalid job exits 1 with path and line, and -o leaves no file behi
 }
 
 TEST_CASE("an error while posting keeps an existing output file and names the line") {
-    fs::path dir = scratch("keep");
+    fs::path dir = test::scratch("cli-keep");
     fs::path out = dir / "part.knc";
     write(out, "previous program\n");
     fs::path job = dir / "job.json";
@@ -141,7 +121,7 @@ TEST_CASE("an unreadable job or unwritable output exits 3") {
 }
 
 TEST_CASE("--machine takes the path of a machine file: a decimal comma and no sequence numbers") {
-    fs::path dir = scratch("machine-path");
+    fs::path dir = test::scratch("cli-machine-path");
     std::string text = test::read_file(CAMGEN_SOURCE_DIR "/machines/fanuc.json");
     auto replace = [&](const std::string& from, const std::string& to) {
         auto at = text.find(from);
@@ -158,7 +138,7 @@ TEST_CASE("--machine takes the path of a machine file: a decimal comma and no se
 }
 
 TEST_CASE("a broken machine file exits 1 naming the machine file, the JSON path and the line") {
-    fs::path dir = scratch("machine-bad");
+    fs::path dir = test::scratch("cli-machine-bad");
     write(dir / "bad.json", "{\n  \"description\": \"x\",\n  \"dialect\": \"iso\",\n  \"extension\": \"nc\",\n"
                             "  \"limits\": {\"maxFeed\": -5}\n}\n");
     Run r = run({sample, "--machine", (dir / "bad.json").string(), "-o", (dir / "out.nc").string()});

@@ -14,30 +14,10 @@
 
 namespace fs = std::filesystem;
 using namespace camgen;
+using test::Run;
+using test::run;
 
 namespace {
-
-struct Run {
-    int code;
-    std::string out;
-    std::string err;
-};
-
-Run run(std::vector<std::string> args, const std::string& stdin_text = "") {
-    std::vector<const char*> argv{"camgen"};
-    for (const auto& a : args) argv.push_back(a.c_str());
-    std::istringstream in(stdin_text);
-    std::ostringstream out, err;
-    int code = run_cli(static_cast<int>(argv.size()), argv.data(), in, out, err);
-    return {code, out.str(), err.str()};
-}
-
-fs::path scratch(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("camgen-verify-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 const std::string samples = CAMGEN_SOURCE_DIR "/samples/";
 
@@ -99,7 +79,7 @@ TEST_CASE("verify prints the statistics of each sample on each machine, worked o
          {"holes          0", "feed path      339.097 mm", "lowest Z       -3.000 mm",
           "time           1 min 03.2 s (feed 1 min 02.5 s, rapid 0.7 s at 6000 mm/min, dwell 0.0 s)"}},
     };
-    fs::path dir = scratch("stats");
+    fs::path dir = test::scratch("verify-stats");
     for (const Case& c : cases) {
         CAPTURE(c.sample);
         CAPTURE(c.machine);
@@ -116,7 +96,7 @@ TEST_CASE("verify prints the statistics of each sample on each machine, worked o
 }
 
 TEST_CASE("verify exits 1 and prints the first mismatch; reading errors name the line") {
-    fs::path dir = scratch("mismatch");
+    fs::path dir = test::scratch("verify-mismatch");
     std::string job = samples + "plate.json";
     std::string text = run({job, "--machine", "fanuc"}).out;
     std::string broken = text;
@@ -153,7 +133,7 @@ TEST_CASE("--stats prints the statistics to stderr; the program is unchanged") {
     CHECK(st.out == plain.out);
     CHECK(has_line(st.err, "rapid path     539.818 mm (+ 2 rapids from the tool-change position, not measured)"));
     CHECK(has_line(st.err, "holes          12"));
-    fs::path dir = scratch("stats-file");
+    fs::path dir = test::scratch("verify-stats-file");
     Run f = run({job, "--machine", "fanuc", "--stats", "-o", (dir / "p.nc").string()});
     CHECK(f.code == 0);
     CHECK(test::read_file((dir / "p.nc").string()) == run({job, "--machine", "fanuc"}).out);
@@ -161,7 +141,7 @@ TEST_CASE("--stats prints the statistics to stderr; the program is unchanged") {
 }
 
 TEST_CASE("--stats, --plot and verify read every machine's programs; an unknown dialect is refused") {
-    fs::path dir = scratch("every-machine");
+    fs::path dir = test::scratch("verify-every-machine");
     for (const auto& [name, description] : list_machines()) {
         CAPTURE(name);
         Machine m = load_machine(name);
@@ -194,7 +174,7 @@ TEST_CASE("--stats, --plot and verify read every machine's programs; an unknown 
 }
 
 TEST_CASE("--plot writes a deterministic SVG backplot, on the main command and on verify") {
-    fs::path dir = scratch("plot");
+    fs::path dir = test::scratch("verify-plot");
     std::string job = samples + "plate.json";
     fs::path a = dir / "a.svg", b = dir / "b.svg";
     Run r = run({job, "--machine", "wabeco", "--plot", a.string()});
@@ -241,7 +221,7 @@ TEST_CASE("the backplots committed under samples/ are up to date") {
     // samples/<name>.svg is the wabeco backplot of samples/<name>.json, or the fanuc one where
     // wabeco cannot run the job (tests/golden/wabeco/<name>.err); scripts/update-golden
     // rewrites them. Every sample has one.
-    fs::path dir = scratch("samples-svg");
+    fs::path dir = test::scratch("verify-samples-svg");
     int plots = 0;
     for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
         if (f.path().extension() != ".json") continue;
