@@ -117,7 +117,7 @@ void HeidenhainPost::on_tool_change(const ToolChange& tool) {
 void HeidenhainPost::flush_tool_call(std::optional<double> rpm) {
     const ToolChange& t = *pending_tool_;
     if (!t.description.empty()) on_comment(fmt::format("T{} {}", t.number, t.description));
-    out_.add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? "S" + rpm_fmt_.format(*rpm) : "").end();
+    out_.add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? rpm_fmt_.word("S", *rpm) : "").end();
     pending_tool_.reset();
 }
 

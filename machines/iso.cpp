@@ -82,7 +82,7 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
     length_offset_pending_ = length_offset_;
 }
 
-void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add("P" + dwell_fmt_.format(seconds)).end(); }
+void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("P", seconds)).end(); }
 
 void IsoPost::on_rapid(const Vec3& to) {
     if (length_offset_pending_ && z_.last() != to.z) {
@@ -117,7 +117,7 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
         // R in one move; the control restores the spindle direction.
         on_rapid({at.x, at.y, pos_.z});
         on_rapid({at.x, at.y, c.safe_z});
-        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add("K" + xyz_fmt_.format(*c.params.pitch)).end();
+        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.params.pitch)).end();
         motion_.reset();
         z_.set_last(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});
@@ -132,10 +132,10 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
     // G98 returns to the Z the tool had before the cycle: the retract plane, where the
     // operation put it. G99 returns to R.
     out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
-    out_.add(z_.force(c.bottom_z)).add("R" + xyz_fmt_.format(c.safe_z));
+    out_.add(z_.force(c.bottom_z)).add(xyz_fmt_.word("R", c.safe_z));
     if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.first_depth)
-        out_.add("Q" + xyz_fmt_.format(*p.first_depth));
-    if (p.bottom_dwell && *p.bottom_dwell > 0) out_.add("P" + dwell_fmt_.format(*p.bottom_dwell));
+        out_.add(xyz_fmt_.word("Q", *p.first_depth));
+    if (p.bottom_dwell && *p.bottom_dwell > 0) out_.add(dwell_fmt_.word("P", *p.bottom_dwell));
     out_.add(feed_word(c.feed)).end();
 }
 

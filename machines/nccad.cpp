@@ -87,7 +87,7 @@ void NccadPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec&,
     std::string xs = x_.force(at.x), ys = y_.force(at.y);
     if (first) {
         // G81 X Y Z<bottom> B<retract plane> F: the feed runs from B to Z, then back to B.
-        out_.add(g(81)).add(xs).add(ys).add(z_.force(c.bottom_z)).add("B" + xyz_fmt_.format(c.retract_z))
+        out_.add(g(81)).add(xs).add(ys).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("B", c.retract_z))
             .add((feed_.reset(), feed_word(c.feed))).end();
     } else {
         out_.add(g(79)).add(xs).add(ys).end();

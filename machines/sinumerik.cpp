@@ -120,7 +120,7 @@ void SinumerikPost::on_tool_change(const ToolChange& tool) {
 }
 
 // G4 F: dwell in seconds (G4 S would be spindle revolutions).
-void SinumerikPost::on_dwell(double seconds) { out_.add(g(4)).add("F" + dwell_fmt_.format(seconds)).end(); }
+void SinumerikPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("F", seconds)).end(); }
 
 // G41/G42 take no D word here: D1 (the cutting edge) was selected with the tool.
 std::string SinumerikPost::compensation_words(CompensationSide side) const {
@@ -142,7 +142,7 @@ void SinumerikPost::on_circular(const ArcGeometry& arc, double feed) {
     std::string ys = arc.plane != Plane::xz ? y_.force(arc.end.y) : y_.format(arc.end.y);
     std::string zs = arc.plane != Plane::xy ? z_.force(arc.end.z) : z_.format(arc.end.z);
     double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
-    out_.add(plane).add(motion).add(xs).add(ys).add(zs).add("CR=" + xyz_fmt_.format(r)).add(fs).end();
+    out_.add(plane).add(motion).add(xs).add(ys).add(zs).add(xyz_fmt_.word("CR=", r)).add(fs).end();
 }
 
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {

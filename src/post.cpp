@@ -54,8 +54,8 @@ void Post::close() {
     out_.flush();
 }
 
-std::string Post::g(double code) const { return "G" + code_fmt_.format(code); }
-std::string Post::m(double code) const { return "M" + code_fmt_.format(code); }
+std::string Post::g(double code) const { return code_fmt_.word("G", code); }
+std::string Post::m(double code) const { return code_fmt_.word("M", code); }
 
 void Post::warn(const std::string& message) {
     ++warnings_;
@@ -131,7 +131,7 @@ std::string Post::speed_word(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
         fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
                              machine_.limits.max_rpm));
-    return "S" + rpm_fmt_.format(rpm);
+    return rpm_fmt_.word("S", rpm);
 }
 
 void Post::on_spindle(const Spindle& s) {
@@ -143,7 +143,8 @@ void Post::on_spindle(const Spindle& s) {
 }
 
 void Post::on_linear(const Vec3& to, double feed) {
-    std::string comp = pending_compensation_ ? compensation_words(*pending_compensation_) : std::string();
+    std::string comp;
+    if (pending_compensation_) comp = compensation_words(*pending_compensation_);
     std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
@@ -162,7 +163,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     if (s.format == ArcFormat::nccad_angle) {
         // nccad: G02 D<sweep> I J, no end point: the control computes it. Remember the end.
         nc::Word i("I", ijk_fmt_, true), j("J", ijk_fmt_, true);
-        out_.add(motion).add("D" + angle_fmt_.format(arc.sweep * deg))
+        out_.add(motion).add(angle_fmt_.word("D", arc.sweep * deg))
             .add(i.format(arc.centre.x - arc.start.x))
             .add(j.format(arc.centre.y - arc.start.y))
             .add(fs)
@@ -181,13 +182,13 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     out_.add(plane).add(motion).add(xs).add(ys).add(zs);
     if (s.format == ArcFormat::radius) {
         double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
-        out_.add("R" + xyz_fmt_.format(r));
+        out_.add(xyz_fmt_.word("R", r));
     } else {
         Vec3 c = arc.centre;
         if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
-        if (arc.plane != Plane::yz) out_.add("I" + ijk_fmt_.format(c.x));
-        if (arc.plane != Plane::xz) out_.add("J" + ijk_fmt_.format(c.y));
-        if (arc.plane != Plane::xy) out_.add("K" + ijk_fmt_.format(c.z));
+        if (arc.plane != Plane::yz) out_.add(ijk_fmt_.word("I", c.x));
+        if (arc.plane != Plane::xz) out_.add(ijk_fmt_.word("J", c.y));
+        if (arc.plane != Plane::xy) out_.add(ijk_fmt_.word("K", c.z));
     }
     out_.add(fs).end();
 }

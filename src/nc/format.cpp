@@ -127,6 +127,12 @@ std::string Format::format(double value) const {
     return s;
 }
 
+std::string Format::word(std::string_view letter, double value) const {
+    std::string s(letter);
+    append(s, value);
+    return s;
+}
+
 double Format::rounded(double value) const {
     Decimal d = digits_of(spec_, value);
     double r = 0.0;

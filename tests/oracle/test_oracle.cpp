@@ -76,7 +76,7 @@ std::string post(const DrillCycle& cycle, double start_z, const std::vector<Vec2
     o.program_name = "oracle";
     auto p = make_post(m, out, o);
     p->open();
-    p->emit(OperationStart{"oracle", "/operations/0"});
+    p->emit(OperationStart{"oracle", "/operations/0", std::nullopt});
     p->emit(ToolChange{1, 6.0, "drill"});
     p->emit(Spindle{SpindleState::cw, 1000.0});
     p->emit(Rapid{{0, 0, start_z}});

@@ -139,7 +139,7 @@ inline std::vector<NcMove> interpret(const std::string& text, ArcFormat form, Ve
         if (raw.empty() || raw[0] == '(' || raw[0] == ';' || raw[0] == '%' || raw[0] == '_' || raw[0] == 'O') continue;
         std::istringstream in(raw);
         std::map<char, double> w;
-        bool has_motion = false, skip = false;
+        bool skip = false;
         for (std::string word; in >> word;) {
             char letter = word[0];
             if (letter == 'M') {  // spindle, messages: no motion
@@ -150,7 +150,7 @@ inline std::vector<NcMove> interpret(const std::string& text, ArcFormat form, Ve
             double value = std::stod(word.substr(1));
             if (letter == 'G') {
                 int g = static_cast<int>(value);
-                if (g <= 3) motion = g, has_motion = true;
+                if (g <= 3) motion = g;
                 else if (g == 17) plane = Plane::xy;
                 else if (g == 18) plane = Plane::xz;
                 else if (g == 19) plane = Plane::yz;

@@ -4,6 +4,7 @@
 // mark of the machine, independent of the process locale.
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace camgen::nc {
 
@@ -30,6 +31,8 @@ public:
     // Appends prefix and number to `out`. Throws std::logic_error for NaN or infinity.
     void append(std::string& out, double value) const;
     std::string format(double value) const;
+    // `letter` followed by the formatted value: word("R", 2) is "R2.000".
+    std::string word(std::string_view letter, double value) const;
     // The value a control reads back from the text, in input units (rounded, unscaled).
     double rounded(double value) const;
     // True when the value formats as zero.
