@@ -101,7 +101,6 @@ private:
     int dwell_def_line_ = 0;       // the line of CYCL DEF 9.0, until its 9.1
     std::optional<Vec2> centre_;   // CC
     CompensationSide comp_ = CompensationSide::off;
-    SpindleState spindle_ = SpindleState::off;
 };
 
 Word HeidenhainReader::word(std::string_view token) const {
@@ -216,17 +215,9 @@ void HeidenhainReader::tool_call(const std::vector<std::string_view>& t) {
         // The tool changes with the spindle stopped.
         if (spindle_ != SpindleState::off) emit(Spindle{SpindleState::off, 0.0});
         spindle_ = SpindleState::off;
-        tool_ = *tool;
-        std::string description;
-        std::string prefix = fmt::format("T{} ", tool_);
-        if (last_comment_.rfind(prefix, 0) == 0) description = last_comment_.substr(prefix.size());
-        emit(ToolChange{tool_, diameter_in(description), description});
-        forget_position();
+        change_tool(*tool, commented_description(*tool));
     }
-    if (speed) {
-        rpm_ = *speed;
-        if (spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
-    }
+    if (speed) spindle_speed(*speed, nullptr);
 }
 
 void HeidenhainReader::m_block(const std::vector<std::string_view>& t) {
@@ -235,14 +226,7 @@ void HeidenhainReader::m_block(const std::vector<std::string_view>& t) {
     switch (code_of(m)) {
         case code(3):
         case code(4):
-            if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed (TOOL CALL .. S)", m.text));
-            spindle_ = code_of(m) == code(3) ? SpindleState::cw : SpindleState::ccw;
-            emit(Spindle{spindle_, rpm_});
-            break;
-        case code(5):
-            spindle_ = SpindleState::off;
-            emit(Spindle{SpindleState::off, 0.0});
-            break;
+        case code(5): switch_spindle(m, "(TOOL CALL .. S)"); break;
         case code(2):
         case code(30): stopped_ = true; break;
         default: fail(fmt::format("unknown code {}", m.text));
@@ -329,7 +313,6 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
     // Q200, Q201 and Q204 count from the surface Q203 (camgen writes the feed-start plane as
     // the surface when it lies below the reference plane).
     DrillCycle c;
-    c.output = CycleOutput::canned;
     c.reference_z = len(203);
     if (q(200) < 0) bad(200, "the set-up clearance must not be negative");
     if (!(q(201) < 0)) bad(201, "the depth must be negative (below the surface)");
@@ -339,12 +322,8 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
     c.retract_z = len(203) + len(204);
     c.spindle_rpm = rpm;
     c.spindle_direction = spindle == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
+    set_canned_planes(c);
     DrillParams& p = c.params;
-    p.output = CycleOutput::canned;
-    p.retract_plane = c.retract_z;
-    p.reference_plane = c.reference_z;
-    p.end_depth = c.bottom_z;
-    p.end_depth_is_absolute = true;
     auto dwell = [&](int n) -> std::optional<double> {
         if (q(n) < 0) bad(n, "a dwell must not be negative");
         return q(n) > 0 ? std::optional<double>(sec(n)) : std::nullopt;

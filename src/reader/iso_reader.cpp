@@ -5,7 +5,6 @@
 // (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
 // G98/G99 (REFERENCE.md §3), LinuxCNC G33.1 rigid tapping, M2/M30.
 #include <algorithm>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -66,15 +65,10 @@ protected:
     void finish() override;
 
 private:
-    // A G code and the word it was written as, for messages.
-    struct Code {
-        int value = 0;
-        const Word* word = nullptr;
-    };
-    void set_group(std::optional<Code>& group, Code c) const;
-    void motion_block(int mode, const std::map<char, const Word*>& w, std::map<char, bool>& used);
-    void cycle_block(int g, const std::map<char, const Word*>& w, std::map<char, bool>& used);
-    void rigid_tap(const std::map<char, const Word*>& w, std::map<char, bool>& used);
+    void set_group(std::optional<Code>& group, Code c) const { NcReader::set_group(group, c, "modal group"); }
+    void motion_block(int mode, BlockWords& w);
+    void cycle_block(int g, BlockWords& w);
+    void rigid_tap(BlockWords& w);
     const DrillingCycleSpec* canned_spec(int g) const;
     std::optional<InsertTool> insert_tool(const std::string& comment) const;
 
@@ -86,15 +80,8 @@ private:
     std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
     std::optional<double> initial_z_;  // Z when the current run of cycle blocks began
     std::optional<int> selected_tool_;
-    SpindleState spindle_ = SpindleState::off;
     bool ended_ = false;
 };
-
-void IsoReader::set_group(std::optional<Code>& group, Code c) const {
-    if (group)
-        fail(fmt::format("{} and {} in one block: they belong to the same modal group", group->word->text, c.word->text));
-    group = c;
-}
 
 const DrillingCycleSpec* IsoReader::canned_spec(int g) const {
     for (const DrillingCycleSpec& spec : machine_.drilling) {
@@ -159,9 +146,9 @@ void IsoReader::block(const Block& b) {
         return;
     }
     std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell;
-    std::optional<Code> spindle, tool_change, stop, coolant;
-    std::map<char, const Word*> w;
-    std::map<char, bool> used;
+    std::optional<Code> coolant;
+    MCodes m;
+    BlockWords w(*this, "XYZIJKRQPFSTHD");
     for (const Word& x : b.words) {
         if (x.letter == 'G') {
             Code c{code_of(x), &x};
@@ -199,77 +186,44 @@ void IsoReader::block(const Block& b) {
             }
         } else if (x.letter == 'M') {
             Code c{code_of(x), &x};
+            if (shared_m_code(c, m, "modal group")) continue;
             switch (c.value) {
-                case code(3): case code(4): case code(5): set_group(spindle, c); break;
-                case code(6): set_group(tool_change, c); break;
-                case code(0): case code(1): case code(2): case code(30): set_group(stop, c); break;
                 case code(7): case code(8): case code(9): set_group(coolant, c); break;
                 default: fail(fmt::format("unknown code {}", x.text));
             }
-        } else if (std::string_view("XYZIJKRQPFSTHD").find(x.letter) != std::string_view::npos) {
-            if (w.count(x.letter)) fail(fmt::format("two {} words in one block", x.letter));
-            w[x.letter] = &x;
-            used[x.letter] = false;
         } else {
-            fail(fmt::format("unknown word {}", x.text));
+            w.add(x);
         }
     }
-    auto take = [&](char letter) -> const Word* {
-        auto it = w.find(letter);
-        if (it == w.end()) return nullptr;
-        used[letter] = true;
-        return it->second;
-    };
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
-    if (const Word* f = take('F')) feed_ = feed(*f);
-    if (const Word* s = take('S')) {
-        rpm_ = rpm(*s);
-        if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
-    }
-    if (const Word* t = take('T')) {
+    if (const Word* f = w.take('F')) feed_ = feed(*f);
+    if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
+    if (const Word* t = w.take('T')) {
         if (tool_change_ == ToolChangeStyle::pause)
             fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
                              "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
         selected_tool_ = integer_of(*t);
     }
-    if (tool_change && tool_change_ == ToolChangeStyle::pause)
+    if (m.tool_change && tool_change_ == ToolChangeStyle::pause)
         fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
                          "and pauses with M0", machine_.name));
-    if (stop && stop->value == code(0) && tool_change_ == ToolChangeStyle::pause) {
+    if (m.stop && m.stop->value == code(0) && tool_change_ == ToolChangeStyle::pause) {
         // GRBL: the spindle is off; the operator changes the tool the comment names.
         if (!pending_insert_)
             fail(fmt::format("M0 without the comment (Insert tool <n>: ...) on the line before it: machine {} "
                              "pauses only to change tools",
                              machine_.name));
-        drill_end();
-        tool_ = pending_insert_->number;
-        emit(ToolChange{tool_, diameter_in(pending_insert_->description), pending_insert_->description});
-        forget_position();
+        change_tool(pending_insert_->number, pending_insert_->description);
         pending_insert_.reset();
     }
-    if (tool_change) {
+    if (m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool number T");
-        drill_end();
-        tool_ = *selected_tool_;
-        std::string description;
-        std::string prefix = fmt::format("T{} ", tool_);
-        if (last_comment_.rfind(prefix, 0) == 0) description = last_comment_.substr(prefix.size());
-        emit(ToolChange{tool_, diameter_in(description), description});
-        forget_position();
+        change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
-    if (spindle) {
-        if (spindle->value == code(5)) {
-            spindle_ = SpindleState::off;
-            emit(Spindle{SpindleState::off, 0.0});
-        } else {
-            if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", spindle->word->text));
-            spindle_ = spindle->value == code(3) ? SpindleState::cw : SpindleState::ccw;
-            emit(Spindle{spindle_, rpm_});
-        }
-    }
+    if (m.spindle) switch_spindle(*m.spindle->word, "S");
     if (dwell) {
-        const Word* p = take('P');
+        const Word* p = w.take('P');
         if (!p) fail(fmt::format("{} without its time P", dwell->word->text));
         emit(Dwell{seconds(*p)});
     }
@@ -279,11 +233,11 @@ void IsoReader::block(const Block& b) {
         if (comp->value == code(40)) {
             emit(Compensation{CompensationSide::off});
         } else {
-            if (!take('D')) fail(fmt::format("{} without its offset number D", comp->word->text));
+            if (!w.take('D')) fail(fmt::format("{} without its offset number D", comp->word->text));
             emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right});
         }
     }
-    if (length_offset && length_offset->value == code(43) && !take('H'))
+    if (length_offset && length_offset->value == code(43) && !w.take('H'))
         fail(fmt::format("{} without its offset number H", length_offset->word->text));
     if (return_level) g98_ = return_level->value == code(98);
     if (motion) {
@@ -297,93 +251,62 @@ void IsoReader::block(const Block& b) {
         }
         motion_ = motion->value;
     }
-    bool axes = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('K') ||
-                w.count('R') || w.count('Q') || (w.count('P') && !used['P']);
+    bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || w.has('R') ||
+                w.has('Q') || w.unused('P');
     if (axes) {
         if (motion_ < 0 || motion_ == code(80))
             fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
-        motion_block(motion_, w, used);
+        motion_block(motion_, w);
     }
-    for (const auto& [letter, was_used] : used)
-        if (!was_used) fail(fmt::format("{} has no meaning in this block", w[letter]->text));
-    if (stop && (stop->value == code(2) || stop->value == code(30))) {
+    w.require_all_used();
+    if (m.stop && (m.stop->value == code(2) || m.stop->value == code(30))) {
         drill_end();
         ended_ = true;
     }
 }
 
-void IsoReader::motion_block(int mode, const std::map<char, const Word*>& w, std::map<char, bool>& used) {
-    auto length_of = [&](char letter) -> std::optional<double> {
-        auto it = w.find(letter);
-        if (it == w.end()) return std::nullopt;
-        used[letter] = true;
-        return length(*it->second);
-    };
-    auto offset_of = [&](char letter) -> std::optional<double> {
-        auto it = w.find(letter);
-        if (it == w.end()) return std::nullopt;
-        used[letter] = true;
-        return offset(*it->second);
-    };
+void IsoReader::motion_block(int mode, BlockWords& w) {
     if (cycle_kind_of(mode)) {
-        cycle_block(mode, w, used);
+        cycle_block(mode, w);
         return;
     }
     if (mode == code(33.1)) {
-        rigid_tap(w, used);
+        rigid_tap(w);
         return;
     }
     drill_end();
     initial_z_.reset();
-    std::optional<double> x = length_of('X'), y = length_of('Y'), z = length_of('Z');
-    if (mode == code(0)) {
-        rapid_to(x, y, z);
-    } else if (mode == code(1)) {
-        linear_to(x, y, z);
-    } else {
-        ArcWords a;
-        a.direction = mode == code(2) ? ArcDirection::cw : ArcDirection::ccw;
-        a.plane = plane_;
-        a.x = x, a.y = y, a.z = z;
-        a.i = offset_of('I'), a.j = offset_of('J'), a.k = offset_of('K');
-        a.r = length_of('R');
-        a.absolute_centre = machine_.arcs.format == ArcFormat::ijk_absolute;
-        if (auto it = w.find('P'); it != w.end()) {
+    if (std::optional<ArcWords> a = move_or_arc(mode, plane_, w)) {
+        a->r = w.length('R');
+        if (const Word* pw = w.take('P')) {
             // P on an arc: the number of turns (LinuxCNC), 1 for a plain arc.
-            used['P'] = true;
-            int p = integer_of(*it->second);
-            if (p < 1) fail(fmt::format("{}: an arc makes at least one turn", it->second->text));
-            a.turns = p - 1;
+            int p = integer_of(*pw);
+            if (p < 1) fail(fmt::format("{}: an arc makes at least one turn", pw->text));
+            a->turns = p - 1;
         }
-        arc(a);
+        arc(*a);
     }
 }
 
-void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::map<char, bool>& used) {
+void IsoReader::cycle_block(int g, BlockWords& w) {
     const DrillingCycleSpec& spec = *canned_spec(g);
     const std::string name = spec.name;
-    auto get = [&](char letter) -> const Word* {
-        auto it = w.find(letter);
-        if (it == w.end()) return nullptr;
-        used[letter] = true;
-        return it->second;
-    };
-    if (w.count('I') || w.count('J') || w.count('K')) fail(fmt::format("I/J/K in a {} block", name));
+    if (w.has('I') || w.has('J') || w.has('K')) fail(fmt::format("I/J/K in a {} block", name));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
     Vec3 here = position();
     if (!initial_z_) initial_z_ = here.z;
     std::optional<double> x, y;
-    if (const Word* v = get('X')) x = length(*v);
-    if (const Word* v = get('Y')) y = length(*v);
-    if (const Word* v = get('Z')) cycle_z_ = length(*v);
-    if (const Word* v = get('R')) cycle_r_ = length(*v);
+    if (const Word* v = w.take('X')) x = length(*v);
+    if (const Word* v = w.take('Y')) y = length(*v);
+    if (const Word* v = w.take('Z')) cycle_z_ = length(*v);
+    if (const Word* v = w.take('R')) cycle_r_ = length(*v);
     bool pecks = spec.kind == CycleKind::deep || spec.kind == CycleKind::chip_break;
-    if (const Word* v = get('Q')) {
+    if (const Word* v = w.take('Q')) {
         if (!pecks || !has_field(spec, DrillField::first_depth))
             fail(fmt::format("{}: {} on machine {} takes no peck depth Q", v->text, name, machine_.name));
         cycle_q_ = length(*v);
     }
-    if (const Word* v = get('P')) {
+    if (const Word* v = w.take('P')) {
         if (!has_field(spec, DrillField::bottom_dwell))
             fail(fmt::format("{}: {} on machine {} takes no dwell P", v->text, name, machine_.name));
         cycle_p_ = seconds(*v);
@@ -394,7 +317,6 @@ void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::ma
     if (!feed_) fail(fmt::format("{} without a feed F", name));
     DrillCycle c;
     c.kind = spec.kind;
-    c.output = CycleOutput::canned;
     c.safe_z = *cycle_r_;
     c.reference_z = *cycle_r_;
     // G98: back to the Z the tool had before the first cycle block (if above R); G99: to R.
@@ -404,11 +326,7 @@ void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::ma
     c.spindle_rpm = rpm_;
     DrillParams& p = c.params;
     p.kind = spec.kind;
-    p.retract_plane = c.retract_z;
-    p.reference_plane = c.reference_z;
-    p.end_depth = c.bottom_z;
-    p.end_depth_is_absolute = true;
-    p.output = CycleOutput::canned;
+    set_canned_planes(c);
     if (pecks) {
         if (!cycle_q_) fail(fmt::format("{} without its peck depth Q", name));
         if (!(*cycle_q_ > 0)) fail(fmt::format("{}: the peck depth Q must be > 0", name));
@@ -426,22 +344,16 @@ void IsoReader::cycle_block(int g, const std::map<char, const Word*>& w, std::ma
     drill_point({x.value_or(here.x), y.value_or(here.y)});
 }
 
-void IsoReader::rigid_tap(const std::map<char, const Word*>& w, std::map<char, bool>& used) {
+void IsoReader::rigid_tap(BlockWords& w) {
     // LinuxCNC G33.1 Z K: from where the tool stands, in to Z synchronised with the spindle
     // (feed = pitch K x speed), spindle reversed, out to the start Z, the spindle's direction
     // restored. Tapping left-hand under M4 is the same cycle the other way round. It is read
     // as the tap the posts would write longhand from that Z.
-    auto get = [&](char letter) -> const Word* {
-        auto it = w.find(letter);
-        if (it == w.end()) return nullptr;
-        used[letter] = true;
-        return it->second;
-    };
     for (char letter : {'X', 'Y', 'I', 'J', 'R', 'Q', 'P'})
-        if (w.count(letter))
-            fail(fmt::format("{} on G33.1: camgen positions the hole with G0 and taps along Z only", w.at(letter)->text));
-    const Word* zw = get('Z');
-    const Word* kw = get('K');
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G33.1: camgen positions the hole with G0 and taps along Z only", x->text));
+    const Word* zw = w.take('Z');
+    const Word* kw = w.take('K');
     if (!zw || !kw) fail("G33.1 needs the hole bottom Z and the pitch K");
     if (!position_known()) fail("G33.1 from an unknown position");
     const double bottom = length(*zw), pitch = length(*kw);
@@ -451,7 +363,6 @@ void IsoReader::rigid_tap(const std::map<char, const Word*>& w, std::map<char, b
     if (spindle_ == SpindleState::off || !(rpm_ > 0)) fail("G33.1 with the spindle off: rigid tapping follows the spindle");
     DrillCycle c;
     c.kind = spindle_ == SpindleState::cw ? CycleKind::tap : CycleKind::tap_left;
-    c.output = CycleOutput::canned;
     c.retract_z = c.reference_z = c.safe_z = here.z;
     c.bottom_z = bottom;
     c.feed = pitch * rpm_;
@@ -459,11 +370,8 @@ void IsoReader::rigid_tap(const std::map<char, const Word*>& w, std::map<char, b
     c.spindle_direction = spindle_ == SpindleState::cw ? SpindleDirection::cw : SpindleDirection::ccw;
     DrillParams& p = c.params;
     p.kind = c.kind;
-    p.retract_plane = p.reference_plane = here.z;
-    p.end_depth = bottom;
-    p.end_depth_is_absolute = true;
+    set_canned_planes(c);
     p.pitch = pitch;
-    p.output = CycleOutput::canned;
     drill_cycle(c);
     drill_point({here.x, here.y});
     drill_end();

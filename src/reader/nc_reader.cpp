@@ -161,6 +161,91 @@ double NcReader::diameter_in(std::string_view description) {
     return ec == std::errc() && p == number.data() + number.size() && v > 0 ? v : 0.0;
 }
 
+void NcReader::set_group(std::optional<Code>& group, Code c, std::string_view group_name) const {
+    if (group)
+        fail(fmt::format("{} and {} in one block: they belong to the same {}", group->word->text, c.word->text, group_name));
+    group = c;
+}
+
+bool NcReader::shared_m_code(Code c, MCodes& m, std::string_view group_name) const {
+    switch (c.value) {
+        case code(3): case code(4): case code(5): set_group(m.spindle, c, group_name); return true;
+        case code(6): set_group(m.tool_change, c, group_name); return true;
+        case code(0): case code(1): case code(2): case code(30): set_group(m.stop, c, group_name); return true;
+        default: return false;
+    }
+}
+
+std::string NcReader::commented_description(int tool) const {
+    std::string prefix = fmt::format("T{} ", tool);
+    return last_comment_.rfind(prefix, 0) == 0 ? last_comment_.substr(prefix.size()) : std::string();
+}
+
+void NcReader::change_tool(int tool, const std::string& description) {
+    drill_end();
+    tool_ = tool;
+    emit(ToolChange{tool_, diameter_in(description), description});
+    forget_position();
+}
+
+void NcReader::spindle_speed(double rpm, const Word* switch_code) {
+    rpm_ = rpm;
+    if (!switch_code && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
+}
+
+void NcReader::switch_spindle(const Word& m, std::string_view speed_word) {
+    const int c = code_of(m);
+    if (c == code(5)) {
+        spindle_ = SpindleState::off;
+        emit(Spindle{SpindleState::off, 0.0});
+        return;
+    }
+    if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed {}", m.text, speed_word));
+    spindle_ = c == code(3) ? SpindleState::cw : SpindleState::ccw;
+    emit(Spindle{spindle_, rpm_});
+}
+
+// ---- block words ----
+
+void NcReader::BlockWords::add(const Word& w) {
+    if (w.letter == 0 || letters_.find(w.letter) == std::string_view::npos)
+        reader_.fail(fmt::format("unknown word {}", w.text));
+    if (words_.count(w.letter)) reader_.fail(fmt::format("two {} words in one block", w.letter));
+    words_[w.letter] = Entry{&w, false};
+}
+
+const Word* NcReader::BlockWords::take(char letter) {
+    auto it = words_.find(letter);
+    if (it == words_.end()) return nullptr;
+    it->second.used = true;
+    return it->second.word;
+}
+
+std::optional<double> NcReader::BlockWords::length(char letter) {
+    const Word* w = take(letter);
+    return w ? std::optional<double>(reader_.length(*w)) : std::nullopt;
+}
+
+std::optional<double> NcReader::BlockWords::offset(char letter) {
+    const Word* w = take(letter);
+    return w ? std::optional<double>(reader_.offset(*w)) : std::nullopt;
+}
+
+const Word* NcReader::BlockWords::find(char letter) const {
+    auto it = words_.find(letter);
+    return it == words_.end() ? nullptr : it->second.word;
+}
+
+bool NcReader::BlockWords::unused(char letter) const {
+    auto it = words_.find(letter);
+    return it != words_.end() && !it->second.used;
+}
+
+void NcReader::BlockWords::require_all_used() const {
+    for (const auto& [letter, entry] : words_)
+        if (!entry.used) reader_.fail(fmt::format("{} has no meaning in this block", entry.word->text));
+}
+
 // ---- blocks ----
 
 Block NcReader::split(std::string_view line) const {
@@ -425,7 +510,36 @@ void NcReader::arc(const ArcWords& a) {
     emit(ev, false, xy_uncertainty_);
 }
 
+std::optional<NcReader::ArcWords> NcReader::move_or_arc(int motion, Plane plane, BlockWords& w) {
+    std::optional<double> x = w.length('X'), y = w.length('Y'), z = w.length('Z');
+    if (motion == code(0)) {
+        rapid_to(x, y, z);
+        return std::nullopt;
+    }
+    if (motion == code(1)) {
+        linear_to(x, y, z);
+        return std::nullopt;
+    }
+    ArcWords a;
+    a.direction = motion == code(2) ? ArcDirection::cw : ArcDirection::ccw;
+    a.plane = plane;
+    a.x = x, a.y = y, a.z = z;
+    a.i = w.offset('I'), a.j = w.offset('J'), a.k = w.offset('K');
+    a.absolute_centre = machine_.arcs.format == ArcFormat::ijk_absolute;
+    return a;
+}
+
 // ---- drilling ----
+
+void set_canned_planes(DrillCycle& c) {
+    c.output = CycleOutput::canned;
+    DrillParams& p = c.params;
+    p.output = CycleOutput::canned;
+    p.retract_plane = c.retract_z;
+    p.reference_plane = c.reference_z;
+    p.end_depth = c.bottom_z;
+    p.end_depth_is_absolute = true;
+}
 
 void NcReader::drill_cycle(const DrillCycle& cycle) {
     try {

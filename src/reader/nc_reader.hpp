@@ -1,11 +1,13 @@
 #pragma once
 // The reader base (private to src/reader/): splits a program into blocks of words as the
-// machine's block style writes them, and keeps what every dialect shares: the modal position
-// with per-axis knowledge, formats and their scales, feed, arcs in every arc format, drilling
-// cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp,
+// machine's block style writes them, and keeps what every dialect shares: the table of a
+// block's address words (BlockWords), the modal position with per-axis knowledge, formats and
+// their scales, feed, spindle and tool changes, G0-G3 moves and arcs in every arc format,
+// drilling cycles as DrillCycle/DrillPoint/DrillEnd events. A dialect (iso_reader.cpp, nccad_reader.cpp,
 // sinumerik_reader.cpp, heidenhain_reader.cpp) says which words and codes exist and what they
 // do, as the post dialects do in machines/.
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +42,11 @@ struct Block {
 
 // A G or M code in tenths, so that G33.1 and G81 are both exact: code(81) == 810.
 constexpr int code(double c) { return static_cast<int>(c * 10.0 + (c < 0 ? -0.5 : 0.5)); }
+
+// Marks a drilling cycle read from a program as canned and gives its parameters the cycle's
+// planes: retract and reference plane, the bottom as an absolute end depth. Set retract_z,
+// reference_z and bottom_z first.
+void set_canned_planes(DrillCycle& c);
 
 class NcReader {
 public:
@@ -77,6 +84,40 @@ protected:
 
     // ---- shared machinery ----
     [[noreturn]] void fail(const std::string& detail) const;
+
+    // The address words of one block that a dialect reads by letter (X, F, T, ...), each letter
+    // at most once. The code that gives a word its meaning takes it; a word nobody took is an
+    // error (require_all_used).
+    class BlockWords {
+    public:
+        // `letters`: the dialect's address letters (a string that outlives the table).
+        BlockWords(const NcReader& reader, std::string_view letters) : reader_(reader), letters_(letters) {}
+        // Adds a word of the block; fails for a letter not in `letters` or written twice.
+        void add(const Word& w);
+        // The word of this letter, now used (nullptr: not written).
+        const Word* take(char letter);
+        // The taken word's value as a length / an arc centre offset, in mm (nullopt: not written).
+        std::optional<double> length(char letter);
+        std::optional<double> offset(char letter);
+        // The word of this letter without taking it (nullptr: not written).
+        const Word* find(char letter) const;
+        // The letter is written (taken or not).
+        bool has(char letter) const { return find(letter) != nullptr; }
+        // The letter is written and not taken yet.
+        bool unused(char letter) const;
+        // Fails for the first word (by letter) that was not taken: it has no meaning in the block.
+        void require_all_used() const;
+
+    private:
+        struct Entry {
+            const Word* word = nullptr;
+            bool used = false;
+        };
+        const NcReader& reader_;
+        std::string_view letters_;
+        std::map<char, Entry> words_;
+    };
+
     // Splits a line into words as the machine's block style writes them, the sequence number
     // (if the machine writes them) removed.
     Block split_line(std::string_view text);
@@ -134,15 +175,49 @@ protected:
     // A circular feed move, checked against the machine's arc settings (planes, helices, the
     // largest sweep per block, both radii equal within the machine's tolerance).
     void arc(const ArcWords& words);
+    // A G0/G1/G2/G3 block (`motion` in tenths) to its end point X Y Z: G0 and G1 move at once;
+    // G2/G3 return the arc's words in `plane` with the centre I J K (from the start, or absolute
+    // by the machine's arc format) for the dialect to complete (R, CR, turns) and pass to arc().
+    std::optional<ArcWords> move_or_arc(int motion, Plane plane, BlockWords& w);
+
+    // A G or M code (tenths) and the word it was written as, for messages.
+    struct Code {
+        int value = 0;
+        const Word* word = nullptr;
+    };
+    // Puts a code into its group, which takes one code per block; `group_name` names the group
+    // in the message ("modal group").
+    void set_group(std::optional<Code>& group, Code c, std::string_view group_name) const;
+    // The M codes the ISO and Sinumerik dialects share, one of each group per block.
+    struct MCodes {
+        std::optional<Code> spindle;      // M3, M4, M5
+        std::optional<Code> tool_change;  // M6
+        std::optional<Code> stop;         // M0, M1, M2, M30
+    };
+    // Puts an M code into its group of `m`; false when it is none of them.
+    bool shared_m_code(Code c, MCodes& m, std::string_view group_name) const;
 
     // The tool diameter a camgen tool description starts with ("10 mm spot drill"), else 0.
     static double diameter_in(std::string_view description);
+    // The description in the comment camgen's posts write before changing to this tool
+    // ("T1 10 mm drill" -> "10 mm drill"); empty when the last comment is not one.
+    std::string commented_description(int tool) const;
+    // A tool change (M6, TOOL CALL, an operator's pause): ends the drilling cycle, emits
+    // ToolChange with the diameter the description starts with, and forgets the position.
+    void change_tool(int tool, const std::string& description);
+    // A new spindle speed (rpm, S or TOOL CALL S). A running spindle takes it at once unless
+    // `switch_code` (the block's M3/M4/M5; nullptr: none) switches the spindle.
+    void spindle_speed(double rpm, const Word* switch_code);
+    // M3/M4/M5: the spindle on clockwise or counter-clockwise at the speed set before, or off.
+    // `speed_word` says where the speed is written, for the message ("S").
+    void switch_spindle(const Word& m, std::string_view speed_word);
 
     // The last comment read (camgen writes "T1 10 mm drill" before a tool change).
     std::string last_comment_;
     // Current feed (mm/min) if any was programmed; FeedUnit and scale already applied.
     std::optional<double> feed_;
     double rpm_ = 0.0;
+    SpindleState spindle_ = SpindleState::off;
     int tool_ = 0;
 
     // Drilling: a canned cycle and its holes, as events for trace_program to expand.

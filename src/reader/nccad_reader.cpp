@@ -4,7 +4,6 @@
 // M10 O6.1 / O6.0 spindle, M01 <message> (tool changes and spindle speeds), M30 P<n> dwell in
 // 1/18 s, G76 reference run, G77 home, G99 end of program.
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -65,11 +64,8 @@ void NccadReader::message(const std::string& text) {
             rest = rest.substr(0, s);
         }
         while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
-        drill_end();
-        tool_ = tool;
-        emit(ToolChange{tool, diameter_in(rest), std::string(rest)});
         // The post treats the position as unknown after a tool change, as the operator may jog.
-        forget_position();
+        change_tool(tool, std::string(rest));
         motion_ = -1;
         return;
     }
@@ -96,45 +92,30 @@ void NccadReader::block(const Block& b) {
     if (ended_) fail("a block after the end of the program (G99)");
     const Word* g = nullptr;
     const Word* mw = nullptr;
-    std::map<char, const Word*> w;
-    std::map<char, bool> used;
+    BlockWords w(*this, "XYZIJDFBOP");
     for (const Word& x : b.words) {
         if (x.letter == 'G' || x.letter == 'M') {
             const Word*& slot = x.letter == 'G' ? g : mw;
             if (slot) fail(fmt::format("{} and {} in one block", slot->text, x.text));
             slot = &x;
-        } else if (std::string_view("XYZIJDFBOP").find(x.letter) != std::string_view::npos) {
-            if (w.count(x.letter)) fail(fmt::format("two {} words in one block", x.letter));
-            w[x.letter] = &x;
-            used[x.letter] = false;
         } else {
-            fail(fmt::format("unknown word {}", x.text));
+            w.add(x);
         }
     }
-    auto take = [&](char letter) -> const Word* {
-        auto it = w.find(letter);
-        if (it == w.end()) return nullptr;
-        used[letter] = true;
-        return it->second;
-    };
-    auto length_of = [&](char letter) -> std::optional<double> {
-        const Word* v = take(letter);
-        return v ? std::optional<double>(length(*v)) : std::nullopt;
-    };
     if (g && mw) fail(fmt::format("{} and {} in one block", g->text, mw->text));
-    if (const Word* f = take('F')) feed_ = feed(*f);
+    if (const Word* f = w.take('F')) feed_ = feed(*f);
 
     if (mw) {
         switch (code_of(*mw)) {
             case code(1): message(b.message); break;
             case code(10): {
-                const Word* o = take('O');
+                const Word* o = w.take('O');
                 if (!o) fail("M10 without its output O");
                 spindle_output(*o);
                 break;
             }
             case code(30): {
-                const Word* p = take('P');
+                const Word* p = w.take('P');
                 if (!p) fail("M30 (dwell) without its time P");
                 emit(Dwell{integer_of(*p) * dwell_tick});
                 break;
@@ -165,23 +146,19 @@ void NccadReader::block(const Block& b) {
             case code(81): {
                 // G81 X Y Z<bottom> B<retract plane> F: rapid to B above the hole, feed to Z,
                 // rapid back to B; further holes are G79 X Y.
-                std::optional<double> x = length_of('X'), y = length_of('Y'), z = length_of('Z'), bz = length_of('B');
+                std::optional<double> x = w.length('X'), y = w.length('Y'), z = w.length('Z'), bz = w.length('B');
                 if (!z || !bz) fail("G81 needs the bottom Z and the retract plane B");
                 if (!(*z < *bz)) fail("G81: the bottom Z is not below the retract plane B");
                 if (!feed_) fail("G81 without a feed F");
                 if (!position_known()) fail("G81 from an unknown position");
                 DrillCycle cycle;
                 cycle.kind = CycleKind::drill;
-                cycle.output = CycleOutput::canned;
                 cycle.retract_z = cycle.reference_z = cycle.safe_z = *bz;
                 cycle.bottom_z = *z;
                 cycle.feed = *feed_;
                 cycle.spindle_rpm = rpm_;
-                cycle.params.retract_plane = cycle.params.reference_plane = *bz;
-                cycle.params.end_depth = *z;
-                cycle.params.end_depth_is_absolute = true;
+                set_canned_planes(cycle);
                 cycle.params.plunging_feedrate = *feed_;
-                cycle.params.output = CycleOutput::canned;
                 Vec3 here = position();
                 drill_cycle(cycle);
                 drill_point({x.value_or(here.x), y.value_or(here.y)});
@@ -192,7 +169,7 @@ void NccadReader::block(const Block& b) {
             case code(79): {
                 if (!current_cycle()) fail("G79 without a G81 before it");
                 Vec3 here = position();
-                std::optional<double> x = length_of('X'), y = length_of('Y');
+                std::optional<double> x = w.length('X'), y = w.length('Y');
                 drill_point({x.value_or(here.x), y.value_or(here.y)});
                 handled = true;
                 break;
@@ -202,19 +179,18 @@ void NccadReader::block(const Block& b) {
     }
     if (!handled && motion >= 0) {
         motion_ = motion;
-        bool any = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('D');
+        bool any = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('D');
         if (any || g) drill_end();
         if (motion == code(0)) {
-            rapid_to(length_of('X'), length_of('Y'), length_of('Z'));
+            rapid_to(w.length('X'), w.length('Y'), w.length('Z'));
         } else if (motion == code(1)) {
-            linear_to(length_of('X'), length_of('Y'), length_of('Z'));
+            linear_to(w.length('X'), w.length('Y'), w.length('Z'));
         } else if (any) {
             ArcWords a;
             a.direction = motion == code(2) ? ArcDirection::cw : ArcDirection::ccw;
-            a.x = length_of('X'), a.y = length_of('Y'), a.z = length_of('Z');
-            if (const Word* i = take('I')) a.i = offset(*i);
-            if (const Word* j = take('J')) a.j = offset(*j);
-            if (const Word* d = take('D')) a.d = angle(*d);
+            a.x = w.length('X'), a.y = w.length('Y'), a.z = w.length('Z');
+            a.i = w.offset('I'), a.j = w.offset('J');
+            if (const Word* d = w.take('D')) a.d = angle(*d);
             // The classic form needs both end coordinates: nccad fails when one was dropped.
             if (!a.d && (!a.x || !a.y))
                 fail(fmt::format("G0{} without both X and Y: nccad needs the whole end point on an arc block",
@@ -222,11 +198,10 @@ void NccadReader::block(const Block& b) {
             if (!a.d && (!a.i || !a.j)) fail("an nccad arc needs both I and J");
             arc(a);
         }
-    } else if (!handled && (w.count('X') || w.count('Y') || w.count('Z'))) {
+    } else if (!handled && (w.has('X') || w.has('Y') || w.has('Z'))) {
         fail("coordinates without a motion code (G00, G01, G79, ...)");
     }
-    for (const auto& [letter, was_used] : used)
-        if (!was_used) fail(fmt::format("{} has no meaning in this block", w[letter]->text));
+    w.require_all_used();
 }
 
 }  // namespace

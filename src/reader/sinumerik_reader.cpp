@@ -54,7 +54,6 @@ private:
     int motion_ = -1;
     Plane plane_ = Plane::xy;
     std::optional<int> selected_tool_;
-    SpindleState spindle_ = SpindleState::off;
     bool ended_ = false;
 };
 
@@ -174,7 +173,6 @@ DrillCycle SinumerikReader::cycle_now() const {
 
     // RTP, RFP, SDIS, DP, DPR: SDIS is measured from RFP, DP is absolute.
     DrillCycle c;
-    c.output = CycleOutput::canned;
     c.retract_z = length_value(need(0, "the retract plane RTP"));
     c.reference_z = length_value(need(1, "the reference plane RFP"));
     const double sdis = length_value(need(2, "the safety distance SDIS"));
@@ -186,12 +184,8 @@ DrillCycle SinumerikReader::cycle_now() const {
     if (c.retract_z < c.safe_z) fail(fmt::format("{}: the retract plane RTP is below RFP + SDIS", name));
     c.spindle_rpm = rpm_;
     c.spindle_direction = spindle_ == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
+    set_canned_planes(c);
     DrillParams& p = c.params;
-    p.output = CycleOutput::canned;
-    p.retract_plane = c.retract_z;
-    p.reference_plane = c.reference_z;
-    p.end_depth = c.bottom_z;
-    p.end_depth_is_absolute = true;
     auto active_feed = [&] {
         // The cycle drills at the feed in effect where it is called.
         if (!feed_) fail(fmt::format("{} without a feed F before it", name));
@@ -301,19 +295,11 @@ DrillCycle SinumerikReader::cycle_now() const {
 
 void SinumerikReader::block(const Block& b) {
     if (ended_) fail("a block after the end of the program");
-    struct Code {
-        int value = 0;
-        const Word* word = nullptr;
-    };
-    std::optional<Code> motion, plane, units, comp, dwell, spindle, tool_change, stop;
-    std::map<char, const Word*> w;
-    std::map<char, bool> used;
+    std::optional<Code> motion, plane, units, comp, dwell;
+    MCodes m;
+    BlockWords w(*this, "XYZIJKFSTD");
     const Word* cr = nullptr;
-    auto set_group = [&](std::optional<Code>& group, Code c) {
-        if (group)
-            fail(fmt::format("{} and {} in one block: they belong to the same group", group->word->text, c.word->text));
-        group = c;
-    };
+    auto set_group = [&](std::optional<Code>& group, Code c) { NcReader::set_group(group, c, "group"); };
     for (const Word& x : b.words) {
         if (x.name == "CR") {
             if (cr) fail("two CR= words in one block");
@@ -333,74 +319,32 @@ void SinumerikReader::block(const Block& b) {
                 default: fail(fmt::format("unknown code {}", x.text));
             }
         } else if (x.letter == 'M') {
-            Code c{code_of(x), &x};
-            switch (c.value) {
-                case code(3): case code(4): case code(5): set_group(spindle, c); break;
-                case code(6): set_group(tool_change, c); break;
-                case code(0): case code(1): case code(2): case code(30): set_group(stop, c); break;
-                default: fail(fmt::format("unknown code {}", x.text));
-            }
-        } else if (std::string_view("XYZIJKFSTD").find(x.letter) != std::string_view::npos) {
-            if (w.count(x.letter)) fail(fmt::format("two {} words in one block", x.letter));
-            w[x.letter] = &x;
-            used[x.letter] = false;
+            if (!shared_m_code(Code{code_of(x), &x}, m, "group")) fail(fmt::format("unknown code {}", x.text));
         } else {
-            fail(fmt::format("unknown word {}", x.text));
+            w.add(x);
         }
     }
-    auto take = [&](char letter) -> const Word* {
-        auto it = w.find(letter);
-        if (it == w.end()) return nullptr;
-        used[letter] = true;
-        return it->second;
-    };
-    auto length_of = [&](char letter) -> std::optional<double> {
-        const Word* v = take(letter);
-        return v ? std::optional<double>(length(*v)) : std::nullopt;
-    };
-    auto offset_of = [&](char letter) -> std::optional<double> {
-        const Word* v = take(letter);
-        return v ? std::optional<double>(offset(*v)) : std::nullopt;
-    };
 
     // In a G4 block F is the dwell in seconds, not a feed.
     if (dwell) {
-        const Word* f = take('F');
+        const Word* f = w.take('F');
         if (!f) fail(fmt::format("{} without its time F (seconds)", dwell->word->text));
         if (b.words.size() != 2) fail(fmt::format("{} must stand in a block of its own with its F", dwell->word->text));
         emit(Dwell{seconds(*f)});
     }
-    if (const Word* f = dwell ? nullptr : take('F')) feed_ = feed(*f);
-    if (const Word* s = take('S')) {
-        rpm_ = rpm(*s);
-        if (!spindle && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
-    }
-    if (const Word* t = take('T')) {
+    if (const Word* f = dwell ? nullptr : w.take('F')) feed_ = feed(*f);
+    if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
+    if (const Word* t = w.take('T')) {
         selected_tool_ = integer_of(*t);
         // D: the tool's cutting edge, selected with it.
-        if (const Word* d = take('D'); d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
+        if (const Word* d = w.take('D'); d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
     }
-    if (tool_change) {
+    if (m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool selected by T");
         if (mcall_) fail(fmt::format("a tool change while the modal call {} of line {} is active", mcall_->name, mcall_->line));
-        drill_end();
-        tool_ = *selected_tool_;
-        std::string description;
-        std::string prefix = fmt::format("T{} ", tool_);
-        if (last_comment_.rfind(prefix, 0) == 0) description = last_comment_.substr(prefix.size());
-        emit(ToolChange{tool_, diameter_in(description), description});
-        forget_position();
+        change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
-    if (spindle) {
-        if (spindle->value == code(5)) {
-            spindle_ = SpindleState::off;
-            emit(Spindle{SpindleState::off, 0.0});
-        } else {
-            if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", spindle->word->text));
-            spindle_ = spindle->value == code(3) ? SpindleState::cw : SpindleState::ccw;
-            emit(Spindle{spindle_, rpm_});
-        }
-    }
+    if (m.spindle) switch_spindle(*m.spindle->word, "S");
     if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
     if (units) set_units(units->value == code(70) ? Units::inch : Units::mm);
     if (comp) {
@@ -410,42 +354,28 @@ void SinumerikReader::block(const Block& b) {
                                                     : CompensationSide::right});
     }
     if (motion) motion_ = motion->value;
-    bool axes = w.count('X') || w.count('Y') || w.count('Z') || w.count('I') || w.count('J') || w.count('K') || cr;
+    bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || cr;
     if (axes) {
         if (motion_ < 0) fail("coordinates before any motion code (G0, G1, ...)");
         if (mcall_) {
             // Under a modal call every positioning block drills a hole where it ends.
-            if (motion_ != code(0) || w.count('Z') || w.count('I') || w.count('J') || w.count('K') || cr)
+            if (motion_ != code(0) || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || cr)
                 fail(fmt::format("under the modal call {} of line {} camgen writes only G0 X Y hole positions",
                                  mcall_->name, mcall_->line));
             if (!position_known()) fail(fmt::format("{} from an unknown position", mcall_->name));
-            std::optional<double> x = length_of('X'), y = length_of('Y');
+            std::optional<double> x = w.length('X'), y = w.length('Y');
             rapid_to(x, y, std::nullopt);
             DrillCycle c = cycle_now();
             if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
             Vec3 here = position();
             drill_point({here.x, here.y});
-        } else {
-            std::optional<double> x = length_of('X'), y = length_of('Y'), z = length_of('Z');
-            if (motion_ == code(0)) {
-                rapid_to(x, y, z);
-            } else if (motion_ == code(1)) {
-                linear_to(x, y, z);
-            } else {
-                ArcWords a;
-                a.direction = motion_ == code(2) ? ArcDirection::cw : ArcDirection::ccw;
-                a.plane = plane_;
-                a.x = x, a.y = y, a.z = z;
-                a.i = offset_of('I'), a.j = offset_of('J'), a.k = offset_of('K');
-                if (cr) a.r = length(*cr);
-                a.absolute_centre = machine_.arcs.format == ArcFormat::ijk_absolute;
-                arc(a);
-            }
+        } else if (std::optional<ArcWords> a = move_or_arc(motion_, plane_, w)) {
+            if (cr) a->r = length(*cr);
+            arc(*a);
         }
     }
-    for (const auto& [letter, was_used] : used)
-        if (!was_used) fail(fmt::format("{} has no meaning in this block", w[letter]->text));
-    if (stop && (stop->value == code(2) || stop->value == code(30))) {
+    w.require_all_used();
+    if (m.stop && (m.stop->value == code(2) || m.stop->value == code(30))) {
         if (mcall_) fail(fmt::format("the program ends with the modal call {} of line {} still active (MCALL ends it)",
                                      mcall_->name, mcall_->line));
         drill_end();
