@@ -150,8 +150,10 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
         std::ofstream t(tools);
         for (int i = 1; i < 100; ++i) t << fmt::format("T{} P{} Z0 D1 ;tool {}\n", i, i, i);
     }
-    std::string command = fmt::format("'{}' -t '{}' -g '{}' </dev/null 2>'{}'", rs274, tools.string(), ngc.string(),
-                                      err.string());
+    // rs274 keeps its tool table in $HOME/.tool.mmap, truncated at every start: two rs274 at
+    // once (parallel test runs) would share it. Each run gets its own HOME.
+    std::string command = fmt::format("HOME='{}' '{}' -t '{}' -g '{}' </dev/null 2>'{}'", dir.string(), rs274,
+                                      tools.string(), ngc.string(), err.string());
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) throw std::runtime_error("cannot run " + rs274);
     std::string canon;
@@ -159,14 +161,12 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
     for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) canon.append(buffer, n);
     int status = ::pclose(pipe);
     std::string message = read_all(err);
+    std::error_code ec;
+    for (const fs::path& p : {ngc, err, tools, dir / fs::path(".tool.mmap")}) fs::remove(p, ec);
+    fs::remove(dir, ec);  // only when empty: another run may still use it
     if (status != 0 || canon.find("PROGRAM_END()") == std::string::npos)
         throw std::runtime_error(fmt::format("rs274 rejected the program (status {}): {}\n--- program ---\n{}", status,
                                              message, program));
-    fs::remove(ngc);
-    fs::remove(err);
-    fs::remove(tools);
-    std::error_code ec;
-    fs::remove(dir, ec);  // only when empty: another run may still use it
     return parse_canon(canon);
 }
 
