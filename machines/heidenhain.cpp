@@ -156,10 +156,14 @@ void HeidenhainPost::rapid_from_unknown(const Vec3& to) {
     on_rapid(to);
 }
 
+// Radius compensation is a word of the L block: R0, RL, RR.
+std::string HeidenhainPost::compensation_words(CompensationSide side) const {
+    return side == CompensationSide::off ? "R0" : side == CompensationSide::left ? "RL" : "RR";
+}
+
 void HeidenhainPost::on_linear(const Vec3& to, double feed) {
     std::string comp;
-    if (pending_compensation_)
-        comp = *pending_compensation_ == CompensationSide::off ? "R0" : *pending_compensation_ == CompensationSide::left ? "RL" : "RR";
+    if (pending_compensation_) comp = compensation_words(*pending_compensation_);
     std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);

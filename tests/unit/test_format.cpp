@@ -125,11 +125,8 @@ TEST_CASE("a modal word compares the formatted text, not the number") {
 TEST_CASE("block writer: sequence numbers, separator, line break, comments") {
     std::ostringstream out;
     {
-        camgen::nc::BlockStyle style;
-        style.sequence_numbers = true;
-        style.sequence_start = 10;
-        style.sequence_increment = 5;
-        style.line_break = "\r\n";
+        camgen::nc::BlockStyle style{
+            .line_break = "\r\n", .sequence_numbers = true, .sequence_start = 10, .sequence_increment = 5};
         camgen::nc::BlockWriter w(style, out);
         w.add("G0").add("").add("X1").end();
         w.end();  // empty block: nothing
