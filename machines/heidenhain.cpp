@@ -168,7 +168,6 @@ void HeidenhainPost::on_linear(const Vec3& to, double feed) {
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
     out_.add("L").add(xs).add(ys).add(zs).add(comp).add(fs).end();
-    if (pending_compensation_) compensation_ = *pending_compensation_;
     pending_compensation_.reset();
 }
 

@@ -58,7 +58,6 @@ std::string Post::g(double code) const { return code_fmt_.word("G", code); }
 std::string Post::m(double code) const { return code_fmt_.word("M", code); }
 
 void Post::warn(const std::string& message) {
-    ++warnings_;
     if (options_.warnings) *options_.warnings << "camgen: warning: " << message << '\n';
 }
 
@@ -149,7 +148,6 @@ void Post::on_linear(const Vec3& to, double feed) {
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
     out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
-    if (pending_compensation_) compensation_ = *pending_compensation_;
     pending_compensation_.reset();
 }
 
@@ -286,17 +284,19 @@ void Post::handle_arc(const Arc& arc) {
     const ArcPlan plan = plan_arc(geo, s, tolerance);
     switch (plan.treatment) {
         case ArcTreatment::one_line: on_linear(arc.to, arc.feed); break;
-        case ArcTreatment::lines:
-            for (const Vec3& p : linearize_arc(geo, plan.count)) {
-                on_linear(p, arc.feed);
-                pos_ = p;
-            }
-            break;
+        case ArcTreatment::lines: write_lines(geo, plan.count, arc.feed); break;
         case ArcTreatment::arcs:
             for (const ArcGeometry& piece : split_arc(geo, plan.count)) write_arc_block(piece, arc.feed, tolerance, 0);
             break;
     }
     pos_ = arc.to;
+}
+
+void Post::write_lines(const ArcGeometry& arc, int segments, double feed) {
+    for (const Vec3& p : linearize_arc(arc, segments)) {
+        on_linear(p, feed);
+        pos_ = p;
+    }
 }
 
 Vec3 Post::arc_control_start(const Vec3& start) const {
@@ -333,10 +333,7 @@ void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_t
             if (depth < 4) {
                 for (const ArcGeometry& half : split_arc(piece, 2)) write_arc_block(half, feed, chord_tolerance, depth + 1);
             } else {
-                for (const Vec3& p : linearize_arc(piece, segment_count(piece, machine_.arcs, chord_tolerance))) {
-                    on_linear(p, feed);
-                    pos_ = p;
-                }
+                write_lines(piece, segment_count(piece, machine_.arcs, chord_tolerance), feed);
             }
             break;
     }
@@ -372,7 +369,6 @@ void Post::emit(const Event& event) {
                    [&](const OperationEnd&) { on_operation_end(); },
                    [&](const ToolChange& t) {
                        tool_ = t.number;
-                       tool_diameter_ = t.diameter;
                        on_tool_change(t);
                        pos_known_ = false;
                        reset_modal_axes();

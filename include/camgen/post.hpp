@@ -34,8 +34,6 @@ public:
     void emit(const Event& event) override;
     // Writes the program end (nothing for a snippet) and flushes. Throws IoError.
     void close();
-    // Warnings written so far.
-    int warning_count() const { return warnings_; }
 
 protected:
     // ---- CNC-Calc calls: a dialect overrides what differs ----
@@ -96,14 +94,14 @@ protected:
     nc::Word x_, y_, z_, feed_, motion_, plane_;
     Vec3 pos_;
     bool pos_known_ = false;
-    CompensationSide compensation_ = CompensationSide::off;
     std::optional<CompensationSide> pending_compensation_;
     int tool_ = 0;
-    double tool_diameter_ = 0.0;
     std::string op_path_;
 
 private:
     void handle_arc(const Arc& arc);
+    // Straight moves along `arc` in `segments` equal chords, ending exactly at its end.
+    void write_lines(const ArcGeometry& arc, int segments, double feed);
     // Writes one arc block whose rounded words keep the control on the circle, or breaks it.
     void write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth);
     // Where the control stands at the start of an arc block (see arc_actual_end_).
@@ -117,7 +115,6 @@ private:
     std::optional<DrillCycle> cycle_;
     const DrillingCycleSpec* cycle_spec_ = nullptr;  // canned spec for the current cycle
     bool first_point_ = true;
-    int warnings_ = 0;
     std::set<std::pair<std::string, double>> warned_feeds_;
     bool opened_ = false;
     std::optional<double> op_tolerance_;       // the current operation's tolerance, mm
