@@ -1,12 +1,12 @@
 // The dialects camgen can write, by the name a machine file gives in "dialect".
 #include <fmt/format.h>
 
-#include "camgen/error.hpp"
-#include "camgen/post.hpp"
-#include "machines/heidenhain.hpp"
-#include "machines/iso.hpp"
-#include "machines/nccad.hpp"
-#include "machines/sinumerik.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/post/post.hpp"
+#include "machines/heidenhain/heidenhain_post.hpp"
+#include "machines/iso/iso_post.hpp"
+#include "machines/nccad/nccad_post.hpp"
+#include "machines/sinumerik/sinumerik_post.hpp"
 
 namespace camgen {
 

@@ -1,4 +1,4 @@
-#include "camgen/cli.hpp"
+#include "camgen/cli/cli.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -11,18 +11,18 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "camgen/backplot.hpp"
-#include "camgen/error.hpp"
-#include "camgen/events.hpp"
-#include "camgen/job_json.hpp"
-#include "camgen/json_util.hpp"
-#include "camgen/machine.hpp"
-#include "camgen/motion.hpp"
-#include "camgen/operations.hpp"
-#include "camgen/output.hpp"
-#include "camgen/post.hpp"
-#include "camgen/reader.hpp"
-#include "camgen/stats.hpp"
+#include "camgen/analysis/backplot.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/events/events.hpp"
+#include "camgen/job/job_json.hpp"
+#include "camgen/common/json_util.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "operations/registry.hpp"
+#include "camgen/cli/output.hpp"
+#include "camgen/post/post.hpp"
+#include "camgen/reader/reader.hpp"
+#include "camgen/analysis/stats.hpp"
 
 #ifndef CAMGEN_VERSION
 #define CAMGEN_VERSION "0.0.0"

@@ -2,6 +2,6 @@
 // process to run_cli.
 #include <iostream>
 
-#include "camgen/cli.hpp"
+#include "camgen/cli/cli.hpp"
 
 int main(int argc, char** argv) { return camgen::run_cli(argc, argv, std::cin, std::cout, std::cerr); }

@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "camgen/error.hpp"
-#include "camgen/output.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/cli/output.hpp"
 
 namespace camgen {
 

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "camgen/error.hpp"
+#include "camgen/common/error.hpp"
 
 namespace camgen::nc {
 

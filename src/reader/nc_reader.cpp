@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "camgen/error.hpp"
-#include "camgen/longhand.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/post/longhand.hpp"
 
 namespace camgen::reader {
 

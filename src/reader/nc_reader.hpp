@@ -14,10 +14,10 @@
 #include <string_view>
 #include <vector>
 
-#include "camgen/arcs.hpp"
-#include "camgen/machine.hpp"
+#include "camgen/geometry/arc.hpp"
+#include "camgen/post/machine.hpp"
 #include "camgen/nc/format.hpp"
-#include "camgen/reader.hpp"
+#include "camgen/reader/reader.hpp"
 
 namespace camgen::reader {
 

@@ -2,8 +2,8 @@
 // machines/registry.cpp for the posts). A new dialect adds a line to the table.
 #include <fmt/format.h>
 
-#include "camgen/error.hpp"
-#include "camgen/reader.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/reader/reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen {

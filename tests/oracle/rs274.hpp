@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "camgen/geometry.hpp"
+#include "camgen/geometry/geometry.hpp"
 
 namespace camgen::oracle {
 

@@ -14,12 +14,12 @@
 
 #include <fmt/format.h>
 
-#include "camgen/events.hpp"
-#include "camgen/longhand.hpp"
-#include "camgen/machine.hpp"
-#include "camgen/motion.hpp"
-#include "camgen/post.hpp"
-#include "camgen/reader.hpp"
+#include "camgen/events/events.hpp"
+#include "camgen/post/longhand.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/post/post.hpp"
+#include "camgen/reader/reader.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;

@@ -5,10 +5,10 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
-#include "camgen/error.hpp"
-#include "camgen/job_json.hpp"
-#include "camgen/motion.hpp"
-#include "camgen/reader.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/job/job_json.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/reader/reader.hpp"
 
 namespace camgen::test {
 

@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "camgen/cli.hpp"
-#include "camgen/error.hpp"
-#include "camgen/job_json.hpp"
-#include "camgen/machine.hpp"
-#include "camgen/operations.hpp"
-#include "camgen/post.hpp"
+#include "camgen/cli/cli.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/job/job_json.hpp"
+#include "camgen/post/machine.hpp"
+#include "operations/registry.hpp"
+#include "camgen/post/post.hpp"
 
 namespace camgen::test {
 

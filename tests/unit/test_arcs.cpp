@@ -9,7 +9,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
-#include "camgen/arcs.hpp"
+#include "camgen/post/arc_output.hpp"
 #include "support.hpp"
 
 using namespace camgen;

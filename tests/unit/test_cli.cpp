@@ -4,7 +4,7 @@
 
 #include <doctest/doctest.h>
 
-#include "camgen/cli.hpp"
+#include "camgen/cli/cli.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

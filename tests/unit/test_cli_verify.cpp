@@ -6,10 +6,10 @@
 
 #include <doctest/doctest.h>
 
-#include "camgen/backplot.hpp"
-#include "camgen/cli.hpp"
-#include "camgen/reader.hpp"
-#include "camgen/stats.hpp"
+#include "camgen/analysis/backplot.hpp"
+#include "camgen/cli/cli.hpp"
+#include "camgen/reader/reader.hpp"
+#include "camgen/analysis/stats.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

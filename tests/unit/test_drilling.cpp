@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "camgen/cli.hpp"
-#include "camgen/longhand.hpp"
+#include "camgen/cli/cli.hpp"
+#include "camgen/post/longhand.hpp"
 #include "support.hpp"
 
 using namespace camgen;

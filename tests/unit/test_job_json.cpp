@@ -8,9 +8,9 @@
 #include <fstream>
 #include <string>
 
-#include "camgen/error.hpp"
-#include "camgen/job_json.hpp"
-#include "camgen/operations.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/job/job_json.hpp"
+#include "operations/registry.hpp"
 
 using namespace camgen;
 

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "camgen/error.hpp"
-#include "camgen/json_util.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/common/json_util.hpp"
 
 using camgen::InputError;
 namespace cj = camgen::json;

@@ -6,9 +6,9 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
-#include "camgen/motion.hpp"
-#include "camgen/reader.hpp"
-#include "camgen/stats.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/reader/reader.hpp"
+#include "camgen/analysis/stats.hpp"
 #include "reader_support.hpp"
 #include "support.hpp"
 

@@ -11,10 +11,10 @@
 
 #include <doctest/doctest.h>
 
-#include "camgen/motion.hpp"
-#include "camgen/operations.hpp"
-#include "camgen/post.hpp"
-#include "camgen/reader.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "operations/registry.hpp"
+#include "camgen/post/post.hpp"
+#include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;

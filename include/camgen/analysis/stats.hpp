@@ -1,0 +1,63 @@
+#pragma once
+// What a program does, in numbers: path lengths at feed and at rapid, bounding box per tool,
+// lowest Z, holes, estimated machining time (`camgen verify`, `--stats`, the backplot legend).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camgen/post/machine.hpp"
+#include "camgen/analysis/trace.hpp"
+
+namespace camgen {
+
+// An axis-aligned box around motion, mm. Empty until a point is added.
+struct Box {
+    Vec3 min, max;
+    bool empty = true;
+    void add(const Vec3& p);
+    void add(const Box& b);
+};
+
+// The box around a move, arcs included with their extremes (not only their ends).
+Box box_of(const Step& step);
+
+// Numbers for one tool, over the moves made while it was in the spindle.
+struct ToolStats {
+    int tool = 0;
+    double diameter = 0.0;     // mm, 0: unknown
+    std::string description;
+    Box box;                   // every known position, rapids included
+    double feed_length = 0.0;  // mm
+    double rapid_length = 0.0; // mm
+    double time = 0.0;         // s
+    int holes = 0;
+};
+
+// Numbers for a whole program.
+struct ProgramStats {
+    double feed_length = 0.0;       // mm
+    double rapid_length = 0.0;      // mm, rapids from known positions
+    double rapid_xy_length = 0.0;   // mm, the same rapids projected on XY (what hole order shortens)
+    int unmeasured_rapids = 0;      // rapids from the tool-change position (length unknown, not counted)
+    std::optional<double> lowest_z; // mm
+    int holes = 0;
+    double feed_time = 0.0;         // s, each feed clamped to the machine's limits
+    double rapid_time = 0.0;        // s, at the machine's rapid rate
+    double dwell_time = 0.0;        // s
+    int clamped_feeds = 0;          // feed moves whose feed was outside the machine's limits
+    double rapid_rate = 0.0;        // mm/min used for rapids
+    Box box;
+    std::vector<ToolStats> tools;   // in order of first use
+    double total_time() const { return feed_time + rapid_time + dwell_time; }
+};
+
+// Measures a trace. Feeds are clamped to machine.limits, rapids run at limits.rapid_rate.
+ProgramStats compute_stats(const Trace& trace, const Machine& machine);
+
+// A time as people read it: "50.3 s", "2 min 05.3 s", "1 h 02 min 05.3 s".
+std::string format_duration(double seconds);
+
+// The statistics as lines of text, numbers through a fixed formatter (deterministic).
+std::string format_stats(const ProgramStats& stats);
+
+}  // namespace camgen

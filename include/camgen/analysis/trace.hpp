@@ -1,0 +1,102 @@
+#pragma once
+// The motion a program makes, as a flat list of steps: canned drilling cycles expanded with
+// the posts' longhand semantics (longhand.hpp), arcs kept as arcs. Built from a program read
+// back (reader.hpp) or from a job's events, so the two can be compared, measured (stats.hpp)
+// and drawn (backplot.hpp).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camgen/geometry/arc.hpp"
+#include "camgen/events/events.hpp"
+#include "camgen/job/job.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/reader/reader.hpp"
+
+namespace camgen {
+
+enum class StepKind { rapid, feed, dwell, tool_change, spindle };
+
+// One step of motion or machine state.
+struct Step {
+    StepKind kind = StepKind::rapid;
+    Vec3 from;                       // rapid, feed: start (meaningless when !from_known)
+    Vec3 to;                         // rapid, feed: end
+    bool from_known = true;          // false: from the tool-change position, path unknown
+    double feed = 0.0;               // feed: mm/min as programmed
+    std::optional<ArcGeometry> arc;  // feed: set for a circular move
+    double seconds = 0.0;            // dwell
+    int tool = 0;                    // the tool in the spindle (tool_change: the new one)
+    SpindleState spindle = SpindleState::off;  // spindle
+    double rpm = 0.0;                // spindle
+    int line = 0;                    // program line (0: from a job)
+    double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
+};
+
+// A hole: a feed move down at one XY position that the tool leaves upwards again before it
+// moves in XY (canned or longhand drilling alike; a contour's plunge is no hole).
+struct Hole {
+    Vec2 at;
+    double bottom_z = 0.0;
+    int tool = 0;
+    int line = 0;  // the line of the deepest feed move
+};
+
+// A tool as far as the program or job says (diameter 0: unknown).
+struct ToolInfo {
+    int number = 0;
+    double diameter = 0.0;  // mm
+    std::string description;
+};
+
+// The motion of a whole program or job.
+struct Trace {
+    std::vector<Step> steps;
+    std::vector<Hole> holes;      // in drilling order
+    std::vector<ToolInfo> tools;  // in order of first use
+};
+
+// The motion of a program read back. `machine` gives the peck clearance of longhand cycles.
+Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine);
+
+// The motion of a job's events (the position is unknown at the start and after every tool
+// change, as in the posts).
+Trace trace_events(const std::vector<Event>& events, const Machine& machine);
+
+// The motion a job should make on `machine`: its events with feeds clamped to the machine's
+// limits, as every post writes them.
+Trace trace_job(const Job& job, const Machine& machine);
+
+// How close two traces must be.
+struct CompareTolerance {
+    double position = 0.001;  // mm, block end points (plus each step's uncertainty)
+    double path = 0.001;      // mm, points inside arcs (an arc may be written as chords)
+    double feed = 0.5;        // mm/min
+    double dwell = 0.0005;    // s
+    double rpm = 0.5;         // rev/min
+};
+
+// Tolerances for comparing a job with a program for `machine`: `position` mm for end points
+// (raised to the distance that half a unit of the last decimal on each axis makes, where the
+// machine writes fewer decimals; position 0 asks for exactly that), and for points
+// inside arcs that plus the machine's arc tolerance and chord tolerance (arcs that become
+// lines, arcs whose centres are rounded).
+CompareTolerance compare_tolerance(const Machine& machine, double position = 0.001);
+// The same for a program read with this resolution (read_program's coarsest resolution).
+CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution& resolution, double position = 0.001);
+
+// The first difference between two traces.
+struct Mismatch {
+    int line = 0;         // the actual program's line, where known
+    std::string message;  // what was expected and what the program does
+};
+
+// Compares the motion: the same tool changes, spindle states, dwells, and the same path in
+// the same order, rapid where rapid and at the same feed where feeding. Paths are compared
+// as positions visited, not as blocks: an arc written as two half arcs or as chords matches
+// the arc it stands for; every end point of each side must lie on the other's path, in
+// order, and points sampled along arcs too. Moves from an unknown position compare only by
+// their end.
+std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tolerance);
+
+}  // namespace camgen

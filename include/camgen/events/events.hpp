@@ -1,0 +1,151 @@
+#pragma once
+// The event vocabulary between operations and posts, after LinuxCNC's canonical machining
+// functions. Operations emit events; posts turn them into NC text; the reader turns NC text
+// back into them. Units: mm, mm/min, seconds, rpm. Positions are absolute.
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/geometry.hpp"
+#include "camgen/job/job.hpp"
+
+namespace camgen {
+
+enum class SpindleState { cw, ccw, off };
+enum class CompensationSide { off, left, right };
+
+// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
+// is the operation's own tolerance for arcs that become lines (mm), if it has one.
+struct OperationStart {
+    std::string name;
+    std::string path;
+    std::optional<double> tolerance;
+    friend bool operator==(const OperationStart&, const OperationStart&) = default;
+};
+
+// The operation that began last ends.
+struct OperationEnd {
+    friend bool operator==(const OperationEnd&, const OperationEnd&) = default;
+};
+
+// Change to a tool. Afterwards the tool's position is unknown but above every clearance
+// (at the machine's tool-change position), so the next rapid goes XY first, then Z.
+struct ToolChange {
+    int number = 0;
+    double diameter = 0.0;   // mm
+    std::string description;
+    friend bool operator==(const ToolChange&, const ToolChange&) = default;
+};
+
+// Spindle on (direction, rpm) or off.
+struct Spindle {
+    SpindleState state = SpindleState::off;
+    double rpm = 0.0;
+    friend bool operator==(const Spindle&, const Spindle&) = default;
+};
+
+// Straight move at rapid rate to `to`.
+struct Rapid {
+    Vec3 to;
+    friend bool operator==(const Rapid&, const Rapid&) = default;
+};
+
+// Straight move at `feed` mm/min to `to`.
+struct Linear {
+    Vec3 to;
+    double feed = 0.0;
+    friend bool operator==(const Linear&, const Linear&) = default;
+};
+
+// Circular move in `plane` from the current position to `to` around the absolute `centre`,
+// clockwise or counter-clockwise as seen looking down the plane's normal axis (Z for XY,
+// Y for XZ, X for YZ), at `feed` mm/min. When `to` differs from the start along the plane's
+// normal axis the move is helical. `to` equal to the start (in the plane) is a full circle.
+// `turns` counts extra full turns of a helix (0 for a plain arc).
+struct Arc {
+    Vec3 to;
+    Vec3 centre;
+    ArcDirection direction = ArcDirection::cw;
+    Plane plane = Plane::xy;
+    double feed = 0.0;
+    int turns = 0;
+    friend bool operator==(const Arc&, const Arc&) = default;
+};
+
+// The geometry of an Arc event that starts at `start` (see resolve_arc in geometry/arc.hpp).
+inline ArcGeometry resolve_arc(const Vec3& start, const Arc& arc, double same_point = 1e-9) {
+    return resolve_arc(start, ArcSpec{arc.to, arc.centre, arc.direction, arc.plane, arc.turns}, same_point);
+}
+
+// Stay in place for `seconds`.
+struct Dwell {
+    double seconds = 0.0;
+    friend bool operator==(const Dwell&, const Dwell&) = default;
+};
+
+// Cutter radius compensation from the next move that can carry it (CNC-Calc onCompensation).
+struct Compensation {
+    CompensationSide side = CompensationSide::off;
+    friend bool operator==(const Compensation&, const Compensation&) = default;
+};
+
+// A drilling cycle, resolved to absolute values (the CNC-Calc drill header). Before it the
+// tool stands above the first hole at retract_z. Between holes it returns to retract_z; the
+// feed starts at safe_z; bottom_z is the bottom of the hole (drill tip already added).
+struct DrillCycle {
+    CycleKind kind = CycleKind::drill;
+    CycleOutput output = CycleOutput::automatic;
+    std::string path;                  // JSON path of the operation, for messages
+    double retract_z = 0.0;
+    double reference_z = 0.0;
+    double safe_z = 0.0;
+    double bottom_z = 0.0;
+    double feed = 0.0;                 // mm/min, plunge (for taps: pitch x tapping rpm)
+    double spindle_rpm = 0.0;          // the spindle speed the operation runs at
+    SpindleDirection spindle_direction = SpindleDirection::cw;  // the operation's spindle direction
+    DrillParams params;                // the parameters as the job set them (for field checks)
+    friend bool operator==(const DrillCycle&, const DrillCycle&) = default;
+};
+
+// One hole of the current drilling cycle.
+struct DrillPoint {
+    Vec2 at;
+    friend bool operator==(const DrillPoint&, const DrillPoint&) = default;
+};
+
+// The current drilling cycle ends; the tool is at retract_z above the last hole.
+struct DrillEnd {
+    friend bool operator==(const DrillEnd&, const DrillEnd&) = default;
+};
+
+// A comment for the operator.
+struct Comment {
+    std::string text;
+    friend bool operator==(const Comment&, const Comment&) = default;
+};
+
+using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Rapid, Linear, Arc,
+                           Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment>;
+
+// Receives events one at a time (a post, a recorder, the event printer).
+class EventSink {
+public:
+    virtual ~EventSink() = default;
+    virtual void emit(const Event& event) = 0;
+};
+
+// Writes each event as one JSON object per line (`camgen --events`).
+class EventPrinter : public EventSink {
+public:
+    explicit EventPrinter(std::ostream& out) : out_(out) {}
+    void emit(const Event& event) override;
+
+private:
+    std::ostream& out_;
+};
+
+// The JSON text of one event (no line break).
+std::string event_to_json(const Event& event);
+
+}  // namespace camgen

@@ -1,0 +1,75 @@
+#pragma once
+// Arc output policy shared by every post (the arc-breaking rules of the machine file, and
+// arc blocks whose rounded words keep the control on the circle).
+#include <optional>
+#include <string>
+
+#include "camgen/geometry/arc.hpp"
+#include "camgen/nc/format.hpp"
+#include "camgen/post/machine.hpp"
+
+namespace camgen {
+
+// ---- arc-breaking rules (seeds/arc-breaking-rules.txt), shared by every post ----
+
+// The chord tolerance for one arc: the machine's, or with ChordToleranceMode::operation the
+// operation's tolerance when it has one, capped by the machine's (mm).
+double effective_chord_tolerance(const ArcSettings& settings, std::optional<double> operation_tolerance);
+
+// How many equal straight segments replace an arc: enough for the chord tolerance, at least
+// min_segments, and more while a segment would be longer than max_segment_length.
+int segment_count(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance);
+
+// What the post does with one arc.
+enum class ArcTreatment {
+    arcs,      // arc blocks: `count` pieces of equal sweep
+    lines,     // `count` equal straight segments (plane, helix or large radius)
+    one_line,  // one straight move from start to end (small radius or short arc)
+};
+struct ArcPlan {
+    ArcTreatment treatment = ArcTreatment::arcs;
+    int count = 1;
+    std::string reason;        // why it is not written as arcs ("" for arcs)
+};
+
+// Applies the rules in the seed's order of effect: an arc that is too small (min_radius,
+// min_length) is one straight move; one in an unsupported plane, a helix the machine cannot
+// do, or a radius above max_radius becomes segment_count() lines; otherwise arc blocks of at
+// most max_sweep degrees (at most 180 for the radius form, which cannot say "full circle").
+ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance);
+
+// ---- rounded arcs stay on the circle ----
+
+// The formats a control reads an arc block with, the arc form, and the arc tolerance (mm).
+struct ArcWordFormats {
+    nc::Format xyz;
+    nc::Format ijk;
+    nc::Format angle;
+    ArcFormat form = ArcFormat::ijk_relative;
+    double tolerance = 0.002;
+};
+
+enum class ArcFitResult {
+    ok,           // `block` is safe to write
+    degenerate,   // the rounded end equals the start (or D/R rounds to 0): write a straight move
+    no_fit,       // no choice of words keeps the control on the circle: break the arc
+};
+
+// One arc block as it will be written: `block` has start = the control's start, the centre
+// (and for the radius form `radius`, for the nccad form `sweep`) adjusted so that their
+// rounded words describe a circle through the control's start and the rounded end whose
+// radii agree within the tolerance, and whose midpoint lies within the tolerance (plus half a
+// grid diagonal of the rounded ends) of the intended arc's; `control_end` is where the control
+// will stop. Plainly rounded words are kept when they pass; only otherwise are neighbours tried.
+struct ArcFit {
+    ArcFitResult result = ArcFitResult::ok;
+    ArcGeometry block;
+    Vec3 control_end;
+};
+
+// Fits `piece` (at most 360 degrees; at most 180 for the nccad form) to the rounded words.
+// `control_start` is where the control stands (the rounded previous end, or the computed end
+// of an nccad angle arc).
+ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const ArcWordFormats& formats);
+
+}  // namespace camgen

@@ -1,0 +1,34 @@
+#pragma once
+// Longhand drilling: the exact moves a canned cycle makes, as plain rapids, feeds and dwells.
+// Shared by every post (for cycles a control lacks) and by the reader (to expand the canned
+// cycles it reads), so both mean the same motion.
+#include <vector>
+
+#include "camgen/events/events.hpp"
+
+namespace camgen {
+
+// Where a bore-dwell (G89) cycle's feed out of the hole ends. Fanuc feeds out to the
+// feed-start plane R and rapids on to the retract level; LinuxCNC 2.9 feeds all the way out
+// to the retract level (its G98/G99 "clear Z").
+enum class BoreDwellFeedOut { to_safe, to_retract };
+
+// Motion settings of the control being emulated.
+struct LonghandOptions {
+    double peck_clearance = 1.0;  // mm: G83 re-approach stop above the last peck; G73 back-off
+    BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;
+};
+
+// The depths at which successive pecks end, from safe_z down to bottom_z: first depth,
+// degression by value or factor bounded below by minimum_depth. One entry (bottom_z) for
+// cycles without pecking. Throws InputError when the pecks could not reach the bottom.
+std::vector<double> peck_depths(const DrillCycle& cycle);
+
+// The moves that drill one hole at `hole`, starting from `from`, as LinuxCNC/Fanuc canned
+// cycles move: if `from` is below safe_z (R), rapid up to it first; rapid in XY; rapid down to
+// safe_z; the cycle; the final retract to retract_z (the G98 level, or R for G99). Pecks are
+// measured from safe_z. Spindle events appear only for tapping and bore-stop.
+std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
+                                  const LonghandOptions& options);
+
+}  // namespace camgen

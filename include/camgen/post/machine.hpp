@@ -1,0 +1,123 @@
+#pragma once
+// A machine: the settings of one control, read from machines/<name>.json (compiled in) or
+// from a file given by path, plus the name of the dialect code that writes for it.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "camgen/job/job.hpp"
+#include "camgen/post/longhand.hpp"
+#include "camgen/nc/block_writer.hpp"
+#include "camgen/nc/format.hpp"
+
+namespace camgen {
+
+// How arcs are written (CNC-Calc useRadius / absoluteArcCenter, plus nccad's angle form).
+enum class ArcFormat { ijk_relative, ijk_absolute, radius, nccad_angle };
+
+// How feeds are written: mm/min (in/min for inch output), or nccad's 0.1 mm/s.
+enum class FeedUnit { per_minute, tenth_mm_per_second };
+
+// Drilling parameters a canned cycle can carry (the MillDrillingFields of CNC-Calc, plus
+// safeDistance for controls whose cycle has no separate feed-start plane).
+enum class DrillField {
+    safe_distance, plunging_feedrate, retract_feedrate, first_depth, degression_type,
+    degression, minimum_depth, pecking_retract, first_feedrate_factor, top_dwell,
+    bottom_dwell, pitch, tapping_speed, retract_speed
+};
+
+// The job-file name of a drilling field ("plungingFeedrate").
+const char* drill_field_name(DrillField field);
+// The job-file name of a cycle kind ("chip-break").
+const char* cycle_kind_name(CycleKind kind);
+
+// One drilling cycle the machine offers (a MillDrillingFields entry).
+struct DrillingCycleSpec {
+    std::string name;                  // "G83", "CYCLE83", "CYCL DEF 203"
+    CycleKind kind = CycleKind::drill;
+    bool canned = true;                // false: written longhand
+    std::vector<DrillField> fields;    // the optional parameters the canned cycle carries
+};
+
+// Limits of the machine. Feeds mm/min, speeds rpm.
+struct MachineLimits {
+    double max_feed = 10000.0;
+    double min_feed = 1.0;
+    double rapid_rate = 5000.0;        // for time estimates
+    double max_rpm = 0.0;              // 0: no limit
+};
+
+// Where the chord tolerance for arcs that become lines comes from (seeds/arc-breaking-rules.txt):
+// always the machine's, or the operation's tolerance capped by the machine's.
+enum class ChordToleranceMode { absolute, operation };
+
+// Arc output and arc-breaking settings (seeds/arc-breaking-rules.txt). Lengths mm, angles degrees.
+struct ArcSettings {
+    ArcFormat format = ArcFormat::ijk_relative;
+    double max_sweep = 360.0;          // degrees per block; longer arcs are split evenly
+    bool helical = true;               // false: helices become lines
+    std::vector<Plane> planes = {Plane::xy, Plane::xz, Plane::yz};  // others become lines
+    double chord_tolerance = 0.005;    // mm (CIRC_TOL): chord deviation of arcs that become lines
+    ChordToleranceMode tolerance_mode = ChordToleranceMode::operation;
+    std::optional<double> max_radius;  // mm; larger arcs become lines
+    std::optional<double> min_radius;  // mm; smaller arcs become one straight move
+    std::optional<double> min_length;  // mm; shorter arcs (helix length) become one straight move
+    int min_segments = 1;              // at least this many lines for an arc that becomes lines
+    std::optional<double> max_segment_length;  // mm; no line of a broken arc is longer
+    bool force_xy = true;              // write both end coordinates on every arc block
+};
+
+struct Machine {
+    std::string name;                  // "wabeco"
+    std::string description;           // one line for --list-machines
+    std::string dialect;               // the dialect code that writes for it: "iso", "nccad"
+    std::string extension;             // suggested file extension, without dot
+    Units units = Units::mm;           // output units
+    nc::BlockStyle block;
+    bool modal_motion = true;          // false: G0/G1/G2/G3 written on every motion block
+    char decimal_mark = '.';
+    double tolerance = 0.002;          // mm (CNC-Calc tolerance): the arc tolerance. After rounding,
+                                       // every arc block's start and end radii agree within it
+    std::vector<std::string> notes;    // free text about the machine's choices, for --describe-machine
+    std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle"
+    FeedUnit feed_unit = FeedUnit::per_minute;
+    MachineLimits limits;
+    ArcSettings arcs;
+    double peck_clearance = 1.0;       // mm, re-approach clearance of longhand deep/chip-break
+    BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;  // longhand G89 feed-out end
+    std::vector<DrillingCycleSpec> drilling;
+    nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
+    std::string source;                // where it was read from, for messages
+
+    // The format named `key` for the output units, with the decimal mark applied.
+    nc::Format format(const std::string& key) const;
+    // The machine's canned cycle of this kind, if any.
+    const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
+    // How longhand cycles move on this machine (so that they equal its canned cycles).
+    LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
+};
+
+// A machine file compiled into the program.
+struct EmbeddedMachine {
+    const char* name;
+    const char* text;
+};
+const std::vector<EmbeddedMachine>& embedded_machines();
+
+// Parses a machine file's text. Throws InputError naming the JSON path and line.
+Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
+
+// A machine by name (compiled in) or by path to a JSON file (contains '/' or ends in .json).
+// Throws InputError for an unknown name, IoError for an unreadable file.
+Machine load_machine(const std::string& name_or_path);
+
+// Names and one-line descriptions of the compiled-in machines, sorted by name.
+std::vector<std::pair<std::string, std::string>> list_machines();
+
+// A human-readable description of the machine: globals, limits and its drilling table.
+std::string describe_machine(const Machine& machine);
+
+}  // namespace camgen

@@ -1,0 +1,131 @@
+#pragma once
+// The post processor base: turns events into NC text for one machine. It mirrors the
+// CNC-Calc calls (on_open, on_close, on_rapid, on_linear, on_circular, on_compensation,
+// on_drilling_header/point/footer, on_tool_change, on_spindle, on_dwell, on_comment). Shared
+// behaviour (modal words, arc splitting and breaking, longhand cycles, feed limits) lives
+// here; a dialect overrides only what differs.
+#include <memory>
+#include <optional>
+#include <set>
+#include <ostream>
+#include <string>
+
+#include "camgen/post/arc_output.hpp"
+#include "camgen/events/events.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/nc/block_writer.hpp"
+#include "camgen/nc/format.hpp"
+
+namespace camgen {
+
+struct PostOptions {
+    bool snippet = false;              // CNC-Calc clipboard export: no program start or end
+    std::string program_name;          // the job's name, for the program header
+    std::ostream* warnings = nullptr;  // where warnings go (stderr); nullptr: dropped
+};
+
+class Post : public EventSink {
+public:
+    Post(const Machine& machine, std::ostream& out, PostOptions options);
+    ~Post() override;
+
+    // Writes the program start (nothing for a snippet).
+    void open();
+    void emit(const Event& event) override;
+    // Writes the program end (nothing for a snippet) and flushes. Throws IoError.
+    void close();
+
+protected:
+    // ---- CNC-Calc calls: a dialect overrides what differs ----
+    virtual void on_open() {}
+    virtual void on_close() {}
+    virtual void on_operation_start(const OperationStart& op);
+    virtual void on_operation_end() {}
+    virtual void on_tool_change(const ToolChange& tool) = 0;
+    // ISO: M5, or S.. M3/M4.
+    virtual void on_spindle(const Spindle& spindle);
+    virtual void on_dwell(double seconds) = 0;
+    virtual void on_comment(const std::string& text);
+    // A rapid to `to`; the base writes G0 with the modal axis words that changed.
+    virtual void on_rapid(const Vec3& to);
+    // A feed move; the base writes G1, pending compensation, axis words and F.
+    virtual void on_linear(const Vec3& to, double feed);
+    // One arc block, already split to the machine's maximum sweep and in a supported plane,
+    // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
+    // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
+    virtual void on_circular(const ArcGeometry& arc, double feed);
+    // Compensation is retained and written by the next linear move (CNC-Calc rule).
+    virtual void on_compensation(CompensationSide side);
+    // Canned drilling, called only when the cycle is written canned.
+    virtual void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec);
+    virtual void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec,
+                                   Vec2 at, bool first);
+    virtual void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec);
+    // Why the canned `spec` cannot carry this cycle although it has every field the cycle
+    // uses (a value the control cannot express, e.g. a degression factor where it takes only
+    // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
+    virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
+
+    // ---- shared helpers ----
+    // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
+    // converted to the machine's feed unit, modal.
+    std::string feed_word(double mm_per_min);
+    // The words that switch cutter radius compensation (G40, G41 D<tool>, G42 D<tool>).
+    virtual std::string compensation_words(CompensationSide side) const;
+    // The S word for a spindle speed; an InputError above the machine's maxRpm.
+    std::string speed_word(double rpm) const;
+    // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
+    std::string motion_word(double code);
+    // Forget modal state that the control may have changed (after a cycle, a tool change).
+    void reset_modal_axes();
+    // Writes a block of an unknown-position rapid: XY first, then Z.
+    virtual void rapid_from_unknown(const Vec3& to);
+    void warn(const std::string& message);
+    // InputError at the current operation's path (plus `key`).
+    [[noreturn]] void fail(const std::string& key, const std::string& detail) const;
+    // The word for a G or M code as this machine writes it ("G0" or "G00").
+    std::string g(double code) const;
+    std::string m(double code) const;
+    // The comment written for a tool change / operation.
+    const Machine& machine_;
+    PostOptions options_;
+    nc::BlockWriter out_;
+    nc::Format xyz_fmt_, ijk_fmt_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_, code_fmt_;
+    nc::Word x_, y_, z_, feed_, motion_, plane_;
+    Vec3 pos_;
+    bool pos_known_ = false;
+    std::optional<CompensationSide> pending_compensation_;
+    int tool_ = 0;
+    std::string op_path_;
+
+private:
+    void handle_arc(const Arc& arc);
+    // Straight moves along `arc` in `segments` equal chords, ending exactly at its end.
+    void write_lines(const ArcGeometry& arc, int segments, double feed);
+    // Writes one arc block whose rounded words keep the control on the circle, or breaks it.
+    void write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth);
+    // Where the control stands at the start of an arc block (see arc_actual_end_).
+    Vec3 arc_control_start(const Vec3& start) const;
+    void handle_drill_cycle(const DrillCycle& cycle);
+    void handle_drill_point(Vec2 at);
+    void handle_drill_end();
+    const DrillingCycleSpec* choose_canned(const DrillCycle& cycle) const;
+    void replay(const Event& event);
+
+    std::optional<DrillCycle> cycle_;
+    const DrillingCycleSpec* cycle_spec_ = nullptr;  // canned spec for the current cycle
+    bool first_point_ = true;
+    std::set<std::pair<std::string, double>> warned_feeds_;
+    bool opened_ = false;
+    std::optional<double> op_tolerance_;       // the current operation's tolerance, mm
+    std::optional<Vec3> arc_actual_end_;       // where the control ended the last arc block
+    Vec3 arc_believed_end_;                    // ... and where the post's modal words think it is
+};
+
+// The post for a machine, by its dialect. Throws InputError for an unknown dialect.
+std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options);
+
+// Which optional drilling fields a cycle uses (for matching against a canned cycle).
+std::vector<DrillField> drill_fields_used(const DrillCycle& cycle);
+
+}  // namespace camgen

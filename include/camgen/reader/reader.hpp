@@ -1,0 +1,54 @@
+#pragma once
+// Reading NC programs back (DESIGN.md, pipeline step 6): the text a post wrote, parsed with the
+// same machine file into events. Used by `camgen verify`, the round-trip tests and the SVG
+// backplot. The machine's globals set up the reader as the CNC-Calc manual (section 7) sets up
+// a backplot: arc type, decimal mark, formats and their scales, block style, comments.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camgen/events/events.hpp"
+#include "camgen/post/machine.hpp"
+
+namespace camgen {
+
+// One event read from a program. Canned drilling cycles come back as DrillCycle, DrillPoint
+// (one per hole) and DrillEnd; trace_program (motion.hpp) expands them with longhand_moves.
+struct ReadEvent {
+    Event event;
+    int line = 0;               // 1-based line of the block that made it; 0: not from a program
+    bool from_unknown = false;  // a Rapid that starts where the control's position is unknown
+                                // (program start, after a tool change or a home run)
+    double uncertainty = 0.0;   // mm the end point may be off beyond the written resolution,
+                                // because the control computes it (nccad D-form arcs, the
+                                // depths of a canned cycle from its rounded parameters)
+};
+
+// How precisely a program for a machine states values: half a unit of the last decimal written,
+// in internal units (a value read back is within this of the value the post was given).
+struct ReadResolution {
+    double position = 0.0005;  // mm, X/Y/Z/R/Q words
+    double offset = 0.0005;    // mm, I/J/K words
+    double angle = 0.0005;     // degrees, nccad D words
+    double feed = 0.5;         // mm/min
+    double rpm = 0.5;          // rev/min
+    double dwell = 0.0005;     // s
+};
+
+// Reads an NC program written for `machine`. `source` names the program in messages. When
+// `resolution` is given it receives the coarsest resolution the program used (an ISO program
+// may switch to inch with G20). Throws
+// InputError ("SOURCE:LINE: detail") for any word or code the machine's dialect does not
+// write, for motion the machine cannot make (an arc in a plane it lacks, a helix where it has
+// none) and for motion from an unknown position; nothing is skipped silently. Throws
+// InputError when the machine's dialect has no reader.
+std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source = {},
+                                    ReadResolution* resolution = nullptr);
+
+// The resolution of the values in a program for `machine` (in its own units).
+ReadResolution read_resolution(const Machine& machine);
+
+// True when camgen can read programs of this dialect ("iso", "nccad", "sinumerik", "heidenhain").
+bool has_reader(const std::string& dialect);
+
+}  // namespace camgen

@@ -1,0 +1,148 @@
+// The ISO (Fanuc-style) dialect: %, O-number, G-code program frame, T.. M6, S.. M3, G43 H,
+// canned cycles G73/G74/G81-G89 with G98/G99 and G80, LinuxCNC G33.1 rigid tapping.
+#include "machines/iso/iso_post.hpp"
+
+#include <fmt/format.h>
+
+#include "camgen/common/json_util.hpp"
+
+namespace camgen {
+
+namespace {
+
+double cycle_code(CycleKind kind) {
+    switch (kind) {
+        case CycleKind::drill: return 81;
+        case CycleKind::dwell: return 82;
+        case CycleKind::deep: return 83;
+        case CycleKind::chip_break: return 73;
+        case CycleKind::tap: return 84;
+        case CycleKind::tap_left: return 74;
+        case CycleKind::ream: return 85;
+        case CycleKind::bore_stop: return 86;
+        case CycleKind::bore_dwell: return 89;
+    }
+    return 81;
+}
+
+}  // namespace
+
+IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
+    : Post(machine, out, std::move(options)) {
+    json::Source source{machine.source, json::LineMap{}};
+    json::Fields f(machine.dialect_settings, "/settings", source);
+    program_number_ = f.optional_integer("programNumber").value_or(1000);
+    percent_ = f.boolean("percentLines", true);
+    length_offset_ = f.boolean("toolLengthOffset", true);
+    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
+        tool_change_ = tc->get<bool>() ? IsoToolChange::m6 : IsoToolChange::none;
+    else
+        tool_change_ = f.choice<IsoToolChange>(
+            "toolChange", {{"m6", IsoToolChange::m6}, {"pause", IsoToolChange::pause}, {"none", IsoToolChange::none}},
+            IsoToolChange::m6);
+    end_code_ = f.optional_string("endCode").value_or("M30");
+    f.finish();
+}
+
+void IsoPost::on_open() {
+    if (percent_) out_.raw("%");
+    if (program_number_ > 0) {
+        std::string line = fmt::format("O{:04}", program_number_);
+        if (!options_.program_name.empty())
+            line += " (" + out_.clean_comment(options_.program_name) + ")";
+        out_.raw(line);
+    } else if (!options_.program_name.empty()) {
+        out_.comment(options_.program_name);
+    }
+    out_.add(g(17)).add(g(machine_.units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
+    plane_.set_last(17);
+}
+
+void IsoPost::on_close() {
+    out_.add(end_code_).end();
+    if (percent_) out_.raw("%");
+}
+
+void IsoPost::on_tool_change(const ToolChange& tool) {
+    switch (tool_change_) {
+        case IsoToolChange::m6:
+            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+            out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
+            break;
+        case IsoToolChange::pause:
+            // No tool changer (GRBL has no M6): the spindle is off; stop and tell the operator.
+            out_.comment(fmt::format("Insert tool {}{}", tool.number,
+                                     tool.description.empty() ? "" : ": " + tool.description));
+            out_.add(m(0)).end();
+            break;
+        case IsoToolChange::none:
+            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+            break;
+    }
+    length_offset_pending_ = length_offset_;
+}
+
+void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("P", seconds)).end(); }
+
+void IsoPost::on_rapid(const Vec3& to) {
+    if (length_offset_pending_ && z_.last() != to.z) {
+        // The first Z move after a tool change carries the tool length offset.
+        std::string xs = x_.format(to.x), ys = y_.format(to.y);
+        out_.add(motion_word(0)).add(xs).add(ys).add(g(43)).add(z_.force(to.z)).add(fmt::format("H{}", tool_)).end();
+        length_offset_pending_ = false;
+        return;
+    }
+    Post::on_rapid(to);
+}
+
+std::optional<SpindleState> IsoPost::tapping_direction(const DrillCycle& c) {
+    if (c.kind == CycleKind::tap_left && c.spindle_direction != SpindleDirection::ccw) return SpindleState::ccw;
+    if (c.kind == CycleKind::tap && c.spindle_direction != SpindleDirection::cw) return SpindleState::cw;
+    return std::nullopt;
+}
+
+void IsoPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) {
+    // G84/G74 and G33.1 tap in the direction the spindle runs when they start.
+    if (auto dir = tapping_direction(c)) on_spindle(Spindle{*dir, c.spindle_rpm});
+    // G98 returns to the Z the tool had before the cycle: make sure that is the retract plane.
+    if (c.retract_z > c.safe_z && pos_.z != c.retract_z) {
+        on_rapid({pos_.x, pos_.y, c.retract_z});
+        pos_.z = c.retract_z;
+    }
+}
+
+void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
+    if (spec.name == "G33.1") {
+        // LinuxCNC rigid tapping: from R, synchronised down to Z, spindle reversal and back to
+        // R in one move; the control restores the spindle direction.
+        on_rapid({at.x, at.y, pos_.z});
+        on_rapid({at.x, at.y, c.safe_z});
+        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.params.pitch)).end();
+        motion_.reset();
+        z_.set_last(c.safe_z);
+        on_rapid({at.x, at.y, c.retract_z});
+        return;
+    }
+    std::string xs = x_.force(at.x), ys = y_.force(at.y);
+    if (!first) {
+        out_.add(xs).add(ys).end();
+        return;
+    }
+    const DrillParams& p = c.params;
+    // G98 returns to the Z the tool had before the cycle: the retract plane, where the
+    // operation put it. G99 returns to R.
+    out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
+    out_.add(z_.force(c.bottom_z)).add(xyz_fmt_.word("R", c.safe_z));
+    if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.first_depth)
+        out_.add(xyz_fmt_.word("Q", *p.first_depth));
+    if (p.bottom_dwell && *p.bottom_dwell > 0) out_.add(dwell_fmt_.word("P", *p.bottom_dwell));
+    out_.add(feed_word(c.feed)).end();
+}
+
+void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    if (spec.name != "G33.1") out_.add(g(80)).end();
+    if (tapping_direction(c)) on_spindle(Spindle{c.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw,
+                                                 c.spindle_rpm});
+}
+
+}  // namespace camgen

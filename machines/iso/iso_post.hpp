@@ -1,0 +1,42 @@
+#pragma once
+#include "camgen/post/post.hpp"
+
+namespace camgen {
+
+// How an ISO control changes tools: T.. M6, a pause (M0) with a message for the operator
+// (GRBL), or not at all.
+enum class IsoToolChange { m6, pause, none };
+
+// Fanuc-style ISO post (fanuc, linuxcnc, grbl). Settings (machine file "settings"):
+// programNumber (0: none, the program name becomes a comment), percentLines, toolLengthOffset
+// (G43 H), toolChange (true/"m6", "pause", false/"none"), endCode. Canned cycles are
+// G81-G89/G73/G74 with G98/G99, R, Q, P, F and G80; a cycle named "G33.1" in the machine's
+// drilling table is LinuxCNC rigid tapping (M4 before it for tap-left).
+class IsoPost : public Post {
+public:
+    IsoPost(const Machine& machine, std::ostream& out, PostOptions options);
+
+protected:
+    void on_open() override;
+    void on_close() override;
+    void on_tool_change(const ToolChange& tool) override;
+    void on_dwell(double seconds) override;
+    void on_rapid(const Vec3& to) override;
+    void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
+    void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+
+    int program_number_ = 1000;
+    bool percent_ = true;
+    bool length_offset_ = true;
+    IsoToolChange tool_change_ = IsoToolChange::m6;
+    std::string end_code_ = "M30";
+    bool length_offset_pending_ = false;
+
+private:
+    // The spindle direction a tapping cycle needs before it starts, if it differs from the
+    // operation's (G74 and left-hand rigid tapping need M4).
+    static std::optional<SpindleState> tapping_direction(const DrillCycle& cycle);
+};
+
+}  // namespace camgen

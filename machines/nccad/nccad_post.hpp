@@ -1,0 +1,36 @@
+#pragma once
+#include <optional>
+
+#include "camgen/post/post.hpp"
+
+namespace camgen {
+
+// nccad post (Wabeco, KOSY). Settings: underscoreLines (the "_" lines at the start),
+// referenceRun (G76 after G90), homeAtEnd (G77), endOfProgram (G99).
+class NccadPost : public Post {
+public:
+    NccadPost(const Machine& machine, std::ostream& out, PostOptions options);
+
+protected:
+    void on_open() override;
+    void on_close() override;
+    void on_tool_change(const ToolChange& tool) override;
+    void on_spindle(const Spindle& spindle) override;
+    void on_dwell(double seconds) override;
+    void on_compensation(CompensationSide side) override;
+    void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
+    void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+
+private:
+    void flush_tool_message(std::optional<double> rpm);
+    int underscore_lines_ = 2;
+    bool reference_run_ = false;
+    bool home_at_end_ = true;
+    bool end_of_program_ = true;
+    bool spindle_on_ = false;
+    double speed_ = 0.0;
+    std::optional<ToolChange> pending_tool_;
+};
+
+}  // namespace camgen

@@ -1,0 +1,34 @@
+#pragma once
+#include <optional>
+
+#include "camgen/post/post.hpp"
+
+namespace camgen {
+
+// Siemens Sinumerik 840D post (REFERENCE.md §4): `;` comments, G71 metric, `T.. D1` / `M6`,
+// `S.. M3`, dwell `G4 F<s>`, arcs `G2/G3 X Y I J` or `CR=`, drilling as
+// `MCALL CYCLE81..89(...)`, one X/Y block per hole, `MCALL` to end, `M30`.
+// No dialect settings.
+class SinumerikPost : public Post {
+public:
+    SinumerikPost(const Machine& machine, std::ostream& out, PostOptions options);
+
+protected:
+    void on_open() override;
+    void on_close() override;
+    void on_tool_change(const ToolChange& tool) override;
+    void on_dwell(double seconds) override;
+    std::string compensation_words(CompensationSide side) const override;
+    void on_circular(const ArcGeometry& arc, double feed) override;
+    void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
+    void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
+
+};
+
+// The cycle call camgen writes for `cycle` on a Sinumerik `machine`, such as
+// "CYCLE83(10.000, 0.000, 2.000, -20.000, , -3.000, , 0.500, , 1.000, 1, 1, , 1.000, , , 1.000)".
+std::string sinumerik_cycle_call(const DrillCycle& cycle, const Machine& machine);
+
+}  // namespace camgen

@@ -1,0 +1,401 @@
+#include "camgen/analysis/backplot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/nc/format.hpp"
+
+namespace camgen {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr const char* palette[] = {"#1f5fbf", "#d62728", "#2a9d3a", "#8e44ad", "#e67e22", "#8c564b", "#d63384", "#17a2b8"};
+constexpr const char* font = "font-family=\"DejaVu Sans, Arial, Helvetica, sans-serif\"";
+
+// Every number in the SVG: fixed notation, no exponent, no -0, '.' as decimal mark.
+std::string n(double v, int decimals = 2) {
+    nc::FormatSpec spec;
+    spec.decimals = decimals;
+    return nc::Format(spec).format(v);
+}
+
+std::string mm(double v) { return n(v, 3); }
+
+std::string escape(std::string_view s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string clip(std::string s, size_t max) {
+    if (s.size() <= max) return s;
+    s.resize(max - 3);
+    return s + "...";
+}
+
+// 1, 2 or 5 times a power of ten, the largest not above `limit`.
+double nice_below(double limit) {
+    double p = std::pow(10.0, std::floor(std::log10(limit)));
+    for (double m : {5.0, 2.0, 1.0})
+        if (m * p <= limit) return m * p;
+    return p;
+}
+
+struct View {
+    double min_x = 0, max_y = 0, scale = 1, left = 0, top = 0;
+    double x(double mx) const { return left + (mx - min_x) * scale; }
+    double y(double my) const { return top + (max_y - my) * scale; }
+    std::string at(const Vec3& p) const { return fmt::format("{},{}", n(x(p.x)), n(y(p.y))); }
+};
+
+class Svg {
+public:
+    void add(const std::string& s) {
+        out_ += s;
+        out_ += '\n';
+    }
+    std::string text() const { return out_; }
+
+private:
+    std::string out_;
+};
+
+double xy_length(const Step& s) { return std::hypot(s.to.x - s.from.x, s.to.y - s.from.y); }
+
+// SVG path commands for one move, continuing from its start.
+std::string path_of(const Step& s, const View& v) {
+    if (!s.arc) return fmt::format("L{}", v.at(s.to));
+    const ArcGeometry& g = *s.arc;
+    std::string d;
+    if (g.plane == Plane::xy) {
+        // Arcs of at most 180 degrees each. The flip of y keeps the picture as seen from
+        // above, so a counter-clockwise arc stays counter-clockwise on screen; with y pointing
+        // down that is SVG's negative angle direction: sweep flag 0.
+        int pieces = std::max(1, static_cast<int>(std::ceil(g.sweep / pi - 1e-9)));
+        for (int k = 1; k <= pieces; ++k) {
+            Vec3 p = point_on_arc(g, double(k) / pieces);
+            d += fmt::format("A{},{} 0 0 {} {}", n(g.radius * v.scale), n(g.radius * v.scale),
+                             g.direction == ArcDirection::ccw ? 0 : 1, v.at(p));
+        }
+        return d;
+    }
+    // Other planes: the projection of the arc, as points.
+    int pieces = std::clamp(static_cast<int>(std::ceil(g.sweep / (pi / 36))), 2, 720);
+    for (int k = 1; k <= pieces; ++k) d += fmt::format("L{}", v.at(point_on_arc(g, double(k) / pieces)));
+    return d;
+}
+
+// A small arrowhead at the middle of a feed move, pointing the way it goes.
+std::string arrow(const Step& s, const View& v, const char* colour) {
+    Vec3 a, b, m;
+    if (s.arc) {
+        a = point_on_arc(*s.arc, 0.45), b = point_on_arc(*s.arc, 0.55), m = point_on_arc(*s.arc, 0.5);
+    } else {
+        a = s.from, b = s.to, m = {(s.from.x + s.to.x) / 2, (s.from.y + s.to.y) / 2, 0};
+    }
+    double dx = v.x(b.x) - v.x(a.x), dy = v.y(b.y) - v.y(a.y), len = std::hypot(dx, dy);
+    if (len < 1e-9) return {};
+    dx /= len, dy /= len;
+    double cx = v.x(m.x), cy = v.y(m.y), size = 5.0;
+    // Tip ahead of the middle, two corners behind it.
+    double tx = cx + dx * size, ty = cy + dy * size;
+    double bx = cx - dx * size, by = cy - dy * size;
+    return fmt::format("<polygon points=\"{},{} {},{} {},{}\" fill=\"{}\"/>", n(tx), n(ty), n(bx - dy * size * 0.6),
+                       n(by + dx * size * 0.6), n(bx + dy * size * 0.6), n(by - dx * size * 0.6), colour);
+}
+
+}  // namespace
+
+std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
+    // Colours by tool, in order of first use.
+    std::map<int, const char*> colour;
+    std::map<int, double> diameter;
+    auto colour_of = [&](int tool) {
+        if (!colour.count(tool)) colour[tool] = palette[colour.size() % std::size(palette)];
+        return colour[tool];
+    };
+    for (const ToolStats& t : stats.tools) {
+        (void)colour_of(t.tool);
+        diameter[t.tool] = t.diameter;
+    }
+
+    // The drawing: the XY extent of every known position and hole, with a margin.
+    double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+    bool any = !stats.box.empty;
+    if (any) min_x = stats.box.min.x, max_x = stats.box.max.x, min_y = stats.box.min.y, max_y = stats.box.max.y;
+    for (const Hole& h : trace.holes) {
+        double r = diameter[h.tool] / 2.0;
+        min_x = std::min(min_x, h.at.x - r), max_x = std::max(max_x, h.at.x + r);
+        min_y = std::min(min_y, h.at.y - r), max_y = std::max(max_y, h.at.y + r);
+    }
+    double span = std::max({max_x - min_x, max_y - min_y, 10.0});
+    double pad = span * 0.06;
+    min_x -= pad, max_x += pad, min_y -= pad, max_y += pad;
+    double dx = std::max(max_x - min_x, span * 0.2), dy = std::max(max_y - min_y, span * 0.2);
+
+    const double draw_w_max = 720, draw_h_max = 560, left = 60, top = 60;
+    View v;
+    v.scale = std::min(draw_w_max / dx, draw_h_max / dy);
+    v.min_x = min_x, v.max_y = min_y + dy, v.left = left, v.top = top;
+    double draw_w = dx * v.scale, draw_h = dy * v.scale;
+    double legend_x = left + draw_w + 40, legend_w = 340;
+    double width = legend_x + legend_w;
+
+    Svg body;
+    // Grid with coordinates every `step` mm.
+    double step = nice_below(span / 4.0);
+    body.add("<g stroke=\"#e4e4e4\" stroke-width=\"1\">");
+    for (double gx = std::ceil(min_x / step) * step; gx <= min_x + dx + 1e-9; gx += step)
+        body.add(fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"/>", n(v.x(gx)), n(top), n(top + draw_h)));
+    for (double gy = std::ceil(min_y / step) * step; gy <= min_y + dy + 1e-9; gy += step)
+        body.add(fmt::format("<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\"/>", n(v.y(gy)), n(left), n(left + draw_w)));
+    body.add("</g>");
+    body.add(fmt::format("<g {} font-size=\"10\" fill=\"#777\">", font));
+    for (double gx = std::ceil(min_x / step) * step; gx <= min_x + dx + 1e-9; gx += step)
+        body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", n(v.x(gx)), n(top + draw_h + 14),
+                             mm(std::abs(gx) < 1e-9 ? 0.0 : gx)));
+    for (double gy = std::ceil(min_y / step) * step; gy <= min_y + dy + 1e-9; gy += step)
+        body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", n(left - 6), n(v.y(gy) + 3),
+                             mm(std::abs(gy) < 1e-9 ? 0.0 : gy)));
+    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">X mm</text>", n(left + draw_w / 2), n(top + draw_h + 28)));
+    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">Y mm</text>",
+                         n(left - 40), n(top + draw_h / 2), n(left - 40), n(top + draw_h / 2)));
+    body.add("</g>");
+    body.add(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#bbb\"/>", n(left), n(top),
+                         n(draw_w), n(draw_h)));
+
+    // The work zero.
+    if (0 >= min_x && 0 <= min_x + dx && 0 >= min_y && 0 <= min_y + dy) {
+        double ox = v.x(0), oy = v.y(0);
+        body.add(fmt::format("<g stroke=\"#444\" stroke-width=\"1.2\" fill=\"none\"><path d=\"M{0},{1}H{2}M{0},{1}V{3}\"/>"
+                             "<circle cx=\"{0}\" cy=\"{1}\" r=\"4\"/></g>",
+                             n(ox), n(oy), n(ox + 28), n(oy - 28)));
+        body.add(fmt::format("<g {} font-size=\"10\" fill=\"#444\"><text x=\"{}\" y=\"{}\">X</text><text x=\"{}\" y=\"{}\">Y</text>"
+                             "<text x=\"{}\" y=\"{}\">X0 Y0</text></g>",
+                             font, n(ox + 24), n(oy + 13), n(ox - 12), n(oy - 22), n(ox + 6), n(oy - 6)));
+    }
+
+    // Moves: one path per tool and kind, rapids first so that cuts are drawn over them.
+    for (StepKind kind : {StepKind::rapid, StepKind::feed}) {
+        std::map<int, std::string> d;
+        std::map<int, Vec3> last;
+        std::vector<std::string> arrows;
+        for (const Step& s : trace.steps) {
+            if (s.kind != kind || !s.from_known) continue;
+            if (!s.arc && xy_length(s) < 1e-9) continue;  // a move along Z only: seen from above it is a point
+            std::string& path = d[s.tool];
+            if (!last.count(s.tool) || !(last[s.tool] == s.from)) path += fmt::format("M{}", v.at(s.from));
+            path += path_of(s, v);
+            last[s.tool] = s.to;
+            double px = s.arc ? s.arc->radius * s.arc->sweep * v.scale : xy_length(s) * v.scale;
+            if (kind == StepKind::feed && px >= 24) arrows.push_back(arrow(s, v, colour_of(s.tool)));
+        }
+        for (const auto& [tool, path] : d) {
+            if (kind == StepKind::rapid)
+                body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1\" stroke-dasharray=\"5 4\" "
+                                     "stroke-opacity=\"0.75\"/>",
+                                     path, colour_of(tool)));
+            else
+                body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\" stroke-linejoin=\"round\"/>",
+                                     path, colour_of(tool)));
+        }
+        for (const std::string& a : arrows) body.add(a);
+    }
+
+    // Plunges that are not holes: where a cutter feeds straight down into the work.
+    for (size_t i = 0; i < trace.steps.size(); ++i) {
+        const Step& s = trace.steps[i];
+        if (s.kind != StepKind::feed || !s.from_known || s.arc || xy_length(s) >= 1e-9 || !(s.to.z < s.from.z)) continue;
+        bool hole = std::any_of(trace.holes.begin(), trace.holes.end(), [&](const Hole& h) {
+            return std::abs(h.at.x - s.to.x) < 1e-6 && std::abs(h.at.y - s.to.y) < 1e-6;
+        });
+        if (hole) continue;
+        double cx = v.x(s.to.x), cy = v.y(s.to.y);
+        body.add(fmt::format("<g stroke=\"{0}\" stroke-width=\"1.2\"><rect x=\"{1}\" y=\"{2}\" width=\"8\" height=\"8\" "
+                             "fill=\"#fff\"/><path d=\"M{1},{2}l8,8M{3},{2}l-8,8\"/></g>",
+                             colour_of(s.tool), n(cx - 4), n(cy - 4), n(cx + 4)));
+    }
+
+    // Holes: the drill's size where known, a cross, and the drilling order; holes drilled at
+    // the same place by several tools share one label.
+    std::vector<std::pair<Vec2, std::vector<std::pair<int, int>>>> labels;  // place -> (number, tool)
+    std::map<std::pair<long, long>, size_t> label_at;
+    for (size_t i = 0; i < trace.holes.size(); ++i) {
+        const Hole& h = trace.holes[i];
+        double r = std::max(diameter[h.tool] / 2.0 * v.scale, 3.0);
+        double cx = v.x(h.at.x), cy = v.y(h.at.y);
+        const char* c = colour_of(h.tool);
+        body.add(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                             n(cx), n(cy), n(r), c, c));
+        body.add(fmt::format("<path d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", n(cx - r - 3), n(cy), n(cx + r + 3),
+                             n(cx), n(cy - r - 3), n(cy + r + 3), c));
+        auto key = std::make_pair(std::lround(h.at.x * 1000.0), std::lround(h.at.y * 1000.0));
+        auto [it, fresh] = label_at.try_emplace(key, labels.size());
+        if (fresh) labels.push_back({h.at, {}});
+        labels[it->second].second.push_back({static_cast<int>(i) + 1, h.tool});
+    }
+    // Numbers where they fit: the first and last hole of each tool first, then in drilling
+    // order, leaving out any that would overlap one already placed.
+    std::vector<size_t> order(labels.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::map<int, std::pair<int, int>> first_last;  // tool -> first and last hole number
+    for (size_t i = 0; i < trace.holes.size(); ++i) {
+        auto [it, fresh] = first_last.try_emplace(trace.holes[i].tool, static_cast<int>(i) + 1, static_cast<int>(i) + 1);
+        if (!fresh) it->second.second = static_cast<int>(i) + 1;
+    }
+    auto priority = [&](size_t l) {
+        for (const auto& [number, tool] : labels[l].second)
+            if (number == first_last[tool].first || number == first_last[tool].second) return 0;
+        return 1;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return priority(a) < priority(b); });
+    struct Rect {
+        double x0, y0, x1, y1;
+    };
+    std::map<std::pair<int, int>, std::vector<Rect>> placed;  // by 40 px cell
+    const double cell = 40.0;
+    int left_out = 0;
+    for (size_t l : order) {
+        const auto& [at, numbers] = labels[l];
+        double r = 3.0;
+        for (const auto& [number, tool] : numbers) r = std::max(r, diameter[tool] / 2.0 * v.scale);
+        std::string spans, plain;
+        for (size_t k = 0; k < numbers.size(); ++k) {
+            spans += fmt::format("{}<tspan fill=\"{}\">{}</tspan>", k ? "<tspan fill=\"#555\">, </tspan>" : "",
+                                 colour_of(numbers[k].second), numbers[k].first);
+            plain += fmt::format("{}{}", k ? ", " : "", numbers[k].first);
+        }
+        double tx = v.x(at.x) + r * 0.75 + 3, ty = v.y(at.y) - r * 0.75 - 3;
+        // Bold 12 px digits are about 8.4 px wide; a little room around each label.
+        Rect box{tx - 3, ty - 13, tx + 8.4 * static_cast<double>(plain.size()) + 3, ty + 4};
+        bool free = true;
+        for (int cx = static_cast<int>(std::floor(box.x0 / cell)); free && cx <= static_cast<int>(std::floor(box.x1 / cell)); ++cx)
+            for (int cy = static_cast<int>(std::floor(box.y0 / cell)); free && cy <= static_cast<int>(std::floor(box.y1 / cell)); ++cy)
+                for (const Rect& o : placed[{cx, cy}])
+                    if (box.x0 < o.x1 && o.x0 < box.x1 && box.y0 < o.y1 && o.y0 < box.y1) free = false;
+        if (!free) {
+            left_out += static_cast<int>(numbers.size());
+            continue;
+        }
+        for (int cx = static_cast<int>(std::floor(box.x0 / cell)); cx <= static_cast<int>(std::floor(box.x1 / cell)); ++cx)
+            for (int cy = static_cast<int>(std::floor(box.y0 / cell)); cy <= static_cast<int>(std::floor(box.y1 / cell)); ++cy)
+                placed[{cx, cy}].push_back(box);
+        body.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" font-weight=\"bold\" stroke=\"#fff\" stroke-width=\"3\" "
+                             "paint-order=\"stroke\">{}</text>",
+                             n(tx), n(ty), font, spans));
+    }
+
+    // Scale bar under the drawing, left.
+    double bar = nice_below(120.0 / v.scale);
+    double bx = left, by = top + draw_h + 48, bw = bar * v.scale;
+    body.add(fmt::format("<g stroke=\"#222\" stroke-width=\"1.5\"><path d=\"M{0},{1}H{2}M{0},{3}V{4}M{2},{3}V{4}\"/></g>", n(bx), n(by),
+                         n(bx + bw), n(by - 5), n(by + 5)));
+    body.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"11\" fill=\"#222\">{} mm</text>", n(bx + bw + 8), n(by + 4), font,
+                         mm(bar)));
+
+    // Legend.
+    Svg legend;
+    double ly = top;
+    auto text = [&](double x, const std::string& s, int size = 12, const char* weight = "normal", const char* fill = "#222") {
+        legend.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"{}\" font-weight=\"{}\" fill=\"{}\">{}</text>", n(x), n(ly), font,
+                               size, weight, fill, escape(s)));
+    };
+    double lx = legend_x;
+    text(lx, "Key", 13, "bold");
+    ly += 20;
+    legend.add(fmt::format("<path d=\"M{},{}h36\" stroke=\"#555\" stroke-width=\"1\" stroke-dasharray=\"5 4\"/>", n(lx), n(ly - 4)));
+    text(lx + 46, "rapid (G0)");
+    ly += 18;
+    legend.add(fmt::format("<path d=\"M{},{}h36\" stroke=\"#555\" stroke-width=\"2\"/>", n(lx), n(ly - 4)));
+    legend.add(fmt::format("<polygon points=\"{},{} {},{} {},{}\" fill=\"#555\"/>", n(lx + 23), n(ly - 4), n(lx + 13), n(ly - 10),
+                           n(lx + 13), n(ly + 2)));
+    text(lx + 46, "feed, arrow = direction of cut");
+    ly += 18;
+    legend.add(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"#555\" fill-opacity=\"0.12\" stroke=\"#555\"/>", n(lx + 18),
+                           n(ly - 4)));
+    legend.add(fmt::format("<path d=\"M{},{}h18M{},{}v18\" stroke=\"#555\" stroke-width=\"0.8\"/>", n(lx + 9), n(ly - 4), n(lx + 18),
+                           n(ly - 13)));
+    text(lx + 46, "hole (tool size), number = drilling order");
+    ly += 18;
+    legend.add(fmt::format("<g stroke=\"#555\" stroke-width=\"1.2\"><rect x=\"{0}\" y=\"{1}\" width=\"8\" height=\"8\" "
+                           "fill=\"#fff\"/><path d=\"M{0},{1}l8,8M{2},{1}l-8,8\"/></g>",
+                           n(lx + 14), n(ly - 8), n(lx + 22)));
+    text(lx + 46, "plunge: feed straight down (not a hole)");
+    ly += 26;
+
+    text(lx, "Tools", 13, "bold");
+    ly += 20;
+    for (const ToolStats& t : stats.tools) {
+        legend.add(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"14\" height=\"14\" fill=\"{}\"/>", n(lx), n(ly - 11), colour_of(t.tool)));
+        text(lx + 22, clip(fmt::format("T{}  {}", t.tool, t.description.empty() ? "(no description)" : t.description), 48), 12, "bold");
+        ly += 16;
+        std::string line = fmt::format("{} hole{}, feed {} mm, rapid {} mm", t.holes, t.holes == 1 ? "" : "s", n(t.feed_length, 1),
+                                       n(t.rapid_length, 1));
+        text(lx + 22, line, 11, "normal", "#444");
+        ly += 15;
+        if (!t.box.empty) {
+            text(lx + 22, fmt::format("X {} .. {}, Y {} .. {}, Z {} .. {}", n(t.box.min.x, 1), n(t.box.max.x, 1), n(t.box.min.y, 1),
+                                      n(t.box.max.y, 1), n(t.box.min.z, 1), n(t.box.max.z, 1)),
+                 11, "normal", "#444");
+            ly += 20;
+        }
+    }
+    ly += 6;
+    text(lx, "Program", 13, "bold");
+    ly += 20;
+    auto row = [&](const std::string& label, const std::string& value) {
+        text(lx, label, 11, "normal", "#444");
+        text(lx + 80, value, 11);
+        ly += 15;
+    };
+    auto note = [&](const std::string& value) {
+        text(lx + 80, value, 10, "normal", "#555");
+        ly += 14;
+    };
+    row("holes", std::to_string(stats.holes));
+    row("feed path", mm(stats.feed_length) + " mm");
+    row("rapid path", mm(stats.rapid_length) + " mm");
+    if (stats.unmeasured_rapids > 0)
+        note(fmt::format("+ {} from the tool change, not measured", stats.unmeasured_rapids));
+    row("lowest Z", stats.lowest_z ? mm(*stats.lowest_z) + " mm" : std::string("-"));
+    row("time", format_duration(stats.total_time()));
+    note(fmt::format("feed {}, dwell {}", format_duration(stats.feed_time), format_duration(stats.dwell_time)));
+    note(fmt::format("rapid {} at {} mm/min", format_duration(stats.rapid_time), n(stats.rapid_rate, 0)));
+    if (stats.clamped_feeds) note(fmt::format("{} feed moves clamped to the machine's limits", stats.clamped_feeds));
+    ly += 8;
+    if (left_out > 0) {
+        text(lx, fmt::format("{} hole numbers left out where they would overlap.", left_out), 11, "normal", "#777");
+        ly += 15;
+    }
+    text(lx, "No stock outline: the job format has no stock yet.", 11, "normal", "#777");
+    ly += 15;
+    text(lx, "XY view from above; moves along Z only show as points.", 11, "normal", "#777");
+    ly += 10;
+
+    double height = std::max(top + draw_h + 70, ly + 20);
+    Svg svg;
+    svg.add(fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\">", n(width, 0),
+                        n(height, 0)));
+    svg.add(fmt::format("<rect width=\"{}\" height=\"{}\" fill=\"#fff\"/>", n(width, 0), n(height, 0)));
+    svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"18\" font-weight=\"bold\" fill=\"#111\">{}</text>", n(left), n(30), font,
+                        escape(options.title.empty() ? "program" : options.title)));
+    svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" fill=\"#555\">{}backplot of the program as camgen reads it back, "
+                        "XY view</text>",
+                        n(left), n(47), font, escape(options.machine.empty() ? "" : "machine " + options.machine + " - ")));
+    return svg.text() + body.text() + legend.text() + "</svg>\n";
+}
+
+}  // namespace camgen

@@ -1,0 +1,344 @@
+// Comparing two traces as positions visited (motion.hpp). Each trace becomes a list of items:
+// tool changes, spindle states, dwells, and paths (maximal runs of rapid or of feed moves).
+// Two paths match when every block end and every sampled arc point of each lies on the other,
+// in order (so a circle the wrong way round fails although every point is on the circle),
+// both end at the same point, and the feed agrees where they overlap.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/analysis/trace.hpp"
+#include "camgen/nc/format.hpp"
+#include "camgen/reader/reader.hpp"
+
+namespace camgen {
+
+namespace {
+
+constexpr double two_pi = 2.0 * std::numbers::pi;
+constexpr double eps = 1e-9;
+
+std::string num(double v) {
+    nc::FormatSpec spec;
+    spec.decimals = 3;
+    spec.force_decimal = true;
+    return nc::Format(spec).format(v);
+}
+
+std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num(p.x), num(p.y), num(p.z)); }
+
+double dist(const Vec3& a, const Vec3& b) { return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z)); }
+
+// One straight or circular piece of a path.
+struct Seg {
+    const Step* step = nullptr;
+    Vec3 a, b;
+    double length() const {
+        if (!step->arc) return dist(a, b);
+        const ArcGeometry& g = *step->arc;
+        PlanePoint s = to_plane(g.start, g.plane), e = to_plane(g.end, g.plane);
+        return std::hypot(g.radius * g.sweep, e.w - s.w);
+    }
+    Vec3 at(double t) const {
+        if (step->arc) return point_on_arc(*step->arc, t);
+        return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+    }
+};
+
+struct Path {
+    bool rapid = true;
+    bool start_known = true;
+    Vec3 start;
+    std::vector<Seg> segs;
+    Vec3 end() const { return segs.empty() ? start : segs.back().b; }
+    int first_line() const { return segs.empty() ? 0 : segs.front().step->line; }
+};
+
+struct Item {
+    enum class Kind { path, tool, spindle, dwell } kind = Kind::path;
+    const Step* step = nullptr;  // tool, spindle, dwell
+    Path path;
+    int line() const { return kind == Kind::path ? path.first_line() : step->line; }
+};
+
+// A spindle change counts where it matters: before the next feed move, dwell or tool change,
+// and only if it changes the state then in effect. So a control that reverses its spindle
+// for a tap at the retract plane (LinuxCNC's M4 before G33.1) matches one that reverses at R,
+// and a speed written again unchanged says nothing.
+std::vector<Item> items_of(const Trace& t) {
+    std::vector<Item> items;
+    const Step* pending = nullptr;
+    SpindleState state = SpindleState::off;
+    double rpm = 0.0;
+    auto flush_spindle = [&] {
+        if (!pending) return;
+        bool same = pending->spindle == state && (state == SpindleState::off || pending->rpm == rpm);
+        if (!same) items.push_back({Item::Kind::spindle, pending, {}});
+        state = pending->spindle;
+        rpm = pending->rpm;
+        pending = nullptr;
+    };
+    for (const Step& s : t.steps) {
+        switch (s.kind) {
+            case StepKind::tool_change:
+                flush_spindle();
+                items.push_back({Item::Kind::tool, &s, {}});
+                break;
+            case StepKind::spindle: pending = &s; break;
+            case StepKind::dwell:
+                flush_spindle();
+                items.push_back({Item::Kind::dwell, &s, {}});
+                break;
+            case StepKind::rapid:
+            case StepKind::feed: {
+                bool rapid = s.kind == StepKind::rapid;
+                if (!rapid) flush_spindle();
+                bool extend = !items.empty() && items.back().kind == Item::Kind::path &&
+                              items.back().path.rapid == rapid && s.from_known;
+                if (!extend) {
+                    Item it{Item::Kind::path, nullptr, {}};
+                    it.path.rapid = rapid;
+                    it.path.start_known = s.from_known;
+                    it.path.start = s.from_known ? s.from : s.to;
+                    items.push_back(it);
+                }
+                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) items.back().path.segs.push_back({&s, s.from, s.to});
+                break;
+            }
+        }
+    }
+    flush_spindle();
+    // A path that goes nowhere from a known start says nothing.
+    std::erase_if(items, [](const Item& i) { return i.kind == Item::Kind::path && i.path.start_known && i.path.segs.empty(); });
+    return items;
+}
+
+// A point of one path to be found on the other.
+struct Sample {
+    Vec3 p;
+    size_t seg = 0;              // index of the segment it lies on
+    const Step* step = nullptr;  // the step it lies on (nullptr: the path's start)
+    bool vertex = false;         // a block end (else a point inside a move)
+    bool check_feed = false;     // inside a move: the feeds must agree here
+};
+
+std::vector<Sample> samples_of(const Path& path) {
+    std::vector<Sample> out;
+    out.push_back({path.start, 0, path.segs.empty() ? nullptr : path.segs.front().step, true, false});
+    for (size_t i = 0; i < path.segs.size(); ++i) {
+        const Seg& s = path.segs[i];
+        int n = 2;
+        if (s.step->arc) {
+            const ArcGeometry& g = *s.step->arc;
+            n = static_cast<int>(std::ceil(std::max(g.sweep / (5.0 * std::numbers::pi / 180.0), s.length() / 1.0)));
+            n = std::clamp(n, 4, 5000);
+        }
+        for (int k = 1; k < n; ++k) out.push_back({s.at(double(k) / n), i, s.step, false, true});
+        out.push_back({s.b, i, s.step, true, false});
+    }
+    return out;
+}
+
+// Where on a segment a point lies: the parameter t in [0, 1] nearest to it, at or after t_min
+// (minus `slack`), and its distance. Arcs: the angle about the centre, over every turn.
+struct Hit {
+    double t = 0.0;
+    double d = 1e300;
+};
+
+Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
+    double len = s.length();
+    double slack = len > 0 ? tol / len : 1.0;
+    if (!s.step->arc) {
+        Vec3 ab{s.b.x - s.a.x, s.b.y - s.a.y, s.b.z - s.a.z};
+        double l2 = ab.x * ab.x + ab.y * ab.y + ab.z * ab.z;
+        double t = l2 > 0 ? ((p.x - s.a.x) * ab.x + (p.y - s.a.y) * ab.y + (p.z - s.a.z) * ab.z) / l2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        if (t < t_min - slack) return {};
+        return {std::max(t, t_min), dist(p, s.at(t))};
+    }
+    const ArcGeometry& g = *s.step->arc;
+    PlanePoint c = to_plane(g.centre, g.plane), q = to_plane(p, g.plane);
+    double phi = std::atan2(q.v - c.v, q.u - c.u) - g.start_angle;
+    if (g.direction == ArcDirection::cw) phi = -phi;
+    phi = std::fmod(phi, two_pi);
+    if (phi < 0) phi += two_pi;
+    Hit best;
+    std::vector<double> ts{0.0, 1.0};
+    for (double a = phi; a <= g.sweep + two_pi; a += two_pi) ts.push_back(std::min(a / g.sweep, 1.0));
+    std::sort(ts.begin(), ts.end());
+    for (double t : ts) {
+        if (t < t_min - slack) continue;
+        double d = dist(p, s.at(t));
+        if (d <= tol) return {std::max(t, t_min), d};
+        if (d < best.d) best = {std::max(t, t_min), d};
+    }
+    return best;
+}
+
+std::string describe_path(const Path& p) { return p.rapid ? "rapid" : "feed"; }
+
+std::string describe_seg(const Seg& s) {
+    if (!s.step->arc)
+        return fmt::format("{} move from {} to {}", s.step->kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
+    const ArcGeometry& g = *s.step->arc;
+    return fmt::format("{} arc from {} to {} about {}", g.direction == ArcDirection::cw ? "cw" : "ccw", point(s.a), point(s.b),
+                       point(g.centre));
+}
+
+std::string describe_step(const Step& s) {
+    switch (s.kind) {
+        case StepKind::tool_change: return fmt::format("a change to tool {}", s.tool);
+        case StepKind::spindle:
+            return s.spindle == SpindleState::off ? std::string("spindle off")
+                                                  : fmt::format("spindle {} at {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw", num(s.rpm));
+        case StepKind::dwell: return fmt::format("a dwell of {} s", num(s.seconds));
+        default: return s.kind == StepKind::rapid ? "a rapid move" : "a feed move";
+    }
+}
+
+std::string describe_item(const Item& i) {
+    if (i.kind != Item::Kind::path) return describe_step(*i.step);
+    return fmt::format("{} moves to {}", describe_path(i.path), point(i.path.end()));
+}
+
+// Finds every sample of `from` on `onto`, in order. `from_is_job` only changes the words.
+// `onto_next` is the item after `onto` (for messages: what the other side does instead).
+std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* onto_next, bool from_is_job,
+                               const CompareTolerance& tol) {
+    size_t k = 0;
+    double t = 0.0;
+    for (const Sample& s : samples_of(from)) {
+        double extra = s.step ? s.step->uncertainty : 0.0;
+        bool found = false;
+        std::optional<Mismatch> wrong_feed;
+        for (size_t j = k; j < onto.segs.size() && !found; ++j) {
+            const Seg& seg = onto.segs[j];
+            // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
+            // chords or have a rounded centre.
+            double limit = (s.vertex && !seg.step->arc ? tol.position : tol.path) + extra + seg.step->uncertainty + eps;
+            Hit h = locate(seg, s.p, j == k ? t : 0.0, limit);
+            if (h.d > limit) {
+                if (wrong_feed) break;  // the run of segments the point is near has ended
+                continue;
+            }
+            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > tol.feed + eps) {
+                // A point within the tolerance of a corner lies on both moves that meet there (a
+                // tiny arc written as one short line after a plunge): look on along the moves it
+                // is near for one at its feed before calling it a mismatch.
+                if (!wrong_feed) {
+                    const Step& job = from_is_job ? *s.step : *seg.step;
+                    const Step& prog = from_is_job ? *seg.step : *s.step;
+                    wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
+                                                                 num(prog.feed), num(job.feed), point(s.p))};
+                }
+                continue;
+            }
+            k = j;
+            t = h.t;
+            found = true;
+        }
+        if (!found && wrong_feed) return wrong_feed;
+        if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + eps;
+        if (found) continue;
+        // Where the other path goes on from the last point both share: inside the segment
+        // matched last, or after it.
+        bool inside = k < onto.segs.size() && t < 1.0 - 1e-9;
+        const Seg* near = inside                                   ? &onto.segs[k]
+                          : k + 1 < onto.segs.size()                  ? &onto.segs[k + 1]
+                          : onto_next && !onto_next->segs.empty() ? &onto_next->segs.front()
+                          : onto.segs.empty()                     ? nullptr
+                                                                  : &onto.segs.back();
+        const Seg* mine = s.seg < from.segs.size() ? &from.segs[s.seg] : nullptr;
+        std::string what = mine ? describe_seg(*mine)
+                                : fmt::format("{} path from {}", describe_path(from), point(from.start));
+        std::string there = near ? describe_seg(*near) : fmt::format("{} path that stays at {}", describe_path(onto), point(onto.start));
+        if (from_is_job)
+            return Mismatch{near ? near->step->line : from.first_line(),
+                            fmt::format("the job's {} is not in the program (there the program has a {})", what, there)};
+        return Mismatch{mine ? mine->step->line : from.first_line(),
+                        fmt::format("the program's {} is not in the job (there the job has a {})", what, there)};
+    }
+    return std::nullopt;
+}
+
+std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const Path* job_next, const Path* prog_next,
+                                      const CompareTolerance& tol) {
+    double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().step->uncertainty;
+    double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().step->uncertainty;
+    if (dist(job.start, prog.start) > tol.position + eps + prog_start_extra) {
+        return Mismatch{prog.first_line(), fmt::format("the program's {} path starts at {}, the job's at {}", describe_path(prog),
+                                                       point(prog.start), point(job.start))};
+    }
+    if (auto m = follow(job, prog, prog_next, true, tol)) return m;
+    if (auto m = follow(prog, job, job_next, false, tol)) return m;
+    if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + eps) {
+        int line = prog.segs.empty() ? 0 : prog.segs.back().step->line;
+        return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end()),
+                                          point(job.end()))};
+    }
+    return std::nullopt;
+}
+
+const Path* next_path(const std::vector<Item>& items, size_t i) {
+    for (size_t j = i + 1; j < items.size(); ++j)
+        if (items[j].kind == Item::Kind::path) return &items[j].path;
+    return nullptr;
+}
+
+}  // namespace
+
+CompareTolerance compare_tolerance(const Machine& machine, double position) {
+    return compare_tolerance(machine, has_reader(machine.dialect) ? read_resolution(machine) : ReadResolution{}, position);
+}
+
+CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution& res, double position) {
+    CompareTolerance t;
+    // Half a unit on each of three axes is at most sqrt(3) half units away.
+    t.position = std::max(position, res.position * std::sqrt(3.0));
+    t.path = t.position + machine.tolerance + machine.arcs.chord_tolerance;
+    t.feed = res.feed;
+    t.dwell = res.dwell;
+    t.rpm = res.rpm;
+    return t;
+}
+
+std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tol) {
+    std::vector<Item> job = items_of(expected), prog = items_of(actual);
+    size_t n = std::min(job.size(), prog.size());
+    for (size_t i = 0; i < n; ++i) {
+        const Item& a = job[i];
+        const Item& b = prog[i];
+        if (a.kind != b.kind)
+            return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+        switch (a.kind) {
+            case Item::Kind::tool:
+                if (a.step->tool != b.step->tool)
+                    return Mismatch{b.line(), fmt::format("the program changes to tool {}, the job to tool {}", b.step->tool, a.step->tool)};
+                break;
+            case Item::Kind::spindle:
+                if (a.step->spindle != b.step->spindle || std::abs(a.step->rpm - b.step->rpm) > tol.rpm + eps)
+                    return Mismatch{b.line(), fmt::format("the program sets {}, the job {}", describe_step(*b.step), describe_step(*a.step))};
+                break;
+            case Item::Kind::dwell:
+                if (std::abs(a.step->seconds - b.step->seconds) > tol.dwell + eps)
+                    return Mismatch{b.line(), fmt::format("the program has {}, the job {}", describe_step(*b.step), describe_step(*a.step))};
+                break;
+            case Item::Kind::path:
+                if (a.path.rapid != b.path.rapid)
+                    return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+                if (auto m = compare_paths(a.path, b.path, next_path(job, i), next_path(prog, i), tol)) return m;
+                break;
+        }
+    }
+    if (job.size() > n)
+        return Mismatch{prog.empty() ? 0 : prog.back().line(),
+                        fmt::format("the program ends where the job still has {}", describe_item(job[n]))};
+    if (prog.size() > n)
+        return Mismatch{prog[n].line(), fmt::format("the program has {} after the end of the job's motion", describe_item(prog[n]))};
+    return std::nullopt;
+}
+
+}  // namespace camgen

@@ -1,0 +1,174 @@
+#include "camgen/analysis/stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/nc/format.hpp"
+
+namespace camgen {
+
+namespace {
+
+constexpr double two_pi = 2.0 * std::numbers::pi;
+
+std::string num(double v, int decimals = 3) {
+    nc::FormatSpec spec;
+    spec.decimals = decimals;
+    spec.force_decimal = decimals > 0;
+    return nc::Format(spec).format(v);
+}
+
+double length_of(const Step& s) {
+    if (!s.from_known) return 0.0;
+    if (!s.arc) return std::sqrt((s.to.x - s.from.x) * (s.to.x - s.from.x) + (s.to.y - s.from.y) * (s.to.y - s.from.y) +
+                                 (s.to.z - s.from.z) * (s.to.z - s.from.z));
+    const ArcGeometry& g = *s.arc;
+    double dw = to_plane(g.end, g.plane).w - to_plane(g.start, g.plane).w;
+    return std::hypot(g.radius * g.sweep, dw);
+}
+
+}  // namespace
+
+std::string format_duration(double seconds) {
+    long tenths = std::lround(seconds * 10.0);
+    long h = tenths / 36000, m = tenths / 600 % 60;
+    double s = static_cast<double>(tenths % 600) / 10.0;
+    if (h > 0) return fmt::format("{} h {:02} min {:04.1f} s", h, m, s);
+    if (m > 0) return fmt::format("{} min {:04.1f} s", m, s);
+    return fmt::format("{:.1f} s", s);
+}
+
+namespace {
+
+std::string range(const Box& b, int axis) {
+    auto get = [&](const Vec3& v) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
+    return fmt::format("{} .. {}", num(get(b.min)), num(get(b.max)));
+}
+
+}  // namespace
+
+void Box::add(const Vec3& p) {
+    if (empty) {
+        min = max = p;
+        empty = false;
+        return;
+    }
+    min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
+    max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};
+}
+
+void Box::add(const Box& b) {
+    if (b.empty) return;
+    add(b.min);
+    add(b.max);
+}
+
+Box box_of(const Step& s) {
+    Box b;
+    b.add(s.to);
+    if (!s.from_known) return b;
+    b.add(s.from);
+    if (!s.arc) return b;
+    // The arc's extremes along the plane's axes: the quadrant points its sweep passes.
+    const ArcGeometry& g = *s.arc;
+    for (int q = 0; q < 4; ++q) {
+        double angle = q * std::numbers::pi / 2.0;
+        double delta = g.direction == ArcDirection::ccw ? angle - g.start_angle : g.start_angle - angle;
+        delta = std::fmod(delta, two_pi);
+        if (delta < 0) delta += two_pi;
+        if (delta <= g.sweep) b.add(point_on_arc(g, delta / g.sweep));
+    }
+    return b;
+}
+
+ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
+    ProgramStats st;
+    const MachineLimits& lim = machine.limits;
+    st.rapid_rate = lim.rapid_rate;
+    auto tool_stats = [&](int tool) -> ToolStats& {
+        for (ToolStats& t : st.tools)
+            if (t.tool == tool) return t;
+        ToolStats t;
+        t.tool = tool;
+        for (const ToolInfo& i : trace.tools)
+            if (i.number == tool) t.diameter = i.diameter, t.description = i.description;
+        st.tools.push_back(t);
+        return st.tools.back();
+    };
+    for (const Step& s : trace.steps) {
+        switch (s.kind) {
+            case StepKind::tool_change: (void)tool_stats(s.tool); break;
+            case StepKind::spindle: break;
+            case StepKind::dwell: {
+                st.dwell_time += s.seconds;
+                tool_stats(s.tool).time += s.seconds;
+                break;
+            }
+            case StepKind::rapid:
+            case StepKind::feed: {
+                ToolStats& t = tool_stats(s.tool);
+                Box b = box_of(s);
+                t.box.add(b);
+                st.box.add(b);
+                st.lowest_z = st.lowest_z ? std::min(*st.lowest_z, b.min.z) : b.min.z;
+                double len = length_of(s);
+                double time;
+                if (s.kind == StepKind::rapid) {
+                    if (!s.from_known) ++st.unmeasured_rapids;
+                    st.rapid_length += len;
+                    if (s.from_known) st.rapid_xy_length += std::hypot(s.to.x - s.from.x, s.to.y - s.from.y);
+                    t.rapid_length += len;
+                    time = len / lim.rapid_rate * 60.0;
+                    st.rapid_time += time;
+                } else {
+                    double f = std::clamp(s.feed, lim.min_feed, lim.max_feed);
+                    if (f != s.feed) ++st.clamped_feeds;
+                    st.feed_length += len;
+                    t.feed_length += len;
+                    time = len / f * 60.0;
+                    st.feed_time += time;
+                }
+                t.time += time;
+                break;
+            }
+        }
+    }
+    st.holes = static_cast<int>(trace.holes.size());
+    for (const Hole& h : trace.holes) ++tool_stats(h.tool).holes;
+    // A tool that never moved (a snippet's tool 0 with no motion) says nothing.
+    std::erase_if(st.tools, [](const ToolStats& t) { return t.box.empty && t.holes == 0 && t.time == 0.0; });
+    return st;
+}
+
+std::string format_stats(const ProgramStats& st) {
+    std::string out;
+    auto line = [&](std::string_view label, const std::string& value) { out += fmt::format("{:<15}{}\n", label, value); };
+    line("holes", std::to_string(st.holes));
+    line("feed path", num(st.feed_length) + " mm");
+    std::string rapid = num(st.rapid_length) + " mm";
+    if (st.unmeasured_rapids > 0)
+        rapid += fmt::format(" (+ {} rapid{} from the tool-change position, not measured)", st.unmeasured_rapids,
+                             st.unmeasured_rapids == 1 ? "" : "s");
+    line("rapid path", rapid);
+    line("rapid in XY", num(st.rapid_xy_length) + " mm");
+    line("lowest Z", st.lowest_z ? num(*st.lowest_z) + " mm" : std::string("-"));
+    line("time", fmt::format("{} (feed {}, rapid {} at {} mm/min, dwell {}){}", format_duration(st.total_time()),
+                             format_duration(st.feed_time), format_duration(st.rapid_time), num(st.rapid_rate, 0),
+                             format_duration(st.dwell_time),
+                             st.clamped_feeds ? fmt::format("; {} feed move{} clamped to the machine's limits",
+                                                            st.clamped_feeds, st.clamped_feeds == 1 ? "" : "s")
+                                              : std::string()));
+    for (const ToolStats& t : st.tools) {
+        line(fmt::format("tool {}", t.tool), t.description.empty() ? std::string("-") : t.description);
+        if (!t.box.empty)
+            line("", fmt::format("X {}  Y {}  Z {}", range(t.box, 0), range(t.box, 1), range(t.box, 2)));
+        line("", fmt::format("{} hole{}, feed {} mm, rapid {} mm, {}", t.holes, t.holes == 1 ? "" : "s", num(t.feed_length),
+                             num(t.rapid_length), format_duration(t.time)));
+    }
+    return out;
+}
+
+}  // namespace camgen

@@ -1,0 +1,503 @@
+#include "camgen/common/json_util.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_set>
+
+#include "camgen/common/error.hpp"
+
+namespace camgen::json {
+
+namespace {
+
+// Appends the code point `cp` to `out` as UTF-8.
+void append_utf8(std::string& out, std::uint32_t cp) {
+    if (cp < 0x80) {
+        out += static_cast<char>(cp);
+    } else if (cp < 0x800) {
+        out += static_cast<char>(0xC0 | (cp >> 6));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else if (cp < 0x10000) {
+        out += static_cast<char>(0xE0 | (cp >> 12));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+        out += static_cast<char>(0xF0 | (cp >> 18));
+        out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+}
+
+// A single pass over valid JSON text that reports every value's pointer and line.
+// Iterative (an explicit stack), so deeply nested input cannot overflow the call stack.
+class Scanner {
+public:
+    explicit Scanner(std::string_view text) : text_(text) {}
+
+    // Calls on_value(pointer, line) for every value in document order, and
+    // on_duplicate(pointer, line) for an object key seen twice in the same object
+    // (only when `check_duplicates`).
+    template <class OnValue, class OnDuplicate>
+    void run(OnValue&& on_value, OnDuplicate&& on_duplicate, bool check_duplicates) {
+        struct Frame {
+            bool object;
+            std::size_t index;
+            std::size_t prefix;  // length of the container's own pointer
+            std::unordered_set<std::string> keys;
+        };
+        std::vector<Frame> stack;
+        std::string pointer;
+        skip_ws();
+        int value_line = line_;
+        enum class State { value, element, after };
+        State state = State::value;
+        while (pos_ < text_.size()) {
+            if (state == State::value) {
+                on_value(std::string_view(pointer), value_line);
+                const char c = text_[pos_];
+                if (c == '{' || c == '[') {
+                    stack.push_back(Frame{c == '{', 0, pointer.size(), {}});
+                    ++pos_;
+                    skip_ws();
+                    if (pos_ < text_.size() && (text_[pos_] == '}' || text_[pos_] == ']')) {
+                        ++pos_;
+                        stack.pop_back();
+                        state = State::after;
+                    } else {
+                        state = State::element;
+                    }
+                } else {
+                    skip_scalar();
+                    state = State::after;
+                }
+            } else if (state == State::element) {
+                Frame& frame = stack.back();
+                pointer.resize(frame.prefix);
+                pointer += '/';
+                value_line = line_;
+                if (frame.object) {
+                    std::string key = read_string();
+                    pointer += pointer_escape(key);
+                    if (check_duplicates && !frame.keys.insert(std::move(key)).second)
+                        on_duplicate(std::string_view(pointer), value_line);
+                    skip_ws();
+                    if (pos_ < text_.size() && text_[pos_] == ':') ++pos_;
+                    skip_ws();
+                } else {
+                    pointer += std::to_string(frame.index);
+                }
+                ++frame.index;
+                state = State::value;
+            } else {
+                if (stack.empty()) break;
+                skip_ws();
+                if (pos_ >= text_.size()) break;
+                if (text_[pos_] == ',') {
+                    ++pos_;
+                    skip_ws();
+                    state = State::element;
+                } else {  // '}' or ']'
+                    ++pos_;
+                    pointer.resize(stack.back().prefix);
+                    stack.pop_back();
+                }
+            }
+        }
+    }
+
+private:
+    void skip_ws() {
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (c == '\n') {
+                ++line_;
+            } else if (c != ' ' && c != '\t' && c != '\r') {
+                break;
+            }
+            ++pos_;
+        }
+    }
+
+    // Skips a number, literal or string.
+    void skip_scalar() {
+        if (text_[pos_] == '"') {
+            ++pos_;
+            while (pos_ < text_.size() && text_[pos_] != '"') pos_ += text_[pos_] == '\\' ? 2 : 1;
+            ++pos_;
+            return;
+        }
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (c == ',' || c == ']' || c == '}' || c == ' ' || c == '\t' || c == '\r' ||
+                c == '\n')
+                break;
+            ++pos_;
+        }
+    }
+
+    unsigned hex4() {
+        unsigned value = 0;
+        for (int i = 0; i < 4 && pos_ < text_.size(); ++i, ++pos_) {
+            const char c = text_[pos_];
+            value <<= 4;
+            if (c >= '0' && c <= '9') value |= static_cast<unsigned>(c - '0');
+            else if (c >= 'a' && c <= 'f') value |= static_cast<unsigned>(c - 'a' + 10);
+            else if (c >= 'A' && c <= 'F') value |= static_cast<unsigned>(c - 'A' + 10);
+        }
+        return value;
+    }
+
+    // Reads a string token (pos_ at its opening quote) and returns it decoded.
+    std::string read_string() {
+        std::string out;
+        ++pos_;
+        while (pos_ < text_.size() && text_[pos_] != '"') {
+            const char c = text_[pos_++];
+            if (c != '\\') {
+                out += c;
+                continue;
+            }
+            if (pos_ >= text_.size()) break;
+            const char e = text_[pos_++];
+            switch (e) {
+                case 'b': out += '\b'; break;
+                case 'f': out += '\f'; break;
+                case 'n': out += '\n'; break;
+                case 'r': out += '\r'; break;
+                case 't': out += '\t'; break;
+                case 'u': {
+                    std::uint32_t cp = hex4();
+                    if (cp >= 0xD800 && cp < 0xDC00 && pos_ + 1 < text_.size() &&
+                        text_[pos_] == '\\' && text_[pos_ + 1] == 'u') {
+                        pos_ += 2;
+                        const std::uint32_t low = hex4();
+                        cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
+                    }
+                    append_utf8(out, cp);
+                    break;
+                }
+                default: out += e; break;  // '"', '\\', '/'
+            }
+        }
+        ++pos_;
+        return out;
+    }
+
+    std::string_view text_;
+    std::size_t pos_ = 0;
+    int line_ = 1;
+};
+
+// Line (1-based) and column (1-based, in bytes) of the byte at `index`.
+std::pair<int, int> line_column(std::string_view text, std::size_t index) {
+    index = std::min(index, text.size());
+    const auto head = text.substr(0, index);
+    const int line = 1 + static_cast<int>(std::count(head.begin(), head.end(), '\n'));
+    const auto newline = head.rfind('\n');
+    const auto column = newline == std::string_view::npos ? index + 1 : index - newline;
+    return {line, static_cast<int>(column)};
+}
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+// If the token around `index` (where parsing stopped) spells NaN or Infinity, where it starts.
+std::optional<std::size_t> nan_or_infinity_at(std::string_view text, std::size_t index) {
+    if (index >= text.size()) return std::nullopt;
+    std::size_t start = index;
+    while (start > 0) {
+        const unsigned char c = static_cast<unsigned char>(text[start - 1]);
+        if (!std::isalpha(c) && c != '-' && c != '+') break;
+        --start;
+    }
+    std::size_t end = index;
+    while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
+    std::string token = lower(text.substr(start, end - start));
+    while (!token.empty() && (token[0] == '-' || token[0] == '+')) token.erase(0, 1);
+    if (token.starts_with("nan") || token.starts_with("inf")) return start;
+    return std::nullopt;
+}
+
+// "an object", "a string \"abc\"", "null", ...: the actual value, for type errors.
+std::string describe(const nlohmann::json& value) {
+    using T = nlohmann::json::value_t;
+    switch (value.type()) {
+        case T::null: return "null";
+        case T::object: return "an object";
+        case T::array: return "an array";
+        case T::boolean: return value.get<bool>() ? "a boolean (true)" : "a boolean (false)";
+        case T::string: {
+            std::string text = value.dump();
+            if (text.size() > 40) text = text.substr(0, 36) + "...\"";
+            return "a string " + text;
+        }
+        case T::number_integer:
+        case T::number_unsigned:
+        case T::number_float: return "a number (" + value.dump() + ")";
+        default: return value.type_name();
+    }
+}
+
+[[noreturn]] void type_error(const Source& source, const std::string& path, const char* expected,
+                             const nlohmann::json& got) {
+    fail(source, path, std::string("expected ") + expected + ", got " + describe(got));
+}
+
+double checked_number(const nlohmann::json& value, const std::string& path, const Source& source) {
+    if (!value.is_number()) type_error(source, path, "a number", value);
+    const double d = value.get<double>();
+    if (!std::isfinite(d)) fail(source, path, "expected a finite number, got " + value.dump());
+    // No quantity camgen reads is this large; such a number is a typo, and would only make
+    // the arithmetic downstream meaningless.
+    if (std::abs(d) > 1e9) fail(source, path, "number " + value.dump() + " is out of range (at most 1e9 in size)");
+    return d;
+}
+
+int checked_integer(const nlohmann::json& value, const std::string& path, const Source& source) {
+    if (!value.is_number()) type_error(source, path, "an integer", value);
+    constexpr auto lo = std::numeric_limits<int>::min();
+    constexpr auto hi = std::numeric_limits<int>::max();
+    if (value.is_number_unsigned()) {
+        const auto u = value.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(hi)) fail(source, path, "integer " + value.dump() + " is too large");
+        return static_cast<int>(u);
+    }
+    if (value.is_number_integer()) {
+        const auto i = value.get<std::int64_t>();
+        if (i < lo || i > hi) fail(source, path, "integer " + value.dump() + " is out of range");
+        return static_cast<int>(i);
+    }
+    const double d = value.get<double>();
+    if (!std::isfinite(d) || d != std::floor(d))
+        fail(source, path, "expected an integer, got " + value.dump());
+    if (d < lo || d > hi) fail(source, path, "integer " + value.dump() + " is out of range");
+    return static_cast<int>(d);
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
+
+LineMap::LineMap(std::string_view text) {
+    // Kept in document order: building stays O(n); lookups (only made for error messages)
+    // are a linear search.
+    Scanner(text).run(
+        [this](std::string_view pointer, int line) { entries_.emplace_back(pointer, line); },
+        [](std::string_view, int) {}, false);
+}
+
+int LineMap::line_of(std::string_view pointer) const {
+    for (const auto& [p, line] : entries_)
+        if (p == pointer) return line;
+    return 0;
+}
+
+nlohmann::json parse(std::string_view text, const std::string& source_name) {
+    nlohmann::json value;
+    try {
+        value = nlohmann::json::parse(text, nullptr, true, false);
+    } catch (const nlohmann::json::parse_error& e) {
+        std::size_t index = e.byte > 0 ? e.byte - 1 : 0;
+        const auto nan_at = nan_or_infinity_at(text, index);
+        if (nan_at) index = *nan_at;
+        const auto [line, column] = line_column(text, index);
+        std::string detail;
+        if (nan_at) {
+            detail = "NaN and Infinity are not valid JSON numbers";
+        } else {
+            detail = e.what();
+            const auto at = detail.find(", column ");
+            const auto colon = at == std::string::npos ? at : detail.find(": ", at);
+            if (colon != std::string::npos) detail.erase(0, colon + 2);
+        }
+        throw InputError("", "line " + std::to_string(line) + ", column " + std::to_string(column) +
+                                 ": " + detail,
+                         line, source_name);
+    } catch (const nlohmann::json::exception& e) {
+        // Number overflow (1e999) is reported without a position: find the number in the text.
+        std::string message = e.what();
+        const auto open = message.find('\'');
+        const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
+        if (close == std::string::npos) throw InputError("", message, 0, source_name);
+        const std::string token = message.substr(open + 1, close - open - 1);
+        const auto [line, column] = line_column(text, text.find(token));
+        throw InputError("", "line " + std::to_string(line) + ", column " + std::to_string(column) +
+                                 ": the number " + token +
+                                 " is out of range (numbers must be finite)",
+                         line, source_name);
+    }
+    // nlohmann keeps the last of two equal keys silently; a typo'd copy would go unnoticed.
+    Scanner(text).run([](std::string_view, int) {},
+                      [&](std::string_view pointer, int line) {
+                          throw InputError(std::string(pointer), "duplicate key", line,
+                                           source_name);
+                      },
+                      true);
+    return value;
+}
+
+std::string pointer_escape(std::string_view key) {
+    std::string out;
+    out.reserve(key.size());
+    for (const char c : key) {
+        if (c == '~') out += "~0";
+        else if (c == '/') out += "~1";
+        else out += c;
+    }
+    return out;
+}
+
+void fail(const Source& source, const std::string& path, const std::string& detail) {
+    // The nearest pointer, from `path` up to the root, that has a line.
+    int line = 0;
+    std::string_view pointer = path;
+    while (true) {
+        line = source.lines.line_of(pointer);
+        if (line > 0 || pointer.empty()) break;
+        pointer = pointer.substr(0, pointer.rfind('/') == std::string_view::npos ? 0 : pointer.rfind('/'));
+    }
+    throw InputError(path, detail, line, source.name);
+}
+
+std::optional<std::string> did_you_mean(std::string_view word,
+                                        const std::vector<std::string>& candidates) {
+    const std::string w = lower(word);
+    const std::size_t limit = std::max<std::size_t>(2, word.size() / 3);
+    std::optional<std::string> best;
+    std::size_t best_distance = limit + 1;
+    for (const auto& candidate : candidates) {
+        const std::size_t d = edit_distance(w, lower(candidate));
+        if (d < best_distance) {
+            best_distance = d;
+            best = candidate;
+        }
+    }
+    return best;
+}
+
+Fields::Fields(const nlohmann::json& value, std::string path, const Source& source)
+    : value_(value), path_(std::move(path)), source_(source) {
+    if (!value_.is_object()) type_error(source_, path_, "an object", value_);
+}
+
+std::string Fields::path_of(std::string_view key) const {
+    return path_ + "/" + pointer_escape(key);
+}
+
+bool Fields::has(std::string_view key) const {
+    read_.emplace(key);
+    return value_.contains(key);
+}
+
+const nlohmann::json* Fields::member(std::string_view key) {
+    read_.emplace(key);
+    const auto it = value_.find(key);
+    return it == value_.end() ? nullptr : &*it;
+}
+
+const nlohmann::json& Fields::required(std::string_view key) {
+    const nlohmann::json* value = member(key);
+    if (!value) fail(key, "required key \"" + std::string(key) + "\" is missing");
+    return *value;
+}
+
+double Fields::number(std::string_view key) {
+    return checked_number(required(key), path_of(key), source_);
+}
+
+std::optional<double> Fields::optional_number(std::string_view key) {
+    const nlohmann::json* value = member(key);
+    if (!value) return std::nullopt;
+    return checked_number(*value, path_of(key), source_);
+}
+
+int Fields::integer(std::string_view key) {
+    return checked_integer(required(key), path_of(key), source_);
+}
+
+std::optional<int> Fields::optional_integer(std::string_view key) {
+    const nlohmann::json* value = member(key);
+    if (!value) return std::nullopt;
+    return checked_integer(*value, path_of(key), source_);
+}
+
+std::string Fields::string(std::string_view key) {
+    const nlohmann::json& value = required(key);
+    if (!value.is_string()) type_error(source_, path_of(key), "a string", value);
+    return value.get<std::string>();
+}
+
+std::optional<std::string> Fields::optional_string(std::string_view key) {
+    const nlohmann::json* value = member(key);
+    if (!value) return std::nullopt;
+    if (!value->is_string()) type_error(source_, path_of(key), "a string", *value);
+    return value->get<std::string>();
+}
+
+bool Fields::boolean(std::string_view key, bool fallback) {
+    const nlohmann::json* value = member(key);
+    if (!value) return fallback;
+    if (!value->is_boolean()) type_error(source_, path_of(key), "true or false", *value);
+    return value->get<bool>();
+}
+
+void Fields::fail(std::string_view key, const std::string& detail) const {
+    json::fail(source_, key.empty() ? path_ : path_of(key), detail);
+}
+
+void Fields::finish() const {
+    // The object's members are sorted by key; report the unknown one that comes first in the file.
+    std::optional<std::string> first;
+    int first_line = std::numeric_limits<int>::max();
+    for (auto it = value_.begin(); it != value_.end(); ++it) {
+        if (read_.count(it.key())) continue;
+        int line = source_.lines.line_of(path_of(it.key()));
+        if (line == 0) line = std::numeric_limits<int>::max() - 1;
+        if (line < first_line) {
+            first_line = line;
+            first = it.key();
+        }
+    }
+    if (!first) return;
+    std::string detail = "unknown key \"" + *first + "\"";
+    const std::vector<std::string> known(read_.begin(), read_.end());
+    if (auto hint = did_you_mean(*first, known)) detail += " (did you mean \"" + *hint + "\"?)";
+    fail(*first, detail);
+}
+
+void Fields::fail_choice(std::string_view key, const std::string& got,
+                         const std::vector<std::string>& names) const {
+    std::string detail = "\"" + got + "\" is not one of ";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (i > 0) detail += i + 1 == names.size() ? " or " : ", ";
+        detail += "\"" + names[i] + "\"";
+    }
+    if (auto hint = did_you_mean(got, names)) detail += " (did you mean \"" + *hint + "\"?)";
+    fail(key, detail);
+}
+
+double number_at(const nlohmann::json& value, const std::string& path, const Source& source) {
+    return checked_number(value, path, source);
+}
+
+}  // namespace camgen::json

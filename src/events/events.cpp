@@ -1,0 +1,87 @@
+#include "camgen/events/events.hpp"
+
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "camgen/post/machine.hpp"
+
+namespace camgen {
+
+namespace {
+
+template <class... Ts>
+struct overloaded : Ts... {
+    using Ts::operator()...;
+};
+
+nlohmann::ordered_json xyz(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+const char* plane_name(Plane p) { return p == Plane::xy ? "xy" : p == Plane::xz ? "xz" : "yz"; }
+
+void put_optional(nlohmann::ordered_json& j, const char* key, const std::optional<double>& v) {
+    if (v) j[key] = *v;
+}
+
+}  // namespace
+
+std::string event_to_json(const Event& event) {
+    nlohmann::ordered_json j;
+    std::visit(overloaded{
+                   [&](const OperationStart& e) {
+                       j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}};
+                       put_optional(j, "tolerance", e.tolerance);
+                   },
+                   [&](const OperationEnd&) { j = {{"event", "operation-end"}}; },
+                   [&](const ToolChange& e) {
+                       j = {{"event", "tool-change"}, {"tool", e.number}, {"diameter", e.diameter}, {"description", e.description}};
+                   },
+                   [&](const Spindle& e) {
+                       j = {{"event", "spindle"},
+                            {"state", e.state == SpindleState::cw ? "cw" : e.state == SpindleState::ccw ? "ccw" : "off"},
+                            {"rpm", e.rpm}};
+                   },
+                   [&](const Rapid& e) { j = {{"event", "rapid"}, {"to", xyz(e.to)}}; },
+                   [&](const Linear& e) { j = {{"event", "linear"}, {"to", xyz(e.to)}, {"feed", e.feed}}; },
+                   [&](const Arc& e) {
+                       j = {{"event", "arc"},         {"to", xyz(e.to)},
+                            {"centre", xyz(e.centre)}, {"direction", e.direction == ArcDirection::cw ? "cw" : "ccw"},
+                            {"plane", plane_name(e.plane)}, {"feed", e.feed}};
+                       if (e.turns) j["turns"] = e.turns;
+                   },
+                   [&](const Dwell& e) { j = {{"event", "dwell"}, {"seconds", e.seconds}}; },
+                   [&](const Compensation& e) {
+                       j = {{"event", "compensation"},
+                            {"side", e.side == CompensationSide::off ? "off" : e.side == CompensationSide::left ? "left" : "right"}};
+                   },
+                   [&](const DrillCycle& e) {
+                       j = {{"event", "drill-cycle"},  {"cycle", cycle_kind_name(e.kind)}, {"path", e.path},
+                            {"retractZ", e.retract_z}, {"referenceZ", e.reference_z},     {"safeZ", e.safe_z},
+                            {"bottomZ", e.bottom_z},   {"feed", e.feed},                  {"rpm", e.spindle_rpm}};
+                       if (e.spindle_direction == SpindleDirection::ccw) j["direction"] = "ccw";
+                       const DrillParams& p = e.params;
+                       put_optional(j, "firstDepth", p.first_depth);
+                       if (p.degression_type != DegressionType::none)
+                           j["degressionType"] = p.degression_type == DegressionType::value ? "value" : "factor";
+                       put_optional(j, "degression", p.degression);
+                       put_optional(j, "minimumDepth", p.minimum_depth);
+                       put_optional(j, "peckingRetract", p.pecking_retract);
+                       put_optional(j, "firstFeedrateFactor", p.first_feedrate_factor);
+                       put_optional(j, "retractFeedrate", p.retract_feedrate);
+                       put_optional(j, "topDwell", p.top_dwell);
+                       put_optional(j, "bottomDwell", p.bottom_dwell);
+                       put_optional(j, "pitch", p.pitch);
+                       put_optional(j, "tappingSpeed", p.tapping_speed);
+                       put_optional(j, "retractSpeed", p.retract_speed);
+                   },
+                   [&](const DrillPoint& e) { j = {{"event", "drill-point"}, {"at", {e.at.x, e.at.y}}}; },
+                   [&](const DrillEnd&) { j = {{"event", "drill-end"}}; },
+                   [&](const Comment& e) { j = {{"event", "comment"}, {"text", e.text}}; },
+               },
+               event);
+    return j.dump();
+}
+
+void EventPrinter::emit(const Event& event) { out_ << event_to_json(event) << '\n'; }
+
+}  // namespace camgen

@@ -1,0 +1,376 @@
+#include "camgen/post/machine.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+#include "camgen/common/json_util.hpp"
+
+namespace camgen {
+
+namespace {
+
+constexpr std::pair<DrillField, const char*> field_names[] = {
+    {DrillField::safe_distance, "safeDistance"},
+    {DrillField::plunging_feedrate, "plungingFeedrate"},
+    {DrillField::retract_feedrate, "retractFeedrate"},
+    {DrillField::first_depth, "firstDepth"},
+    {DrillField::degression_type, "degressionType"},
+    {DrillField::degression, "degression"},
+    {DrillField::minimum_depth, "minimumDepth"},
+    {DrillField::pecking_retract, "peckingRetract"},
+    {DrillField::first_feedrate_factor, "firstFeedrateFactor"},
+    {DrillField::top_dwell, "topDwell"},
+    {DrillField::bottom_dwell, "bottomDwell"},
+    {DrillField::pitch, "pitch"},
+    {DrillField::tapping_speed, "tappingSpeed"},
+    {DrillField::retract_speed, "retractSpeed"},
+};
+
+constexpr std::pair<CycleKind, const char*> kind_names[] = {
+    {CycleKind::drill, "drill"},       {CycleKind::dwell, "dwell"},         {CycleKind::deep, "deep"},
+    {CycleKind::chip_break, "chip-break"}, {CycleKind::tap, "tap"},         {CycleKind::tap_left, "tap-left"},
+    {CycleKind::ream, "ream"},         {CycleKind::bore_stop, "bore-stop"}, {CycleKind::bore_dwell, "bore-dwell"},
+};
+
+const char* format_names[] = {"xyz", "ijk", "feed", "rpm", "dwell", "angle", "code"};
+
+nc::FormatSpec default_format(const std::string& key) {
+    nc::FormatSpec s;
+    if (key == "xyz" || key == "ijk" || key == "dwell" || key == "angle") s.decimals = 3;
+    if (key == "code") s.decimals = 1;
+    return s;
+}
+
+nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base) {
+    if (auto v = f.optional_string("prefix")) base.prefix = *v;
+    if (auto v = f.optional_integer("width")) base.width = *v;
+    base.zeropad = f.boolean("zeropad", base.zeropad);
+    if (auto v = f.optional_integer("decimals")) {
+        if (*v < 0 || *v > 12) f.fail("decimals", "decimals must be between 0 and 12");
+        base.decimals = *v;
+    }
+    if (auto v = f.optional_number("scale")) {
+        if (!(*v > 0)) f.fail("scale", "scale must be > 0");
+        base.scale = *v;
+    }
+    base.force_decimal = f.boolean("forceDecimal", base.force_decimal);
+    base.force_sign = f.boolean("forceSign", base.force_sign);
+    f.finish();
+    return base;
+}
+
+}  // namespace
+
+const char* drill_field_name(DrillField field) {
+    for (auto [f, n] : field_names)
+        if (f == field) return n;
+    return "?";
+}
+
+const char* cycle_kind_name(CycleKind kind) {
+    for (auto [k, n] : kind_names)
+        if (k == kind) return n;
+    return "?";
+}
+
+nc::Format Machine::format(const std::string& key) const {
+    nc::FormatSpec spec = default_format(key);
+    if (auto it = formats.find(units == Units::inch ? "inch." + key : key); it != formats.end())
+        spec = it->second;
+    else if (auto it2 = formats.find(key); it2 != formats.end())
+        spec = it2->second;
+    spec.decimal_mark = decimal_mark;
+    bool length = key == "xyz" || key == "ijk";
+    if (length && units == Units::inch) spec.scale /= 25.4;
+    if (key == "feed") {
+        if (feed_unit == FeedUnit::tenth_mm_per_second) spec.scale /= 6.0;  // mm/min -> 0.1 mm/s
+        else if (units == Units::inch) spec.scale /= 25.4;
+    }
+    return nc::Format(spec);
+}
+
+const DrillingCycleSpec* Machine::canned_cycle(CycleKind kind) const {
+    for (const auto& c : drilling)
+        if (c.kind == kind && c.canned) return &c;
+    return nullptr;
+}
+
+Machine parse_machine(const std::string& text, const std::string& name, const std::string& source_name) {
+    json::Source source{source_name, json::LineMap{}};
+    nlohmann::json root = json::parse(text, source_name);
+    source.lines = json::LineMap(text);
+    json::Fields f(root, "", source);
+    Machine m;
+    m.name = name;
+    m.source = source_name;
+    m.description = f.string("description");
+    m.dialect = f.string("dialect");
+    m.extension = f.string("extension");
+    m.units = f.choice<Units>("units", {{"mm", Units::mm}, {"inch", Units::inch}}, Units::mm);
+    if (const auto* g = f.member("globals")) {
+        json::Fields gf(*g, "/globals", source);
+        auto mark = gf.optional_string("decimalMark").value_or(".");
+        if (mark != "." && mark != ",") gf.fail("decimalMark", "decimalMark must be \".\" or \",\"");
+        m.decimal_mark = mark[0];
+        m.block.line_break = gf.choice<std::string>("linebreak", {{"\n", "\n"}, {"\r\n", "\r\n"}}, std::string("\n"));
+        m.block.separator = gf.optional_string("variableDelimeter").value_or(" ");
+        if (auto t = gf.optional_number("tolerance")) {
+            if (!(*t > 0)) gf.fail("tolerance", "tolerance must be > 0");
+            m.tolerance = *t;
+        }
+        m.block.sequence_numbers = gf.boolean("showSequenceNumbers", false);
+        if (auto v = gf.optional_integer("sequenceNumberStart")) m.block.sequence_start = *v;
+        if (auto v = gf.optional_string("sequenceNumberPrefix")) m.block.sequence_prefix = *v;
+        if (auto v = gf.optional_integer("sequenceNumberIncrement")) {
+            if (*v < 1) gf.fail("sequenceNumberIncrement", "sequenceNumberIncrement must be >= 1");
+            m.block.sequence_increment = *v;
+        }
+        gf.finish();
+    }
+    m.block.comment_style = f.choice<nc::CommentStyle>(
+        "comments", {{"parentheses", nc::CommentStyle::parentheses}, {"semicolon", nc::CommentStyle::semicolon}},
+        nc::CommentStyle::parentheses);
+    if (auto v = f.optional_integer("commentMaxLength")) m.block.comment_max_length = *v;
+    m.modal_motion = f.boolean("modalMotion", true);
+    for (const char* group : {"formats", "inchFormats"}) {
+        const auto* fm = f.member(group);
+        if (!fm) continue;
+        json::Fields ff(*fm, std::string("/") + group, source);
+        std::string pre = std::string(group) == "inchFormats" ? "inch." : "";
+        for (const char* key : format_names) {
+            if (const auto* spec = ff.member(key)) {
+                nc::FormatSpec base = pre.empty() ? default_format(key) : m.formats.count(key) ? m.formats[key] : default_format(key);
+                m.formats[pre + key] = read_format(json::Fields(*spec, ff.path_of(key), source), base);
+            }
+        }
+        ff.finish();
+    }
+    m.feed_unit = f.choice<FeedUnit>("feedUnit", {{"mm/min", FeedUnit::per_minute}, {"0.1mm/s", FeedUnit::tenth_mm_per_second}},
+                                     FeedUnit::per_minute);
+    if (const auto* l = f.member("limits")) {
+        json::Fields lf(*l, "/limits", source);
+        auto positive = [&](const char* key, double& out) {
+            if (auto v = lf.optional_number(key)) {
+                if (!(*v > 0)) lf.fail(key, fmt::format("{} must be > 0", key));
+                out = *v;
+            }
+        };
+        positive("maxFeed", m.limits.max_feed);
+        positive("minFeed", m.limits.min_feed);
+        positive("rapidRate", m.limits.rapid_rate);
+        if (auto v = lf.optional_number("maxRpm")) m.limits.max_rpm = *v;
+        if (m.limits.min_feed > m.limits.max_feed) lf.fail("minFeed", "minFeed is above maxFeed");
+        lf.finish();
+    }
+    if (const auto* a = f.member("arcs")) {
+        json::Fields af(*a, "/arcs", source);
+        m.arcs.format = af.choice<ArcFormat>("format",
+                                             {{"ijk-relative", ArcFormat::ijk_relative},
+                                              {"ijk-absolute", ArcFormat::ijk_absolute},
+                                              {"radius", ArcFormat::radius},
+                                              {"nccad-angle", ArcFormat::nccad_angle}},
+                                             ArcFormat::ijk_relative);
+        if (auto v = af.optional_number("maxSweep")) {
+            if (!(*v > 0 && *v <= 360)) af.fail("maxSweep", "maxSweep must be in (0, 360] degrees");
+            m.arcs.max_sweep = *v;
+        }
+        m.arcs.helical = af.boolean("helical", m.arcs.helical);
+        m.arcs.force_xy = af.boolean("forceXY", m.arcs.force_xy);
+        if (auto v = af.optional_number("chordTolerance")) {
+            if (!(*v > 0)) af.fail("chordTolerance", "chordTolerance must be > 0");
+            m.arcs.chord_tolerance = *v;
+        }
+        m.arcs.tolerance_mode = af.choice<ChordToleranceMode>(
+            "chordToleranceMode", {{"absolute", ChordToleranceMode::absolute}, {"operation", ChordToleranceMode::operation}},
+            ChordToleranceMode::operation);
+        auto positive = [&](const char* key, std::optional<double>& out) {
+            if (auto v = af.optional_number(key)) {
+                if (!(*v > 0)) af.fail(key, fmt::format("{} must be > 0 (leave it out for no limit)", key));
+                out = *v;
+            }
+        };
+        positive("maxRadius", m.arcs.max_radius);
+        positive("minRadius", m.arcs.min_radius);
+        positive("minLength", m.arcs.min_length);
+        positive("maxSegmentLength", m.arcs.max_segment_length);
+        if (m.arcs.max_radius && m.arcs.min_radius && *m.arcs.min_radius >= *m.arcs.max_radius)
+            af.fail("minRadius", "minRadius must be below maxRadius");
+        if (auto v = af.optional_integer("minSegments")) {
+            if (*v < 1 || *v > 100000) af.fail("minSegments", "minSegments must be between 1 and 100000");
+            m.arcs.min_segments = *v;
+        }
+        if (const auto* planes = af.member("planes")) {
+            if (!planes->is_array()) af.fail("planes", "expected an array of \"xy\", \"xz\", \"yz\"");
+            m.arcs.planes.clear();
+            for (size_t i = 0; i < planes->size(); ++i) {
+                const auto& p = (*planes)[i];
+                std::string s = p.is_string() ? p.get<std::string>() : "";
+                if (s == "xy") m.arcs.planes.push_back(Plane::xy);
+                else if (s == "xz") m.arcs.planes.push_back(Plane::xz);
+                else if (s == "yz") m.arcs.planes.push_back(Plane::yz);
+                else json::fail(source, fmt::format("/arcs/planes/{}", i), "expected \"xy\", \"xz\" or \"yz\"");
+            }
+        }
+        af.finish();
+    }
+    if (m.arcs.format == ArcFormat::nccad_angle) {
+        // G02 D<angle> I J has no end point and no K: it cannot say "helix" or "other plane".
+        if (m.arcs.max_sweep > 180.0)
+            json::fail(source, "/arcs/maxSweep", "the nccad angle form takes at most 180 degrees per block");
+        if (m.arcs.helical) json::fail(source, "/arcs/helical", "the nccad angle form cannot write a helix; set \"helical\": false");
+        if (m.arcs.planes != std::vector<Plane>{Plane::xy})
+            json::fail(source, "/arcs/planes", "the nccad angle form writes XY arcs only; set \"planes\": [\"xy\"]");
+    }
+    if (const auto* n = f.member("notes")) {
+        if (!n->is_array()) f.fail("notes", "expected an array of strings");
+        for (size_t i = 0; i < n->size(); ++i) {
+            if (!(*n)[i].is_string()) json::fail(source, fmt::format("/notes/{}", i), "expected a string");
+            m.notes.push_back((*n)[i].get<std::string>());
+        }
+    }
+    if (const auto* d = f.member("drilling")) {
+        json::Fields df(*d, "/drilling", source);
+        if (auto v = df.optional_number("peckClearance")) {
+            if (!(*v > 0)) df.fail("peckClearance", "peckClearance must be > 0");
+            m.peck_clearance = *v;
+        }
+        m.bore_dwell_feed_out = df.choice<BoreDwellFeedOut>(
+            "boreDwellFeedOut", {{"safe", BoreDwellFeedOut::to_safe}, {"retract", BoreDwellFeedOut::to_retract}},
+            BoreDwellFeedOut::to_safe);
+        if (const auto* cycles = df.member("cycles")) {
+            if (!cycles->is_array()) df.fail("cycles", "expected an array");
+            for (size_t i = 0; i < cycles->size(); ++i) {
+                std::string path = fmt::format("/drilling/cycles/{}", i);
+                json::Fields cf((*cycles)[i], path, source);
+                DrillingCycleSpec c;
+                c.name = cf.string("name");
+                std::string kind = cf.string("kind");
+                bool found = false;
+                for (auto [k, n] : kind_names)
+                    if (kind == n) c.kind = k, found = true;
+                if (!found) {
+                    std::vector<std::string> names;
+                    for (auto [k, n] : kind_names) names.emplace_back(n);
+                    cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names, ", ")));
+                }
+                c.canned = cf.boolean("canned", true);
+                if (const auto* fields = cf.member("fields")) {
+                    if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
+                    for (size_t j = 0; j < fields->size(); ++j) {
+                        std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
+                        bool ok = false;
+                        for (auto [fld, n] : field_names)
+                            if (fn == n) c.fields.push_back(fld), ok = true;
+                        if (!ok) {
+                            std::vector<std::string> names;
+                            for (auto [fld, n] : field_names) names.emplace_back(n);
+                            auto hint = json::did_you_mean(fn, names);
+                            json::fail(source, fmt::format("{}/fields/{}", path, j),
+                                       fmt::format("unknown drilling field \"{}\"{}", fn,
+                                                   hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : ""));
+                        }
+                    }
+                }
+                cf.finish();
+                m.drilling.push_back(std::move(c));
+            }
+        }
+        df.finish();
+    }
+    if (const auto* s = f.member("settings")) {
+        if (!s->is_object()) f.fail("settings", "expected an object");
+        m.dialect_settings = *s;
+    }
+    f.finish();
+    return m;
+}
+
+Machine load_machine(const std::string& name_or_path) {
+    bool is_path = name_or_path.find('/') != std::string::npos ||
+                   (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+    if (is_path) {
+        std::ifstream in(name_or_path, std::ios::binary);
+        if (!in) throw IoError(fmt::format("cannot read machine file {}", name_or_path));
+        std::stringstream ss;
+        ss << in.rdbuf();
+        std::string stem = name_or_path.substr(name_or_path.find_last_of('/') + 1);
+        if (stem.ends_with(".json")) stem.resize(stem.size() - 5);
+        return parse_machine(ss.str(), stem, name_or_path);
+    }
+    for (const auto& e : embedded_machines())
+        if (name_or_path == e.name) return parse_machine(e.text, e.name, std::string("machines/") + e.name + ".json");
+    std::vector<std::string> names;
+    for (const auto& e : embedded_machines()) names.emplace_back(e.name);
+    auto hint = json::did_you_mean(name_or_path, names);
+    throw UsageError(fmt::format("unknown machine \"{}\"{}; known machines: {} (or give a path to a machine JSON file)",
+                                 name_or_path, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                                 fmt::join(names, ", ")));
+}
+
+std::vector<std::pair<std::string, std::string>> list_machines() {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& e : embedded_machines()) {
+        Machine m = parse_machine(e.text, e.name, e.name);
+        out.emplace_back(m.name, m.description);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::string describe_machine(const Machine& m) {
+    std::string s;
+    auto line = [&](std::string_view k, const std::string& v) { s += fmt::format("  {:<24}{}\n", k, v); };
+    s += fmt::format("{}: {}\n", m.name, m.description);
+    s += "globals\n";
+    line("dialect", m.dialect);
+    line("extension", "." + m.extension);
+    line("units", m.units == Units::mm ? "mm" : "inch");
+    line("decimalMark", std::string(1, m.decimal_mark));
+    line("linebreak", m.block.line_break == "\n" ? "\\n" : "\\r\\n");
+    line("variableDelimeter", "\"" + m.block.separator + "\"");
+    line("showSequenceNumbers", m.block.sequence_numbers ? fmt::format("yes, from {} step {}", m.block.sequence_start, m.block.sequence_increment) : "no");
+    line("modalMotion", m.modal_motion ? "yes" : "no, G code on every motion block");
+    line("comments", m.block.comment_style == nc::CommentStyle::parentheses ? "(text)" : "; text");
+    const char* arcs[] = {"I/J/K relative to start", "I/J/K absolute centre", "radius R", "nccad angle D with I/J"};
+    line("arcs", fmt::format("{}, at most {} degrees a block, helices {}", arcs[static_cast<int>(m.arcs.format)], m.arcs.max_sweep,
+                             m.arcs.helical ? "allowed" : "as lines"));
+    std::vector<std::string> planes;
+    for (Plane p : m.arcs.planes) planes.emplace_back(p == Plane::xy ? "xy" : p == Plane::xz ? "xz" : "yz");
+    line("arc planes", fmt::format("{} (others as lines)", fmt::join(planes, ", ")));
+    auto limit = [](const std::optional<double>& v) { return v ? fmt::format("{} mm", *v) : std::string("none"); };
+    line("arc tolerance", fmt::format("{} mm (start and end radii after rounding)", m.tolerance));
+    line("chordTolerance", fmt::format("{} mm{}", m.arcs.chord_tolerance,
+                                       m.arcs.tolerance_mode == ChordToleranceMode::operation ? ", or the operation's if smaller" : ""));
+    line("arcs as lines", fmt::format("radius above {}; at least {} segment(s), {}", limit(m.arcs.max_radius), m.arcs.min_segments,
+                                      m.arcs.max_segment_length ? fmt::format("each at most {} mm", *m.arcs.max_segment_length)
+                                                                : std::string("any length")));
+    line("arcs as one line", fmt::format("radius below {}, length below {}", limit(m.arcs.min_radius), limit(m.arcs.min_length)));
+    line("feed unit", m.feed_unit == FeedUnit::per_minute ? (m.units == Units::mm ? "mm/min" : "in/min") : "0.1 mm/s");
+    for (const std::string& n : m.notes) line("note", n);
+    s += "limits\n";
+    line("maxFeed", fmt::format("{} mm/min", m.limits.max_feed));
+    line("minFeed", fmt::format("{} mm/min", m.limits.min_feed));
+    line("rapidRate", fmt::format("{} mm/min", m.limits.rapid_rate));
+    line("peckClearance", fmt::format("{} mm", m.peck_clearance));
+    line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
+                                                                                 : "to the retract level");
+    s += "drilling cycles (MillDrillingFields)\n";
+    for (CycleKind k : {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break, CycleKind::tap,
+                        CycleKind::tap_left, CycleKind::ream, CycleKind::bore_stop, CycleKind::bore_dwell}) {
+        const DrillingCycleSpec* c = m.canned_cycle(k);
+        if (!c) {
+            line(cycle_kind_name(k), "longhand");
+            continue;
+        }
+        std::vector<std::string> f;
+        for (DrillField d : c->fields) f.emplace_back(drill_field_name(d));
+        line(cycle_kind_name(k), fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
+    }
+    return s;
+}
+
+}  // namespace camgen

@@ -1,0 +1,390 @@
+#include "camgen/post/post.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+#include "camgen/post/longhand.hpp"
+
+namespace camgen {
+
+namespace {
+constexpr double deg = 180.0 / std::numbers::pi;
+
+template <class... Ts>
+struct overloaded : Ts... {
+    using Ts::operator()...;
+};
+
+bool contains(const std::vector<DrillField>& v, DrillField f) {
+    return std::find(v.begin(), v.end(), f) != v.end();
+}
+}  // namespace
+
+Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
+    : machine_(machine),
+      options_(std::move(options)),
+      out_(machine.block, out),
+      xyz_fmt_(machine.format("xyz")),
+      ijk_fmt_(machine.format("ijk")),
+      feed_fmt_(machine.format("feed")),
+      rpm_fmt_(machine.format("rpm")),
+      dwell_fmt_(machine.format("dwell")),
+      angle_fmt_(machine.format("angle")),
+      code_fmt_(machine.format("code")),
+      x_("X", xyz_fmt_),
+      y_("Y", xyz_fmt_),
+      z_("Z", xyz_fmt_),
+      feed_("F", feed_fmt_),
+      motion_("G", code_fmt_),
+      plane_("G", code_fmt_) {}
+
+Post::~Post() = default;
+
+void Post::open() {
+    opened_ = true;
+    if (!options_.snippet) on_open();
+}
+
+void Post::close() {
+    if (!options_.snippet) on_close();
+    out_.flush();
+}
+
+std::string Post::g(double code) const { return code_fmt_.word("G", code); }
+std::string Post::m(double code) const { return code_fmt_.word("M", code); }
+
+void Post::warn(const std::string& message) {
+    if (options_.warnings) *options_.warnings << "camgen: warning: " << message << '\n';
+}
+
+void Post::fail(const std::string& key, const std::string& detail) const {
+    throw InputError(op_path_ + key, detail);
+}
+
+std::string Post::feed_word(double mm_per_min) {
+    const MachineLimits& lim = machine_.limits;
+    double f = mm_per_min;
+    if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", f));
+    // One warning per operation and feed.
+    auto first = [&] { return warned_feeds_.insert({op_path_, f}).second; };
+    if (f > lim.max_feed) {
+        if (first()) warn(fmt::format("{}: feed {} mm/min is above the limit of machine {}; clamped to {} mm/min",
+                         op_path_, f, machine_.name, lim.max_feed));
+        f = lim.max_feed;
+    } else if (f < lim.min_feed) {
+        if (first()) warn(fmt::format("{}: feed {} mm/min is below the minimum of machine {}; raised to {} mm/min",
+                         op_path_, f, machine_.name, lim.min_feed));
+        f = lim.min_feed;
+    }
+    if (feed_fmt_.is_zero(f))
+        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
+    return feed_.format(f);
+}
+
+std::string Post::motion_word(double code) {
+    return machine_.modal_motion ? motion_.format(code) : motion_.force(code);
+}
+
+void Post::reset_modal_axes() {
+    x_.reset();
+    y_.reset();
+    z_.reset();
+    motion_.reset();
+}
+
+void Post::on_operation_start(const OperationStart& op) {
+    if (!op.name.empty()) on_comment(op.name);
+}
+
+void Post::on_comment(const std::string& text) { out_.comment(text); }
+
+void Post::on_rapid(const Vec3& to) {
+    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
+    if (xs.empty() && ys.empty() && zs.empty()) return;
+    out_.add(motion_word(0)).add(xs).add(ys).add(zs).end();
+}
+
+void Post::rapid_from_unknown(const Vec3& to) {
+    std::string xs = x_.force(to.x), ys = y_.force(to.y);
+    out_.add(motion_word(0)).add(xs).add(ys).end();
+    z_.reset();
+    on_rapid(to);
+}
+
+void Post::on_compensation(CompensationSide side) { pending_compensation_ = side; }
+
+std::string Post::compensation_words(CompensationSide side) const {
+    switch (side) {
+        case CompensationSide::off: return g(40);
+        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(tool_);
+        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(tool_);
+    }
+    return {};
+}
+
+std::string Post::speed_word(double rpm) const {
+    if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
+        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
+                             machine_.limits.max_rpm));
+    return rpm_fmt_.word("S", rpm);
+}
+
+void Post::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off) {
+        out_.add(m(5)).end();
+        return;
+    }
+    out_.add(speed_word(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+}
+
+void Post::on_linear(const Vec3& to, double feed) {
+    std::string comp;
+    if (pending_compensation_) comp = compensation_words(*pending_compensation_);
+    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
+    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
+    std::string fs = feed_word(feed);
+    out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
+    pending_compensation_.reset();
+}
+
+void Post::on_circular(const ArcGeometry& arc, double feed) {
+    const ArcSettings& s = machine_.arcs;
+    std::string plane;
+    if (machine_.arcs.planes.size() > 1)
+        plane = plane_.format(arc.plane == Plane::xy ? 17 : arc.plane == Plane::xz ? 18 : 19);
+    std::string motion = motion_word(arc.direction == ArcDirection::cw ? 2 : 3);
+    std::string fs = feed_word(feed);
+    if (s.format == ArcFormat::nccad_angle) {
+        // nccad: G02 D<sweep> I J, no end point: the control computes it. Remember the end.
+        nc::Word i("I", ijk_fmt_, true), j("J", ijk_fmt_, true);
+        out_.add(motion).add(angle_fmt_.word("D", arc.sweep * deg))
+            .add(i.format(arc.centre.x - arc.start.x))
+            .add(j.format(arc.centre.y - arc.start.y))
+            .add(fs)
+            .end();
+        x_.set_last(arc.end.x);
+        y_.set_last(arc.end.y);
+        return;
+    }
+    // End point: the plane's two axes are written on every arc block when force_xy.
+    bool fx = s.force_xy && arc.plane != Plane::yz;
+    bool fy = s.force_xy && arc.plane != Plane::xz;
+    bool fz = s.force_xy && arc.plane != Plane::xy;
+    std::string xs = fx ? x_.force(arc.end.x) : x_.format(arc.end.x);
+    std::string ys = fy ? y_.force(arc.end.y) : y_.format(arc.end.y);
+    std::string zs = fz ? z_.force(arc.end.z) : z_.format(arc.end.z);
+    out_.add(plane).add(motion).add(xs).add(ys).add(zs);
+    if (s.format == ArcFormat::radius) {
+        double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
+        out_.add(xyz_fmt_.word("R", r));
+    } else {
+        Vec3 c = arc.centre;
+        if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
+        if (arc.plane != Plane::yz) out_.add(ijk_fmt_.word("I", c.x));
+        if (arc.plane != Plane::xz) out_.add(ijk_fmt_.word("J", c.y));
+        if (arc.plane != Plane::xy) out_.add(ijk_fmt_.word("K", c.z));
+    }
+    out_.add(fs).end();
+}
+
+void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) {
+    throw InputError("/drilling/cycles", fmt::format("the {} dialect cannot write canned cycle {}",
+                                                     machine_.dialect, spec.name), 0, machine_.source);
+}
+void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
+std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
+void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
+    const DrillParams& p = cycle.params;
+    std::vector<DrillField> f;
+    if (cycle.safe_z != cycle.retract_z) f.push_back(DrillField::safe_distance);
+    if (p.plunging_feedrate) f.push_back(DrillField::plunging_feedrate);
+    if (p.retract_feedrate) f.push_back(DrillField::retract_feedrate);
+    if (p.first_depth) f.push_back(DrillField::first_depth);
+    if (p.degression_type != DegressionType::none) f.push_back(DrillField::degression_type);
+    if (p.degression) f.push_back(DrillField::degression);
+    if (p.minimum_depth) f.push_back(DrillField::minimum_depth);
+    if (p.pecking_retract) f.push_back(DrillField::pecking_retract);
+    if (p.first_feedrate_factor && *p.first_feedrate_factor != 1.0) f.push_back(DrillField::first_feedrate_factor);
+    if (p.top_dwell && *p.top_dwell > 0.0) f.push_back(DrillField::top_dwell);
+    if (p.bottom_dwell && *p.bottom_dwell > 0.0) f.push_back(DrillField::bottom_dwell);
+    if (p.pitch) f.push_back(DrillField::pitch);
+    if (p.tapping_speed) f.push_back(DrillField::tapping_speed);
+    if (p.retract_speed) f.push_back(DrillField::retract_speed);
+    return f;
+}
+
+const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
+    if (cycle.output == CycleOutput::longhand) return nullptr;
+    const DrillingCycleSpec* spec = machine_.canned_cycle(cycle.kind);
+    std::vector<std::string> missing;
+    if (spec)
+        for (DrillField f : drill_fields_used(cycle))
+            if (!contains(spec->fields, f)) missing.emplace_back(drill_field_name(f));
+    std::optional<std::string> limit = spec && missing.empty() ? canned_limit(cycle, *spec) : std::nullopt;
+    if (cycle.output == CycleOutput::automatic) return spec && missing.empty() && !limit ? spec : nullptr;
+    if (!spec)
+        throw InputError(cycle.path + "/output",
+                         fmt::format("machine {} has no canned cycle for \"{}\"; use \"auto\" or \"longhand\"",
+                                     machine_.name, cycle_kind_name(cycle.kind)));
+    if (!missing.empty()) {
+        std::vector<std::string> offered;
+        for (DrillField f : spec->fields) offered.emplace_back(drill_field_name(f));
+        throw InputError(cycle.path + "/output",
+                         fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, spec->name,
+                                     fmt::join(missing, ", "), offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));
+    }
+    if (limit)
+        throw InputError(cycle.path + "/output", fmt::format("machine {}'s {} cannot carry this cycle: {}",
+                                                             machine_.name, spec->name, *limit));
+    return spec;
+}
+
+void Post::handle_drill_cycle(const DrillCycle& cycle) {
+    if (!pos_known_) throw std::logic_error("drilling cycle from an unknown position");
+    cycle_ = cycle;
+    cycle_spec_ = choose_canned(cycle);
+    first_point_ = true;
+    if (cycle_spec_) on_drilling_header(cycle, *cycle_spec_);
+}
+
+void Post::handle_drill_point(Vec2 at) {
+    if (!cycle_) throw std::logic_error("drilling point outside a cycle");
+    if (cycle_spec_) {
+        on_drilling_point(*cycle_, *cycle_spec_, at, first_point_);
+        pos_ = {at.x, at.y, cycle_->retract_z};
+    } else {
+        for (const Event& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
+    }
+    first_point_ = false;
+}
+
+void Post::handle_drill_end() {
+    if (!cycle_) throw std::logic_error("drilling end outside a cycle");
+    if (cycle_spec_) {
+        on_drilling_footer(*cycle_, *cycle_spec_);
+        // The control left the cycle at the retract plane; what it last read was the bottom.
+        z_.reset();
+        motion_.reset();
+    }
+    cycle_.reset();
+    cycle_spec_ = nullptr;
+}
+
+void Post::handle_arc(const Arc& arc) {
+    if (!pos_known_) throw std::logic_error("arc from an unknown position");
+    const ArcGeometry geo = resolve_arc(pos_, arc);
+    const ArcSettings& s = machine_.arcs;
+    const double tolerance = effective_chord_tolerance(s, op_tolerance_);
+    const ArcPlan plan = plan_arc(geo, s, tolerance);
+    switch (plan.treatment) {
+        case ArcTreatment::one_line: on_linear(arc.to, arc.feed); break;
+        case ArcTreatment::lines: write_lines(geo, plan.count, arc.feed); break;
+        case ArcTreatment::arcs:
+            for (const ArcGeometry& piece : split_arc(geo, plan.count)) write_arc_block(piece, arc.feed, tolerance, 0);
+            break;
+    }
+    pos_ = arc.to;
+}
+
+void Post::write_lines(const ArcGeometry& arc, int segments, double feed) {
+    for (const Vec3& p : linearize_arc(arc, segments)) {
+        on_linear(p, feed);
+        pos_ = p;
+    }
+}
+
+Vec3 Post::arc_control_start(const Vec3& start) const {
+    Vec3 c{xyz_fmt_.rounded(start.x), xyz_fmt_.rounded(start.y), xyz_fmt_.rounded(start.z)};
+    if (!arc_actual_end_) return c;
+    // After an nccad angle arc the control stands where it computed the end, which is not
+    // exactly the rounded end: an axis no later block has written is still there.
+    auto unwritten = [&](const nc::Word& w, double believed) {
+        return w.last() && xyz_fmt_.format(*w.last()) == xyz_fmt_.format(believed);
+    };
+    if (unwritten(x_, arc_believed_end_.x)) c.x = arc_actual_end_->x;
+    if (unwritten(y_, arc_believed_end_.y)) c.y = arc_actual_end_->y;
+    if (unwritten(z_, arc_believed_end_.z)) c.z = arc_actual_end_->z;
+    return c;
+}
+
+void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth) {
+    const ArcWordFormats formats{xyz_fmt_, ijk_fmt_, angle_fmt_, machine_.arcs.format, machine_.tolerance};
+    const ArcFit fit = fit_arc_block(piece, arc_control_start(piece.start), formats);
+    switch (fit.result) {
+        case ArcFitResult::ok:
+            on_circular(fit.block, feed);
+            pos_ = piece.end;
+            arc_actual_end_ = fit.control_end;
+            arc_believed_end_ = piece.end;
+            break;
+        case ArcFitResult::degenerate:
+            on_linear(piece.end, feed);
+            pos_ = piece.end;
+            break;
+        case ArcFitResult::no_fit:
+            // Rounding would take the control off the circle: halves have shorter chords and
+            // are less sensitive; after a few halvings, straight moves.
+            if (depth < 4) {
+                for (const ArcGeometry& half : split_arc(piece, 2)) write_arc_block(half, feed, chord_tolerance, depth + 1);
+            } else {
+                write_lines(piece, segment_count(piece, machine_.arcs, chord_tolerance), feed);
+            }
+            break;
+    }
+}
+
+void Post::replay(const Event& event) {
+    std::visit(overloaded{
+                   [&](const Rapid& r) {
+                       if (pos_known_) on_rapid(r.to); else rapid_from_unknown(r.to);
+                       pos_ = r.to;
+                       pos_known_ = true;
+                   },
+                   [&](const Linear& l) {
+                       if (!pos_known_) throw std::logic_error("feed move from an unknown position");
+                       on_linear(l.to, l.feed);
+                       pos_ = l.to;
+                   },
+                   [&](const Dwell& d) { on_dwell(d.seconds); },
+                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const auto&) { throw std::logic_error("unexpected event in a longhand cycle"); },
+               },
+               event);
+}
+
+void Post::emit(const Event& event) {
+    if (!opened_) open();
+    std::visit(overloaded{
+                   [&](const OperationStart& op) {
+                       op_path_ = op.path;
+                       op_tolerance_ = op.tolerance;
+                       on_operation_start(op);
+                   },
+                   [&](const OperationEnd&) { on_operation_end(); },
+                   [&](const ToolChange& t) {
+                       tool_ = t.number;
+                       on_tool_change(t);
+                       pos_known_ = false;
+                       reset_modal_axes();
+                   },
+                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Rapid& r) { replay(r); },
+                   [&](const Linear& l) { replay(l); },
+                   [&](const Arc& a) { handle_arc(a); },
+                   [&](const Dwell& d) { on_dwell(d.seconds); },
+                   [&](const Compensation& c) { on_compensation(c.side); },
+                   [&](const DrillCycle& c) { handle_drill_cycle(c); },
+                   [&](const DrillPoint& p) { handle_drill_point(p.at); },
+                   [&](const DrillEnd&) { handle_drill_end(); },
+                   [&](const Comment& c) { on_comment(c.text); },
+               },
+               event);
+}
+
+}  // namespace camgen
