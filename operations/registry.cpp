@@ -1,42 +1,93 @@
-#include <type_traits>
+#include "operations/registry.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
 
 #include <fmt/format.h>
+#include <algorithm>
 
-#include "operations/registry.hpp"
+#include "camgen/common/error.hpp"
 
 namespace camgen {
 
 namespace {
 
-const char* tool_type_name(ToolType t) {
-    switch (t) {
-        case ToolType::drill: return "drill";
-        case ToolType::centre_drill: return "centre drill";
-        case ToolType::spot_drill: return "spot drill";
-        case ToolType::tap: return "tap";
-        case ToolType::reamer: return "reamer";
-        case ToolType::boring_bar: return "boring bar";
-        case ToolType::end_mill: return "end mill";
-        case ToolType::ball_mill: return "ball mill";
-    }
-    return "tool";
-}
-
 std::string describe(const Tool& t) {
-    std::string s = fmt::format("{:g} mm {}", t.diameter, tool_type_name(t.type));
+    std::string s = fmt::format("{:g} mm {}", t.diameter, tool_types[static_cast<int>(t.type)].description);
     if (!t.comment.empty()) s += " - " + t.comment;
     return s;
 }
 
-std::string default_name(const Operation& op) {
-    if (const auto* d = std::get_if<DrillOp>(&op))
-        return d->comment.empty() ? fmt::format("drill {} hole{}", d->holes.size(), d->holes.size() == 1 ? "" : "s")
-                                  : d->comment;
-    const auto& c = std::get<ContourOp>(op);
-    return c.comment.empty() ? "contour" : c.comment;
+// The operation type named `type` reads the object.
+template <std::size_t I = 0>
+Operation read_as(std::string_view type, json::Fields& f, const JobInput& in) {
+    if constexpr (I < std::variant_size_v<Operation>) {
+        using Op = std::variant_alternative_t<I, Operation>;
+        if (type == Op::type) return Op::read(f, in);
+        return read_as<I + 1>(type, f, in);
+    } else {
+        throw std::logic_error("operation type checked before reading");
+    }
+}
+
+Operation read_operation(const nlohmann::json& value, const std::string& path, const JobInput& in) {
+    json::Fields f(value, path, in.source());
+    const std::string type = f.string("type");
+    const std::vector<std::string> types = operation_type_names();
+    if (std::find(types.begin(), types.end(), type) == types.end())
+        f.fail_choice("type", type, types);
+    return read_as(type, f, in);
+}
+
+// The job's name when the file gives none: the file's stem.
+std::string job_name(const std::string& source_name) {
+    if (source_name.empty() || source_name.front() == '<') return "job";
+    std::string stem = std::filesystem::path(source_name).stem().string();
+    return stem.empty() ? "job" : stem;
 }
 
 }  // namespace
+
+std::vector<std::string> operation_type_names() {
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+        return std::vector<std::string>{std::string(std::variant_alternative_t<I, Operation>::type)...};
+    }(std::make_index_sequence<std::variant_size_v<Operation>>());
+}
+
+Job read_job(std::string_view text, const std::string& source_name) {
+    JobInput in(text, source_name);
+    json::Fields top = in.read_header({"operations"});
+    Job job;
+    const nlohmann::json& operations = in.array(top, "operations");
+    for (std::size_t i = 0; i < operations.size(); ++i)
+        job.operations.push_back(read_operation(operations[i], "/operations/" + std::to_string(i), in));
+    static_cast<JobHeader&>(job) = in.take_header();
+    if (job.name.empty()) job.name = job_name(source_name);
+    return job;
+}
+
+Job read_job_file(const std::string& filename) {
+    std::string text;
+    if (filename == "-") {
+        std::ostringstream buffer;
+        buffer << std::cin.rdbuf();
+        if (std::cin.bad()) throw IoError("cannot read <stdin>: " + std::string(std::strerror(errno)));
+        return read_job(buffer.str(), "<stdin>");
+    }
+    std::error_code ec;
+    if (std::filesystem::is_directory(filename, ec))
+        throw IoError("cannot read " + filename + ": " + std::strerror(EISDIR));
+    std::ifstream in(filename, std::ios::binary);
+    if (!in) throw IoError("cannot read " + filename + ": " + std::strerror(errno));
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw IoError("cannot read " + filename + ": " + std::strerror(errno));
+    return read_job(text, filename);
+}
 
 void expand_job(const Job& job, EventSink& sink) {
     int current = 0;
@@ -52,8 +103,8 @@ void expand_job(const Job& job, EventSink& sink) {
                     state = SpindleState::off;
                 }
                 std::optional<double> tolerance;
-                if constexpr (std::is_same_v<std::decay_t<decltype(o)>, ContourOp>) tolerance = o.tolerance;
-                sink.emit(OperationStart{default_name(op), o.path, tolerance});
+                if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
+                sink.emit(OperationStart{default_name(o), o.path, tolerance});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});
@@ -71,6 +122,12 @@ void expand_job(const Job& job, EventSink& sink) {
             op);
     }
     if (state != SpindleState::off) sink.emit(Spindle{SpindleState::off, 0.0});
+}
+
+std::vector<Event> expand_job(const Job& job) {
+    EventRecorder r;
+    expand_job(job, r);
+    return std::move(r.events);
 }
 
 }  // namespace camgen

@@ -1,37 +1,42 @@
 #pragma once
-// Operation modules: each expands one operation of the job into events. They decide geometry
-// and order, never text.
+// The operation types and the whole job. Each operation type lives in its own folder
+// (operations/<type>/) with its reading and its expansion; this file registers them, once, in
+// the Operation variant: a new type is one folder plus one entry there. Reading, expansion and
+// naming iterate the variant, and a visitor that misses a type does not compile.
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
 #include "camgen/events/events.hpp"
 #include "camgen/job/job.hpp"
+#include "operations/contour/contour.hpp"
+#include "operations/drill/drill.hpp"
 
 namespace camgen {
 
-// What an operation may know besides itself.
-struct Context {
-    const Job& job;
-    const Tool& tool;
+// Every operation type: the registration line.
+using Operation = std::variant<DrillOp, ContourOp>;
+
+// A whole job: header, tools and operations in order.
+struct Job : JobHeader {
+    std::vector<Operation> operations;
 };
 
-// Drilling: position above the first hole at the clearance, then down to the retract plane,
-// the cycle over every hole, and back up to the clearance.
-void expand(const DrillOp& op, const Context& context, EventSink& sink);
+// The "type" names of the operation types, in registration order.
+std::vector<std::string> operation_type_names();
 
-// Contour: rapid above the start at the clearance, feed down to depth, cut the path, rapid up.
-void expand(const ContourOp& op, const Context& context, EventSink& sink);
+// Parses and validates a job. `source_name` names the file in messages.
+// Throws InputError (JSON path + line) on any problem. Inch input is converted to mm here.
+Job read_job(std::string_view text, const std::string& source_name);
 
-// Holes up to this count get 2-opt after nearest neighbour in shortest_order (2-opt is
-// O(n^2) per pass); larger operations keep the nearest-neighbour order.
-inline constexpr size_t max_two_opt_holes = 2000;
-
-// The holes in a short rapid order (DrillOp order "shortest"): nearest neighbour from the
-// first hole, which stays first, then 2-opt (see max_two_opt_holes). Same holes, reordered.
-std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes);
-
-// The resolved drilling cycle of an operation (absolute planes, drill tip, tapping feed).
-DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool);
+// Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.
+Job read_job_file(const std::string& filename);
 
 // The whole job in order: tool changes and spindle control between operations, each
 // operation between OperationStart and OperationEnd, spindle off at the end.
 void expand_job(const Job& job, EventSink& sink);
+// The same, as a list.
+std::vector<Event> expand_job(const Job& job);
 
 }  // namespace camgen

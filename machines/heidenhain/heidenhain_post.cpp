@@ -34,7 +34,7 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
     nc::FormatSpec signed_sec = machine.format("dwell").spec();
     signed_sec.force_sign = true;
     const nc::Format len(signed_len), feed(signed_feed), sec(signed_sec);
-    const DrillParams& p = c.params;
+    const DrillValues& p = c.values;
     // The set-up clearance is unsigned: when the feed starts below the surface, the
     // feed-start plane is given as the surface.
     const double surface = std::min(c.reference_z, c.safe_z);
@@ -42,7 +42,7 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
                       q203 = len.format(surface), q204 = len.format(c.retract_z - surface);
     auto dwell = [&](const std::optional<double>& s) { return sec.format(s.value_or(0.0)); };
     if (tapping(c.kind)) {
-        const double pitch = p.pitch.value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
+        const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
         return {"CYCL DEF 207 RIGID TAPPING NEW",
                 {{200, q200, "SET-UP CLEARANCE"},
                  {201, q201, "DEPTH"},
@@ -59,26 +59,26 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
                  {210, dwell(std::nullopt), "DWELL TIME AT TOP"},
                  {203, q203, "SURFACE COORDINATE"},
                  {204, q204, "2ND SET-UP CLEARANCE"},
-                 {211, dwell(p.bottom_dwell), "DWELL TIME AT DEPTH"}}};
+                 {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"}}};
     }
     const bool full = c.kind == CycleKind::deep;
-    const double decrement = p.degression_type == DegressionType::value ? *p.degression : 0.0;
+    const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
     return {"CYCL DEF 203 UNIVERSAL DRILLING",
             {{200, q200, "SET-UP CLEARANCE"},
              {201, q201, "DEPTH"},
              {206, feed.format(c.feed), "FEED RATE FOR PLNGNG"},
-             {202, len.format(p.first_depth.value_or(c.safe_z - c.bottom_z)), "PLUNGING DEPTH"},
-             {210, dwell(full ? p.top_dwell : std::nullopt), "DWELL TIME AT TOP"},
+             {202, len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z)), "PLUNGING DEPTH"},
+             {210, dwell(full ? p.get(DrillField::top_dwell) : std::nullopt), "DWELL TIME AT TOP"},
              {203, q203, "SURFACE COORDINATE"},
              {204, q204, "2ND SET-UP CLEARANCE"},
              {212, len.format(decrement), "DECREMENT"},
              {213, full ? "+0" : fmt::format("+{}", max_breaks), "NR OF BREAKS"},
-             {205, len.format(p.minimum_depth.value_or(0.0)), "MIN. PLUNGING DEPTH"},
-             {211, dwell(p.bottom_dwell), "DWELL TIME AT DEPTH"},
+             {205, len.format(p.get(DrillField::minimum_depth).value_or(0.0)), "MIN. PLUNGING DEPTH"},
+             {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"},
              // 99999 is FMAX in mm and inch programs alike: written as it is, not converted.
-             {208, !full && p.retract_feedrate ? feed.format(*p.retract_feedrate) : fmt::format("+{}", fmax_feed),
+             {208, !full && p.get(DrillField::retract_feedrate) ? feed.format(*p.get(DrillField::retract_feedrate)) : fmt::format("+{}", fmax_feed),
               "RETRACTION FEED RATE"},
-             {256, len.format(full ? machine.peck_clearance : p.pecking_retract.value_or(machine.peck_clearance)),
+             {256, len.format(full ? machine.peck_clearance : p.get(DrillField::pecking_retract).value_or(machine.peck_clearance)),
               "DIST FOR CHIP BRKNG"}}};
 }
 
@@ -182,7 +182,7 @@ void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
 }
 
 std::optional<std::string> HeidenhainPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
-    if (c.params.degression_type == DegressionType::factor)
+    if (c.values.degression_type() == DegressionType::factor)
         return "its Q212 takes a decrement value, not a factor";
     if (c.kind == CycleKind::chip_break && peck_depths(c).size() > max_breaks + 1)
         return fmt::format("more than {} chip breaks (Q213) in one hole", max_breaks);

@@ -322,8 +322,8 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
     c.retract_z = len(203) + len(204);
     c.spindle_rpm = rpm;
     c.spindle_direction = spindle == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
-    set_canned_planes(c);
-    DrillParams& p = c.params;
+    c.output = CycleOutput::canned;
+    DrillValues& p = c.values;
     auto dwell = [&](int n) -> std::optional<double> {
         if (q(n) < 0) bad(n, "a dwell must not be negative");
         return q(n) > 0 ? std::optional<double>(sec(n)) : std::nullopt;
@@ -333,22 +333,22 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
         // Rigid tapping: the pitch's sign gives the hand; feed = pitch x the spindle speed.
         if (q(239) == 0) bad(239, "the pitch must not be 0");
         c.kind = q(239) < 0 ? CycleKind::tap_left : CycleKind::tap;
-        p.pitch = std::abs(len(239));
+        p.set(DrillField::pitch, std::abs(len(239)));
         if (spindle == SpindleState::off || !(rpm > 0)) fail("cycle 207 called with the spindle off");
-        c.feed = *p.pitch * rpm;
+        c.feed = *p.get(DrillField::pitch) * rpm;
     } else {
         if (!(q(206) > 0)) bad(206, "the plunging feed must be > 0");
         c.feed = feed_value(q(206));
-        p.plunging_feedrate = c.feed;
+        p.set(DrillField::plunging_feedrate, c.feed);
         if (!(q(202) > 0)) bad(202, "the plunging depth must be > 0");
-        p.bottom_dwell = dwell(211);
+        p.set(DrillField::bottom_dwell, dwell(211));
         if (q(210) < 0) bad(210, "a dwell must not be negative");
         if (d.number == 200) {
             // One plunge: camgen writes the whole depth. The TNC dwells at the top (Q210) only
             // between plunges, so one plunge has no such dwell.
             if (len(202) < -len(201) - unit)
                 bad(202, "a plunging depth less than the depth pecks: camgen writes pecking as cycle 203");
-            c.kind = p.bottom_dwell ? CycleKind::dwell : CycleKind::drill;
+            c.kind = p.get(DrillField::bottom_dwell) ? CycleKind::dwell : CycleKind::drill;
         } else {
             // Cycle 203. Q213 = 0: full retracts (camgen's "deep"); Q213 > 0: chip breaking
             // (camgen writes 99 and never more breaks). The pecks are read as camgen means them,
@@ -361,23 +361,23 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
             if (breaks < 0 || breaks > max_breaks || breaks != std::floor(breaks))
                 bad(213, fmt::format("the number of chip breaks is a whole number 0..{}", max_breaks));
             c.kind = breaks == 0 ? CycleKind::deep : CycleKind::chip_break;
-            p.first_depth = len(202);
+            p.set(DrillField::first_depth, len(202));
             if (q(212) < 0) bad(212, "the decrement must not be negative");
             if (q(212) > 0) {
-                p.degression_type = DegressionType::value;
-                p.degression = len(212);
+                p.set_degression_type(DegressionType::value);
+                p.set(DrillField::degression, len(212));
             }
             if (q(205) < 0) bad(205, "the minimum plunging depth must not be negative");
-            if (q(205) > 0) p.minimum_depth = len(205);
+            if (q(205) > 0) p.set(DrillField::minimum_depth, len(205));
             // Q210 acts after full retracts only: with chip breaking camgen makes none.
-            if (c.kind == CycleKind::deep) p.top_dwell = dwell(210);
+            if (c.kind == CycleKind::deep) p.set(DrillField::top_dwell, dwell(210));
             if (!(q(208) > 0)) bad(208, "the retraction feed must be > 0");
             // 99999 as written (whatever the units) is FMAX.
-            if (q(208) != fmax_feed) p.retract_feedrate = feed_value(q(208));
+            if (q(208) != fmax_feed) p.set(DrillField::retract_feedrate, feed_value(q(208)));
             // Q256 is the back-off of a chip break; full retracts do not use it.
             if (c.kind == CycleKind::chip_break) {
                 if (!(q(256) > 0)) bad(256, "the chip-breaking distance must be > 0");
-                p.pecking_retract = len(256);
+                p.set(DrillField::pecking_retract, len(256));
             }
             if (c.kind == CycleKind::chip_break) {
                 size_t pecks = 0;
@@ -392,12 +392,11 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
             }
         }
     }
-    p.kind = c.kind;
     std::string name = fmt::format("CYCL DEF {}", d.number);
     bool offered = false;
     for (const DrillingCycleSpec& s : machine_.drilling) offered = offered || (s.canned && s.name == name && s.kind == c.kind);
     if (!offered)
-        fail(fmt::format("{} as a {} cycle is not a canned cycle of machine {}", name, cycle_kind_name(c.kind), machine_.name));
+        fail(fmt::format("{} as a {} cycle is not a canned cycle of machine {}", name, name_of(cycle_kinds, c.kind), machine_.name));
     return c;
 }
 

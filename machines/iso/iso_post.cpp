@@ -117,7 +117,7 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
         // R in one move; the control restores the spindle direction.
         on_rapid({at.x, at.y, pos_.z});
         on_rapid({at.x, at.y, c.safe_z});
-        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.params.pitch)).end();
+        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.values.get(DrillField::pitch))).end();
         motion_.reset();
         z_.set_last(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});
@@ -128,14 +128,14 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
         out_.add(xs).add(ys).end();
         return;
     }
-    const DrillParams& p = c.params;
+    const DrillValues& p = c.values;
     // G98 returns to the Z the tool had before the cycle: the retract plane, where the
     // operation put it. G99 returns to R.
     out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
     out_.add(z_.force(c.bottom_z)).add(xyz_fmt_.word("R", c.safe_z));
-    if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.first_depth)
-        out_.add(xyz_fmt_.word("Q", *p.first_depth));
-    if (p.bottom_dwell && *p.bottom_dwell > 0) out_.add(dwell_fmt_.word("P", *p.bottom_dwell));
+    if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.get(DrillField::first_depth))
+        out_.add(xyz_fmt_.word("Q", *p.get(DrillField::first_depth)));
+    if (p.get(DrillField::bottom_dwell) && *p.get(DrillField::bottom_dwell) > 0) out_.add(dwell_fmt_.word("P", *p.get(DrillField::bottom_dwell)));
     out_.add(feed_word(c.feed)).end();
 }
 

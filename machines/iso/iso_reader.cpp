@@ -324,21 +324,20 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     c.bottom_z = *cycle_z_;
     c.feed = *feed_;
     c.spindle_rpm = rpm_;
-    DrillParams& p = c.params;
-    p.kind = spec.kind;
-    set_canned_planes(c);
+    DrillValues& p = c.values;
+    c.output = CycleOutput::canned;
     if (pecks) {
         if (!cycle_q_) fail(fmt::format("{} without its peck depth Q", name));
         if (!(*cycle_q_ > 0)) fail(fmt::format("{}: the peck depth Q must be > 0", name));
-        p.first_depth = *cycle_q_;
+        p.set(DrillField::first_depth, *cycle_q_);
     }
-    if (cycle_p_ && has_field(spec, DrillField::bottom_dwell) && *cycle_p_ > 0) p.bottom_dwell = *cycle_p_;
+    if (cycle_p_ && has_field(spec, DrillField::bottom_dwell) && *cycle_p_ > 0) p.set(DrillField::bottom_dwell, *cycle_p_);
     if (spec.kind == CycleKind::tap || spec.kind == CycleKind::tap_left) {
         // A tap's feed is pitch x spindle speed.
         if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", name));
-        p.pitch = *feed_ / rpm_;
+        p.set(DrillField::pitch, *feed_ / rpm_);
     } else {
-        p.plunging_feedrate = *feed_;
+        p.set(DrillField::plunging_feedrate, *feed_);
     }
     if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
     drill_point({x.value_or(here.x), y.value_or(here.y)});
@@ -368,10 +367,9 @@ void IsoReader::rigid_tap(BlockWords& w) {
     c.feed = pitch * rpm_;
     c.spindle_rpm = rpm_;
     c.spindle_direction = spindle_ == SpindleState::cw ? SpindleDirection::cw : SpindleDirection::ccw;
-    DrillParams& p = c.params;
-    p.kind = c.kind;
-    set_canned_planes(c);
-    p.pitch = pitch;
+    DrillValues& p = c.values;
+    c.output = CycleOutput::canned;
+    p.set(DrillField::pitch, pitch);
     drill_cycle(c);
     drill_point({here.x, here.y});
     drill_end();

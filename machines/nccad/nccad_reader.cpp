@@ -157,8 +157,8 @@ void NccadReader::block(const Block& b) {
                 cycle.bottom_z = *z;
                 cycle.feed = *feed_;
                 cycle.spindle_rpm = rpm_;
-                set_canned_planes(cycle);
-                cycle.params.plunging_feedrate = *feed_;
+                cycle.output = CycleOutput::canned;
+                cycle.values.set(DrillField::plunging_feedrate, *feed_);
                 Vec3 here = position();
                 drill_cycle(cycle);
                 drill_point({x.value_or(here.x), y.value_or(here.y)});

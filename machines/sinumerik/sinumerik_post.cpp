@@ -36,7 +36,7 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
     factor_spec.scale = 1.0;
     factor_spec.decimals = 3;
     const nc::Format factor(factor_spec);
-    const DrillParams& p = c.params;
+    const DrillValues& p = c.values;
     // SDIS is unsigned: when the feed starts below the surface, the feed-start plane becomes
     // the reference plane (DP and FDEP are absolute, so nothing else changes).
     const double rfp = std::min(c.reference_z, c.safe_z);
@@ -48,50 +48,50 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
         case CycleKind::drill:
             return "CYCLE81(" + join_parameters(v) + ")";
         case CycleKind::dwell:
-            v.push_back(dwell(p.bottom_dwell));
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
             return "CYCLE82(" + join_parameters(v) + ")";
         case CycleKind::deep:
         case CycleKind::chip_break: {
             const bool full = c.kind == CycleKind::deep;
-            v.push_back(len.format(c.safe_z - p.first_depth.value_or(c.safe_z - c.bottom_z)));  // FDEP
+            v.push_back(len.format(c.safe_z - p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z)));  // FDEP
             v.push_back("");                                                                    // FDPR
-            v.push_back(p.degression_type == DegressionType::value ? len.format(*p.degression) : "");  // DAM
+            v.push_back(p.degression_type() == DegressionType::value ? len.format(*p.get(DrillField::degression)) : "");  // DAM
             v.push_back("");                                          // DTB: would dwell at every peck
-            v.push_back(full ? dwell(p.top_dwell) : "");              // DTS
-            v.push_back(factor.format(p.first_feedrate_factor.value_or(1.0)));  // FRF
+            v.push_back(full ? dwell(p.get(DrillField::top_dwell)) : "");              // DTS
+            v.push_back(factor.format(p.get(DrillField::first_feedrate_factor).value_or(1.0)));  // FRF
             v.push_back(full ? "1" : "0");                            // VARI
             v.push_back("");                                          // _AXN: tool axis
-            v.push_back(p.minimum_depth ? len.format(*p.minimum_depth) : "");  // _MDEP
-            v.push_back(full ? "" : len.format(p.pecking_retract.value_or(machine.peck_clearance)));  // _VRT
-            v.push_back(dwell(p.bottom_dwell));                       // _DTD
+            v.push_back(p.get(DrillField::minimum_depth) ? len.format(*p.get(DrillField::minimum_depth)) : "");  // _MDEP
+            v.push_back(full ? "" : len.format(p.get(DrillField::pecking_retract).value_or(machine.peck_clearance)));  // _VRT
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));                       // _DTD
             v.push_back(full ? len.format(machine.peck_clearance) : "");  // _DIS1
             return "CYCLE83(" + join_parameters(v) + ")";
         }
         case CycleKind::tap:
         case CycleKind::tap_left: {
-            const double pitch = p.pitch.value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
-            const double sst = p.tapping_speed.value_or(c.spindle_rpm);
-            v.push_back(dwell(p.bottom_dwell));         // DTB
+            const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
+            const double sst = p.get(DrillField::tapping_speed).value_or(c.spindle_rpm);
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));         // DTB
             v.push_back(spindle_dir);                   // SDAC: direction after the cycle
             v.push_back("");                            // MPIT
             v.push_back(len.format(pitch));             // PIT, negative: left-hand
             v.push_back("0");                           // POSS
             v.push_back(rpm.format(sst));               // SST
-            v.push_back(rpm.format(p.retract_speed.value_or(sst)));  // SST1
+            v.push_back(rpm.format(p.get(DrillField::retract_speed).value_or(sst)));  // SST1
             return "CYCLE84(" + join_parameters(v) + ")";
         }
         case CycleKind::ream:
-            v.push_back(dwell(p.bottom_dwell));
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
             v.push_back(feed.format(c.feed));                                  // FFR
-            v.push_back(feed.format(p.retract_feedrate.value_or(c.feed)));     // RFF
+            v.push_back(feed.format(p.get(DrillField::retract_feedrate).value_or(c.feed)));     // RFF
             return "CYCLE85(" + join_parameters(v) + ")";
         case CycleKind::bore_stop:
-            v.push_back(dwell(p.bottom_dwell));
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
             // SDIR, then no lift-off (RPA, RPO, RPAP) and POSS 0: out along the hole axis.
             for (const char* s : {spindle_dir.c_str(), "0", "0", "0", "0"}) v.emplace_back(s);
             return "CYCLE86(" + join_parameters(v) + ")";
         case CycleKind::bore_dwell:
-            v.push_back(dwell(p.bottom_dwell));
+            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
             return "CYCLE89(" + join_parameters(v) + ")";
     }
     return "";
@@ -146,7 +146,7 @@ void SinumerikPost::on_circular(const ArcGeometry& arc, double feed) {
 }
 
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
-    if (c.params.degression_type == DegressionType::factor)
+    if (c.values.degression_type() == DegressionType::factor)
         return "its DAM takes a degression value, not a factor";
     return std::nullopt;
 }

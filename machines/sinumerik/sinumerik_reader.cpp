@@ -184,13 +184,13 @@ DrillCycle SinumerikReader::cycle_now() const {
     if (c.retract_z < c.safe_z) fail(fmt::format("{}: the retract plane RTP is below RFP + SDIS", name));
     c.spindle_rpm = rpm_;
     c.spindle_direction = spindle_ == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
-    set_canned_planes(c);
-    DrillParams& p = c.params;
+    c.output = CycleOutput::canned;
+    DrillValues& p = c.values;
     auto active_feed = [&] {
         // The cycle drills at the feed in effect where it is called.
         if (!feed_) fail(fmt::format("{} without a feed F before it", name));
         c.feed = *feed_;
-        p.plunging_feedrate = c.feed;
+        p.set(DrillField::plunging_feedrate, c.feed);
     };
 
     if (name == "CYCLE81") {
@@ -198,7 +198,7 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else if (name == "CYCLE82") {
         c.kind = CycleKind::dwell;
-        p.bottom_dwell = dwell_at(5);
+        p.set(DrillField::bottom_dwell, dwell_at(5));
         active_feed();
     } else if (name == "CYCLE83") {
         // FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1.
@@ -210,27 +210,27 @@ DrillCycle SinumerikReader::cycle_now() const {
         const double fdep = length_value(need(5, "the first drilling depth FDEP"));
         empty(6, "FDPR", "camgen writes the first depth absolute (FDEP)");
         if (!(fdep < c.safe_z)) fail(fmt::format("{}: the first depth FDEP = {} is not below RFP + SDIS", name, call.texts[5]));
-        p.first_depth = c.safe_z - fdep;
+        p.set(DrillField::first_depth, c.safe_z - fdep);
         if (has(7) && *call.values[7] != 0.0) {
             if (*call.values[7] < 0) fail(fmt::format("{}: DAM = {}: camgen reads only a degression value", name, call.texts[7]));
-            p.degression_type = DegressionType::value;
-            p.degression = length_value(*call.values[7]);
+            p.set_degression_type(DegressionType::value);
+            p.set(DrillField::degression, length_value(*call.values[7]));
         }
         empty(8, "DTB", "a dwell at every peck depth is no camgen cycle (camgen dwells at the bottom with _DTD)");
         // DTS acts only between full retracts (VARI=1), as the control runs it.
-        if (full) p.top_dwell = dwell_at(9);
+        if (full) p.set(DrillField::top_dwell, dwell_at(9));
         if (has(10)) {
             if (!(*call.values[10] > 0 && *call.values[10] <= 1))
                 fail(fmt::format("{}: FRF = {} is not in (0, 1]", name, call.texts[10]));
-            p.first_feedrate_factor = call.values[10];
+            p.set(DrillField::first_feedrate_factor, call.values[10]);
         }
         empty(12, "_AXN", "camgen drills along Z only");
-        if (has(13)) p.minimum_depth = length_at(13);
+        if (has(13)) p.set(DrillField::minimum_depth, length_at(13));
         if (!full && has(14)) {
             if (!(*call.values[14] > 0)) fail(fmt::format("{}: _VRT = {} must be > 0", name, call.texts[14]));
-            p.pecking_retract = length_value(*call.values[14]);
+            p.set(DrillField::pecking_retract, length_value(*call.values[14]));
         }
-        p.bottom_dwell = dwell_at(15);
+        p.set(DrillField::bottom_dwell, dwell_at(15));
         if (full) {
             // The re-approach distance of full-retract pecks: camgen's longhand stops the
             // machine's peckClearance above the last peck, and so must the program.
@@ -242,38 +242,38 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else if (name == "CYCLE84") {
         // DTB, SDAC, MPIT, PIT, POSS, SST, SST1.
-        p.bottom_dwell = dwell_at(5);
+        p.set(DrillField::bottom_dwell, dwell_at(5));
         c.spindle_direction = direction(6, "SDAC (the spindle direction after the cycle)");
         empty(7, "MPIT", "camgen writes the pitch as PIT");
         const double pit = length_value(need(8, "the pitch PIT"));
         if (pit == 0.0) fail(fmt::format("{}: the pitch PIT must not be 0", name));
         zero_or_empty(9, "POSS");
         c.kind = pit < 0 ? CycleKind::tap_left : CycleKind::tap;
-        p.pitch = std::abs(pit);
+        p.set(DrillField::pitch, std::abs(pit));
         const double sst = rpm_value(need(10, "the tapping speed SST"));
         if (!(sst > 0)) fail(fmt::format("{}: the tapping speed SST must be > 0", name));
-        p.tapping_speed = sst;
+        p.set(DrillField::tapping_speed, sst);
         if (has(11)) {
             if (!(*call.values[11] > 0)) fail(fmt::format("{}: the retract speed SST1 must be > 0", name));
-            p.retract_speed = rpm_value(*call.values[11]);
+            p.set(DrillField::retract_speed, rpm_value(*call.values[11]));
         }
-        c.feed = *p.pitch * sst;
+        c.feed = *p.get(DrillField::pitch) * sst;
         if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S before it", name));
     } else if (name == "CYCLE85") {
         // DTB, FFR, RFF.
         c.kind = CycleKind::ream;
-        p.bottom_dwell = dwell_at(5);
+        p.set(DrillField::bottom_dwell, dwell_at(5));
         c.feed = feed_value(need(6, "the feed FFR"));
         if (!(c.feed > 0)) fail(fmt::format("{}: the feed FFR must be > 0", name));
-        p.plunging_feedrate = c.feed;
+        p.set(DrillField::plunging_feedrate, c.feed);
         if (has(7)) {
             if (!(*call.values[7] > 0)) fail(fmt::format("{}: the retract feed RFF must be > 0", name));
-            p.retract_feedrate = feed_value(*call.values[7]);
+            p.set(DrillField::retract_feedrate, feed_value(*call.values[7]));
         }
     } else if (name == "CYCLE86") {
         // DTB, SDIR, RPA, RPO, RPAP, POSS: out along the hole axis, no lift-off.
         c.kind = CycleKind::bore_stop;
-        p.bottom_dwell = dwell_at(5);
+        p.set(DrillField::bottom_dwell, dwell_at(5));
         c.spindle_direction = direction(6, "SDIR (the spindle direction)");
         zero_or_empty(7, "RPA");
         zero_or_empty(8, "RPO");
@@ -282,14 +282,13 @@ DrillCycle SinumerikReader::cycle_now() const {
         active_feed();
     } else {  // CYCLE89
         c.kind = CycleKind::bore_dwell;
-        p.bottom_dwell = dwell_at(5);
+        p.set(DrillField::bottom_dwell, dwell_at(5));
         active_feed();
     }
-    p.kind = c.kind;
     bool offered = false;
     for (const DrillingCycleSpec& s : machine_.drilling) offered = offered || (s.canned && s.name == name && s.kind == c.kind);
     if (!offered)
-        fail(fmt::format("{} as a {} cycle is not a canned cycle of machine {}", name, cycle_kind_name(c.kind), machine_.name));
+        fail(fmt::format("{} as a {} cycle is not a canned cycle of machine {}", name, name_of(cycle_kinds, c.kind), machine_.name));
     return c;
 }
 

@@ -1,6 +1,161 @@
-#include "operations/registry.hpp"
+#include "operations/contour/contour.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
 
 namespace camgen {
+
+namespace {
+
+using Json = nlohmann::json;
+using Fields = json::Fields;
+
+// Arc end points may be this far off the circle through the start point, mm.
+constexpr double arc_radius_tolerance = 0.001;
+constexpr double min_arc_radius = 0.0005;
+
+PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth) {
+    JobInput::known_keys(a, {"end", "centre", "direction", "plane"});
+    PathArc arc;
+    arc.plane = a.choice("plane", plane_names, Plane::xy);
+    const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
+    const char* normal_axis = arc.plane == Plane::xy ? "z" : arc.plane == Plane::xz ? "y" : "x";
+    arc.end = in.point3(a, "end", depth);
+    const Json& centre = a.required("centre");
+    if (arc.plane != Plane::xy && !(centre.is_array() && centre.size() == 3))
+        a.fail("centre", fmt::format("an {} arc needs its centre as [x, y, z], got {}", plane_name, JobInput::describe(centre)));
+    arc.centre = in.point3(centre, a.path_of("centre"), current.z);
+    // The centre's coordinate along the normal axis is the start's: a centre elsewhere on the
+    // axis would be a different arc.
+    const double c_normal = to_plane(arc.centre, arc.plane).w, s_normal = to_plane(current, arc.plane).w;
+    if (std::abs(c_normal - s_normal) > arc_radius_tolerance)
+        a.fail("centre", fmt::format("the centre's {} ({}) must be the start's {} ({}) in an {} arc", normal_axis,
+                                     in.show(c_normal), normal_axis, in.show(s_normal), plane_name));
+    arc.centre = from_plane({to_plane(arc.centre, arc.plane).u, to_plane(arc.centre, arc.plane).v, s_normal}, arc.plane);
+    arc.direction = a.choice("direction", arc_directions);
+    const PlanePoint s = to_plane(current, arc.plane), e = to_plane(arc.end, arc.plane), c = to_plane(arc.centre, arc.plane);
+    const double r_start = std::hypot(s.u - c.u, s.v - c.v);
+    const double r_end = std::hypot(e.u - c.u, e.v - c.v);
+    if (std::abs(r_start - r_end) > arc_radius_tolerance)
+        a.fail("", fmt::format("start is {:.3f} mm from the centre but end is {:.3f} mm{}", r_start, r_end,
+                               arc.plane == Plane::xy ? "" : fmt::format(" (in the {} plane)", plane_name)));
+    if (r_start <= min_arc_radius)
+        a.fail("", fmt::format("the arc radius is {:.4f} mm; it must be more than {} mm", r_start, min_arc_radius));
+    // The highest point of the arc: an arc in XZ or YZ may rise above its ends.
+    const ArcGeometry g = resolve_arc(current, ArcSpec{arc.end, arc.centre, arc.direction, arc.plane, 0});
+    double top = std::max(current.z, arc.end.z);
+    if (arc.plane != Plane::xy) {
+        const double up = arc.plane == Plane::xz ? 0.0 : std::numbers::pi / 2;  // angle of +Z in (u, v)
+        double delta = arc.direction == ArcDirection::ccw ? up - g.start_angle : g.start_angle - up;
+        delta = std::fmod(delta, 2 * std::numbers::pi);
+        if (delta < 0) delta += 2 * std::numbers::pi;
+        if (delta <= g.sweep) top = std::max(top, (arc.plane == Plane::xz ? c.u : c.v) + r_start);
+    }
+    if (top >= in.header().clearance)
+        a.fail("", fmt::format("the arc reaches Z {}, at or above the clearance (Z {})", in.show(top), in.show(in.header().clearance)));
+    return arc;
+}
+
+PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
+    JobInput::known_keys(h, {"centre", "direction", "depth", "turns", "pitch"});
+    PathHelix helix;
+    helix.centre = in.point(h, "centre");
+    helix.direction = h.choice("direction", arc_directions);
+    const double radius = std::hypot(current.x - helix.centre.x, current.y - helix.centre.y);
+    if (radius <= min_arc_radius)
+        h.fail("centre", fmt::format("the helix radius is {:.4f} mm; it must be more than {} mm", radius, min_arc_radius));
+    const bool has_depth = h.has("depth"), has_turns = h.has("turns"), has_pitch = h.has("pitch");
+    if (int(has_depth) + int(has_turns) + int(has_pitch) != 2)
+        h.fail("", "a helix needs exactly two of \"depth\" (end Z), \"turns\" and \"pitch\" (Z travel per turn, down)");
+    std::optional<double> pitch = in.optional_length(h, "pitch");
+    if (pitch && *pitch <= 0) h.fail("pitch", "pitch must be > 0 (the helix goes down by it each turn)");
+    if (has_turns) {
+        const int turns = h.integer("turns");
+        if (turns < 1 || turns > 100000) h.fail("turns", "turns must be a whole number from 1 to 100000");
+        helix.turns = turns;
+    }
+    if (has_depth) {
+        helix.end_z = in.length(h, "depth");
+        if (std::abs(helix.end_z - current.z) < 1e-9)
+            h.fail("depth", fmt::format("the helix starts and ends at Z {}; a helix must change Z (use an arc for a circle)",
+                                        in.show(current.z)));
+        if (helix.end_z >= in.header().clearance)
+            h.fail("depth", fmt::format("depth is at or above the clearance (Z {}, clearance at Z {})", in.show(helix.end_z),
+                                        in.show(in.header().clearance)));
+        if (pitch) {
+            const double turns = std::ceil(std::abs(helix.end_z - current.z) / *pitch - 1e-9);
+            if (turns > 100000) h.fail("pitch", "pitch is too small: more than 100000 turns");
+            helix.turns = static_cast<int>(turns);
+        }
+    } else {
+        helix.end_z = current.z - helix.turns * *pitch;
+    }
+    return helix;
+}
+
+}  // namespace
+
+ContourOp ContourOp::read(Fields& f, const JobInput& in) {
+    JobInput::known_keys(f, {"type", "tool", "comment", "depth", "feed", "plungeFeed", "tolerance", "start", "path"});
+    const Tool& tool = in.tool(f);
+    ContourOp op;
+    op.path = f.path();
+    op.tool = tool.number;
+    op.comment = f.optional_string("comment").value_or("");
+    op.depth = in.length(f, "depth");
+    if (op.depth >= in.header().clearance)
+        f.fail("depth", fmt::format("depth is above the clearance (cut at Z {}, clearance at Z {}); "
+                                    "it must be below",
+                                    in.show(op.depth), in.show(in.header().clearance)));
+    op.feed = in.length(f, "feed");
+    if (op.feed <= 0) f.fail("feed", "feed must be > 0");
+    op.plunge_feed = in.optional_length(f, "plungeFeed");
+    if (op.plunge_feed && *op.plunge_feed <= 0) f.fail("plungeFeed", "plungeFeed must be > 0");
+    op.tolerance = in.optional_length(f, "tolerance");
+    // Finer than any control resolves; a smaller value only multiplies the segments of broken arcs.
+    if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
+    op.start = in.point(f, "start");
+
+    const Json& elements = in.array(f, "path");
+    if (elements.empty()) f.fail("path", "a contour path needs at least one element");
+    const std::string base = f.path_of("path");
+    Vec3 current{op.start.x, op.start.y, op.depth};
+    auto below_clearance = [&](Fields& at, std::string_view key, double z, const char* what) {
+        if (z >= in.header().clearance)
+            at.fail(key, fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, in.show(z),
+                                     in.show(in.header().clearance)));
+    };
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+        const std::string path = base + "/" + std::to_string(k);
+        Fields e(elements[k], path, in.source());
+        JobInput::known_keys(e, {"line", "arc", "helix"});
+        const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
+        if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
+        if (e.has("line")) {
+            const Vec3 end = in.point3(e, "line", op.depth);
+            below_clearance(e, "line", end.z, "the line's end");
+            op.elements.emplace_back(PathLine{end});
+            current = end;
+        } else if (e.has("arc")) {
+            Fields a(e.required("arc"), e.path_of("arc"), in.source());
+            PathArc arc = read_arc(a, in, current, op.depth);
+            op.elements.emplace_back(arc);
+            current = arc.end;
+        } else {
+            Fields h(e.required("helix"), e.path_of("helix"), in.source());
+            PathHelix helix = read_helix(h, in, current);
+            op.elements.emplace_back(helix);
+            current.z = helix.end_z;
+        }
+        op.element_paths.push_back(path);
+    }
+    return op;
+}
 
 void expand(const ContourOp& op, const Context& ctx, EventSink& sink) {
     sink.emit(Rapid{{op.start.x, op.start.y, ctx.job.clearance}});
@@ -24,5 +179,7 @@ void expand(const ContourOp& op, const Context& ctx, EventSink& sink) {
     }
     sink.emit(Rapid{{at.x, at.y, ctx.job.clearance}});
 }
+
+std::string default_name(const ContourOp& c) { return c.comment.empty() ? "contour" : c.comment; }
 
 }  // namespace camgen

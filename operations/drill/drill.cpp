@@ -1,11 +1,278 @@
+#include "operations/drill/drill.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "operations/registry.hpp"
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "camgen/common/error.hpp"
 
 namespace camgen {
+
+namespace {
+
+using Json = nlohmann::json;
+using Fields = json::Fields;
+
+// Sanity bound for generated hole patterns, so a typo cannot exhaust memory.
+constexpr double max_pattern_holes = 10'000'000;
+
+// cos and sin of an angle in degrees, exact for multiples of 90 degrees.
+Vec2 unit_vector(double degrees) {
+    double d = std::fmod(degrees, 360.0);
+    if (d < 0) d += 360.0;
+    if (d == 0.0) return {1.0, 0.0};
+    if (d == 90.0) return {0.0, 1.0};
+    if (d == 180.0) return {-1.0, 0.0};
+    if (d == 270.0) return {0.0, -1.0};
+    const double r = degrees * std::numbers::pi / 180.0;
+    return {std::cos(r), std::sin(r)};
+}
+
+// The fields a cycle kind uses, in table order ("plungingFeedrate, retractFeedrate, topDwell").
+std::vector<std::string_view> fields_used_by(CycleKind kind) {
+    std::vector<std::string_view> out;
+    for (const auto& f : drill_fields)
+        if (!f.in_planes && f.used_by.contains(kind)) out.push_back(f.key);
+    return out;
+}
+
+void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
+    const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line");
+    if (!any)
+        f.fail("", "a drill operation needs holes: give at least one of holes, grid, boltCircle "
+                   "or line");
+
+    if (f.has("holes")) {
+        const Json& list = in.array(f, "holes");
+        const std::string base = f.path_of("holes");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const std::string path = base + "/" + std::to_string(i);
+            const Json& hole = list[i];
+            if (hole.is_object()) {
+                Fields h(hole, path, in.source());
+                JobInput::known_keys(h, {"x", "y"});
+                holes.push_back({in.length(h, "x"), in.length(h, "y")});
+            } else if (hole.is_array()) {
+                holes.push_back(in.point(hole, path));
+            } else {
+                json::fail(in.source(), path,
+                                   "expected a hole [x, y] or {\"x\": ..., \"y\": ...}, got " +
+                                       JobInput::describe(hole));
+            }
+        }
+        if (holes.empty()) f.fail("holes", "holes is empty: a drill operation needs at least one hole");
+    }
+
+    if (const Json* value = f.member("grid")) {
+        Fields g(*value, f.path_of("grid"), in.source());
+        JobInput::known_keys(g, {"origin", "countX", "countY", "spacingX", "spacingY", "rotation"});
+        const Vec2 origin = in.point(g, "origin");
+        const int nx = g.integer("countX");
+        if (nx < 1) g.fail("countX", "countX must be 1 or more");
+        const int ny = g.integer("countY");
+        if (ny < 1) g.fail("countY", "countY must be 1 or more");
+        if (static_cast<double>(nx) * ny > max_pattern_holes)
+            g.fail("", fmt::format("a grid of {} x {} holes is too many", nx, ny));
+        const double sx = in.length(g, "spacingX");
+        const double sy = in.length(g, "spacingY");
+        const Vec2 u = unit_vector(g.optional_number("rotation").value_or(0.0));
+        for (int j = 0; j < ny; ++j) {
+            for (int i = 0; i < nx; ++i) {
+                const double lx = i * sx;
+                const double ly = j * sy;
+                holes.push_back({origin.x + lx * u.x - ly * u.y, origin.y + lx * u.y + ly * u.x});
+            }
+        }
+    }
+
+    if (const Json* value = f.member("boltCircle")) {
+        Fields b(*value, f.path_of("boltCircle"), in.source());
+        JobInput::known_keys(b, {"centre", "radius", "count", "startAngle"});
+        const Vec2 centre = in.point(b, "centre");
+        const double radius = in.length(b, "radius");
+        if (radius <= 0) b.fail("radius", "radius must be > 0");
+        const int count = b.integer("count");
+        if (count < 1) b.fail("count", "count must be 1 or more");
+        if (count > max_pattern_holes) b.fail("count", "count is too large");
+        const double start = b.optional_number("startAngle").value_or(0.0);
+        for (int i = 0; i < count; ++i) {
+            const Vec2 u = unit_vector(start + 360.0 * i / count);
+            holes.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
+        }
+    }
+
+    if (const Json* value = f.member("line")) {
+        Fields l(*value, f.path_of("line"), in.source());
+        JobInput::known_keys(l, {"start", "end", "count"});
+        const Vec2 a = in.point(l, "start");
+        const Vec2 b = in.point(l, "end");
+        const int count = l.integer("count");
+        if (count < 1) l.fail("count", "count must be 1 or more");
+        if (count > max_pattern_holes) l.fail("count", "count is too large");
+        if (count == 1) {
+            holes.push_back(a);
+        } else {
+            for (int i = 0; i < count; ++i) {
+                if (i == count - 1) {
+                    holes.push_back(b);  // exactly the end point, no rounding
+                    break;
+                }
+                const double t = static_cast<double>(i) / (count - 1);
+                holes.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});
+            }
+        }
+    }
+}
+
+
+// Reads one optional drilling field: presence, bounds and the cycle's need of it.
+void read_field(Fields& f, const JobInput& in, const DrillFieldInfo& info, CycleKind kind, DrillValues& values) {
+    if (info.quantity == Quantity::choice) return;  // degressionType: read with its partner
+    const std::string_view key = info.key;
+    std::optional<double> v = in.optional_quantity(f, key, info.quantity);
+    if (!v && info.required_by.contains(kind))
+        f.fail(key, fmt::format("cycle {} needs {}{}{}", name_of(cycle_kinds, kind), key,
+                                info.required_hint.empty() ? "" : " ", info.required_hint));
+    if (v && info.min && (info.min->inclusive ? *v < info.min->value : *v <= info.min->value)) {
+        if (!info.bound_message.empty()) f.fail(key, std::string(info.bound_message));
+        f.fail(key, fmt::format("{} must be {} {}", key, info.min->inclusive ? ">=" : ">", info.min->value));
+    }
+    values.set(info.field, v);
+}
+
+// degressionType and degression: a value in mm or a factor, bounded below by minimumDepth.
+void read_degression(Fields& f, const JobInput& in, DrillValues& values) {
+    const DegressionType type = f.choice("degressionType", degression_types, DegressionType::none);
+    values.set_degression_type(type);
+    const std::optional<double> degression = type == DegressionType::factor ? f.optional_number("degression")
+                                                                            : in.optional_length(f, "degression");
+    values.set(DrillField::degression, degression);
+    const std::optional<double> minimum = values.get(DrillField::minimum_depth);
+    switch (type) {
+        case DegressionType::none:
+            if (degression) f.fail("degression", "degression has no effect without degressionType");
+            if (minimum) f.fail("minimumDepth", "minimumDepth has no effect without degressionType");
+            break;
+        case DegressionType::value:
+            if (!degression || *degression <= 0)
+                f.fail("degression", "degressionType value needs a degression > 0 (mm taken off each peck)");
+            break;
+        case DegressionType::factor:
+            if (!degression || *degression <= 0 || *degression > 1)
+                f.fail("degression",
+                       "degressionType factor needs a degression with 0 < degression <= 1 (each "
+                       "peck is the previous one times the factor)");
+            break;
+    }
+    if (type != DegressionType::none && !minimum)
+        f.fail("degressionType",
+               "a degression needs a positive minimumDepth, or the pecks shrink towards zero "
+               "forever");
+}
+
+}  // namespace
+
+DrillPlanes resolve_planes(const DrillParams& p) {
+    DrillPlanes z;
+    z.retract_z = p.retract_plane;
+    z.reference_z = p.reference_plane;
+    z.safe_z = !p.safe_distance               ? p.retract_plane
+               : p.safe_distance_is_absolute ? *p.safe_distance
+                                             : p.reference_plane + *p.safe_distance;
+    z.bottom_z = p.end_depth_is_absolute ? p.end_depth : p.reference_plane - p.end_depth;
+    return z;
+}
+
+DrillOp DrillOp::read(Fields& f, const JobInput& in) {
+    std::vector<std::string_view> keys = {"type", "tool", "comment", "cycle", "retractPlane", "referencePlane",
+                                          "safeDistanceIsAbsolute", "endDepth", "endDepthIsAbsolute", "drillTip",
+                                          "output", "order", "holes", "grid", "boltCircle", "line"};
+    for (const auto& d : drill_fields) keys.push_back(d.key);
+    for (auto key : keys) f.has(key);
+    f.finish();
+    const Tool& tool = in.tool(f);
+
+    DrillOp op;
+    op.path = f.path();
+    op.tool = tool.number;
+    op.comment = f.optional_string("comment").value_or("");
+    DrillParams& p = op.params;
+
+    p.kind = f.choice("cycle", cycle_kinds, CycleKind::drill);
+    const std::string_view cycle_name = name_of(cycle_kinds, p.kind);
+    // Of the parameters this cycle does not use, report the one that comes first in the file.
+    std::optional<std::string_view> unused;
+    int unused_line = 0;
+    for (const auto& d : drill_fields) {
+        if (d.in_planes || !f.has(d.key) || d.used_by.contains(p.kind)) continue;
+        const int line = in.source().lines.line_of(f.path_of(d.key));
+        if (!unused || line < unused_line) {
+            unused = d.key;
+            unused_line = line;
+        }
+    }
+    if (unused) {
+        const std::string_view key = *unused;
+        std::string detail = fmt::format("{} is not used by cycle {} (it uses: {})", key, cycle_name,
+                                         fmt::join(fields_used_by(p.kind), ", "));
+        if (is_tapping(p.kind) && key == key_of(DrillField::plunging_feedrate)) detail += "; a tapping feed is pitch x rpm";
+        f.fail(key, detail);
+    }
+
+    // Planes and depths.
+    p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
+    p.reference_plane = in.optional_length(f, "referencePlane").value_or(0.0);
+    p.safe_distance = in.optional_length(f, "safeDistance");
+    p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
+    p.end_depth = in.length(f, "endDepth");
+    p.end_depth_is_absolute = f.boolean("endDepthIsAbsolute", false);
+
+    if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)
+        f.fail("safeDistance",
+               "a relative safeDistance cannot be negative (it is measured up from "
+               "referencePlane; set safeDistanceIsAbsolute for an absolute Z)");
+    if (!p.end_depth_is_absolute && p.end_depth <= 0)
+        f.fail("endDepth",
+               "a relative endDepth must be > 0 (it is the depth below referencePlane; set "
+               "endDepthIsAbsolute for an absolute Z)");
+    const DrillPlanes z = resolve_planes(p);
+    if (z.bottom_z >= z.safe_z)
+        f.fail("endDepth", fmt::format("endDepth is above the safe distance (hole bottom at Z {}, "
+                                       "safe distance at Z {})",
+                                       in.show(z.bottom_z), in.show(z.safe_z)));
+    if (p.retract_plane < z.safe_z)
+        f.fail("retractPlane",
+               fmt::format("retractPlane is below the safe distance (retract plane at Z {}{}, "
+                           "safe distance at Z {})",
+                           in.show(p.retract_plane), f.has("retractPlane") ? "" : ", the clearance",
+                           in.show(z.safe_z)));
+
+    // The optional fields, by the vocabulary's table; then the degression, which reads two.
+    for (const auto& d : drill_fields)
+        if (!d.in_planes) read_field(f, in, d, p.kind, p.values);
+    read_degression(f, in, p.values);
+
+    p.drill_tip = f.boolean("drillTip", false);
+    if (p.drill_tip && !tool.tip_angle)
+        f.fail("drillTip", fmt::format("drillTip needs the tool's tipAngle, but tool {} ({}) "
+                                       "has none",
+                                       tool.number, tool.path));
+    p.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
+    op.order = f.choice("order", hole_orders, HoleOrder::as_given);
+
+    read_holes(f, in, op.holes);
+    return op;
+}
+
+std::string default_name(const DrillOp& d) {
+    return d.comment.empty() ? fmt::format("drill {} hole{}", d.holes.size(), d.holes.size() == 1 ? "" : "s")
+                             : d.comment;
+}
+
 
 namespace {
 
@@ -93,17 +360,16 @@ std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes) {
 
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     const DrillParams& p = op.params;
+    const DrillPlanes z = resolve_planes(p);
     DrillCycle c;
     c.kind = p.kind;
     c.output = p.output;
     c.path = op.path;
-    c.params = p;
-    c.retract_z = p.retract_plane;
-    c.reference_z = p.reference_plane;
-    c.safe_z = !p.safe_distance ? p.retract_plane
-               : p.safe_distance_is_absolute ? *p.safe_distance
-                                             : p.reference_plane + *p.safe_distance;
-    c.bottom_z = p.end_depth_is_absolute ? p.end_depth : p.reference_plane - p.end_depth;
+    c.values = p.values;
+    c.retract_z = z.retract_z;
+    c.reference_z = z.reference_z;
+    c.safe_z = z.safe_z;
+    c.bottom_z = z.bottom_z;
     if (p.drill_tip && tool.tip_angle) {
         // Tip length of a point of included angle a on diameter d: (d/2) / tan(a/2).
         double half = *tool.tip_angle * std::numbers::pi / 360.0;
@@ -111,8 +377,9 @@ DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     }
     c.spindle_rpm = tool.rpm;
     c.spindle_direction = tool.direction;
-    bool tapping = p.kind == CycleKind::tap || p.kind == CycleKind::tap_left;
-    c.feed = tapping ? p.pitch.value_or(0.0) * p.tapping_speed.value_or(tool.rpm) : p.plunging_feedrate.value_or(0.0);
+    c.feed = is_tapping(p.kind) ? p.values.value_or(DrillField::pitch, 0.0) *
+                                      p.values.value_or(DrillField::tapping_speed, tool.rpm)
+                                : p.values.value_or(DrillField::plunging_feedrate, 0.0);
     return c;
 }
 

@@ -5,7 +5,6 @@
 
 #include "camgen/post/longhand.hpp"
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
 
 namespace camgen {
 
@@ -153,12 +152,6 @@ private:
     std::optional<DrillCycle> cycle_;
 };
 
-class Recorder : public EventSink {
-public:
-    void emit(const Event& e) override { events.push_back(e); }
-    std::vector<Event> events;
-};
-
 }  // namespace
 
 Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine) {
@@ -182,10 +175,8 @@ Trace trace_events(const std::vector<Event>& events, const Machine& machine) {
     return t.finish();
 }
 
-Trace trace_job(const Job& job, const Machine& machine) {
-    Recorder r;
-    expand_job(job, r);
-    Trace t = trace_events(r.events, machine);
+Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine) {
+    Trace t = trace_events(job_events, machine);
     // The posts clamp every feed to the machine's limits (with a warning).
     for (Step& s : t.steps)
         if (s.kind == StepKind::feed) s.feed = std::clamp(s.feed, machine.limits.min_feed, machine.limits.max_feed);

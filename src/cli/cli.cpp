@@ -14,7 +14,6 @@
 #include "camgen/analysis/backplot.hpp"
 #include "camgen/common/error.hpp"
 #include "camgen/events/events.hpp"
-#include "camgen/job/job_json.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/analysis/trace.hpp"
@@ -139,7 +138,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     try {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
         CompareTolerance tolerance = compare_tolerance(machine, resolution);
-        if (auto m = compare_traces(trace_job(job, machine), trace, tolerance)) {
+        if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             return exit_invalid_input;
         }

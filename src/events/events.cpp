@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "camgen/post/machine.hpp"
 
 namespace camgen {
 
@@ -17,7 +16,6 @@ struct overloaded : Ts... {
 
 nlohmann::ordered_json xyz(const Vec3& v) { return {v.x, v.y, v.z}; }
 
-const char* plane_name(Plane p) { return p == Plane::xy ? "xy" : p == Plane::xz ? "xz" : "yz"; }
 
 void put_optional(nlohmann::ordered_json& j, const char* key, const std::optional<double>& v) {
     if (v) j[key] = *v;
@@ -46,7 +44,7 @@ std::string event_to_json(const Event& event) {
                    [&](const Arc& e) {
                        j = {{"event", "arc"},         {"to", xyz(e.to)},
                             {"centre", xyz(e.centre)}, {"direction", e.direction == ArcDirection::cw ? "cw" : "ccw"},
-                            {"plane", plane_name(e.plane)}, {"feed", e.feed}};
+                            {"plane", name_of(plane_names, e.plane)}, {"feed", e.feed}};
                        if (e.turns) j["turns"] = e.turns;
                    },
                    [&](const Dwell& e) { j = {{"event", "dwell"}, {"seconds", e.seconds}}; },
@@ -55,24 +53,18 @@ std::string event_to_json(const Event& event) {
                             {"side", e.side == CompensationSide::off ? "off" : e.side == CompensationSide::left ? "left" : "right"}};
                    },
                    [&](const DrillCycle& e) {
-                       j = {{"event", "drill-cycle"},  {"cycle", cycle_kind_name(e.kind)}, {"path", e.path},
+                       j = {{"event", "drill-cycle"},  {"cycle", name_of(cycle_kinds, e.kind)}, {"path", e.path},
                             {"retractZ", e.retract_z}, {"referenceZ", e.reference_z},     {"safeZ", e.safe_z},
                             {"bottomZ", e.bottom_z},   {"feed", e.feed},                  {"rpm", e.spindle_rpm}};
                        if (e.spindle_direction == SpindleDirection::ccw) j["direction"] = "ccw";
-                       const DrillParams& p = e.params;
-                       put_optional(j, "firstDepth", p.first_depth);
-                       if (p.degression_type != DegressionType::none)
-                           j["degressionType"] = p.degression_type == DegressionType::value ? "value" : "factor";
-                       put_optional(j, "degression", p.degression);
-                       put_optional(j, "minimumDepth", p.minimum_depth);
-                       put_optional(j, "peckingRetract", p.pecking_retract);
-                       put_optional(j, "firstFeedrateFactor", p.first_feedrate_factor);
-                       put_optional(j, "retractFeedrate", p.retract_feedrate);
-                       put_optional(j, "topDwell", p.top_dwell);
-                       put_optional(j, "bottomDwell", p.bottom_dwell);
-                       put_optional(j, "pitch", p.pitch);
-                       put_optional(j, "tappingSpeed", p.tapping_speed);
-                       put_optional(j, "retractSpeed", p.retract_speed);
+                       for (const auto& d : drill_fields) {
+                           const std::optional<double> v = e.values.get(d.field);
+                           if (!v) continue;
+                           if (d.field == DrillField::degression_type)
+                               j[d.key] = name_of(degression_types, e.values.degression_type());
+                           else
+                               j[d.key] = *v;
+                       }
                    },
                    [&](const DrillPoint& e) { j = {{"event", "drill-point"}, {"at", {e.at.x, e.at.y}}}; },
                    [&](const DrillEnd&) { j = {{"event", "drill-end"}}; },

@@ -17,10 +17,10 @@ bool pecks(CycleKind kind) { return kind == CycleKind::deep || kind == CycleKind
 }  // namespace
 
 std::vector<double> peck_depths(const DrillCycle& cycle) {
-    const DrillParams& p = cycle.params;
-    if (!pecks(cycle.kind) || !p.first_depth) return {cycle.bottom_z};
+    const DrillValues& p = cycle.values;
+    if (!pecks(cycle.kind) || !p.get(DrillField::first_depth)) return {cycle.bottom_z};
     std::vector<double> depths;
-    double peck = *p.first_depth;
+    double peck = *p.get(DrillField::first_depth);
     double depth = cycle.safe_z;
     // As LinuxCNC: pecks are measured from the feed-start plane; the last one ends at bottom.
     while (true) {
@@ -32,11 +32,11 @@ std::vector<double> peck_depths(const DrillCycle& cycle) {
         if (depths.size() > max_pecks)
             throw InputError(cycle.path + "/firstDepth",
                              fmt::format("more than {} pecks for one hole; use larger pecks", max_pecks));
-        if (p.degression_type == DegressionType::value)
-            peck -= p.degression.value_or(0.0);
-        else if (p.degression_type == DegressionType::factor)
-            peck *= p.degression.value_or(1.0);
-        if (p.degression_type != DegressionType::none) peck = std::max(peck, p.minimum_depth.value_or(0.0));
+        if (p.degression_type() == DegressionType::value)
+            peck -= p.get(DrillField::degression).value_or(0.0);
+        else if (p.degression_type() == DegressionType::factor)
+            peck *= p.get(DrillField::degression).value_or(1.0);
+        if (p.degression_type() != DegressionType::none) peck = std::max(peck, p.get(DrillField::minimum_depth).value_or(0.0));
     }
     depths.push_back(cycle.bottom_z);
     return depths;
@@ -44,7 +44,7 @@ std::vector<double> peck_depths(const DrillCycle& cycle) {
 
 std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options) {
-    const DrillParams& p = cycle.params;
+    const DrillValues& p = cycle.values;
     std::vector<Event> ev;
     auto at = [&](double z) { return Vec3{hole.x, hole.y, z}; };
     double z = from.z;
@@ -57,10 +57,10 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
     if (from.x != hole.x || from.y != hole.y) ev.emplace_back(Rapid{at(z)});
     if (z != cycle.safe_z) ev.emplace_back(Rapid{at(cycle.safe_z)});
     auto top_dwell = [&] {
-        if (p.top_dwell && *p.top_dwell > 0.0) ev.emplace_back(Dwell{*p.top_dwell});
+        if (p.get(DrillField::top_dwell) && *p.get(DrillField::top_dwell) > 0.0) ev.emplace_back(Dwell{*p.get(DrillField::top_dwell)});
     };
     auto bottom_dwell = [&] {
-        if (p.bottom_dwell && *p.bottom_dwell > 0.0) ev.emplace_back(Dwell{*p.bottom_dwell});
+        if (p.get(DrillField::bottom_dwell) && *p.get(DrillField::bottom_dwell) > 0.0) ev.emplace_back(Dwell{*p.get(DrillField::bottom_dwell)});
     };
     // From the feed-start plane up to the retract plane, when they differ.
     auto rapid_to_retract = [&] {
@@ -75,7 +75,7 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             ev.emplace_back(Rapid{at(cycle.retract_z)});
         }
     };
-    const double first_feed = cycle.feed * p.first_feedrate_factor.value_or(1.0);
+    const double first_feed = cycle.feed * p.get(DrillField::first_feedrate_factor).value_or(1.0);
     const SpindleState forward =
         cycle.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
 
@@ -86,14 +86,14 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             top_dwell();
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
-            retract_out(p.retract_feedrate);
+            retract_out(p.get(DrillField::retract_feedrate));
             break;
         case CycleKind::deep:
         case CycleKind::chip_break: {
             // G83: after each peck rapid to R, rapid down to clearance above the last peck.
             // G73: after each peck rapid up by the back-off only.
             const std::vector<double> depths = peck_depths(cycle);
-            const double back_off = p.pecking_retract.value_or(options.peck_clearance);
+            const double back_off = p.get(DrillField::pecking_retract).value_or(options.peck_clearance);
             top_dwell();
             for (size_t k = 0; k < depths.size(); ++k) {
                 ev.emplace_back(Linear{at(depths[k]), k == 0 ? first_feed : cycle.feed});
@@ -107,7 +107,7 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
                 }
             }
             bottom_dwell();
-            retract_out(p.retract_feedrate);
+            retract_out(p.get(DrillField::retract_feedrate));
             break;
         }
         case CycleKind::tap:
@@ -116,10 +116,10 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             // restore the spindle, rapid to the retract plane.
             const SpindleState in = cycle.kind == CycleKind::tap ? SpindleState::cw : SpindleState::ccw;
             const SpindleState out = cycle.kind == CycleKind::tap ? SpindleState::ccw : SpindleState::cw;
-            const double pitch = p.pitch.value_or(0.0);
-            const double rpm_in = p.tapping_speed.value_or(cycle.spindle_rpm);
-            const double rpm_out = p.retract_speed.value_or(rpm_in);
-            if (p.tapping_speed || in != forward) ev.emplace_back(Spindle{in, rpm_in});
+            const double pitch = p.get(DrillField::pitch).value_or(0.0);
+            const double rpm_in = p.get(DrillField::tapping_speed).value_or(cycle.spindle_rpm);
+            const double rpm_out = p.get(DrillField::retract_speed).value_or(rpm_in);
+            if (p.get(DrillField::tapping_speed) || in != forward) ev.emplace_back(Spindle{in, rpm_in});
             ev.emplace_back(Linear{at(cycle.bottom_z), pitch * rpm_in});
             bottom_dwell();
             ev.emplace_back(Spindle{out, rpm_out});
@@ -132,7 +132,7 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             // G85: feed in, feed out to R (at the retract feed when set), rapid on.
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
-            ev.emplace_back(Linear{at(cycle.safe_z), p.retract_feedrate.value_or(cycle.feed)});
+            ev.emplace_back(Linear{at(cycle.safe_z), p.get(DrillField::retract_feedrate).value_or(cycle.feed)});
             rapid_to_retract();
             break;
         case CycleKind::bore_stop:
@@ -147,7 +147,7 @@ std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec
             // G89: feed in, dwell, feed out - to R (Fanuc) or to the retract level (LinuxCNC).
             ev.emplace_back(Linear{at(cycle.bottom_z), cycle.feed});
             bottom_dwell();
-            const double out_feed = p.retract_feedrate.value_or(cycle.feed);
+            const double out_feed = p.get(DrillField::retract_feedrate).value_or(cycle.feed);
             if (options.bore_dwell_feed_out == BoreDwellFeedOut::to_retract) {
                 ev.emplace_back(Linear{at(cycle.retract_z), out_feed});
             } else {

@@ -13,29 +13,6 @@ namespace camgen {
 
 namespace {
 
-constexpr std::pair<DrillField, const char*> field_names[] = {
-    {DrillField::safe_distance, "safeDistance"},
-    {DrillField::plunging_feedrate, "plungingFeedrate"},
-    {DrillField::retract_feedrate, "retractFeedrate"},
-    {DrillField::first_depth, "firstDepth"},
-    {DrillField::degression_type, "degressionType"},
-    {DrillField::degression, "degression"},
-    {DrillField::minimum_depth, "minimumDepth"},
-    {DrillField::pecking_retract, "peckingRetract"},
-    {DrillField::first_feedrate_factor, "firstFeedrateFactor"},
-    {DrillField::top_dwell, "topDwell"},
-    {DrillField::bottom_dwell, "bottomDwell"},
-    {DrillField::pitch, "pitch"},
-    {DrillField::tapping_speed, "tappingSpeed"},
-    {DrillField::retract_speed, "retractSpeed"},
-};
-
-constexpr std::pair<CycleKind, const char*> kind_names[] = {
-    {CycleKind::drill, "drill"},       {CycleKind::dwell, "dwell"},         {CycleKind::deep, "deep"},
-    {CycleKind::chip_break, "chip-break"}, {CycleKind::tap, "tap"},         {CycleKind::tap_left, "tap-left"},
-    {CycleKind::ream, "ream"},         {CycleKind::bore_stop, "bore-stop"}, {CycleKind::bore_dwell, "bore-dwell"},
-};
-
 const char* format_names[] = {"xyz", "ijk", "feed", "rpm", "dwell", "angle", "code"};
 
 nc::FormatSpec default_format(const std::string& key) {
@@ -64,18 +41,6 @@ nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base) {
 }
 
 }  // namespace
-
-const char* drill_field_name(DrillField field) {
-    for (auto [f, n] : field_names)
-        if (f == field) return n;
-    return "?";
-}
-
-const char* cycle_kind_name(CycleKind kind) {
-    for (auto [k, n] : kind_names)
-        if (k == kind) return n;
-    return "?";
-}
 
 nc::Format Machine::format(const std::string& key) const {
     nc::FormatSpec spec = default_format(key);
@@ -110,7 +75,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.description = f.string("description");
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
-    m.units = f.choice<Units>("units", {{"mm", Units::mm}, {"inch", Units::inch}}, Units::mm);
+    m.units = f.choice("units", unit_names, Units::mm);
     if (const auto* g = f.member("globals")) {
         json::Fields gf(*g, "/globals", source);
         auto mark = gf.optional_string("decimalMark").value_or(".");
@@ -209,9 +174,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             for (size_t i = 0; i < planes->size(); ++i) {
                 const auto& p = (*planes)[i];
                 std::string s = p.is_string() ? p.get<std::string>() : "";
-                if (s == "xy") m.arcs.planes.push_back(Plane::xy);
-                else if (s == "xz") m.arcs.planes.push_back(Plane::xz);
-                else if (s == "yz") m.arcs.planes.push_back(Plane::yz);
+                if (auto plane = value_named(plane_names, s)) m.arcs.planes.push_back(*plane);
                 else json::fail(source, fmt::format("/arcs/planes/{}", i), "expected \"xy\", \"xz\" or \"yz\"");
             }
         }
@@ -249,26 +212,19 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 DrillingCycleSpec c;
                 c.name = cf.string("name");
                 std::string kind = cf.string("kind");
-                bool found = false;
-                for (auto [k, n] : kind_names)
-                    if (kind == n) c.kind = k, found = true;
-                if (!found) {
-                    std::vector<std::string> names;
-                    for (auto [k, n] : kind_names) names.emplace_back(n);
-                    cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names, ", ")));
-                }
+                if (auto k = value_named(cycle_kinds, kind))
+                    c.kind = *k;
+                else
+                    cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names_of(cycle_kinds), ", ")));
                 c.canned = cf.boolean("canned", true);
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {
                         std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
-                        bool ok = false;
-                        for (auto [fld, n] : field_names)
-                            if (fn == n) c.fields.push_back(fld), ok = true;
-                        if (!ok) {
-                            std::vector<std::string> names;
-                            for (auto [fld, n] : field_names) names.emplace_back(n);
-                            auto hint = json::did_you_mean(fn, names);
+                        const auto field = drill_field_named(fn);
+                        if (field) c.fields.push_back(*field);
+                        if (!field) {
+                            auto hint = json::did_you_mean(fn, drill_field_keys());
                             json::fail(source, fmt::format("{}/fields/{}", path, j),
                                        fmt::format("unknown drilling field \"{}\"{}", fn,
                                                    hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : ""));
@@ -339,7 +295,7 @@ std::string describe_machine(const Machine& m) {
     line("arcs", fmt::format("{}, at most {} degrees a block, helices {}", arcs[static_cast<int>(m.arcs.format)], m.arcs.max_sweep,
                              m.arcs.helical ? "allowed" : "as lines"));
     std::vector<std::string> planes;
-    for (Plane p : m.arcs.planes) planes.emplace_back(p == Plane::xy ? "xy" : p == Plane::xz ? "xz" : "yz");
+    for (Plane p : m.arcs.planes) planes.emplace_back(name_of(plane_names, p));
     line("arc planes", fmt::format("{} (others as lines)", fmt::join(planes, ", ")));
     auto limit = [](const std::optional<double>& v) { return v ? fmt::format("{} mm", *v) : std::string("none"); };
     line("arc tolerance", fmt::format("{} mm (start and end radii after rounding)", m.tolerance));
@@ -359,16 +315,16 @@ std::string describe_machine(const Machine& m) {
     line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
                                                                                  : "to the retract level");
     s += "drilling cycles (MillDrillingFields)\n";
-    for (CycleKind k : {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break, CycleKind::tap,
-                        CycleKind::tap_left, CycleKind::ream, CycleKind::bore_stop, CycleKind::bore_dwell}) {
+    for (const auto& named : cycle_kinds) {
+        const CycleKind k = named.value;
         const DrillingCycleSpec* c = m.canned_cycle(k);
         if (!c) {
-            line(cycle_kind_name(k), "longhand");
+            line(named.name, "longhand");
             continue;
         }
         std::vector<std::string> f;
-        for (DrillField d : c->fields) f.emplace_back(drill_field_name(d));
-        line(cycle_kind_name(k), fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
+        for (DrillField d : c->fields) f.emplace_back(key_of(d));
+        line(named.name, fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
     }
     return s;
 }

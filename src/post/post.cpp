@@ -200,22 +200,13 @@ std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingC
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
-    const DrillParams& p = cycle.params;
     std::vector<DrillField> f;
-    if (cycle.safe_z != cycle.retract_z) f.push_back(DrillField::safe_distance);
-    if (p.plunging_feedrate) f.push_back(DrillField::plunging_feedrate);
-    if (p.retract_feedrate) f.push_back(DrillField::retract_feedrate);
-    if (p.first_depth) f.push_back(DrillField::first_depth);
-    if (p.degression_type != DegressionType::none) f.push_back(DrillField::degression_type);
-    if (p.degression) f.push_back(DrillField::degression);
-    if (p.minimum_depth) f.push_back(DrillField::minimum_depth);
-    if (p.pecking_retract) f.push_back(DrillField::pecking_retract);
-    if (p.first_feedrate_factor && *p.first_feedrate_factor != 1.0) f.push_back(DrillField::first_feedrate_factor);
-    if (p.top_dwell && *p.top_dwell > 0.0) f.push_back(DrillField::top_dwell);
-    if (p.bottom_dwell && *p.bottom_dwell > 0.0) f.push_back(DrillField::bottom_dwell);
-    if (p.pitch) f.push_back(DrillField::pitch);
-    if (p.tapping_speed) f.push_back(DrillField::tapping_speed);
-    if (p.retract_speed) f.push_back(DrillField::retract_speed);
+    for (const auto& d : drill_fields) {
+        // A field resolved into the planes (safeDistance) is used when the feed starts below
+        // the retract plane.
+        const bool used = d.in_planes ? cycle.safe_z != cycle.retract_z : cycle.values.used(d.field);
+        if (used) f.push_back(d.field);
+    }
     return f;
 }
 
@@ -225,16 +216,16 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
     std::vector<std::string> missing;
     if (spec)
         for (DrillField f : drill_fields_used(cycle))
-            if (!contains(spec->fields, f)) missing.emplace_back(drill_field_name(f));
+            if (!contains(spec->fields, f)) missing.emplace_back(std::string(key_of(f)));
     std::optional<std::string> limit = spec && missing.empty() ? canned_limit(cycle, *spec) : std::nullopt;
     if (cycle.output == CycleOutput::automatic) return spec && missing.empty() && !limit ? spec : nullptr;
     if (!spec)
         throw InputError(cycle.path + "/output",
                          fmt::format("machine {} has no canned cycle for \"{}\"; use \"auto\" or \"longhand\"",
-                                     machine_.name, cycle_kind_name(cycle.kind)));
+                                     machine_.name, name_of(cycle_kinds, cycle.kind)));
     if (!missing.empty()) {
         std::vector<std::string> offered;
-        for (DrillField f : spec->fields) offered.emplace_back(drill_field_name(f));
+        for (DrillField f : spec->fields) offered.emplace_back(std::string(key_of(f)));
         throw InputError(cycle.path + "/output",
                          fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, spec->name,
                                      fmt::join(missing, ", "), offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));

@@ -531,16 +531,6 @@ std::optional<NcReader::ArcWords> NcReader::move_or_arc(int motion, Plane plane,
 
 // ---- drilling ----
 
-void set_canned_planes(DrillCycle& c) {
-    c.output = CycleOutput::canned;
-    DrillParams& p = c.params;
-    p.output = CycleOutput::canned;
-    p.retract_plane = c.retract_z;
-    p.reference_plane = c.reference_z;
-    p.end_depth = c.bottom_z;
-    p.end_depth_is_absolute = true;
-}
-
 void NcReader::drill_cycle(const DrillCycle& cycle) {
     try {
         (void)peck_depths(cycle);
@@ -560,7 +550,7 @@ void NcReader::drill_point(Vec2 at) {
     // adds the rounding of its depth, and a degression the rounding of its value once more
     // per peck.
     const double n = static_cast<double>(peck_depths(*cycle_).size());
-    const bool degressive = cycle_->params.degression_type != DegressionType::none;
+    const bool degressive = cycle_->values.degression_type() != DegressionType::none;
     const double uncertainty = resolution().position * (1.0 + n + (degressive ? n * (n - 1.0) / 2.0 : 0.0));
     emit(DrillPoint{at}, false, uncertainty);
     // DrillCycle's contract: between holes the tool returns to the retract plane.

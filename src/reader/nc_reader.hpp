@@ -43,10 +43,6 @@ struct Block {
 // A G or M code in tenths, so that G33.1 and G81 are both exact: code(81) == 810.
 constexpr int code(double c) { return static_cast<int>(c * 10.0 + (c < 0 ? -0.5 : 0.5)); }
 
-// Marks a drilling cycle read from a program as canned and gives its parameters the cycle's
-// planes: retract and reference plane, the bottom as an absolute end depth. Set retract_z,
-// reference_z and bottom_z first.
-void set_canned_planes(DrillCycle& c);
 
 class NcReader {
 public:

@@ -56,15 +56,10 @@ DrillCycle make_cycle(CycleKind kind, double retract_z, CycleOutput output) {
     c.bottom_z = bottom;
     c.feed = 100.0;
     c.spindle_rpm = 1000.0;
-    c.params.kind = kind;
-    c.params.retract_plane = retract_z;
-    c.params.safe_distance = r_plane;
-    c.params.end_depth = -bottom;
-    c.params.plunging_feedrate = 100.0;
-    c.params.output = output;
-    if (kind == CycleKind::deep || kind == CycleKind::chip_break) c.params.first_depth = 3.0;
+    c.values.set(DrillField::plunging_feedrate, 100.0);
+    if (kind == CycleKind::deep || kind == CycleKind::chip_break) c.values.set(DrillField::first_depth, 3.0);
     if (kind == CycleKind::dwell || kind == CycleKind::bore_dwell || kind == CycleKind::bore_stop)
-        c.params.bottom_dwell = 0.5;
+        c.values.set(DrillField::bottom_dwell, 0.5);
     return c;
 }
 

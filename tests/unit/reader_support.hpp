@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "camgen/job/job_json.hpp"
+#include "operations/registry.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"
 
@@ -26,7 +26,7 @@ inline std::string round_trip(const std::string& job_json, const std::string& pr
     Machine m = load_machine(machine_name);
     Job job = read_job(job_json, "job.json");
     Trace actual = trace_program(read_program(program, m, "prog"), m);
-    auto mismatch = compare_traces(trace_job(job, m), actual, compare_tolerance(m, 0.0));
+    auto mismatch = compare_traces(trace_expected(expand_job(job), m), actual, compare_tolerance(m, 0.0));
     return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
 }
 
@@ -34,7 +34,7 @@ inline std::string round_trip(const std::string& job_json, const std::string& pr
 inline std::string round_trip_machine(const Job& job, const std::string& program, const Machine& m) {
     ReadResolution res;
     Trace actual = trace_program(read_program(program, m, "prog", &res), m);
-    auto mismatch = compare_traces(trace_job(job, m), actual, compare_tolerance(m, res, 0.0));
+    auto mismatch = compare_traces(trace_expected(expand_job(job), m), actual, compare_tolerance(m, res, 0.0));
     return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
 }
 

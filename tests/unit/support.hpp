@@ -11,9 +11,8 @@
 
 #include "camgen/cli/cli.hpp"
 #include "camgen/common/error.hpp"
-#include "camgen/job/job_json.hpp"
-#include "camgen/post/machine.hpp"
 #include "operations/registry.hpp"
+#include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
 
 namespace camgen::test {

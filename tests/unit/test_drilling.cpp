@@ -198,11 +198,11 @@ TEST_CASE("peck depths: from the feed-start plane, degression bounded by minimum
     c.kind = CycleKind::deep;
     c.safe_z = 2.0;
     c.bottom_z = -7.0;
-    c.params.first_depth = 3.0;
+    c.values.set(DrillField::first_depth, 3.0);
     CHECK(peck_depths(c) == std::vector<double>{-1.0, -4.0, -7.0});
-    c.params.degression_type = DegressionType::value;
-    c.params.degression = 1.0;
-    c.params.minimum_depth = 1.5;
+    c.values.set_degression_type(DegressionType::value);
+    c.values.set(DrillField::degression, 1.0);
+    c.values.set(DrillField::minimum_depth, 1.5);
     c.bottom_z = -10.0;
     // 3, 2, 1.5, 1.5, ... from 2: -1, -3, -4.5, -6, -7.5, -9, -10
     CHECK(peck_depths(c) == std::vector<double>{-1.0, -3.0, -4.5, -6.0, -7.5, -9.0, -10.0});
@@ -301,7 +301,7 @@ std::string cycle_table() {
     s += "\n";
     for (CycleKind k : {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break, CycleKind::tap,
                         CycleKind::tap_left, CycleKind::ream, CycleKind::bore_stop, CycleKind::bore_dwell}) {
-        s += fmt::format("| `{}` |", cycle_kind_name(k));
+        s += fmt::format("| `{}` |", std::string(name_of(cycle_kinds, k)));
         for (const Machine& m : machines) {
             const DrillingCycleSpec* c = m.canned_cycle(k);
             s += c ? fmt::format(" `{}` |", c->name) : std::string(" longhand |");
@@ -322,8 +322,8 @@ TEST_CASE("README's cycle table equals the machines' drilling tables and --descr
         const std::string d = describe_machine(m);
         for (CycleKind k : {CycleKind::drill, CycleKind::deep, CycleKind::tap, CycleKind::bore_dwell}) {
             const DrillingCycleSpec* c = m.canned_cycle(k);
-            std::string label = fmt::format("{:<24}", cycle_kind_name(k));
-            INFO(name << " " << cycle_kind_name(k));
+            std::string label = fmt::format("{:<24}", std::string(name_of(cycle_kinds, k)));
+            INFO(name << " " << std::string(name_of(cycle_kinds, k)));
             CHECK(has(d, "  " + label + (c ? "canned " + c->name + ";" : std::string("longhand"))));
         }
     }

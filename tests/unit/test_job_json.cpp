@@ -9,7 +9,7 @@
 #include <string>
 
 #include "camgen/common/error.hpp"
-#include "camgen/job/job_json.hpp"
+#include "operations/registry.hpp"
 #include "operations/registry.hpp"
 
 using namespace camgen;
@@ -142,12 +142,12 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK_FALSE(pa.safe_distance_is_absolute);
     CHECK(pa.end_depth == 12);
     CHECK_FALSE(pa.end_depth_is_absolute);
-    CHECK(pa.degression_type == DegressionType::none);
-    CHECK(pa.plunging_feedrate == 120.0);
-    CHECK_FALSE(pa.retract_feedrate.has_value());
-    CHECK_FALSE(pa.top_dwell.has_value());
-    CHECK_FALSE(pa.bottom_dwell.has_value());
-    CHECK_FALSE(pa.first_depth.has_value());
+    CHECK(pa.values.degression_type() == DegressionType::none);
+    CHECK(pa.values.get(DrillField::plunging_feedrate) == 120.0);
+    CHECK_FALSE(pa.values.get(DrillField::retract_feedrate).has_value());
+    CHECK_FALSE(pa.values.get(DrillField::top_dwell).has_value());
+    CHECK_FALSE(pa.values.get(DrillField::bottom_dwell).has_value());
+    CHECK_FALSE(pa.values.get(DrillField::first_depth).has_value());
     CHECK_FALSE(pa.drill_tip);
     CHECK(pa.output == CycleOutput::automatic);
     REQUIRE(a.holes.size() == 2);
@@ -164,15 +164,15 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK(pb.safe_distance == 2.0);
     CHECK(pb.end_depth == -20);
     CHECK(pb.end_depth_is_absolute);
-    CHECK(pb.first_depth == 4.0);
-    CHECK(pb.degression_type == DegressionType::value);
-    CHECK(pb.degression == 0.5);
-    CHECK(pb.minimum_depth == 1.0);
-    CHECK(pb.retract_feedrate == 500.0);
-    CHECK(pb.plunging_feedrate == 80.0);
-    CHECK(pb.first_feedrate_factor == 0.5);
-    CHECK(pb.top_dwell == 0.2);
-    CHECK(pb.bottom_dwell == 0.0);
+    CHECK(pb.values.get(DrillField::first_depth) == 4.0);
+    CHECK(pb.values.degression_type() == DegressionType::value);
+    CHECK(pb.values.get(DrillField::degression) == 0.5);
+    CHECK(pb.values.get(DrillField::minimum_depth) == 1.0);
+    CHECK(pb.values.get(DrillField::retract_feedrate) == 500.0);
+    CHECK(pb.values.get(DrillField::plunging_feedrate) == 80.0);
+    CHECK(pb.values.get(DrillField::first_feedrate_factor) == 0.5);
+    CHECK(pb.values.get(DrillField::top_dwell) == 0.2);
+    CHECK(pb.values.get(DrillField::bottom_dwell) == 0.0);
     CHECK(pb.drill_tip);
     CHECK(pb.output == CycleOutput::longhand);
     REQUIRE(b.holes.size() == 2);
@@ -238,13 +238,13 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
     CHECK(p.reference_plane == doctest::Approx(2.54));
     CHECK(*p.safe_distance == doctest::Approx(2.54));
     CHECK(p.end_depth == doctest::Approx(12.7));
-    CHECK(*p.first_depth == doctest::Approx(5.08));
-    CHECK(*p.degression == doctest::Approx(0.8));  // a factor: unchanged
-    CHECK(*p.minimum_depth == doctest::Approx(1.27));
-    CHECK(*p.plunging_feedrate == doctest::Approx(254));
-    CHECK(*p.retract_feedrate == doctest::Approx(508));
-    CHECK(*p.first_feedrate_factor == 0.5);
-    CHECK(*p.bottom_dwell == 1.5);
+    CHECK(*p.values.get(DrillField::first_depth) == doctest::Approx(5.08));
+    CHECK(*p.values.get(DrillField::degression) == doctest::Approx(0.8));  // a factor: unchanged
+    CHECK(*p.values.get(DrillField::minimum_depth) == doctest::Approx(1.27));
+    CHECK(*p.values.get(DrillField::plunging_feedrate) == doctest::Approx(254));
+    CHECK(*p.values.get(DrillField::retract_feedrate) == doctest::Approx(508));
+    CHECK(*p.values.get(DrillField::first_feedrate_factor) == 0.5);
+    CHECK(*p.values.get(DrillField::bottom_dwell) == 1.5);
     const auto& holes = drill(job, 0).holes;
     REQUIRE(holes.size() == 4);
     check_point(holes[0], 25.4, 50.8);
@@ -253,18 +253,18 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
     check_point(holes[3], 0, 25.4);     // bolt circle at 90 degrees
 
     const DrillOp& cb = drill(job, 1);
-    CHECK(*cb.params.pecking_retract == doctest::Approx(0.508));
-    CHECK(*cb.params.degression == doctest::Approx(0.254));  // a value: converted
+    CHECK(*cb.params.values.get(DrillField::pecking_retract) == doctest::Approx(0.508));
+    CHECK(*cb.params.values.get(DrillField::degression) == doctest::Approx(0.254));  // a value: converted
     REQUIRE(cb.holes.size() == 3);
     check_point(cb.holes[1], 25.4, 0);
     check_point(cb.holes[2], 50.8, 0);
 
     const DrillParams& tap = drill(job, 2).params;
     CHECK(tap.kind == CycleKind::tap);
-    CHECK(*tap.pitch == doctest::Approx(1.27));
-    CHECK(*tap.tapping_speed == 300);
-    CHECK(*tap.retract_speed == 600);
-    CHECK_FALSE(tap.plunging_feedrate.has_value());
+    CHECK(*tap.values.get(DrillField::pitch) == doctest::Approx(1.27));
+    CHECK(*tap.values.get(DrillField::tapping_speed) == 300);
+    CHECK(*tap.values.get(DrillField::retract_speed) == 600);
+    CHECK_FALSE(tap.values.get(DrillField::plunging_feedrate).has_value());
 
     const auto& c = std::get<ContourOp>(job.operations.at(3));
     CHECK(c.depth == doctest::Approx(-2.54));
@@ -629,8 +629,8 @@ TEST_CASE("degression") {
                 "/operations/0/degressionType", 12, "\"linear\" is not one of \"none\", \"value\" or \"factor\"");
     const Job ok = read_job(drill_job(deep + R"(      "degressionType": "factor", "degression": 1, "minimumDepth": 1)"),
                             "j.json");
-    CHECK(drill(ok).params.degression_type == DegressionType::factor);
-    CHECK(drill(ok).params.degression == 1.0);
+    CHECK(drill(ok).params.values.degression_type() == DegressionType::factor);
+    CHECK(drill(ok).params.values.get(DrillField::degression) == 1.0);
 }
 
 TEST_CASE("drillTip needs a tool with a tipAngle") {

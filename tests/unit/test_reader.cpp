@@ -392,7 +392,7 @@ TEST_CASE("block styles: no separator, decimal comma, sequence numbers, CRLF") {
             std::string text = out.str();
             CHECK(text.find("X10,5") == std::string::npos);  // (no half millimetres in the samples)
             CHECK(text.find("\r\nN") != std::string::npos);
-            auto mismatch = compare_traces(trace_job(job, m), trace_program(read_program(text, m), m), compare_tolerance(m, 0.0));
+            auto mismatch = compare_traces(trace_expected(expand_job(job), m), trace_program(read_program(text, m), m), compare_tolerance(m, 0.0));
             CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
         }
     }

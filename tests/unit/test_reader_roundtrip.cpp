@@ -48,7 +48,7 @@ TEST_CASE("every golden file reads back to the motion of its job") {
         std::vector<ReadEvent> events;
         REQUIRE_NOTHROW(events = read_program(test::read_file(golden.string()), machine, golden.string()));
         Trace actual = trace_program(events, machine);
-        Trace expected = trace_job(job, machine);
+        Trace expected = trace_expected(expand_job(job), machine);
         auto mismatch = compare_traces(expected, actual, compare_tolerance(machine, 0.0));
         CHECK_MESSAGE(!mismatch, (mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : ""));
         CHECK(actual.holes.size() == expected.holes.size());
@@ -85,7 +85,7 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
             std::vector<ReadEvent> events;
             REQUIRE_NOTHROW(events = read_program(out.str(), machine, "inch", &res));
             CHECK(res.position > read_resolution(load_machine(name)).position);  // read in inches
-            auto mismatch = compare_traces(trace_job(job, machine), trace_program(events, machine), compare_tolerance(machine, res, 0.0));
+            auto mismatch = compare_traces(trace_expected(expand_job(job), machine), trace_program(events, machine), compare_tolerance(machine, res, 0.0));
             CHECK_MESSAGE(!mismatch, (mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : ""));
             ++checked;
         }

@@ -9,7 +9,6 @@
 
 #include "camgen/geometry/arc.hpp"
 #include "camgen/events/events.hpp"
-#include "camgen/job/job.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/reader/reader.hpp"
 
@@ -63,9 +62,9 @@ Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine
 // change, as in the posts).
 Trace trace_events(const std::vector<Event>& events, const Machine& machine);
 
-// The motion a job should make on `machine`: its events with feeds clamped to the machine's
-// limits, as every post writes them.
-Trace trace_job(const Job& job, const Machine& machine);
+// The motion a job's events (expand_job) should make on `machine`: feeds clamped to the
+// machine's limits, as every post writes them.
+Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine);
 
 // How close two traces must be.
 struct CompareTolerance {

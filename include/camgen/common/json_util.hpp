@@ -5,10 +5,13 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen::json {
 
@@ -84,14 +87,26 @@ public:
         fail_choice(key, *text, names);
     }
 
+    // One of the names of a vocabulary table; the error lists the names.
+    template <class E, std::size_t N>
+    E choice(std::string_view key, const Named<E> (&table)[N],
+             std::type_identity_t<std::optional<E>> fallback = std::nullopt) {
+        auto text = fallback ? optional_string(key) : std::optional<std::string>(string(key));
+        if (!text) return *fallback;
+        if (auto v = value_named(table, *text)) return *v;
+        fail_choice(key, *text, names_of(table));
+    }
+
     // Throws InputError at /path/key (or at /path when key is empty).
     [[noreturn]] void fail(std::string_view key, const std::string& detail) const;
     // Reports keys that were never read. Call after reading every known key.
     void finish() const;
 
-private:
+    // The error for a string that is none of `names`, with a "did you mean" hint.
     [[noreturn]] void fail_choice(std::string_view key, const std::string& got,
                                   const std::vector<std::string>& names) const;
+
+private:
     const nlohmann::json& value_;
     std::string path_;
     const Source& source_;

@@ -5,10 +5,11 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "camgen/geometry/arc.hpp"
 #include "camgen/geometry/geometry.hpp"
-#include "camgen/job/job.hpp"
+#include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen {
 
@@ -104,7 +105,7 @@ struct DrillCycle {
     double feed = 0.0;                 // mm/min, plunge (for taps: pitch x tapping rpm)
     double spindle_rpm = 0.0;          // the spindle speed the operation runs at
     SpindleDirection spindle_direction = SpindleDirection::cw;  // the operation's spindle direction
-    DrillParams params;                // the parameters as the job set them (for field checks)
+    DrillValues values;                // the optional fields set, resolved (mm, mm/min, s, rpm)
     friend bool operator==(const DrillCycle&, const DrillCycle&) = default;
 };
 
@@ -133,6 +134,13 @@ class EventSink {
 public:
     virtual ~EventSink() = default;
     virtual void emit(const Event& event) = 0;
+};
+
+// Keeps every event it receives.
+class EventRecorder : public EventSink {
+public:
+    void emit(const Event& event) override { events.push_back(event); }
+    std::vector<Event> events;
 };
 
 // Writes each event as one JSON object per line (`camgen --events`).

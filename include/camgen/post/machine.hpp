@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "camgen/job/job.hpp"
+#include "camgen/vocabulary/vocabulary.hpp"
 #include "camgen/post/longhand.hpp"
 #include "camgen/nc/block_writer.hpp"
 #include "camgen/nc/format.hpp"
@@ -20,19 +20,6 @@ enum class ArcFormat { ijk_relative, ijk_absolute, radius, nccad_angle };
 
 // How feeds are written: mm/min (in/min for inch output), or nccad's 0.1 mm/s.
 enum class FeedUnit { per_minute, tenth_mm_per_second };
-
-// Drilling parameters a canned cycle can carry (the MillDrillingFields of CNC-Calc, plus
-// safeDistance for controls whose cycle has no separate feed-start plane).
-enum class DrillField {
-    safe_distance, plunging_feedrate, retract_feedrate, first_depth, degression_type,
-    degression, minimum_depth, pecking_retract, first_feedrate_factor, top_dwell,
-    bottom_dwell, pitch, tapping_speed, retract_speed
-};
-
-// The job-file name of a drilling field ("plungingFeedrate").
-const char* drill_field_name(DrillField field);
-// The job-file name of a cycle kind ("chip-break").
-const char* cycle_kind_name(CycleKind kind);
 
 // One drilling cycle the machine offers (a MillDrillingFields entry).
 struct DrillingCycleSpec {

@@ -1,0 +1,71 @@
+#pragma once
+// Reading a job file: the parsed document, its header and tool table, and the checked
+// accessors every operation's reader uses (lengths in the file's units, points, arrays), each
+// error naming the JSON path and line.
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "camgen/common/json_util.hpp"
+#include "camgen/job/job.hpp"
+
+namespace camgen {
+
+// Sanity bounds for values in a job.
+inline constexpr double max_job_length = 1e6;  // mm or mm/min: 1 km, 1 km/min
+
+class JobInput {
+public:
+    using Json = nlohmann::json;
+    using Fields = json::Fields;
+
+    // Parses `text`. Throws InputError naming the line for a syntax error.
+    JobInput(std::string_view text, const std::string& source_name);
+
+    // Reads the header and the tool table (the top-level keys besides "operations", which are
+    // marked known). Returns the top-level object's fields for the caller to read on.
+    Fields read_header(std::initializer_list<std::string_view> other_top_keys);
+    const JobHeader& header() const { return header_; }
+    JobHeader take_header() { return std::move(header_); }
+    const json::Source& source() const { return source_; }
+    const Json& root() const { return root_; }
+
+    // A length or feed in the file's units, as mm (mm/min), within +-max_job_length.
+    double checked_length(double value, const std::string& path) const;
+    double length(Fields& f, std::string_view key) const { return checked_length(f.number(key), f.path_of(key)); }
+    std::optional<double> optional_length(Fields& f, std::string_view key) const;
+    // A value of `quantity` in the file's units, in internal units (lengths and feeds scaled).
+    std::optional<double> optional_quantity(Fields& f, std::string_view key, Quantity quantity) const;
+    double coordinate(const Json& value, const std::string& path) const;
+    // A point [x, y].
+    Vec2 point(const Json& value, const std::string& path) const;
+    Vec2 point(Fields& f, std::string_view key) const { return point(f.required(key), f.path_of(key)); }
+    // A point [x, y] (at Z `z`, mm) or [x, y, z].
+    Vec3 point3(const Json& value, const std::string& path, double z) const;
+    Vec3 point3(Fields& f, std::string_view key, double z) const { return point3(f.required(key), f.path_of(key), z); }
+    // A required array member.
+    const Json& array(Fields& f, std::string_view key) const;
+    // A length in mm as the file writes it, for messages ("12.000 mm", "0.5000 in").
+    std::string show(double mm) const;
+    // The tool `number` of the tool table; an error at f's "tool" key when it is not there.
+    const Tool& tool(Fields& f) const;
+
+    // What a JSON value is, for messages ("a string \"x\"", "an array").
+    static std::string describe(const Json& value);
+    // Marks `keys` as known and reports any other key of the object, so that a misspelt key
+    // is reported (with a hint) before the "missing key" error it would otherwise cause.
+    static void known_keys(Fields& f, std::initializer_list<std::string_view> keys);
+
+private:
+    Tool read_tool(const Json& value, const std::string& path);
+
+    Json root_;
+    json::Source source_;
+    double scale_ = 1.0;
+    JobHeader header_;
+};
+
+}  // namespace camgen

@@ -1,0 +1,67 @@
+#pragma once
+// The contour operation: a path of lines, arcs and helices cut at one depth, entered by
+// feeding down from the clearance above its start.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "camgen/events/events.hpp"
+#include "camgen/job/job_input.hpp"
+#include "operations/context.hpp"
+
+namespace camgen {
+
+// A straight line to an end point (a job's [x, y] is at the operation's depth).
+struct PathLine {
+    Vec3 end;
+};
+
+// An arc in `plane` to an end point around an absolute centre, clockwise or counter-clockwise
+// seen looking down the plane's normal axis (Z, Y, X: the G17/G18/G19 convention). The
+// centre's coordinate along the normal axis is the start's. An end that differs from the start
+// along the normal axis makes a helical arc; an end equal to the start in the plane is a full
+// circle.
+struct PathArc {
+    Vec3 end;
+    Vec3 centre;
+    ArcDirection direction = ArcDirection::cw;
+    Plane plane = Plane::xy;
+};
+
+// Whole turns of a helix about an axis parallel to Z through `centre`, from the current point
+// to the same X and Y at `end_z`, Z changing evenly with the angle.
+struct PathHelix {
+    Vec2 centre;
+    ArcDirection direction = ArcDirection::cw;
+    int turns = 1;
+    double end_z = 0.0;
+};
+
+using PathElement = std::variant<PathLine, PathArc, PathHelix>;
+
+// Cut a path of lines, arcs and helices, starting at `start` at `depth`.
+struct ContourOp {
+    static constexpr std::string_view type = "contour";
+    // Reads one operation of this type (its "type" is already read).
+    static ContourOp read(json::Fields& f, const JobInput& input);
+    std::string path;
+    std::string comment;
+    int tool = 0;
+    Vec2 start;
+    std::vector<PathElement> elements;
+    std::vector<std::string> element_paths;  // JSON path of each element, for messages
+    double depth = 0.0;                  // absolute Z of the cut (and of [x, y] points)
+    double feed = 0.0;                   // mm/min
+    std::optional<double> plunge_feed;   // mm/min; absent: feed
+    std::optional<double> tolerance;     // mm, for arcs that become lines (capped by the machine's)
+};
+
+// Rapid above the start at the clearance, feed down to depth, cut the path, rapid up.
+void expand(const ContourOp& op, const Context& context, EventSink& sink);
+
+// The operation's name for comments: its comment, else "contour".
+std::string default_name(const ContourOp& op);
+
+}  // namespace camgen

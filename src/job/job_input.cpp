@@ -1,0 +1,126 @@
+#include "camgen/job/job_input.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+
+namespace camgen {
+
+namespace {
+constexpr double mm_per_inch = 25.4;
+}  // namespace
+
+JobInput::JobInput(std::string_view text, const std::string& source_name)
+    : root_(json::parse(text, source_name)), source_{source_name, json::LineMap(text)} {}
+
+std::string JobInput::describe(const Json& value) {
+    switch (value.type()) {
+        case Json::value_t::null: return "null";
+        case Json::value_t::object: return "an object";
+        case Json::value_t::array: return "an array";
+        case Json::value_t::string: return "a string " + value.dump();
+        case Json::value_t::boolean: return "a boolean (" + value.dump() + ")";
+        default: return "a number (" + value.dump() + ")";
+    }
+}
+
+void JobInput::known_keys(Fields& f, std::initializer_list<std::string_view> keys) {
+    for (auto key : keys) f.has(key);
+    f.finish();
+}
+
+JobInput::Fields JobInput::read_header(std::initializer_list<std::string_view> other_top_keys) {
+    Fields top(root_, "", source_);
+    for (auto key : other_top_keys) top.has(key);
+    known_keys(top, {"name", "units", "clearance", "tools"});
+    if (auto name = top.optional_string("name")) header_.name = *name;
+    header_.units = top.choice("units", unit_names, Units::mm);
+    scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
+    header_.clearance = length(top, "clearance");
+
+    const Json& tools = array(top, "tools");
+    if (tools.empty()) top.fail("tools", "a job needs at least one tool");
+    for (std::size_t i = 0; i < tools.size(); ++i) {
+        Tool tool = read_tool(tools[i], "/tools/" + std::to_string(i));
+        header_.tools.emplace(tool.number, std::move(tool));
+    }
+    return top;
+}
+
+Tool JobInput::read_tool(const Json& value, const std::string& path) {
+    Fields f(value, path, source_);
+    known_keys(f, {"number", "type", "diameter", "tipAngle", "rpm", "direction", "comment"});
+    Tool tool;
+    tool.path = path;
+    tool.number = f.integer("number");
+    if (tool.number < 1) f.fail("number", "a tool number must be 1 or more");
+    if (auto it = header_.tools.find(tool.number); it != header_.tools.end())
+        f.fail("number", fmt::format("tool number {} is already used by {}", tool.number, it->second.path));
+    tool.type = f.choice("type", tool_types, ToolType::drill);
+    tool.diameter = length(f, "diameter");
+    if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
+    tool.tip_angle = f.optional_number("tipAngle");
+    if (tool.tip_angle && (*tool.tip_angle <= 0 || *tool.tip_angle >= 180))
+        f.fail("tipAngle", "tipAngle must be between 0 and 180 degrees (exclusive)");
+    tool.rpm = f.number("rpm");
+    if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
+    tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);
+    tool.comment = f.optional_string("comment").value_or("");
+    return tool;
+}
+
+const Tool& JobInput::tool(Fields& f) const {
+    const int number = f.integer("tool");
+    auto it = header_.tools.find(number);
+    if (it == header_.tools.end()) f.fail("tool", fmt::format("tool {} is not in /tools", number));
+    return it->second;
+}
+
+double JobInput::checked_length(double value, const std::string& path) const {
+    double mm = value * scale_;
+    if (std::abs(mm) > max_job_length)
+        json::fail(source_, path, "a length or feed beyond 1,000,000 mm (or mm/min) is out of range");
+    return mm;
+}
+
+std::optional<double> JobInput::optional_length(Fields& f, std::string_view key) const {
+    auto v = f.optional_number(key);
+    if (v) *v = checked_length(*v, f.path_of(key));
+    return v;
+}
+
+std::optional<double> JobInput::optional_quantity(Fields& f, std::string_view key, Quantity quantity) const {
+    return scales_with_units(quantity) ? optional_length(f, key) : f.optional_number(key);
+}
+
+double JobInput::coordinate(const Json& value, const std::string& path) const {
+    return checked_length(json::number_at(value, path, source_), path);
+}
+
+Vec2 JobInput::point(const Json& value, const std::string& path) const {
+    if (!value.is_array() || value.size() != 2)
+        json::fail(source_, path, "expected a point [x, y], got " + describe(value));
+    return {coordinate(value[0], path + "/0"), coordinate(value[1], path + "/1")};
+}
+
+Vec3 JobInput::point3(const Json& value, const std::string& path, double z) const {
+    if (!value.is_array() || (value.size() != 2 && value.size() != 3))
+        json::fail(source_, path, "expected a point [x, y] or [x, y, z], got " + describe(value));
+    Vec3 p{coordinate(value[0], path + "/0"), coordinate(value[1], path + "/1"), z};
+    if (value.size() == 3) p.z = coordinate(value[2], path + "/2");
+    return p;
+}
+
+const JobInput::Json& JobInput::array(Fields& f, std::string_view key) const {
+    const Json& value = f.required(key);
+    if (!value.is_array()) f.fail(key, "expected an array, got " + describe(value));
+    return value;
+}
+
+std::string JobInput::show(double mm) const {
+    return scale_ == 1.0 ? fmt::format("{:.3f} mm", mm) : fmt::format("{:.4f} in", mm / scale_);
+}
+
+}  // namespace camgen
