@@ -12,6 +12,7 @@
 #include <algorithm>
 
 #include "camgen/common/error.hpp"
+#include "camgen/events/visit.hpp"
 
 namespace camgen {
 
@@ -94,8 +95,8 @@ void expand_job(const Job& job, EventSink& sink) {
     double rpm = 0.0;
     SpindleState state = SpindleState::off;
     for (const Operation& op : job.operations) {
-        std::visit(
-            [&](const auto& o) {
+        visit_exhaustive(
+            [&]<OperationType Op>(const Op& o) {
                 const Tool& tool = job.tools.at(o.tool);
                 // The spindle stops as the last act of the previous tool.
                 if (tool.number != current && state != SpindleState::off) {

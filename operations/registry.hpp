@@ -3,6 +3,7 @@
 // (operations/<type>/) with its reading and its expansion; this file registers them, once, in
 // the Operation variant: a new type is one folder plus one entry there. Reading, expansion and
 // naming iterate the variant, and a visitor that misses a type does not compile.
+#include <concepts>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -14,6 +15,18 @@
 #include "operations/drill/drill.hpp"
 
 namespace camgen {
+
+// What every operation type offers: its "type" name, its reading, its tool, its JSON path,
+// its name for comments and its expansion.
+template <class Op>
+concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& in, const Context& ctx, EventSink& sink) {
+    { Op::type } -> std::convertible_to<std::string_view>;
+    { Op::read(f, in) } -> std::same_as<Op>;
+    { op.tool } -> std::convertible_to<int>;
+    { op.path } -> std::convertible_to<std::string>;
+    { default_name(op) } -> std::convertible_to<std::string>;
+    expand(op, ctx, sink);
+};
 
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp>;

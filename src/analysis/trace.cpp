@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "camgen/common/error.hpp"
+#include "camgen/events/visit.hpp"
 #include "camgen/post/longhand.hpp"
 #include "camgen/analysis/trace.hpp"
 
 namespace camgen {
 
 namespace {
-
-template <class... Ts>
-struct overloaded : Ts... {
-    using Ts::operator()...;
-};
 
 constexpr double same_xy = 1e-6;  // mm
 
@@ -64,7 +61,15 @@ public:
     void add(const ReadEvent& e) {
         line_ = e.line;
         uncertainty_ = e.uncertainty;
-        std::visit(overloaded{
+        visit_exhaustive(overloaded{
+                       [&](const OperationStart&) {},
+                       [&](const OperationEnd&) {},
+                       [&](const Comment&) {},
+                       [&](const Compensation& c) {
+                           // No motion of its own; the offset path it asks for is not traced yet.
+                           if (c.side != CompensationSide::off)
+                               throw InputError("", "cutter radius compensation (G41/G42) cannot be read back yet", e.line);
+                       },
                        [&](const ToolChange& t) {
                            tool_ = t.number;
                            Step s = base(StepKind::tool_change);
@@ -104,11 +109,10 @@ public:
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
-                           for (const Event& m : longhand_moves(*cycle_, pos_, p.at, options_))
-                               add(ReadEvent{m, e.line, false, e.uncertainty});
+                           for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_))
+                               add(ReadEvent{to_event(m), e.line, false, e.uncertainty});
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
-                       [&](const auto&) {},
                    },
                    e.event);
     }

@@ -4,15 +4,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camgen/events/visit.hpp"
+
 
 namespace camgen {
 
 namespace {
-
-template <class... Ts>
-struct overloaded : Ts... {
-    using Ts::operator()...;
-};
 
 nlohmann::ordered_json xyz(const Vec3& v) { return {v.x, v.y, v.z}; }
 
@@ -25,7 +22,7 @@ void put_optional(nlohmann::ordered_json& j, const char* key, const std::optiona
 
 std::string event_to_json(const Event& event) {
     nlohmann::ordered_json j;
-    std::visit(overloaded{
+    visit_exhaustive(overloaded{
                    [&](const OperationStart& e) {
                        j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}};
                        put_optional(j, "tolerance", e.tolerance);
@@ -51,6 +48,8 @@ std::string event_to_json(const Event& event) {
                    [&](const Compensation& e) {
                        j = {{"event", "compensation"},
                             {"side", e.side == CompensationSide::off ? "off" : e.side == CompensationSide::left ? "left" : "right"}};
+                       if (e.d_register) j["d"] = e.d_register;
+                       if (e.radius > 0) j["radius"] = e.radius;
                    },
                    [&](const DrillCycle& e) {
                        j = {{"event", "drill-cycle"},  {"cycle", name_of(cycle_kinds, e.kind)}, {"path", e.path},

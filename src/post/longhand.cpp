@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/events/visit.hpp"
 
 namespace camgen {
 
@@ -42,10 +43,16 @@ std::vector<double> peck_depths(const DrillCycle& cycle) {
     return depths;
 }
 
-std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
+Event to_event(const LonghandMove& move) {
+    return visit_exhaustive(overloaded{[](const Rapid& m) -> Event { return m; }, [](const Linear& m) -> Event { return m; },
+                                       [](const Dwell& m) -> Event { return m; }, [](const Spindle& m) -> Event { return m; }},
+                            move);
+}
+
+std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options) {
     const DrillValues& p = cycle.values;
-    std::vector<Event> ev;
+    std::vector<LonghandMove> ev;
     auto at = [&](double z) { return Vec3{hole.x, hole.y, z}; };
     double z = from.z;
     // Preliminary motion (LinuxCNC/Fanuc): up to the feed-start plane if below it, across in

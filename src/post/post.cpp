@@ -7,17 +7,13 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/events/visit.hpp"
 #include "camgen/post/longhand.hpp"
 
 namespace camgen {
 
 namespace {
 constexpr double deg = 180.0 / std::numbers::pi;
-
-template <class... Ts>
-struct overloaded : Ts... {
-    using Ts::operator()...;
-};
 
 bool contains(const std::vector<DrillField>& v, DrillField f) {
     return std::find(v.begin(), v.end(), f) != v.end();
@@ -250,7 +246,7 @@ void Post::handle_drill_point(Vec2 at) {
         on_drilling_point(*cycle_, *cycle_spec_, at, first_point_);
         pos_ = {at.x, at.y, cycle_->retract_z};
     } else {
-        for (const Event& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
+        for (const LonghandMove& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
     }
     first_point_ = false;
 }
@@ -330,8 +326,8 @@ void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_t
     }
 }
 
-void Post::replay(const Event& event) {
-    std::visit(overloaded{
+void Post::replay(const LonghandMove& event) {
+    visit_exhaustive(overloaded{
                    [&](const Rapid& r) {
                        if (pos_known_) on_rapid(r.to); else rapid_from_unknown(r.to);
                        pos_ = r.to;
@@ -344,14 +340,13 @@ void Post::replay(const Event& event) {
                    },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
                    [&](const Spindle& s) { on_spindle(s); },
-                   [&](const auto&) { throw std::logic_error("unexpected event in a longhand cycle"); },
                },
                event);
 }
 
 void Post::emit(const Event& event) {
     if (!opened_) open();
-    std::visit(overloaded{
+    visit_exhaustive(overloaded{
                    [&](const OperationStart& op) {
                        op_path_ = op.path;
                        op_tolerance_ = op.tolerance;

@@ -193,7 +193,7 @@ TEST_CASE("FreeCAD 0.20 grbl defect: G83 under G98 from Z10 with R2 feeds its fi
     const std::string rs274 = rs274_path();
     DrillCycle c = make_cycle(CycleKind::deep, 10.0, CycleOutput::longhand);
     // The events themselves: rapid down to R, then the first feed from R to R - Q.
-    std::vector<Event> ev = longhand_moves(c, {10, 10, 10}, {10, 10}, load_machine("linuxcnc").longhand());
+    std::vector<LonghandMove> ev = longhand_moves(c, {10, 10, 10}, {10, 10}, load_machine("linuxcnc").longhand());
     REQUIRE(ev.size() >= 2);
     CHECK(std::get<Rapid>(ev[0]).to.z == 2.0);
     CHECK(std::get<Linear>(ev[1]).to.z == -1.0);

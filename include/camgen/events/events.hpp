@@ -85,9 +85,13 @@ struct Dwell {
     friend bool operator==(const Dwell&, const Dwell&) = default;
 };
 
-// Cutter radius compensation from the next move that can carry it (CNC-Calc onCompensation).
+// Cutter radius compensation from the next move that can carry it (CNC-Calc onCompensation):
+// the side, the control's offset register (D) and the tool radius it holds, so that a reader
+// of the program can interpret it.
 struct Compensation {
     CompensationSide side = CompensationSide::off;
+    int d_register = 0;    // 0: the tool's number
+    double radius = 0.0;   // mm; 0: unknown (only the control's tool table knows it)
     friend bool operator==(const Compensation&, const Compensation&) = default;
 };
 

@@ -2,6 +2,7 @@
 // Longhand drilling: the exact moves a canned cycle makes, as plain rapids, feeds and dwells.
 // Shared by every post (for cycles a control lacks) and by the reader (to expand the canned
 // cycles it reads), so both mean the same motion.
+#include <variant>
 #include <vector>
 
 #include "camgen/events/events.hpp"
@@ -28,7 +29,12 @@ std::vector<double> peck_depths(const DrillCycle& cycle);
 // cycles move: if `from` is below safe_z (R), rapid up to it first; rapid in XY; rapid down to
 // safe_z; the cycle; the final retract to retract_z (the G98 level, or R for G99). Pecks are
 // measured from safe_z. Spindle events appear only for tapping and bore-stop.
-std::vector<Event> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
+// One move of a longhand cycle: only these events occur in one.
+using LonghandMove = std::variant<Rapid, Linear, Dwell, Spindle>;
+// The move as an event.
+Event to_event(const LonghandMove& move);
+
+std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options);
 
 }  // namespace camgen

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "camgen/post/arc_output.hpp"
+#include "camgen/post/longhand.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/nc/block_writer.hpp"
@@ -110,7 +111,7 @@ private:
     void handle_drill_point(Vec2 at);
     void handle_drill_end();
     const DrillingCycleSpec* choose_canned(const DrillCycle& cycle) const;
-    void replay(const Event& event);
+    void replay(const LonghandMove& event);
 
     std::optional<DrillCycle> cycle_;
     const DrillingCycleSpec* cycle_spec_ = nullptr;  // canned spec for the current cycle
