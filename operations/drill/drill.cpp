@@ -9,6 +9,7 @@
 #include <fmt/ranges.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/geometry/transform.hpp"
 
 namespace camgen {
 
@@ -19,18 +20,6 @@ using Fields = json::Fields;
 
 // Sanity bound for generated hole patterns, so a typo cannot exhaust memory.
 constexpr double max_pattern_holes = 10'000'000;
-
-// cos and sin of an angle in degrees, exact for multiples of 90 degrees.
-Vec2 unit_vector(double degrees) {
-    double d = std::fmod(degrees, 360.0);
-    if (d < 0) d += 360.0;
-    if (d == 0.0) return {1.0, 0.0};
-    if (d == 90.0) return {0.0, 1.0};
-    if (d == 180.0) return {-1.0, 0.0};
-    if (d == 270.0) return {0.0, -1.0};
-    const double r = degrees * std::numbers::pi / 180.0;
-    return {std::cos(r), std::sin(r)};
-}
 
 // The fields a cycle kind uses, in table order ("plungingFeedrate, retractFeedrate, topDwell").
 std::vector<std::string_view> fields_used_by(CycleKind kind) {
@@ -79,14 +68,9 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
             g.fail("", fmt::format("a grid of {} x {} holes is too many", nx, ny));
         const double sx = in.length(g, "spacingX");
         const double sy = in.length(g, "spacingY");
-        const Vec2 u = unit_vector(g.optional_number("rotation").value_or(0.0));
-        for (int j = 0; j < ny; ++j) {
-            for (int i = 0; i < nx; ++i) {
-                const double lx = i * sx;
-                const double ly = j * sy;
-                holes.push_back({origin.x + lx * u.x - ly * u.y, origin.y + lx * u.y + ly * u.x});
-            }
-        }
+        const Eigen::Isometry2d to_job = placement(origin, g.optional_number("rotation").value_or(0.0));
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) holes.push_back(apply(to_job, {i * sx, j * sy}));
     }
 
     if (const Json* value = f.member("boltCircle")) {
@@ -100,7 +84,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (count > max_pattern_holes) b.fail("count", "count is too large");
         const double start = b.optional_number("startAngle").value_or(0.0);
         for (int i = 0; i < count; ++i) {
-            const Vec2 u = unit_vector(start + 360.0 * i / count);
+            const Vec2 u = unit_direction(start + 360.0 * i / count);
             holes.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
         }
     }

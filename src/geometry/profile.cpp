@@ -1,0 +1,141 @@
+#include "camgen/geometry/profile.hpp"
+
+#include <cmath>
+#include <numbers>
+
+// Boost 1.74's rescale policy trips GCC 12's -Wmaybe-uninitialized inside its own headers.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/linestring.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#pragma GCC diagnostic pop
+
+#include "camgen/geometry/arc.hpp"
+
+namespace camgen {
+
+namespace {
+
+namespace bg = boost::geometry;
+using BgPoint = bg::model::d2::point_xy<double>;
+using BgRing = bg::model::polygon<BgPoint, false, true>;  // counter-clockwise, closed
+using BgLine = bg::model::linestring<BgPoint>;
+
+double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// The segment as an arc of the arc geometry (in its own (u, v) taken as XY).
+ArcGeometry arc_of(Vec2 from, const ProfileSegment& s) {
+    return resolve_arc({from.x, from.y, 0.0}, ArcSpec{{s.end.x, s.end.y, 0.0}, {s.centre->x, s.centre->y, 0.0}, s.direction,
+                                                      Plane::xy, 0});
+}
+
+// Where segment `index` starts.
+Vec2 start_of(const Profile& p, std::size_t index) { return index == 0 ? p.start : p.segments[index - 1].end; }
+
+BgRing ring_of(const Profile& profile, double tolerance) {
+    BgRing ring;
+    for (Vec2 v : sample_profile(profile, tolerance)) bg::append(ring.outer(), BgPoint(v.x, v.y));
+    return ring;
+}
+
+}  // namespace
+
+bool is_closed(const Profile& profile) {
+    const Vec2 end = profile.segments.empty() ? profile.start : profile.segments.back().end;
+    return !profile.segments.empty() && distance(end, profile.start) <= profile_same_point;
+}
+
+double segment_sweep(const Profile& profile, std::size_t index) {
+    const ProfileSegment& s = profile.segments.at(index);
+    return s.centre ? arc_of(start_of(profile, index), s).sweep : 0.0;
+}
+
+std::optional<std::size_t> first_short_segment(const Profile& profile, double min_length) {
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        const ProfileSegment& s = profile.segments[i];
+        const Vec2 from = start_of(profile, i);
+        const double length = s.centre ? arc_length(arc_of(from, s)) : distance(from, s.end);
+        if (length < min_length) return i;
+    }
+    return std::nullopt;
+}
+
+double profile_length(const Profile& profile) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        const ProfileSegment& s = profile.segments[i];
+        const Vec2 from = start_of(profile, i);
+        total += s.centre ? arc_length(arc_of(from, s)) : distance(from, s.end);
+    }
+    return total;
+}
+
+std::vector<Vec2> sample_profile(const Profile& profile, double tolerance) {
+    std::vector<Vec2> out{profile.start};
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        const ProfileSegment& s = profile.segments[i];
+        if (s.centre) {
+            const ArcGeometry arc = arc_of(start_of(profile, i), s);
+            for (const Vec3& p : linearize_arc(arc, segments_for_tolerance(arc.radius, arc.sweep, tolerance)))
+                out.push_back({p.x, p.y});
+        } else {
+            out.push_back(s.end);
+        }
+    }
+    return out;
+}
+
+bool is_simple(const Profile& profile, double tolerance) {
+    if (is_closed(profile)) {
+        BgRing ring = ring_of(profile, tolerance);
+        bg::correct(ring);
+        return bg::is_valid(ring);
+    }
+    BgLine line;
+    for (Vec2 v : sample_profile(profile, tolerance)) bg::append(line, BgPoint(v.x, v.y));
+    return bg::is_simple(line);
+}
+
+Orientation orientation(const Profile& profile, double tolerance) {
+    return bg::area(ring_of(profile, tolerance)) >= 0.0 ? Orientation::ccw : Orientation::cw;
+}
+
+double enclosed_area(const Profile& profile, double tolerance) {
+    return std::abs(bg::area(ring_of(profile, tolerance)));
+}
+
+bool contains(const Profile& profile, Vec2 p, double tolerance) {
+    BgRing ring = ring_of(profile, tolerance);
+    bg::correct(ring);
+    return bg::within(BgPoint(p.x, p.y), ring);
+}
+
+Profile transformed(const Profile& profile, const Eigen::Isometry2d& t) {
+    auto map = [&](Vec2 v) {
+        const Eigen::Vector2d r = t * Eigen::Vector2d(v.x, v.y);
+        return Vec2{r.x(), r.y()};
+    };
+    const bool mirrored = t.linear().determinant() < 0.0;
+    Profile out{profile.plane, map(profile.start), {}};
+    for (const ProfileSegment& s : profile.segments) {
+        ProfileSegment m{map(s.end), std::nullopt, s.direction};
+        if (s.centre) m.centre = map(*s.centre);
+        if (mirrored) m.direction = s.direction == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw;
+        out.segments.push_back(m);
+    }
+    return out;
+}
+
+Profile reversed(const Profile& profile) {
+    Profile out{profile.plane, profile.segments.empty() ? profile.start : profile.segments.back().end, {}};
+    for (std::size_t i = profile.segments.size(); i-- > 0;) {
+        const ProfileSegment& s = profile.segments[i];
+        ProfileSegment r{start_of(profile, i), s.centre, s.direction == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw};
+        out.segments.push_back(r);
+    }
+    return out;
+}
+
+}  // namespace camgen
