@@ -1,5 +1,7 @@
 #include "camgen/vocabulary/vocabulary.hpp"
 
+#include <cstdio>
+
 namespace camgen {
 
 namespace {
@@ -35,6 +37,70 @@ std::vector<std::string> drill_field_keys() {
     std::vector<std::string> out;
     for (const auto& f : drill_fields) out.emplace_back(f.key);
     return out;
+}
+
+namespace {
+
+// A number as the docs write it: "0", "1", "0.5".
+std::string number_text(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
+
+// The value column of a field: quantity, unit and bound ("length (mm) > 0").
+std::string value_text(const DrillFieldInfo& f) {
+    if (f.field == DrillField::degression_type) {
+        std::string s;
+        for (const auto& n : degression_types) s += (s.empty() ? "`\"" : ", `\"") + std::string(n.name) + "\"`";
+        return s;
+    }
+    if (f.field == DrillField::degression) return "length (mm) or factor";
+    static constexpr const char* names[] = {"length", "feed", "time", "speed", "factor", "angle", "count", "choice"};
+    std::string s = names[static_cast<int>(f.quantity)];
+    if (!unit_of(f.quantity).empty()) s += " (" + std::string(unit_of(f.quantity)) + ")";
+    if (f.min) s += (f.min->inclusive ? " >= " : " > ") + number_text(f.min->value);
+    return s;
+}
+
+// The kinds of a set, by name, joined with ", "; "every cycle" for all of them.
+std::string kinds_text(CycleSet set) {
+    bool all = true;
+    std::string s;
+    for (const auto& n : cycle_kinds) {
+        if (!set.contains(n.value)) {
+            all = false;
+            continue;
+        }
+        s += (s.empty() ? "" : ", ") + std::string(n.name);
+    }
+    return all ? "every cycle" : s;
+}
+
+}  // namespace
+
+std::string drill_fields_markdown() {
+    std::string s = "| key | value | used by | meaning |\n| --- | --- | --- | --- |\n";
+    for (const auto& f : drill_fields) {
+        std::string used = kinds_text(f.used_by);
+        if (!f.required_by.empty()) used += "; **required** by " + kinds_text(f.required_by);
+        s += "| `" + std::string(f.key) + "` | " + value_text(f) + " | " + used + " | " + std::string(f.description) + " |\n";
+    }
+    return s;
+}
+
+std::string cycle_kinds_markdown() {
+    std::string s = "| `cycle` | what it does | fields it uses (**required**) |\n| --- | --- | --- |\n";
+    for (const auto& k : cycle_kinds) {
+        std::string fields;
+        for (const auto& f : drill_fields) {
+            if (f.in_planes || !f.used_by.contains(k.value)) continue;
+            const std::string key(f.key);
+            fields += (fields.empty() ? "" : ", ") + (f.required_by.contains(k.value) ? "**" + key + "**" : key);
+        }
+        s += "| `" + std::string(k.name) + "` | " + std::string(k.description) + " | " + fields + " |\n";
+    }
+    return s;
 }
 
 }  // namespace camgen

@@ -200,25 +200,25 @@ inline constexpr std::array<DrillFieldInfo, drill_field_count> drill_fields = {{
      "feed into the hole"},
     {DrillField::retract_feedrate, "retractFeedrate", Quantity::feed, Bound{0.0, false},
      {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break, CycleKind::ream, CycleKind::bore_dwell},
-     {}, std::nullopt, false, "", "", "feed out of the hole (default: rapid, or the plunging feed where the cycle feeds out)"},
+     {}, std::nullopt, false, "", "", "feed out of the hole (default: rapid out, or plungingFeedrate where the cycle feeds out)"},
     {DrillField::first_depth, "firstDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, pecking_kinds,
-     std::nullopt, false, "a peck depth must be > 0", "(the depth of a peck)", "depth of the first peck"},
+     std::nullopt, false, "a peck depth must be > 0", "(the depth of a peck)", "depth of each peck (the first one when a degression applies)"},
     {DrillField::degression_type, "degressionType", Quantity::choice, std::nullopt, pecking_kinds, {}, std::nullopt,
-     false, "", "", "how later pecks shrink: none, value or factor"},
+     false, "", "", "how pecks shrink: next = previous - degression (value) or previous x degression (factor)"},
     {DrillField::degression, "degression", Quantity::length, std::nullopt, pecking_kinds, {}, std::nullopt, false, "",
-     "", "taken off each peck (mm, degressionType value) or the factor each peck is multiplied by (factor)"},
+     "", "mm > 0 taken off each peck (degressionType value), or a factor 0 < f <= 1 (factor)"},
     {DrillField::minimum_depth, "minimumDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, {}, std::nullopt,
-     false, "", "", "the smallest peck a degression may reach"},
+     false, "", "", "smallest peck once a degression applies; required with a degression"},
     {DrillField::pecking_retract, "peckingRetract", Quantity::length, Bound{0.0, false}, {CycleKind::chip_break}, {},
-     std::nullopt, false, "", "", "back-off after each peck to break the chip (default: the machine's peckClearance)"},
+     std::nullopt, false, "", "", "how far the drill backs off between pecks to break the chip (default: the machine's peckClearance)"},
     {DrillField::first_feedrate_factor, "firstFeedrateFactor", Quantity::factor, Bound{0.0, false}, pecking_kinds, {},
-     1.0, false, "", "", "the first peck runs at plungingFeedrate times this"},
+     1.0, false, "", "", "feed of the first peck = plungingFeedrate x factor"},
     {DrillField::pitch, "pitch", Quantity::length, Bound{0.0, false}, tapping_kinds, tapping_kinds, std::nullopt,
-     false, "", "(the thread lead per revolution)", "thread lead per revolution; the tapping feed is pitch x speed"},
+     false, "", "(the thread lead per revolution)", "thread lead per revolution; tapping feed = pitch x spindle speed"},
     {DrillField::tapping_speed, "tappingSpeed", Quantity::speed, Bound{0.0, false}, tapping_kinds, {}, std::nullopt,
      false, "", "", "spindle speed into the hole (default: the tool's rpm)"},
     {DrillField::retract_speed, "retractSpeed", Quantity::speed, Bound{0.0, false}, tapping_kinds, {}, std::nullopt,
-     false, "", "", "spindle speed out of the hole (default: tappingSpeed)"},
+     false, "", "", "spindle speed out of the hole (default: the tapping speed)"},
     {DrillField::top_dwell, "topDwell", Quantity::time, Bound{0.0, true},
      {CycleKind::drill, CycleKind::dwell, CycleKind::deep, CycleKind::chip_break}, {}, 0.0, false,
      "a dwell cannot be negative", "", "dwell at the feed-start plane before drilling (and before each deep peck)"},
@@ -235,6 +235,12 @@ constexpr std::string_view key_of(DrillField f) { return info(f).key; }
 std::optional<DrillField> drill_field_named(std::string_view key);
 // The keys of every drilling field, in table order.
 std::vector<std::string> drill_field_keys();
+
+// The drilling fields as a Markdown table (key, value, cycles, meaning) for docs/job-format.md.
+std::string drill_fields_markdown();
+// The cycle kinds as a Markdown table (kind, what it does, the fields it uses; required ones
+// in bold) for docs/job-format.md.
+std::string cycle_kinds_markdown();
 
 // The values of the drilling fields, in internal units (mm, mm/min, s, rpm, factors; the
 // degression type as its enum's number). Present: the job set it, or a program said it.
