@@ -62,7 +62,7 @@ std::vector<std::string> operation_type_names() {
 
 Job read_job(std::string_view text, const std::string& source_name) {
     JobInput in(text, source_name);
-    json::Fields top = in.read_header({"operations"});
+    json::Fields top = in.read_header();
     Job job;
     const nlohmann::json& operations = in.array(top, "operations");
     for (std::size_t i = 0; i < operations.size(); ++i)

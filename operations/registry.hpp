@@ -16,12 +16,14 @@
 
 namespace camgen {
 
-// What every operation type offers: its "type" name, its reading, its tool, its JSON path,
-// its name for comments and its expansion.
+// What every operation type offers: its "type" name, its reading, the objects of its input
+// (its keys, for the JSON Schema), its tool, its JSON path, its name for comments and its
+// expansion.
 template <class Op>
 concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& in, const Context& ctx, EventSink& sink) {
     { Op::type } -> std::convertible_to<std::string_view>;
     { Op::read(f, in) } -> std::same_as<Op>;
+    { Op::objects() } -> std::same_as<std::vector<ObjectSpec>>;
     { op.tool } -> std::convertible_to<int>;
     { op.path } -> std::convertible_to<std::string>;
     { default_name(op) } -> std::convertible_to<std::string>;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -20,8 +21,62 @@ using Fields = json::Fields;
 constexpr double arc_radius_tolerance = 0.001;
 constexpr double min_arc_radius = 0.0005;
 
+// The keys of a contour operation.
+constexpr KeySpec contour_keys[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "a tool number from tools"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
+     .description = "written as a comment before the operation"},
+    {.key = "depth", .quantity = Quantity::length, .required = true,
+     .description = "absolute Z of the cut, below clearance; points given as [x, y] are at this Z"},
+    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false}, .description = "cutting feed"},
+    {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
+     .description = "feed down to depth (default: feed)"},
+    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true},
+     .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
+                    "chordTolerance, which also caps it)"},
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "where the path starts [x, y], at depth"},
+    {.key = "path", .type = JsonType::array, .required = true, .ref = "contourPathElement", .min_items = 1,
+     .description = "the path elements, each starting where the previous one ends"},
+};
+
+// The keys of a path element: exactly one of them.
+constexpr KeySpec element_keys[] = {
+    {.key = "line", .type = JsonType::point3, .quantity = Quantity::length,
+     .description = "a straight move to [x, y] or [x, y, z]"},
+    {.key = "arc", .type = JsonType::object, .ref = "contourArc", .description = "an arc about an absolute centre"},
+    {.key = "helix", .type = JsonType::object, .ref = "contourHelix",
+     .description = "whole turns about a vertical axis, back to the same X and Y at another Z"},
+};
+
+// The keys of an arc.
+constexpr KeySpec arc_keys[] = {
+    {.key = "end", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
+     .description = "end point [x, y] or [x, y, z]"},
+    {.key = "centre", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
+     .description = "absolute centre [x, y] (xy only) or [x, y, z]; along the plane's normal axis it is the start's"},
+    {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>,
+     .description = "seen looking down the plane's normal axis: cw (G2) or ccw (G3)"},
+    {.key = "plane", .type = JsonType::string, .default_json = "\"xy\"", .choices = &choices_of<plane_names>,
+     .description = "the arc's plane: xy (G17), xz (G18) or yz (G19)"},
+};
+
+// The keys of a helix: centre, direction and exactly two of depth, turns and pitch.
+constexpr KeySpec helix_keys[] = {
+    {.key = "centre", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "the axis [x, y]"},
+    {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>,
+     .description = "seen from +Z: cw or ccw"},
+    {.key = "depth", .quantity = Quantity::length, .description = "absolute Z at the end"},
+    {.key = "turns", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{100000, true}, .description = "number of whole turns"},
+    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false}, .description = "Z travel per turn, down"},
+};
+
 PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth) {
-    JobInput::known_keys(a, {"end", "centre", "direction", "plane"});
+    JobInput::known_keys(a, arc_keys);
     PathArc arc;
     arc.plane = a.choice("plane", plane_names, Plane::xy);
     const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
@@ -63,7 +118,7 @@ PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double dept
 }
 
 PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
-    JobInput::known_keys(h, {"centre", "direction", "depth", "turns", "pitch"});
+    JobInput::known_keys(h, helix_keys);
     PathHelix helix;
     helix.centre = in.point(h, "centre");
     helix.direction = h.choice("direction", arc_directions);
@@ -101,8 +156,25 @@ PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
 
 }  // namespace
 
+std::vector<ObjectSpec> ContourOp::objects() {
+    return {
+        {.name = "contour", .description = "cut a path of lines, arcs and helices at one depth",
+         .keys = {std::begin(contour_keys), std::end(contour_keys)}},
+        {.name = "contourPathElement", .description = "one element of a path: exactly one of line, arc or helix",
+         .keys = {std::begin(element_keys), std::end(element_keys)},
+         .groups = {{.keys = {"line", "arc", "helix"}, .min = 1, .max = 1,
+                     .description = "exactly one of line, arc or helix"}}},
+        {.name = "contourArc", .description = "an arc in a plane about an absolute centre",
+         .keys = {std::begin(arc_keys), std::end(arc_keys)}},
+        {.name = "contourHelix", .description = "whole turns of a helix: exactly two of depth, turns and pitch",
+         .keys = {std::begin(helix_keys), std::end(helix_keys)},
+         .groups = {{.keys = {"depth", "turns", "pitch"}, .min = 2, .max = 2,
+                     .description = "exactly two of depth, turns and pitch"}}},
+    };
+}
+
 ContourOp ContourOp::read(Fields& f, const JobInput& in) {
-    JobInput::known_keys(f, {"type", "tool", "comment", "depth", "feed", "plungeFeed", "tolerance", "start", "path"});
+    JobInput::known_keys(f, contour_keys);
     const Tool& tool = in.tool(f);
     ContourOp op;
     op.path = f.path();
@@ -134,7 +206,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
         Fields e(elements[k], path, in.source());
-        JobInput::known_keys(e, {"line", "arc", "helix"});
+        JobInput::known_keys(e, element_keys);
         const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
         if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
         if (e.has("line")) {

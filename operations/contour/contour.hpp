@@ -46,6 +46,8 @@ struct ContourOp {
     static constexpr std::string_view type = "contour";
     // Reads one operation of this type (its "type" is already read).
     static ContourOp read(json::Fields& f, const JobInput& input);
+    // The objects of its input, for the JSON Schema: the operation ("contour") first.
+    static std::vector<ObjectSpec> objects();
     std::string path;
     std::string comment;
     int tool = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 
@@ -20,6 +21,123 @@ using Fields = json::Fields;
 
 // Sanity bound for generated hole patterns, so a typo cannot exhaust memory.
 constexpr double max_pattern_holes = 10'000'000;
+
+// The keys of a drill operation besides the drilling fields (drill_fields), which follow them.
+constexpr KeySpec drill_keys[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "a tool number from tools"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
+     .description = "written as a comment before the operation"},
+    {.key = "cycle", .type = JsonType::string, .default_json = "\"drill\"", .choices = &choices_of<cycle_kinds>,
+     .description = "the drilling cycle"},
+    {.key = "retractPlane", .quantity = Quantity::length,
+     .description = "absolute Z the tool returns to between holes (default: clearance)"},
+    {.key = "referencePlane", .quantity = Quantity::length, .default_json = "0",
+     .description = "absolute Z of the surface; relative values are measured from it"},
+    {.key = "safeDistanceIsAbsolute", .type = JsonType::boolean, .default_json = "false",
+     .description = "safeDistance is an absolute Z (else: the height above referencePlane, >= 0)"},
+    {.key = "endDepth", .quantity = Quantity::length, .required = true,
+     .description = "bottom of the hole: depth below referencePlane (> 0), or an absolute Z with endDepthIsAbsolute"},
+    {.key = "endDepthIsAbsolute", .type = JsonType::boolean, .default_json = "false",
+     .description = "endDepth is an absolute Z (else: the depth below referencePlane, > 0)"},
+    {.key = "drillTip", .type = JsonType::boolean, .default_json = "false",
+     .description = "add the tool's tip length (from diameter and tipAngle) to the depth"},
+    {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
+     .description = "canned cycle or plain moves: auto, canned or longhand"},
+    {.key = "order", .type = JsonType::string, .default_json = "\"as-given\"", .choices = &choices_of<hole_orders>,
+     .description = "drill the holes in file order, or reorder them for a short rapid path"},
+    {.key = "holes", .type = JsonType::array, .ref = "drillHole", .min_items = 1,
+     .description = "holes, each [x, y] or {\"x\": x, \"y\": y}"},
+    {.key = "grid", .type = JsonType::object, .ref = "drillGrid", .description = "a grid of holes"},
+    {.key = "boltCircle", .type = JsonType::object, .ref = "drillBoltCircle", .description = "holes on a circle"},
+    {.key = "line", .type = JsonType::object, .ref = "drillLine", .description = "holes evenly spaced along a line"},
+};
+
+// The keys of a hole given as an object.
+constexpr KeySpec hole_keys[] = {
+    {.key = "x", .quantity = Quantity::length, .required = true, .description = "X of the hole"},
+    {.key = "y", .quantity = Quantity::length, .required = true, .description = "Y of the hole"},
+};
+
+// The keys of a grid of holes.
+constexpr KeySpec grid_keys[] = {
+    {.key = "origin", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "the first hole [x, y]"},
+    {.key = "countX", .type = JsonType::integer, .quantity = Quantity::count, .required = true,
+     .min = Bound{1, true}, .description = "holes along X"},
+    {.key = "countY", .type = JsonType::integer, .quantity = Quantity::count, .required = true,
+     .min = Bound{1, true}, .description = "holes along Y"},
+    {.key = "spacingX", .quantity = Quantity::length, .required = true, .description = "distance between columns"},
+    {.key = "spacingY", .quantity = Quantity::length, .required = true, .description = "distance between rows"},
+    {.key = "rotation", .quantity = Quantity::angle, .default_json = "0",
+     .description = "counter-clockwise turn of the grid about origin"},
+};
+
+// The keys of a bolt circle.
+constexpr KeySpec bolt_circle_keys[] = {
+    {.key = "centre", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "centre of the circle [x, y]"},
+    {.key = "radius", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
+     .description = "radius of the circle"},
+    {.key = "count", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "holes, 360/count degrees apart"},
+    {.key = "startAngle", .quantity = Quantity::angle, .default_json = "0",
+     .description = "angle of the first hole from +X, counter-clockwise"},
+};
+
+// The keys of a line of holes.
+constexpr KeySpec line_keys[] = {
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "the first hole [x, y]"},
+    {.key = "end", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "the last hole [x, y]"},
+    {.key = "count", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "holes, evenly spaced including both ends"},
+};
+
+// A drilling field of the vocabulary's table as a key of the drill operation.
+KeySpec key_of_field(const DrillFieldInfo& d) {
+    KeySpec k{.key = d.key, .quantity = d.quantity, .min = d.min, .description = d.description};
+    if (d.quantity == Quantity::choice) {
+        k.type = JsonType::string;
+        k.default_json = "\"none\"";
+        k.choices = &choices_of<degression_types>;
+    }
+    return k;
+}
+
+// The keys of a drill operation: drill_keys, then the drilling fields.
+std::vector<KeySpec> all_drill_keys() {
+    std::vector<KeySpec> keys(std::begin(drill_keys), std::end(drill_keys));
+    for (const auto& d : drill_fields) keys.push_back(key_of_field(d));
+    return keys;
+}
+
+// Per cycle kind: the drilling fields it needs and those it refuses; and the degression's
+// partners (see read_degression).
+std::vector<KeyRule> drill_rules() {
+    std::vector<KeyRule> rules;
+    for (const auto& kind : cycle_kinds) {
+        KeyRule r{.when_key = "cycle", .values = {std::string(kind.name)}, .require = {}, .forbid = {}};
+        for (const auto& d : drill_fields) {
+            if (d.required_by.contains(kind.value)) r.require.push_back(d.key);
+            if (!d.in_planes && !d.used_by.contains(kind.value)) r.forbid.push_back(d.key);
+        }
+        rules.push_back(std::move(r));
+    }
+    const std::string_view degression = key_of(DrillField::degression), minimum = key_of(DrillField::minimum_depth);
+    rules.push_back({.when_key = key_of(DrillField::degression_type),
+                     .values = {std::string(name_of(degression_types, DegressionType::none))},
+                     .require = {},
+                     .forbid = {degression, minimum}});
+    rules.push_back({.when_key = key_of(DrillField::degression_type),
+                     .values = {std::string(name_of(degression_types, DegressionType::value)),
+                                std::string(name_of(degression_types, DegressionType::factor))},
+                     .require = {degression, minimum},
+                     .forbid = {}});
+    return rules;
+}
 
 // The fields a cycle kind uses, in table order ("plungingFeedrate, retractFeedrate, topDwell").
 std::vector<std::string_view> fields_used_by(CycleKind kind) {
@@ -43,7 +161,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
             const Json& hole = list[i];
             if (hole.is_object()) {
                 Fields h(hole, path, in.source());
-                JobInput::known_keys(h, {"x", "y"});
+                JobInput::known_keys(h, hole_keys);
                 holes.push_back({in.length(h, "x"), in.length(h, "y")});
             } else if (hole.is_array()) {
                 holes.push_back(in.point(hole, path));
@@ -58,7 +176,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
 
     if (const Json* value = f.member("grid")) {
         Fields g(*value, f.path_of("grid"), in.source());
-        JobInput::known_keys(g, {"origin", "countX", "countY", "spacingX", "spacingY", "rotation"});
+        JobInput::known_keys(g, grid_keys);
         const Vec2 origin = in.point(g, "origin");
         const int nx = g.integer("countX");
         if (nx < 1) g.fail("countX", "countX must be 1 or more");
@@ -75,7 +193,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
 
     if (const Json* value = f.member("boltCircle")) {
         Fields b(*value, f.path_of("boltCircle"), in.source());
-        JobInput::known_keys(b, {"centre", "radius", "count", "startAngle"});
+        JobInput::known_keys(b, bolt_circle_keys);
         const Vec2 centre = in.point(b, "centre");
         const double radius = in.length(b, "radius");
         if (radius <= 0) b.fail("radius", "radius must be > 0");
@@ -91,7 +209,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
 
     if (const Json* value = f.member("line")) {
         Fields l(*value, f.path_of("line"), in.source());
-        JobInput::known_keys(l, {"start", "end", "count"});
+        JobInput::known_keys(l, line_keys);
         const Vec2 a = in.point(l, "start");
         const Vec2 b = in.point(l, "end");
         const int count = l.integer("count");
@@ -171,13 +289,24 @@ DrillPlanes resolve_planes(const DrillParams& p) {
     return z;
 }
 
+std::vector<ObjectSpec> DrillOp::objects() {
+    return {
+        {.name = "drill", .description = "drill a list of holes with one cycle", .keys = all_drill_keys(),
+         .groups = {{.keys = {"holes", "grid", "boltCircle", "line"}, .min = 1, .max = 4,
+                     .description = "a drill operation needs holes"}},
+         .rules = drill_rules()},
+        {.name = "drillHole", .description = "a hole {\"x\": x, \"y\": y} (or a point [x, y])",
+         .keys = {std::begin(hole_keys), std::end(hole_keys)}, .also_point = true},
+        {.name = "drillGrid", .description = "holes row by row, X fastest", .keys = {std::begin(grid_keys), std::end(grid_keys)}},
+        {.name = "drillBoltCircle", .description = "holes counter-clockwise on a circle",
+         .keys = {std::begin(bolt_circle_keys), std::end(bolt_circle_keys)}},
+        {.name = "drillLine", .description = "holes evenly spaced from start to end",
+         .keys = {std::begin(line_keys), std::end(line_keys)}},
+    };
+}
+
 DrillOp DrillOp::read(Fields& f, const JobInput& in) {
-    std::vector<std::string_view> keys = {"type", "tool", "comment", "cycle", "retractPlane", "referencePlane",
-                                          "safeDistanceIsAbsolute", "endDepth", "endDepthIsAbsolute", "drillTip",
-                                          "output", "order", "holes", "grid", "boltCircle", "line"};
-    for (const auto& d : drill_fields) keys.push_back(d.key);
-    for (auto key : keys) f.has(key);
-    f.finish();
+    JobInput::known_keys(f, all_drill_keys());
     const Tool& tool = in.tool(f);
 
     DrillOp op;

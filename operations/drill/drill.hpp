@@ -33,6 +33,8 @@ struct DrillOp {
     static constexpr std::string_view type = "drill";
     // Reads one operation of this type (its "type" is already read).
     static DrillOp read(json::Fields& f, const JobInput& input);
+    // The objects of its input, for the JSON Schema: the operation ("drill") first.
+    static std::vector<ObjectSpec> objects();
     std::string path;          // JSON path of the operation, for messages
     std::string comment;
     int tool = 0;

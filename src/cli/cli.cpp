@@ -21,6 +21,7 @@
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
+#include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
 
 #ifndef CAMGEN_VERSION
@@ -168,6 +169,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     CLI::App app{"camgen: turns a JSON job into the NC program of a machine.\n"
                  "  camgen job.json --machine wabeco -o part.knc   (nccad files end in .knc)\n"
                  "  camgen job.json --machine fanuc -o part.nc\n"
+                 "  camgen schema job > job.schema.json           (JSON Schema of job files; machine: of machine files)\n"
                  "Exit codes: 0 done, 1 invalid job or machine file, 2 usage, 3 file error.",
                  "camgen"};
     app.set_version_flag("--version", std::string("camgen ") + CAMGEN_VERSION);
@@ -196,6 +198,12 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     verify->add_option("--units", vo.units, "The units the program was written in, if not the machine's (as camgen --units)")
         ->check(CLI::IsMember({"mm", "inch"}));
 
+    std::string schema_name;
+    CLI::App* schema = app.add_subcommand(
+        "schema", "Print the JSON Schema (draft 2020-12) of job files (schema job) or machine files (schema machine), "
+                  "for editors and validators");
+    schema->add_option("file", schema_name, "job or machine")->required();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -205,6 +213,18 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
 
     try {
         if (verify->parsed()) return run_verify(vo, in, out);
+        if (schema->parsed()) {
+            const std::optional<std::string> text = schema_text(schema_name);
+            if (!text) {
+                const auto names = schema_names();
+                const auto hint = json::did_you_mean(schema_name, names);
+                err << fmt::format("camgen: unknown schema \"{}\"{}; camgen schema takes {} or {}\n", schema_name,
+                                   hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", names.front(), names.back());
+                return exit_usage;
+            }
+            out << *text;
+            return exit_ok;
+        }
         if (o.list_machines) {
             for (const auto& [name, description] : list_machines()) out << fmt::format("{:<12}{}\n", name, description);
             return exit_ok;

@@ -485,6 +485,11 @@ void Fields::finish() const {
     fail(*first, detail);
 }
 
+void Fields::finish(std::span<const KeySpec> table) const {
+    for (const auto& k : table) has(k.key);
+    finish();
+}
+
 void Fields::fail_choice(std::string_view key, const std::string& got,
                          const std::vector<std::string>& names) const {
     std::string detail = "\"" + got + "\" is not one of ";

@@ -1,6 +1,7 @@
 #include "camgen/job/job_input.hpp"
 
 #include <cmath>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -9,8 +10,51 @@
 namespace camgen {
 
 namespace {
+
 constexpr double mm_per_inch = 25.4;
+
+// The top-level keys of a job.
+constexpr KeySpec job_keys[] = {
+    {.key = "$schema", .type = JsonType::string,
+     .description = "the JSON Schema of the file, for editors (camgen ignores it)"},
+    {.key = "name", .type = JsonType::string,
+     .description = "job name, for the NC program header (default: the file name without extension)"},
+    {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
+     .description = "the units of every length and feed in the file"},
+    {.key = "clearance", .quantity = Quantity::length, .required = true,
+     .description = "absolute Z that is safe for moves between operations"},
+    {.key = "tools", .type = JsonType::array, .required = true, .ref = "tool", .min_items = 1,
+     .description = "the tool table, at least one tool"},
+    {.key = "operations", .type = JsonType::array, .required = true, .ref = "operation",
+     .description = "what to do, in order (may be empty)"},
+};
+
+// The keys of a tool.
+constexpr KeySpec tool_keys[] = {
+    {.key = "number", .type = JsonType::integer, .quantity = Quantity::count, .required = true,
+     .min = Bound{1, true}, .description = "tool number (T word), unique within the job"},
+    {.key = "type", .type = JsonType::string, .default_json = "\"drill\"", .choices = &choices_of<tool_types>,
+     .description = "kind of tool"},
+    {.key = "diameter", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
+     .description = "cutting diameter"},
+    {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+     .description = "included point angle (needed by drillTip)"},
+    {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
+     .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
+    {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
+     .choices = &choices_of<spindle_directions>, .description = "spindle direction: cw (M3) or ccw (M4)"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "free text for the tool list"},
+};
+
 }  // namespace
+
+std::vector<ObjectSpec> JobInput::objects() {
+    return {
+        {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
+         .keys = {std::begin(job_keys), std::end(job_keys)}},
+        {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)}},
+    };
+}
 
 JobInput::JobInput(std::string_view text, const std::string& source_name)
     : root_(json::parse(text, source_name)), source_{source_name, json::LineMap(text)} {}
@@ -26,15 +70,12 @@ std::string JobInput::describe(const Json& value) {
     }
 }
 
-void JobInput::known_keys(Fields& f, std::initializer_list<std::string_view> keys) {
-    for (auto key : keys) f.has(key);
-    f.finish();
-}
+void JobInput::known_keys(Fields& f, std::span<const KeySpec> table) { f.finish(table); }
 
-JobInput::Fields JobInput::read_header(std::initializer_list<std::string_view> other_top_keys) {
+JobInput::Fields JobInput::read_header() {
     Fields top(root_, "", source_);
-    for (auto key : other_top_keys) top.has(key);
-    known_keys(top, {"name", "units", "clearance", "tools"});
+    known_keys(top, job_keys);
+    top.optional_string("$schema");
     if (auto name = top.optional_string("name")) header_.name = *name;
     header_.units = top.choice("units", unit_names, Units::mm);
     scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
@@ -51,7 +92,7 @@ JobInput::Fields JobInput::read_header(std::initializer_list<std::string_view> o
 
 Tool JobInput::read_tool(const Json& value, const std::string& path) {
     Fields f(value, path, source_);
-    known_keys(f, {"number", "type", "diameter", "tipAngle", "rpm", "direction", "comment"});
+    known_keys(f, tool_keys);
     Tool tool;
     tool.path = path;
     tool.number = f.integer("number");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -13,7 +14,172 @@ namespace camgen {
 
 namespace {
 
-const char* format_names[] = {"xyz", "ijk", "feed", "rpm", "dwell", "angle", "code"};
+// The choices of a machine file that are not words of the vocabulary.
+enum class LineBreak { lf, crlf };
+constexpr Named<LineBreak> line_breaks[] = {
+    {LineBreak::lf, "\n", "LF"},
+    {LineBreak::crlf, "\r\n", "CR LF"},
+};
+constexpr Named<char> decimal_marks[] = {
+    {'.', ".", "point"},
+    {',', ",", "comma"},
+};
+constexpr Named<nc::CommentStyle> comment_styles[] = {
+    {nc::CommentStyle::parentheses, "parentheses", "(text)"},
+    {nc::CommentStyle::semicolon, "semicolon", "; text"},
+};
+constexpr Named<FeedUnit> feed_units[] = {
+    {FeedUnit::per_minute, "mm/min", "mm/min (in/min for inch output)"},
+    {FeedUnit::tenth_mm_per_second, "0.1mm/s", "0.1 mm/s (nccad)"},
+};
+constexpr Named<ArcFormat> arc_formats[] = {
+    {ArcFormat::ijk_relative, "ijk-relative", "I/J/K: the centre minus the start"},
+    {ArcFormat::ijk_absolute, "ijk-absolute", "I/J/K: the centre's coordinates"},
+    {ArcFormat::radius, "radius", "R, negative over 180 degrees"},
+    {ArcFormat::nccad_angle, "nccad-angle", "G02 D<sweep> I J, no end point"},
+};
+constexpr Named<ChordToleranceMode> chord_tolerance_modes[] = {
+    {ChordToleranceMode::absolute, "absolute", "always chordTolerance"},
+    {ChordToleranceMode::operation, "operation", "the operation's tolerance, capped by chordTolerance"},
+};
+constexpr Named<BoreDwellFeedOut> bore_dwell_feed_outs[] = {
+    {BoreDwellFeedOut::to_safe, "safe", "bore-dwell feeds out to R (Fanuc)"},
+    {BoreDwellFeedOut::to_retract, "retract", "bore-dwell feeds out to the retract level (LinuxCNC)"},
+};
+
+// The top-level keys of a machine file.
+constexpr KeySpec machine_keys[] = {
+    {.key = "description", .type = JsonType::string, .required = true, .description = "one line for --list-machines"},
+    {.key = "dialect", .type = JsonType::string, .required = true,
+     .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain"},
+    {.key = "extension", .type = JsonType::string, .required = true,
+     .description = "suggested file extension, without the dot"},
+    {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
+     .description = "output units"},
+    {.key = "globals", .type = JsonType::object, .ref = "globals", .description = "CNC-Calc post processor globals"},
+    {.key = "comments", .type = JsonType::string, .default_json = "\"parentheses\"",
+     .choices = &choices_of<comment_styles>, .description = "comments in parentheses or after a semicolon"},
+    {.key = "commentMaxLength", .type = JsonType::integer, .quantity = Quantity::count, .default_json = "0",
+     .description = "the longest comment written, in characters (0: no limit)"},
+    {.key = "modalMotion", .type = JsonType::boolean, .default_json = "true",
+     .description = "false writes G0/G1/G2/G3 on every motion block"},
+    {.key = "formats", .type = JsonType::object, .ref = "formats", .description = "number formats per word family"},
+    {.key = "inchFormats", .type = JsonType::object, .ref = "formats",
+     .description = "number formats per word family for inch output (default: formats)"},
+    {.key = "feedUnit", .type = JsonType::string, .default_json = "\"mm/min\"", .choices = &choices_of<feed_units>,
+     .description = "how feeds are written: mm/min (in/min for inch output) or 0.1 mm/s (nccad)"},
+    {.key = "limits", .type = JsonType::object, .ref = "limits", .description = "feed and speed limits"},
+    {.key = "arcs", .type = JsonType::object, .ref = "arcs", .description = "how arcs are written and when they are broken"},
+    {.key = "notes", .type = JsonType::array, .items = JsonType::string,
+     .description = "free text about the machine's choices, shown by --describe-machine"},
+    {.key = "drilling", .type = JsonType::object, .ref = "drilling",
+     .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
+    {.key = "settings", .type = JsonType::object, .description = "dialect settings, read by the dialect code"},
+};
+
+// The keys of globals.
+constexpr KeySpec globals_keys[] = {
+    {.key = "decimalMark", .type = JsonType::string, .default_json = "\".\"", .choices = &choices_of<decimal_marks>,
+     .description = "the decimal mark of numbers"},
+    {.key = "linebreak", .type = JsonType::string, .default_json = "\"\\n\"", .choices = &choices_of<line_breaks>,
+     .description = "the end of a block"},
+    {.key = "variableDelimeter", .type = JsonType::string, .default_json = "\" \"",
+     .description = "the separator between words"},
+    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.002",
+     .description = "the arc tolerance: every arc block's start and end radii agree within it after rounding"},
+    {.key = "showSequenceNumbers", .type = JsonType::boolean, .default_json = "false",
+     .description = "number the blocks"},
+    {.key = "sequenceNumberStart", .type = JsonType::integer, .quantity = Quantity::count, .default_json = "10",
+     .description = "the first block number"},
+    {.key = "sequenceNumberPrefix", .type = JsonType::string, .default_json = "\"N\"",
+     .description = "written before a block number (\"\" for Heidenhain)"},
+    {.key = "sequenceNumberIncrement", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .default_json = "5", .description = "the step between block numbers"},
+};
+
+// The keys of formats and inchFormats: one format per word family.
+constexpr KeySpec format_keys[] = {
+    {.key = "xyz", .type = JsonType::object, .ref = "format", .description = "coordinates"},
+    {.key = "ijk", .type = JsonType::object, .ref = "format", .description = "arc centres"},
+    {.key = "feed", .type = JsonType::object, .ref = "format", .description = "feeds"},
+    {.key = "rpm", .type = JsonType::object, .ref = "format", .description = "spindle speeds"},
+    {.key = "dwell", .type = JsonType::object, .ref = "format", .description = "dwell times"},
+    {.key = "angle", .type = JsonType::object, .ref = "format", .description = "angles (nccad D)"},
+    {.key = "code", .type = JsonType::object, .ref = "format", .description = "G and M codes"},
+};
+
+// The keys of one format (CNC-Calc createFormat).
+constexpr KeySpec format_spec_keys[] = {
+    {.key = "prefix", .type = JsonType::string, .description = "written before the number"},
+    {.key = "width", .type = JsonType::integer, .quantity = Quantity::count,
+     .description = "minimum digits of the integer part"},
+    {.key = "zeropad", .type = JsonType::boolean, .description = "pad the integer part with 0 (else with spaces)"},
+    {.key = "decimals", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
+     .max = Bound{12, true}, .description = "maximum decimals (exact count with forceDecimal)"},
+    {.key = "scale", .quantity = Quantity::factor, .min = Bound{0, false}, .description = "the value is multiplied by it"},
+    {.key = "forceDecimal", .type = JsonType::boolean, .description = "always write every decimal (3 -> 3.000)"},
+    {.key = "forceSign", .type = JsonType::boolean, .description = "write + before positive values"},
+};
+
+// The keys of limits.
+constexpr KeySpec limits_keys[] = {
+    {.key = "maxFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "10000",
+     .description = "feeds above it are clamped"},
+    {.key = "minFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "1",
+     .description = "feeds below it are clamped; not above maxFeed"},
+    {.key = "rapidRate", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "5000",
+     .description = "rapid speed, for time estimates"},
+    {.key = "maxRpm", .quantity = Quantity::speed, .default_json = "0", .description = "the highest spindle speed (0: no limit)"},
+};
+
+// The keys of arcs.
+constexpr KeySpec arcs_keys[] = {
+    {.key = "format", .type = JsonType::string, .default_json = "\"ijk-relative\"", .choices = &choices_of<arc_formats>,
+     .description = "how an arc block gives its centre"},
+    {.key = "maxSweep", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{360, true},
+     .default_json = "360", .description = "sweep per arc block; longer arcs are split evenly"},
+    {.key = "helical", .type = JsonType::boolean, .default_json = "true", .description = "false: helices become lines"},
+    {.key = "forceXY", .type = JsonType::boolean, .default_json = "true",
+     .description = "write both end coordinates of the plane on every arc block"},
+    {.key = "chordTolerance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.005",
+     .description = "how far the lines of a broken arc may stray from it"},
+    {.key = "chordToleranceMode", .type = JsonType::string, .default_json = "\"operation\"",
+     .choices = &choices_of<chord_tolerance_modes>,
+     .description = "absolute: always chordTolerance; operation: the operation's tolerance, capped by chordTolerance"},
+    {.key = "maxRadius", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "an arc of larger radius becomes lines (default: no limit)"},
+    {.key = "minRadius", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "an arc of smaller radius becomes one straight move (default: no limit)"},
+    {.key = "minLength", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a shorter arc becomes one straight move (default: no limit)"},
+    {.key = "maxSegmentLength", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "no line of a broken arc is longer (default: no limit)"},
+    {.key = "minSegments", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{100000, true}, .default_json = "1", .description = "a broken arc has at least this many lines"},
+    {.key = "planes", .type = JsonType::array, .default_json = "[\"xy\", \"xz\", \"yz\"]",
+     .choices = &choices_of<plane_names>, .description = "the planes the control does arcs in; others become lines"},
+};
+
+// The keys of drilling.
+constexpr KeySpec drilling_keys[] = {
+    {.key = "peckClearance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
+     .description = "re-approach clearance of longhand deep pecks and back-off of chip-break"},
+    {.key = "boreDwellFeedOut", .type = JsonType::string, .default_json = "\"safe\"",
+     .choices = &choices_of<bore_dwell_feed_outs>,
+     .description = "where a longhand bore-dwell feeds out to: safe (R, Fanuc) or retract (LinuxCNC)"},
+    {.key = "cycles", .type = JsonType::array, .ref = "drillingCycle",
+     .description = "the machine's drilling cycles; a kind not listed is written longhand"},
+};
+
+// The keys of one drilling cycle.
+constexpr KeySpec cycle_keys[] = {
+    {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G83, CYCLE83)"},
+    {.key = "kind", .type = JsonType::string, .required = true, .choices = &choices_of<cycle_kinds>,
+     .description = "the cycle kind it writes"},
+    {.key = "canned", .type = JsonType::boolean, .default_json = "true", .description = "false: written longhand"},
+    {.key = "fields", .type = JsonType::array, .choices = &drill_field_keys,
+     .description = "the drilling fields the canned cycle carries"},
+};
 
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
@@ -36,11 +202,27 @@ nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base) {
     }
     base.force_decimal = f.boolean("forceDecimal", base.force_decimal);
     base.force_sign = f.boolean("forceSign", base.force_sign);
-    f.finish();
+    f.finish(format_spec_keys);
     return base;
 }
 
 }  // namespace
+
+std::vector<ObjectSpec> machine_objects() {
+    auto spec = [](std::string_view name, std::string_view description, std::span<const KeySpec> keys) {
+        return ObjectSpec{.name = name, .description = description, .keys = {keys.begin(), keys.end()}};
+    };
+    return {
+        spec("machine", "a camgen machine file: the settings of one control", machine_keys),
+        spec("globals", "block layout and numbers", globals_keys),
+        spec("formats", "number formats per word family", format_keys),
+        spec("format", "a number format (CNC-Calc createFormat)", format_spec_keys),
+        spec("limits", "feed and speed limits", limits_keys),
+        spec("arcs", "arc output and arc breaking", arcs_keys),
+        spec("drilling", "drilling cycles and longhand settings", drilling_keys),
+        spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
+    };
+}
 
 nc::Format Machine::format(const std::string& key) const {
     nc::FormatSpec spec = default_format(key);
@@ -78,10 +260,10 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.units = f.choice("units", unit_names, Units::mm);
     if (const auto* g = f.member("globals")) {
         json::Fields gf(*g, "/globals", source);
-        auto mark = gf.optional_string("decimalMark").value_or(".");
-        if (mark != "." && mark != ",") gf.fail("decimalMark", "decimalMark must be \".\" or \",\"");
-        m.decimal_mark = mark[0];
-        m.block.line_break = gf.choice<std::string>("linebreak", {{"\n", "\n"}, {"\r\n", "\r\n"}}, std::string("\n"));
+        const auto mark = value_named(decimal_marks, gf.optional_string("decimalMark").value_or("."));
+        if (!mark) gf.fail("decimalMark", "decimalMark must be \".\" or \",\"");
+        m.decimal_mark = *mark;
+        m.block.line_break = std::string(name_of(line_breaks, gf.choice("linebreak", line_breaks, LineBreak::lf)));
         m.block.separator = gf.optional_string("variableDelimeter").value_or(" ");
         if (auto t = gf.optional_number("tolerance")) {
             if (!(*t > 0)) gf.fail("tolerance", "tolerance must be > 0");
@@ -94,11 +276,9 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (*v < 1) gf.fail("sequenceNumberIncrement", "sequenceNumberIncrement must be >= 1");
             m.block.sequence_increment = *v;
         }
-        gf.finish();
+        gf.finish(globals_keys);
     }
-    m.block.comment_style = f.choice<nc::CommentStyle>(
-        "comments", {{"parentheses", nc::CommentStyle::parentheses}, {"semicolon", nc::CommentStyle::semicolon}},
-        nc::CommentStyle::parentheses);
+    m.block.comment_style = f.choice("comments", comment_styles, nc::CommentStyle::parentheses);
     if (auto v = f.optional_integer("commentMaxLength")) m.block.comment_max_length = *v;
     m.modal_motion = f.boolean("modalMotion", true);
     for (const char* group : {"formats", "inchFormats"}) {
@@ -106,16 +286,16 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         if (!fm) continue;
         json::Fields ff(*fm, std::string("/") + group, source);
         std::string pre = std::string(group) == "inchFormats" ? "inch." : "";
-        for (const char* key : format_names) {
+        for (const auto& format_key : format_keys) {
+            const std::string key(format_key.key);
             if (const auto* spec = ff.member(key)) {
                 nc::FormatSpec base = pre.empty() ? default_format(key) : m.formats.count(key) ? m.formats[key] : default_format(key);
                 m.formats[pre + key] = read_format(json::Fields(*spec, ff.path_of(key), source), base);
             }
         }
-        ff.finish();
+        ff.finish(format_keys);
     }
-    m.feed_unit = f.choice<FeedUnit>("feedUnit", {{"mm/min", FeedUnit::per_minute}, {"0.1mm/s", FeedUnit::tenth_mm_per_second}},
-                                     FeedUnit::per_minute);
+    m.feed_unit = f.choice("feedUnit", feed_units, FeedUnit::per_minute);
     if (const auto* l = f.member("limits")) {
         json::Fields lf(*l, "/limits", source);
         auto positive = [&](const char* key, double& out) {
@@ -129,16 +309,11 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         positive("rapidRate", m.limits.rapid_rate);
         if (auto v = lf.optional_number("maxRpm")) m.limits.max_rpm = *v;
         if (m.limits.min_feed > m.limits.max_feed) lf.fail("minFeed", "minFeed is above maxFeed");
-        lf.finish();
+        lf.finish(limits_keys);
     }
     if (const auto* a = f.member("arcs")) {
         json::Fields af(*a, "/arcs", source);
-        m.arcs.format = af.choice<ArcFormat>("format",
-                                             {{"ijk-relative", ArcFormat::ijk_relative},
-                                              {"ijk-absolute", ArcFormat::ijk_absolute},
-                                              {"radius", ArcFormat::radius},
-                                              {"nccad-angle", ArcFormat::nccad_angle}},
-                                             ArcFormat::ijk_relative);
+        m.arcs.format = af.choice("format", arc_formats, ArcFormat::ijk_relative);
         if (auto v = af.optional_number("maxSweep")) {
             if (!(*v > 0 && *v <= 360)) af.fail("maxSweep", "maxSweep must be in (0, 360] degrees");
             m.arcs.max_sweep = *v;
@@ -149,9 +324,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (!(*v > 0)) af.fail("chordTolerance", "chordTolerance must be > 0");
             m.arcs.chord_tolerance = *v;
         }
-        m.arcs.tolerance_mode = af.choice<ChordToleranceMode>(
-            "chordToleranceMode", {{"absolute", ChordToleranceMode::absolute}, {"operation", ChordToleranceMode::operation}},
-            ChordToleranceMode::operation);
+        m.arcs.tolerance_mode = af.choice("chordToleranceMode", chord_tolerance_modes, ChordToleranceMode::operation);
         auto positive = [&](const char* key, std::optional<double>& out) {
             if (auto v = af.optional_number(key)) {
                 if (!(*v > 0)) af.fail(key, fmt::format("{} must be > 0 (leave it out for no limit)", key));
@@ -178,7 +351,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 else json::fail(source, fmt::format("/arcs/planes/{}", i), "expected \"xy\", \"xz\" or \"yz\"");
             }
         }
-        af.finish();
+        af.finish(arcs_keys);
     }
     if (m.arcs.format == ArcFormat::nccad_angle) {
         // G02 D<angle> I J has no end point and no K: it cannot say "helix" or "other plane".
@@ -201,9 +374,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (!(*v > 0)) df.fail("peckClearance", "peckClearance must be > 0");
             m.peck_clearance = *v;
         }
-        m.bore_dwell_feed_out = df.choice<BoreDwellFeedOut>(
-            "boreDwellFeedOut", {{"safe", BoreDwellFeedOut::to_safe}, {"retract", BoreDwellFeedOut::to_retract}},
-            BoreDwellFeedOut::to_safe);
+        m.bore_dwell_feed_out = df.choice("boreDwellFeedOut", bore_dwell_feed_outs, BoreDwellFeedOut::to_safe);
         if (const auto* cycles = df.member("cycles")) {
             if (!cycles->is_array()) df.fail("cycles", "expected an array");
             for (size_t i = 0; i < cycles->size(); ++i) {
@@ -231,17 +402,17 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                         }
                     }
                 }
-                cf.finish();
+                cf.finish(cycle_keys);
                 m.drilling.push_back(std::move(c));
             }
         }
-        df.finish();
+        df.finish(drilling_keys);
     }
     if (const auto* s = f.member("settings")) {
         if (!s->is_object()) f.fail("settings", "expected an object");
         m.dialect_settings = *s;
     }
-    f.finish();
+    f.finish(machine_keys);
     return m;
 }
 

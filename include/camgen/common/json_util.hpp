@@ -3,6 +3,7 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -11,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camgen/common/key_spec.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen::json {
@@ -101,6 +103,8 @@ public:
     [[noreturn]] void fail(std::string_view key, const std::string& detail) const;
     // Reports keys that were never read. Call after reading every known key.
     void finish() const;
+    // Marks the keys of `table` as known, then reports any other key (finish()).
+    void finish(std::span<const KeySpec> table) const;
 
     // The error for a string that is none of `names`, with a "did you mean" hint.
     [[noreturn]] void fail_choice(std::string_view key, const std::string& got,

@@ -2,14 +2,16 @@
 // Reading a job file: the parsed document, its header and tool table, and the checked
 // accessors every operation's reader uses (lengths in the file's units, points, arrays), each
 // error naming the JSON path and line.
-#include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "camgen/common/json_util.hpp"
+#include "camgen/common/key_spec.hpp"
 #include "camgen/job/job.hpp"
 
 namespace camgen {
@@ -25,9 +27,9 @@ public:
     // Parses `text`. Throws InputError naming the line for a syntax error.
     JobInput(std::string_view text, const std::string& source_name);
 
-    // Reads the header and the tool table (the top-level keys besides "operations", which are
-    // marked known). Returns the top-level object's fields for the caller to read on.
-    Fields read_header(std::initializer_list<std::string_view> other_top_keys);
+    // Reads the header and the tool table (the top-level keys besides "operations"; "$schema"
+    // is accepted and ignored). Returns the top-level object's fields for the caller to read on.
+    Fields read_header();
     const JobHeader& header() const { return header_; }
     JobHeader take_header() { return std::move(header_); }
     const json::Source& source() const { return source_; }
@@ -55,9 +57,12 @@ public:
 
     // What a JSON value is, for messages ("a string \"x\"", "an array").
     static std::string describe(const Json& value);
-    // Marks `keys` as known and reports any other key of the object, so that a misspelt key
-    // is reported (with a hint) before the "missing key" error it would otherwise cause.
-    static void known_keys(Fields& f, std::initializer_list<std::string_view> keys);
+    // Marks the keys of `table` as known and reports any other key of the object, so that a
+    // misspelt key is reported (with a hint) before the "missing key" error it would otherwise cause.
+    static void known_keys(Fields& f, std::span<const KeySpec> table);
+    // The objects the header is made of: the top level ("job", its "operations" items being
+    // the "operation" object) and a tool ("tool").
+    static std::vector<ObjectSpec> objects();
 
 private:
     Tool read_tool(const Json& value, const std::string& path);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camgen/common/key_spec.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 #include "camgen/post/longhand.hpp"
 #include "camgen/nc/block_writer.hpp"
@@ -96,6 +97,10 @@ const std::vector<EmbeddedMachine>& embedded_machines();
 
 // Parses a machine file's text. Throws InputError naming the JSON path and line.
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
+
+// The objects of a machine file, for the JSON Schema: the top level ("machine") first, then
+// globals, formats, format, limits, arcs, drilling and drillingCycle.
+std::vector<ObjectSpec> machine_objects();
 
 // A machine by name (compiled in) or by path to a JSON file (contains '/' or ends in .json).
 // Throws InputError for an unknown name, IoError for an unreadable file.

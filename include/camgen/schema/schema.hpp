@@ -1,0 +1,27 @@
+#pragma once
+// JSON Schemas (draft 2020-12) of job and machine files, generated from the key tables that
+// the readers use (ObjectSpec: job header and tools in src/job/, each operation type in
+// operations/<type>/, machine files in src/post/machine.cpp), so that an editor or any JSON
+// Schema validator checks a file with the same keys, types, bounds and choices as camgen.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace camgen {
+
+// The schema of a job file.
+nlohmann::ordered_json job_schema();
+
+// The schema of a machine file.
+nlohmann::ordered_json machine_schema();
+
+// The names `camgen schema` takes, in order: "job", "machine".
+std::vector<std::string> schema_names();
+
+// The schema named `name` as text (2-space indent, trailing newline); nullopt for an unknown name.
+std::optional<std::string> schema_text(std::string_view name);
+
+}  // namespace camgen
