@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes a camgen job with N G83-style holes (R2, Z-12, Q3, F100, from Z10), the same
-holes as ../shared/bench/freecad_grbl_post.py and linuxcnc_gen.py: usage gen_holes.py N > job.json"""
+holes as the FreeCAD grbl post and the LinuxCNC generator it is compared with: usage gen_holes.py N > job.json"""
 import json
 import sys
 

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/nc/format.hpp"
 #include "camgen/reader/reader.hpp"

@@ -16,6 +16,7 @@
 #include "camgen/events/events.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/machine.hpp"
+#include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "operations/registry.hpp"
 #include "camgen/cli/output.hpp"

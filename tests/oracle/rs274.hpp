@@ -1,7 +1,8 @@
 #pragma once
 // Runs LinuxCNC's standalone interpreter (rs274, Debian package linuxcnc-uspace) on an NC
 // program and reads back the canonical machining calls it prints: the oracle for camgen's
-// ISO canned cycles and their longhand expansion (REFERENCE.md §3).
+// ISO canned cycles and their longhand expansion (LinuxCNC follows Fanuc: G98 returns to the
+// initial Z, G99 to R; pecks are measured from R).
 #include <optional>
 #include <string>
 #include <vector>

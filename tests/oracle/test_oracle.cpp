@@ -162,14 +162,15 @@ TEST_CASE("canned cycles on linuxcnc move exactly as camgen's longhand: G98/G99,
     }
 }
 
-TEST_CASE("REFERENCE worked example: G99 G73 X10 Y10 Z-7 R2 Q3 and its longhand") {
+TEST_CASE("worked example: G99 G73 X10 Y10 Z-7 R2 Q3 and its longhand") {
     const std::string rs274 = rs274_path();
     DrillCycle c = make_cycle(CycleKind::chip_break, r_plane, CycleOutput::canned);
     const std::string canned = post(c, r_plane, {{10, 10}});
     REQUIRE(contains(canned, "G99 G73 X10 Y10 Z-7 R2 Q3 F100\n"));
     c.output = CycleOutput::longhand;
     const std::string longhand = post(c, r_plane, {{10, 10}});
-    // From (0, 0, 2): across to the hole at R, then the numbers of REFERENCE.md §3.
+    // From (0, 0, 2): across to the hole at R, then pecks of 3 mm from R with a back-off of
+    // the peck clearance after each, the last one ending at Z-7 (LinuxCNC G73 semantics).
     const std::vector<std::pair<char, double>> expected = {{'T', 2},  {'F', -1},     {'T', -0.746}, {'F', -4},
                                                           {'T', -3.746}, {'F', -7}, {'T', 2}};
     for (const std::string& program : {canned, longhand}) {

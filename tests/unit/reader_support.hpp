@@ -7,6 +7,7 @@
 
 #include "camgen/common/error.hpp"
 #include "operations/registry.hpp"
+#include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"
 

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/analysis/stats.hpp"

@@ -11,6 +11,7 @@
 
 #include <doctest/doctest.h>
 
+#include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "operations/registry.hpp"
 #include "camgen/post/post.hpp"

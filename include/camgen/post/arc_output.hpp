@@ -10,7 +10,7 @@
 
 namespace camgen {
 
-// ---- arc-breaking rules (seeds/arc-breaking-rules.txt), shared by every post ----
+// ---- arc-breaking rules, shared by every post: which arcs a machine writes as arcs, as lines or as one straight move ----
 
 // The chord tolerance for one arc: the machine's, or with ChordToleranceMode::operation the
 // operation's tolerance when it has one, capped by the machine's (mm).

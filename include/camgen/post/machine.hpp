@@ -38,11 +38,13 @@ struct MachineLimits {
     double max_rpm = 0.0;              // 0: no limit
 };
 
-// Where the chord tolerance for arcs that become lines comes from (seeds/arc-breaking-rules.txt):
+// Where the chord tolerance for arcs that become lines comes from (CIRC_TOL of the arc rules):
 // always the machine's, or the operation's tolerance capped by the machine's.
 enum class ChordToleranceMode { absolute, operation };
 
-// Arc output and arc-breaking settings (seeds/arc-breaking-rules.txt). Lengths mm, angles degrees.
+// Arc output and arc-breaking settings: the arc form, the longest sweep per block, which planes
+// and helices the control takes, and the limits below which or above which an arc becomes one
+// straight move or straight segments. Lengths mm, angles degrees.
 struct ArcSettings {
     ArcFormat format = ArcFormat::ijk_relative;
     double max_sweep = 360.0;          // degrees per block; longer arcs are split evenly

@@ -1,5 +1,5 @@
 #pragma once
-// Reading NC programs back (DESIGN.md, pipeline step 6): the text a post wrote, parsed with the
+// Reading NC programs back (the last step of the pipeline, docs/design.md): the text a post wrote, parsed with the
 // same machine file into events. Used by `camgen verify`, the round-trip tests and the SVG
 // backplot. The machine's globals set up the reader as the CNC-Calc manual (section 7) sets up
 // a backplot: arc type, decimal mark, formats and their scales, block style, comments.

@@ -1,0 +1,44 @@
+#pragma once
+// Comparing two traces (verify --job): does a program make the motion its job asks for?
+#include <optional>
+#include <string>
+
+#include "camgen/analysis/trace.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/reader/reader.hpp"
+
+namespace camgen {
+
+// How close two traces must be.
+struct CompareTolerance {
+    double position = 0.001;  // mm, block end points (plus each step's uncertainty)
+    double path = 0.001;      // mm, points inside arcs (an arc may be written as chords)
+    double feed = 0.5;        // mm/min
+    double dwell = 0.0005;    // s
+    double rpm = 0.5;         // rev/min
+};
+
+// Tolerances for comparing a job with a program for `machine`: `position` mm for end points
+// (raised to the distance that half a unit of the last decimal on each axis makes, where the
+// machine writes fewer decimals; position 0 asks for exactly that), and for points
+// inside arcs that plus the machine's arc tolerance and chord tolerance (arcs that become
+// lines, arcs whose centres are rounded).
+CompareTolerance compare_tolerance(const Machine& machine, double position = 0.001);
+// The same for a program read with this resolution (read_program's coarsest resolution).
+CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution& resolution, double position = 0.001);
+
+// The first difference between two traces.
+struct Mismatch {
+    int line = 0;         // the actual program's line, where known
+    std::string message;  // what was expected and what the program does
+};
+
+// Compares the motion: the same tool changes, spindle states, dwells, and the same path in
+// the same order, rapid where rapid and at the same feed where feeding. Paths are compared
+// as positions visited, not as blocks: an arc written as two half arcs or as chords matches
+// the arc it stands for; every end point of each side must lie on the other's path, in
+// order, and points sampled along arcs too. Moves from an unknown position compare only by
+// their end.
+std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tolerance);
+
+}  // namespace camgen
