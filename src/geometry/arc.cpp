@@ -9,7 +9,6 @@ namespace camgen {
 
 namespace {
 constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double deg = 180.0 / std::numbers::pi;
 
 }  // namespace
 

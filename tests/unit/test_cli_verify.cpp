@@ -142,7 +142,8 @@ TEST_CASE("--stats prints the statistics to stderr; the program is unchanged") {
 
 TEST_CASE("--stats, --plot and verify read every machine's programs; an unknown dialect is refused") {
     fs::path dir = test::scratch("verify-every-machine");
-    for (const auto& [name, description] : list_machines()) {
+    for (const auto& listed : list_machines()) {
+        const std::string& name = listed.first;
         CAPTURE(name);
         Machine m = load_machine(name);
         CHECK(has_reader(m.dialect));

@@ -317,7 +317,8 @@ TEST_CASE("README's cycle table equals the machines' drilling tables and --descr
     const std::string table = cycle_table();
     INFO("README.md must contain this table (under Machines):\n" << table);
     CHECK(has(read_file(CAMGEN_SOURCE_DIR "/README.md"), table));
-    for (const auto& [name, description] : list_machines()) {
+    for (const auto& listed : list_machines()) {
+        const std::string& name = listed.first;
         const Machine m = load_machine(name);
         const std::string d = describe_machine(m);
         for (CycleKind k : {CycleKind::drill, CycleKind::deep, CycleKind::tap, CycleKind::bore_dwell}) {

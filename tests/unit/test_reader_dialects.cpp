@@ -102,7 +102,9 @@ TEST_CASE("every canned cycle of every machine reads back as the motion of the j
     for (const Expect& e : expect) {
         CAPTURE(e.machine);
         std::string program = post_job(cycles_job, e.machine).text;
-        for (const auto& [text, n] : e.written) {
+        for (const auto& word : e.written) {
+            const auto& text = word.first;
+            const auto n = word.second;
             CAPTURE(text);
             CHECK(count_of(program, text) == n);
         }

@@ -66,7 +66,8 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
     // formats, within half a unit of the last decimal (and what rounded cycle parameters add
     // up to over the pecks).
     int checked = 0;
-    for (const auto& [name, description] : list_machines()) {
+    for (const auto& listed : list_machines()) {
+        const std::string& name = listed.first;
         Machine machine = load_machine(name);
         machine.units = Units::inch;
         for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
