@@ -117,7 +117,7 @@ std::string base_name(const std::string& file) { return file.substr(file.find_la
 
 // Writes the SVG backplot of a trace atomically.
 void write_plot(const std::string& file, const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
-    AtomicFile svg(file);
+    OutputFile svg(file);
     svg.stream() << backplot_svg(trace, stats, options);
     svg.commit();
 }
@@ -264,10 +264,18 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             bool read_back_wanted = !o.plot.empty() || o.stats;
             std::ostringstream buffer;
             std::ostream* target = &buffer;
-            std::optional<AtomicFile> file;
+            std::optional<OutputFile> file;
             if (!read_back_wanted && o.output == "-") target = &out;
             if (!read_back_wanted && o.output != "-") target = &file.emplace(o.output).stream();
-            write_program(job, o, *target, err);
+            try {
+                write_program(job, o, *target, err);
+            } catch (const IoError& e) {
+                // The block writer knows the reason, not the file.
+                const std::string where = file ? o.output : std::string("standard output");
+                throw IoError(fmt::format("cannot write {}: {}", where,
+                                          e.error_number() ? std::strerror(e.error_number()) : e.what()),
+                              e.error_number());
+            }
             if (read_back_wanted) {
                 if (o.output == "-") {
                     out << buffer.str();

@@ -3,5 +3,9 @@
 #include <iostream>
 
 #include "camgen/cli/cli.hpp"
+#include "camgen/cli/output.hpp"
 
-int main(int argc, char** argv) { return camgen::run_cli(argc, argv, std::cin, std::cout, std::cerr); }
+int main(int argc, char** argv) {
+    camgen::install_output_signal_handlers();
+    return camgen::run_cli(argc, argv, std::cin, std::cout, std::cerr);
+}

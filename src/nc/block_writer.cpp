@@ -1,5 +1,7 @@
 #include "camgen/nc/block_writer.hpp"
 
+#include <cerrno>
+
 #include <utility>
 
 #include "camgen/common/error.hpp"
@@ -86,12 +88,13 @@ void BlockWriter::maybe_flush() {
 }
 
 void BlockWriter::flush() {
+    errno = 0;
     if (!buffer_.empty()) {
         out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
         buffer_.clear();
     }
     out_.flush();
-    if (!out_) throw IoError("writing the NC program failed");
+    if (!out_) throw IoError("writing the NC program failed", errno);
 }
 
 }  // namespace camgen::nc

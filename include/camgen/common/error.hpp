@@ -26,10 +26,16 @@ private:
     std::string source_;
 };
 
-// A file could not be read or written. Exit code 3.
+// A file could not be read or written. Exit code 3. `error_number` is the system's errno for
+// the failure, where known (0: unknown), so that a caller that knows the file can name both.
 class IoError : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit IoError(const std::string& what, int error_number = 0)
+        : std::runtime_error(what), error_number_(error_number) {}
+    int error_number() const { return error_number_; }
+
+private:
+    int error_number_ = 0;
 };
 
 // The command line asks for something that does not exist (an unknown machine). Exit code 2.
