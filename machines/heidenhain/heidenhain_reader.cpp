@@ -14,6 +14,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/post/longhand.hpp"
+#include "machines/heidenhain/heidenhain_reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {

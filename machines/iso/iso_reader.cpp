@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/iso/iso_reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {

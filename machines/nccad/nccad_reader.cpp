@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/nccad/nccad_reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {

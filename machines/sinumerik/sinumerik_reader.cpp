@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/sinumerik/sinumerik_reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {
