@@ -8,25 +8,6 @@
 
 namespace camgen {
 
-namespace {
-
-double cycle_code(CycleKind kind) {
-    switch (kind) {
-        case CycleKind::drill: return 81;
-        case CycleKind::dwell: return 82;
-        case CycleKind::deep: return 83;
-        case CycleKind::chip_break: return 73;
-        case CycleKind::tap: return 84;
-        case CycleKind::tap_left: return 74;
-        case CycleKind::ream: return 85;
-        case CycleKind::bore_stop: return 86;
-        case CycleKind::bore_dwell: return 89;
-    }
-    return 81;
-}
-
-}  // namespace
-
 IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     : Post(machine, out, std::move(options)) {
     json::Source source{machine.source, json::LineMap{}};
@@ -34,12 +15,7 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     program_number_ = f.optional_integer("programNumber").value_or(1000);
     percent_ = f.boolean("percentLines", true);
     length_offset_ = f.boolean("toolLengthOffset", true);
-    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
-        tool_change_ = tc->get<bool>() ? IsoToolChange::m6 : IsoToolChange::none;
-    else
-        tool_change_ = f.choice<IsoToolChange>(
-            "toolChange", {{"m6", IsoToolChange::m6}, {"pause", IsoToolChange::pause}, {"none", IsoToolChange::none}},
-            IsoToolChange::m6);
+    tool_change_ = iso::tool_change_setting(f);
     end_code_ = f.optional_string("endCode").value_or("M30");
     f.finish();
 }
@@ -65,17 +41,17 @@ void IsoPost::on_close() {
 
 void IsoPost::on_tool_change(const ToolChange& tool) {
     switch (tool_change_) {
-        case IsoToolChange::m6:
+        case iso::ToolChangeStyle::m6:
             if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
             out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
             break;
-        case IsoToolChange::pause:
+        case iso::ToolChangeStyle::pause:
             // No tool changer (GRBL has no M6): the spindle is off; stop and tell the operator.
             out_.comment(fmt::format("Insert tool {}{}", tool.number,
                                      tool.description.empty() ? "" : ": " + tool.description));
             out_.add(m(0)).end();
             break;
-        case IsoToolChange::none:
+        case iso::ToolChangeStyle::none:
             if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
             break;
     }
@@ -131,7 +107,7 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
     const DrillValues& p = c.values;
     // G98 returns to the Z the tool had before the cycle: the retract plane, where the
     // operation put it. G99 returns to R.
-    out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
+    out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(iso::cycle_code(c.kind))).add(xs).add(ys);
     out_.add(z_.force(c.bottom_z)).add(xyz_fmt_.word("R", c.safe_z));
     if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.get(DrillField::first_depth))
         out_.add(xyz_fmt_.word("Q", *p.get(DrillField::first_depth)));

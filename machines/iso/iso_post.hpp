@@ -1,11 +1,8 @@
 #pragma once
 #include "camgen/post/post.hpp"
+#include "machines/iso/iso_words.hpp"
 
 namespace camgen {
-
-// How an ISO control changes tools: T.. M6, a pause (M0) with a message for the operator
-// (GRBL), or not at all.
-enum class IsoToolChange { m6, pause, none };
 
 // Fanuc-style ISO post (fanuc, linuxcnc, grbl). Settings (machine file "settings"):
 // programNumber (0: none, the program name becomes a comment), percentLines, toolLengthOffset
@@ -29,7 +26,7 @@ protected:
     int program_number_ = 1000;
     bool percent_ = true;
     bool length_offset_ = true;
-    IsoToolChange tool_change_ = IsoToolChange::m6;
+    iso::ToolChangeStyle tool_change_ = iso::ToolChangeStyle::m6;
     std::string end_code_ = "M30";
     bool length_offset_pending_ = false;
 
