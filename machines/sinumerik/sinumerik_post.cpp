@@ -1,8 +1,5 @@
-// The Sinumerik 840D dialect. REFERENCE.md §4; parameter orders of the standard cycles:
-// CYCLE81(RTP, RFP, SDIS, DP, DPR), CYCLE82(..., DTB), CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP,
-// FDPR, DAM, DTB, DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1), CYCLE84(RTP, RFP, SDIS, DP,
-// DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1), CYCLE85(RTP, RFP, SDIS, DP, DPR, DTB, FFR, RFF),
-// CYCLE86(RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS), CYCLE89(..., DTB).
+// The Sinumerik 840D dialect: drilling as modal standard cycle calls (MCALL CYCLE81..89),
+// whose parameter positions sinumerik_words.hpp names for the post and the reader.
 #include "machines/sinumerik/sinumerik_post.hpp"
 
 #include <numbers>
@@ -10,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
+#include "machines/sinumerik/sinumerik_words.hpp"
 
 namespace camgen {
 
@@ -37,64 +35,75 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
     factor_spec.decimals = 3;
     const nc::Format factor(factor_spec);
     const DrillValues& p = c.values;
+    const sinumerik::CycleForm& form = sinumerik::cycle_form(c.kind);
+    // The parameters by position; empty ones are the cycle's defaults.
+    std::vector<std::string> v(form.count);
     // SDIS is unsigned: when the feed starts below the surface, the feed-start plane becomes
-    // the reference plane (DP and FDEP are absolute, so nothing else changes).
+    // the reference plane (DP and FDEP are absolute, so nothing else changes). DPR stays empty.
     const double rfp = std::min(c.reference_z, c.safe_z);
-    std::vector<std::string> v = {len.format(c.retract_z), len.format(rfp), len.format(c.safe_z - rfp),
-                                  len.format(c.bottom_z), ""};
+    v[sinumerik::common::rtp] = len.format(c.retract_z);
+    v[sinumerik::common::rfp] = len.format(rfp);
+    v[sinumerik::common::sdis] = len.format(c.safe_z - rfp);
+    v[sinumerik::common::dp] = len.format(c.bottom_z);
     auto dwell = [&](const std::optional<double>& s) { return s && *s > 0 ? sec.format(*s) : std::string(); };
     const std::string spindle_dir = c.spindle_direction == SpindleDirection::cw ? "3" : "4";
+    const std::string zero = "0", one = "1";
     switch (c.kind) {
         case CycleKind::drill:
-            return "CYCLE81(" + join_parameters(v) + ")";
+            break;
         case CycleKind::dwell:
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
-            return "CYCLE82(" + join_parameters(v) + ")";
+            v[sinumerik::cycle82::dtb] = dwell(p.get(DrillField::bottom_dwell));
+            break;
         case CycleKind::deep:
         case CycleKind::chip_break: {
+            namespace q = sinumerik::cycle83;
             const bool full = c.kind == CycleKind::deep;
-            v.push_back(len.format(c.safe_z - p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z)));  // FDEP
-            v.push_back("");                                                                    // FDPR
-            v.push_back(p.degression_type() == DegressionType::value ? len.format(*p.get(DrillField::degression)) : "");  // DAM
-            v.push_back("");                                          // DTB: would dwell at every peck
-            v.push_back(full ? dwell(p.get(DrillField::top_dwell)) : "");              // DTS
-            v.push_back(factor.format(p.get(DrillField::first_feedrate_factor).value_or(1.0)));  // FRF
-            v.push_back(full ? "1" : "0");                            // VARI
-            v.push_back("");                                          // _AXN: tool axis
-            v.push_back(p.get(DrillField::minimum_depth) ? len.format(*p.get(DrillField::minimum_depth)) : "");  // _MDEP
-            v.push_back(full ? "" : len.format(p.get(DrillField::pecking_retract).value_or(machine.peck_clearance)));  // _VRT
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));                       // _DTD
-            v.push_back(full ? len.format(machine.peck_clearance) : "");  // _DIS1
-            return "CYCLE83(" + join_parameters(v) + ")";
+            v[q::fdep] = len.format(c.safe_z - p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
+            if (p.degression_type() == DegressionType::value) v[q::dam] = len.format(*p.get(DrillField::degression));
+            // DTB stays empty: it would dwell at every peck.
+            if (full) v[q::dts] = dwell(p.get(DrillField::top_dwell));
+            v[q::frf] = factor.format(p.get(DrillField::first_feedrate_factor).value_or(1.0));
+            v[q::vari] = full ? one : zero;
+            // _AXN stays empty: the tool axis.
+            if (p.get(DrillField::minimum_depth)) v[q::mdep] = len.format(*p.get(DrillField::minimum_depth));
+            if (!full) v[q::vrt] = len.format(p.get(DrillField::pecking_retract).value_or(machine.peck_clearance));
+            v[q::dtd] = dwell(p.get(DrillField::bottom_dwell));
+            if (full) v[q::dis1] = len.format(machine.peck_clearance);
+            break;
         }
         case CycleKind::tap:
         case CycleKind::tap_left: {
+            namespace q = sinumerik::cycle84;
             const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
             const double sst = p.get(DrillField::tapping_speed).value_or(c.spindle_rpm);
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));         // DTB
-            v.push_back(spindle_dir);                   // SDAC: direction after the cycle
-            v.push_back("");                            // MPIT
-            v.push_back(len.format(pitch));             // PIT, negative: left-hand
-            v.push_back("0");                           // POSS
-            v.push_back(rpm.format(sst));               // SST
-            v.push_back(rpm.format(p.get(DrillField::retract_speed).value_or(sst)));  // SST1
-            return "CYCLE84(" + join_parameters(v) + ")";
+            v[q::dtb] = dwell(p.get(DrillField::bottom_dwell));
+            v[q::sdac] = spindle_dir;  // the direction after the cycle; MPIT stays empty
+            v[q::pit] = len.format(pitch);  // negative: left-hand
+            v[q::poss] = zero;
+            v[q::sst] = rpm.format(sst);
+            v[q::sst1] = rpm.format(p.get(DrillField::retract_speed).value_or(sst));
+            break;
         }
-        case CycleKind::ream:
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
-            v.push_back(feed.format(c.feed));                                  // FFR
-            v.push_back(feed.format(p.get(DrillField::retract_feedrate).value_or(c.feed)));     // RFF
-            return "CYCLE85(" + join_parameters(v) + ")";
-        case CycleKind::bore_stop:
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
-            // SDIR, then no lift-off (RPA, RPO, RPAP) and POSS 0: out along the hole axis.
-            for (const char* s : {spindle_dir.c_str(), "0", "0", "0", "0"}) v.emplace_back(s);
-            return "CYCLE86(" + join_parameters(v) + ")";
+        case CycleKind::ream: {
+            namespace q = sinumerik::cycle85;
+            v[q::dtb] = dwell(p.get(DrillField::bottom_dwell));
+            v[q::ffr] = feed.format(c.feed);
+            v[q::rff] = feed.format(p.get(DrillField::retract_feedrate).value_or(c.feed));
+            break;
+        }
+        case CycleKind::bore_stop: {
+            namespace q = sinumerik::cycle86;
+            v[q::dtb] = dwell(p.get(DrillField::bottom_dwell));
+            v[q::sdir] = spindle_dir;
+            // No lift-off (RPA, RPO, RPAP) and POSS 0: out along the hole axis.
+            for (std::size_t i : {q::rpa, q::rpo, q::rpap, q::poss}) v[i] = zero;
+            break;
+        }
         case CycleKind::bore_dwell:
-            v.push_back(dwell(p.get(DrillField::bottom_dwell)));
-            return "CYCLE89(" + join_parameters(v) + ")";
+            v[sinumerik::cycle89::dtb] = dwell(p.get(DrillField::bottom_dwell));
+            break;
     }
-    return "";
+    return fmt::format("{}({})", form.name, join_parameters(v));
 }
 
 SinumerikPost::SinumerikPost(const Machine& machine, std::ostream& out, PostOptions options)
