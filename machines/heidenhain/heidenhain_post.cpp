@@ -1,25 +1,19 @@
-// The Heidenhain TNC conversational dialect. REFERENCE.md §4. Cycle 200 DRILLING: Q200 set-up
-// clearance, Q201 depth (negative), Q206 plunge feed, Q202 plunging depth, Q210 dwell at top,
-// Q203 surface, Q204 2nd set-up clearance, Q211 dwell at depth. Cycle 203 UNIVERSAL DRILLING
-// adds Q212 decrement, Q213 chip breaks before a full retract, Q205 minimum plunging depth,
-// Q208 retraction feed, Q256 chip-break retraction. Cycle 207 RIGID TAPPING NEW: Q200, Q201,
-// Q239 pitch (negative: left-hand), Q203, Q204. Q200/Q201/Q204 are incremental from Q203.
+// The Heidenhain TNC conversational dialect: drilling as cycle definitions 200, 203 and 207
+// whose Q parameters heidenhain_words.hpp names for the post and the reader.
 #include "machines/heidenhain/heidenhain_post.hpp"
 
 #include <cctype>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/longhand.hpp"
+#include "machines/heidenhain/heidenhain_words.hpp"
 
 namespace camgen {
 
 namespace {
-
-// Q213 takes at most 99 chip breaks; Q208 at this value is a rapid retraction (FMAX).
-constexpr int max_breaks = 99;
-constexpr int fmax_feed = 99999;
 
 bool tapping(CycleKind k) { return k == CycleKind::tap || k == CycleKind::tap_left; }
 bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_break; }
@@ -27,6 +21,7 @@ bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_
 }  // namespace
 
 std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCycle& c, const Machine& machine) {
+    using heidenhain::Q;
     nc::FormatSpec signed_len = machine.format("xyz").spec();
     signed_len.force_sign = true;
     nc::FormatSpec signed_feed = machine.format("feed").spec();
@@ -38,48 +33,45 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
     // The set-up clearance is unsigned: when the feed starts below the surface, the
     // feed-start plane is given as the surface.
     const double surface = std::min(c.reference_z, c.safe_z);
-    const std::string q200 = len.format(c.safe_z - surface), q201 = len.format(c.bottom_z - surface),
-                      q203 = len.format(surface), q204 = len.format(c.retract_z - surface);
     auto dwell = [&](const std::optional<double>& s) { return sec.format(s.value_or(0.0)); };
+    // The values by parameter; the cycle's form gives their order and comments.
+    std::map<Q, std::string> v = {{Q::setup_clearance, len.format(c.safe_z - surface)},
+                                  {Q::depth, len.format(c.bottom_z - surface)},
+                                  {Q::surface, len.format(surface)},
+                                  {Q::second_setup_clearance, len.format(c.retract_z - surface)}};
+    const heidenhain::CycleForm* form = nullptr;
     if (tapping(c.kind)) {
+        form = &heidenhain::rigid_tapping;
         const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
-        return {"CYCL DEF 207 RIGID TAPPING NEW",
-                {{200, q200, "SET-UP CLEARANCE"},
-                 {201, q201, "DEPTH"},
-                 {239, len.format(pitch), "PITCH"},
-                 {203, q203, "SURFACE COORDINATE"},
-                 {204, q204, "2ND SET-UP CLEARANCE"}}};
+        v[Q::pitch] = len.format(pitch);
+    } else if (!pecking(c.kind)) {
+        form = &heidenhain::drilling;
+        v[Q::plunge_feed] = feed.format(c.feed);
+        v[Q::plunging_depth] = len.format(surface - c.bottom_z);  // all in one plunge
+        v[Q::top_dwell] = dwell(std::nullopt);
+        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+    } else {
+        form = &heidenhain::universal_drilling;
+        const bool full = c.kind == CycleKind::deep;
+        const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
+        v[Q::plunge_feed] = feed.format(c.feed);
+        v[Q::plunging_depth] = len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
+        v[Q::top_dwell] = dwell(full ? p.get(DrillField::top_dwell) : std::nullopt);
+        v[Q::decrement] = len.format(decrement);
+        v[Q::breaks] = full ? "+0" : fmt::format("+{}", heidenhain::max_breaks);
+        v[Q::min_plunging_depth] = len.format(p.get(DrillField::minimum_depth).value_or(0.0));
+        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+        // FMAX is the same number in mm and inch programs: written as it is, not converted.
+        v[Q::retraction_feed] = !full && p.get(DrillField::retract_feedrate)
+                                    ? feed.format(*p.get(DrillField::retract_feedrate))
+                                    : fmt::format("+{}", heidenhain::fmax_feed);
+        v[Q::chip_break_distance] =
+            len.format(full ? machine.peck_clearance : p.get(DrillField::pecking_retract).value_or(machine.peck_clearance));
     }
-    if (!pecking(c.kind)) {
-        return {"CYCL DEF 200 DRILLING",
-                {{200, q200, "SET-UP CLEARANCE"},
-                 {201, q201, "DEPTH"},
-                 {206, feed.format(c.feed), "FEED RATE FOR PLNGNG"},
-                 {202, len.format(surface - c.bottom_z), "PLUNGING DEPTH"},  // all in one plunge
-                 {210, dwell(std::nullopt), "DWELL TIME AT TOP"},
-                 {203, q203, "SURFACE COORDINATE"},
-                 {204, q204, "2ND SET-UP CLEARANCE"},
-                 {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"}}};
-    }
-    const bool full = c.kind == CycleKind::deep;
-    const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
-    return {"CYCL DEF 203 UNIVERSAL DRILLING",
-            {{200, q200, "SET-UP CLEARANCE"},
-             {201, q201, "DEPTH"},
-             {206, feed.format(c.feed), "FEED RATE FOR PLNGNG"},
-             {202, len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z)), "PLUNGING DEPTH"},
-             {210, dwell(full ? p.get(DrillField::top_dwell) : std::nullopt), "DWELL TIME AT TOP"},
-             {203, q203, "SURFACE COORDINATE"},
-             {204, q204, "2ND SET-UP CLEARANCE"},
-             {212, len.format(decrement), "DECREMENT"},
-             {213, full ? "+0" : fmt::format("+{}", max_breaks), "NR OF BREAKS"},
-             {205, len.format(p.get(DrillField::minimum_depth).value_or(0.0)), "MIN. PLUNGING DEPTH"},
-             {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"},
-             // 99999 is FMAX in mm and inch programs alike: written as it is, not converted.
-             {208, !full && p.get(DrillField::retract_feedrate) ? feed.format(*p.get(DrillField::retract_feedrate)) : fmt::format("+{}", fmax_feed),
-              "RETRACTION FEED RATE"},
-             {256, len.format(full ? machine.peck_clearance : p.get(DrillField::pecking_retract).value_or(machine.peck_clearance)),
-              "DIST FOR CHIP BRKNG"}}};
+    std::vector<TncParameter> params;
+    for (const heidenhain::QParameter& q : form->parameters)
+        params.push_back({heidenhain::number(q.q), v.at(q.q), std::string(q.comment)});
+    return {fmt::format("CYCL DEF {} {}", form->number, form->title), std::move(params)};
 }
 
 HeidenhainPost::HeidenhainPost(const Machine& machine, std::ostream& out, PostOptions options)
@@ -184,8 +176,8 @@ void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
 std::optional<std::string> HeidenhainPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)
         return "its Q212 takes a decrement value, not a factor";
-    if (c.kind == CycleKind::chip_break && peck_depths(c).size() > max_breaks + 1)
-        return fmt::format("more than {} chip breaks (Q213) in one hole", max_breaks);
+    if (c.kind == CycleKind::chip_break && peck_depths(c).size() > heidenhain::max_breaks + 1)
+        return fmt::format("more than {} chip breaks (Q213) in one hole", heidenhain::max_breaks);
     return std::nullopt;
 }
 
