@@ -88,12 +88,12 @@ void IsoPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) 
 }
 
 void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
-    if (spec.name == "G33.1") {
+    if (spec.style == CannedStyle::rigid_g33_1) {
         // LinuxCNC rigid tapping: from R, synchronised down to Z, spindle reversal and back to
         // R in one move; the control restores the spindle direction.
         on_rapid({at.x, at.y, pos_.z});
         on_rapid({at.x, at.y, c.safe_z});
-        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.values.get(DrillField::pitch))).end();
+        out_.add(g(iso::rigid_tap_code)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.values.get(DrillField::pitch))).end();
         motion_.reset();
         z_.set_last(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});
@@ -116,7 +116,7 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
 }
 
 void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
-    if (spec.name != "G33.1") out_.add(g(80)).end();
+    if (spec.style != CannedStyle::rigid_g33_1) out_.add(g(80)).end();
     if (tapping_direction(c)) on_spindle(Spindle{c.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw,
                                                  c.spindle_rpm});
 }

@@ -7,8 +7,8 @@ namespace camgen {
 // Fanuc-style ISO post (fanuc, linuxcnc, grbl). Settings (machine file "settings"):
 // programNumber (0: none, the program name becomes a comment), percentLines, toolLengthOffset
 // (G43 H), toolChange (true/"m6", "pause", false/"none"), endCode. Canned cycles are
-// G81-G89/G73/G74 with G98/G99, R, Q, P, F and G80; a cycle named "G33.1" in the machine's
-// drilling table is LinuxCNC rigid tapping (M4 before it for tap-left).
+// G81-G89/G73/G74 with G98/G99, R, Q, P, F and G80; a cycle of style "rigid-g33.1" in the
+// machine's drilling table is LinuxCNC rigid tapping G33.1 (M4 before it for tap-left).
 class IsoPost : public Post {
 public:
     IsoPost(const Machine& machine, std::ostream& out, PostOptions options);

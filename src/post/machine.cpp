@@ -217,6 +217,9 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 else
                     cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names_of(cycle_kinds), ", ")));
                 c.canned = cf.boolean("canned", true);
+                c.style = cf.choice<CannedStyle>(
+                    "style", {{"standard", CannedStyle::standard}, {"rigid-g33.1", CannedStyle::rigid_g33_1}},
+                    CannedStyle::standard);
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {

@@ -22,10 +22,15 @@ enum class ArcFormat { ijk_relative, ijk_absolute, radius, nccad_angle };
 enum class FeedUnit { per_minute, tenth_mm_per_second };
 
 // One drilling cycle the machine offers (a MillDrillingFields entry).
+// How a canned cycle is written: the dialect's standard form, or LinuxCNC's rigid tapping
+// (G33.1 Z K: one synchronised move in and out, positioned with G0, no cancel code).
+enum class CannedStyle { standard, rigid_g33_1 };
+
 struct DrillingCycleSpec {
     std::string name;                  // "G83", "CYCLE83", "CYCL DEF 203"
     CycleKind kind = CycleKind::drill;
     bool canned = true;                // false: written longhand
+    CannedStyle style = CannedStyle::standard;  // machine file key "style"
     std::vector<DrillField> fields;    // the optional parameters the canned cycle carries
 };
 
