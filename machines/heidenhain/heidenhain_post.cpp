@@ -149,19 +149,12 @@ void HeidenhainPost::rapid_from_unknown(const Vec3& to) {
 }
 
 // Radius compensation is a word of the L block: R0, RL, RR.
-std::string HeidenhainPost::compensation_words(CompensationSide side) const {
-    return side == CompensationSide::off ? "R0" : side == CompensationSide::left ? "RL" : "RR";
+std::string HeidenhainPost::compensation_words(const Compensation& c) const {
+    return c.side == CompensationSide::off ? "R0" : c.side == CompensationSide::left ? "RL" : "RR";
 }
 
-void HeidenhainPost::on_linear(const Vec3& to, double feed) {
-    std::string comp;
-    if (pending_compensation_) comp = compensation_words(*pending_compensation_);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
-    std::string fs = feed_word(feed);
-    out_.add("L").add(xs).add(ys).add(zs).add(comp).add(fs).end();
-    pending_compensation_.reset();
-}
+// A feed move is an L block; its compensation word follows the coordinates.
+Post::LinearLayout HeidenhainPost::linear_layout() { return {"L", true}; }
 
 void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
     // CC: the centre (absolute); C: the end point and the direction (DR+ counter-clockwise).

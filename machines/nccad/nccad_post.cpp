@@ -76,8 +76,8 @@ void NccadPost::on_dwell(double seconds) {
     out_.add(m(30)).add(fmt::format("P{}", n)).end();
 }
 
-void NccadPost::on_compensation(CompensationSide side) {
-    if (side != CompensationSide::off)
+void NccadPost::on_compensation(const Compensation& compensation) {
+    if (compensation.side != CompensationSide::off)
         fail("/compensation", fmt::format("machine {} has no cutter radius compensation", machine_.name));
 }
 

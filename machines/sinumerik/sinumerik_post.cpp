@@ -2,8 +2,6 @@
 // whose parameter positions sinumerik_words.hpp names for the post and the reader.
 #include "machines/sinumerik/sinumerik_post.hpp"
 
-#include <numbers>
-
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
@@ -132,27 +130,12 @@ void SinumerikPost::on_tool_change(const ToolChange& tool) {
 void SinumerikPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("F", seconds)).end(); }
 
 // G41/G42 take no D word here: D1 (the cutting edge) was selected with the tool.
-std::string SinumerikPost::compensation_words(CompensationSide side) const {
-    return g(side == CompensationSide::off ? 40 : side == CompensationSide::left ? 41 : 42);
+std::string SinumerikPost::compensation_words(const Compensation& c) const {
+    return g(c.side == CompensationSide::off ? 40 : c.side == CompensationSide::left ? 41 : 42);
 }
 
-void SinumerikPost::on_circular(const ArcGeometry& arc, double feed) {
-    if (machine_.arcs.format != ArcFormat::radius) {
-        Post::on_circular(arc, feed);
-        return;
-    }
-    // CR=: the radius, negative for a sweep over 180 degrees.
-    std::string plane;
-    if (machine_.arcs.planes.size() > 1)
-        plane = plane_.format(arc.plane == Plane::xy ? 17 : arc.plane == Plane::xz ? 18 : 19);
-    std::string motion = motion_word(arc.direction == ArcDirection::cw ? 2 : 3);
-    std::string fs = feed_word(feed);
-    std::string xs = arc.plane != Plane::yz ? x_.force(arc.end.x) : x_.format(arc.end.x);
-    std::string ys = arc.plane != Plane::xz ? y_.force(arc.end.y) : y_.format(arc.end.y);
-    std::string zs = arc.plane != Plane::xy ? z_.force(arc.end.z) : z_.format(arc.end.z);
-    double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
-    out_.add(plane).add(motion).add(xs).add(ys).add(zs).add(xyz_fmt_.word("CR=", r)).add(fs).end();
-}
+// CR=: the radius, negative for a sweep over 180 degrees.
+std::string SinumerikPost::radius_word(double radius) const { return xyz_fmt_.word("CR=", radius); }
 
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)

@@ -18,8 +18,8 @@ protected:
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_dwell(double seconds) override;
-    std::string compensation_words(CompensationSide side) const override;
-    void on_circular(const ArcGeometry& arc, double feed) override;
+    std::string compensation_words(const Compensation& compensation) const override;
+    std::string radius_word(double radius) const override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

@@ -111,16 +111,21 @@ void Post::rapid_from_unknown(const Vec3& to) {
     on_rapid(to);
 }
 
-void Post::on_compensation(CompensationSide side) { pending_compensation_ = side; }
+void Post::on_compensation(const Compensation& compensation) { pending_compensation_ = compensation; }
 
-std::string Post::compensation_words(CompensationSide side) const {
-    switch (side) {
+std::string Post::compensation_words(const Compensation& c) const {
+    const int d = c.d_register != 0 ? c.d_register : tool_;
+    switch (c.side) {
         case CompensationSide::off: return g(40);
-        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(tool_);
-        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(tool_);
+        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(d);
+        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(d);
     }
     return {};
 }
+
+std::string Post::radius_word(double radius) const { return xyz_fmt_.word("R", radius); }
+
+Post::LinearLayout Post::linear_layout() { return {motion_word(1), false}; }
 
 std::string Post::speed_word(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
@@ -143,7 +148,11 @@ void Post::on_linear(const Vec3& to, double feed) {
     std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
     if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
-    out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
+    const LinearLayout layout = linear_layout();
+    const std::string none;
+    const std::string& before = layout.compensation_after_axes ? none : comp;
+    const std::string& after = layout.compensation_after_axes ? comp : none;
+    out_.add(before).add(layout.motion).add(xs).add(ys).add(zs).add(after).add(fs).end();
     pending_compensation_.reset();
 }
 
@@ -175,8 +184,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     std::string zs = fz ? z_.force(arc.end.z) : z_.format(arc.end.z);
     out_.add(plane).add(motion).add(xs).add(ys).add(zs);
     if (s.format == ArcFormat::radius) {
-        double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
-        out_.add(xyz_fmt_.word("R", r));
+        out_.add(radius_word(arc.sweep > std::numbers::pi ? -arc.radius : arc.radius));
     } else {
         Vec3 c = arc.centre;
         if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
@@ -364,7 +372,7 @@ void Post::emit(const Event& event) {
                    [&](const Linear& l) { replay(l); },
                    [&](const Arc& a) { handle_arc(a); },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
-                   [&](const Compensation& c) { on_compensation(c.side); },
+                   [&](const Compensation& c) { on_compensation(c); },
                    [&](const DrillCycle& c) { handle_drill_cycle(c); },
                    [&](const DrillPoint& p) { handle_drill_point(p.at); },
                    [&](const DrillEnd&) { handle_drill_end(); },

@@ -49,14 +49,15 @@ protected:
     virtual void on_comment(const std::string& text);
     // A rapid to `to`; the base writes G0 with the modal axis words that changed.
     virtual void on_rapid(const Vec3& to);
-    // A feed move; the base writes G1, pending compensation, axis words and F.
+    // A feed move; the base writes the block linear_layout() describes: pending compensation,
+    // the motion word, axis words and F.
     virtual void on_linear(const Vec3& to, double feed);
     // One arc block, already split to the machine's maximum sweep and in a supported plane,
     // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
     // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
     virtual void on_circular(const ArcGeometry& arc, double feed);
     // Compensation is retained and written by the next linear move (CNC-Calc rule).
-    virtual void on_compensation(CompensationSide side);
+    virtual void on_compensation(const Compensation& compensation);
     // Canned drilling, called only when the cycle is written canned.
     virtual void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec);
     virtual void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec,
@@ -71,8 +72,18 @@ protected:
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
-    // The words that switch cutter radius compensation (G40, G41 D<tool>, G42 D<tool>).
-    virtual std::string compensation_words(CompensationSide side) const;
+    // The words that switch cutter radius compensation: G40, or G41/G42 D<register> (the
+    // compensation's D register, else the tool number).
+    virtual std::string compensation_words(const Compensation& compensation) const;
+    // The radius word of an arc block in radius format: R, negative above 180 degrees.
+    virtual std::string radius_word(double radius) const;
+    // How a feed move's block is laid out: its motion word and where the compensation words go.
+    struct LinearLayout {
+        std::string motion;                    // "G1", or "L" (Heidenhain)
+        bool compensation_after_axes = false;  // false: before the motion word
+    };
+    // The layout of the feed move being written (the base: the modal G1, compensation first).
+    virtual LinearLayout linear_layout();
     // The S word for a spindle speed; an InputError above the machine's maxRpm.
     std::string speed_word(double rpm) const;
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
@@ -95,7 +106,7 @@ protected:
     nc::Word x_, y_, z_, feed_, motion_, plane_;
     Vec3 pos_;
     bool pos_known_ = false;
-    std::optional<CompensationSide> pending_compensation_;
+    std::optional<Compensation> pending_compensation_;  // written by the next feed move
     int tool_ = 0;
     std::string op_path_;
 
