@@ -84,21 +84,21 @@ HeidenhainPost::HeidenhainPost(const Machine& machine, std::ostream& out, PostOp
 std::string HeidenhainPost::program_name() const {
     // A TNC program name: letters, digits, '_' and '-'.
     std::string s;
-    for (char c : options_.program_name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+    for (char c : options().program_name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
     return s.empty() ? "camgen" : s;
 }
 
 void HeidenhainPost::on_open() {
-    out_.add(fmt::format("BEGIN PGM {} {}", program_name(), machine_.units == Units::inch ? "INCH" : "MM")).end();
+    writer().add(fmt::format("BEGIN PGM {} {}", program_name(), machine().units == Units::inch ? "INCH" : "MM")).end();
 }
 
 void HeidenhainPost::on_close() {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    out_.add("M30").end();
-    out_.add(fmt::format("END PGM {} {}", program_name(), machine_.units == Units::inch ? "INCH" : "MM")).end();
+    writer().add("M30").end();
+    writer().add(fmt::format("END PGM {} {}", program_name(), machine().units == Units::inch ? "INCH" : "MM")).end();
 }
 
-void HeidenhainPost::on_comment(const std::string& text) { out_.add("; " + out_.clean_comment(text)).end(); }
+void HeidenhainPost::on_comment(const std::string& text) { writer().add("; " + writer().clean_comment(text)).end(); }
 
 void HeidenhainPost::on_tool_change(const ToolChange& tool) {
     if (pending_tool_) flush_tool_call(std::nullopt);
@@ -109,42 +109,43 @@ void HeidenhainPost::on_tool_change(const ToolChange& tool) {
 void HeidenhainPost::flush_tool_call(std::optional<double> rpm) {
     const ToolChange& t = *pending_tool_;
     if (!t.description.empty()) on_comment(fmt::format("T{} {}", t.number, t.description));
-    out_.add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? rpm_fmt_.word("S", *rpm) : "").end();
+    writer().add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? rpm_format().word("S", *rpm) : "").end();
     pending_tool_.reset();
 }
 
 void HeidenhainPost::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::off) {
         if (pending_tool_) flush_tool_call(std::nullopt);
-        out_.add("M5").end();
+        writer().add("M5").end();
         return;
     }
     std::string speed = speed_word(s.rpm);  // checks the machine's limit
     if (pending_tool_)
         flush_tool_call(s.rpm);
     else if (s.rpm != speed_)
-        out_.add("TOOL CALL Z").add(speed).end();
+        writer().add("TOOL CALL Z").add(speed).end();
     speed_ = s.rpm;
-    out_.add(s.state == SpindleState::cw ? "M3" : "M4").end();
+    writer().add(s.state == SpindleState::cw ? "M3" : "M4").end();
 }
 
 void HeidenhainPost::on_dwell(double seconds) {
-    out_.add("CYCL DEF 9.0 DWELL TIME").end();
-    out_.add("CYCL DEF 9.1 DWELL " + dwell_fmt_.format(seconds)).end();
+    writer().add("CYCL DEF 9.0 DWELL TIME").end();
+    writer().add("CYCL DEF 9.1 DWELL " + dwell_format().format(seconds)).end();
 }
 
 void HeidenhainPost::on_rapid(const Vec3& to) {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty()) return;
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty()) return;
     // FMAX holds for its block only; the programmed F stays in force for the next L.
-    out_.add("L").add(xs).add(ys).add(zs).add("R0 FMAX").end();
+    writer().add("L").add(w.x).add(w.y).add(w.z).add("R0 FMAX").end();
 }
 
 void HeidenhainPost::rapid_from_unknown(const Vec3& to) {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    out_.add("L").add(x_.force(to.x)).add(y_.force(to.y)).add("R0 FMAX").end();
-    z_.reset();
+    const AxisWords w = force_xy({to.x, to.y});
+    writer().add("L").add(w.x).add(w.y).add("R0 FMAX").end();
+    forget_z();
     on_rapid(to);
 }
 
@@ -159,10 +160,11 @@ Post::LinearLayout HeidenhainPost::linear_layout() { return {"L", true}; }
 void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
     // CC: the centre (absolute); C: the end point and the direction (DR+ counter-clockwise).
     // The machine file allows XY arcs only; others arrive here as lines.
-    nc::Word cx("X", xyz_fmt_, true), cy("Y", xyz_fmt_, true);
-    out_.add("CC").add(cx.format(arc.centre.x)).add(cy.format(arc.centre.y)).end();
+    nc::Word cx("X", xyz_format(), true), cy("Y", xyz_format(), true);
+    writer().add("CC").add(cx.format(arc.centre.x)).add(cy.format(arc.centre.y)).end();
     std::string fs = feed_word(feed);
-    out_.add("C").add(x_.force(arc.end.x)).add(y_.force(arc.end.y)).add(z_.format(arc.end.z))
+    const AxisWords w = axis_words(arc.end, {true, true, false});
+    writer().add("C").add(w.x).add(w.y).add(w.z)
         .add(arc.direction == ArcDirection::ccw ? "DR+" : "DR-").add(fs).end();
 }
 
@@ -175,16 +177,17 @@ std::optional<std::string> HeidenhainPost::canned_limit(const DrillCycle& c, con
 }
 
 void HeidenhainPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) {
-    auto [title, params] = heidenhain_cycle(c, machine_);
-    out_.add(title + " ~").end();
+    auto [title, params] = heidenhain_cycle(c, machine());
+    writer().add(title + " ~").end();
     for (size_t i = 0; i < params.size(); ++i)
-        out_.raw(fmt::format("  Q{}={} ;{}{}", params[i].q, params[i].value, params[i].comment,
-                             i + 1 < params.size() ? " ~" : ""));
+        writer().raw(fmt::format("  Q{}={} ;{}{}", params[i].q, params[i].value, params[i].comment,
+                                 i + 1 < params.size() ? " ~" : ""));
 }
 
 void HeidenhainPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2 at, bool) {
     // M99 calls the cycle at this position; both coordinates every time.
-    out_.add("L").add(x_.force(at.x)).add(y_.force(at.y)).add("R0 FMAX M99").end();
+    const AxisWords w = force_xy(at);
+    writer().add("L").add(w.x).add(w.y).add("R0 FMAX M99").end();
 }
 
 void HeidenhainPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}

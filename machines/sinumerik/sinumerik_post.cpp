@@ -112,22 +112,22 @@ SinumerikPost::SinumerikPost(const Machine& machine, std::ostream& out, PostOpti
 }
 
 void SinumerikPost::on_open() {
-    if (!options_.program_name.empty()) out_.comment(options_.program_name);
-    out_.add(g(17)).add(g(machine_.units == Units::inch ? 70 : 71)).add(g(90)).add(g(94)).end();
-    plane_.set_last(17);
+    if (!options().program_name.empty()) writer().comment(options().program_name);
+    writer().add(g(17)).add(g(machine().units == Units::inch ? 70 : 71)).add(g(90)).add(g(94)).end();
+    assume_plane(17);
 }
 
-void SinumerikPost::on_close() { out_.add(m(30)).end(); }
+void SinumerikPost::on_close() { writer().add(m(30)).end(); }
 
 void SinumerikPost::on_tool_change(const ToolChange& tool) {
-    if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+    if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
     // D1: the tool's first cutting edge carries its length and radius.
-    out_.add(fmt::format("T{}", tool.number)).add("D1").end();
-    out_.add(m(6)).end();
+    writer().add(fmt::format("T{}", tool.number)).add("D1").end();
+    writer().add(m(6)).end();
 }
 
 // G4 F: dwell in seconds (G4 S would be spindle revolutions).
-void SinumerikPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("F", seconds)).end(); }
+void SinumerikPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("F", seconds)).end(); }
 
 // G41/G42 take no D word here: D1 (the cutting edge) was selected with the tool.
 std::string SinumerikPost::compensation_words(const Compensation& c) const {
@@ -135,7 +135,7 @@ std::string SinumerikPost::compensation_words(const Compensation& c) const {
 }
 
 // CR=: the radius, negative for a sweep over 180 degrees.
-std::string SinumerikPost::radius_word(double radius) const { return xyz_fmt_.word("CR=", radius); }
+std::string SinumerikPost::radius_word(double radius) const { return xyz_format().word("CR=", radius); }
 
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)
@@ -146,17 +146,17 @@ std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, cons
 void SinumerikPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) {
     // CYCLE81/82/83/86/89 drill at the active feed; CYCLE84 and CYCLE85 carry their own.
     if (c.kind != CycleKind::tap && c.kind != CycleKind::tap_left && c.kind != CycleKind::ream)
-        out_.add(feed_word(c.feed)).end();
-    out_.add("MCALL " + sinumerik_cycle_call(c, machine_)).end();
+        writer().add(feed_word(c.feed)).end();
+    writer().add("MCALL " + sinumerik_cycle_call(c, machine())).end();
 }
 
 void SinumerikPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2 at, bool first) {
     // Every positioning block calls the cycle: both coordinates on each, so no hole is lost.
-    std::string xs = x_.force(at.x), ys = y_.force(at.y);
-    out_.add(first ? g(0) : "").add(xs).add(ys).end();
-    motion_.set_last(0);
+    const AxisWords w = force_xy(at);
+    writer().add(first ? g(0) : "").add(w.x).add(w.y).end();
+    assume_motion(0);
 }
 
-void SinumerikPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { out_.add("MCALL").end(); }
+void SinumerikPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { writer().add("MCALL").end(); }
 
 }  // namespace camgen

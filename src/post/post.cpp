@@ -92,6 +92,23 @@ void Post::reset_modal_axes() {
     motion_.reset();
 }
 
+Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
+    AxisWords w;
+    w.x = forced.x ? x_.force(to.x) : x_.format(to.x);
+    w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
+    w.z = forced.z ? z_.force(to.z) : z_.format(to.z);
+    return w;
+}
+
+Post::AxisWords Post::force_xy(Vec2 at) {
+    AxisWords w;
+    w.x = x_.force(at.x);
+    w.y = y_.force(at.y);
+    return w;
+}
+
+std::string Post::force_z(double z) { return z_.force(z); }
+
 void Post::on_operation_start(const OperationStart& op) {
     if (!op.name.empty()) on_comment(op.name);
 }
@@ -99,15 +116,15 @@ void Post::on_operation_start(const OperationStart& op) {
 void Post::on_comment(const std::string& text) { out_.comment(text); }
 
 void Post::on_rapid(const Vec3& to) {
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty()) return;
-    out_.add(motion_word(0)).add(xs).add(ys).add(zs).end();
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty()) return;
+    out_.add(motion_word(0)).add(w.x).add(w.y).add(w.z).end();
 }
 
 void Post::rapid_from_unknown(const Vec3& to) {
-    std::string xs = x_.force(to.x), ys = y_.force(to.y);
-    out_.add(motion_word(0)).add(xs).add(ys).end();
-    z_.reset();
+    const AxisWords w = force_xy({to.x, to.y});
+    out_.add(motion_word(0)).add(w.x).add(w.y).end();
+    forget_z();
     on_rapid(to);
 }
 
@@ -145,14 +162,14 @@ void Post::on_spindle(const Spindle& s) {
 void Post::on_linear(const Vec3& to, double feed) {
     std::string comp;
     if (pending_compensation_) comp = compensation_words(*pending_compensation_);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
     const LinearLayout layout = linear_layout();
     const std::string none;
     const std::string& before = layout.compensation_after_axes ? none : comp;
     const std::string& after = layout.compensation_after_axes ? comp : none;
-    out_.add(before).add(layout.motion).add(xs).add(ys).add(zs).add(after).add(fs).end();
+    out_.add(before).add(layout.motion).add(w.x).add(w.y).add(w.z).add(after).add(fs).end();
     pending_compensation_.reset();
 }
 
@@ -176,13 +193,10 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
         return;
     }
     // End point: the plane's two axes are written on every arc block when force_xy.
-    bool fx = s.force_xy && arc.plane != Plane::yz;
-    bool fy = s.force_xy && arc.plane != Plane::xz;
-    bool fz = s.force_xy && arc.plane != Plane::xy;
-    std::string xs = fx ? x_.force(arc.end.x) : x_.format(arc.end.x);
-    std::string ys = fy ? y_.force(arc.end.y) : y_.format(arc.end.y);
-    std::string zs = fz ? z_.force(arc.end.z) : z_.format(arc.end.z);
-    out_.add(plane).add(motion).add(xs).add(ys).add(zs);
+    const ForcedAxes forced{s.force_xy && arc.plane != Plane::yz, s.force_xy && arc.plane != Plane::xz,
+                            s.force_xy && arc.plane != Plane::xy};
+    const AxisWords w = axis_words(arc.end, forced);
+    out_.add(plane).add(motion).add(w.x).add(w.y).add(w.z);
     if (s.format == ArcFormat::radius) {
         out_.add(radius_word(arc.sweep > std::numbers::pi ? -arc.radius : arc.radius));
     } else {
