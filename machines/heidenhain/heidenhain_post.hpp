@@ -5,7 +5,7 @@
 
 namespace camgen {
 
-// Heidenhain TNC conversational (Klartext) post (REFERENCE.md §4): numbered blocks from
+// Heidenhain TNC conversational (Klartext) post: numbered blocks from
 // `0 BEGIN PGM name MM` to `END PGM name MM`, `; ` comments, `TOOL CALL n Z S..`, `M3`/`M5`,
 // `L X.. Y.. Z.. R0 FMAX` / `L X.. F..`, arcs `CC X.. Y..` + `C X.. Y.. DR+/-`, dwell cycle 9,
 // drilling as `CYCL DEF 200 DRILLING`, `203 UNIVERSAL DRILLING` or `207 RIGID TAPPING NEW`

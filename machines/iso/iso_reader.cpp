@@ -3,7 +3,8 @@
 // tool changes as the machine's toolChange setting writes them (T.. M6, or GRBL's
 // "(Insert tool n: ...)" comment and M0), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
 // (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
-// G98/G99 (REFERENCE.md §3), LinuxCNC G33.1 rigid tapping, M2/M30.
+// G98/G99 (G98: back to the Z before the first cycle block, G99: to R), LinuxCNC G33.1 rigid
+// tapping, M2/M30.
 #include <algorithm>
 
 #include <fmt/format.h>

@@ -1,4 +1,6 @@
-// The nccad dialect (MAX computer nccad: Wabeco, KOSY). REFERENCE.md §5.
+// The nccad dialect (MAX computer nccad: Wabeco, KOSY): "_" lines, G90, M01 <message> for
+// what the operator must do (no tool changer, no programmable speed), M10 O6.1/O6.0 spindle,
+// M30 P<n> dwell in 1/18 s, G81 .. B + G79 drilling, G77 home, G99 end of program.
 #include "machines/nccad/nccad_post.hpp"
 
 #include <cmath>

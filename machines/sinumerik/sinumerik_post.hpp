@@ -5,7 +5,7 @@
 
 namespace camgen {
 
-// Siemens Sinumerik 840D post (REFERENCE.md §4): `;` comments, G71 metric, `T.. D1` / `M6`,
+// Siemens Sinumerik 840D post: `;` comments, G71 metric, `T.. D1` / `M6`,
 // `S.. M3`, dwell `G4 F<s>`, arcs `G2/G3 X Y I J` or `CR=`, drilling as
 // `MCALL CYCLE81..89(...)`, one X/Y block per hole, `MCALL` to end, `M30`.
 // No dialect settings.

@@ -42,11 +42,12 @@ struct MachineLimits {
     double max_rpm = 0.0;              // 0: no limit
 };
 
-// Where the chord tolerance for arcs that become lines comes from (seeds/arc-breaking-rules.txt):
-// always the machine's, or the operation's tolerance capped by the machine's.
+// Where the chord tolerance for arcs that become lines comes from: always the machine's, or
+// the operation's tolerance capped by the machine's.
 enum class ChordToleranceMode { absolute, operation };
 
-// Arc output and arc-breaking settings (seeds/arc-breaking-rules.txt). Lengths mm, angles degrees.
+// Arc output and arc-breaking settings: how arc blocks are written and which arcs are split,
+// written as lines or as one straight move. Lengths mm, angles degrees.
 struct ArcSettings {
     ArcFormat format = ArcFormat::ijk_relative;
     double max_sweep = 360.0;          // degrees per block; longer arcs are split evenly
