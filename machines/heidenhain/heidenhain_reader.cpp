@@ -311,7 +311,8 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
     c.reference_z = len(Q::surface);
     if (q(Q::setup_clearance) < 0) bad(Q::setup_clearance, "the set-up clearance must not be negative");
     if (!(q(Q::depth) < 0)) bad(Q::depth, "the depth must be negative (below the surface)");
-    if (q(Q::second_setup_clearance) < q(Q::setup_clearance)) bad(Q::second_setup_clearance, "the 2nd set-up clearance is below the set-up clearance");
+    if (q(Q::second_setup_clearance) < q(Q::setup_clearance))
+        bad(Q::second_setup_clearance, "the 2nd set-up clearance is below the set-up clearance");
     c.safe_z = len(Q::surface) + len(Q::setup_clearance);
     c.bottom_z = len(Q::surface) + len(Q::depth);
     c.retract_z = len(Q::surface) + len(Q::second_setup_clearance);
@@ -362,16 +363,19 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
                 p.set_degression_type(DegressionType::value);
                 p.set(DrillField::degression, len(Q::decrement));
             }
-            if (q(Q::min_plunging_depth) < 0) bad(Q::min_plunging_depth, "the minimum plunging depth must not be negative");
+            if (q(Q::min_plunging_depth) < 0)
+                bad(Q::min_plunging_depth, "the minimum plunging depth must not be negative");
             if (q(Q::min_plunging_depth) > 0) p.set(DrillField::minimum_depth, len(Q::min_plunging_depth));
             // Q210 acts after full retracts only: with chip breaking camgen makes none.
             if (c.kind == CycleKind::deep) p.set(DrillField::top_dwell, dwell(Q::top_dwell));
             if (!(q(Q::retraction_feed) > 0)) bad(Q::retraction_feed, "the retraction feed must be > 0");
             // 99999 as written (whatever the units) is FMAX.
-            if (q(Q::retraction_feed) != heidenhain::fmax_feed) p.set(DrillField::retract_feedrate, feed_value(q(Q::retraction_feed)));
+            if (q(Q::retraction_feed) != heidenhain::fmax_feed)
+                p.set(DrillField::retract_feedrate, feed_value(q(Q::retraction_feed)));
             // Q256 is the back-off of a chip break; full retracts do not use it.
             if (c.kind == CycleKind::chip_break) {
-                if (!(q(Q::chip_break_distance) > 0)) bad(Q::chip_break_distance, "the chip-breaking distance must be > 0");
+                if (!(q(Q::chip_break_distance) > 0))
+                    bad(Q::chip_break_distance, "the chip-breaking distance must be > 0");
                 p.set(DrillField::pecking_retract, len(Q::chip_break_distance));
             }
             if (c.kind == CycleKind::chip_break) {

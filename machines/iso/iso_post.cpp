@@ -64,7 +64,8 @@ void IsoPost::on_rapid(const Vec3& to) {
     if (length_offset_pending_ && written_z() != to.z) {
         // The first Z move after a tool change carries the tool length offset.
         const AxisWords w = axis_words(to, {false, false, true});
-        writer().add(motion_word(0)).add(w.x).add(w.y).add(g(43)).add(w.z).add(fmt::format("H{}", current_tool())).end();
+        writer().add(motion_word(0)).add(w.x).add(w.y).add(g(43)).add(w.z).add(fmt::format("H{}", current_tool()))
+            .end();
         length_offset_pending_ = false;
         return;
     }
@@ -93,7 +94,8 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
         // R in one move; the control restores the spindle direction.
         on_rapid({at.x, at.y, position().z});
         on_rapid({at.x, at.y, c.safe_z});
-        writer().add(g(iso::rigid_tap_code)).add(force_z(c.bottom_z)).add(xyz_format().word("K", *c.values.get(DrillField::pitch))).end();
+        writer().add(g(iso::rigid_tap_code)).add(force_z(c.bottom_z))
+            .add(xyz_format().word("K", *c.values.get(DrillField::pitch))).end();
         forget_motion();
         assume_z(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});

@@ -7,7 +7,6 @@
 // sinumerik_cycle_call (README "Drilling: canned or longhand").
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
