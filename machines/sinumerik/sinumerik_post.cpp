@@ -137,6 +137,11 @@ std::string SinumerikPost::compensation_words(const Compensation& c) const {
 // CR=: the radius, negative for a sweep over 180 degrees.
 std::string SinumerikPost::radius_word(double radius) const { return xyz_format().word("CR=", radius); }
 
+// A CR= arc states its end point in the plane's axes whatever forceXY says.
+bool SinumerikPost::force_arc_end() const {
+    return machine().arcs.format == ArcFormat::radius || Post::force_arc_end();
+}
+
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)
         return "its DAM takes a degression value, not a factor";

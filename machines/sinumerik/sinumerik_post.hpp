@@ -20,6 +20,7 @@ protected:
     void on_dwell(double seconds) override;
     std::string compensation_words(const Compensation& compensation) const override;
     std::string radius_word(double radius) const override;
+    bool force_arc_end() const override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

@@ -142,6 +142,8 @@ std::string Post::compensation_words(const Compensation& c) const {
 
 std::string Post::radius_word(double radius) const { return xyz_fmt_.word("R", radius); }
 
+bool Post::force_arc_end() const { return machine_.arcs.force_xy; }
+
 Post::LinearLayout Post::linear_layout() { return {motion_word(1), false}; }
 
 std::string Post::speed_word(double rpm) const {
@@ -193,8 +195,9 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
         return;
     }
     // End point: the plane's two axes are written on every arc block when force_xy.
-    const ForcedAxes forced{s.force_xy && arc.plane != Plane::yz, s.force_xy && arc.plane != Plane::xz,
-                            s.force_xy && arc.plane != Plane::xy};
+    const bool force = force_arc_end();
+    const ForcedAxes forced{force && arc.plane != Plane::yz, force && arc.plane != Plane::xz,
+                            force && arc.plane != Plane::xy};
     const AxisWords w = axis_words(arc.end, forced);
     out_.add(plane).add(motion).add(w.x).add(w.y).add(w.z);
     if (s.format == ArcFormat::radius) {

@@ -78,3 +78,12 @@ TEST_CASE("the reader parses the ISO toolChange setting as strictly as the post"
     CHECK_THROWS_AS(make_post(m, out, {}), InputError);
     CHECK_THROWS_WITH_AS(read_program("G0 X0\n", m), doctest::Contains("toolChange"), InputError);
 }
+
+TEST_CASE("Sinumerik writes CR= for the radius and states the end point even where forceXY is off") {
+    Machine m = load_machine("sinumerik");
+    m.arcs.format = ArcFormat::radius;
+    m.arcs.force_xy = false;
+    const std::string t = post_events(m, {ToolChange{1, 6.0, ""}, Rapid{{0, 0, 5}},
+                                          Arc{{0, 10, 5}, {0, 5, 5}, ArcDirection::ccw, Plane::xy, 300, 0}});
+    CHECK(t.find("G17 G3 X0.000 Y10.000 CR=5.000 F300\n") != std::string::npos);
+}

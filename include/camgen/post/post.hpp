@@ -74,6 +74,9 @@ protected:
     virtual std::string compensation_words(const Compensation& compensation) const;
     // The radius word of an arc block in radius format: R, negative above 180 degrees.
     virtual std::string radius_word(double radius) const;
+    // Whether an arc block writes its plane's end coordinates even when unchanged (the
+    // machine's forceXY).
+    virtual bool force_arc_end() const;
     // How a feed move's block is laid out: its motion word and where the compensation words go.
     struct LinearLayout {
         std::string motion;                    // "G1", or "L" (Heidenhain)
