@@ -194,7 +194,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
         y_.set_last(arc.end.y);
         return;
     }
-    // End point: the plane's two axes are written on every arc block when force_xy.
+    // End point: the plane's two axes are written on every arc block when force_arc_end().
     const bool force = force_arc_end();
     const ForcedAxes forced{force && arc.plane != Plane::yz, force && arc.plane != Plane::xz,
                             force && arc.plane != Plane::xy};
