@@ -1,22 +1,57 @@
-// The dialects camgen can write, by the name a machine file gives in "dialect".
+// The dialects camgen writes and reads, by the name a machine file gives in "dialect". A new
+// dialect is one folder beside these and one line in the table.
+#include "src/post/dialect_registry.hpp"
+
+#include <algorithm>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "camgen/post/post.hpp"
 #include "machines/heidenhain/heidenhain_post.hpp"
+#include "machines/heidenhain/heidenhain_reader.hpp"
 #include "machines/iso/iso_post.hpp"
+#include "machines/iso/iso_reader.hpp"
 #include "machines/nccad/nccad_post.hpp"
+#include "machines/nccad/nccad_reader.hpp"
 #include "machines/sinumerik/sinumerik_post.hpp"
+#include "machines/sinumerik/sinumerik_reader.hpp"
 
 namespace camgen {
 
+namespace {
+
+// The post factory of dialect post class P.
+template <class P>
+std::unique_ptr<Post> post_of(const Machine& machine, std::ostream& out, PostOptions options) {
+    return std::make_unique<P>(machine, out, std::move(options));
+}
+
+// Name, post, reader: one line per dialect.
+constexpr Dialect registry[] = {
+    {"iso", post_of<IsoPost>, reader::make_iso_reader},
+    {"nccad", post_of<NccadPost>, reader::make_nccad_reader},
+    {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader},
+    {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader},
+};
+
+}  // namespace
+
+std::span<const Dialect> dialects() { return registry; }
+
+const Dialect* find_dialect(std::string_view name) {
+    for (const Dialect& d : registry)
+        if (d.name == name) return &d;
+    return nullptr;
+}
+
 std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options) {
-    if (machine.dialect == "iso") return std::make_unique<IsoPost>(machine, out, std::move(options));
-    if (machine.dialect == "nccad") return std::make_unique<NccadPost>(machine, out, std::move(options));
-    if (machine.dialect == "sinumerik") return std::make_unique<SinumerikPost>(machine, out, std::move(options));
-    if (machine.dialect == "heidenhain") return std::make_unique<HeidenhainPost>(machine, out, std::move(options));
-    throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: heidenhain, iso, nccad, sinumerik", machine.dialect), 0,
-                     machine.source);
+    if (const Dialect* d = find_dialect(machine.dialect)) return d->make_post(machine, out, std::move(options));
+    std::vector<std::string_view> names;
+    for (const Dialect& d : registry) names.push_back(d.name);
+    std::sort(names.begin(), names.end());
+    throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: {}", machine.dialect, fmt::join(names, ", ")),
+                     0, machine.source);
 }
 
 }  // namespace camgen

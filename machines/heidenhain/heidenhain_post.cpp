@@ -1,25 +1,19 @@
-// The Heidenhain TNC conversational dialect. REFERENCE.md §4. Cycle 200 DRILLING: Q200 set-up
-// clearance, Q201 depth (negative), Q206 plunge feed, Q202 plunging depth, Q210 dwell at top,
-// Q203 surface, Q204 2nd set-up clearance, Q211 dwell at depth. Cycle 203 UNIVERSAL DRILLING
-// adds Q212 decrement, Q213 chip breaks before a full retract, Q205 minimum plunging depth,
-// Q208 retraction feed, Q256 chip-break retraction. Cycle 207 RIGID TAPPING NEW: Q200, Q201,
-// Q239 pitch (negative: left-hand), Q203, Q204. Q200/Q201/Q204 are incremental from Q203.
+// The Heidenhain TNC conversational dialect: drilling as cycle definitions 200, 203 and 207
+// whose Q parameters heidenhain_words.hpp names for the post and the reader.
 #include "machines/heidenhain/heidenhain_post.hpp"
 
 #include <cctype>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/longhand.hpp"
+#include "machines/heidenhain/heidenhain_words.hpp"
 
 namespace camgen {
 
 namespace {
-
-// Q213 takes at most 99 chip breaks; Q208 at this value is a rapid retraction (FMAX).
-constexpr int max_breaks = 99;
-constexpr int fmax_feed = 99999;
 
 bool tapping(CycleKind k) { return k == CycleKind::tap || k == CycleKind::tap_left; }
 bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_break; }
@@ -27,6 +21,7 @@ bool pecking(CycleKind k) { return k == CycleKind::deep || k == CycleKind::chip_
 }  // namespace
 
 std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCycle& c, const Machine& machine) {
+    using heidenhain::Q;
     nc::FormatSpec signed_len = machine.format("xyz").spec();
     signed_len.force_sign = true;
     nc::FormatSpec signed_feed = machine.format("feed").spec();
@@ -38,48 +33,45 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
     // The set-up clearance is unsigned: when the feed starts below the surface, the
     // feed-start plane is given as the surface.
     const double surface = std::min(c.reference_z, c.safe_z);
-    const std::string q200 = len.format(c.safe_z - surface), q201 = len.format(c.bottom_z - surface),
-                      q203 = len.format(surface), q204 = len.format(c.retract_z - surface);
     auto dwell = [&](const std::optional<double>& s) { return sec.format(s.value_or(0.0)); };
+    // The values by parameter; the cycle's form gives their order and comments.
+    std::map<Q, std::string> v = {{Q::setup_clearance, len.format(c.safe_z - surface)},
+                                  {Q::depth, len.format(c.bottom_z - surface)},
+                                  {Q::surface, len.format(surface)},
+                                  {Q::second_setup_clearance, len.format(c.retract_z - surface)}};
+    const heidenhain::CycleForm* form = nullptr;
     if (tapping(c.kind)) {
+        form = &heidenhain::rigid_tapping;
         const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
-        return {"CYCL DEF 207 RIGID TAPPING NEW",
-                {{200, q200, "SET-UP CLEARANCE"},
-                 {201, q201, "DEPTH"},
-                 {239, len.format(pitch), "PITCH"},
-                 {203, q203, "SURFACE COORDINATE"},
-                 {204, q204, "2ND SET-UP CLEARANCE"}}};
+        v[Q::pitch] = len.format(pitch);
+    } else if (!pecking(c.kind)) {
+        form = &heidenhain::drilling;
+        v[Q::plunge_feed] = feed.format(c.feed);
+        v[Q::plunging_depth] = len.format(surface - c.bottom_z);  // all in one plunge
+        v[Q::top_dwell] = dwell(std::nullopt);
+        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+    } else {
+        form = &heidenhain::universal_drilling;
+        const bool full = c.kind == CycleKind::deep;
+        const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
+        v[Q::plunge_feed] = feed.format(c.feed);
+        v[Q::plunging_depth] = len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
+        v[Q::top_dwell] = dwell(full ? p.get(DrillField::top_dwell) : std::nullopt);
+        v[Q::decrement] = len.format(decrement);
+        v[Q::breaks] = full ? "+0" : fmt::format("+{}", heidenhain::max_breaks);
+        v[Q::min_plunging_depth] = len.format(p.get(DrillField::minimum_depth).value_or(0.0));
+        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+        // FMAX is the same number in mm and inch programs: written as it is, not converted.
+        v[Q::retraction_feed] = !full && p.get(DrillField::retract_feedrate)
+                                    ? feed.format(*p.get(DrillField::retract_feedrate))
+                                    : fmt::format("+{}", heidenhain::fmax_feed);
+        v[Q::chip_break_distance] =
+            len.format(full ? machine.peck_clearance : p.get(DrillField::pecking_retract).value_or(machine.peck_clearance));
     }
-    if (!pecking(c.kind)) {
-        return {"CYCL DEF 200 DRILLING",
-                {{200, q200, "SET-UP CLEARANCE"},
-                 {201, q201, "DEPTH"},
-                 {206, feed.format(c.feed), "FEED RATE FOR PLNGNG"},
-                 {202, len.format(surface - c.bottom_z), "PLUNGING DEPTH"},  // all in one plunge
-                 {210, dwell(std::nullopt), "DWELL TIME AT TOP"},
-                 {203, q203, "SURFACE COORDINATE"},
-                 {204, q204, "2ND SET-UP CLEARANCE"},
-                 {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"}}};
-    }
-    const bool full = c.kind == CycleKind::deep;
-    const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
-    return {"CYCL DEF 203 UNIVERSAL DRILLING",
-            {{200, q200, "SET-UP CLEARANCE"},
-             {201, q201, "DEPTH"},
-             {206, feed.format(c.feed), "FEED RATE FOR PLNGNG"},
-             {202, len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z)), "PLUNGING DEPTH"},
-             {210, dwell(full ? p.get(DrillField::top_dwell) : std::nullopt), "DWELL TIME AT TOP"},
-             {203, q203, "SURFACE COORDINATE"},
-             {204, q204, "2ND SET-UP CLEARANCE"},
-             {212, len.format(decrement), "DECREMENT"},
-             {213, full ? "+0" : fmt::format("+{}", max_breaks), "NR OF BREAKS"},
-             {205, len.format(p.get(DrillField::minimum_depth).value_or(0.0)), "MIN. PLUNGING DEPTH"},
-             {211, dwell(p.get(DrillField::bottom_dwell)), "DWELL TIME AT DEPTH"},
-             // 99999 is FMAX in mm and inch programs alike: written as it is, not converted.
-             {208, !full && p.get(DrillField::retract_feedrate) ? feed.format(*p.get(DrillField::retract_feedrate)) : fmt::format("+{}", fmax_feed),
-              "RETRACTION FEED RATE"},
-             {256, len.format(full ? machine.peck_clearance : p.get(DrillField::pecking_retract).value_or(machine.peck_clearance)),
-              "DIST FOR CHIP BRKNG"}}};
+    std::vector<TncParameter> params;
+    for (const heidenhain::QParameter& q : form->parameters)
+        params.push_back({heidenhain::number(q.q), v.at(q.q), std::string(q.comment)});
+    return {fmt::format("CYCL DEF {} {}", form->number, form->title), std::move(params)};
 }
 
 HeidenhainPost::HeidenhainPost(const Machine& machine, std::ostream& out, PostOptions options)
@@ -92,21 +84,21 @@ HeidenhainPost::HeidenhainPost(const Machine& machine, std::ostream& out, PostOp
 std::string HeidenhainPost::program_name() const {
     // A TNC program name: letters, digits, '_' and '-'.
     std::string s;
-    for (char c : options_.program_name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+    for (char c : options().program_name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
     return s.empty() ? "camgen" : s;
 }
 
 void HeidenhainPost::on_open() {
-    out_.add(fmt::format("BEGIN PGM {} {}", program_name(), machine_.units == Units::inch ? "INCH" : "MM")).end();
+    writer().add(fmt::format("BEGIN PGM {} {}", program_name(), machine().units == Units::inch ? "INCH" : "MM")).end();
 }
 
 void HeidenhainPost::on_close() {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    out_.add("M30").end();
-    out_.add(fmt::format("END PGM {} {}", program_name(), machine_.units == Units::inch ? "INCH" : "MM")).end();
+    writer().add("M30").end();
+    writer().add(fmt::format("END PGM {} {}", program_name(), machine().units == Units::inch ? "INCH" : "MM")).end();
 }
 
-void HeidenhainPost::on_comment(const std::string& text) { out_.add("; " + out_.clean_comment(text)).end(); }
+void HeidenhainPost::on_comment(const std::string& text) { writer().add("; " + writer().clean_comment(text)).end(); }
 
 void HeidenhainPost::on_tool_change(const ToolChange& tool) {
     if (pending_tool_) flush_tool_call(std::nullopt);
@@ -117,89 +109,85 @@ void HeidenhainPost::on_tool_change(const ToolChange& tool) {
 void HeidenhainPost::flush_tool_call(std::optional<double> rpm) {
     const ToolChange& t = *pending_tool_;
     if (!t.description.empty()) on_comment(fmt::format("T{} {}", t.number, t.description));
-    out_.add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? rpm_fmt_.word("S", *rpm) : "").end();
+    writer().add(fmt::format("TOOL CALL {} Z", t.number)).add(rpm ? rpm_format().word("S", *rpm) : "").end();
     pending_tool_.reset();
 }
 
 void HeidenhainPost::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::off) {
         if (pending_tool_) flush_tool_call(std::nullopt);
-        out_.add("M5").end();
+        writer().add("M5").end();
         return;
     }
     std::string speed = speed_word(s.rpm);  // checks the machine's limit
     if (pending_tool_)
         flush_tool_call(s.rpm);
     else if (s.rpm != speed_)
-        out_.add("TOOL CALL Z").add(speed).end();
+        writer().add("TOOL CALL Z").add(speed).end();
     speed_ = s.rpm;
-    out_.add(s.state == SpindleState::cw ? "M3" : "M4").end();
+    writer().add(s.state == SpindleState::cw ? "M3" : "M4").end();
 }
 
 void HeidenhainPost::on_dwell(double seconds) {
-    out_.add("CYCL DEF 9.0 DWELL TIME").end();
-    out_.add("CYCL DEF 9.1 DWELL " + dwell_fmt_.format(seconds)).end();
+    writer().add("CYCL DEF 9.0 DWELL TIME").end();
+    writer().add("CYCL DEF 9.1 DWELL " + dwell_format().format(seconds)).end();
 }
 
 void HeidenhainPost::on_rapid(const Vec3& to) {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty()) return;
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty()) return;
     // FMAX holds for its block only; the programmed F stays in force for the next L.
-    out_.add("L").add(xs).add(ys).add(zs).add("R0 FMAX").end();
+    writer().add("L").add(w.x).add(w.y).add(w.z).add("R0 FMAX").end();
 }
 
 void HeidenhainPost::rapid_from_unknown(const Vec3& to) {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    out_.add("L").add(x_.force(to.x)).add(y_.force(to.y)).add("R0 FMAX").end();
-    z_.reset();
+    const AxisWords w = force_xy({to.x, to.y});
+    writer().add("L").add(w.x).add(w.y).add("R0 FMAX").end();
+    forget_z();
     on_rapid(to);
 }
 
 // Radius compensation is a word of the L block: R0, RL, RR.
-std::string HeidenhainPost::compensation_words(CompensationSide side) const {
-    return side == CompensationSide::off ? "R0" : side == CompensationSide::left ? "RL" : "RR";
+std::string HeidenhainPost::compensation_words(const Compensation& c) const {
+    return c.side == CompensationSide::off ? "R0" : c.side == CompensationSide::left ? "RL" : "RR";
 }
 
-void HeidenhainPost::on_linear(const Vec3& to, double feed) {
-    std::string comp;
-    if (pending_compensation_) comp = compensation_words(*pending_compensation_);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
-    std::string fs = feed_word(feed);
-    out_.add("L").add(xs).add(ys).add(zs).add(comp).add(fs).end();
-    pending_compensation_.reset();
-}
+// A feed move is an L block; its compensation word follows the coordinates.
+Post::LinearLayout HeidenhainPost::linear_layout() { return {"L", true}; }
 
 void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
     // CC: the centre (absolute); C: the end point and the direction (DR+ counter-clockwise).
     // The machine file allows XY arcs only; others arrive here as lines.
-    nc::Word cx("X", xyz_fmt_, true), cy("Y", xyz_fmt_, true);
-    out_.add("CC").add(cx.format(arc.centre.x)).add(cy.format(arc.centre.y)).end();
+    nc::Word cx("X", xyz_format(), true), cy("Y", xyz_format(), true);
+    writer().add("CC").add(cx.format(arc.centre.x)).add(cy.format(arc.centre.y)).end();
     std::string fs = feed_word(feed);
-    out_.add("C").add(x_.force(arc.end.x)).add(y_.force(arc.end.y)).add(z_.format(arc.end.z))
+    const AxisWords w = axis_words(arc.end, {true, true, false});
+    writer().add("C").add(w.x).add(w.y).add(w.z)
         .add(arc.direction == ArcDirection::ccw ? "DR+" : "DR-").add(fs).end();
 }
 
 std::optional<std::string> HeidenhainPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)
         return "its Q212 takes a decrement value, not a factor";
-    if (c.kind == CycleKind::chip_break && peck_depths(c).size() > max_breaks + 1)
-        return fmt::format("more than {} chip breaks (Q213) in one hole", max_breaks);
+    if (c.kind == CycleKind::chip_break && peck_depths(c).size() > heidenhain::max_breaks + 1)
+        return fmt::format("more than {} chip breaks (Q213) in one hole", heidenhain::max_breaks);
     return std::nullopt;
 }
 
 void HeidenhainPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) {
-    auto [title, params] = heidenhain_cycle(c, machine_);
-    out_.add(title + " ~").end();
+    auto [title, params] = heidenhain_cycle(c, machine());
+    writer().add(title + " ~").end();
     for (size_t i = 0; i < params.size(); ++i)
-        out_.raw(fmt::format("  Q{}={} ;{}{}", params[i].q, params[i].value, params[i].comment,
-                             i + 1 < params.size() ? " ~" : ""));
+        writer().raw(fmt::format("  Q{}={} ;{}{}", params[i].q, params[i].value, params[i].comment,
+                                 i + 1 < params.size() ? " ~" : ""));
 }
 
 void HeidenhainPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2 at, bool) {
     // M99 calls the cycle at this position; both coordinates every time.
-    out_.add("L").add(x_.force(at.x)).add(y_.force(at.y)).add("R0 FMAX M99").end();
+    const AxisWords w = force_xy(at);
+    writer().add("L").add(w.x).add(w.y).add("R0 FMAX M99").end();
 }
 
 void HeidenhainPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}

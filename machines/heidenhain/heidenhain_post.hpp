@@ -5,7 +5,7 @@
 
 namespace camgen {
 
-// Heidenhain TNC conversational (Klartext) post (REFERENCE.md §4): numbered blocks from
+// Heidenhain TNC conversational (Klartext) post: numbered blocks from
 // `0 BEGIN PGM name MM` to `END PGM name MM`, `; ` comments, `TOOL CALL n Z S..`, `M3`/`M5`,
 // `L X.. Y.. Z.. R0 FMAX` / `L X.. F..`, arcs `CC X.. Y..` + `C X.. Y.. DR+/-`, dwell cycle 9,
 // drilling as `CYCL DEF 200 DRILLING`, `203 UNIVERSAL DRILLING` or `207 RIGID TAPPING NEW`
@@ -23,8 +23,8 @@ protected:
     void on_dwell(double seconds) override;
     void on_rapid(const Vec3& to) override;
     void rapid_from_unknown(const Vec3& to) override;
-    void on_linear(const Vec3& to, double feed) override;
-    std::string compensation_words(CompensationSide side) const override;
+    std::string compensation_words(const Compensation& compensation) const override;
+    LinearLayout linear_layout() override;
     void on_circular(const ArcGeometry& arc, double feed) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;

@@ -1,4 +1,4 @@
-// Reading the Heidenhain TNC conversational dialect (machines/heidenhain.cpp): numbered blocks
+// Reading the Heidenhain TNC conversational dialect: numbered blocks
 // from "0 BEGIN PGM name MM" to "END PGM name MM", "; comments", TOOL CALL n Z S.. (and
 // TOOL CALL Z S.. for a new speed), M3/M4/M5, L X.. Y.. Z.. R0 FMAX (rapid) and L .. F..
 // (feed; F is modal, FMAX holds for its block only), R0/RL/RR, arcs CC X Y + C X Y DR+/DR-,
@@ -14,14 +14,15 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/post/longhand.hpp"
+#include "machines/heidenhain/heidenhain_reader.hpp"
+#include "machines/heidenhain/heidenhain_words.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {
 
 namespace {
 
-constexpr double fmax_feed = 99999.0;  // Q208 at this value retracts at FMAX
-constexpr int max_breaks = 99;         // the largest Q213
+using heidenhain::Q;
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
@@ -52,19 +53,11 @@ struct CycleDef {
     int line = 0;
 };
 
-// The Q parameters camgen writes for each cycle, in order, and the cycle's title.
-struct CycleForm {
-    int number;
-    const char* title;
-    std::vector<int> q;
-};
-const std::vector<CycleForm>& cycle_forms() {
-    static const std::vector<CycleForm> forms = {
-        {200, "DRILLING", {200, 201, 206, 202, 210, 203, 204, 211}},
-        {203, "UNIVERSAL DRILLING", {200, 201, 206, 202, 210, 203, 204, 212, 213, 205, 211, 208, 256}},
-        {207, "RIGID TAPPING NEW", {200, 201, 239, 203, 204}},
-    };
-    return forms;
+// The cycle form of a cycle number, or nullptr.
+const heidenhain::CycleForm* cycle_form(int number) {
+    for (const heidenhain::CycleForm* f : heidenhain::cycle_forms)
+        if (f->number == number) return f;
+    return nullptr;
 }
 
 class HeidenhainReader : public NcReader {
@@ -250,9 +243,9 @@ void HeidenhainReader::cycle_def(const std::vector<std::string_view>& t, bool co
         dwell_def_line_ = 0;
         return;
     }
-    const CycleForm* form = nullptr;
-    for (const CycleForm& f : cycle_forms())
-        if (t[2] == std::to_string(f.number)) form = &f;
+    const heidenhain::CycleForm* form = nullptr;
+    for (const heidenhain::CycleForm* f : heidenhain::cycle_forms)
+        if (t[2] == std::to_string(f->number)) form = f;
     if (!form) fail(fmt::format("camgen cannot read cycle {}", t[2]));
     std::string title;
     for (size_t i = 3; i < t.size() && t[i] != "~"; ++i) {
@@ -280,17 +273,17 @@ void HeidenhainReader::parameter_line(std::string_view text) {
     auto v = parse_number(text.substr(eq + 1));
     if (!n || *n != std::floor(*n) || !v) fail(fmt::format("\"{}\" is not Q<n>=<value>", text));
     int q = static_cast<int>(*n);
-    const CycleForm& form = *std::find_if(cycle_forms().begin(), cycle_forms().end(),
-                                          [&](const CycleForm& f) { return f.number == defining_->number; });
+    const heidenhain::CycleForm& form = *cycle_form(defining_->number);
+    auto q_at = [&](size_t k) { return heidenhain::number(form.parameters[k].q); };
     size_t k = defining_->q.size();
-    if (k >= form.q.size() || form.q[k] != q)
+    if (k >= form.parameters.size() || q_at(k) != q)
         fail(fmt::format("Q{} where cycle {} has {}", q, form.number,
-                         k < form.q.size() ? fmt::format("Q{} next", form.q[k]) : std::string("no more parameters")));
+                         k < form.parameters.size() ? fmt::format("Q{} next", q_at(k)) : std::string("no more parameters")));
     defining_->q[q] = *v == 0.0 ? 0.0 : *v;
     defining_->text[q] = std::string(text);
     if (!more) {
-        if (defining_->q.size() != form.q.size())
-            fail(fmt::format("cycle {} ends after Q{}: Q{} is missing", form.number, q, form.q[defining_->q.size()]));
+        if (defining_->q.size() != form.parameters.size())
+            fail(fmt::format("cycle {} ends after Q{}: Q{} is missing", form.number, q, q_at(defining_->q.size())));
         cycle_defined();
     }
 }
@@ -304,50 +297,53 @@ void HeidenhainReader::cycle_defined() {
 
 DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const {
     const CycleDef& d = *cycle_;
-    auto q = [&](int n) { return d.q.at(n); };  // as written
+    auto q = [&](Q n) { return d.q.at(heidenhain::number(n)); };  // as written
     // In internal units through the machine's formats (an INCH program writes inches).
-    auto len = [&](int n) { return length_value(q(n)); };
-    auto sec = [&](int n) { return seconds_value(q(n)); };
-    auto bad = [&](int n, const std::string& why) -> void { fail(fmt::format("cycle {}: {}: {}", d.number, d.text.at(n), why)); };
+    auto len = [&](Q n) { return length_value(q(n)); };
+    auto sec = [&](Q n) { return seconds_value(q(n)); };
+    auto bad = [&](Q n, const std::string& why) -> void {
+        fail(fmt::format("cycle {}: {}: {}", d.number, d.text.at(heidenhain::number(n)), why));
+    };
     const double unit = resolution().position;
     // Q200, Q201 and Q204 count from the surface Q203 (camgen writes the feed-start plane as
     // the surface when it lies below the reference plane).
     DrillCycle c;
-    c.reference_z = len(203);
-    if (q(200) < 0) bad(200, "the set-up clearance must not be negative");
-    if (!(q(201) < 0)) bad(201, "the depth must be negative (below the surface)");
-    if (q(204) < q(200)) bad(204, "the 2nd set-up clearance is below the set-up clearance");
-    c.safe_z = len(203) + len(200);
-    c.bottom_z = len(203) + len(201);
-    c.retract_z = len(203) + len(204);
+    c.reference_z = len(Q::surface);
+    if (q(Q::setup_clearance) < 0) bad(Q::setup_clearance, "the set-up clearance must not be negative");
+    if (!(q(Q::depth) < 0)) bad(Q::depth, "the depth must be negative (below the surface)");
+    if (q(Q::second_setup_clearance) < q(Q::setup_clearance))
+        bad(Q::second_setup_clearance, "the 2nd set-up clearance is below the set-up clearance");
+    c.safe_z = len(Q::surface) + len(Q::setup_clearance);
+    c.bottom_z = len(Q::surface) + len(Q::depth);
+    c.retract_z = len(Q::surface) + len(Q::second_setup_clearance);
     c.spindle_rpm = rpm;
     c.spindle_direction = spindle == SpindleState::ccw ? SpindleDirection::ccw : SpindleDirection::cw;
     c.output = CycleOutput::canned;
     DrillValues& p = c.values;
-    auto dwell = [&](int n) -> std::optional<double> {
+    auto dwell = [&](Q n) -> std::optional<double> {
         if (q(n) < 0) bad(n, "a dwell must not be negative");
         return q(n) > 0 ? std::optional<double>(sec(n)) : std::nullopt;
     };
 
-    if (d.number == 207) {
+    if (d.number == heidenhain::rigid_tapping.number) {
         // Rigid tapping: the pitch's sign gives the hand; feed = pitch x the spindle speed.
-        if (q(239) == 0) bad(239, "the pitch must not be 0");
-        c.kind = q(239) < 0 ? CycleKind::tap_left : CycleKind::tap;
-        p.set(DrillField::pitch, std::abs(len(239)));
+        if (q(Q::pitch) == 0) bad(Q::pitch, "the pitch must not be 0");
+        c.kind = q(Q::pitch) < 0 ? CycleKind::tap_left : CycleKind::tap;
+        p.set(DrillField::pitch, std::abs(len(Q::pitch)));
         if (spindle == SpindleState::off || !(rpm > 0)) fail("cycle 207 called with the spindle off");
         c.feed = *p.get(DrillField::pitch) * rpm;
     } else {
-        if (!(q(206) > 0)) bad(206, "the plunging feed must be > 0");
-        c.feed = feed_value(q(206));
+        if (!(q(Q::plunge_feed) > 0)) bad(Q::plunge_feed, "the plunging feed must be > 0");
+        c.feed = feed_value(q(Q::plunge_feed));
         p.set(DrillField::plunging_feedrate, c.feed);
-        if (!(q(202) > 0)) bad(202, "the plunging depth must be > 0");
-        p.set(DrillField::bottom_dwell, dwell(211));
-        if (q(210) < 0) bad(210, "a dwell must not be negative");
-        if (d.number == 200) {
+        if (!(q(Q::plunging_depth) > 0)) bad(Q::plunging_depth, "the plunging depth must be > 0");
+        p.set(DrillField::bottom_dwell, dwell(Q::bottom_dwell));
+        if (q(Q::top_dwell) < 0) bad(Q::top_dwell, "a dwell must not be negative");
+        if (d.number == heidenhain::drilling.number) {
             // One plunge: camgen writes the whole depth. The TNC dwells at the top (Q210) only
             // between plunges, so one plunge has no such dwell.
-            if (len(202) < -len(201) - unit)
-                bad(202, "a plunging depth less than the depth pecks: camgen writes pecking as cycle 203");
+            if (len(Q::plunging_depth) < -len(Q::depth) - unit)
+                bad(Q::plunging_depth, "a plunging depth less than the depth pecks: camgen writes pecking as cycle 203");
             c.kind = p.get(DrillField::bottom_dwell) ? CycleKind::dwell : CycleKind::drill;
         } else {
             // Cycle 203. Q213 = 0: full retracts (camgen's "deep"); Q213 > 0: chip breaking
@@ -357,27 +353,30 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
             // starts from the set-up clearance, and the retraction feed Q208 on the way out of
             // the finished hole only. A real TNC measures plunges from the surface and picks
             // its own advance stop distance (README "Drilling: canned or longhand").
-            const double breaks = q(213);
-            if (breaks < 0 || breaks > max_breaks || breaks != std::floor(breaks))
-                bad(213, fmt::format("the number of chip breaks is a whole number 0..{}", max_breaks));
+            const double breaks = q(Q::breaks);
+            if (breaks < 0 || breaks > heidenhain::max_breaks || breaks != std::floor(breaks))
+                bad(Q::breaks, fmt::format("the number of chip breaks is a whole number 0..{}", heidenhain::max_breaks));
             c.kind = breaks == 0 ? CycleKind::deep : CycleKind::chip_break;
-            p.set(DrillField::first_depth, len(202));
-            if (q(212) < 0) bad(212, "the decrement must not be negative");
-            if (q(212) > 0) {
+            p.set(DrillField::first_depth, len(Q::plunging_depth));
+            if (q(Q::decrement) < 0) bad(Q::decrement, "the decrement must not be negative");
+            if (q(Q::decrement) > 0) {
                 p.set_degression_type(DegressionType::value);
-                p.set(DrillField::degression, len(212));
+                p.set(DrillField::degression, len(Q::decrement));
             }
-            if (q(205) < 0) bad(205, "the minimum plunging depth must not be negative");
-            if (q(205) > 0) p.set(DrillField::minimum_depth, len(205));
+            if (q(Q::min_plunging_depth) < 0)
+                bad(Q::min_plunging_depth, "the minimum plunging depth must not be negative");
+            if (q(Q::min_plunging_depth) > 0) p.set(DrillField::minimum_depth, len(Q::min_plunging_depth));
             // Q210 acts after full retracts only: with chip breaking camgen makes none.
-            if (c.kind == CycleKind::deep) p.set(DrillField::top_dwell, dwell(210));
-            if (!(q(208) > 0)) bad(208, "the retraction feed must be > 0");
+            if (c.kind == CycleKind::deep) p.set(DrillField::top_dwell, dwell(Q::top_dwell));
+            if (!(q(Q::retraction_feed) > 0)) bad(Q::retraction_feed, "the retraction feed must be > 0");
             // 99999 as written (whatever the units) is FMAX.
-            if (q(208) != fmax_feed) p.set(DrillField::retract_feedrate, feed_value(q(208)));
+            if (q(Q::retraction_feed) != heidenhain::fmax_feed)
+                p.set(DrillField::retract_feedrate, feed_value(q(Q::retraction_feed)));
             // Q256 is the back-off of a chip break; full retracts do not use it.
             if (c.kind == CycleKind::chip_break) {
-                if (!(q(256) > 0)) bad(256, "the chip-breaking distance must be > 0");
-                p.set(DrillField::pecking_retract, len(256));
+                if (!(q(Q::chip_break_distance) > 0))
+                    bad(Q::chip_break_distance, "the chip-breaking distance must be > 0");
+                p.set(DrillField::pecking_retract, len(Q::chip_break_distance));
             }
             if (c.kind == CycleKind::chip_break) {
                 size_t pecks = 0;
@@ -387,7 +386,7 @@ DrillCycle HeidenhainReader::cycle_with(SpindleState spindle, double rpm) const 
                     fail(fmt::format("cycle 203: pecks that cannot reach the bottom of the hole: {}", e.detail()));
                 }
                 if (pecks > breaks + 1)
-                    bad(213, fmt::format("{} pecks make more chip breaks than that: the TNC would retract fully "
+                    bad(Q::breaks, fmt::format("{} pecks make more chip breaks than that: the TNC would retract fully "
                                          "after {}", pecks, breaks));
             }
         }

@@ -8,25 +8,6 @@
 
 namespace camgen {
 
-namespace {
-
-double cycle_code(CycleKind kind) {
-    switch (kind) {
-        case CycleKind::drill: return 81;
-        case CycleKind::dwell: return 82;
-        case CycleKind::deep: return 83;
-        case CycleKind::chip_break: return 73;
-        case CycleKind::tap: return 84;
-        case CycleKind::tap_left: return 74;
-        case CycleKind::ream: return 85;
-        case CycleKind::bore_stop: return 86;
-        case CycleKind::bore_dwell: return 89;
-    }
-    return 81;
-}
-
-}  // namespace
-
 IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     : Post(machine, out, std::move(options)) {
     json::Source source{machine.source, json::LineMap{}};
@@ -34,61 +15,57 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     program_number_ = f.optional_integer("programNumber").value_or(1000);
     percent_ = f.boolean("percentLines", true);
     length_offset_ = f.boolean("toolLengthOffset", true);
-    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
-        tool_change_ = tc->get<bool>() ? IsoToolChange::m6 : IsoToolChange::none;
-    else
-        tool_change_ = f.choice<IsoToolChange>(
-            "toolChange", {{"m6", IsoToolChange::m6}, {"pause", IsoToolChange::pause}, {"none", IsoToolChange::none}},
-            IsoToolChange::m6);
+    tool_change_ = iso::tool_change_setting(f);
     end_code_ = f.optional_string("endCode").value_or("M30");
     f.finish();
 }
 
 void IsoPost::on_open() {
-    if (percent_) out_.raw("%");
+    if (percent_) writer().raw("%");
     if (program_number_ > 0) {
         std::string line = fmt::format("O{:04}", program_number_);
-        if (!options_.program_name.empty())
-            line += " (" + out_.clean_comment(options_.program_name) + ")";
-        out_.raw(line);
-    } else if (!options_.program_name.empty()) {
-        out_.comment(options_.program_name);
+        if (!options().program_name.empty())
+            line += " (" + writer().clean_comment(options().program_name) + ")";
+        writer().raw(line);
+    } else if (!options().program_name.empty()) {
+        writer().comment(options().program_name);
     }
-    out_.add(g(17)).add(g(machine_.units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
-    plane_.set_last(17);
+    writer().add(g(17)).add(g(machine().units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
+    assume_plane(17);
 }
 
 void IsoPost::on_close() {
-    out_.add(end_code_).end();
-    if (percent_) out_.raw("%");
+    writer().add(end_code_).end();
+    if (percent_) writer().raw("%");
 }
 
 void IsoPost::on_tool_change(const ToolChange& tool) {
     switch (tool_change_) {
-        case IsoToolChange::m6:
-            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
-            out_.add(fmt::format("T{}", tool.number)).add(m(6)).end();
+        case iso::ToolChangeStyle::m6:
+            if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
+            writer().add(fmt::format("T{}", tool.number)).add(m(6)).end();
             break;
-        case IsoToolChange::pause:
+        case iso::ToolChangeStyle::pause:
             // No tool changer (GRBL has no M6): the spindle is off; stop and tell the operator.
-            out_.comment(fmt::format("Insert tool {}{}", tool.number,
-                                     tool.description.empty() ? "" : ": " + tool.description));
-            out_.add(m(0)).end();
+            writer().comment(fmt::format("Insert tool {}{}", tool.number,
+                                         tool.description.empty() ? "" : ": " + tool.description));
+            writer().add(m(0)).end();
             break;
-        case IsoToolChange::none:
-            if (!tool.description.empty()) out_.comment(fmt::format("T{} {}", tool.number, tool.description));
+        case iso::ToolChangeStyle::none:
+            if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
             break;
     }
     length_offset_pending_ = length_offset_;
 }
 
-void IsoPost::on_dwell(double seconds) { out_.add(g(4)).add(dwell_fmt_.word("P", seconds)).end(); }
+void IsoPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("P", seconds)).end(); }
 
 void IsoPost::on_rapid(const Vec3& to) {
-    if (length_offset_pending_ && z_.last() != to.z) {
+    if (length_offset_pending_ && written_z() != to.z) {
         // The first Z move after a tool change carries the tool length offset.
-        std::string xs = x_.format(to.x), ys = y_.format(to.y);
-        out_.add(motion_word(0)).add(xs).add(ys).add(g(43)).add(z_.force(to.z)).add(fmt::format("H{}", tool_)).end();
+        const AxisWords w = axis_words(to, {false, false, true});
+        writer().add(motion_word(0)).add(w.x).add(w.y).add(g(43)).add(w.z).add(fmt::format("H{}", current_tool()))
+            .end();
         length_offset_pending_ = false;
         return;
     }
@@ -105,42 +82,43 @@ void IsoPost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec&) 
     // G84/G74 and G33.1 tap in the direction the spindle runs when they start.
     if (auto dir = tapping_direction(c)) on_spindle(Spindle{*dir, c.spindle_rpm});
     // G98 returns to the Z the tool had before the cycle: make sure that is the retract plane.
-    if (c.retract_z > c.safe_z && pos_.z != c.retract_z) {
-        on_rapid({pos_.x, pos_.y, c.retract_z});
-        pos_.z = c.retract_z;
+    if (const Vec3 at = position(); c.retract_z > c.safe_z && at.z != c.retract_z) {
+        on_rapid({at.x, at.y, c.retract_z});
+        set_position({at.x, at.y, c.retract_z});
     }
 }
 
 void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
-    if (spec.name == "G33.1") {
+    if (spec.style == CannedStyle::rigid_g33_1) {
         // LinuxCNC rigid tapping: from R, synchronised down to Z, spindle reversal and back to
         // R in one move; the control restores the spindle direction.
-        on_rapid({at.x, at.y, pos_.z});
+        on_rapid({at.x, at.y, position().z});
         on_rapid({at.x, at.y, c.safe_z});
-        out_.add(g(33.1)).add(z_.force(c.bottom_z)).add(xyz_fmt_.word("K", *c.values.get(DrillField::pitch))).end();
-        motion_.reset();
-        z_.set_last(c.safe_z);
+        writer().add(g(iso::rigid_tap_code)).add(force_z(c.bottom_z))
+            .add(xyz_format().word("K", *c.values.get(DrillField::pitch))).end();
+        forget_motion();
+        assume_z(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});
         return;
     }
-    std::string xs = x_.force(at.x), ys = y_.force(at.y);
+    const AxisWords w = force_xy(at);
     if (!first) {
-        out_.add(xs).add(ys).end();
+        writer().add(w.x).add(w.y).end();
         return;
     }
     const DrillValues& p = c.values;
     // G98 returns to the Z the tool had before the cycle: the retract plane, where the
     // operation put it. G99 returns to R.
-    out_.add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(cycle_code(c.kind))).add(xs).add(ys);
-    out_.add(z_.force(c.bottom_z)).add(xyz_fmt_.word("R", c.safe_z));
+    writer().add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(iso::cycle_code(c.kind))).add(w.x).add(w.y);
+    writer().add(force_z(c.bottom_z)).add(xyz_format().word("R", c.safe_z));
     if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.get(DrillField::first_depth))
-        out_.add(xyz_fmt_.word("Q", *p.get(DrillField::first_depth)));
-    if (p.get(DrillField::bottom_dwell) && *p.get(DrillField::bottom_dwell) > 0) out_.add(dwell_fmt_.word("P", *p.get(DrillField::bottom_dwell)));
-    out_.add(feed_word(c.feed)).end();
+        writer().add(xyz_format().word("Q", *p.get(DrillField::first_depth)));
+    if (p.get(DrillField::bottom_dwell) && *p.get(DrillField::bottom_dwell) > 0) writer().add(dwell_format().word("P", *p.get(DrillField::bottom_dwell)));
+    writer().add(feed_word(c.feed)).end();
 }
 
 void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
-    if (spec.name != "G33.1") out_.add(g(80)).end();
+    if (spec.style != CannedStyle::rigid_g33_1) writer().add(g(80)).end();
     if (tapping_direction(c)) on_spindle(Spindle{c.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw,
                                                  c.spindle_rpm});
 }

@@ -1,17 +1,14 @@
 #pragma once
 #include "camgen/post/post.hpp"
+#include "machines/iso/iso_words.hpp"
 
 namespace camgen {
-
-// How an ISO control changes tools: T.. M6, a pause (M0) with a message for the operator
-// (GRBL), or not at all.
-enum class IsoToolChange { m6, pause, none };
 
 // Fanuc-style ISO post (fanuc, linuxcnc, grbl). Settings (machine file "settings"):
 // programNumber (0: none, the program name becomes a comment), percentLines, toolLengthOffset
 // (G43 H), toolChange (true/"m6", "pause", false/"none"), endCode. Canned cycles are
-// G81-G89/G73/G74 with G98/G99, R, Q, P, F and G80; a cycle named "G33.1" in the machine's
-// drilling table is LinuxCNC rigid tapping (M4 before it for tap-left).
+// G81-G89/G73/G74 with G98/G99, R, Q, P, F and G80; a cycle of style "rigid-g33.1" in the
+// machine's drilling table is LinuxCNC rigid tapping G33.1 (M4 before it for tap-left).
 class IsoPost : public Post {
 public:
     IsoPost(const Machine& machine, std::ostream& out, PostOptions options);
@@ -29,7 +26,7 @@ protected:
     int program_number_ = 1000;
     bool percent_ = true;
     bool length_offset_ = true;
-    IsoToolChange tool_change_ = IsoToolChange::m6;
+    iso::ToolChangeStyle tool_change_ = iso::ToolChangeStyle::m6;
     std::string end_code_ = "M30";
     bool length_offset_pending_ = false;
 

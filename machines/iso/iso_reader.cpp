@@ -3,47 +3,37 @@
 // tool changes as the machine's toolChange setting writes them (T.. M6, or GRBL's
 // "(Insert tool n: ...)" comment and M0), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
 // (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
-// G98/G99 (REFERENCE.md §3), LinuxCNC G33.1 rigid tapping, M2/M30.
+// G98/G99 (G98: back to the Z before the first cycle block, G99: to R), LinuxCNC G33.1 rigid
+// tapping, M2/M30.
 #include <algorithm>
 
 #include <fmt/format.h>
 
+#include "machines/iso/iso_reader.hpp"
+#include "machines/iso/iso_words.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {
 
 namespace {
 
-// The cycle kind of an ISO canned-cycle code, if it is one.
+// The cycle kind of an ISO canned-cycle code (in tenths), if it is one.
 std::optional<CycleKind> cycle_kind_of(int g) {
-    switch (g) {
-        case code(81): return CycleKind::drill;
-        case code(82): return CycleKind::dwell;
-        case code(83): return CycleKind::deep;
-        case code(73): return CycleKind::chip_break;
-        case code(84): return CycleKind::tap;
-        case code(74): return CycleKind::tap_left;
-        case code(85): return CycleKind::ream;
-        case code(86): return CycleKind::bore_stop;
-        case code(89): return CycleKind::bore_dwell;
-        default: return std::nullopt;
-    }
+    for (const iso::CycleCode& c : iso::cycle_codes)
+        if (code(c.code) == g) return c.kind;
+    return std::nullopt;
 }
 
 bool has_field(const DrillingCycleSpec& spec, DrillField f) {
     return std::find(spec.fields.begin(), spec.fields.end(), f) != spec.fields.end();
 }
 
-// How the machine's post writes a tool change (machines/iso.hpp, setting "toolChange").
-enum class ToolChangeStyle { m6, pause, none };
-
-ToolChangeStyle tool_change_style(const Machine& m) {
-    auto it = m.dialect_settings.find("toolChange");
-    if (it == m.dialect_settings.end()) return ToolChangeStyle::m6;
-    if (it->is_boolean()) return it->get<bool>() ? ToolChangeStyle::m6 : ToolChangeStyle::none;
-    if (it->is_string() && it->get<std::string>() == "pause") return ToolChangeStyle::pause;
-    if (it->is_string() && it->get<std::string>() == "none") return ToolChangeStyle::none;
-    return ToolChangeStyle::m6;
+// How the machine's post writes a tool change (the setting "toolChange", read as the post
+// reads it).
+iso::ToolChangeStyle tool_change_style(const Machine& m) {
+    json::Source source{m.source, json::LineMap{}};
+    json::Fields f(m.dialect_settings, "/settings", source);
+    return iso::tool_change_setting(f);
 }
 
 // A tool change announced by a comment, to be made by the M0 on the next line.
@@ -72,7 +62,7 @@ private:
     const DrillingCycleSpec* canned_spec(int g) const;
     std::optional<InsertTool> insert_tool(const std::string& comment) const;
 
-    ToolChangeStyle tool_change_;
+    iso::ToolChangeStyle tool_change_;
     std::optional<InsertTool> pending_insert_;
     int motion_ = -1;  // the modal motion code (tenths); -1: none yet
     Plane plane_ = Plane::xy;
@@ -113,7 +103,7 @@ void IsoReader::line(std::string_view text) {
     Block b = split_line(text);
     bool announced_before = pending_insert_.has_value();
     emit_comments(b);
-    if (tool_change_ == ToolChangeStyle::pause) {
+    if (tool_change_ == iso::ToolChangeStyle::pause) {
         for (const std::string& c : b.comments) {
             auto t = insert_tool(c);
             if (!t) continue;
@@ -154,7 +144,7 @@ void IsoReader::block(const Block& b) {
             Code c{code_of(x), &x};
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
-                case code(33.1):
+                case code(iso::rigid_tap_code):
                     if (!canned_spec(c.value))
                         fail(fmt::format("{} (rigid tapping) is not a cycle of machine {}", x.text, machine_.name));
                     set_group(motion, c);
@@ -200,15 +190,15 @@ void IsoReader::block(const Block& b) {
     if (const Word* f = w.take('F')) feed_ = feed(*f);
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
     if (const Word* t = w.take('T')) {
-        if (tool_change_ == ToolChangeStyle::pause)
+        if (tool_change_ == iso::ToolChangeStyle::pause)
             fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
                              "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
         selected_tool_ = integer_of(*t);
     }
-    if (m.tool_change && tool_change_ == ToolChangeStyle::pause)
+    if (m.tool_change && tool_change_ == iso::ToolChangeStyle::pause)
         fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
                          "and pauses with M0", machine_.name));
-    if (m.stop && m.stop->value == code(0) && tool_change_ == ToolChangeStyle::pause) {
+    if (m.stop && m.stop->value == code(0) && tool_change_ == iso::ToolChangeStyle::pause) {
         // GRBL: the spindle is off; the operator changes the tool the comment names.
         if (!pending_insert_)
             fail(fmt::format("M0 without the comment (Insert tool <n>: ...) on the line before it: machine {} "
@@ -270,7 +260,7 @@ void IsoReader::motion_block(int mode, BlockWords& w) {
         cycle_block(mode, w);
         return;
     }
-    if (mode == code(33.1)) {
+    if (mode == code(iso::rigid_tap_code)) {
         rigid_tap(w);
         return;
     }

@@ -17,7 +17,7 @@ protected:
     void on_tool_change(const ToolChange& tool) override;
     void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
-    void on_compensation(CompensationSide side) override;
+    void on_compensation(const Compensation& compensation) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

@@ -1,4 +1,4 @@
-// Reading the nccad dialect (MAX computer nccad: Wabeco, KOSY; REFERENCE.md §5): "_" lines,
+// Reading the nccad dialect (MAX computer nccad: Wabeco, KOSY): "_" lines,
 // G90, "; comments", G00/G01, arcs as G02/G03 D<sweep> I J (the control computes the end) or
 // in the classic form G02 X Y I J (both X and Y required), G81 X Y Z B F + G79 X Y drilling,
 // M10 O6.1 / O6.0 spindle, M01 <message> (tool changes and spindle speeds), M30 P<n> dwell in
@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/nccad/nccad_reader.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {

@@ -5,7 +5,7 @@
 
 namespace camgen {
 
-// Siemens Sinumerik 840D post (REFERENCE.md §4): `;` comments, G71 metric, `T.. D1` / `M6`,
+// Siemens Sinumerik 840D post: `;` comments, G71 metric, `T.. D1` / `M6`,
 // `S.. M3`, dwell `G4 F<s>`, arcs `G2/G3 X Y I J` or `CR=`, drilling as
 // `MCALL CYCLE81..89(...)`, one X/Y block per hole, `MCALL` to end, `M30`.
 // No dialect settings.
@@ -18,8 +18,9 @@ protected:
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_dwell(double seconds) override;
-    std::string compensation_words(CompensationSide side) const override;
-    void on_circular(const ArcGeometry& arc, double feed) override;
+    std::string compensation_words(const Compensation& compensation) const override;
+    std::string radius_word(double radius) const override;
+    bool force_arc_end() const override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

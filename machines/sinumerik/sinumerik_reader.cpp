@@ -1,4 +1,4 @@
-// Reading the Sinumerik 840D dialect (machines/sinumerik.cpp): N sequence numbers, "; comments",
+// Reading the Sinumerik 840D dialect: N sequence numbers, "; comments",
 // G17/G18/G19, G70/G71, G90, G94, G0-G3 with I/J/K (relative to the start) or CR=, G4 F<s> dwell,
 // G40/G41/G42, T.. D1 and M6, S.. M3/M4/M5, M30/M2, and the drilling cycles as the post writes
 // them: MCALL CYCLE81..CYCLE89(...), then one G0 X Y block per hole (each calls the cycle at
@@ -7,10 +7,11 @@
 // sinumerik_cycle_call (README "Drilling: canned or longhand").
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
+#include "machines/sinumerik/sinumerik_reader.hpp"
+#include "machines/sinumerik/sinumerik_words.hpp"
 #include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {
@@ -123,14 +124,14 @@ void SinumerikReader::modal_call(std::string_view call) {
         if (comma == std::string_view::npos) break;
         pos = comma + 1;
     }
-    const std::map<std::string, size_t> counts = {{"CYCLE81", 5}, {"CYCLE82", 6}, {"CYCLE83", 17}, {"CYCLE84", 12},
-                                                  {"CYCLE85", 8}, {"CYCLE86", 11}, {"CYCLE89", 6}};
-    auto count = counts.find(c.name);
-    if (count == counts.end()) fail(fmt::format("camgen cannot read {} calls", c.name));
-    if (c.values.size() > count->second)
-        fail(fmt::format("{} takes at most {} parameters, not {}", c.name, count->second, c.values.size()));
-    c.values.resize(count->second);
-    c.texts.resize(count->second);
+    const sinumerik::CycleForm* form = nullptr;
+    for (const sinumerik::CycleForm& f : sinumerik::cycle_forms)
+        if (f.name == c.name) form = &f;
+    if (!form) fail(fmt::format("camgen cannot read {} calls", c.name));
+    if (c.values.size() > form->count)
+        fail(fmt::format("{} takes at most {} parameters, not {}", c.name, form->count, c.values.size()));
+    c.values.resize(form->count);
+    c.texts.resize(form->count);
     drill_end();
     mcall_ = c;
     (void)cycle_now();  // every parameter is checked where it is written
@@ -172,14 +173,16 @@ DrillCycle SinumerikReader::cycle_now() const {
     };
 
     // RTP, RFP, SDIS, DP, DPR: SDIS is measured from RFP, DP is absolute.
+    namespace common = sinumerik::common;
     DrillCycle c;
-    c.retract_z = length_value(need(0, "the retract plane RTP"));
-    c.reference_z = length_value(need(1, "the reference plane RFP"));
-    const double sdis = length_value(need(2, "the safety distance SDIS"));
-    if (sdis < 0) fail(fmt::format("{}: the safety distance SDIS = {} must not be negative", name, call.texts[2]));
+    c.retract_z = length_value(need(common::rtp, "the retract plane RTP"));
+    c.reference_z = length_value(need(common::rfp, "the reference plane RFP"));
+    const double sdis = length_value(need(common::sdis, "the safety distance SDIS"));
+    if (sdis < 0)
+        fail(fmt::format("{}: the safety distance SDIS = {} must not be negative", name, call.texts[common::sdis]));
     c.safe_z = c.reference_z + sdis;
-    c.bottom_z = length_value(need(3, "the final drilling depth DP"));
-    empty(4, "DPR", "camgen writes the depth absolute (DP) and reads no relative depth");
+    c.bottom_z = length_value(need(common::dp, "the final drilling depth DP"));
+    empty(common::dpr, "DPR", "camgen writes the depth absolute (DP) and reads no relative depth");
     if (!(c.bottom_z < c.safe_z)) fail(fmt::format("{}: the depth DP is not below RFP + SDIS", name));
     if (c.retract_z < c.safe_z) fail(fmt::format("{}: the retract plane RTP is below RFP + SDIS", name));
     c.spindle_rpm = rpm_;
@@ -193,96 +196,99 @@ DrillCycle SinumerikReader::cycle_now() const {
         p.set(DrillField::plunging_feedrate, c.feed);
     };
 
-    if (name == "CYCLE81") {
+    if (name == sinumerik::cycle81::form.name) {
         c.kind = CycleKind::drill;
         active_feed();
-    } else if (name == "CYCLE82") {
+    } else if (name == sinumerik::cycle82::form.name) {
         c.kind = CycleKind::dwell;
-        p.set(DrillField::bottom_dwell, dwell_at(5));
+        p.set(DrillField::bottom_dwell, dwell_at(sinumerik::cycle82::dtb));
         active_feed();
-    } else if (name == "CYCLE83") {
-        // FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1.
-        const double vari = need(11, "VARI");
+    } else if (name == sinumerik::cycle83::form.name) {
+        namespace q = sinumerik::cycle83;
+        const double vari = need(q::vari, "VARI");
         if (vari != 0.0 && vari != 1.0)
-            fail(fmt::format("{}: VARI = {}: 0 (chip breaking) or 1 (full retract)", name, call.texts[11]));
+            fail(fmt::format("{}: VARI = {}: 0 (chip breaking) or 1 (full retract)", name, call.texts[q::vari]));
         const bool full = vari == 1.0;
         c.kind = full ? CycleKind::deep : CycleKind::chip_break;
-        const double fdep = length_value(need(5, "the first drilling depth FDEP"));
-        empty(6, "FDPR", "camgen writes the first depth absolute (FDEP)");
-        if (!(fdep < c.safe_z)) fail(fmt::format("{}: the first depth FDEP = {} is not below RFP + SDIS", name, call.texts[5]));
+        const double fdep = length_value(need(q::fdep, "the first drilling depth FDEP"));
+        empty(q::fdpr, "FDPR", "camgen writes the first depth absolute (FDEP)");
+        if (!(fdep < c.safe_z))
+            fail(fmt::format("{}: the first depth FDEP = {} is not below RFP + SDIS", name, call.texts[q::fdep]));
         p.set(DrillField::first_depth, c.safe_z - fdep);
-        if (has(7) && *call.values[7] != 0.0) {
-            if (*call.values[7] < 0) fail(fmt::format("{}: DAM = {}: camgen reads only a degression value", name, call.texts[7]));
+        if (has(q::dam) && *call.values[q::dam] != 0.0) {
+            if (*call.values[q::dam] < 0)
+                fail(fmt::format("{}: DAM = {}: camgen reads only a degression value", name, call.texts[q::dam]));
             p.set_degression_type(DegressionType::value);
-            p.set(DrillField::degression, length_value(*call.values[7]));
+            p.set(DrillField::degression, length_value(*call.values[q::dam]));
         }
-        empty(8, "DTB", "a dwell at every peck depth is no camgen cycle (camgen dwells at the bottom with _DTD)");
+        empty(q::dtb, "DTB", "a dwell at every peck depth is no camgen cycle (camgen dwells at the bottom with _DTD)");
         // DTS acts only between full retracts (VARI=1), as the control runs it.
-        if (full) p.set(DrillField::top_dwell, dwell_at(9));
-        if (has(10)) {
-            if (!(*call.values[10] > 0 && *call.values[10] <= 1))
-                fail(fmt::format("{}: FRF = {} is not in (0, 1]", name, call.texts[10]));
-            p.set(DrillField::first_feedrate_factor, call.values[10]);
+        if (full) p.set(DrillField::top_dwell, dwell_at(q::dts));
+        if (has(q::frf)) {
+            if (!(*call.values[q::frf] > 0 && *call.values[q::frf] <= 1))
+                fail(fmt::format("{}: FRF = {} is not in (0, 1]", name, call.texts[q::frf]));
+            p.set(DrillField::first_feedrate_factor, call.values[q::frf]);
         }
-        empty(12, "_AXN", "camgen drills along Z only");
-        if (has(13)) p.set(DrillField::minimum_depth, length_at(13));
-        if (!full && has(14)) {
-            if (!(*call.values[14] > 0)) fail(fmt::format("{}: _VRT = {} must be > 0", name, call.texts[14]));
-            p.set(DrillField::pecking_retract, length_value(*call.values[14]));
+        empty(q::axn, "_AXN", "camgen drills along Z only");
+        if (has(q::mdep)) p.set(DrillField::minimum_depth, length_at(q::mdep));
+        if (!full && has(q::vrt)) {
+            if (!(*call.values[q::vrt] > 0)) fail(fmt::format("{}: _VRT = {} must be > 0", name, call.texts[q::vrt]));
+            p.set(DrillField::pecking_retract, length_value(*call.values[q::vrt]));
         }
-        p.set(DrillField::bottom_dwell, dwell_at(15));
+        p.set(DrillField::bottom_dwell, dwell_at(q::dtd));
         if (full) {
             // The re-approach distance of full-retract pecks: camgen's longhand stops the
             // machine's peckClearance above the last peck, and so must the program.
-            double dis1 = length_value(need(16, "the advance distance _DIS1 (without it the control picks its own)"));
+            double dis1 = length_value(need(q::dis1, "the advance distance _DIS1 (without it the control picks its own)"));
             if (std::abs(dis1 - machine_.peck_clearance) > resolution().position)
-                fail(fmt::format("{}: _DIS1 = {}: machine {} re-approaches {} mm above the last peck", name, call.texts[16],
-                                 machine_.name, machine_.peck_clearance));
+                fail(fmt::format("{}: _DIS1 = {}: machine {} re-approaches {} mm above the last peck", name,
+                                 call.texts[q::dis1], machine_.name, machine_.peck_clearance));
         }
         active_feed();
-    } else if (name == "CYCLE84") {
-        // DTB, SDAC, MPIT, PIT, POSS, SST, SST1.
-        p.set(DrillField::bottom_dwell, dwell_at(5));
-        c.spindle_direction = direction(6, "SDAC (the spindle direction after the cycle)");
-        empty(7, "MPIT", "camgen writes the pitch as PIT");
-        const double pit = length_value(need(8, "the pitch PIT"));
+    } else if (name == sinumerik::cycle84::form.name) {
+        namespace q = sinumerik::cycle84;
+        p.set(DrillField::bottom_dwell, dwell_at(q::dtb));
+        c.spindle_direction = direction(q::sdac, "SDAC (the spindle direction after the cycle)");
+        empty(q::mpit, "MPIT", "camgen writes the pitch as PIT");
+        const double pit = length_value(need(q::pit, "the pitch PIT"));
         if (pit == 0.0) fail(fmt::format("{}: the pitch PIT must not be 0", name));
-        zero_or_empty(9, "POSS");
+        zero_or_empty(q::poss, "POSS");
         c.kind = pit < 0 ? CycleKind::tap_left : CycleKind::tap;
         p.set(DrillField::pitch, std::abs(pit));
-        const double sst = rpm_value(need(10, "the tapping speed SST"));
+        const double sst = rpm_value(need(q::sst, "the tapping speed SST"));
         if (!(sst > 0)) fail(fmt::format("{}: the tapping speed SST must be > 0", name));
         p.set(DrillField::tapping_speed, sst);
-        if (has(11)) {
-            if (!(*call.values[11] > 0)) fail(fmt::format("{}: the retract speed SST1 must be > 0", name));
-            p.set(DrillField::retract_speed, rpm_value(*call.values[11]));
+        if (has(q::sst1)) {
+            if (!(*call.values[q::sst1] > 0)) fail(fmt::format("{}: the retract speed SST1 must be > 0", name));
+            p.set(DrillField::retract_speed, rpm_value(*call.values[q::sst1]));
         }
         c.feed = *p.get(DrillField::pitch) * sst;
         if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S before it", name));
-    } else if (name == "CYCLE85") {
-        // DTB, FFR, RFF.
+    } else if (name == sinumerik::cycle85::form.name) {
+        namespace q = sinumerik::cycle85;
         c.kind = CycleKind::ream;
-        p.set(DrillField::bottom_dwell, dwell_at(5));
-        c.feed = feed_value(need(6, "the feed FFR"));
+        p.set(DrillField::bottom_dwell, dwell_at(q::dtb));
+        c.feed = feed_value(need(q::ffr, "the feed FFR"));
         if (!(c.feed > 0)) fail(fmt::format("{}: the feed FFR must be > 0", name));
         p.set(DrillField::plunging_feedrate, c.feed);
-        if (has(7)) {
-            if (!(*call.values[7] > 0)) fail(fmt::format("{}: the retract feed RFF must be > 0", name));
-            p.set(DrillField::retract_feedrate, feed_value(*call.values[7]));
+        if (has(q::rff)) {
+            if (!(*call.values[q::rff] > 0)) fail(fmt::format("{}: the retract feed RFF must be > 0", name));
+            p.set(DrillField::retract_feedrate, feed_value(*call.values[q::rff]));
         }
-    } else if (name == "CYCLE86") {
-        // DTB, SDIR, RPA, RPO, RPAP, POSS: out along the hole axis, no lift-off.
+    } else if (name == sinumerik::cycle86::form.name) {
+        // Out along the hole axis, no lift-off.
+        namespace q = sinumerik::cycle86;
         c.kind = CycleKind::bore_stop;
-        p.set(DrillField::bottom_dwell, dwell_at(5));
-        c.spindle_direction = direction(6, "SDIR (the spindle direction)");
-        zero_or_empty(7, "RPA");
-        zero_or_empty(8, "RPO");
-        zero_or_empty(9, "RPAP");
-        zero_or_empty(10, "POSS");
+        p.set(DrillField::bottom_dwell, dwell_at(q::dtb));
+        c.spindle_direction = direction(q::sdir, "SDIR (the spindle direction)");
+        zero_or_empty(q::rpa, "RPA");
+        zero_or_empty(q::rpo, "RPO");
+        zero_or_empty(q::rpap, "RPAP");
+        zero_or_empty(q::poss, "POSS");
         active_feed();
     } else {  // CYCLE89
         c.kind = CycleKind::bore_dwell;
-        p.set(DrillField::bottom_dwell, dwell_at(5));
+        p.set(DrillField::bottom_dwell, dwell_at(sinumerik::cycle89::dtb));
         active_feed();
     }
     bool offered = false;

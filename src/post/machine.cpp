@@ -42,6 +42,10 @@ constexpr Named<ChordToleranceMode> chord_tolerance_modes[] = {
     {ChordToleranceMode::absolute, "absolute", "always chordTolerance"},
     {ChordToleranceMode::operation, "operation", "the operation's tolerance, capped by chordTolerance"},
 };
+constexpr Named<CannedStyle> canned_styles[] = {
+    {CannedStyle::standard, "standard", "the dialect's usual canned cycle block"},
+    {CannedStyle::rigid_g33_1, "rigid-g33.1", "LinuxCNC rigid tapping: G33.1 Z K, one synchronised move in and out"},
+};
 constexpr Named<BoreDwellFeedOut> bore_dwell_feed_outs[] = {
     {BoreDwellFeedOut::to_safe, "safe", "bore-dwell feeds out to R (Fanuc)"},
     {BoreDwellFeedOut::to_retract, "retract", "bore-dwell feeds out to the retract level (LinuxCNC)"},
@@ -177,6 +181,8 @@ constexpr KeySpec cycle_keys[] = {
     {.key = "kind", .type = JsonType::string, .required = true, .choices = &choices_of<cycle_kinds>,
      .description = "the cycle kind it writes"},
     {.key = "canned", .type = JsonType::boolean, .default_json = "true", .description = "false: written longhand"},
+    {.key = "style", .type = JsonType::string, .default_json = "\"standard\"", .choices = &choices_of<canned_styles>,
+     .description = "how the canned cycle is written"},
     {.key = "fields", .type = JsonType::array, .choices = &drill_field_keys,
      .description = "the drilling fields the canned cycle carries"},
 };
@@ -388,6 +394,8 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 else
                     cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names_of(cycle_kinds), ", ")));
                 c.canned = cf.boolean("canned", true);
+                c.style = cf.choice("style", canned_styles,
+                    CannedStyle::standard);
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {

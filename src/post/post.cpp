@@ -92,6 +92,23 @@ void Post::reset_modal_axes() {
     motion_.reset();
 }
 
+Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
+    AxisWords w;
+    w.x = forced.x ? x_.force(to.x) : x_.format(to.x);
+    w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
+    w.z = forced.z ? z_.force(to.z) : z_.format(to.z);
+    return w;
+}
+
+Post::AxisWords Post::force_xy(Vec2 at) {
+    AxisWords w;
+    w.x = x_.force(at.x);
+    w.y = y_.force(at.y);
+    return w;
+}
+
+std::string Post::force_z(double z) { return z_.force(z); }
+
 void Post::on_operation_start(const OperationStart& op) {
     if (!op.name.empty()) on_comment(op.name);
 }
@@ -99,28 +116,35 @@ void Post::on_operation_start(const OperationStart& op) {
 void Post::on_comment(const std::string& text) { out_.comment(text); }
 
 void Post::on_rapid(const Vec3& to) {
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty()) return;
-    out_.add(motion_word(0)).add(xs).add(ys).add(zs).end();
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty()) return;
+    out_.add(motion_word(0)).add(w.x).add(w.y).add(w.z).end();
 }
 
 void Post::rapid_from_unknown(const Vec3& to) {
-    std::string xs = x_.force(to.x), ys = y_.force(to.y);
-    out_.add(motion_word(0)).add(xs).add(ys).end();
-    z_.reset();
+    const AxisWords w = force_xy({to.x, to.y});
+    out_.add(motion_word(0)).add(w.x).add(w.y).end();
+    forget_z();
     on_rapid(to);
 }
 
-void Post::on_compensation(CompensationSide side) { pending_compensation_ = side; }
+void Post::on_compensation(const Compensation& compensation) { pending_compensation_ = compensation; }
 
-std::string Post::compensation_words(CompensationSide side) const {
-    switch (side) {
+std::string Post::compensation_words(const Compensation& c) const {
+    const int d = c.d_register != 0 ? c.d_register : tool_;
+    switch (c.side) {
         case CompensationSide::off: return g(40);
-        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(tool_);
-        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(tool_);
+        case CompensationSide::left: return g(41) + machine_.block.separator + "D" + std::to_string(d);
+        case CompensationSide::right: return g(42) + machine_.block.separator + "D" + std::to_string(d);
     }
     return {};
 }
+
+std::string Post::radius_word(double radius) const { return xyz_fmt_.word("R", radius); }
+
+bool Post::force_arc_end() const { return machine_.arcs.force_xy; }
+
+Post::LinearLayout Post::linear_layout() { return {motion_word(1), false}; }
 
 std::string Post::speed_word(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
@@ -140,10 +164,14 @@ void Post::on_spindle(const Spindle& s) {
 void Post::on_linear(const Vec3& to, double feed) {
     std::string comp;
     if (pending_compensation_) comp = compensation_words(*pending_compensation_);
-    std::string xs = x_.format(to.x), ys = y_.format(to.y), zs = z_.format(to.z);
-    if (xs.empty() && ys.empty() && zs.empty() && comp.empty()) return;
+    const AxisWords w = axis_words(to);
+    if (w.x.empty() && w.y.empty() && w.z.empty() && comp.empty()) return;
     std::string fs = feed_word(feed);
-    out_.add(comp).add(motion_word(1)).add(xs).add(ys).add(zs).add(fs).end();
+    const LinearLayout layout = linear_layout();
+    const std::string none;
+    const std::string& before = layout.compensation_after_axes ? none : comp;
+    const std::string& after = layout.compensation_after_axes ? comp : none;
+    out_.add(before).add(layout.motion).add(w.x).add(w.y).add(w.z).add(after).add(fs).end();
     pending_compensation_.reset();
 }
 
@@ -166,17 +194,14 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
         y_.set_last(arc.end.y);
         return;
     }
-    // End point: the plane's two axes are written on every arc block when force_xy.
-    bool fx = s.force_xy && arc.plane != Plane::yz;
-    bool fy = s.force_xy && arc.plane != Plane::xz;
-    bool fz = s.force_xy && arc.plane != Plane::xy;
-    std::string xs = fx ? x_.force(arc.end.x) : x_.format(arc.end.x);
-    std::string ys = fy ? y_.force(arc.end.y) : y_.format(arc.end.y);
-    std::string zs = fz ? z_.force(arc.end.z) : z_.format(arc.end.z);
-    out_.add(plane).add(motion).add(xs).add(ys).add(zs);
+    // End point: the plane's two axes are written on every arc block when force_arc_end().
+    const bool force = force_arc_end();
+    const ForcedAxes forced{force && arc.plane != Plane::yz, force && arc.plane != Plane::xz,
+                            force && arc.plane != Plane::xy};
+    const AxisWords w = axis_words(arc.end, forced);
+    out_.add(plane).add(motion).add(w.x).add(w.y).add(w.z);
     if (s.format == ArcFormat::radius) {
-        double r = arc.sweep > std::numbers::pi ? -arc.radius : arc.radius;
-        out_.add(xyz_fmt_.word("R", r));
+        out_.add(radius_word(arc.sweep > std::numbers::pi ? -arc.radius : arc.radius));
     } else {
         Vec3 c = arc.centre;
         if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
@@ -364,7 +389,7 @@ void Post::emit(const Event& event) {
                    [&](const Linear& l) { replay(l); },
                    [&](const Arc& a) { handle_arc(a); },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
-                   [&](const Compensation& c) { on_compensation(c.side); },
+                   [&](const Compensation& c) { on_compensation(c); },
                    [&](const DrillCycle& c) { handle_drill_cycle(c); },
                    [&](const DrillPoint& p) { handle_drill_point(p.at); },
                    [&](const DrillEnd&) { handle_drill_end(); },

@@ -241,14 +241,8 @@ private:
     ReadResolution coarsest_;
 };
 
-// The reader for a machine's dialect (the table in reader.cpp). Throws InputError when the
-// dialect has none.
+// The reader for a machine's dialect, from the dialect registry (machines/registry.cpp).
+// Throws InputError when the dialect has none.
 std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source);
-
-// The dialect readers.
-std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source);
-std::unique_ptr<NcReader> make_nccad_reader(const Machine& machine, std::string source);
-std::unique_ptr<NcReader> make_sinumerik_reader(const Machine& machine, std::string source);
-std::unique_ptr<NcReader> make_heidenhain_reader(const Machine& machine, std::string source);
 
 }  // namespace camgen::reader

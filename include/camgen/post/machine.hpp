@@ -22,11 +22,16 @@ enum class ArcFormat { ijk_relative, ijk_absolute, radius, nccad_angle };
 // How feeds are written: mm/min (in/min for inch output), or nccad's 0.1 mm/s.
 enum class FeedUnit { per_minute, tenth_mm_per_second };
 
+// How a canned cycle is written: the dialect's standard form, or LinuxCNC's rigid tapping
+// (G33.1 Z K: one synchronised move in and out, positioned with G0, no cancel code).
+enum class CannedStyle { standard, rigid_g33_1 };
+
 // One drilling cycle the machine offers (a MillDrillingFields entry).
 struct DrillingCycleSpec {
     std::string name;                  // "G83", "CYCLE83", "CYCL DEF 203"
     CycleKind kind = CycleKind::drill;
     bool canned = true;                // false: written longhand
+    CannedStyle style = CannedStyle::standard;  // machine file key "style"
     std::vector<DrillField> fields;    // the optional parameters the canned cycle carries
 };
 
@@ -38,13 +43,12 @@ struct MachineLimits {
     double max_rpm = 0.0;              // 0: no limit
 };
 
-// Where the chord tolerance for arcs that become lines comes from (CIRC_TOL of the arc rules):
-// always the machine's, or the operation's tolerance capped by the machine's.
+// Where the chord tolerance for arcs that become lines comes from: always the machine's, or
+// the operation's tolerance capped by the machine's.
 enum class ChordToleranceMode { absolute, operation };
 
-// Arc output and arc-breaking settings: the arc form, the longest sweep per block, which planes
-// and helices the control takes, and the limits below which or above which an arc becomes one
-// straight move or straight segments. Lengths mm, angles degrees.
+// Arc output and arc-breaking settings: how arc blocks are written and which arcs are split,
+// written as lines or as one straight move. Lengths mm, angles degrees.
 struct ArcSettings {
     ArcFormat format = ArcFormat::ijk_relative;
     double max_sweep = 360.0;          // degrees per block; longer arcs are split evenly

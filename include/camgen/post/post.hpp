@@ -49,14 +49,15 @@ protected:
     virtual void on_comment(const std::string& text);
     // A rapid to `to`; the base writes G0 with the modal axis words that changed.
     virtual void on_rapid(const Vec3& to);
-    // A feed move; the base writes G1, pending compensation, axis words and F.
+    // A feed move; the base writes the block linear_layout() describes: pending compensation,
+    // the motion word, axis words and F.
     virtual void on_linear(const Vec3& to, double feed);
     // One arc block, already split to the machine's maximum sweep and in a supported plane,
     // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
     // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
     virtual void on_circular(const ArcGeometry& arc, double feed);
     // Compensation is retained and written by the next linear move (CNC-Calc rule).
-    virtual void on_compensation(CompensationSide side);
+    virtual void on_compensation(const Compensation& compensation);
     // Canned drilling, called only when the cycle is written canned.
     virtual void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec);
     virtual void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec,
@@ -67,27 +68,96 @@ protected:
     // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
     virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
 
+    // ---- word hooks: how a dialect spells a word of a block the base writes ----
+    // The words that switch cutter radius compensation: G40, or G41/G42 D<register> (the
+    // compensation's D register, else the tool number).
+    virtual std::string compensation_words(const Compensation& compensation) const;
+    // The radius word of an arc block in radius format: R, negative above 180 degrees.
+    virtual std::string radius_word(double radius) const;
+    // Whether an arc block writes its plane's end coordinates even when unchanged (the
+    // machine's forceXY).
+    virtual bool force_arc_end() const;
+    // How a feed move's block is laid out: its motion word and where the compensation words go.
+    struct LinearLayout {
+        std::string motion;                    // "G1", or "L" (Heidenhain)
+        bool compensation_after_axes = false;  // false: before the motion word
+    };
+    // The layout of the feed move being written (the base: the modal G1, compensation first).
+    virtual LinearLayout linear_layout();
+    // Writes a block of an unknown-position rapid: XY first, then Z.
+    virtual void rapid_from_unknown(const Vec3& to);
+
     // ---- shared helpers ----
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
-    // The words that switch cutter radius compensation (G40, G41 D<tool>, G42 D<tool>).
-    virtual std::string compensation_words(CompensationSide side) const;
     // The S word for a spindle speed; an InputError above the machine's maxRpm.
     std::string speed_word(double rpm) const;
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
     std::string motion_word(double code);
     // Forget modal state that the control may have changed (after a cycle, a tool change).
     void reset_modal_axes();
-    // Writes a block of an unknown-position rapid: XY first, then Z.
-    virtual void rapid_from_unknown(const Vec3& to);
+    // Writes a warning (where the options say).
     void warn(const std::string& message);
     // InputError at the current operation's path (plus `key`).
     [[noreturn]] void fail(const std::string& key, const std::string& detail) const;
     // The word for a G or M code as this machine writes it ("G0" or "G00").
     std::string g(double code) const;
+    // The word for an M code as this machine writes it ("M3" or "M03").
     std::string m(double code) const;
-    // The comment written for a tool change / operation.
+
+    // ---- the post's state, through named operations ----
+    // The machine the post writes for.
+    const Machine& machine() const { return machine_; }
+    // The options the post was made with (program name, snippet).
+    const PostOptions& options() const { return options_; }
+    // Where blocks go.
+    nc::BlockWriter& writer() { return out_; }
+    // The machine's format for lengths (X, Y, Z, R, ...).
+    const nc::Format& xyz_format() const { return xyz_fmt_; }
+    // The machine's format for spindle speeds.
+    const nc::Format& rpm_format() const { return rpm_fmt_; }
+    // The machine's format for dwell times.
+    const nc::Format& dwell_format() const { return dwell_fmt_; }
+    // The tool the last tool change selected (0: none yet).
+    int current_tool() const { return tool_; }
+    // Where the tool stands (absolute mm) as far as the events have moved it.
+    const Vec3& position() const { return pos_; }
+    // The tool now stands at `at` (a dialect moved it on its own, such as to a retract plane).
+    void set_position(const Vec3& at) { pos_ = at; }
+
+    // The axis words of one block; an empty string is a word not written.
+    struct AxisWords {
+        std::string x, y, z;
+    };
+    // Which axis words a block writes even when the control already has the value.
+    struct ForcedAxes {
+        bool x = false, y = false, z = false;
+    };
+    // The X, Y and Z words of a move to `to`: modal (empty when unchanged) unless forced.
+    AxisWords axis_words(const Vec3& to, ForcedAxes forced);
+    // The X, Y and Z words of a move to `to`, each empty when unchanged (modal).
+    AxisWords axis_words(const Vec3& to) { return axis_words(to, ForcedAxes{}); }
+    // The X and Y words of a position, written whatever the modal state (z stays empty).
+    AxisWords force_xy(Vec2 at);
+    // The Z word, written whatever the modal state.
+    std::string force_z(double z);
+    // The Z the control was last told, if known.
+    std::optional<double> written_z() const { return z_.last(); }
+    // The control stands at this Z without a Z word saying so (a cycle returned it there).
+    void assume_z(double z) { z_.set_last(z); }
+    // The control's Z is unknown: the next Z word is written.
+    void forget_z() { z_.reset(); }
+    // The control is in motion mode `code` without a word saying so (a modal cycle call).
+    void assume_motion(double code) { motion_.set_last(code); }
+    // The motion mode is unknown: the next motion word is written.
+    void forget_motion() { motion_.reset(); }
+    // The control is in plane `code` (17, 18, 19): the program start selected it.
+    void assume_plane(double code) { plane_.set_last(code); }
+    // The feed is unknown: the next F word is written.
+    void forget_feed() { feed_.reset(); }
+
+private:
     const Machine& machine_;
     PostOptions options_;
     nc::BlockWriter out_;
@@ -95,11 +165,10 @@ protected:
     nc::Word x_, y_, z_, feed_, motion_, plane_;
     Vec3 pos_;
     bool pos_known_ = false;
-    std::optional<CompensationSide> pending_compensation_;
+    std::optional<Compensation> pending_compensation_;  // written by the next feed move
     int tool_ = 0;
     std::string op_path_;
 
-private:
     void handle_arc(const Arc& arc);
     // Straight moves along `arc` in `segments` equal chords, ending exactly at its end.
     void write_lines(const ArcGeometry& arc, int segments, double feed);

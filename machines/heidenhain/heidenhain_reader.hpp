@@ -1,0 +1,15 @@
+#pragma once
+// The Heidenhain reader's factory, for the dialect registry (machines/registry.cpp).
+#include <memory>
+#include <string>
+
+#include "camgen/post/machine.hpp"
+
+namespace camgen::reader {
+
+class NcReader;
+
+// A reader of Heidenhain programs for `machine`; `source` names the program in messages.
+std::unique_ptr<NcReader> make_heidenhain_reader(const Machine& machine, std::string source);
+
+}  // namespace camgen::reader

@@ -1,0 +1,48 @@
+#pragma once
+// The ISO (Fanuc-style) words that the post writes and the reader reads back: the canned
+// cycle codes and the machine file's "toolChange" setting.
+#include <optional>
+
+#include "camgen/common/json_util.hpp"
+#include "camgen/vocabulary/vocabulary.hpp"
+
+namespace camgen::iso {
+
+// A canned drilling cycle kind and the G code that calls it.
+struct CycleCode {
+    CycleKind kind;
+    double code;
+};
+
+// The canned cycle G code of every cycle kind (G98/G99 pick the return level, G80 cancels).
+inline constexpr CycleCode cycle_codes[] = {
+    {CycleKind::drill, 81},   {CycleKind::dwell, 82}, {CycleKind::deep, 83},      {CycleKind::chip_break, 73},
+    {CycleKind::tap, 84},     {CycleKind::tap_left, 74}, {CycleKind::ream, 85},   {CycleKind::bore_stop, 86},
+    {CycleKind::bore_dwell, 89},
+};
+
+// The G code of the canned cycle of this kind.
+constexpr double cycle_code(CycleKind kind) {
+    for (const CycleCode& c : cycle_codes)
+        if (c.kind == kind) return c.code;
+    return 81;
+}
+
+// LinuxCNC's rigid tapping code: G33.1 Z K, one synchronised move in and out.
+inline constexpr double rigid_tap_code = 33.1;
+
+// How an ISO control changes tools: T.. M6, a pause (M0) with a message for the operator
+// (GRBL), or not at all.
+enum class ToolChangeStyle { m6, pause, none };
+
+// The machine file's "toolChange" setting from the dialect settings `f`: true or "m6", "pause",
+// false or "none"; absent: m6. Throws InputError for any other value.
+inline ToolChangeStyle tool_change_setting(json::Fields& f) {
+    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
+        return tc->get<bool>() ? ToolChangeStyle::m6 : ToolChangeStyle::none;
+    return f.choice<ToolChangeStyle>(
+        "toolChange", {{"m6", ToolChangeStyle::m6}, {"pause", ToolChangeStyle::pause}, {"none", ToolChangeStyle::none}},
+        ToolChangeStyle::m6);
+}
+
+}  // namespace camgen::iso

@@ -1,0 +1,89 @@
+// The dialect registry and what a dialect folder shares between its post and its reader:
+// one table names both sides, the D register of a compensation, the rigid-tapping style of
+// a drilling cycle, and the ISO toolChange setting parsed strictly on both sides.
+#include <doctest/doctest.h>
+
+#include <sstream>
+
+#include "camgen/common/error.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/post/post.hpp"
+#include "camgen/reader/reader.hpp"
+
+using namespace camgen;
+
+namespace {
+
+// Posts `events` for `machine` as a snippet (no program start or end).
+std::string post_events(const Machine& machine, const std::vector<Event>& events) {
+    std::ostringstream out;
+    PostOptions o;
+    o.snippet = true;
+    auto post = make_post(machine, out, o);
+    post->open();
+    for (const Event& e : events) post->emit(e);
+    post->close();
+    return out.str();
+}
+
+}  // namespace
+
+TEST_CASE("every dialect of the registry has a post and a reader; an unknown one has neither") {
+    for (const char* name : {"fanuc", "linuxcnc", "grbl", "wabeco", "kosy", "sinumerik", "heidenhain"}) {
+        const Machine m = load_machine(name);
+        INFO(name);
+        CHECK(has_reader(m.dialect));
+        std::ostringstream out;
+        CHECK(make_post(m, out, {}) != nullptr);
+    }
+    Machine m = load_machine("fanuc");
+    m.dialect = "klingon";
+    CHECK(!has_reader(m.dialect));
+    std::ostringstream out;
+    CHECK_THROWS_WITH_AS(make_post(m, out, {}),
+                         doctest::Contains("unknown dialect \"klingon\"; dialects: heidenhain, iso, nccad, sinumerik"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(read_program("", m), doctest::Contains("it reads: iso, nccad, sinumerik, heidenhain"),
+                         InputError);
+}
+
+TEST_CASE("the compensation word names the D register when the event gives one, else the tool") {
+    const Machine m = load_machine("fanuc");
+    const std::string t = post_events(m, {ToolChange{4, 8.0, ""}, Rapid{{0, 0, 5}},
+                                          Compensation{CompensationSide::left, 14, 4.0}, Linear{{10, 0, 5}, 300},
+                                          Compensation{CompensationSide::right}, Linear{{20, 0, 5}, 300}});
+    CHECK(t.find("G41 D14 G1 X10.000 F300\n") != std::string::npos);
+    CHECK(t.find("G42 D4 X20.000\n") != std::string::npos);
+}
+
+TEST_CASE("Heidenhain writes the compensation word after the coordinates of its L block") {
+    const Machine m = load_machine("heidenhain");
+    const std::string t = post_events(m, {ToolChange{1, 6.0, ""}, Rapid{{0, 0, 5}},
+                                          Compensation{CompensationSide::right}, Linear{{10, 0, 5}, 300}});
+    CHECK(t.find("L X+10 RR F300\n") != std::string::npos);
+}
+
+TEST_CASE("a drilling cycle's style makes it rigid tapping, not its name") {
+    const Machine linuxcnc = load_machine("linuxcnc");
+    const DrillingCycleSpec* tap = linuxcnc.canned_cycle(CycleKind::tap);
+    REQUIRE(tap != nullptr);
+    CHECK(tap->style == CannedStyle::rigid_g33_1);
+    CHECK(load_machine("fanuc").canned_cycle(CycleKind::tap)->style == CannedStyle::standard);
+}
+
+TEST_CASE("the reader parses the ISO toolChange setting as strictly as the post") {
+    Machine m = load_machine("grbl");
+    m.dialect_settings["toolChange"] = "robot";
+    std::ostringstream out;
+    CHECK_THROWS_AS(make_post(m, out, {}), InputError);
+    CHECK_THROWS_WITH_AS(read_program("G0 X0\n", m), doctest::Contains("toolChange"), InputError);
+}
+
+TEST_CASE("Sinumerik writes CR= for the radius and states the end point even where forceXY is off") {
+    Machine m = load_machine("sinumerik");
+    m.arcs.format = ArcFormat::radius;
+    m.arcs.force_xy = false;
+    const std::string t = post_events(m, {ToolChange{1, 6.0, ""}, Rapid{{0, 0, 5}},
+                                          Arc{{0, 10, 5}, {0, 5, 5}, ArcDirection::ccw, Plane::xy, 300, 0}});
+    CHECK(t.find("G17 G3 X0.000 Y10.000 CR=5.000 F300\n") != std::string::npos);
+}
