@@ -162,7 +162,6 @@ enum class DrillField {
     degression, minimum_depth, pecking_retract, first_feedrate_factor, pitch, tapping_speed,
     retract_speed, top_dwell, bottom_dwell
 };
-inline constexpr std::size_t drill_field_count = 14;
 
 // A bound on a value: `value` itself allowed or not.
 struct Bound {
@@ -190,7 +189,7 @@ inline constexpr CycleSet tapping_kinds{CycleKind::tap, CycleKind::tap_left};
 inline constexpr CycleSet pecking_kinds{CycleKind::deep, CycleKind::chip_break};
 
 // Table order is the order of "it uses: ..." lists and of the fields in --events.
-inline constexpr std::array<DrillFieldInfo, drill_field_count> drill_fields = {{
+inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
     {DrillField::safe_distance, "safeDistance", Quantity::length, std::nullopt, CycleSet::all(), {}, std::nullopt,
      true, "", "",
      "where rapid turns into feed: mm above referencePlane, or an absolute Z with safeDistanceIsAbsolute "
@@ -225,7 +224,9 @@ inline constexpr std::array<DrillFieldInfo, drill_field_count> drill_fields = {{
     {DrillField::bottom_dwell, "bottomDwell", Quantity::time, Bound{0.0, true},
      CycleSet::all().without({CycleKind::drill}), {CycleKind::dwell, CycleKind::bore_dwell}, 0.0, false,
      "a dwell cannot be negative", "(seconds)", "dwell at the bottom of the hole"},
-}};
+});
+// How many drilling fields there are.
+inline constexpr std::size_t drill_field_count = drill_fields.size();
 
 // The row of a field.
 constexpr const DrillFieldInfo& info(DrillField f) { return drill_fields[static_cast<std::size_t>(f)]; }
