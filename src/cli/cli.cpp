@@ -113,6 +113,17 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     post->close();
 }
 
+// Flushes a stream that is not a file of ours (standard output) and reports a failed write
+// with the system's reason: a full disk or /dev/full must not end in exit 0.
+void finish_stream(std::ostream& out, const std::string& name) {
+    errno = 0;
+    out.flush();
+    if (!out) {
+        const int error = errno ? errno : EIO;
+        throw IoError(fmt::format("cannot write {}: {}", name, std::strerror(error)), error);
+    }
+}
+
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
 
 // Writes the SVG backplot of a trace atomically.
@@ -134,7 +145,10 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     ProgramStats stats = compute_stats(trace, machine);
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
     if (!v.plot.empty()) write_plot(v.plot, trace, stats, {base_name(source), machine.name});
-    if (v.job.empty()) return exit_ok;
+    if (v.job.empty()) {
+        finish_stream(out, "standard output");
+        return exit_ok;
+    }
     std::string job_text = read_text(v.job, in);
     Job job;
     try {
@@ -142,25 +156,29 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
         CompareTolerance tolerance = compare_tolerance(machine, resolution);
         if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
+            finish_stream(out, "standard output");
             return exit_invalid_input;
         }
         out << fmt::format("matches job {}: the same moves within {} mm (inside arcs {} mm), the same feeds, dwells, "
                            "tools and spindle\n",
                            v.job, fmt::format("{:.4f}", tolerance.position), fmt::format("{:.4f}", tolerance.path));
+        finish_stream(out, "standard output");
     } catch (const InputError& e) {
         throw locate(e, v.job, job_text);
     }
     return exit_ok;
 }
 
-// After posting: read the program back for --stats and --plot.
-void read_back(const std::string& program, const Job& job, const Options& o, std::ostream& err) {
+// After posting: read the program back for --stats (to `err`) and --plot (into `plot`, not
+// yet committed, so that a failed plot leaves the program file as it was).
+void read_back(const std::string& program, const Job& job, const Options& o, std::ostream& err,
+               std::optional<OutputFile>& plot) {
     Machine machine = machine_for(o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
     Trace trace = trace_program(read_program(program, machine, name), machine);
     ProgramStats stats = compute_stats(trace, machine);
     if (o.stats) err << format_stats(stats);
-    if (!o.plot.empty()) write_plot(o.plot, trace, stats, {name, machine.name});
+    if (!o.plot.empty()) plot.emplace(o.plot).stream() << backplot_svg(trace, stats, {name, machine.name});
 }
 
 }  // namespace
@@ -224,14 +242,17 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                 return exit_usage;
             }
             out << *text;
+            finish_stream(out, "standard output");
             return exit_ok;
         }
         if (o.list_machines) {
             for (const auto& [name, description] : list_machines()) out << fmt::format("{:<12}{}\n", name, description);
+            finish_stream(out, "standard output");
             return exit_ok;
         }
         if (!o.describe.empty()) {
             out << describe_machine(load_machine(o.describe));
+            finish_stream(out, "standard output");
             return exit_ok;
         }
         if (o.job.empty()) {
@@ -260,15 +281,16 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
         try {
             job = read_job(text, o.job == "-" ? "<stdin>" : o.job);
             if (job.name.empty()) job.name = stem_of(o.job);
-            // Reading back needs the text: post into a buffer first.
-            bool read_back_wanted = !o.plot.empty() || o.stats;
-            std::ostringstream buffer;
-            std::ostream* target = &buffer;
+            // Every output is written completely (the program, the plot) before any is committed:
+            // a failure on the way leaves every file as it was. Reading back needs the text, so
+            // then the program is posted into a buffer first.
+            const bool read_back_wanted = !o.plot.empty() || o.stats;
             std::optional<OutputFile> file;
-            if (!read_back_wanted && o.output == "-") target = &out;
-            if (!read_back_wanted && o.output != "-") target = &file.emplace(o.output).stream();
+            if (o.output != "-") file.emplace(o.output);
+            std::ostream& destination = file ? file->stream() : out;
+            std::ostringstream buffer;
             try {
-                write_program(job, o, *target, err);
+                write_program(job, o, read_back_wanted ? buffer : destination, err);
             } catch (const IoError& e) {
                 // The block writer knows the reason, not the file.
                 const std::string where = file ? o.output : std::string("standard output");
@@ -276,16 +298,14 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                                           e.error_number() ? std::strerror(e.error_number()) : e.what()),
                               e.error_number());
             }
+            std::optional<OutputFile> plot;
             if (read_back_wanted) {
-                if (o.output == "-") {
-                    out << buffer.str();
-                } else {
-                    file.emplace(o.output).stream() << buffer.str();
-                }
+                destination << buffer.str();
+                read_back(buffer.str(), job, o, err, plot);
             }
             if (file) file->commit();
-            else out.flush();
-            if (read_back_wanted) read_back(buffer.str(), job, o, err);
+            else finish_stream(out, "standard output");
+            if (plot) plot->commit();
         } catch (const InputError& e) {
             throw locate(e, o.job, text);
         }

@@ -205,3 +205,41 @@ TEST_CASE("--plot follows the same rules: into a FIFO, and a failed plot names i
     CHECK(S_ISFIFO(stat_of(fifo).st_mode));
     CHECK(received.find("<svg") != std::string::npos);
 }
+
+namespace {
+// Runs the camgen binary with standard output sent to `stdout_path`; returns its exit code.
+int run_binary_to(const std::string& args, const std::string& stdout_path) {
+    const std::string cmd = std::string(CAMGEN_BINARY) + " " + args + " > " + stdout_path + " 2>/dev/null";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+}  // namespace
+
+TEST_CASE("every write is checked: --events, the program, verify, schema and the machine list to a full disk exit 3") {
+    const std::string dir = CAMGEN_SOURCE_DIR;
+    CHECK(run_binary_to(plate + " --events", "/dev/full") == 3);
+    CHECK(run_binary_to(plate + " --machine fanuc", "/dev/full") == 3);
+    CHECK(run_binary_to("verify " + dir + "/tests/golden/fanuc/plate.nc --machine fanuc", "/dev/full") == 3);
+    CHECK(run_binary_to("verify " + dir + "/tests/golden/fanuc/plate.nc --machine fanuc --job " + plate, "/dev/full") == 3);
+    CHECK(run_binary_to("schema job", "/dev/full") == 3);
+    CHECK(run_binary_to("--list-machines", "/dev/full") == 3);
+    CHECK(run_binary_to("--describe-machine fanuc", "/dev/full") == 3);
+    // and the same commands succeed where the write succeeds
+    CHECK(run_binary_to(plate + " --events", "/dev/null") == 0);
+    CHECK(run_binary_to("schema job", "/dev/null") == 0);
+}
+
+TEST_CASE("a --plot that cannot be written leaves -o as it was: nothing is committed before everything is written") {
+    const fs::path dir = test::scratch("output-plot-order");
+    const fs::path out = dir / "part.nc";
+    write(out, "old program\n");
+    const test::Run r = test::run({plate, "--machine", "fanuc", "-o", out.string(), "--plot", (dir / "missing" / "p.svg").string()});
+    CHECK(r.code == 3);
+    CHECK(r.err.find("cannot write " + (dir / "missing" / "p.svg").string() + ": No such file or directory") != std::string::npos);
+    CHECK(test::read_file(out.string()) == "old program\n");
+    CHECK(temporaries_in(dir) == 0);
+    // A new -o file is not created either.
+    const test::Run r2 = test::run({plate, "--machine", "fanuc", "-o", (dir / "new.nc").string(), "--plot", (dir / "missing" / "p.svg").string()});
+    CHECK(r2.code == 3);
+    CHECK_FALSE(fs::exists(dir / "new.nc"));
+}
