@@ -1,5 +1,6 @@
 #include "camgen/nc/block_writer.hpp"
 
+#include <algorithm>
 #include <cerrno>
 
 #include <utility>
@@ -46,20 +47,61 @@ void BlockWriter::end() {
     maybe_flush();
 }
 
+namespace {
+
+// Letters a machinist's comment often holds, spelt in ASCII (a control may show nothing else).
+constexpr std::pair<std::string_view, std::string_view> ascii_spellings[] = {
+    {"\u00e4", "ae"}, {"\u00f6", "oe"}, {"\u00fc", "ue"}, {"\u00c4", "Ae"}, {"\u00d6", "Oe"}, {"\u00dc", "Ue"},
+    {"\u00df", "ss"}, {"\u00b0", " deg"}, {"\u00d8", "D"}, {"\u00f8", "D"}, {"\u2300", "D"}, {"\u00b1", "+-"},
+    {"\u00e9", "e"}, {"\u00e8", "e"}, {"\u00e0", "a"}, {"\u00e7", "c"}, {"\u00b5", "u"}, {"\u00d7", "x"},
+};
+
+// The length of the UTF-8 sequence that starts with byte `c` (1 for a stray byte).
+std::size_t utf8_length(unsigned char c) {
+    if (c >= 0xF0 && c < 0xF8) return 4;
+    if (c >= 0xE0) return 3;
+    if (c >= 0xC0) return 2;
+    return 1;
+}
+
+}  // namespace
+
 std::string BlockWriter::clean_comment(std::string_view text) const {
     std::string s;
     s.reserve(text.size());
-    for (char c : text) {
-        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-        if (style_.comment_style == CommentStyle::parentheses) {
-            if (c == '(') c = '[';
-            if (c == ')') c = ']';
+    for (std::size_t i = 0; i < text.size();) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x80) {
+            // Outside ASCII: a known letter spelt out, anything else one '?'.
+            const std::size_t n = std::min(utf8_length(c), text.size() - i);
+            const std::string_view seq = text.substr(i, n);
+            std::string_view spelt = "?";
+            for (const auto& [utf8, ascii] : ascii_spellings)
+                if (seq == utf8) spelt = ascii;
+            s += spelt;
+            i += n;
+            continue;
         }
-        s += c;
+        ++i;
+        char ch = static_cast<char>(c);
+        // Control bytes (NUL, tab, line breaks, VT, FF, DEL ...) could end or split the block.
+        if (c < 0x20 || c == 0x7F) ch = ' ';
+        // '%' ends the record when a Fanuc-style control loads a program.
+        if (ch == '%') {
+            s += "pct";
+            continue;
+        }
+        if (style_.comment_style == CommentStyle::parentheses) {
+            if (ch == '(') ch = '[';
+            if (ch == ')') ch = ']';
+        }
+        s += ch;
     }
     while (!s.empty() && s.back() == ' ') s.pop_back();
-    if (style_.comment_max_length > 0 && static_cast<int>(s.size()) > style_.comment_max_length)
-        s.resize(static_cast<size_t>(style_.comment_max_length));
+    const std::size_t limit = style_.comment_max_length > 0 ? static_cast<std::size_t>(style_.comment_max_length)
+                                                            : default_comment_limit;
+    if (s.size() > limit) s.resize(limit);
+    while (!s.empty() && s.back() == ' ') s.pop_back();
     return s;
 }
 

@@ -12,6 +12,9 @@ namespace camgen::nc {
 enum class CommentStyle { parentheses, semicolon };
 
 // How blocks look (CNC-Calc globals: linebreak, variableDelimeter, showSequenceNumbers, ...).
+// The longest comment text written when the machine file sets no commentMaxLength.
+inline constexpr std::size_t default_comment_limit = 120;
+
 struct BlockStyle {
     std::string line_break = "\n";
     std::string separator = " ";
@@ -20,7 +23,7 @@ struct BlockStyle {
     long sequence_increment = 5;
     std::string sequence_prefix = "N";
     CommentStyle comment_style = CommentStyle::parentheses;
-    int comment_max_length = 0;  // 0: no limit
+    int comment_max_length = 0;  // 0: default_comment_limit
 };
 
 class BlockWriter {
@@ -41,7 +44,11 @@ public:
     // Hands buffered text to the stream. Throws IoError when the stream failed.
     void flush();
     const BlockStyle& style() const { return style_; }
-    // Comment text made safe for the style: no nested delimiters, no line breaks.
+    // Comment text made safe for the style, the one place every post's text goes through:
+    // printable ASCII only (control bytes become spaces, common letters such as umlauts and
+    // the diameter sign are spelt out, any other non-ASCII character is '?'), no nested
+    // delimiters, no '%' (a Fanuc end of record: written "pct"), at most the machine's
+    // commentMaxLength characters (default_comment_limit when it sets none).
     std::string clean_comment(std::string_view text) const;
 
 private:
