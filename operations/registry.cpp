@@ -60,8 +60,8 @@ std::vector<std::string> operation_type_names() {
     }(std::make_index_sequence<std::variant_size_v<Operation>>());
 }
 
-Job read_job(std::string_view text, const std::string& source_name) {
-    JobInput in(text, source_name);
+Job read_job(std::string_view text, const std::string& source_name, JobLimits limits) {
+    JobInput in(text, source_name, limits);
     json::Fields top = in.read_header();
     Job job;
     const nlohmann::json& operations = in.array(top, "operations");

@@ -43,7 +43,8 @@ std::vector<std::string> operation_type_names();
 
 // Parses and validates a job. `source_name` names the file in messages.
 // Throws InputError (JSON path + line) on any problem. Inch input is converted to mm here.
-Job read_job(std::string_view text, const std::string& source_name);
+// `limits` bound its size (holes, path elements, nesting) before anything is allocated for it.
+Job read_job(std::string_view text, const std::string& source_name, JobLimits limits = {});
 
 // Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.
 Job read_job_file(const std::string& filename);

@@ -196,6 +196,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
 
     const Json& elements = in.array(f, "path");
     if (elements.empty()) f.fail("path", "a contour path needs at least one element");
+    in.claim_path_elements(static_cast<double>(elements.size()), f, "path");
     const std::string base = f.path_of("path");
     Vec3 current{op.start.x, op.start.y, op.depth};
     auto below_clearance = [&](Fields& at, std::string_view key, double z, const char* what) {

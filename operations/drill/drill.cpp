@@ -156,6 +156,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
     if (f.has("holes")) {
         const Json& list = in.array(f, "holes");
         const std::string base = f.path_of("holes");
+        in.claim_holes(static_cast<double>(list.size()), f, "holes");
         for (std::size_t i = 0; i < list.size(); ++i) {
             const std::string path = base + "/" + std::to_string(i);
             const Json& hole = list[i];
@@ -184,6 +185,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (ny < 1) g.fail("countY", "countY must be 1 or more");
         if (static_cast<double>(nx) * ny > max_pattern_holes)
             g.fail("", fmt::format("a grid of {} x {} holes is too many", nx, ny));
+        in.claim_holes(static_cast<double>(nx) * ny, g, "");
         const double sx = in.length(g, "spacingX");
         const double sy = in.length(g, "spacingY");
         const Eigen::Isometry2d to_job = placement(origin, g.optional_number("rotation").value_or(0.0));
@@ -200,6 +202,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         const int count = b.integer("count");
         if (count < 1) b.fail("count", "count must be 1 or more");
         if (count > max_pattern_holes) b.fail("count", "count is too large");
+        in.claim_holes(count, b, "count");
         const double start = b.optional_number("startAngle").value_or(0.0);
         for (int i = 0; i < count; ++i) {
             const Vec2 u = unit_direction(start + 360.0 * i / count);
@@ -215,6 +218,7 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         const int count = l.integer("count");
         if (count < 1) l.fail("count", "count must be 1 or more");
         if (count > max_pattern_holes) l.fail("count", "count is too large");
+        in.claim_holes(count, l, "count");
         if (count == 1) {
             holes.push_back(a);
         } else {

@@ -44,6 +44,7 @@ struct Options {
     std::string units;
     std::string plot;   // SVG backplot of the program as read back
     bool stats = false; // statistics of the program as read back, to stderr
+    JobLimits limits;   // how large a job may be (--max-holes, --max-elements)
 };
 
 // `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg]`
@@ -202,6 +203,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_flag("--list-machines", o.list_machines, "List the built-in machines");
     app.add_option("--describe-machine", o.describe, "Print a machine's settings and drilling cycle table");
     app.add_option("--plot", o.plot, "Also write an SVG backplot of the program as read back (XY view)");
+    app.add_option("--max-holes", o.limits.holes,
+                   fmt::format("Refuse jobs with more holes than this (default {})", JobLimits{}.holes));
+    app.add_option("--max-elements", o.limits.path_elements,
+                   fmt::format("Refuse jobs with more contour path elements than this (default {})",
+                               JobLimits{}.path_elements));
     app.add_flag("--stats", o.stats,
                  "Also print statistics of the program as read back to standard error: path lengths at feed and "
                  "rapid, holes, lowest Z, machining time, bounding box per tool");
@@ -279,7 +285,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
         std::string text = read_text(o.job, in);
         Job job;
         try {
-            job = read_job(text, o.job == "-" ? "<stdin>" : o.job);
+            job = read_job(text, o.job == "-" ? "<stdin>" : o.job, o.limits);
             if (job.name.empty()) job.name = stem_of(o.job);
             // Every output is written completely (the program, the plot) before any is committed:
             // a failure on the way leaves every file as it was. Reading back needs the text, so

@@ -1,5 +1,7 @@
 #include "camgen/common/json_util.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -312,7 +314,36 @@ int LineMap::line_of(std::string_view pointer) const {
     return 0;
 }
 
-nlohmann::json parse(std::string_view text, const std::string& source_name) {
+namespace {
+// Where the text first nests deeper than `max_nesting` (outside strings), if it does.
+std::optional<std::size_t> too_deep_at(std::string_view text, int max_nesting) {
+    int depth = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+            continue;
+        }
+        if (c == '"') in_string = true;
+        else if (c == '[' || c == '{') {
+            if (++depth > max_nesting) return i;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::nullopt;
+}
+}  // namespace
+
+nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting) {
+    if (const auto at = too_deep_at(text, max_nesting)) {
+        const auto [line, column] = line_column(text, *at);
+        throw InputError("", fmt::format("line {}, column {}: arrays and objects nested deeper than {} levels", line,
+                                         column, max_nesting),
+                         line, source_name);
+    }
     nlohmann::json value;
     try {
         value = nlohmann::json::parse(text, nullptr, true, false);

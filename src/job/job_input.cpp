@@ -56,8 +56,27 @@ std::vector<ObjectSpec> JobInput::objects() {
     };
 }
 
-JobInput::JobInput(std::string_view text, const std::string& source_name)
-    : root_(json::parse(text, source_name)), source_{source_name, json::LineMap(text)} {}
+JobInput::JobInput(std::string_view text, const std::string& source_name, JobLimits limits)
+    : limits_(limits), root_(json::parse(text, source_name, limits.nesting)), source_{source_name, json::LineMap(text)} {}
+
+namespace {
+// Draws `count` from a budget of `limit`, or fails naming what would be too many.
+void claim(double& claimed, double count, std::size_t limit, const char* what, const char* option, json::Fields& f,
+           std::string_view key) {
+    if (claimed + count > static_cast<double>(limit))
+        f.fail(key, fmt::format("the job would have more than {} {} ({} here, {} before); raise the limit with {}", limit,
+                                what, count, claimed, option));
+    claimed += count;
+}
+}  // namespace
+
+void JobInput::claim_holes(double count, Fields& f, std::string_view key) const {
+    claim(holes_claimed_, count, limits_.holes, "holes", "--max-holes", f, key);
+}
+
+void JobInput::claim_path_elements(double count, Fields& f, std::string_view key) const {
+    claim(elements_claimed_, count, limits_.path_elements, "path elements", "--max-elements", f, key);
+}
 
 std::string JobInput::describe(const Json& value) {
     switch (value.type()) {

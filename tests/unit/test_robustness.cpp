@@ -105,3 +105,47 @@ TEST_CASE("mutated samples: a program or an InputError, never anything else") {
     CHECK(posted > 100);
     CHECK(rejected > 100);
 }
+
+TEST_CASE("limits: JSON nested deeper than 64 levels is refused at once, naming the line and column") {
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const test::Run r = test::run({"-", "--machine", "fanuc"}, deep);
+    CHECK(r.code == 1);
+    CHECK(r.err.find("<stdin>:1: line 1, column 65: arrays and objects nested deeper than 64 levels") != std::string::npos);
+    // Brackets inside strings do not count.
+    const std::string in_string = R"({"name": ")" + std::string(1000, '[') + R"(", "clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": []})";
+    CHECK(test::run({"-", "--machine", "fanuc"}, in_string).code == 0);
+}
+
+TEST_CASE("limits: the holes of all operations together are counted before they are made; --max-holes raises it") {
+    const auto job = [](int count) {
+        return R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
+          {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100, "holes": [[0, 0], [1, 0]]},
+          {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100,
+           "line": {"start": [0, 5], "end": [10, 5], "count": )" + std::to_string(count) + "}}]}";
+    };
+    const test::Run over = test::run({"-", "--machine", "fanuc", "--max-holes", "5"}, job(4));
+    CHECK(over.code == 1);
+    CHECK(over.err.find("/operations/1/line/count: the job would have more than 5 holes (4 here, 2 before); raise the "
+                        "limit with --max-holes") != std::string::npos);
+    CHECK(test::run({"-", "--machine", "fanuc", "--max-holes", "6"}, job(4)).code == 0);
+    CHECK(test::run({"-", "--machine", "fanuc"}, job(4)).code == 0);
+    // 40 grids of 10 million holes: refused with a message, not std::bad_alloc.
+    std::string grids = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [)";
+    for (int i = 0; i < 40; ++i)
+        grids += std::string(i ? "," : "") + R"({"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100,
+          "grid": {"origin": [0, 0], "countX": 10000, "countY": 1000, "spacingX": 1, "spacingY": 1}})";
+    grids += "]}";
+    const test::Run many = test::run({"-", "--machine", "fanuc", "--max-holes", "1000"}, grids);
+    CHECK(many.code == 1);
+    CHECK(many.err.find("/operations/0/grid: the job would have more than 1000 holes") != std::string::npos);
+}
+
+TEST_CASE("limits: contour path elements are counted; --max-elements raises the limit") {
+    const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
+      {"type": "contour", "tool": 1, "depth": -1, "feed": 100, "start": [0, 0],
+       "path": [{"line": [10, 0]}, {"line": [10, 10]}, {"line": [0, 10]}]}]})";
+    const test::Run over = test::run({"-", "--machine", "fanuc", "--max-elements", "2"}, job);
+    CHECK(over.code == 1);
+    CHECK(over.err.find("/operations/0/path: the job would have more than 2 path elements") != std::string::npos);
+    CHECK(test::run({"-", "--machine", "fanuc", "--max-elements", "3"}, job).code == 0);
+}

@@ -36,9 +36,10 @@ struct Source {
     LineMap lines;
 };
 
-// Parses JSON text; a syntax error (NaN, Infinity, trailing commas, ...) becomes an InputError
-// naming the line and column.
-nlohmann::json parse(std::string_view text, const std::string& source_name);
+// Parses JSON text; a syntax error (NaN, Infinity, trailing commas, ...) or arrays and objects
+// nested deeper than `max_nesting` become an InputError naming the line and column. The
+// nesting is checked on the text before anything is built.
+nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting = 64);
 
 // Escapes a key for use in a JSON pointer ("~" -> "~0", "/" -> "~1").
 std::string pointer_escape(std::string_view key);

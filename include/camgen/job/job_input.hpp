@@ -19,13 +19,29 @@ namespace camgen {
 // Sanity bounds for values in a job.
 inline constexpr double max_job_length = 1e6;  // mm or mm/min: 1 km, 1 km/min
 
+// How large a job may be, checked before anything is allocated for it: holes over all drill
+// operations, path elements over all contours, and the nesting of the JSON text. The command
+// line raises them (--max-holes, --max-elements).
+struct JobLimits {
+    std::size_t holes = 10'000'000;
+    std::size_t path_elements = 10'000'000;
+    int nesting = 64;
+};
+
 class JobInput {
 public:
     using Json = nlohmann::json;
     using Fields = json::Fields;
 
-    // Parses `text`. Throws InputError naming the line for a syntax error.
-    JobInput(std::string_view text, const std::string& source_name);
+    // Parses `text`. Throws InputError naming the line for a syntax error or nesting deeper
+    // than limits.nesting.
+    JobInput(std::string_view text, const std::string& source_name, JobLimits limits = {});
+
+    // Counts `count` more holes (or path elements) against the job's limit before they are
+    // made; an InputError at f's `key` when the job would exceed it.
+    void claim_holes(double count, Fields& f, std::string_view key) const;
+    void claim_path_elements(double count, Fields& f, std::string_view key) const;
+    const JobLimits& limits() const { return limits_; }
 
     // Reads the header and the tool table (the top-level keys besides "operations"; "$schema"
     // is accepted and ignored). Returns the top-level object's fields for the caller to read on.
@@ -67,8 +83,12 @@ public:
 private:
     Tool read_tool(const Json& value, const std::string& path);
 
+    JobLimits limits_;
     Json root_;
     json::Source source_;
+    // What the operations read so far have claimed: a budget the const readers draw on.
+    mutable double holes_claimed_ = 0;
+    mutable double elements_claimed_ = 0;
     double scale_ = 1.0;
     JobHeader header_;
 };
