@@ -271,7 +271,7 @@ void HeidenhainReader::parameter_line(std::string_view text) {
         fail(fmt::format("\"{}\": the cycle of line {} expects its Q parameters, Q<n>=<value>", text, defining_->line));
     auto n = parse_number(text.substr(1, eq - 1));
     auto v = parse_number(text.substr(eq + 1));
-    if (!n || *n != std::floor(*n) || !v) fail(fmt::format("\"{}\" is not Q<n>=<value>", text));
+    if (!n || *n != std::floor(*n) || !(*n >= 0 && *n < 10000) || !v) fail(fmt::format("\"{}\" is not Q<n>=<value>", text));
     int q = static_cast<int>(*n);
     const heidenhain::CycleForm& form = *cycle_form(defining_->number);
     auto q_at = [&](size_t k) { return heidenhain::number(form.parameters[k].q); };

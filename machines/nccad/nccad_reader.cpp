@@ -57,7 +57,7 @@ void NccadReader::message(const std::string& text) {
         m.remove_prefix(12);
         size_t end = m.find_first_not_of("0123456789");
         std::string_view number = m.substr(0, end);
-        if (number.empty()) fail(fmt::format("M01 {}: no tool number after \"Insert tool\"", text));
+        if (number.empty() || number.size() > 9) fail(fmt::format("M01 {}: no tool number after \"Insert tool\"", text));
         int tool = std::stoi(std::string(number));
         std::string_view rest = end == std::string_view::npos ? std::string_view() : m.substr(end);
         if (size_t s = rest.rfind(", spindle "); s != std::string_view::npos && ends_with(rest, " rpm")) {

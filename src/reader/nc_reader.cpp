@@ -125,6 +125,8 @@ double NcReader::seconds_value(double written) const { return written / dwell_fm
 double NcReader::rpm_value(double written) const { return written / rpm_fmt_.spec().scale; }
 
 int NcReader::code_of(const Word& w) const {
+    // No control has codes beyond G/M 9999; a larger number would not fit the tenths in an int.
+    if (!(std::abs(w.value) < 10000.0)) fail(fmt::format("{} is not a code", w.text));
     int c = code(w.value);
     if (std::abs(w.value * 10.0 - c) > 1e-6) fail(fmt::format("{} is not a code", w.text));
     return c;

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
 using namespace camgen;
@@ -148,4 +149,25 @@ TEST_CASE("limits: contour path elements are counted; --max-elements raises the 
     CHECK(over.code == 1);
     CHECK(over.err.find("/operations/0/path: the job would have more than 2 path elements") != std::string::npos);
     CHECK(test::run({"-", "--machine", "fanuc", "--max-elements", "3"}, job).code == 0);
+}
+
+TEST_CASE("readers: huge codes and numbers are errors naming the line, never undefined behaviour") {
+    struct Case {
+        const char* machine;
+        std::string program;
+    };
+    const Case cases[] = {
+        {"fanuc", "%\nO1000\nN10 G444444444\n%\n"},
+        {"fanuc", "%\nO1000\nN10 M99999999999999999999\n%\n"},
+        {"linuxcnc", "%\nG1e300\n%\n"},
+        {"grbl", "(Insert tool 99999999999999999999)\nM0\n"},
+        {"wabeco", "_\n_\nG90\nM01 Insert tool 99999999999999999999\n"},
+        {"heidenhain", "0 BEGIN PGM x MM\n1 CYCL DEF 200 DRILLING ~\n  Q99999999999999999999=+1 ;X\n2 END PGM x MM\n"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.machine);
+        CAPTURE(c.program);
+        const Machine m = load_machine(c.machine);
+        CHECK_THROWS_AS(read_program(c.program, m, "p"), InputError);
+    }
 }
