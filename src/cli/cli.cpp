@@ -44,6 +44,7 @@ struct Options {
     std::string units;
     std::string plot;   // SVG backplot of the program as read back
     bool stats = false; // statistics of the program as read back, to stderr
+    bool quiet = false; // no notes on stderr (warnings and errors still)
 };
 
 // `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg]`
@@ -107,10 +108,16 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.snippet = o.snippet;
     po.program_name = job.name;
     po.warnings = &err;
-    std::unique_ptr<Post> post = make_post(machine, out, po);
+    po.notes = o.quiet ? nullptr : &err;
+    // Into a buffer first: a post that refuses a cycle half-way writes nothing.
+    std::ostringstream buffer;
+    std::unique_ptr<Post> post = make_post(machine, buffer, po);
     post->open();
     expand_job(job, *post);
     post->close();
+    out << buffer.str();
+    out.flush();
+    if (!out) throw IoError("cannot write the program", errno);
 }
 
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
@@ -186,7 +193,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_option("--plot", o.plot, "Also write an SVG backplot of the program as read back (XY view)");
     app.add_flag("--stats", o.stats,
                  "Also print statistics of the program as read back to standard error: path lengths at feed and "
-                 "rapid, holes, lowest Z, machining time, bounding box per tool");
+                 "rapid, holes (how many canned, how many longhand), lowest Z, machining time, bounding box per tool");
+    app.add_flag("-q,--quiet", o.quiet,
+                 "No notes on standard error (\"camgen: note: ...\", e.g. a cycle written longhand although the machine "
+                 "has it canned); warnings and errors are still printed");
 
     VerifyOptions vo;
     CLI::App* verify = app.add_subcommand(
