@@ -24,6 +24,7 @@
 #include "camgen/reader/reader.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
+#include "camgen/post/safety.hpp"
 
 #ifndef CAMGEN_VERSION
 #define CAMGEN_VERSION "0.0.0"
@@ -109,11 +110,17 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.program_name = job.name;
     po.warnings = &err;
     po.notes = o.quiet ? nullptr : &err;
-    // Into a buffer first: a post that refuses a cycle half-way writes nothing.
+    // Every event is checked before the first block is written: an unsafe job writes nothing.
+    const std::vector<Event> events = expand_job(job);
+    SafetyLimits limits{job.clearance, {}, machine.longhand()};
+    for (const auto& [number, tool] : job.tools)
+        if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
+    check_safety(events, limits);
+    // Into a buffer first: a post that refuses a cycle half-way writes nothing either.
     std::ostringstream buffer;
     std::unique_ptr<Post> post = make_post(machine, buffer, po);
     post->open();
-    expand_job(job, *post);
+    for (const Event& e : events) post->emit(e);
     post->close();
     out << buffer.str();
     out.flush();
