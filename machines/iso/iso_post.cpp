@@ -2,11 +2,20 @@
 // canned cycles G73/G74/G81-G89 with G98/G99 and G80, LinuxCNC G33.1 rigid tapping.
 #include "machines/iso/iso_post.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
 
 namespace camgen {
+
+namespace {
+// Whether the canned cycle carries `field`.
+bool contains(const std::vector<DrillField>& fields, DrillField field) {
+    return std::find(fields.begin(), fields.end(), field) != fields.end();
+}
+}  // namespace
 
 IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     : Post(machine, out, std::move(options)) {
@@ -113,7 +122,11 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
     writer().add(force_z(c.bottom_z)).add(xyz_format().word("R", c.safe_z));
     if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.get(DrillField::first_depth))
         writer().add(xyz_format().word("Q", *p.get(DrillField::first_depth)));
-    if (p.get(DrillField::bottom_dwell) && *p.get(DrillField::bottom_dwell) > 0) writer().add(dwell_format().word("P", *p.get(DrillField::bottom_dwell)));
+    // G82, G86 and G89 need their P (LinuxCNC: "Dwell time p word missing"), P0 when no dwell.
+    const bool dwell_cycle = c.kind == CycleKind::dwell || c.kind == CycleKind::bore_stop || c.kind == CycleKind::bore_dwell;
+    const double dwell = p.get(DrillField::bottom_dwell).value_or(0.0);
+    if (dwell > 0 || (dwell_cycle && contains(spec.fields, DrillField::bottom_dwell)))
+        writer().add(dwell_format().word("P", dwell));
     writer().add(feed_word(c.feed)).end();
 }
 

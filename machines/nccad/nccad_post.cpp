@@ -40,6 +40,12 @@ void NccadPost::on_tool_change(const ToolChange& tool) {
     pending_tool_ = tool;
 }
 
+std::optional<std::string> NccadPost::tapping_impossible(const DrillCycle& cycle) const {
+    if (cycle.kind == CycleKind::tap_left)
+        return "its spindle cannot run counter-clockwise, and a left-hand tap cuts only counter-clockwise";
+    return "its spindle cannot run counter-clockwise, so a right-hand tap cannot be backed out of the hole";
+}
+
 void NccadPost::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::ccw)
         fail("", fmt::format("machine {} cannot run the spindle counter-clockwise (tool {})", machine().name, current_tool()));

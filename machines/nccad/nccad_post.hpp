@@ -21,6 +21,8 @@ protected:
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    // nccad's spindle runs clockwise only: a right-hand tap cannot come out, a left-hand one cannot cut.
+    std::optional<std::string> tapping_impossible(const DrillCycle& cycle) const override;
 
 private:
     void flush_tool_message(std::optional<double> rpm);

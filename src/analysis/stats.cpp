@@ -137,6 +137,8 @@ ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
         }
     }
     st.holes = static_cast<int>(trace.holes.size());
+    st.canned_holes = std::min(trace.canned_holes, st.holes);
+    st.longhand_holes = st.holes - st.canned_holes;
     for (const Hole& h : trace.holes) ++tool_stats(h.tool).holes;
     // A tool that never moved (a snippet's tool 0 with no motion) says nothing.
     std::erase_if(st.tools, [](const ToolStats& t) { return t.box.empty && t.holes == 0 && t.time == 0.0; });
@@ -147,6 +149,7 @@ std::string format_stats(const ProgramStats& st) {
     std::string out;
     auto line = [&](std::string_view label, const std::string& value) { out += fmt::format("{:<15}{}\n", label, value); };
     line("holes", std::to_string(st.holes));
+    if (st.holes > 0) line("hole cycles", fmt::format("{} canned, {} longhand", st.canned_holes, st.longhand_holes));
     line("feed path", num(st.feed_length) + " mm");
     std::string rapid = num(st.rapid_length) + " mm";
     if (st.unmeasured_rapids > 0)

@@ -109,6 +109,7 @@ public:
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
+                           ++trace_.canned_holes;
                            for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_))
                                add(ReadEvent{to_event(m), e.line, false, e.uncertainty});
                        },

@@ -24,6 +24,7 @@
 #include "camgen/reader/reader.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
+#include "camgen/post/safety.hpp"
 
 #ifndef CAMGEN_VERSION
 #define CAMGEN_VERSION "0.0.0"
@@ -45,6 +46,7 @@ struct Options {
     std::string plot;   // SVG backplot of the program as read back
     bool stats = false; // statistics of the program as read back, to stderr
     JobLimits limits;   // how large a job may be (--max-holes, --max-elements)
+    bool quiet = false; // no notes on stderr (warnings and errors still)
 };
 
 // `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg]`
@@ -108,10 +110,32 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.snippet = o.snippet;
     po.program_name = job.name;
     po.warnings = &err;
-    std::unique_ptr<Post> post = make_post(machine, out, po);
+    po.notes = o.quiet ? nullptr : &err;
+    // Every event is checked before the post sees it, and the post writes into a buffer: an
+    // unsafe job, or a cycle a post refuses half-way, writes nothing.
+    SafetyLimits limits{job.clearance, {}, machine.longhand()};
+    for (const auto& [number, tool] : job.tools)
+        if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
+    std::ostringstream buffer;
+    std::unique_ptr<Post> post = make_post(machine, buffer, po);
+    SafetyCheck check(limits);
+    // Passes each event through the check, then to the post.
+    struct Checked : EventSink {
+        SafetyCheck& check;
+        Post& post;
+        Checked(SafetyCheck& c, Post& p) : check(c), post(p) {}
+        void emit(const Event& e) override {
+            check.emit(e);
+            post.emit(e);
+        }
+    } checked(check, *post);
     post->open();
-    expand_job(job, *post);
+    expand_job(job, checked);
+    check.finish();
     post->close();
+    out << buffer.str();
+    out.flush();
+    if (!out) throw IoError("cannot write the program", errno);
 }
 
 // Flushes a stream that is not a file of ours (standard output) and reports a failed write
@@ -210,7 +234,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                                JobLimits{}.path_elements));
     app.add_flag("--stats", o.stats,
                  "Also print statistics of the program as read back to standard error: path lengths at feed and "
-                 "rapid, holes, lowest Z, machining time, bounding box per tool");
+                 "rapid, holes (how many canned, how many longhand), lowest Z, machining time, bounding box per tool");
+    app.add_flag("-q,--quiet", o.quiet,
+                 "No notes on standard error (\"camgen: note: ...\", e.g. a cycle written longhand although the machine "
+                 "has it canned); warnings and errors are still printed");
 
     VerifyOptions vo;
     CLI::App* verify = app.add_subcommand(

@@ -39,6 +39,8 @@ constexpr KeySpec tool_keys[] = {
      .description = "cutting diameter"},
     {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
      .description = "included point angle (needed by drillTip)"},
+    {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
     {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
@@ -124,6 +126,8 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     tool.tip_angle = f.optional_number("tipAngle");
     if (tool.tip_angle && (*tool.tip_angle <= 0 || *tool.tip_angle >= 180))
         f.fail("tipAngle", "tipAngle must be between 0 and 180 degrees (exclusive)");
+    tool.flute_length = optional_length(f, "fluteLength");
+    if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
     tool.rpm = f.number("rpm");
     if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
     tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);

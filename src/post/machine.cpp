@@ -50,6 +50,12 @@ constexpr Named<BoreDwellFeedOut> bore_dwell_feed_outs[] = {
     {BoreDwellFeedOut::to_safe, "safe", "bore-dwell feeds out to R (Fanuc)"},
     {BoreDwellFeedOut::to_retract, "retract", "bore-dwell feeds out to the retract level (LinuxCNC)"},
 };
+constexpr Named<TappingMode> tapping_modes[] = {
+    {TappingMode::rigid, "rigid", "the control synchronises the spindle to the feed: canned tapping only"},
+    {TappingMode::floating, "floating",
+     "taps sit in a floating holder: canned tapping without synchronisation, or longhand feeds with a spindle reversal"},
+    {TappingMode::none, "none", "the machine cannot tap: every tap is refused"},
+};
 
 // The top-level keys of a machine file.
 constexpr KeySpec machine_keys[] = {
@@ -171,6 +177,9 @@ constexpr KeySpec drilling_keys[] = {
     {.key = "boreDwellFeedOut", .type = JsonType::string, .default_json = "\"safe\"",
      .choices = &choices_of<bore_dwell_feed_outs>,
      .description = "where a longhand bore-dwell feeds out to: safe (R, Fanuc) or retract (LinuxCNC)"},
+    {.key = "tapping", .type = JsonType::string, .default_json = "\"none\"", .choices = &choices_of<tapping_modes>,
+     .description = "how the machine taps: rigid (synchronised, canned only), floating (a floating tap holder: canned "
+                    "or longhand) or none"},
     {.key = "cycles", .type = JsonType::array, .ref = "drillingCycle",
      .description = "the machine's drilling cycles; a kind not listed is written longhand"},
 };
@@ -381,6 +390,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             m.peck_clearance = *v;
         }
         m.bore_dwell_feed_out = df.choice("boreDwellFeedOut", bore_dwell_feed_outs, BoreDwellFeedOut::to_safe);
+        m.tapping = df.choice("tapping", tapping_modes, TappingMode::none);
         if (const auto* cycles = df.member("cycles")) {
             if (!cycles->is_array()) df.fail("cycles", "expected an array");
             for (size_t i = 0; i < cycles->size(); ++i) {
@@ -394,8 +404,9 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 else
                     cf.fail("kind", fmt::format("unknown cycle kind \"{}\"; kinds: {}", kind, fmt::join(names_of(cycle_kinds), ", ")));
                 c.canned = cf.boolean("canned", true);
-                c.style = cf.choice("style", canned_styles,
-                    CannedStyle::standard);
+                c.style = cf.choice("style", canned_styles, CannedStyle::standard);
+                if (c.style == CannedStyle::rigid_g33_1 && m.tapping != TappingMode::rigid)
+                    cf.fail("style", "style rigid-g33.1 taps rigidly: set drilling.tapping to rigid");
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {
@@ -493,6 +504,8 @@ std::string describe_machine(const Machine& m) {
     line("peckClearance", fmt::format("{} mm", m.peck_clearance));
     line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
                                                                                  : "to the retract level");
+    for (const auto& t : tapping_modes)
+        if (t.value == m.tapping) line("tapping", fmt::format("{}: {}", t.name, t.description));
     s += "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;

@@ -57,6 +57,10 @@ void Post::warn(const std::string& message) {
     if (options_.warnings) *options_.warnings << "camgen: warning: " << message << '\n';
 }
 
+void Post::note(const std::string& message) {
+    if (options_.notes) *options_.notes << "camgen: note: " << message << '\n';
+}
+
 void Post::fail(const std::string& key, const std::string& detail) const {
     throw InputError(op_path_ + key, detail);
 }
@@ -218,6 +222,7 @@ void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) 
 }
 void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
 std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
+std::optional<std::string> Post::tapping_impossible(const DrillCycle&) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
@@ -231,30 +236,78 @@ std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
     return f;
 }
 
-const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) const {
-    if (cycle.output == CycleOutput::longhand) return nullptr;
-    const DrillingCycleSpec* spec = machine_.canned_cycle(cycle.kind);
-    std::vector<std::string> missing;
-    if (spec)
-        for (DrillField f : drill_fields_used(cycle))
-            if (!contains(spec->fields, f)) missing.emplace_back(std::string(key_of(f)));
-    std::optional<std::string> limit = spec && missing.empty() ? canned_limit(cycle, *spec) : std::nullopt;
-    if (cycle.output == CycleOutput::automatic) return spec && missing.empty() && !limit ? spec : nullptr;
-    if (!spec)
+Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
+    CannedFit fit;
+    fit.spec = machine_.canned_cycle(cycle.kind);
+    if (!fit.spec) return fit;
+    for (DrillField f : drill_fields_used(cycle))
+        if (!contains(fit.spec->fields, f)) fit.missing.emplace_back(std::string(key_of(f)));
+    if (fit.missing.empty()) fit.limit = canned_limit(cycle, *fit.spec);
+    return fit;
+}
+
+void Post::check_tapping(const DrillCycle& cycle) const {
+    if (auto why = tapping_impossible(cycle))
+        throw InputError(cycle.path + "/cycle", fmt::format("machine {} cannot tap: {}", machine_.name, *why));
+    if (machine_.tapping == TappingMode::none)
+        throw InputError(cycle.path + "/cycle",
+                         fmt::format("machine {} cannot synchronise the spindle to the feed; tapping needs a floating tap "
+                                     "holder: set tapping to floating in a copy of the machine file",
+                                     machine_.name));
+}
+
+void Post::refuse_longhand_tap(const DrillCycle& cycle, const std::string& why, const std::string& remedy) const {
+    throw InputError(cycle.path + "/output",
+                     fmt::format("machine {} taps rigidly and {}; a longhand tap (feed moves with a spindle reversal) is "
+                                 "not synchronised to the spindle and breaks a tap in a rigid holder: {}, or if the tap "
+                                 "sits in a floating holder, set tapping to floating in a copy of the machine file",
+                                 machine_.name, why, remedy));
+}
+
+const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
+    const bool tap = is_tapping(cycle.kind);
+    if (tap) check_tapping(cycle);
+    const bool rigid = tap && machine_.tapping == TappingMode::rigid;
+    const std::string kind(name_of(cycle_kinds, cycle.kind));
+    if (cycle.output == CycleOutput::longhand) {
+        if (rigid) refuse_longhand_tap(cycle, "the job asks for output \"longhand\"", "use \"auto\" or \"canned\"");
+        return nullptr;
+    }
+    const CannedFit fit = canned_fit(cycle);
+    if (fit.fits()) return fit.spec;
+    // Why the canned cycle cannot write it ("G81 cannot carry safeDistance").
+    std::string reason;
+    if (fit.spec && !fit.missing.empty())
+        reason = fmt::format("{} cannot carry {}", fit.spec->name, fmt::join(fit.missing, ", "));
+    else if (fit.spec)
+        reason = fmt::format("{} cannot carry this cycle: {}", fit.spec->name, *fit.limit);
+    if (cycle.output == CycleOutput::automatic) {
+        if (rigid && !fit.spec)
+            refuse_longhand_tap(cycle, fmt::format("has no canned cycle for \"{}\"", kind), "tap on another machine");
+        if (rigid)
+            refuse_longhand_tap(cycle, "its " + reason,
+                                fit.missing.empty() ? std::string("change the cycle")
+                                                    : fmt::format("leave out {}", fmt::join(fit.missing, ", ")));
+        // Longhand where the machine has the canned cycle: say so, it is longer and slower.
+        if (fit.spec)
+            note(fmt::format("{}{}: the {} cycle is written longhand because machine {}'s {}", cycle.path,
+                             op_name_.empty() ? "" : " (" + op_name_ + ")", kind, machine_.name, reason));
+        return nullptr;
+    }
+    if (!fit.spec)
         throw InputError(cycle.path + "/output",
                          fmt::format("machine {} has no canned cycle for \"{}\"; use \"auto\" or \"longhand\"",
-                                     machine_.name, name_of(cycle_kinds, cycle.kind)));
-    if (!missing.empty()) {
+                                     machine_.name, kind));
+    if (!fit.missing.empty()) {
         std::vector<std::string> offered;
-        for (DrillField f : spec->fields) offered.emplace_back(std::string(key_of(f)));
+        for (DrillField f : fit.spec->fields) offered.emplace_back(std::string(key_of(f)));
         throw InputError(cycle.path + "/output",
-                         fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, spec->name,
-                                     fmt::join(missing, ", "), offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));
+                         fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, fit.spec->name,
+                                     fmt::join(fit.missing, ", "),
+                                     offered.empty() ? "nothing optional" : fmt::format("{}", fmt::join(offered, ", "))));
     }
-    if (limit)
-        throw InputError(cycle.path + "/output", fmt::format("machine {}'s {} cannot carry this cycle: {}",
-                                                             machine_.name, spec->name, *limit));
-    return spec;
+    throw InputError(cycle.path + "/output", fmt::format("machine {}'s {} cannot carry this cycle: {}", machine_.name,
+                                                         fit.spec->name, *fit.limit));
 }
 
 void Post::handle_drill_cycle(const DrillCycle& cycle) {
@@ -270,7 +323,9 @@ void Post::handle_drill_point(Vec2 at) {
     if (cycle_spec_) {
         on_drilling_point(*cycle_, *cycle_spec_, at, first_point_);
         pos_ = {at.x, at.y, cycle_->retract_z};
+        ++canned_holes_;
     } else {
+        ++longhand_holes_;
         for (const LonghandMove& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
     }
     first_point_ = false;
@@ -374,6 +429,7 @@ void Post::emit(const Event& event) {
     visit_exhaustive(overloaded{
                    [&](const OperationStart& op) {
                        op_path_ = op.path;
+                       op_name_ = op.name;
                        op_tolerance_ = op.tolerance;
                        on_operation_start(op);
                    },

@@ -26,6 +26,10 @@ std::string drilling(const std::string& machine) {
 std::string tapping(const std::string& machine) {
     return post_job(read_file(CAMGEN_SOURCE_DIR "/samples/tapping.json"), machine).text;
 }
+// samples/tapping-rigid.json: taps with one speed in and out, which rigid canned cycles carry.
+std::string tapping_rigid(const std::string& machine) {
+    return post_job(read_file(CAMGEN_SOURCE_DIR "/samples/tapping-rigid.json"), machine).text;
+}
 
 // Records events.
 struct Recorder : EventSink {
@@ -94,13 +98,21 @@ TEST_CASE("linuxcnc: P in seconds, 0.254 mm peck clearance, G86 with P, G33.1 ri
     CHECK(has(t, "G1 Z-5 F80\nG0 Z1\nG4 P0.2\nZ-4.746\nG1 Z-9 F160\n"));
     CHECK(has(t, "G98 G86 X50 Y30 Z-12 R2 P0.3 F40\n"));
     CHECK(has(t, "G98 G89 X50 Y30 Z-14 R2 P1\n"));
-    const std::string tap = tapping("linuxcnc");
+    const std::string tap = tapping_rigid("linuxcnc");
     CHECK(has(tap, "Z3\nG33.1 Z-12 K1.25\nG0 Z5\nX30\nZ3\nG33.1 Z-12 K1.25\n"));
+    CHECK(has(tap, "S300 M4\nZ3\nG33.1 Z-10 K1\n"));
     CHECK_FALSE(has(tap, "G84"));
+    CHECK_FALSE(has(tap, "\nG1 "));
+    // Separate tapping and retract speeds: G33.1 cannot carry them, and longhand would break the tap.
+    CHECK_THROWS_WITH_AS(tapping("linuxcnc"),
+                         doctest::Contains("machine linuxcnc taps rigidly and its G33.1 cannot carry tappingSpeed, retractSpeed"),
+                         InputError);
 }
 
 TEST_CASE("grbl: everything longhand, no G98/G99/G80/M6, G4 P in seconds, M0 for tools") {
-    for (const std::string& t : {drilling("grbl"), tapping("grbl")}) {
+    CHECK_THROWS_WITH_AS(tapping("grbl"), doctest::Contains("machine grbl cannot synchronise the spindle to the feed"),
+                         InputError);
+    for (const std::string& t : {drilling("grbl")}) {
         for (std::string banned : {"G73", "G8", "G98", "G99", "M6\n", "G43", "%"}) {
             INFO(banned);
             CHECK_FALSE(has(t, banned));
@@ -122,7 +134,10 @@ TEST_CASE("wabeco: longhand pecks with 1 mm clearance, dwell in 1/18 s, no tappi
     CHECK(has(t, "G01 Z-2 F16.7\nM30 P9\nG00 Z5\n"));   // 100 mm/min = 16.7 x 0.1 mm/s; 0.5 s = 9/18 s
     CHECK(has(t, "G01 Z-4 F25\nG00 Z2\nG00 Z-3\nG01 Z-10\n"));
     CHECK_FALSE(has(t, "G81"));  // every cycle here has a safe distance, which G81 ... B cannot carry
-    CHECK_THROWS_WITH_AS(tapping("wabeco"), doctest::Contains("cannot run the spindle counter-clockwise"), InputError);
+    CHECK_THROWS_WITH_AS(tapping("wabeco"),
+                         doctest::Contains("machine wabeco cannot tap: its spindle cannot run counter-clockwise, so a "
+                                           "right-hand tap cannot be backed out of the hole"),
+                         InputError);
 }
 
 TEST_CASE("sinumerik: MCALL CYCLE81-89 parameter lists") {
@@ -160,11 +175,11 @@ TEST_CASE("heidenhain: CYCL DEF 200/203/207 Q values, M99 per hole, the rest lon
     // the first-feed factor has no Q parameter: longhand, first peck at 80.
     CHECK(has(t, "CYCL DEF 9.1 DWELL 0.2\n"));
     CHECK(has(t, " L Z-5 F80\n"));
-    const std::string tap = tapping("heidenhain");
+    CHECK_THROWS_WITH_AS(tapping("heidenhain"), doctest::Contains("machine heidenhain taps rigidly"), InputError);
+    const std::string tap = tapping_rigid("heidenhain");
     CHECK(has(tap, "CYCL DEF 207 RIGID TAPPING NEW ~\n  Q200=+3 ;SET-UP CLEARANCE ~\n  Q201=-12 ;DEPTH ~\n"
                    "  Q239=+1.25 ;PITCH ~\n  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=+5 ;2ND SET-UP CLEARANCE\n"));
-    // tap-left with its own speeds: longhand with TOOL CALL speed changes.
-    CHECK(has(tap, "TOOL CALL Z S200\n"));
+    CHECK(has(tap, "  Q239=-1 ;PITCH ~\n"));
 }
 
 TEST_CASE("output canned names each parameter the machine's cycle lacks; output longhand forces longhand") {
@@ -304,10 +319,16 @@ std::string cycle_table() {
         s += fmt::format("| `{}` |", std::string(name_of(cycle_kinds, k)));
         for (const Machine& m : machines) {
             const DrillingCycleSpec* c = m.canned_cycle(k);
-            s += c ? fmt::format(" `{}` |", c->name) : std::string(" longhand |");
+            if (is_tapping(k) && m.tapping == TappingMode::none) s += " refused |";
+            else s += c ? fmt::format(" `{}` |", c->name) : std::string(" longhand |");
         }
         s += "\n";
     }
+    // How each machine taps (drilling.tapping).
+    s += "| tapping |";
+    for (const Machine& m : machines)
+        s += m.tapping == TappingMode::rigid ? " rigid |" : m.tapping == TappingMode::floating ? " floating |" : " none |";
+    s += "\n";
     return s;
 }
 

@@ -41,6 +41,8 @@ struct ProgramStats {
     int unmeasured_rapids = 0;      // rapids from the tool-change position (length unknown, not counted)
     std::optional<double> lowest_z; // mm
     int holes = 0;
+    int canned_holes = 0;           // holes drilled by a canned cycle
+    int longhand_holes = 0;         // holes drilled with plain moves
     double feed_time = 0.0;         // s, each feed clamped to the machine's limits
     double rapid_time = 0.0;        // s, at the machine's rapid rate
     double dwell_time = 0.0;        // s

@@ -52,6 +52,7 @@ struct ToolInfo {
 struct Trace {
     std::vector<Step> steps;
     std::vector<Hole> holes;      // in drilling order
+    int canned_holes = 0;         // holes drilled by a canned cycle (the others are longhand)
     std::vector<ToolInfo> tools;  // in order of first use
 };
 

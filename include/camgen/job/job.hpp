@@ -17,6 +17,7 @@ struct Tool {
     ToolType type = ToolType::drill;
     double diameter = 0.0;                 // mm
     std::optional<double> tip_angle;       // degrees, included angle of the point
+    std::optional<double> flute_length;    // mm, how deep it can cut (job key fluteLength)
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;
     std::string comment;

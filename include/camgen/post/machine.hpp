@@ -26,6 +26,12 @@ enum class FeedUnit { per_minute, tenth_mm_per_second };
 // (G33.1 Z K: one synchronised move in and out, positioned with G0, no cancel code).
 enum class CannedStyle { standard, rigid_g33_1 };
 
+// How the machine can tap: rigid (the control synchronises the spindle to the feed: Fanuc
+// M29 G84, LinuxCNC G33.1, Heidenhain 207, Sinumerik CYCLE84), floating (a floating tap holder
+// takes up the difference: G84 without synchronisation, or longhand feeds with a spindle
+// reversal), or not at all.
+enum class TappingMode { rigid, floating, none };
+
 // One drilling cycle the machine offers (a MillDrillingFields entry).
 struct DrillingCycleSpec {
     std::string name;                  // "G83", "CYCLE83", "CYCL DEF 203"
@@ -82,6 +88,7 @@ struct Machine {
     ArcSettings arcs;
     double peck_clearance = 1.0;       // mm, re-approach clearance of longhand deep/chip-break
     BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;  // longhand G89 feed-out end
+    TappingMode tapping = TappingMode::none;  // machine file drilling.tapping
     std::vector<DrillingCycleSpec> drilling;
     nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
     std::string source;                // where it was read from, for messages

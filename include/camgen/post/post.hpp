@@ -23,6 +23,7 @@ struct PostOptions {
     bool snippet = false;              // CNC-Calc clipboard export: no program start or end
     std::string program_name;          // the job's name, for the program header
     std::ostream* warnings = nullptr;  // where warnings go (stderr); nullptr: dropped
+    std::ostream* notes = nullptr;     // where notes go (stderr unless --quiet); nullptr: dropped
 };
 
 class Post : public EventSink {
@@ -35,6 +36,10 @@ public:
     void emit(const Event& event) override;
     // Writes the program end (nothing for a snippet) and flushes. Throws IoError.
     void close();
+    // How many holes were written as canned cycles so far.
+    int canned_holes() const { return canned_holes_; }
+    // How many holes were written longhand so far.
+    int longhand_holes() const { return longhand_holes_; }
 
 protected:
     // ---- CNC-Calc calls: a dialect overrides what differs ----
@@ -67,6 +72,9 @@ protected:
     // uses (a value the control cannot express, e.g. a degression factor where it takes only
     // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
     virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
+    // Why this machine cannot tap `cycle` at all, whatever its tapping mode says (nccad: the
+    // spindle cannot reverse), or nullopt. Said after "machine M cannot tap: ".
+    virtual std::optional<std::string> tapping_impossible(const DrillCycle& cycle) const;
 
     // ---- word hooks: how a dialect spells a word of a block the base writes ----
     // The words that switch cutter radius compensation: G40, or G41/G42 D<register> (the
@@ -99,6 +107,8 @@ protected:
     void reset_modal_axes();
     // Writes a warning (where the options say).
     void warn(const std::string& message);
+    // Writes a note: a choice camgen made that the user may not expect (where the options say).
+    void note(const std::string& message);
     // InputError at the current operation's path (plus `key`).
     [[noreturn]] void fail(const std::string& key, const std::string& detail) const;
     // The word for a G or M code as this machine writes it ("G0" or "G00").
@@ -168,6 +178,7 @@ private:
     std::optional<Compensation> pending_compensation_;  // written by the next feed move
     int tool_ = 0;
     std::string op_path_;
+    std::string op_name_;                      // the current operation's name, for notes
 
     void handle_arc(const Arc& arc);
     // Straight moves along `arc` in `segments` equal chords, ending exactly at its end.
@@ -179,7 +190,22 @@ private:
     void handle_drill_cycle(const DrillCycle& cycle);
     void handle_drill_point(Vec2 at);
     void handle_drill_end();
-    const DrillingCycleSpec* choose_canned(const DrillCycle& cycle) const;
+    // Whether the machine's canned cycle of a cycle's kind can write it, and if not, why.
+    struct CannedFit {
+        const DrillingCycleSpec* spec = nullptr;  // the machine's canned cycle of the kind, if any
+        std::vector<std::string> missing;         // keys of used fields it cannot carry
+        std::optional<std::string> limit;         // a value it cannot express
+        bool fits() const { return spec && missing.empty() && !limit; }
+    };
+    CannedFit canned_fit(const DrillCycle& cycle) const;
+    // The canned cycle to write `cycle` with, or nullptr for longhand; refuses taps the
+    // machine cannot make safely and notes an "auto" cycle that goes longhand.
+    const DrillingCycleSpec* choose_canned(const DrillCycle& cycle);
+    // Throws when the machine cannot tap `cycle` (dialect reason, tapping none).
+    void check_tapping(const DrillCycle& cycle) const;
+    // Throws: a longhand tap on a machine that taps rigidly; `why` says why it would be
+    // longhand, `remedy` what the job can change.
+    [[noreturn]] void refuse_longhand_tap(const DrillCycle& cycle, const std::string& why, const std::string& remedy) const;
     void replay(const LonghandMove& event);
 
     std::optional<DrillCycle> cycle_;
@@ -187,6 +213,8 @@ private:
     bool first_point_ = true;
     std::set<std::pair<std::string, double>> warned_feeds_;
     bool opened_ = false;
+    int canned_holes_ = 0;                     // holes written as canned cycles
+    int longhand_holes_ = 0;                   // holes written longhand
     std::optional<double> op_tolerance_;       // the current operation's tolerance, mm
     std::optional<Vec3> arc_actual_end_;       // where the control ended the last arc block
     Vec3 arc_believed_end_;                    // ... and where the post's modal words think it is

@@ -1,0 +1,148 @@
+// Issue 9 part 8: the safety checks on the events that run before any text is written.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "camgen/post/safety.hpp"
+#include "support.hpp"
+
+using namespace camgen;
+using test::post_job;
+using test::Run;
+using test::run;
+
+namespace {
+
+// A job with one drilling operation given by its JSON keys (tool 1: a drill, tool 2: a tap).
+std::string drill_job(const std::string& op, const std::string& tool_extra = "") {
+    return R"({"name": "t", "units": "mm", "clearance": 20, "tools": [
+  {"number": 1, "type": "drill", "diameter": 5, "rpm": 1000)" + tool_extra + R"(},
+  {"number": 2, "type": "tap", "diameter": 8, "rpm": 300}],
+"operations": [{"type": "drill", )" + op + R"(, "holes": [[10, 10], [30, 10]]}]})";
+}
+
+// Writes `text` to a scratch file and returns its path.
+std::string file_with(const std::string& name, const std::string& text) {
+    std::filesystem::path p = test::scratch("safety-" + name) / (name + ".json");
+    std::ofstream(p) << text;
+    return p.string();
+}
+
+}  // namespace
+
+TEST_CASE("safety: a retract plane below the reference plane is refused and nothing is written") {
+    // The feed starts 2 mm above the surface, but between holes the tool rapids at Z3, 2 mm
+    // inside the stock whose top is at Z5.
+    const std::string op = R"("tool": 1, "referencePlane": 5, "retractPlane": 3, "safeDistance": 2, "safeDistanceIsAbsolute": true,
+ "endDepth": 4, "plungingFeedrate": 100)";
+    const std::filesystem::path out = test::scratch("safety-retract") / "p.nc";
+    Run r = run({file_with("retract", drill_job(op)), "--machine", "fanuc", "-o", out.string()});
+    CHECK(r.code == 1);
+    CHECK(r.err.find("/operations/0/retractPlane: the retract plane (Z 3.000) is below the reference plane (Z 5.000)") !=
+          std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+    Run s = run({file_with("retract", drill_job(op)), "--machine", "fanuc"});
+    CHECK(s.out == "");
+}
+
+TEST_CASE("safety: a feed that starts below the reference plane where no hole is") {
+    // An absolute safe distance under the stock top: the rapid approach ends inside the stock.
+    const std::string op = R"("tool": 1, "referencePlane": 5, "retractPlane": 8, "safeDistance": 3, "safeDistanceIsAbsolute": true,
+ "endDepth": 4, "plungingFeedrate": 100)";
+    Run r = run({file_with("feed", drill_job(op)), "--machine", "linuxcnc"});
+    CHECK(r.code == 1);
+    CHECK(r.out == "");
+    CHECK(r.err.find("/operations/0: a feed starts at Z 3.000, below the reference plane (Z 5.000), at X10.000 Y10.000 "
+                     "where no hole has been drilled") != std::string::npos);
+}
+
+TEST_CASE("safety: the clearance below an operation's retract plane") {
+    const std::string op = R"("tool": 1, "retractPlane": 30, "endDepth": 4, "plungingFeedrate": 100)";
+    Run r = run({file_with("clearance", drill_job(op)), "--machine", "fanuc"});
+    CHECK(r.code == 1);
+    CHECK(r.out == "");
+    CHECK(r.err.find("/operations/0/retractPlane: the clearance (Z 20.000) is below the retract plane (Z 30.000)") !=
+          std::string::npos);
+}
+
+TEST_CASE("safety: a hole deeper than the tool's fluteLength") {
+    const std::string op = R"("tool": 1, "retractPlane": 5, "endDepth": 25, "plungingFeedrate": 100)";
+    Run r = run({file_with("flute", drill_job(op, R"(, "fluteLength": 20)")), "--machine", "fanuc"});
+    CHECK(r.code == 1);
+    CHECK(r.out == "");
+    CHECK(r.err.find("/operations/0/endDepth: the hole is 25.000 mm deep below the reference plane, but tool 1 has a "
+                     "fluteLength of 20.000 mm") != std::string::npos);
+    CHECK(run({file_with("flute-ok", drill_job(R"("tool": 1, "retractPlane": 5, "endDepth": 20, "plungingFeedrate": 100)",
+                                               R"(, "fluteLength": 20)")),
+               "--machine", "fanuc"})
+              .code == 0);
+    // fluteLength is a tool key of the job schema.
+    CHECK(run({"schema", "job"}).out.find("\"fluteLength\"") != std::string::npos);
+}
+
+TEST_CASE("safety: a rapid below the retract plane other than the final approach") {
+    auto start = [](std::vector<Event>& ev) {
+        ev.push_back(OperationStart{"op", "/operations/3", std::nullopt});
+        ev.push_back(ToolChange{1, 5.0, "drill"});
+        ev.push_back(Rapid{{0, 0, 20}});
+    };
+    SafetyLimits limits{20.0, {}, {}};
+    // Across at Z1, below the clearance that is this contour's retract plane.
+    std::vector<Event> across;
+    start(across);
+    across.push_back(Rapid{{0, 0, 1}});
+    across.push_back(Rapid{{50, 0, 1}});
+    CHECK_THROWS_WITH_AS(check_safety(across, limits),
+                         doctest::Contains("/operations/3: a rapid down to Z 1.000 at X0.000 Y0.000 goes below the retract plane"),
+                         InputError);
+    // The same inside a drilling cycle's operation, between holes below its retract plane.
+    DrillCycle c;
+    c.path = "/operations/3";
+    c.retract_z = 5;
+    c.reference_z = 0;
+    c.safe_z = 2;
+    c.bottom_z = -5;
+    c.feed = 100;
+    c.values.set(DrillField::plunging_feedrate, 100.0);
+    std::vector<Event> drill;
+    start(drill);
+    drill.push_back(Rapid{{0, 0, 5}});
+    drill.push_back(c);
+    drill.push_back(DrillPoint{{0, 0}});
+    drill.push_back(DrillEnd{});
+    drill.push_back(Rapid{{0, 0, 2}});
+    drill.push_back(Rapid{{10, 0, 2}});
+    CHECK_THROWS_WITH_AS(check_safety(drill, limits),
+                         doctest::Contains("/operations/3: a rapid from X0.000 Y0.000 to X10.000 Y0.000 runs at Z 2.000, "
+                                           "below the retract plane (Z 5.000)"),
+                         InputError);
+    // Down at rapid where no hole is.
+    std::vector<Event> down;
+    start(down);
+    down.push_back(Rapid{{0, 0, 5}});
+    down.push_back(c);
+    down.push_back(DrillPoint{{0, 0}});
+    down.push_back(DrillEnd{});
+    down.push_back(Rapid{{10, 0, 5}});
+    down.push_back(Rapid{{10, 0, -1}});
+    CHECK_THROWS_WITH_AS(check_safety(down, limits), doctest::Contains("where no hole has been drilled that deep"), InputError);
+    // Back into the hole just drilled (as a deep cycle's re-approach): allowed.
+    std::vector<Event> back;
+    start(back);
+    back.push_back(Rapid{{0, 0, 5}});
+    back.push_back(c);
+    back.push_back(DrillPoint{{0, 0}});
+    back.push_back(DrillEnd{});
+    back.push_back(Rapid{{0, 0, -4}});
+    CHECK_NOTHROW(check_safety(back, limits));
+}
+
+TEST_CASE("safety: every sample passes on every machine that can run it") {
+    for (const char* sample : {"plate", "bracket", "drilling", "arcs", "tapping"}) {
+        Job job = read_job(test::read_file(CAMGEN_SOURCE_DIR "/samples/" + std::string(sample) + ".json"), sample);
+        SafetyLimits limits{job.clearance, {}, load_machine("fanuc").longhand()};
+        CAPTURE(sample);
+        CHECK_NOTHROW(check_safety(expand_job(job), limits));
+    }
+}
