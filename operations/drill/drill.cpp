@@ -368,6 +368,19 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
                            in.show(p.retract_plane), f.has("retractPlane") ? "" : ", the clearance",
                            in.show(z.safe_z)));
 
+    // The stock top (referencePlane) is where the material starts: nothing may rapid below it.
+    if (p.retract_plane <= p.reference_plane)
+        f.fail("retractPlane",
+               fmt::format("retractPlane{} (Z {}) is not above referencePlane, the stock top (Z {}): between holes "
+                           "the tool would rapid through the material",
+                           f.has("retractPlane") ? "" : ", the clearance,", in.show(p.retract_plane),
+                           in.show(p.reference_plane)));
+    if (z.safe_z < p.reference_plane)
+        f.fail("safeDistance",
+               fmt::format("the safe distance (Z {}) is below referencePlane, the stock top (Z {}): the rapid "
+                           "approach would end inside the material",
+                           in.show(z.safe_z), in.show(p.reference_plane)));
+
     // The optional fields, by the vocabulary's table; then the degression, which reads two.
     for (const auto& d : drill_fields)
         if (!d.in_planes) read_field(f, in, d, p.kind, p.values);

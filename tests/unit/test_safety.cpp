@@ -29,6 +29,24 @@ std::string file_with(const std::string& name, const std::string& text) {
     return p.string();
 }
 
+// The events of one drilling operation at (10, 10) and (30, 10), as expand_job makes them, with
+// the planes given (absolute Z): a stock top, a retract plane and a feed-start plane.
+std::vector<Event> cycle_events(double reference_z, double retract_z, double safe_z) {
+    DrillCycle c;
+    c.kind = CycleKind::drill;
+    c.path = "/operations/0";
+    c.retract_z = retract_z;
+    c.reference_z = reference_z;
+    c.safe_z = safe_z;
+    c.bottom_z = reference_z - 4.0;
+    c.feed = 100.0;
+    c.spindle_rpm = 1000.0;
+    c.values.set(DrillField::plunging_feedrate, 100.0);
+    return {OperationStart{"drill", "/operations/0", std::nullopt}, ToolChange{1, 5.0, "5 mm drill"},
+            Spindle{SpindleState::cw, 1000.0}, Rapid{{10, 10, 20}}, Rapid{{10, 10, retract_z}}, c,
+            DrillPoint{{10, 10}}, DrillPoint{{30, 10}}, DrillEnd{}, Rapid{{30, 10, 20}}, OperationEnd{}};
+}
+
 }  // namespace
 
 TEST_CASE("safety: a retract plane below the reference plane is refused and nothing is written") {
@@ -39,9 +57,18 @@ TEST_CASE("safety: a retract plane below the reference plane is refused and noth
     const std::filesystem::path out = test::scratch("safety-retract") / "p.nc";
     Run r = run({file_with("retract", drill_job(op)), "--machine", "fanuc", "-o", out.string()});
     CHECK(r.code == 1);
-    CHECK(r.err.find("/operations/0/retractPlane: the retract plane (Z 3.000) is below the reference plane (Z 5.000)") !=
-          std::string::npos);
+    // The job reading refuses it first, naming the key and the values.
+    CHECK(r.err.find("/operations/0/retractPlane: retractPlane (Z 3.000 mm) is not above referencePlane, the stock top "
+                     "(Z 5.000 mm): between holes the tool would rapid through the material") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(out));
+    // And the check on the events refuses the motion itself.
+    try {
+        check_safety(cycle_events(5.0, 3.0, 2.0 + 5.0), SafetyLimits{20.0, {}, {}});
+        FAIL("check_safety accepted a retract plane inside the stock");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("/operations/0/retractPlane: the retract plane (Z 3.000) is below the reference "
+                                         "plane (Z 5.000)") != std::string::npos);
+    }
     Run s = run({file_with("retract", drill_job(op)), "--machine", "fanuc"});
     CHECK(s.out == "");
 }
@@ -53,8 +80,15 @@ TEST_CASE("safety: a feed that starts below the reference plane where no hole is
     Run r = run({file_with("feed", drill_job(op)), "--machine", "linuxcnc"});
     CHECK(r.code == 1);
     CHECK(r.out == "");
-    CHECK(r.err.find("/operations/0: a feed starts at Z 3.000, below the reference plane (Z 5.000), at X10.000 Y10.000 "
-                     "where no hole has been drilled") != std::string::npos);
+    CHECK(r.err.find("/operations/0/safeDistance: the safe distance (Z 3.000 mm) is below referencePlane, the stock top "
+                     "(Z 5.000 mm): the rapid approach would end inside the material") != std::string::npos);
+    try {
+        check_safety(cycle_events(5.0, 8.0, 3.0), SafetyLimits{20.0, {}, {}});
+        FAIL("check_safety accepted a feed starting inside the stock");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("/operations/0: a feed starts at Z 3.000, below the reference plane (Z 5.000), at "
+                                         "X10.000 Y10.000 where no hole has been drilled") != std::string::npos);
+    }
 }
 
 TEST_CASE("safety: the clearance below an operation's retract plane") {
