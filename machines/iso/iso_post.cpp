@@ -60,16 +60,14 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
 
 void IsoPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("P", seconds)).end(); }
 
-void IsoPost::on_rapid(const Vec3& to) {
-    if (length_offset_pending_ && written_z() != to.z) {
-        // The first Z move after a tool change carries the tool length offset.
-        const AxisWords w = axis_words(to, {false, false, true});
-        writer().add(motion_word(0)).add(w.x).add(w.y).add(g(43)).add(w.z).add(fmt::format("H{}", current_tool()))
-            .end();
-        length_offset_pending_ = false;
+void IsoPost::rapid_z_from_unknown(double z) {
+    if (!length_offset_pending_) {
+        Post::rapid_z_from_unknown(z);
         return;
     }
-    Post::on_rapid(to);
+    // The first Z move after a tool change carries the tool length offset, before any X or Y.
+    writer().add(motion_word(0)).add(g(43)).add(force_z(z)).add(fmt::format("H{}", current_tool())).end();
+    length_offset_pending_ = false;
 }
 
 std::optional<SpindleState> IsoPost::tapping_direction(const DrillCycle& c) {

@@ -122,11 +122,16 @@ void Post::on_rapid(const Vec3& to) {
 }
 
 void Post::rapid_from_unknown(const Vec3& to) {
-    const AxisWords w = force_xy({to.x, to.y});
-    out_.add(motion_word(0)).add(w.x).add(w.y).end();
+    // Where the height is unknown (the operator may have touched off on the stock), a move in
+    // X or Y first could cross the part: up to the height first, then across.
     forget_z();
+    rapid_z_from_unknown(to.z);
+    x_.reset();
+    y_.reset();
     on_rapid(to);
 }
+
+void Post::rapid_z_from_unknown(double z) { out_.add(motion_word(0)).add(force_z(z)).end(); }
 
 void Post::on_compensation(const Compensation& compensation) { pending_compensation_ = compensation; }
 

@@ -384,12 +384,15 @@ void NcReader::line(std::string_view text) {
 void NcReader::forget_position() {
     known_ = {false, false, false};
     was_unknown_ = true;
+    approach_ = Approach::z_first;
 }
 
 void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z) {
     if (!x && !y && !z) return;
     bool was_known = position_known();
     Vec3 before = position();
+    // X or Y moved while the height is unknown (before Z or in the same block as the first Z).
+    if (was_unknown_ && (x || y) && !known_[2]) approach_ = Approach::xy_first;
     const std::optional<double>* axes[3] = {&x, &y, &z};
     for (int a = 0; a < 3; ++a)
         if (*axes[a]) {
@@ -399,7 +402,9 @@ void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::o
     if (x && y) xy_uncertainty_ = 0.0;
     if (!position_known()) return;  // still partly unknown: the move cannot be traced yet
     if (was_known && before == position() && !was_unknown_) return;
-    emit(Rapid{position()}, was_unknown_ || !was_known, xy_uncertainty_);
+    const bool from_unknown = was_unknown_ || !was_known;
+    emit(Rapid{position()}, from_unknown, xy_uncertainty_);
+    if (from_unknown) out_.back().approach = approach_;
     was_unknown_ = false;
 }
 

@@ -235,6 +235,7 @@ private:
     std::array<double, 3> pos_{};
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
+    Approach approach_ = Approach::z_first;  // how the rapids since the position became unknown moved
     double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
     std::optional<DrillCycle> cycle_;
     std::vector<ReadEvent> out_;

@@ -15,7 +15,7 @@ TEST_CASE("fanuc plate: program frame, G43 on the first Z move, G99 and G98 cycl
     CHECK(lines[2] == "N10 G17 G21 G90 G94");
     CHECK(lines.back() == "%");
     CHECK(lines[lines.size() - 2].ends_with(" M30"));
-    CHECK(p.text.find("N15 T1 M6\nN20 S1500 M3\nN25 G0 X10.000 Y10.000\nN30 G43 Z10.000 H1\n") != std::string::npos);
+    CHECK(p.text.find("N15 T1 M6\nN20 S1500 M3\nN25 G0 G43 Z10.000 H1\nN30 X10.000 Y10.000\n") != std::string::npos);
     // Spot drilling: retract plane = feed start: G99, R2.
     CHECK(p.text.find("G99 G81 X10.000 Y10.000 Z-1.500 R2.000 F80\n") != std::string::npos);
     // Through drilling: retract plane 5 above R1: G98 from Z5; depth 8 + tip 3/tan(59 deg).

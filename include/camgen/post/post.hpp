@@ -84,8 +84,12 @@ protected:
     };
     // The layout of the feed move being written (the base: the modal G1, compensation first).
     virtual LinearLayout linear_layout();
-    // Writes a block of an unknown-position rapid: XY first, then Z.
+    // A rapid to `to` while the tool's height is unknown (program start, after a tool change):
+    // Z alone first (rapid_z_from_unknown), then X and Y at that height.
     virtual void rapid_from_unknown(const Vec3& to);
+    // The block that moves Z alone to `z` (mm) from an unknown height: the first move of a
+    // tool. ISO adds the tool length offset (G43 H) to it.
+    virtual void rapid_z_from_unknown(double z);
 
     // ---- shared helpers ----
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),

@@ -4,8 +4,8 @@ G17 G21 G90 G94
 (Insert tool 7: 8 mm tap - M8 right-hand tap)
 M0
 S300 M3
-G0 X10 Y10
-Z20
+G0 Z20
+X10 Y10
 Z5
 Z3
 G1 Z-12 F375
@@ -26,8 +26,8 @@ M5
 (Insert tool 8: 6 mm tap - M6 left-hand tap)
 M0
 S300 M3
-G0 X10 Y40
-Z20
+G0 Z20
+X10 Y40
 Z5
 Z3
 S200 M4
