@@ -59,7 +59,10 @@ constexpr KeySpec machine_keys[] = {
     {.key = "extension", .type = JsonType::string, .required = true,
      .description = "suggested file extension, without the dot"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
-     .description = "output units"},
+     .description = "output units; one of acceptedUnits"},
+    {.key = "acceptedUnits", .type = JsonType::array, .choices = &choices_of<unit_names>,
+     .description = "the units the control has a mode for, selected by the unit word the dialect writes "
+                    "(G21/G20, G71/G70, BEGIN PGM MM/INCH); --units outside it is refused (default: [units])"},
     {.key = "globals", .type = JsonType::object, .ref = "globals", .description = "CNC-Calc post processor globals"},
     {.key = "comments", .type = JsonType::string, .default_json = "\"parentheses\"",
      .choices = &choices_of<comment_styles>, .description = "comments in parentheses or after a semicolon"},
@@ -246,6 +249,16 @@ nc::Format Machine::format(const std::string& key) const {
     return nc::Format(spec);
 }
 
+bool Machine::accepts(Units u) const {
+    return std::find(accepted_units.begin(), accepted_units.end(), u) != accepted_units.end();
+}
+
+std::string Machine::accepted_unit_names() const {
+    std::vector<std::string> names;
+    for (Units u : accepted_units) names.emplace_back(name_of(unit_names, u));
+    return fmt::format("{}", fmt::join(names, ", "));
+}
+
 const DrillingCycleSpec* Machine::canned_cycle(CycleKind kind) const {
     for (const auto& c : drilling)
         if (c.kind == kind && c.canned) return &c;
@@ -264,6 +277,20 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
     m.units = f.choice("units", unit_names, Units::mm);
+    m.accepted_units = {m.units};
+    if (const auto* au = f.member("acceptedUnits")) {
+        if (!au->is_array() || au->empty()) f.fail("acceptedUnits", "expected a non-empty array of \"mm\", \"inch\"");
+        m.accepted_units.clear();
+        for (size_t i = 0; i < au->size(); ++i) {
+            const auto& u = (*au)[i];
+            const auto units = value_named(unit_names, u.is_string() ? u.get<std::string>() : "");
+            if (!units) json::fail(source, fmt::format("/acceptedUnits/{}", i), "expected \"mm\" or \"inch\"");
+            if (!m.accepts(*units)) m.accepted_units.push_back(*units);
+        }
+        if (!m.accepts(m.units))
+            f.fail("units", fmt::format("units \"{}\" is not one of acceptedUnits ({})", name_of(unit_names, m.units),
+                                        m.accepted_unit_names()));
+    }
     if (const auto* g = f.member("globals")) {
         json::Fields gf(*g, "/globals", source);
         const auto mark = value_named(decimal_marks, gf.optional_string("decimalMark").value_or("."));
@@ -464,6 +491,7 @@ std::string describe_machine(const Machine& m) {
     line("dialect", m.dialect);
     line("extension", "." + m.extension);
     line("units", m.units == Units::mm ? "mm" : "inch");
+    line("acceptedUnits", m.accepted_unit_names());
     line("decimalMark", std::string(1, m.decimal_mark));
     line("linebreak", m.block.line_break == "\n" ? "\\n" : "\\r\\n");
     line("variableDelimeter", "\"" + m.block.separator + "\"");

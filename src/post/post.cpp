@@ -36,7 +36,12 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       z_("Z", xyz_fmt_),
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
-      plane_("G", code_fmt_) {}
+      plane_("G", code_fmt_) {
+    if (!machine.accepts(machine.units))
+        throw InputError("/units", fmt::format("machine {} has no {} mode (its control accepts: {})", machine.name,
+                                               name_of(unit_names, machine.units), machine.accepted_unit_names()),
+                         0, machine.source);
+}
 
 Post::~Post() = default;
 

@@ -48,6 +48,9 @@ void NcReader::load_formats() {
 
 void NcReader::set_units(Units units) {
     if (machine_.units == units) return;
+    if (!machine_.accepts(units))
+        fail(fmt::format("a switch to {}: machine {} has no {} mode (its control accepts: {})", name_of(unit_names, units),
+                         machine_.name, name_of(unit_names, units), machine_.accepted_unit_names()));
     machine_.units = units;
     load_formats();
     ReadResolution r = resolution();

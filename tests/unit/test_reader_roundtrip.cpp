@@ -60,7 +60,7 @@ TEST_CASE("every golden file reads back to the motion of its job") {
     CHECK(errors >= 2);
 }
 
-TEST_CASE("every sample posted in inch for every machine reads back to the motion of its job") {
+TEST_CASE("every sample posted in inch for every machine with an inch mode reads back to the motion of its job") {
     // Inch programs state lengths in inches and feeds in in/min, canned-cycle parameters too
     // (Sinumerik CYCLE8x, Heidenhain Q parameters): all read back through the machine's inch
     // formats, within half a unit of the last decimal (and what rounded cycle parameters add
@@ -69,6 +69,7 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
     for (const auto& listed : list_machines()) {
         const std::string& name = listed.first;
         Machine machine = load_machine(name);
+        if (!machine.accepts(Units::inch)) continue;  // nccad: refused (test_cli.cpp)
         machine.units = Units::inch;
         for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
             if (f.path().extension() != ".json") continue;
@@ -92,7 +93,8 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
             ++checked;
         }
     }
-    CHECK(checked >= 33);
+    // fanuc, grbl, heidenhain, linuxcnc, sinumerik x 5 samples.
+    CHECK(checked >= 25);
 }
 
 TEST_CASE("every program of every sample on every machine moves Z up first where the height is unknown") {

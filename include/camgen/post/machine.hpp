@@ -70,6 +70,7 @@ struct Machine {
     std::string dialect;               // the dialect code that writes for it: "iso", "nccad"
     std::string extension;             // suggested file extension, without dot
     Units units = Units::mm;           // output units
+    std::vector<Units> accepted_units = {Units::mm};  // the units the control has a mode for
     nc::BlockStyle block;
     bool modal_motion = true;          // false: G0/G1/G2/G3 written on every motion block
     char decimal_mark = '.';
@@ -88,6 +89,10 @@ struct Machine {
 
     // The format named `key` for the output units, with the decimal mark applied.
     nc::Format format(const std::string& key) const;
+    // Whether the control has a mode for these units (a unit word the post writes).
+    bool accepts(Units u) const;
+    // The units the control accepts, by name ("mm, inch").
+    std::string accepted_unit_names() const;
     // The machine's canned cycle of this kind, if any.
     const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
     // How longhand cycles move on this machine (so that they equal its canned cycles).
