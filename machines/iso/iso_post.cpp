@@ -23,15 +23,15 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
 void IsoPost::on_open() {
     if (percent_) writer().raw("%");
     if (program_number_ > 0) {
-        std::string line = fmt::format("O{:04}", program_number_);
+        std::string line = fmt::format("O{:04}", options().program_number.value_or(program_number_));
         if (!options().program_name.empty())
             line += " (" + writer().clean_comment(options().program_name) + ")";
         writer().raw(line);
     } else if (!options().program_name.empty()) {
         writer().comment(options().program_name);
     }
-    writer().add(g(17)).add(g(machine().units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
-    assume_plane(17);
+    write_start_block(g(machine().units == Units::inch ? 20 : 21));
+    if (starts_in_xy(machine())) assume_plane(17);
 }
 
 void IsoPost::on_close() {

@@ -135,7 +135,7 @@ void IsoReader::block(const Block& b) {
         (void)integer_of(b.words.front());
         return;
     }
-    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell;
+    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
     std::optional<Code> coolant;
     MCodes m;
     BlockWords w(*this, "XYZIJKRQPFSTHD");
@@ -161,6 +161,10 @@ void IsoReader::block(const Block& b) {
                 case code(98): case code(99): set_group(return_level, c); break;
                 case code(4): set_group(dwell, c); break;
                 default:
+                    if (work_offset_code(c.value)) {
+                        set_group(work_offset, c);
+                        break;
+                    }
                     if (cycle_kind_of(c.value)) {
                         if (!canned_spec(c.value)) {
                             std::vector<std::string> names;
@@ -177,10 +181,11 @@ void IsoReader::block(const Block& b) {
         } else if (x.letter == 'M') {
             Code c{code_of(x), &x};
             if (shared_m_code(c, m, "modal group")) continue;
-            switch (c.value) {
-                case code(7): case code(8): case code(9): set_group(coolant, c); break;
-                default: fail(fmt::format("unknown code {}", x.text));
+            if (coolant_of(x)) {
+                set_group(coolant, c);
+                continue;
             }
+            fail(fmt::format("unknown code {}", x.text));
         } else {
             w.add(x);
         }
@@ -212,6 +217,8 @@ void IsoReader::block(const Block& b) {
         change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
+    if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
+    if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
     if (dwell) {
         const Word* p = w.take('P');
         if (!p) fail(fmt::format("{} without its time P", dwell->word->text));

@@ -30,7 +30,7 @@ NccadPost::NccadPost(const Machine& machine, std::ostream& out, PostOptions opti
 void NccadPost::on_open() {
     for (int i = 0; i < underscore_lines_; ++i) writer().raw("_");
     if (!options().program_name.empty()) writer().comment(options().program_name);
-    writer().add(g(90)).end();
+    write_start_block("");
     if (reference_run_) writer().add(g(76)).end();
 }
 

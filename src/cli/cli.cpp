@@ -117,6 +117,8 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.snippet = o.snippet;
     po.program_name = job.name;
     po.warnings = &err;
+    po.work_offset = job.work_offset;
+    po.program_number = job.program_number;
     std::unique_ptr<Post> post = make_post(machine, out, po);
     post->open();
     expand_job(job, *post);

@@ -1,6 +1,7 @@
 #include "camgen/post/machine.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -81,7 +82,28 @@ constexpr KeySpec machine_keys[] = {
      .description = "free text about the machine's choices, shown by --describe-machine"},
     {.key = "drilling", .type = JsonType::object, .ref = "drilling",
      .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
+    {.key = "frame", .type = JsonType::object, .ref = "frame",
+     .description = "the program frame: safe-start words, work offsets, coolant codes"},
     {.key = "settings", .type = JsonType::object, .description = "dialect settings, read by the dialect code"},
+};
+
+// The keys of frame.
+constexpr KeySpec frame_keys[] = {
+    {.key = "startBlock", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the words of the safe-start block (cancel compensation, length offset and cycles; absolute; "
+                    "plane; feed per minute), written before the unit word"},
+    {.key = "workOffsets", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the work offsets a job may select (its workOffset), as written; \"G505..G599\" or "
+                    "\"G54.1 P1..G54.1 P48\" is a range (default: none)"},
+    {.key = "coolant", .type = JsonType::object, .ref = "coolantCodes",
+     .description = "the code of each coolant mode the control has (default: none)"},
+};
+
+// The keys of frame.coolant.
+constexpr KeySpec coolant_keys[] = {
+    {.key = "flood", .type = JsonType::string, .description = "flood coolant on (ISO M8)"},
+    {.key = "mist", .type = JsonType::string, .description = "mist coolant on (ISO M7)"},
+    {.key = "off", .type = JsonType::string, .description = "coolant off (ISO M9); needed with flood or mist"},
 };
 
 // The keys of globals.
@@ -190,6 +212,40 @@ constexpr KeySpec cycle_keys[] = {
      .description = "the drilling fields the canned cycle carries"},
 };
 
+// The strings of a JSON array of strings at `path`.
+std::vector<std::string> strings_at(const nlohmann::json& v, const std::string& path, const json::Source& source) {
+    if (!v.is_array()) json::fail(source, path, "expected an array of strings");
+    std::vector<std::string> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_string() || v[i].get<std::string>().empty())
+            json::fail(source, fmt::format("{}/{}", path, i), "expected a non-empty string");
+        out.push_back(v[i].get<std::string>());
+    }
+    return out;
+}
+
+// A work offset entry: one word, or a range "G505..G599" / "G54.1 P1..G54.1 P48" of words
+// that differ only in their trailing whole number.
+std::vector<std::string> expand_work_offset(const std::string& entry, const std::string& path, const json::Source& source) {
+    const size_t dots = entry.find("..");
+    if (dots == std::string::npos) return {entry};
+    const std::string lo = entry.substr(0, dots), hi = entry.substr(dots + 2);
+    auto split = [](const std::string& w) {
+        size_t d = w.size();
+        while (d > 0 && std::isdigit(static_cast<unsigned char>(w[d - 1]))) --d;
+        return std::pair<std::string, std::string>{w.substr(0, d), w.substr(d)};
+    };
+    const auto [lo_prefix, lo_digits] = split(lo);
+    const auto [hi_prefix, hi_digits] = split(hi);
+    if (lo_prefix != hi_prefix || lo_digits.empty() || hi_digits.empty() || lo_digits.size() > 6 || hi_digits.size() > 6)
+        json::fail(source, path, fmt::format("\"{}\": a range is two words that differ only in their trailing number", entry));
+    const int a = std::stoi(lo_digits), b = std::stoi(hi_digits);
+    if (a > b) json::fail(source, path, fmt::format("\"{}\": the range runs backwards", entry));
+    std::vector<std::string> out;
+    for (int i = a; i <= b; ++i) out.push_back(lo_prefix + std::to_string(i));
+    return out;
+}
+
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
     if (key == "xyz" || key == "ijk" || key == "dwell" || key == "angle") s.decimals = 3;
@@ -230,6 +286,8 @@ std::vector<ObjectSpec> machine_objects() {
         spec("arcs", "arc output and arc breaking", arcs_keys),
         spec("drilling", "drilling cycles and longhand settings", drilling_keys),
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
+        spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
+        spec("coolantCodes", "the code of each coolant mode", coolant_keys),
     };
 }
 
@@ -257,6 +315,15 @@ std::string Machine::accepted_unit_names() const {
     std::vector<std::string> names;
     for (Units u : accepted_units) names.emplace_back(name_of(unit_names, u));
     return fmt::format("{}", fmt::join(names, ", "));
+}
+
+bool Machine::has_work_offset(const std::string& word) const {
+    return std::find(frame.work_offsets.begin(), frame.work_offsets.end(), word) != frame.work_offsets.end();
+}
+
+std::optional<std::string> Machine::coolant_code(CoolantMode mode) const {
+    if (auto it = frame.coolant.find(mode); it != frame.coolant.end()) return it->second;
+    return std::nullopt;
 }
 
 const DrillingCycleSpec* Machine::canned_cycle(CycleKind kind) const {
@@ -443,6 +510,25 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         }
         df.finish(drilling_keys);
     }
+    if (const auto* fr = f.member("frame")) {
+        json::Fields ff(*fr, "/frame", source);
+        if (const auto* sb = ff.member("startBlock")) m.frame.start_block = strings_at(*sb, "/frame/startBlock", source);
+        if (const auto* wo = ff.member("workOffsets")) {
+            std::vector<std::string> entries = strings_at(*wo, "/frame/workOffsets", source);
+            for (size_t i = 0; i < entries.size(); ++i)
+                for (std::string& w : expand_work_offset(entries[i], fmt::format("/frame/workOffsets/{}", i), source))
+                    m.frame.work_offsets.push_back(std::move(w));
+        }
+        if (const auto* c = ff.member("coolant")) {
+            json::Fields cf(*c, "/frame/coolant", source);
+            for (const auto& mode : coolant_modes)
+                if (auto code = cf.optional_string(mode.name)) m.frame.coolant[mode.value] = *code;
+            if (!m.frame.coolant.empty() && !m.frame.coolant.count(CoolantMode::off))
+                cf.fail("off", "a machine with coolant needs the code that switches it off");
+            cf.finish(coolant_keys);
+        }
+        ff.finish(frame_keys);
+    }
     if (const auto* s = f.member("settings")) {
         if (!s->is_object()) f.fail("settings", "expected an object");
         m.dialect_settings = *s;
@@ -521,6 +607,17 @@ std::string describe_machine(const Machine& m) {
     line("peckClearance", fmt::format("{} mm", m.peck_clearance));
     line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
                                                                                  : "to the retract level");
+    s += "program frame\n";
+    line("startBlock", m.frame.start_block.empty() ? std::string("-") : fmt::format("{}", fmt::join(m.frame.start_block, " ")));
+    line("workOffsets", m.frame.work_offsets.empty()
+                            ? std::string("none")
+                            : m.frame.work_offsets.size() > 12
+                                  ? fmt::format("{} .. {} ({})", m.frame.work_offsets.front(), m.frame.work_offsets.back(),
+                                                m.frame.work_offsets.size())
+                                  : fmt::format("{}", fmt::join(m.frame.work_offsets, ", ")));
+    std::vector<std::string> coolant;
+    for (const auto& [mode, code] : m.frame.coolant) coolant.push_back(fmt::format("{} {}", name_of(coolant_modes, mode), code));
+    line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
     s += "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;

@@ -47,6 +47,18 @@ Post::~Post() = default;
 
 void Post::open() {
     opened_ = true;
+    if (!options_.work_offset.empty() && !machine_.has_work_offset(options_.work_offset)) {
+        if (machine_.frame.work_offsets.empty())
+            throw InputError("/workOffset", fmt::format("machine {} has no work offsets: its control cannot select {}",
+                                                        machine_.name, options_.work_offset));
+        const auto& w = machine_.frame.work_offsets;
+        throw InputError("/workOffset",
+                         fmt::format("machine {} has no work offset \"{}\"; it has {}", machine_.name, options_.work_offset,
+                                     w.size() > 12 ? fmt::format("{} .. {}", w.front(), w.back())
+                                                   : fmt::format("{}", fmt::join(w, ", "))));
+    }
+    if (options_.program_number && !takes_program_number())
+        throw InputError("/programNumber", fmt::format("machine {} takes no program number", machine_.name));
     if (!options_.snippet) on_open();
 }
 
@@ -119,6 +131,26 @@ void Post::on_operation_start(const OperationStart& op) {
 }
 
 void Post::on_comment(const std::string& text) { out_.comment(text); }
+
+void Post::on_coolant(const Coolant& coolant) {
+    const std::optional<std::string> code = machine_.coolant_code(coolant.mode);
+    if (!code)
+        throw InputError(coolant.path, fmt::format("machine {} has no {} coolant{}", machine_.name,
+                                                   name_of(coolant_modes, coolant.mode),
+                                                   machine_.frame.coolant.empty() ? "" : fmt::format(" (it has: {})", [&] {
+                                                       std::vector<std::string> n;
+                                                       for (const auto& [mode, c] : machine_.frame.coolant)
+                                                           if (mode != CoolantMode::off) n.emplace_back(name_of(coolant_modes, mode));
+                                                       return fmt::format("{}", fmt::join(n, ", "));
+                                                   }())));
+    out_.add(*code).end();
+}
+
+void Post::write_start_block(const std::string& unit_word) {
+    for (const std::string& w : machine_.frame.start_block) out_.add(w);
+    out_.add(unit_word).add(options_.work_offset);
+    out_.end();
+}
 
 void Post::on_rapid(const Vec3& to) {
     const AxisWords w = axis_words(to);
@@ -229,6 +261,11 @@ void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) 
 void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
 std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+bool starts_in_xy(const Machine& machine) {
+    const auto& b = machine.frame.start_block;
+    return std::find(b.begin(), b.end(), "G17") != b.end();
+}
 
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
     std::vector<DrillField> f;
@@ -395,6 +432,7 @@ void Post::emit(const Event& event) {
                        reset_modal_axes();
                    },
                    [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Coolant& c) { on_coolant(c); },
                    [&](const Rapid& r) { replay(r); },
                    [&](const Linear& l) { replay(l); },
                    [&](const Arc& a) { handle_arc(a); },

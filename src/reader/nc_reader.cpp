@@ -154,6 +154,34 @@ std::optional<double> NcReader::parse_number(std::string_view text) const {
     return v;
 }
 
+namespace {
+// A G code in tenths as the posts write it: "G54", "G59.1".
+std::string g_word(int g) { return g % 10 ? fmt::format("G{}.{}", g / 10, g % 10) : fmt::format("G{}", g / 10); }
+}  // namespace
+
+bool NcReader::work_offset_code(int g) const {
+    const std::string word = g_word(g);
+    for (const std::string& o : machine_.frame.work_offsets)
+        if (o == word || o.rfind(word + " P", 0) == 0) return true;
+    return false;
+}
+
+void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
+    std::string word = g_word(g);
+    if (!machine_.has_work_offset(word)) {
+        const Word* p = w.take('P');
+        if (!p) fail(fmt::format("{} without its offset number P", text.text));
+        word += fmt::format(" P{}", integer_of(*p));
+        if (!machine_.has_work_offset(word)) fail(fmt::format("{}: machine {} has no work offset {}", word, machine_.name, word));
+    }
+}
+
+std::optional<CoolantMode> NcReader::coolant_of(const Word& m) const {
+    for (const auto& [mode, c] : machine_.frame.coolant)
+        if (c == m.text || (c.size() > 1 && c[0] == 'M' && parse_number(c.substr(1)) == m.value)) return mode;
+    return std::nullopt;
+}
+
 double NcReader::diameter_in(std::string_view description) {
     size_t mm = description.find(" mm ");
     if (mm == std::string_view::npos) mm = description.find(" mm");

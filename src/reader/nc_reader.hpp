@@ -193,6 +193,14 @@ protected:
     // Puts an M code into its group of `m`; false when it is none of them.
     bool shared_m_code(Code c, MCodes& m, std::string_view group_name) const;
 
+    // Whether G code `g` (tenths) selects one of the machine's work offsets, alone (G54) or
+    // with a P word (Fanuc G54.1 P1).
+    bool work_offset_code(int g) const;
+    // Checks the work offset a block selects with code `g` (its word `text`), taking its P word
+    // from `w` where the machine's offsets have one; fails for an offset the machine lacks.
+    void select_work_offset(int g, const Word& text, BlockWords& w);
+    // The coolant mode an M word switches to, where it is one of the machine's coolant codes.
+    std::optional<CoolantMode> coolant_of(const Word& m) const;
     // The tool diameter a camgen tool description starts with ("10 mm spot drill"), else 0.
     static double diameter_in(std::string_view description);
     // The description in the comment camgen's posts write before changing to this tool

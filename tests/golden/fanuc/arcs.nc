@@ -1,6 +1,6 @@
 %
 O1000 (arcs)
-N10 G17 G21 G90 G94
+N10 G40 G49 G80 G17 G90 G94 G21
 (90, 180, 270 and 360 degrees counter-clockwise)
 (T5 4 mm end mill - arc test cutter)
 N15 T5 M6

@@ -1,6 +1,6 @@
 %
 O1000 (bracket)
-N10 G17 G21 G90 G94
+N10 G40 G49 G80 G17 G90 G94 G21
 (outline with a round ear)
 (T3 6 mm end mill - 3 flute carbide)
 N15 T3 M6

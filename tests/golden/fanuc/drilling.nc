@@ -1,6 +1,6 @@
 %
 O1000 (drilling)
-N10 G17 G21 G90 G94
+N10 G40 G49 G80 G17 G90 G94 G21
 (spot a rotated grid, dwell 0.5 s)
 (T1 10 mm spot drill - spot drill 90 deg)
 N15 T1 M6

@@ -1,6 +1,6 @@
 %
 O1000 (tapping)
-N10 G17 G21 G90 G94
+N10 G40 G49 G80 G17 G90 G94 G21
 (tap M8 x 1.25)
 (T7 8 mm tap - M8 right-hand tap)
 N15 T7 M6

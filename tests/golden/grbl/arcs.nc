@@ -1,5 +1,5 @@
 (arcs)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (90, 180, 270 and 360 degrees counter-clockwise)
 (Insert tool 5: 4 mm end mill - arc test cutter)
 M0

@@ -1,5 +1,5 @@
 (bracket)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (outline with a round ear)
 (Insert tool 3: 6 mm end mill - 3 flute carbide)
 M0

@@ -1,5 +1,5 @@
 (drilling)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (spot a rotated grid, dwell 0.5 s)
 (Insert tool 1: 10 mm spot drill - spot drill 90 deg)
 M0

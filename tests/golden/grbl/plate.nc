@@ -1,5 +1,5 @@
 (plate)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (spot six holes)
 (Insert tool 1: 10 mm spot drill - spot drill 90 deg)
 M0

@@ -1,5 +1,5 @@
 (tapping)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (tap M8 x 1.25)
 (Insert tool 7: 8 mm tap - M8 right-hand tap)
 M0
