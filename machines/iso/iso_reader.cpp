@@ -136,7 +136,7 @@ void IsoReader::block(const Block& b) {
         return;
     }
     std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
-    std::optional<Code> coolant;
+    std::optional<Code> coolant, machine_coords;
     MCodes m;
     BlockWords w(*this, "XYZIJKRQPFSTHD");
     for (const Word& x : b.words) {
@@ -160,6 +160,7 @@ void IsoReader::block(const Block& b) {
                 case code(43): case code(49): set_group(length_offset, c); break;
                 case code(98): case code(99): set_group(return_level, c); break;
                 case code(4): set_group(dwell, c); break;
+                case code(53): set_group(machine_coords, c); break;
                 default:
                     if (work_offset_code(c.value)) {
                         set_group(work_offset, c);
@@ -248,9 +249,21 @@ void IsoReader::block(const Block& b) {
         }
         motion_ = motion->value;
     }
+    if (machine_coords) {
+        // G53 G0 Z0: the machine's safe retract (frame safeRetract), the only G53 move camgen writes.
+        if (machine_.frame.safe_retract.empty())
+            fail(fmt::format("{}: machine {} has no safe retract in machine coordinates", machine_coords->word->text, machine_.name));
+        const Word* z = w.take('Z');
+        const bool rapid = (motion ? motion->value : motion_) == code(0);
+        if (!z || z->value != 0.0 || w.has('X') || w.has('Y') || !rapid)
+            fail(fmt::format("{}: camgen writes G53 only as G53 G0 Z0, the machine's safe retract", machine_coords->word->text));
+        drill_end();
+        initial_z_.reset();
+        retract_to_top();
+    }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || w.has('R') ||
                 w.has('Q') || w.unused('P');
-    if (axes) {
+    if (axes && !machine_coords) {
         if (motion_ < 0 || motion_ == code(80))
             fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
         motion_block(motion_, w);

@@ -97,6 +97,10 @@ constexpr KeySpec frame_keys[] = {
                     "\"G54.1 P1..G54.1 P48\" is a range (default: none)"},
     {.key = "coolant", .type = JsonType::object, .ref = "coolantCodes",
      .description = "the code of each coolant mode the control has (default: none)"},
+    {.key = "safeRetract", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the words of a block that takes Z to the machine's safe height in machine coordinates "
+                    "([\"G53\", \"G0\", \"Z0\"], iso only): written where the tool's height is unknown "
+                    "before X and Y move, and at the program end (default: none, the job's clearance)"},
 };
 
 // The keys of frame.coolant.
@@ -527,6 +531,14 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 cf.fail("off", "a machine with coolant needs the code that switches it off");
             cf.finish(coolant_keys);
         }
+        if (const auto* sr = ff.member("safeRetract")) {
+            m.frame.safe_retract = strings_at(*sr, "/frame/safeRetract", source);
+            // Read back as a move to the machine's top: the ISO reader's G53 G0 Z0.
+            if (!m.frame.safe_retract.empty() && m.frame.safe_retract != std::vector<std::string>{"G53", "G0", "Z0"})
+                ff.fail("safeRetract", "the safe retract camgen reads back is [\"G53\", \"G0\", \"Z0\"]");
+            if (!m.frame.safe_retract.empty() && m.dialect != "iso")
+                ff.fail("safeRetract", fmt::format("dialect {} has no G53 safe retract", m.dialect));
+        }
         ff.finish(frame_keys);
     }
     if (const auto* s = f.member("settings")) {
@@ -618,6 +630,8 @@ std::string describe_machine(const Machine& m) {
     std::vector<std::string> coolant;
     for (const auto& [mode, code] : m.frame.coolant) coolant.push_back(fmt::format("{} {}", name_of(coolant_modes, mode), code));
     line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
+    line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
+                                                     : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
     s += "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;

@@ -63,6 +63,7 @@ void Post::open() {
 }
 
 void Post::close() {
+    if (!options_.snippet && !machine_.frame.safe_retract.empty()) write_safe_retract();
     if (!options_.snippet) on_close();
     out_.flush();
 }
@@ -162,10 +163,27 @@ void Post::rapid_from_unknown(const Vec3& to) {
     // Where the height is unknown (the operator may have touched off on the stock), a move in
     // X or Y first could cross the part: up to the height first, then across.
     forget_z();
-    rapid_z_from_unknown(to.z);
     x_.reset();
     y_.reset();
+    if (!machine_.frame.safe_retract.empty()) {
+        // The machine's own safe height (in machine coordinates) first, then across, then
+        // down to where the operation wants the tool, with its length offset.
+        write_safe_retract();
+        const AxisWords w = force_xy({to.x, to.y});
+        out_.add(motion_word(0)).add(w.x).add(w.y).end();
+        rapid_z_from_unknown(to.z);
+        return;
+    }
+    rapid_z_from_unknown(to.z);
     on_rapid(to);
+}
+
+void Post::write_safe_retract() {
+    for (const std::string& w : machine_.frame.safe_retract) out_.add(w);
+    out_.end();
+    // The block may have set the motion mode; Z is now in machine coordinates.
+    forget_motion();
+    forget_z();
 }
 
 void Post::rapid_z_from_unknown(double z) { out_.add(motion_word(0)).add(force_z(z)).end(); }

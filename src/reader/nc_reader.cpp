@@ -416,6 +416,14 @@ void NcReader::forget_position() {
     known_ = {false, false, false};
     was_unknown_ = true;
     approach_ = Approach::z_first;
+    at_top_ = false;
+}
+
+void NcReader::retract_to_top() {
+    if (!was_unknown_) approach_ = Approach::z_first;  // a new stretch of unknown height begins
+    known_[2] = false;
+    was_unknown_ = true;
+    at_top_ = true;
 }
 
 void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z) {
@@ -423,7 +431,8 @@ void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::o
     bool was_known = position_known();
     Vec3 before = position();
     // X or Y moved while the height is unknown (before Z or in the same block as the first Z).
-    if (was_unknown_ && (x || y) && !known_[2]) approach_ = Approach::xy_first;
+    if (was_unknown_ && (x || y) && !known_[2] && !at_top_) approach_ = Approach::xy_first;
+    if (z) at_top_ = false;
     const std::optional<double>* axes[3] = {&x, &y, &z};
     for (int a = 0; a < 3; ++a)
         if (*axes[a]) {

@@ -151,6 +151,9 @@ protected:
     Vec3 position() const { return {pos_[0], pos_[1], pos_[2]}; }
     // The control's position is unknown from here (tool change, home or reference run).
     void forget_position();
+    // The control took Z to the machine's safe height (G53 G0 Z0): Z is unknown in work
+    // coordinates but at the top, so X and Y may move before Z is known again.
+    void retract_to_top();
     // A rapid to the given axes (nullopt: unchanged). Emitted once every axis is known; the
     // first one after forget_position() is marked from_unknown.
     void rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
@@ -244,6 +247,7 @@ private:
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
     Approach approach_ = Approach::z_first;  // how the rapids since the position became unknown moved
+    bool at_top_ = false;             // Z is at the machine's safe height (unknown in work coordinates)
     double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
     std::optional<DrillCycle> cycle_;
     std::vector<ReadEvent> out_;

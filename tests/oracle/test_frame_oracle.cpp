@@ -59,3 +59,18 @@ TEST_CASE("every sample on every ISO machine, in mm and inch, runs through rs274
     }
     CHECK(programs >= 30);
 }
+
+TEST_CASE("a linuxcnc machine with the safe retract G53 G0 Z0 runs every sample through rs274") {
+    const std::optional<std::string> rs274 = oracle::find_rs274();
+    REQUIRE(rs274);
+    namespace fs = std::filesystem;
+    Machine machine = load_machine("linuxcnc");
+    machine.frame.safe_retract = {"G53", "G0", "Z0"};
+    for (const auto& entry : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
+        if (entry.path().extension() != ".json") continue;
+        INFO(entry.path().filename().string());
+        const std::string program = post_program(read_job(read_text(entry.path()), entry.path().string()), machine);
+        CHECK(program.find("G53 G0 Z0\n") != std::string::npos);
+        CHECK_NOTHROW((void)oracle::run_rs274(*rs274, program));
+    }
+}

@@ -114,3 +114,33 @@ TEST_CASE("--describe-machine shows the program frame") {
     CHECK(d.out.find("G59.3") != std::string::npos);
     CHECK(d.out.find("flood M8") != std::string::npos);
 }
+
+TEST_CASE("a machine's safe retract G53 G0 Z0: first where the height is unknown and at the end, read back") {
+    Machine m = load_machine("linuxcnc");
+    m.frame.safe_retract = {"G53", "G0", "Z0"};
+    const Job job = read_job(frame_job("", ""), "job.json");
+    std::ostringstream out;
+    PostOptions o;
+    o.program_name = job.name;
+    auto post = make_post(m, out, o);
+    post->open();
+    expand_job(job, *post);
+    post->close();
+    const std::string program = out.str();
+    // Up in machine coordinates, across, down to the clearance with the length offset.
+    CHECK(program.find("T1 M6\nS1000 M3\nG53 G0 Z0\nG0 X10 Y10\nG43 Z10 H1\n") != std::string::npos);
+    CHECK(program.find("M5\nG53 G0 Z0\nM2\n") != std::string::npos);
+    CHECK(test::round_trip_machine(job, program, m) == "");
+    for (const ReadEvent& e : read_program(program, m, "prog"))
+        if (e.from_unknown) CHECK(e.approach == Approach::z_first);
+    // Without the safe retract, X and Y before Z are an XY-first approach again; G53 is refused
+    // on a machine that has none, and any other G53 move is refused.
+    CHECK(test::error_of("G53 G0 Z0\nM2\n", "linuxcnc").find("machine linuxcnc has no safe retract") != std::string::npos);
+    std::string bad;
+    try {
+        (void)read_program("G53 G0 Z5\nM2\n", m, "prog");
+    } catch (const InputError& e) {
+        bad = e.what();
+    }
+    CHECK(bad.find("G53 only as G53 G0 Z0") != std::string::npos);
+}

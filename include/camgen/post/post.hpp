@@ -102,6 +102,8 @@ protected:
     // The safe-start block: the machine's frame startBlock words, `unit_word` (may be empty)
     // and the job's work offset, in one block (nothing when all are empty).
     void write_start_block(const std::string& unit_word);
+    // The machine's safe retract block (frame safeRetract, e.g. G53 G0 Z0); Z is unknown after it.
+    void write_safe_retract();
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
