@@ -28,6 +28,7 @@ constexpr KeySpec job_keys[] = {
                     "machine has them G59.1 (LinuxCNC), G54.1 P1 (Fanuc), G505 (Sinumerik); refused on a machine "
                     "without it (default: none written)"},
     {.key = "programNumber", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{99999999, true},
      .description = "the program number (Fanuc O-number), overriding the machine's; refused where the control "
                     "takes none (default: the machine's)"},
     {.key = "tools", .type = JsonType::array, .required = true, .ref = "tool", .min_items = 1,
