@@ -94,11 +94,19 @@ void expand_job(const Job& job, EventSink& sink) {
     int current = 0;
     double rpm = 0.0;
     SpindleState state = SpindleState::off;
+    CoolantMode coolant = CoolantMode::off;
+    // Coolant stops before the spindle does.
+    auto coolant_off = [&] {
+        if (coolant == CoolantMode::off) return;
+        sink.emit(Coolant{CoolantMode::off, ""});
+        coolant = CoolantMode::off;
+    };
     for (const Operation& op : job.operations) {
         visit_exhaustive(
             [&]<OperationType Op>(const Op& o) {
                 const Tool& tool = job.tools.at(o.tool);
                 // The spindle stops as the last act of the previous tool.
+                if (tool.number != current) coolant_off();
                 if (tool.number != current && state != SpindleState::off) {
                     sink.emit(Spindle{SpindleState::off, 0.0});
                     state = SpindleState::off;
@@ -117,11 +125,17 @@ void expand_job(const Job& job, EventSink& sink) {
                     state = want;
                     rpm = tool.rpm;
                 }
+                // The tool's coolant, once the spindle runs.
+                if (tool.coolant != coolant) {
+                    sink.emit(Coolant{tool.coolant, tool.path + "/coolant"});
+                    coolant = tool.coolant;
+                }
                 expand(o, Context{job, tool}, sink);
                 sink.emit(OperationEnd{});
             },
             op);
     }
+    coolant_off();
     if (state != SpindleState::off) sink.emit(Spindle{SpindleState::off, 0.0});
 }
 

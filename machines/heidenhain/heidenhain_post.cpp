@@ -141,12 +141,9 @@ void HeidenhainPost::on_rapid(const Vec3& to) {
     writer().add("L").add(w.x).add(w.y).add(w.z).add("R0 FMAX").end();
 }
 
-void HeidenhainPost::rapid_from_unknown(const Vec3& to) {
+void HeidenhainPost::rapid_z_from_unknown(double z) {
     if (pending_tool_) flush_tool_call(std::nullopt);
-    const AxisWords w = force_xy({to.x, to.y});
-    writer().add("L").add(w.x).add(w.y).add("R0 FMAX").end();
-    forget_z();
-    on_rapid(to);
+    writer().add("L").add(force_z(z)).add("R0 FMAX").end();
 }
 
 // Radius compensation is a word of the L block: R0, RL, RR.

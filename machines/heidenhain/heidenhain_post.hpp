@@ -22,7 +22,7 @@ protected:
     void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
     void on_rapid(const Vec3& to) override;
-    void rapid_from_unknown(const Vec3& to) override;
+    void rapid_z_from_unknown(double z) override;
     std::string compensation_words(const Compensation& compensation) const override;
     LinearLayout linear_layout() override;
     void on_circular(const ArcGeometry& arc, double feed) override;

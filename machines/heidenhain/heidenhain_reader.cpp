@@ -222,7 +222,12 @@ void HeidenhainReader::m_block(const std::vector<std::string_view>& t) {
         case code(5): switch_spindle(m, "(TOOL CALL .. S)"); break;
         case code(2):
         case code(30): stopped_ = true; break;
-        default: fail(fmt::format("unknown code {}", m.text));
+        default:
+            if (const auto mode = coolant_of(m)) {
+                emit(Coolant{*mode, ""});
+                break;
+            }
+            fail(fmt::format("unknown code {}", m.text));
     }
 }
 

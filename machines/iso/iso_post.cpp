@@ -32,15 +32,15 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
 void IsoPost::on_open() {
     if (percent_) writer().raw("%");
     if (program_number_ > 0) {
-        std::string line = fmt::format("O{:04}", program_number_);
+        std::string line = fmt::format("O{:04}", options().program_number.value_or(program_number_));
         if (!options().program_name.empty())
             line += " (" + writer().clean_comment(options().program_name) + ")";
         writer().raw(line);
     } else if (!options().program_name.empty()) {
         writer().comment(options().program_name);
     }
-    writer().add(g(17)).add(g(machine().units == Units::inch ? 20 : 21)).add(g(90)).add(g(94)).end();
-    assume_plane(17);
+    write_start_block(g(machine().units == Units::inch ? 20 : 21));
+    if (starts_in_xy(machine())) assume_plane(17);
 }
 
 void IsoPost::on_close() {
@@ -69,16 +69,14 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
 
 void IsoPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("P", seconds)).end(); }
 
-void IsoPost::on_rapid(const Vec3& to) {
-    if (length_offset_pending_ && written_z() != to.z) {
-        // The first Z move after a tool change carries the tool length offset.
-        const AxisWords w = axis_words(to, {false, false, true});
-        writer().add(motion_word(0)).add(w.x).add(w.y).add(g(43)).add(w.z).add(fmt::format("H{}", current_tool()))
-            .end();
-        length_offset_pending_ = false;
+void IsoPost::rapid_z_from_unknown(double z) {
+    if (!length_offset_pending_) {
+        Post::rapid_z_from_unknown(z);
         return;
     }
-    Post::on_rapid(to);
+    // The first Z move after a tool change carries the tool length offset, before any X or Y.
+    writer().add(motion_word(0)).add(g(43)).add(force_z(z)).add(fmt::format("H{}", current_tool())).end();
+    length_offset_pending_ = false;
 }
 
 std::optional<SpindleState> IsoPost::tapping_direction(const DrillCycle& c) {

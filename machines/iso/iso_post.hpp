@@ -18,7 +18,9 @@ protected:
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_dwell(double seconds) override;
-    void on_rapid(const Vec3& to) override;
+    // A job's program number replaces the O-number where the machine writes one.
+    bool takes_program_number() const override { return program_number_ > 0; }
+    void rapid_z_from_unknown(double z) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;

@@ -135,8 +135,8 @@ void IsoReader::block(const Block& b) {
         (void)integer_of(b.words.front());
         return;
     }
-    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell;
-    std::optional<Code> coolant;
+    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
+    std::optional<Code> coolant, machine_coords;
     MCodes m;
     BlockWords w(*this, "XYZIJKRQPFSTHD");
     for (const Word& x : b.words) {
@@ -160,7 +160,12 @@ void IsoReader::block(const Block& b) {
                 case code(43): case code(49): set_group(length_offset, c); break;
                 case code(98): case code(99): set_group(return_level, c); break;
                 case code(4): set_group(dwell, c); break;
+                case code(53): set_group(machine_coords, c); break;
                 default:
+                    if (work_offset_code(c.value)) {
+                        set_group(work_offset, c);
+                        break;
+                    }
                     if (cycle_kind_of(c.value)) {
                         if (!canned_spec(c.value)) {
                             std::vector<std::string> names;
@@ -177,10 +182,11 @@ void IsoReader::block(const Block& b) {
         } else if (x.letter == 'M') {
             Code c{code_of(x), &x};
             if (shared_m_code(c, m, "modal group")) continue;
-            switch (c.value) {
-                case code(7): case code(8): case code(9): set_group(coolant, c); break;
-                default: fail(fmt::format("unknown code {}", x.text));
+            if (coolant_of(x)) {
+                set_group(coolant, c);
+                continue;
             }
+            fail(fmt::format("unknown code {}", x.text));
         } else {
             w.add(x);
         }
@@ -212,6 +218,8 @@ void IsoReader::block(const Block& b) {
         change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
+    if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
+    if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
     if (dwell) {
         const Word* p = w.take('P');
         if (!p) fail(fmt::format("{} without its time P", dwell->word->text));
@@ -241,9 +249,21 @@ void IsoReader::block(const Block& b) {
         }
         motion_ = motion->value;
     }
+    if (machine_coords) {
+        // G53 G0 Z0: the machine's safe retract (frame safeRetract), the only G53 move camgen writes.
+        if (machine_.frame.safe_retract.empty())
+            fail(fmt::format("{}: machine {} has no safe retract in machine coordinates", machine_coords->word->text, machine_.name));
+        const Word* z = w.take('Z');
+        const bool rapid = (motion ? motion->value : motion_) == code(0);
+        if (!z || z->value != 0.0 || w.has('X') || w.has('Y') || !rapid)
+            fail(fmt::format("{}: camgen writes G53 only as G53 G0 Z0, the machine's safe retract", machine_coords->word->text));
+        drill_end();
+        initial_z_.reset();
+        retract_to_top();
+    }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || w.has('R') ||
                 w.has('Q') || w.unused('P');
-    if (axes) {
+    if (axes && !machine_coords) {
         if (motion_ < 0 || motion_ == code(80))
             fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
         motion_block(motion_, w);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
 
 namespace camgen {
@@ -20,12 +21,16 @@ NccadPost::NccadPost(const Machine& machine, std::ostream& out, PostOptions opti
     home_at_end_ = f.boolean("homeAtEnd", true);
     end_of_program_ = f.boolean("endOfProgram", true);
     f.finish();
+    // nccad has no unit word and reads every length as mm, every feed in its feed unit.
+    if (machine.units != Units::mm)
+        throw InputError("/units", fmt::format("machine {}: nccad has no inch mode; its programs are in mm", machine.name),
+                         0, machine.source);
 }
 
 void NccadPost::on_open() {
     for (int i = 0; i < underscore_lines_; ++i) writer().raw("_");
     if (!options().program_name.empty()) writer().comment(options().program_name);
-    writer().add(g(90)).end();
+    write_start_block("");
     if (reference_run_) writer().add(g(76)).end();
 }
 

@@ -113,8 +113,8 @@ SinumerikPost::SinumerikPost(const Machine& machine, std::ostream& out, PostOpti
 
 void SinumerikPost::on_open() {
     if (!options().program_name.empty()) writer().comment(options().program_name);
-    writer().add(g(17)).add(g(machine().units == Units::inch ? 70 : 71)).add(g(90)).add(g(94)).end();
-    assume_plane(17);
+    write_start_block(g(machine().units == Units::inch ? 70 : 71));
+    if (starts_in_xy(machine())) assume_plane(17);
 }
 
 void SinumerikPost::on_close() { writer().add(m(30)).end(); }

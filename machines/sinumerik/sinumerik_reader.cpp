@@ -300,7 +300,7 @@ DrillCycle SinumerikReader::cycle_now() const {
 
 void SinumerikReader::block(const Block& b) {
     if (ended_) fail("a block after the end of the program");
-    std::optional<Code> motion, plane, units, comp, dwell;
+    std::optional<Code> motion, plane, units, comp, dwell, work_offset, coolant;
     MCodes m;
     BlockWords w(*this, "XYZIJKFSTD");
     const Word* cr = nullptr;
@@ -321,10 +321,17 @@ void SinumerikReader::block(const Block& b) {
                 case code(93): case code(95): fail(fmt::format("{}: only feed per minute (G94) is read", x.text));
                 case code(40): case code(41): case code(42): set_group(comp, c); break;
                 case code(4): set_group(dwell, c); break;
-                default: fail(fmt::format("unknown code {}", x.text));
+                default:
+                    if (work_offset_code(c.value)) {
+                        set_group(work_offset, c);
+                        break;
+                    }
+                    fail(fmt::format("unknown code {}", x.text));
             }
         } else if (x.letter == 'M') {
-            if (!shared_m_code(Code{code_of(x), &x}, m, "group")) fail(fmt::format("unknown code {}", x.text));
+            if (shared_m_code(Code{code_of(x), &x}, m, "group")) continue;
+            if (!coolant_of(x)) fail(fmt::format("unknown code {}", x.text));
+            set_group(coolant, Code{code_of(x), &x});
         } else {
             w.add(x);
         }
@@ -350,6 +357,8 @@ void SinumerikReader::block(const Block& b) {
         change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
+    if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
+    if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
     if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
     if (units) set_units(units->value == code(70) ? Units::inch : Units::mm);
     if (comp) {

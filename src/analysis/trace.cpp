@@ -82,6 +82,7 @@ public:
                            else if (it->diameter == 0.0)
                                *it = {t.number, t.diameter, t.description};
                        },
+                       [&](const Coolant&) {},  // no motion; verify does not compare coolant yet
                        [&](const Spindle& sp) {
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;

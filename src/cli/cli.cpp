@@ -93,9 +93,19 @@ InputError locate(const InputError& e, const std::string& source, const std::str
     return e.located(source == "-" ? "<stdin>" : source, line);
 }
 
+// Sets the machine's units from --units; a usage error where its control has no such mode.
+void apply_units(Machine& machine, const std::string& units) {
+    if (units.empty()) return;
+    const Units u = units == "inch" ? Units::inch : Units::mm;
+    if (!machine.accepts(u))
+        throw UsageError(fmt::format("--units {}: machine {} has no {} mode (its control accepts: {})", units,
+                                     machine.name, units, machine.accepted_unit_names()));
+    machine.units = u;
+}
+
 Machine machine_for(const Options& o) {
     Machine machine = load_machine(o.machine);
-    if (!o.units.empty()) machine.units = o.units == "inch" ? Units::inch : Units::mm;
+    apply_units(machine, o.units);
     return machine;
 }
 
@@ -111,6 +121,8 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     po.program_name = job.name;
     po.warnings = &err;
     po.notes = o.quiet ? nullptr : &err;
+    po.work_offset = job.work_offset;
+    po.program_number = job.program_number;
     // Every event is checked before the post sees it, and the post writes into a buffer: an
     // unsafe job, or a cycle a post refuses half-way, writes nothing.
     SafetyLimits limits{job.clearance, {}, machine.longhand()};
@@ -161,7 +173,7 @@ void write_plot(const std::string& file, const Trace& trace, const ProgramStats&
 // `camgen verify`: reads a program back, prints what it does, and compares it with a job.
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Machine machine = load_machine(v.machine);
-    if (!v.units.empty()) machine.units = v.units == "inch" ? Units::inch : Units::mm;
+    apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
     std::string text = read_text(v.program, in);

@@ -36,6 +36,7 @@ std::string event_to_json(const Event& event) {
                             {"state", e.state == SpindleState::cw ? "cw" : e.state == SpindleState::ccw ? "ccw" : "off"},
                             {"rpm", e.rpm}};
                    },
+                   [&](const Coolant& e) { j = {{"event", "coolant"}, {"mode", name_of(coolant_modes, e.mode)}}; },
                    [&](const Rapid& e) { j = {{"event", "rapid"}, {"to", xyz(e.to)}}; },
                    [&](const Linear& e) { j = {{"event", "linear"}, {"to", xyz(e.to)}, {"feed", e.feed}}; },
                    [&](const Arc& e) {

@@ -23,6 +23,14 @@ constexpr KeySpec job_keys[] = {
      .description = "the units of every length and feed in the file"},
     {.key = "clearance", .quantity = Quantity::length, .required = true,
      .description = "absolute Z that is safe for moves between operations"},
+    {.key = "workOffset", .type = JsonType::string,
+     .description = "the work offset the program selects, as the control writes it: G54 .. G59, and where the "
+                    "machine has them G59.1 (LinuxCNC), G54.1 P1 (Fanuc), G505 (Sinumerik); refused on a machine "
+                    "without it (default: none written)"},
+    {.key = "programNumber", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{99999999, true},
+     .description = "the program number (Fanuc O-number), overriding the machine's; refused where the control "
+                    "takes none (default: the machine's)"},
     {.key = "tools", .type = JsonType::array, .required = true, .ref = "tool", .min_items = 1,
      .description = "the tool table, at least one tool"},
     {.key = "operations", .type = JsonType::array, .required = true, .ref = "operation",
@@ -46,6 +54,8 @@ constexpr KeySpec tool_keys[] = {
     {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
      .choices = &choices_of<spindle_directions>, .description = "spindle direction: cw (M3) or ccw (M4)"},
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "free text for the tool list"},
+    {.key = "coolant", .type = JsonType::string, .default_json = "\"off\"", .choices = &choices_of<coolant_modes>,
+     .description = "coolant while the tool cuts: flood (M8), mist (M7) or off; refused on a machine without it"},
 };
 
 }  // namespace
@@ -101,6 +111,11 @@ JobInput::Fields JobInput::read_header() {
     header_.units = top.choice("units", unit_names, Units::mm);
     scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
     header_.clearance = length(top, "clearance");
+    header_.work_offset = top.optional_string("workOffset").value_or("");
+    if (auto n = top.optional_integer("programNumber")) {
+        if (*n < 1 || *n > 99999999) top.fail("programNumber", "a program number must be between 1 and 99999999");
+        header_.program_number = static_cast<int>(*n);
+    }
 
     const Json& tools = array(top, "tools");
     if (tools.empty()) top.fail("tools", "a job needs at least one tool");
@@ -132,6 +147,7 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
     tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);
     tool.comment = f.optional_string("comment").value_or("");
+    tool.coolant = f.choice("coolant", coolant_modes, CoolantMode::off);
     return tool;
 }
 

@@ -1,6 +1,7 @@
 #include "camgen/post/machine.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -65,7 +66,10 @@ constexpr KeySpec machine_keys[] = {
     {.key = "extension", .type = JsonType::string, .required = true,
      .description = "suggested file extension, without the dot"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
-     .description = "output units"},
+     .description = "output units; one of acceptedUnits"},
+    {.key = "acceptedUnits", .type = JsonType::array, .choices = &choices_of<unit_names>,
+     .description = "the units the control has a mode for, selected by the unit word the dialect writes "
+                    "(G21/G20, G71/G70, BEGIN PGM MM/INCH); --units outside it is refused (default: [units])"},
     {.key = "globals", .type = JsonType::object, .ref = "globals", .description = "CNC-Calc post processor globals"},
     {.key = "comments", .type = JsonType::string, .default_json = "\"parentheses\"",
      .choices = &choices_of<comment_styles>, .description = "comments in parentheses or after a semicolon"},
@@ -84,7 +88,32 @@ constexpr KeySpec machine_keys[] = {
      .description = "free text about the machine's choices, shown by --describe-machine"},
     {.key = "drilling", .type = JsonType::object, .ref = "drilling",
      .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
+    {.key = "frame", .type = JsonType::object, .ref = "frame",
+     .description = "the program frame: safe-start words, work offsets, coolant codes"},
     {.key = "settings", .type = JsonType::object, .description = "dialect settings, read by the dialect code"},
+};
+
+// The keys of frame.
+constexpr KeySpec frame_keys[] = {
+    {.key = "startBlock", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the words of the safe-start block (cancel compensation, length offset and cycles; absolute; "
+                    "plane; feed per minute), written before the unit word"},
+    {.key = "workOffsets", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the work offsets a job may select (its workOffset), as written; \"G505..G599\" or "
+                    "\"G54.1 P1..G54.1 P48\" is a range (default: none)"},
+    {.key = "coolant", .type = JsonType::object, .ref = "coolantCodes",
+     .description = "the code of each coolant mode the control has (default: none)"},
+    {.key = "safeRetract", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
+     .description = "the words of a block that takes Z to the machine's safe height in machine coordinates "
+                    "([\"G53\", \"G0\", \"Z0\"], iso only): written where the tool's height is unknown "
+                    "before X and Y move, and at the program end (default: none, the job's clearance)"},
+};
+
+// The keys of frame.coolant.
+constexpr KeySpec coolant_keys[] = {
+    {.key = "flood", .type = JsonType::string, .description = "flood coolant on (ISO M8)"},
+    {.key = "mist", .type = JsonType::string, .description = "mist coolant on (ISO M7)"},
+    {.key = "off", .type = JsonType::string, .description = "coolant off (ISO M9); needed with flood or mist"},
 };
 
 // The keys of globals.
@@ -196,6 +225,40 @@ constexpr KeySpec cycle_keys[] = {
      .description = "the drilling fields the canned cycle carries"},
 };
 
+// The strings of a JSON array of strings at `path`.
+std::vector<std::string> strings_at(const nlohmann::json& v, const std::string& path, const json::Source& source) {
+    if (!v.is_array()) json::fail(source, path, "expected an array of strings");
+    std::vector<std::string> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_string() || v[i].get<std::string>().empty())
+            json::fail(source, fmt::format("{}/{}", path, i), "expected a non-empty string");
+        out.push_back(v[i].get<std::string>());
+    }
+    return out;
+}
+
+// A work offset entry: one word, or a range "G505..G599" / "G54.1 P1..G54.1 P48" of words
+// that differ only in their trailing whole number.
+std::vector<std::string> expand_work_offset(const std::string& entry, const std::string& path, const json::Source& source) {
+    const size_t dots = entry.find("..");
+    if (dots == std::string::npos) return {entry};
+    const std::string lo = entry.substr(0, dots), hi = entry.substr(dots + 2);
+    auto split = [](const std::string& w) {
+        size_t d = w.size();
+        while (d > 0 && std::isdigit(static_cast<unsigned char>(w[d - 1]))) --d;
+        return std::pair<std::string, std::string>{w.substr(0, d), w.substr(d)};
+    };
+    const auto [lo_prefix, lo_digits] = split(lo);
+    const auto [hi_prefix, hi_digits] = split(hi);
+    if (lo_prefix != hi_prefix || lo_digits.empty() || hi_digits.empty() || lo_digits.size() > 6 || hi_digits.size() > 6)
+        json::fail(source, path, fmt::format("\"{}\": a range is two words that differ only in their trailing number", entry));
+    const int a = std::stoi(lo_digits), b = std::stoi(hi_digits);
+    if (a > b) json::fail(source, path, fmt::format("\"{}\": the range runs backwards", entry));
+    std::vector<std::string> out;
+    for (int i = a; i <= b; ++i) out.push_back(lo_prefix + std::to_string(i));
+    return out;
+}
+
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
     if (key == "xyz" || key == "ijk" || key == "dwell" || key == "angle") s.decimals = 3;
@@ -236,6 +299,8 @@ std::vector<ObjectSpec> machine_objects() {
         spec("arcs", "arc output and arc breaking", arcs_keys),
         spec("drilling", "drilling cycles and longhand settings", drilling_keys),
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
+        spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
+        spec("coolantCodes", "the code of each coolant mode", coolant_keys),
     };
 }
 
@@ -253,6 +318,25 @@ nc::Format Machine::format(const std::string& key) const {
         else if (units == Units::inch) spec.scale /= 25.4;
     }
     return nc::Format(spec);
+}
+
+bool Machine::accepts(Units u) const {
+    return std::find(accepted_units.begin(), accepted_units.end(), u) != accepted_units.end();
+}
+
+std::string Machine::accepted_unit_names() const {
+    std::vector<std::string> names;
+    for (Units u : accepted_units) names.emplace_back(name_of(unit_names, u));
+    return fmt::format("{}", fmt::join(names, ", "));
+}
+
+bool Machine::has_work_offset(const std::string& word) const {
+    return std::find(frame.work_offsets.begin(), frame.work_offsets.end(), word) != frame.work_offsets.end();
+}
+
+std::optional<std::string> Machine::coolant_code(CoolantMode mode) const {
+    if (auto it = frame.coolant.find(mode); it != frame.coolant.end()) return it->second;
+    return std::nullopt;
 }
 
 const DrillingCycleSpec* Machine::canned_cycle(CycleKind kind) const {
@@ -273,6 +357,20 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
     m.units = f.choice("units", unit_names, Units::mm);
+    m.accepted_units = {m.units};
+    if (const auto* au = f.member("acceptedUnits")) {
+        if (!au->is_array() || au->empty()) f.fail("acceptedUnits", "expected a non-empty array of \"mm\", \"inch\"");
+        m.accepted_units.clear();
+        for (size_t i = 0; i < au->size(); ++i) {
+            const auto& u = (*au)[i];
+            const auto units = value_named(unit_names, u.is_string() ? u.get<std::string>() : "");
+            if (!units) json::fail(source, fmt::format("/acceptedUnits/{}", i), "expected \"mm\" or \"inch\"");
+            if (!m.accepts(*units)) m.accepted_units.push_back(*units);
+        }
+        if (!m.accepts(m.units))
+            f.fail("units", fmt::format("units \"{}\" is not one of acceptedUnits ({})", name_of(unit_names, m.units),
+                                        m.accepted_unit_names()));
+    }
     if (const auto* g = f.member("globals")) {
         json::Fields gf(*g, "/globals", source);
         const auto mark = value_named(decimal_marks, gf.optional_string("decimalMark").value_or("."));
@@ -427,6 +525,33 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         }
         df.finish(drilling_keys);
     }
+    if (const auto* fr = f.member("frame")) {
+        json::Fields ff(*fr, "/frame", source);
+        if (const auto* sb = ff.member("startBlock")) m.frame.start_block = strings_at(*sb, "/frame/startBlock", source);
+        if (const auto* wo = ff.member("workOffsets")) {
+            std::vector<std::string> entries = strings_at(*wo, "/frame/workOffsets", source);
+            for (size_t i = 0; i < entries.size(); ++i)
+                for (std::string& w : expand_work_offset(entries[i], fmt::format("/frame/workOffsets/{}", i), source))
+                    m.frame.work_offsets.push_back(std::move(w));
+        }
+        if (const auto* c = ff.member("coolant")) {
+            json::Fields cf(*c, "/frame/coolant", source);
+            for (const auto& mode : coolant_modes)
+                if (auto code = cf.optional_string(mode.name)) m.frame.coolant[mode.value] = *code;
+            if (!m.frame.coolant.empty() && !m.frame.coolant.count(CoolantMode::off))
+                cf.fail("off", "a machine with coolant needs the code that switches it off");
+            cf.finish(coolant_keys);
+        }
+        if (const auto* sr = ff.member("safeRetract")) {
+            m.frame.safe_retract = strings_at(*sr, "/frame/safeRetract", source);
+            // Read back as a move to the machine's top: the ISO reader's G53 G0 Z0.
+            if (!m.frame.safe_retract.empty() && m.frame.safe_retract != std::vector<std::string>{"G53", "G0", "Z0"})
+                ff.fail("safeRetract", "the safe retract camgen reads back is [\"G53\", \"G0\", \"Z0\"]");
+            if (!m.frame.safe_retract.empty() && m.dialect != "iso")
+                ff.fail("safeRetract", fmt::format("dialect {} has no G53 safe retract", m.dialect));
+        }
+        ff.finish(frame_keys);
+    }
     if (const auto* s = f.member("settings")) {
         if (!s->is_object()) f.fail("settings", "expected an object");
         m.dialect_settings = *s;
@@ -475,6 +600,7 @@ std::string describe_machine(const Machine& m) {
     line("dialect", m.dialect);
     line("extension", "." + m.extension);
     line("units", m.units == Units::mm ? "mm" : "inch");
+    line("acceptedUnits", m.accepted_unit_names());
     line("decimalMark", std::string(1, m.decimal_mark));
     line("linebreak", m.block.line_break == "\n" ? "\\n" : "\\r\\n");
     line("variableDelimeter", "\"" + m.block.separator + "\"");
@@ -506,6 +632,19 @@ std::string describe_machine(const Machine& m) {
                                                                                  : "to the retract level");
     for (const auto& t : tapping_modes)
         if (t.value == m.tapping) line("tapping", fmt::format("{}: {}", t.name, t.description));
+    s += "program frame\n";
+    line("startBlock", m.frame.start_block.empty() ? std::string("-") : fmt::format("{}", fmt::join(m.frame.start_block, " ")));
+    line("workOffsets", m.frame.work_offsets.empty()
+                            ? std::string("none")
+                            : m.frame.work_offsets.size() > 12
+                                  ? fmt::format("{} .. {} ({})", m.frame.work_offsets.front(), m.frame.work_offsets.back(),
+                                                m.frame.work_offsets.size())
+                                  : fmt::format("{}", fmt::join(m.frame.work_offsets, ", ")));
+    std::vector<std::string> coolant;
+    for (const auto& [mode, code] : m.frame.coolant) coolant.push_back(fmt::format("{} {}", name_of(coolant_modes, mode), code));
+    line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
+    line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
+                                                     : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
     s += "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;

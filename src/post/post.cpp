@@ -36,16 +36,34 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       z_("Z", xyz_fmt_),
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
-      plane_("G", code_fmt_) {}
+      plane_("G", code_fmt_) {
+    if (!machine.accepts(machine.units))
+        throw InputError("/units", fmt::format("machine {} has no {} mode (its control accepts: {})", machine.name,
+                                               name_of(unit_names, machine.units), machine.accepted_unit_names()),
+                         0, machine.source);
+}
 
 Post::~Post() = default;
 
 void Post::open() {
     opened_ = true;
+    if (!options_.work_offset.empty() && !machine_.has_work_offset(options_.work_offset)) {
+        if (machine_.frame.work_offsets.empty())
+            throw InputError("/workOffset", fmt::format("machine {} has no work offsets: its control cannot select {}",
+                                                        machine_.name, options_.work_offset));
+        const auto& w = machine_.frame.work_offsets;
+        throw InputError("/workOffset",
+                         fmt::format("machine {} has no work offset \"{}\"; it has {}", machine_.name, options_.work_offset,
+                                     w.size() > 12 ? fmt::format("{} .. {}", w.front(), w.back())
+                                                   : fmt::format("{}", fmt::join(w, ", "))));
+    }
+    if (options_.program_number && !takes_program_number())
+        throw InputError("/programNumber", fmt::format("machine {} takes no program number", machine_.name));
     if (!options_.snippet) on_open();
 }
 
 void Post::close() {
+    if (!options_.snippet && !machine_.frame.safe_retract.empty()) write_safe_retract();
     if (!options_.snippet) on_close();
     out_.flush();
 }
@@ -119,6 +137,26 @@ void Post::on_operation_start(const OperationStart& op) {
 
 void Post::on_comment(const std::string& text) { out_.comment(text); }
 
+void Post::on_coolant(const Coolant& coolant) {
+    const std::optional<std::string> code = machine_.coolant_code(coolant.mode);
+    if (!code)
+        throw InputError(coolant.path, fmt::format("machine {} has no {} coolant{}", machine_.name,
+                                                   name_of(coolant_modes, coolant.mode),
+                                                   machine_.frame.coolant.empty() ? "" : fmt::format(" (it has: {})", [&] {
+                                                       std::vector<std::string> n;
+                                                       for (const auto& [mode, c] : machine_.frame.coolant)
+                                                           if (mode != CoolantMode::off) n.emplace_back(name_of(coolant_modes, mode));
+                                                       return fmt::format("{}", fmt::join(n, ", "));
+                                                   }())));
+    out_.add(*code).end();
+}
+
+void Post::write_start_block(const std::string& unit_word) {
+    for (const std::string& w : machine_.frame.start_block) out_.add(w);
+    out_.add(unit_word).add(options_.work_offset);
+    out_.end();
+}
+
 void Post::on_rapid(const Vec3& to) {
     const AxisWords w = axis_words(to);
     if (w.x.empty() && w.y.empty() && w.z.empty()) return;
@@ -126,11 +164,33 @@ void Post::on_rapid(const Vec3& to) {
 }
 
 void Post::rapid_from_unknown(const Vec3& to) {
-    const AxisWords w = force_xy({to.x, to.y});
-    out_.add(motion_word(0)).add(w.x).add(w.y).end();
+    // Where the height is unknown (the operator may have touched off on the stock), a move in
+    // X or Y first could cross the part: up to the height first, then across.
     forget_z();
+    x_.reset();
+    y_.reset();
+    if (!machine_.frame.safe_retract.empty()) {
+        // The machine's own safe height (in machine coordinates) first, then across, then
+        // down to where the operation wants the tool, with its length offset.
+        write_safe_retract();
+        const AxisWords w = force_xy({to.x, to.y});
+        out_.add(motion_word(0)).add(w.x).add(w.y).end();
+        rapid_z_from_unknown(to.z);
+        return;
+    }
+    rapid_z_from_unknown(to.z);
     on_rapid(to);
 }
+
+void Post::write_safe_retract() {
+    for (const std::string& w : machine_.frame.safe_retract) out_.add(w);
+    out_.end();
+    // The block may have set the motion mode; Z is now in machine coordinates.
+    forget_motion();
+    forget_z();
+}
+
+void Post::rapid_z_from_unknown(double z) { out_.add(motion_word(0)).add(force_z(z)).end(); }
 
 void Post::on_compensation(const Compensation& compensation) { pending_compensation_ = compensation; }
 
@@ -224,6 +284,11 @@ void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, 
 std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
 std::optional<std::string> Post::tapping_impossible(const DrillCycle&) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+bool starts_in_xy(const Machine& machine) {
+    const auto& b = machine.frame.start_block;
+    return std::find(b.begin(), b.end(), "G17") != b.end();
+}
 
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle) {
     std::vector<DrillField> f;
@@ -441,6 +506,7 @@ void Post::emit(const Event& event) {
                        reset_modal_axes();
                    },
                    [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Coolant& c) { on_coolant(c); },
                    [&](const Rapid& r) { replay(r); },
                    [&](const Linear& l) { replay(l); },
                    [&](const Arc& a) { handle_arc(a); },

@@ -147,6 +147,7 @@ void SafetyCheck::emit(const Event& event) {
             },
             [&](const DrillEnd&) { cycle_.reset(); },
             [&](const Comment&) {},
+            [&](const Coolant&) {},
         },
         event);
 }

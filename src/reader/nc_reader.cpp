@@ -48,6 +48,9 @@ void NcReader::load_formats() {
 
 void NcReader::set_units(Units units) {
     if (machine_.units == units) return;
+    if (!machine_.accepts(units))
+        fail(fmt::format("a switch to {}: machine {} has no {} mode (its control accepts: {})", name_of(unit_names, units),
+                         machine_.name, name_of(unit_names, units), machine_.accepted_unit_names()));
     machine_.units = units;
     load_formats();
     ReadResolution r = resolution();
@@ -151,6 +154,34 @@ std::optional<double> NcReader::parse_number(std::string_view text) const {
     auto [p, ec] = std::from_chars(b, t.data() + t.size(), v);
     if (ec != std::errc() || p != t.data() + t.size()) return std::nullopt;
     return v;
+}
+
+namespace {
+// A G code in tenths as the posts write it: "G54", "G59.1".
+std::string g_word(int g) { return g % 10 ? fmt::format("G{}.{}", g / 10, g % 10) : fmt::format("G{}", g / 10); }
+}  // namespace
+
+bool NcReader::work_offset_code(int g) const {
+    const std::string word = g_word(g);
+    for (const std::string& o : machine_.frame.work_offsets)
+        if (o == word || o.rfind(word + " P", 0) == 0) return true;
+    return false;
+}
+
+void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
+    std::string word = g_word(g);
+    if (!machine_.has_work_offset(word)) {
+        const Word* p = w.take('P');
+        if (!p) fail(fmt::format("{} without its offset number P", text.text));
+        word += fmt::format(" P{}", integer_of(*p));
+        if (!machine_.has_work_offset(word)) fail(fmt::format("{}: machine {} has no work offset {}", word, machine_.name, word));
+    }
+}
+
+std::optional<CoolantMode> NcReader::coolant_of(const Word& m) const {
+    for (const auto& [mode, c] : machine_.frame.coolant)
+        if (c == m.text || (c.size() > 1 && c[0] == 'M' && parse_number(c.substr(1)) == m.value)) return mode;
+    return std::nullopt;
 }
 
 double NcReader::diameter_in(std::string_view description) {
@@ -386,12 +417,24 @@ void NcReader::line(std::string_view text) {
 void NcReader::forget_position() {
     known_ = {false, false, false};
     was_unknown_ = true;
+    approach_ = Approach::z_first;
+    at_top_ = false;
+}
+
+void NcReader::retract_to_top() {
+    if (!was_unknown_) approach_ = Approach::z_first;  // a new stretch of unknown height begins
+    known_[2] = false;
+    was_unknown_ = true;
+    at_top_ = true;
 }
 
 void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z) {
     if (!x && !y && !z) return;
     bool was_known = position_known();
     Vec3 before = position();
+    // X or Y moved while the height is unknown (before Z or in the same block as the first Z).
+    if (was_unknown_ && (x || y) && !known_[2] && !at_top_) approach_ = Approach::xy_first;
+    if (z) at_top_ = false;
     const std::optional<double>* axes[3] = {&x, &y, &z};
     for (int a = 0; a < 3; ++a)
         if (*axes[a]) {
@@ -401,7 +444,9 @@ void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::o
     if (x && y) xy_uncertainty_ = 0.0;
     if (!position_known()) return;  // still partly unknown: the move cannot be traced yet
     if (was_known && before == position() && !was_unknown_) return;
-    emit(Rapid{position()}, was_unknown_ || !was_known, xy_uncertainty_);
+    const bool from_unknown = was_unknown_ || !was_known;
+    emit(Rapid{position()}, from_unknown, xy_uncertainty_);
+    if (from_unknown) out_.back().approach = approach_;
     was_unknown_ = false;
 }
 

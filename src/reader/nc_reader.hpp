@@ -151,6 +151,9 @@ protected:
     Vec3 position() const { return {pos_[0], pos_[1], pos_[2]}; }
     // The control's position is unknown from here (tool change, home or reference run).
     void forget_position();
+    // The control took Z to the machine's safe height (G53 G0 Z0): Z is unknown in work
+    // coordinates but at the top, so X and Y may move before Z is known again.
+    void retract_to_top();
     // A rapid to the given axes (nullopt: unchanged). Emitted once every axis is known; the
     // first one after forget_position() is marked from_unknown.
     void rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
@@ -193,6 +196,14 @@ protected:
     // Puts an M code into its group of `m`; false when it is none of them.
     bool shared_m_code(Code c, MCodes& m, std::string_view group_name) const;
 
+    // Whether G code `g` (tenths) selects one of the machine's work offsets, alone (G54) or
+    // with a P word (Fanuc G54.1 P1).
+    bool work_offset_code(int g) const;
+    // Checks the work offset a block selects with code `g` (its word `text`), taking its P word
+    // from `w` where the machine's offsets have one; fails for an offset the machine lacks.
+    void select_work_offset(int g, const Word& text, BlockWords& w);
+    // The coolant mode an M word switches to, where it is one of the machine's coolant codes.
+    std::optional<CoolantMode> coolant_of(const Word& m) const;
     // The tool diameter a camgen tool description starts with ("10 mm spot drill"), else 0.
     static double diameter_in(std::string_view description);
     // The description in the comment camgen's posts write before changing to this tool
@@ -235,6 +246,8 @@ private:
     std::array<double, 3> pos_{};
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
+    Approach approach_ = Approach::z_first;  // how the rapids since the position became unknown moved
+    bool at_top_ = false;             // Z is at the machine's safe height (unknown in work coordinates)
     double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
     std::optional<DrillCycle> cycle_;
     std::vector<ReadEvent> out_;

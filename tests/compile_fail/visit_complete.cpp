@@ -9,7 +9,7 @@ static_assert(!is_exhaustive_visitor<decltype(overloaded{[](const Rapid&) {}}), 
 int visit_event(const Event& e) {
     return visit_exhaustive(overloaded{
                                 [](const OperationStart&) { return 0; }, [](const OperationEnd&) { return 0; },
-                                [](const ToolChange&) { return 0; },     [](const Spindle&) { return 0; },
+                                [](const ToolChange&) { return 0; },     [](const Spindle&) { return 0; },       [](const Coolant&) { return 0; },
                                 [](const Rapid&) { return 0; },          [](const Linear&) { return 0; },
                                 [](const Arc&) { return 0; },            [](const Dwell&) { return 0; },
                                 [](const Compensation&) { return 0; },   [](const DrillCycle&) { return 0; },

@@ -18,7 +18,7 @@ struct with_alternative<std::variant<A...>, T> {
 int visit_extended(const with_alternative<Event, NewEvent>::type& e) {
     return visit_exhaustive(overloaded{
                                 [](const OperationStart&) { return 0; }, [](const OperationEnd&) { return 0; },
-                                [](const ToolChange&) { return 0; },     [](const Spindle&) { return 0; },
+                                [](const ToolChange&) { return 0; },     [](const Spindle&) { return 0; },       [](const Coolant&) { return 0; },
                                 [](const Rapid&) { return 0; },          [](const Linear&) { return 0; },
                                 [](const Arc&) { return 0; },            [](const Dwell&) { return 0; },
                                 [](const Compensation&) { return 0; },   [](const DrillCycle&) { return 0; },

@@ -31,6 +31,8 @@ inline Posted post_job(const std::string& job_json, const std::string& machine_n
     o.snippet = snippet;
     o.program_name = job.name;
     o.warnings = &warn;
+    o.work_offset = job.work_offset;
+    o.program_number = job.program_number;
     auto post = make_post(machine, out, o);
     post->open();
     expand_job(job, *post);

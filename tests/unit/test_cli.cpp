@@ -150,3 +150,33 @@ TEST_CASE("a broken machine file exits 1 naming the machine file, the JSON path 
     CHECK(t.code == 1);
     CHECK(t.err.find("unknown key \"limts\" (did you mean \"limits\"?)") != std::string::npos);
 }
+
+TEST_CASE("--units inch on a machine whose control has no inch mode is refused, naming the machine") {
+    // nccad has no unit word: inch numbers would be read as mm, a part 25.4 times too small.
+    for (const char* name : {"wabeco", "kosy"}) {
+        CAPTURE(name);
+        Run r = run({sample, "--machine", name, "--units", "inch"});
+        CHECK(r.code == 2);
+        CHECK(r.out.empty());
+        CHECK(r.err.find(std::string("machine ") + name + " has no inch mode") != std::string::npos);
+        Run v = run({"verify", CAMGEN_SOURCE_DIR "/tests/golden/wabeco/plate.knc", "--machine", name, "--units", "inch"});
+        CHECK(v.code == 2);
+    }
+    Run ok = run({sample, "--machine", "linuxcnc", "--units", "inch"});
+    CHECK(ok.code == 0);
+    CHECK(ok.out.find("G20") != std::string::npos);
+    Run d = run({"--describe-machine", "wabeco"});
+    CHECK(d.out.find("acceptedUnits") != std::string::npos);
+}
+
+TEST_CASE("a machine file whose units are not among its acceptedUnits is refused") {
+    fs::path dir = test::scratch("cli-units");
+    std::string text = test::read_file(CAMGEN_SOURCE_DIR "/machines/wabeco.json");
+    const std::string from = "\"units\": \"mm\"";
+    text.replace(text.find(from), from.size(), "\"units\": \"inch\"");
+    write(dir / "wabeco-inch.json", text);
+    Run r = run({sample, "--machine", (dir / "wabeco-inch.json").string()});
+    CHECK(r.code == 1);
+    CHECK(r.err.find("/units") != std::string::npos);
+    CHECK(r.err.find("acceptedUnits") != std::string::npos);
+}

@@ -12,10 +12,10 @@ TEST_CASE("fanuc plate: program frame, G43 on the first Z move, G99 and G98 cycl
     auto lines = lines_of(p.text);
     CHECK(lines[0] == "%");
     CHECK(lines[1] == "O1000 (plate)");
-    CHECK(lines[2] == "N10 G17 G21 G90 G94");
+    CHECK(lines[2] == "N10 G40 G49 G80 G17 G90 G94 G21");
     CHECK(lines.back() == "%");
     CHECK(lines[lines.size() - 2].ends_with(" M30"));
-    CHECK(p.text.find("N15 T1 M6\nN20 S1500 M3\nN25 G0 X10.000 Y10.000\nN30 G43 Z10.000 H1\n") != std::string::npos);
+    CHECK(p.text.find("N15 T1 M6\nN20 S1500 M3\nN25 G0 G43 Z10.000 H1\nN30 X10.000 Y10.000\n") != std::string::npos);
     // Spot drilling: retract plane = feed start: G99, R2.
     CHECK(p.text.find("G99 G81 X10.000 Y10.000 Z-1.500 R2.000 F80\n") != std::string::npos);
     // Through drilling: retract plane 5 above R1: G98 from Z5; depth 8 + tip 3/tan(59 deg).
@@ -49,7 +49,7 @@ TEST_CASE("fanuc inch output: G20, lengths and feeds converted, 4 decimals") {
     expand_job(job, *post);
     post->close();
     std::string t = out.str();
-    CHECK(t.find("G17 G20 G90 G94") != std::string::npos);
+    CHECK(t.find("G40 G49 G80 G17 G90 G94 G20") != std::string::npos);
     // 10 mm = 0.3937 in; 80 mm/min = 3.1 in/min; Z-1.5 mm = -0.0591 in.
     CHECK(t.find("G99 G81 X0.3937 Y0.3937 Z-0.0591 R0.0787 F3.1\n") != std::string::npos);
 }

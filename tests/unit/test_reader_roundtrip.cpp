@@ -60,7 +60,7 @@ TEST_CASE("every golden file reads back to the motion of its job") {
     CHECK(errors >= 2);
 }
 
-TEST_CASE("every sample posted in inch for every machine reads back to the motion of its job") {
+TEST_CASE("every sample posted in inch for every machine with an inch mode reads back to the motion of its job") {
     // Inch programs state lengths in inches and feeds in in/min, canned-cycle parameters too
     // (Sinumerik CYCLE8x, Heidenhain Q parameters): all read back through the machine's inch
     // formats, within half a unit of the last decimal (and what rounded cycle parameters add
@@ -69,6 +69,7 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
     for (const auto& listed : list_machines()) {
         const std::string& name = listed.first;
         Machine machine = load_machine(name);
+        if (!machine.accepts(Units::inch)) continue;  // nccad: refused (test_cli.cpp)
         machine.units = Units::inch;
         for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
             if (f.path().extension() != ".json") continue;
@@ -92,5 +93,55 @@ TEST_CASE("every sample posted in inch for every machine reads back to the motio
             ++checked;
         }
     }
+    // fanuc, grbl, heidenhain, linuxcnc, sinumerik x 5 samples.
+    CHECK(checked >= 25);
+}
+
+TEST_CASE("every program of every sample on every machine moves Z up first where the height is unknown") {
+    // At the program start and after every tool change (an operator's pause included) the
+    // tool's height is unknown: the operator may have touched off on the stock. Read back, the
+    // first rapid of each such stretch must have moved Z alone first, up to the job's
+    // clearance, and only then X and Y.
+    int checked = 0;
+    for (const auto& listed : list_machines()) {
+        const std::string& name = listed.first;
+        const Machine machine = load_machine(name);
+        for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
+            if (f.path().extension() != ".json") continue;
+            fs::path golden = fs::path(CAMGEN_SOURCE_DIR "/tests/golden") / name / (f.path().stem().string() + "." + machine.extension);
+            if (!fs::exists(golden)) continue;
+            CAPTURE(golden.string());
+            Job job = read_job(test::read_file(f.path().string()), f.path().string());
+            std::vector<ReadEvent> events;
+            REQUIRE_NOTHROW(events = read_program(test::read_file(golden.string()), machine, golden.string()));
+            const double slack = read_resolution(machine).position;
+            int approaches = 0;
+            for (const ReadEvent& e : events) {
+                const auto* rapid = std::get_if<Rapid>(&e.event);
+                if (!rapid || !e.from_unknown) continue;
+                CAPTURE(e.line);
+                CHECK_MESSAGE(e.approach == Approach::z_first, "X or Y moved before Z while the height was unknown");
+                CHECK_MESSAGE(rapid->to.z >= job.clearance - slack, "across below the clearance " << job.clearance
+                                                                     << " at Z " << rapid->to.z);
+                ++approaches;
+            }
+            CHECK(approaches >= 1);
+            ++checked;
+        }
+    }
     CHECK(checked >= 33);
+}
+
+TEST_CASE("the reader tells an XY-first approach from a Z-first one") {
+    const Machine m = load_machine("linuxcnc");
+    auto first_approach = [&](const std::string& program) {
+        for (const ReadEvent& e : read_program(program, m, "prog"))
+            if (e.from_unknown) return e.approach;
+        FAIL("no rapid from an unknown position");
+        return Approach::z_first;
+    };
+    CHECK(first_approach("G0 Z10\nG0 X1 Y2\nM2\n") == Approach::z_first);
+    CHECK(first_approach("G0 X1 Y2\nG0 Z10\nM2\n") == Approach::xy_first);
+    CHECK(first_approach("G0 X1 Y2 Z10\nM2\n") == Approach::xy_first);
+    CHECK(first_approach("T1 M6\nG0 G43 Z10 H1\nX1 Y2\nM2\n") == Approach::z_first);
 }

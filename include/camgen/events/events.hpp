@@ -46,6 +46,14 @@ struct Spindle {
     friend bool operator==(const Spindle&, const Spindle&) = default;
 };
 
+// Coolant on (flood or mist) or off. `path`: the JSON path of the job key that asked for it
+// (for messages where the machine has no such coolant).
+struct Coolant {
+    CoolantMode mode = CoolantMode::off;
+    std::string path;
+    friend bool operator==(const Coolant&, const Coolant&) = default;
+};
+
 // Straight move at rapid rate to `to`.
 struct Rapid {
     Vec3 to;
@@ -130,7 +138,7 @@ struct Comment {
     friend bool operator==(const Comment&, const Comment&) = default;
 };
 
-using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Rapid, Linear, Arc,
+using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment>;
 
 // Receives events one at a time (a post, a recorder, the event printer).

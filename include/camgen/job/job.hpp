@@ -21,6 +21,7 @@ struct Tool {
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;
     std::string comment;
+    CoolantMode coolant = CoolantMode::off;  // while the tool cuts
     std::string path;                      // JSON path, for messages
 };
 
@@ -29,6 +30,8 @@ struct JobHeader {
     std::string name;
     Units units = Units::mm;            // the units the file was written in
     double clearance = 0.0;             // absolute Z, safe between operations
+    std::string work_offset;            // the work offset the program selects ("G54"); empty: none written
+    std::optional<int> program_number;  // the program number, overriding the machine's
     std::map<int, Tool> tools;          // by tool number
 };
 

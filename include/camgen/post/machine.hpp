@@ -70,12 +70,23 @@ struct ArcSettings {
     bool force_xy = true;              // write both end coordinates on every arc block
 };
 
+// The program frame (machine file "frame"): the words of the safe-start block, the work
+// offsets and the coolant codes the control has. Words are written as given.
+struct FrameSettings {
+    std::vector<std::string> start_block;   // "G40", "G49", "G80", ...: before the unit word
+    std::vector<std::string> work_offsets;  // "G54", "G59.1", "G54.1 P1": ranges expanded
+    std::map<CoolantMode, std::string> coolant;  // the code of each coolant mode it has ("M8")
+    std::vector<std::string> safe_retract;  // the block that takes Z to the machine's safe height
+                                            // ("G53", "G0", "Z0"); empty: the job's clearance
+};
+
 struct Machine {
     std::string name;                  // "wabeco"
     std::string description;           // one line for --list-machines
     std::string dialect;               // the dialect code that writes for it: "iso", "nccad"
     std::string extension;             // suggested file extension, without dot
     Units units = Units::mm;           // output units
+    std::vector<Units> accepted_units = {Units::mm};  // the units the control has a mode for
     nc::BlockStyle block;
     bool modal_motion = true;          // false: G0/G1/G2/G3 written on every motion block
     char decimal_mark = '.';
@@ -90,11 +101,20 @@ struct Machine {
     BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;  // longhand G89 feed-out end
     TappingMode tapping = TappingMode::none;  // machine file drilling.tapping
     std::vector<DrillingCycleSpec> drilling;
+    FrameSettings frame;
     nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
     std::string source;                // where it was read from, for messages
 
     // The format named `key` for the output units, with the decimal mark applied.
     nc::Format format(const std::string& key) const;
+    // Whether the control has a mode for these units (a unit word the post writes).
+    bool accepts(Units u) const;
+    // The units the control accepts, by name ("mm, inch").
+    std::string accepted_unit_names() const;
+    // Whether the control has this work offset ("G54", "G54.1 P3").
+    bool has_work_offset(const std::string& word) const;
+    // The code that switches coolant to `mode`, if the control has it.
+    std::optional<std::string> coolant_code(CoolantMode mode) const;
     // The machine's canned cycle of this kind, if any.
     const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
     // How longhand cycles move on this machine (so that they equal its canned cycles).
@@ -112,7 +132,7 @@ const std::vector<EmbeddedMachine>& embedded_machines();
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
 
 // The objects of a machine file, for the JSON Schema: the top level ("machine") first, then
-// globals, formats, format, limits, arcs, drilling and drillingCycle.
+// globals, formats, format, limits, arcs, drilling, drillingCycle, frame and coolantCodes.
 std::vector<ObjectSpec> machine_objects();
 
 // A machine by name (compiled in) or by path to a JSON file (contains '/' or ends in .json).

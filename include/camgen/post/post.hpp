@@ -24,6 +24,8 @@ struct PostOptions {
     std::string program_name;          // the job's name, for the program header
     std::ostream* warnings = nullptr;  // where warnings go (stderr); nullptr: dropped
     std::ostream* notes = nullptr;     // where notes go (stderr unless --quiet); nullptr: dropped
+    std::string work_offset;           // the job's work offset ("G54"); empty: none written
+    std::optional<int> program_number; // the job's program number, overriding the machine's
 };
 
 class Post : public EventSink {
@@ -51,6 +53,11 @@ protected:
     // ISO: M5, or S.. M3/M4.
     virtual void on_spindle(const Spindle& spindle);
     virtual void on_dwell(double seconds) = 0;
+    // Coolant to `coolant.mode`: the machine's code in a block of its own. An InputError at the
+    // job key's path where the machine has no such coolant.
+    virtual void on_coolant(const Coolant& coolant);
+    // Whether the dialect writes a program number (a job's programNumber is refused otherwise).
+    virtual bool takes_program_number() const { return false; }
     virtual void on_comment(const std::string& text);
     // A rapid to `to`; the base writes G0 with the modal axis words that changed.
     virtual void on_rapid(const Vec3& to);
@@ -92,10 +99,19 @@ protected:
     };
     // The layout of the feed move being written (the base: the modal G1, compensation first).
     virtual LinearLayout linear_layout();
-    // Writes a block of an unknown-position rapid: XY first, then Z.
+    // A rapid to `to` while the tool's height is unknown (program start, after a tool change):
+    // Z alone first (rapid_z_from_unknown), then X and Y at that height.
     virtual void rapid_from_unknown(const Vec3& to);
+    // The block that moves Z alone to `z` (mm) from an unknown height: the first move of a
+    // tool. ISO adds the tool length offset (G43 H) to it.
+    virtual void rapid_z_from_unknown(double z);
 
     // ---- shared helpers ----
+    // The safe-start block: the machine's frame startBlock words, `unit_word` (may be empty)
+    // and the job's work offset, in one block (nothing when all are empty).
+    void write_start_block(const std::string& unit_word);
+    // The machine's safe retract block (frame safeRetract, e.g. G53 G0 Z0); Z is unknown after it.
+    void write_safe_retract();
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
@@ -222,6 +238,9 @@ private:
 
 // The post for a machine, by its dialect. Throws InputError for an unknown dialect.
 std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options);
+
+// Whether the machine's start block selects the XY plane (G17).
+bool starts_in_xy(const Machine& machine);
 
 // Which optional drilling fields a cycle uses (for matching against a canned cycle).
 std::vector<DrillField> drill_fields_used(const DrillCycle& cycle);

@@ -12,6 +12,11 @@
 
 namespace camgen {
 
+// How the tool reached the end of a rapid from an unknown position: Z alone first, then X and
+// Y (safe: the tool was at its height before it moved across), or with X or Y moved while
+// the height was still unknown (a tool touched off on the stock crosses the part).
+enum class Approach { z_first, xy_first };
+
 // One event read from a program. Canned drilling cycles come back as DrillCycle, DrillPoint
 // (one per hole) and DrillEnd; trace_program (motion.hpp) expands them with longhand_moves.
 struct ReadEvent {
@@ -22,6 +27,7 @@ struct ReadEvent {
     double uncertainty = 0.0;   // mm the end point may be off beyond the written resolution,
                                 // because the control computes it (nccad D-form arcs, the
                                 // depths of a canned cycle from its rounded parameters)
+    Approach approach = Approach::z_first;  // a from_unknown Rapid: whether Z moved first
 };
 
 // How precisely a program for a machine states values: half a unit of the last decimal written,

@@ -62,6 +62,14 @@ inline constexpr Named<Units> unit_names[] = {
     {Units::inch, "inch", "inches (lengths in in, feeds in in/min)"},
 };
 
+// Coolant: off, flood (ISO M8) or mist (ISO M7).
+enum class CoolantMode { off, flood, mist };
+inline constexpr Named<CoolantMode> coolant_modes[] = {
+    {CoolantMode::off, "off", "no coolant (ISO M9)"},
+    {CoolantMode::flood, "flood", "flood coolant (ISO M8)"},
+    {CoolantMode::mist, "mist", "mist coolant (ISO M7)"},
+};
+
 inline constexpr Named<Plane> plane_names[] = {
     {Plane::xy, "xy", "G17, arcs seen from +Z"},
     {Plane::xz, "xz", "G18, arcs seen from +Y"},

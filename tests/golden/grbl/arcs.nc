@@ -1,11 +1,11 @@
 (arcs)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (90, 180, 270 and 360 degrees counter-clockwise)
 (Insert tool 5: 4 mm end mill - arc test cutter)
 M0
 S4000 M3
-G0 X20 Y0
-Z10
+G0 Z10
+X20 Y0
 G1 Z-1 F100
 G3 X10 Y10 I-10 J0 F300
 X10 Y30 I0 J10

@@ -1,11 +1,11 @@
 (bracket)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (outline with a round ear)
 (Insert tool 3: 6 mm end mill - 3 flute carbide)
 M0
 S3000 M3
-G0 X0 Y0
-Z10
+G0 Z10
+X0 Y0
 G1 Z-3 F100
 X60 F400
 G3 X70 Y10 I0 J10

@@ -1,11 +1,11 @@
 (drilling)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (spot a rotated grid, dwell 0.5 s)
 (Insert tool 1: 10 mm spot drill - spot drill 90 deg)
 M0
 S1500 M3
-G0 X10 Y10
-Z20
+G0 Z20
+X10 Y10
 Z5
 Z2
 G1 Z-2 F100
@@ -42,8 +42,8 @@ M5
 (Insert tool 2: 6 mm drill - HSS jobber)
 M0
 S1200 M3
-G0 X10 Y10
-Z20
+G0 Z20
+X10 Y10
 Z5
 Z1
 G1 Z-9.803 F120
@@ -74,8 +74,8 @@ M5
 (Insert tool 3: 5 mm drill - long series)
 M0
 S1800 M3
-G0 X60.607 Y40.607
-Z20
+G0 Z20
+X60.607 Y40.607
 Z10
 Z2
 G1 Z-4 F150
@@ -179,8 +179,8 @@ M5
 (Insert tool 4: 3 mm drill - stub)
 M0
 S2500 M3
-G0 X10 Y55
-Z20
+G0 Z20
+X10 Y55
 Z3
 Z1
 G1 Z-1.5 F90
@@ -234,8 +234,8 @@ M5
 (Insert tool 5: 8 mm reamer - H7 reamer)
 M0
 S400 M3
-G0 X30 Y10
-Z20
+G0 Z20
+X30 Y10
 Z5
 Z2
 G1 Z-10 F60
@@ -252,8 +252,8 @@ M5
 (Insert tool 6: 20 mm boring bar - boring head)
 M0
 S800 M3
-G0 X50 Y30
-Z20
+G0 Z20
+X50 Y30
 Z5
 Z2
 G1 Z-12 F40

@@ -1,11 +1,11 @@
 (plate)
-G17 G21 G90 G94
+G40 G49 G17 G90 G94 G21
 (spot six holes)
 (Insert tool 1: 10 mm spot drill - spot drill 90 deg)
 M0
 S1500 M3
-G0 X10 Y10
-Z10
+G0 Z10
+X10 Y10
 Z2
 G1 Z-1.5 F80
 G0 Z2
@@ -30,8 +30,8 @@ M5
 (Insert tool 2: 6 mm drill - HSS jobber)
 M0
 S1200 M3
-G0 X10 Y10
-Z10
+G0 Z10
+X10 Y10
 Z5
 Z1
 G1 Z-9.803 F120

@@ -3,8 +3,8 @@
 2 ; T5 4 mm end mill - arc test cutter
 3 TOOL CALL 5 Z S4000
 4 M3
-5 L X+20 Y+0 R0 FMAX
-6 L Z+10 R0 FMAX
+5 L Z+10 R0 FMAX
+6 L X+20 Y+0 R0 FMAX
 7 L Z-1 F100
 8 CC X+10 Y+0
 9 C X+10 Y+10 DR+ F300

@@ -3,8 +3,8 @@
 2 ; T3 6 mm end mill - 3 flute carbide
 3 TOOL CALL 3 Z S3000
 4 M3
-5 L X+0 Y+0 R0 FMAX
-6 L Z+10 R0 FMAX
+5 L Z+10 R0 FMAX
+6 L X+0 Y+0 R0 FMAX
 7 L Z-3 F100
 8 L X+60 F400
 9 CC X+60 Y+10
