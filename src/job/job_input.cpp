@@ -45,7 +45,7 @@ constexpr KeySpec tool_keys[] = {
      .description = "kind of tool"},
     {.key = "diameter", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
      .description = "cutting diameter"},
-    {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+    {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{30, true}, .max = Bound{180, false},
      .description = "included point angle (needed by drillTip)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
@@ -139,8 +139,12 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     tool.diameter = length(f, "diameter");
     if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
     tool.tip_angle = f.optional_number("tipAngle");
-    if (tool.tip_angle && (*tool.tip_angle <= 0 || *tool.tip_angle >= 180))
-        f.fail("tipAngle", "tipAngle must be between 0 and 180 degrees (exclusive)");
+    // Drill points are 60 to 140 degrees (centre drills 60, spot drills 90 to 142); below 30 a
+    // point is a needle whose tip length, added by drillTip, would be several diameters.
+    if (tool.tip_angle && (*tool.tip_angle < 30 || *tool.tip_angle >= 180))
+        f.fail("tipAngle", fmt::format("tipAngle {} degrees is not a drill point: it must be between 30 (inclusive) "
+                                       "and 180 degrees (drills are 60 to 140)",
+                                       *tool.tip_angle));
     tool.flute_length = optional_length(f, "fluteLength");
     if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
     tool.rpm = f.number("rpm");

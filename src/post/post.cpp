@@ -84,6 +84,13 @@ void Post::fail(const std::string& key, const std::string& detail) const {
 }
 
 std::string Post::feed_word(double mm_per_min) {
+    const double f = clamped_feed(mm_per_min);
+    if (feed_fmt_.is_zero(f))
+        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
+    return feed_.format(f);
+}
+
+double Post::clamped_feed(double mm_per_min) {
     const MachineLimits& lim = machine_.limits;
     double f = mm_per_min;
     if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", f));
@@ -98,9 +105,7 @@ std::string Post::feed_word(double mm_per_min) {
                          op_path_, f, machine_.name, lim.min_feed));
         f = lim.min_feed;
     }
-    if (feed_fmt_.is_zero(f))
-        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
-    return feed_.format(f);
+    return f;
 }
 
 std::string Post::motion_word(double code) {
@@ -214,6 +219,8 @@ std::string Post::speed_word(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
         fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
                              machine_.limits.max_rpm));
+    if (rpm_fmt_.is_zero(rpm))
+        fail("", fmt::format("spindle speed {} rpm would be written as S0 on machine {}", rpm, machine_.name));
     return rpm_fmt_.word("S", rpm);
 }
 
@@ -375,8 +382,58 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
                                                          fit.spec->name, *fit.limit));
 }
 
-void Post::handle_drill_cycle(const DrillCycle& cycle) {
+DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
+    DrillCycle c = cycle;
+    const DrillValues& v = cycle.values;
+    auto refuse = [&](DrillField field, const std::string& detail) {
+        throw InputError(cycle.path + "/" + std::string(key_of(field)), detail);
+    };
+    const std::string& m = machine_.name;
+    // Speeds that would be written as S0 (or SST=0).
+    for (DrillField f : {DrillField::tapping_speed, DrillField::retract_speed})
+        if (auto rpm = v.get(f); rpm && rpm_fmt_.is_zero(*rpm))
+            refuse(f, fmt::format("{} {} rpm would be written as 0 on machine {}", key_of(f), *rpm, m));
+    // Lengths a control reads as 0: a peck of 0 never reaches the bottom.
+    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth, DrillField::pecking_retract})
+        if (auto mm = v.get(f); mm && xyz_fmt_.is_zero(*mm))
+            refuse(f, fmt::format("{} {} mm is below the resolution of machine {}: it would be written as 0", key_of(f), *mm, m));
+    if (v.degression_type() == DegressionType::value && xyz_fmt_.is_zero(v.value_or(DrillField::degression, 0.0)))
+        refuse(DrillField::degression, fmt::format("degression {} mm is below the resolution of machine {}: it would be "
+                                                   "written as 0", v.value_or(DrillField::degression, 0.0), m));
+    // A dwell that was asked for but would be written as none.
+    for (DrillField f : {DrillField::top_dwell, DrillField::bottom_dwell})
+        if (v.used(f) && dwell_fmt_.is_zero(*v.get(f)))
+            refuse(f, fmt::format("{} {} s is below the resolution of machine {}: it would be written as no dwell", key_of(f),
+                                  *v.get(f), m));
+    // The same pecks canned and longhand: more than any control takes is refused either way.
+    if (is_pecking(c.kind)) (void)peck_depths(c);
+    if (is_tapping(c.kind)) {
+        const double pitch = v.value_or(DrillField::pitch, 0.0);
+        const double in = v.value_or(DrillField::tapping_speed, c.spindle_rpm);
+        const double out = v.value_or(DrillField::retract_speed, in);
+        const double fastest = std::max(in, out);
+        if (pitch * fastest > machine_.limits.max_feed)
+            refuse(v.has(DrillField::tapping_speed) ? DrillField::tapping_speed : DrillField::pitch,
+                   fmt::format("the tap's feed {} mm/min (pitch {} mm x {} rpm) is above the limit of machine {} ({} "
+                               "mm/min); a tapping feed is never clamped, it must match the pitch: tap at {} rpm or less",
+                               pitch * fastest, pitch, fastest, m, machine_.limits.max_feed,
+                               std::floor(machine_.limits.max_feed / pitch)));
+        if (machine_.limits.max_rpm > 0 && fastest > machine_.limits.max_rpm)
+            refuse(DrillField::tapping_speed, fmt::format("tapping at {} rpm is above the limit of machine {} ({} rpm)",
+                                                          fastest, m, machine_.limits.max_rpm));
+        return c;
+    }
+    // Feeds the machine cannot run are clamped once, here, so that every dialect's canned
+    // cycle and the longhand moves carry the same value.
+    c.feed = clamped_feed(c.feed);
+    if (auto r = v.get(DrillField::retract_feedrate)) c.values.set(DrillField::retract_feedrate, clamped_feed(*r));
+    if (auto p = v.get(DrillField::plunging_feedrate)) c.values.set(DrillField::plunging_feedrate, clamped_feed(*p));
+    return c;
+}
+
+void Post::handle_drill_cycle(const DrillCycle& event) {
     if (!pos_known_) throw std::logic_error("drilling cycle from an unknown position");
+    const DrillCycle cycle = checked_cycle(event);
     cycle_ = cycle;
     cycle_spec_ = choose_canned(cycle);
     first_point_ = true;

@@ -452,7 +452,12 @@ TEST_CASE("tool errors") {
     tool_error(R"({"number": 2, "rpm": 1000})", "/tools/1/diameter", "required key \"diameter\" is missing");
     tool_error(R"({"number": 2, "diameter": 5, "rpm": 0})", "/tools/1/rpm", "rpm must be > 0");
     tool_error(R"({"number": 2, "diameter": 5, "rpm": "fast"})", "/tools/1/rpm", "expected a number, got a string");
-    tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "tipAngle": 180})", "/tools/1/tipAngle", "between 0 and 180");
+    tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "tipAngle": 180})", "/tools/1/tipAngle", "between 30 (inclusive) and 180");
+    // A typo of 1 for 118 would add 143 diameters of tip length with drillTip; 1e-6 would add 340 km.
+    tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "tipAngle": 1})", "/tools/1/tipAngle",
+               "tipAngle 1 degrees is not a drill point");
+    tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "tipAngle": 0.000001})", "/tools/1/tipAngle",
+               "is not a drill point");
     tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "type": "endmill"})", "/tools/1/type",
                "(did you mean \"end-mill\"?)");
     tool_error(R"({"number": 2, "diameter": 5, "rpm": 10, "direction": "left"})", "/tools/1/direction",

@@ -112,6 +112,9 @@ protected:
     void write_start_block(const std::string& unit_word);
     // The machine's safe retract block (frame safeRetract, e.g. G53 G0 Z0); Z is unknown after it.
     void write_safe_retract();
+    // A feed in mm/min within the machine's limits: clamped, with one warning per operation and
+    // feed. Fails for a feed that is not a number above 0.
+    double clamped_feed(double mm_per_min);
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
@@ -204,6 +207,12 @@ private:
     // Where the control stands at the start of an arc block (see arc_actual_end_).
     Vec3 arc_control_start(const Vec3& start) const;
     void handle_drill_cycle(const DrillCycle& cycle);
+    // The cycle as this machine can run it: feeds clamped to its limits (every dialect writes
+    // the same clamped values, canned or longhand); refused when a value would be written as 0
+    // or below the machine's resolution (speeds, pecks, dwells), when it needs more pecks than
+    // any control takes, or when a tap's synchronised feed is above the machine's limit (a
+    // tap's feed is never clamped: it must match its pitch).
+    DrillCycle checked_cycle(const DrillCycle& cycle);
     void handle_drill_point(Vec2 at);
     void handle_drill_end();
     // Whether the machine's canned cycle of a cycle's kind can write it, and if not, why.
