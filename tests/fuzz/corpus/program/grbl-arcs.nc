@@ -1,0 +1,54 @@
+(arcs)
+G40 G49 G17 G90 G94 G21
+(90, 180, 270 and 360 degrees counter-clockwise)
+(Insert tool 5: 4 mm end mill - arc test cutter)
+M0
+S4000 M3
+G0 Z10
+X20 Y0
+G1 Z-1 F100
+G3 X10 Y10 I-10 J0 F300
+X10 Y30 I0 J10
+X20 Y40 I10 J0
+X20 Y40 I0 J10
+G0 Z10
+(90, 180, 270 and 360 degrees clockwise)
+X60 Y0
+G1 Z-1 F100
+G2 X50 Y-10 I-10 J0 F300
+X50 Y-30 I0 J-10
+X60 Y-40 I10 J0
+X60 Y-40 I0 J-10
+G0 Z10
+(an arc smaller than the tolerance, one above the maximum radius)
+X100 Y0
+G1 Z-1 F100
+X100.004 Y0.004 F300
+X100 Y20
+X107.094 Y20.017
+X114.188 Y20.066
+X121.281 Y20.149
+X128.374 Y20.265
+X135.467 Y20.413
+X142.559 Y20.595
+X149.649 Y20.81
+X156.739 Y21.058
+X163.827 Y21.339
+X170.914 Y21.653
+X178 Y22
+G0 Z10
+(helix: 3 turns of 2 mm down to Z-7)
+X150 Y0
+G1 Z-1 F100
+G3 X150 Y0 Z-3 I0 J2 F300
+X150 Y0 Z-5 I0 J2
+X150 Y0 Z-7 I0 J2
+G0 Z10
+(XZ arc dipping to Z-6, then YZ arc dipping to Z-6)
+X200
+G1 Z-1 F100
+G18 G2 X210 Z-1 I5 K0 F300
+G19 G3 Y10 Z-1 J5 K0
+G0 Z10
+M5
+M2
