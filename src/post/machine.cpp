@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -14,6 +15,22 @@
 namespace camgen {
 
 namespace {
+
+// Bounds of a format's scale. Every scale a control needs lies well inside: 1000 turns seconds
+// into milliseconds, 1/6 mm/min into 0.1 mm/s, 1/25.4 mm into inches. Below 1e-3 a metre
+// would be written as at most 1 unit; above 1e6 a millimetre would be written as a kilometre.
+constexpr double min_scale = 1e-3;
+constexpr double max_scale = 1e6;
+// The widest integer part a format pads to: more digits than any control reads.
+constexpr int max_width = 20;
+// The highest first block number: eight digits, as Fanuc's N and program numbers allow.
+constexpr int max_sequence_number = 99999999;
+// The largest step between block numbers: more would run out of numbers after a few blocks.
+constexpr int max_sequence_increment = 1000;
+// The highest feed limit or rapid rate, mm/min: 1 km/min, above any machine tool's axes.
+constexpr double max_feed_limit = 1e6;
+// The highest spindle speed limit, rpm: above any spindle (air-bearing spindles reach 300000).
+constexpr double max_rpm_limit = 1e6;
 
 // The choices of a machine file that are not words of the vocabulary.
 enum class LineBreak { lf, crlf };
@@ -128,12 +145,12 @@ constexpr KeySpec globals_keys[] = {
      .description = "the arc tolerance: every arc block's start and end radii agree within it after rounding"},
     {.key = "showSequenceNumbers", .type = JsonType::boolean, .default_json = "false",
      .description = "number the blocks"},
-    {.key = "sequenceNumberStart", .type = JsonType::integer, .quantity = Quantity::count, .default_json = "10",
-     .description = "the first block number"},
+    {.key = "sequenceNumberStart", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
+     .max = Bound{max_sequence_number, true}, .default_json = "10", .description = "the first block number"},
     {.key = "sequenceNumberPrefix", .type = JsonType::string, .default_json = "\"N\"",
      .description = "written before a block number (\"\" for Heidenhain)"},
     {.key = "sequenceNumberIncrement", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
-     .default_json = "5", .description = "the step between block numbers"},
+     .max = Bound{max_sequence_increment, true}, .default_json = "5", .description = "the step between block numbers"},
 };
 
 // The keys of formats and inchFormats: one format per word family.
@@ -150,25 +167,28 @@ constexpr KeySpec format_keys[] = {
 // The keys of one format (CNC-Calc createFormat).
 constexpr KeySpec format_spec_keys[] = {
     {.key = "prefix", .type = JsonType::string, .description = "written before the number"},
-    {.key = "width", .type = JsonType::integer, .quantity = Quantity::count,
-     .description = "minimum digits of the integer part"},
+    {.key = "width", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
+     .max = Bound{max_width, true}, .description = "minimum digits of the integer part"},
     {.key = "zeropad", .type = JsonType::boolean, .description = "pad the integer part with 0 (else with spaces)"},
     {.key = "decimals", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
      .max = Bound{12, true}, .description = "maximum decimals (exact count with forceDecimal)"},
-    {.key = "scale", .quantity = Quantity::factor, .min = Bound{0, false}, .description = "the value is multiplied by it"},
+    {.key = "scale", .quantity = Quantity::factor, .min = Bound{min_scale, true}, .max = Bound{max_scale, true},
+     .description = "the value is multiplied by it; one unit (1 mm, 1 mm/min, 1 s, 1 rpm, 1 degree) times scale must "
+                    "not round to 0 at the format's decimals"},
     {.key = "forceDecimal", .type = JsonType::boolean, .description = "always write every decimal (3 -> 3.000)"},
     {.key = "forceSign", .type = JsonType::boolean, .description = "write + before positive values"},
 };
 
 // The keys of limits.
 constexpr KeySpec limits_keys[] = {
-    {.key = "maxFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "10000",
+    {.key = "maxFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .max = Bound{max_feed_limit, true}, .default_json = "10000",
      .description = "feeds above it are clamped"},
-    {.key = "minFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "1",
+    {.key = "minFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .max = Bound{max_feed_limit, true}, .default_json = "1",
      .description = "feeds below it are clamped; not above maxFeed"},
-    {.key = "rapidRate", .quantity = Quantity::feed, .min = Bound{0, false}, .default_json = "5000",
+    {.key = "rapidRate", .quantity = Quantity::feed, .min = Bound{0, false}, .max = Bound{max_feed_limit, true}, .default_json = "5000",
      .description = "rapid speed, for time estimates"},
-    {.key = "maxRpm", .quantity = Quantity::speed, .default_json = "0", .description = "the highest spindle speed (0: no limit)"},
+    {.key = "maxRpm", .quantity = Quantity::speed, .min = Bound{0, false}, .max = Bound{max_rpm_limit, true},
+     .description = "the highest spindle speed (default: no limit)"},
 };
 
 // The keys of arcs.
@@ -225,13 +245,42 @@ constexpr KeySpec cycle_keys[] = {
      .description = "the drilling fields the canned cycle carries"},
 };
 
-// The strings of a JSON array of strings at `path`.
+// Refuses machine-file text that is written into programs (prefixes, separators, codes, cycle
+// names, dialect settings) when a control would read it as more than the word it is: control
+// bytes and line breaks end or split a block, bytes outside printable ASCII are read
+// differently by every control, '(' ')' ';' open or close a comment and '%' ends a Fanuc tape.
+void check_program_text(const std::string& text, const std::string& path, const json::Source& source) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        std::string what;
+        if (c == '\n' || c == '\r') what = "a line break";
+        else if (c < 0x20 || c == 0x7F) what = fmt::format("the control byte 0x{:02X}", static_cast<unsigned>(c));
+        else if (c >= 0x80) what = fmt::format("the non-ASCII byte 0x{:02X}", static_cast<unsigned>(c));
+        else if (c == '(' || c == ')' || c == ';' || c == '%') what = fmt::format("'{}'", static_cast<char>(c));
+        else continue;
+        json::fail(source, path,
+                   fmt::format("{} at character {}: text written into the program must be printable ASCII "
+                               "without ( ) ; %", what, i + 1));
+    }
+}
+
+// Every string inside a dialect settings value, checked as program text.
+void check_settings_text(const nlohmann::json& v, const std::string& path, const json::Source& source) {
+    if (v.is_string()) check_program_text(v.get<std::string>(), path, source);
+    if (v.is_array())
+        for (size_t i = 0; i < v.size(); ++i) check_settings_text(v[i], fmt::format("{}/{}", path, i), source);
+    if (v.is_object())
+        for (const auto& [key, item] : v.items()) check_settings_text(item, path + "/" + key, source);
+}
+
+// The strings of a JSON array of strings at `path`, each checked as program text.
 std::vector<std::string> strings_at(const nlohmann::json& v, const std::string& path, const json::Source& source) {
     if (!v.is_array()) json::fail(source, path, "expected an array of strings");
     std::vector<std::string> out;
     for (size_t i = 0; i < v.size(); ++i) {
-        if (!v[i].is_string() || v[i].get<std::string>().empty())
-            json::fail(source, fmt::format("{}/{}", path, i), "expected a non-empty string");
+        const std::string item_path = fmt::format("{}/{}", path, i);
+        if (!v[i].is_string() || v[i].get<std::string>().empty()) json::fail(source, item_path, "expected a non-empty string");
+        check_program_text(v[i].get<std::string>(), item_path, source);
         out.push_back(v[i].get<std::string>());
     }
     return out;
@@ -266,18 +315,31 @@ nc::FormatSpec default_format(const std::string& key) {
     return s;
 }
 
-nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base) {
-    if (auto v = f.optional_string("prefix")) base.prefix = *v;
-    if (auto v = f.optional_integer("width")) base.width = *v;
+nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base, const json::Source& source) {
+    if (auto v = f.optional_string("prefix")) {
+        check_program_text(*v, f.path_of("prefix"), source);
+        base.prefix = *v;
+    }
+    if (auto v = f.optional_integer("width")) {
+        if (*v < 0 || *v > max_width) f.fail("width", fmt::format("width must be between 0 and {}", max_width));
+        base.width = *v;
+    }
     base.zeropad = f.boolean("zeropad", base.zeropad);
     if (auto v = f.optional_integer("decimals")) {
         if (*v < 0 || *v > 12) f.fail("decimals", "decimals must be between 0 and 12");
         base.decimals = *v;
     }
-    if (auto v = f.optional_number("scale")) {
-        if (!(*v > 0)) f.fail("scale", "scale must be > 0");
-        base.scale = *v;
+    const auto scale = f.optional_number("scale");
+    if (scale) {
+        if (!(*scale >= min_scale && *scale <= max_scale))
+            f.fail("scale", fmt::format("scale must be between {} and {:.0f}", min_scale, max_scale));
+        base.scale = *scale;
     }
+    // One unit of the quantity (1 mm, 1 mm/min, 1 s, 1 rpm) must not be written as 0.
+    if (base.scale * std::pow(10.0, base.decimals) < 1.0 - 1e-9)
+        f.fail(scale ? "scale" : "decimals",
+               fmt::format("scale {} with {} decimals writes 1 as 0; the scale must be at least {}", base.scale,
+                           base.decimals, std::pow(10.0, -base.decimals)));
     base.force_decimal = f.boolean("forceDecimal", base.force_decimal);
     base.force_sign = f.boolean("forceSign", base.force_sign);
     f.finish(format_spec_keys);
@@ -378,15 +440,25 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         m.decimal_mark = *mark;
         m.block.line_break = std::string(name_of(line_breaks, gf.choice("linebreak", line_breaks, LineBreak::lf)));
         m.block.separator = gf.optional_string("variableDelimeter").value_or(" ");
+        check_program_text(m.block.separator, gf.path_of("variableDelimeter"), source);
         if (auto t = gf.optional_number("tolerance")) {
             if (!(*t > 0)) gf.fail("tolerance", "tolerance must be > 0");
             m.tolerance = *t;
         }
         m.block.sequence_numbers = gf.boolean("showSequenceNumbers", false);
-        if (auto v = gf.optional_integer("sequenceNumberStart")) m.block.sequence_start = *v;
-        if (auto v = gf.optional_string("sequenceNumberPrefix")) m.block.sequence_prefix = *v;
+        if (auto v = gf.optional_integer("sequenceNumberStart")) {
+            if (*v < 0 || *v > max_sequence_number)
+                gf.fail("sequenceNumberStart", fmt::format("sequenceNumberStart must be between 0 and {}", max_sequence_number));
+            m.block.sequence_start = *v;
+        }
+        if (auto v = gf.optional_string("sequenceNumberPrefix")) {
+            check_program_text(*v, gf.path_of("sequenceNumberPrefix"), source);
+            m.block.sequence_prefix = *v;
+        }
         if (auto v = gf.optional_integer("sequenceNumberIncrement")) {
-            if (*v < 1) gf.fail("sequenceNumberIncrement", "sequenceNumberIncrement must be >= 1");
+            if (*v < 1 || *v > max_sequence_increment)
+                gf.fail("sequenceNumberIncrement",
+                        fmt::format("sequenceNumberIncrement must be between 1 and {}", max_sequence_increment));
             m.block.sequence_increment = *v;
         }
         gf.finish(globals_keys);
@@ -403,7 +475,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             const std::string key(format_key.key);
             if (const auto* spec = ff.member(key)) {
                 nc::FormatSpec base = pre.empty() ? default_format(key) : m.formats.count(key) ? m.formats[key] : default_format(key);
-                m.formats[pre + key] = read_format(json::Fields(*spec, ff.path_of(key), source), base);
+                m.formats[pre + key] = read_format(json::Fields(*spec, ff.path_of(key), source), base, source);
             }
         }
         ff.finish(format_keys);
@@ -411,16 +483,18 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.feed_unit = f.choice("feedUnit", feed_units, FeedUnit::per_minute);
     if (const auto* l = f.member("limits")) {
         json::Fields lf(*l, "/limits", source);
-        auto positive = [&](const char* key, double& out) {
+        auto positive = [&](const char* key, double& out, double most, const char* unit) {
             if (auto v = lf.optional_number(key)) {
-                if (!(*v > 0)) lf.fail(key, fmt::format("{} must be > 0", key));
+                if (!(*v > 0 && *v <= most))
+                    lf.fail(key, fmt::format("{} must be > 0 and at most {:.0f} {}", key, most, unit));
                 out = *v;
             }
         };
-        positive("maxFeed", m.limits.max_feed);
-        positive("minFeed", m.limits.min_feed);
-        positive("rapidRate", m.limits.rapid_rate);
-        if (auto v = lf.optional_number("maxRpm")) m.limits.max_rpm = *v;
+        positive("maxFeed", m.limits.max_feed, max_feed_limit, "mm/min");
+        positive("minFeed", m.limits.min_feed, max_feed_limit, "mm/min");
+        positive("rapidRate", m.limits.rapid_rate, max_feed_limit, "mm/min");
+        // Absent means no limit; a value is a limit, so 0 or below is refused.
+        positive("maxRpm", m.limits.max_rpm, max_rpm_limit, "rpm (leave it out for no limit)");
         if (m.limits.min_feed > m.limits.max_feed) lf.fail("minFeed", "minFeed is above maxFeed");
         lf.finish(limits_keys);
     }
@@ -496,6 +570,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 json::Fields cf((*cycles)[i], path, source);
                 DrillingCycleSpec c;
                 c.name = cf.string("name");
+                check_program_text(c.name, cf.path_of("name"), source);
                 std::string kind = cf.string("kind");
                 if (auto k = value_named(cycle_kinds, kind))
                     c.kind = *k;
@@ -537,7 +612,10 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
         if (const auto* c = ff.member("coolant")) {
             json::Fields cf(*c, "/frame/coolant", source);
             for (const auto& mode : coolant_modes)
-                if (auto code = cf.optional_string(mode.name)) m.frame.coolant[mode.value] = *code;
+                if (auto code = cf.optional_string(mode.name)) {
+                    check_program_text(*code, cf.path_of(mode.name), source);
+                    m.frame.coolant[mode.value] = *code;
+                }
             if (!m.frame.coolant.empty() && !m.frame.coolant.count(CoolantMode::off))
                 cf.fail("off", "a machine with coolant needs the code that switches it off");
             cf.finish(coolant_keys);
@@ -554,6 +632,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     }
     if (const auto* s = f.member("settings")) {
         if (!s->is_object()) f.fail("settings", "expected an object");
+        check_settings_text(*s, "/settings", source);
         m.dialect_settings = *s;
     }
     f.finish(machine_keys);

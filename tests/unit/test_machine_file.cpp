@@ -1,0 +1,159 @@
+// Machine files are checked like jobs (issue 10 part 2): a value that would break every
+// program the machine writes is refused with an InputError naming the machine file's JSON
+// path and line. Each test takes a built-in machine file and changes one value.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "support.hpp"
+
+using namespace camgen;
+
+namespace {
+
+// The text of the built-in machine `name`.
+std::string builtin_text(const std::string& name) {
+    for (const auto& e : embedded_machines())
+        if (name == e.name) return e.text;
+    FAIL("no built-in machine " << name);
+    return {};
+}
+
+// A refusal: the path, the 1-based line in the machine file and the message.
+struct Refusal {
+    std::string path;
+    int line = 0;
+    std::string detail;
+};
+
+// Parses machine `name` with the one occurrence of `from` replaced by `to`; the refusal, or an
+// empty one when the file was accepted. `line` is where `to` stands in the changed file.
+Refusal refusal(const std::string& name, const std::string& from, const std::string& to, int& line) {
+    std::string text = builtin_text(name);
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    REQUIRE(text.find(from, at + 1) == std::string::npos);
+    text.replace(at, from.size(), to);
+    line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    try {
+        parse_machine(text, name, "machines/" + name + ".json");
+    } catch (const InputError& e) {
+        CHECK(e.source() == "machines/" + name + ".json");
+        return {e.path(), e.line(), e.detail()};
+    }
+    return {};
+}
+
+// Checks that changing `from` to `to` in machine `name` is refused at `path`, on the line of
+// the change, with a message containing `message`.
+void check_refused(const std::string& name, const std::string& from, const std::string& to, const std::string& path,
+                   const std::string& message) {
+    CAPTURE(name);
+    CAPTURE(to);
+    int line = 0;
+    const Refusal r = refusal(name, from, to, line);
+    CHECK(r.path == path);
+    CHECK(r.line == line);
+    CHECK_MESSAGE(r.detail.find(message) != std::string::npos, r.detail);
+}
+
+// Checks that changing `from` to `to` in machine `name` is accepted.
+void check_accepted(const std::string& name, const std::string& from, const std::string& to) {
+    CAPTURE(to);
+    int line = 0;
+    CHECK(refusal(name, from, to, line).path.empty());
+}
+
+}  // namespace
+
+TEST_CASE("machine file: every built-in machine loads") {
+    CHECK(embedded_machines().size() == 7);
+    for (const auto& e : embedded_machines()) {
+        CAPTURE(e.name);
+        CHECK_NOTHROW(load_machine(e.name));
+    }
+}
+
+TEST_CASE("machine file: a format's scale writes one unit as at least one in the last digit") {
+    const std::string dwell = R"("dwell": {"decimals": 0, "scale": 1000})";
+    check_refused("fanuc", dwell, R"("dwell": {"decimals": 0, "scale": 1e-9})", "/formats/dwell/scale",
+                  "scale must be between 0.001 and 1000000");
+    check_refused("fanuc", dwell, R"("dwell": {"decimals": 0, "scale": 1e7})", "/formats/dwell/scale",
+                  "scale must be between 0.001 and 1000000");
+    check_refused("fanuc", dwell, R"("dwell": {"decimals": 0, "scale": 0.01})", "/formats/dwell/scale",
+                  "scale 0.01 with 0 decimals writes 1 as 0; the scale must be at least 1");
+    check_refused("fanuc", R"("rpm": {"decimals": 0})", R"("rpm": {"decimals": 0, "scale": 0.5})", "/formats/rpm/scale",
+                  "writes 1 as 0");
+    check_accepted("fanuc", dwell, R"("dwell": {"decimals": 3, "scale": 0.001})");
+    check_accepted("fanuc", dwell, R"("dwell": {"decimals": 0, "scale": 1000000})");
+}
+
+TEST_CASE("machine file: decimals between 0 and 12") {
+    const std::string xyz = R"("xyz": {"decimals": 3, "forceDecimal": true})";
+    check_refused("fanuc", xyz, R"("xyz": {"decimals": 13, "forceDecimal": true})", "/formats/xyz/decimals",
+                  "decimals must be between 0 and 12");
+    check_refused("fanuc", xyz, R"("xyz": {"decimals": -1, "forceDecimal": true})", "/formats/xyz/decimals",
+                  "decimals must be between 0 and 12");
+}
+
+TEST_CASE("machine file: width between 0 and 20") {
+    const std::string code = R"("code": {"width": 2,)";
+    check_refused("wabeco", code, R"("code": {"width": 21,)", "/formats/code/width", "width must be between 0 and 20");
+    check_refused("wabeco", code, R"("code": {"width": -1,)", "/formats/code/width", "width must be between 0 and 20");
+    check_accepted("wabeco", code, R"("code": {"width": 20,)");
+}
+
+TEST_CASE("machine file: sequence numbers start at 0 or above and step by 1 to 1000") {
+    const std::string start = R"("sequenceNumberStart": 10)";
+    check_refused("fanuc", start, R"("sequenceNumberStart": -10)", "/globals/sequenceNumberStart",
+                  "sequenceNumberStart must be between 0 and 99999999");
+    check_refused("fanuc", start, R"("sequenceNumberStart": 100000000)", "/globals/sequenceNumberStart",
+                  "sequenceNumberStart must be between 0 and 99999999");
+    check_accepted("fanuc", start, R"("sequenceNumberStart": 0)");
+    const std::string step = R"("sequenceNumberIncrement": 5)";
+    check_refused("fanuc", step, R"("sequenceNumberIncrement": 0)", "/globals/sequenceNumberIncrement",
+                  "sequenceNumberIncrement must be between 1 and 1000");
+    check_refused("fanuc", step, R"("sequenceNumberIncrement": 1001)", "/globals/sequenceNumberIncrement",
+                  "sequenceNumberIncrement must be between 1 and 1000");
+}
+
+TEST_CASE("machine file: limits are positive and below 1000000") {
+    const std::string limits = R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000, "maxRpm": 12000})";
+    check_refused("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000, "maxRpm": -1})",
+                  "/limits/maxRpm", "maxRpm must be > 0 and at most 1000000 rpm (leave it out for no limit)");
+    check_refused("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000, "maxRpm": 0})",
+                  "/limits/maxRpm", "maxRpm must be > 0");
+    check_refused("fanuc", limits, R"("limits": {"maxFeed": 2e6, "minFeed": 1, "rapidRate": 15000, "maxRpm": 12000})",
+                  "/limits/maxFeed", "maxFeed must be > 0 and at most 1000000 mm/min");
+    check_refused("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 1e9, "maxRpm": 12000})",
+                  "/limits/rapidRate", "rapidRate must be > 0 and at most 1000000 mm/min");
+    check_refused("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": -1, "rapidRate": 15000, "maxRpm": 12000})",
+                  "/limits/minFeed", "minFeed must be > 0");
+    check_accepted("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000})");
+}
+
+TEST_CASE("machine file: text written into programs has no control bytes, line breaks, ( ) ; or %") {
+    const std::string rule = "text written into the program must be printable ASCII without ( ) ; %";
+    // A line break in the end code would end the block early; '%' would end a Fanuc tape.
+    check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "M30\nM0")", "/settings/endCode",
+                  "a line break at character 4: " + rule);
+    check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "M30%")", "/settings/endCode", "'%' at character 4");
+    check_refused("grbl", R"("toolChange": "pause")", R"("toolChange": "pause\r")", "/settings/toolChange",
+                  "a line break");
+    check_refused("fanuc", R"({"name": "G81")", R"x({"name": "G81 (drill)")x", "/drilling/cycles/0/name",
+                  "'(' at character 5");
+    check_refused("fanuc", R"("startBlock": ["G40")", R"("startBlock": ["G40\u0007")", "/frame/startBlock/0",
+                  "the control byte 0x07 at character 4");
+    check_refused("fanuc", R"("workOffsets": ["G54..G59")", R"x("workOffsets": ["G54..G59)")x", "/frame/workOffsets/0",
+                  "')'");
+    check_refused("fanuc", R"("flood": "M8")", R"("flood": "M8;")", "/frame/coolant/flood", "';' at character 3");
+    check_refused("fanuc", R"("variableDelimeter": " ")", R"("variableDelimeter": "\t")", "/globals/variableDelimeter",
+                  "the control byte 0x09");
+    check_refused("heidenhain", R"("sequenceNumberPrefix": "")", R"("sequenceNumberPrefix": "N\u007f")",
+                  "/globals/sequenceNumberPrefix", "the control byte 0x7F at character 2");
+    check_refused("fanuc", R"("xyz": {"decimals": 3,)", R"("xyz": {"prefix": "X\u00e9", "decimals": 3,)",
+                  "/formats/xyz/prefix", "the non-ASCII byte 0xC3 at character 2");
+    check_refused("fanuc", R"("linebreak": "\n")", R"("linebreak": "\r")", "/globals/linebreak", "");
+    check_accepted("fanuc", R"("endCode": "M30")", R"("endCode": "M2")");
+}
