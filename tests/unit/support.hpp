@@ -82,6 +82,22 @@ inline std::filesystem::path scratch(const std::string& name) {
     return dir;
 }
 
+// A job with one drilling operation at (10, 10) and (30, 10) given by its JSON keys (tool 1:
+// a 5 mm drill at 1000 rpm with `tool_extra` keys, tool 2: an 8 mm tap at 300 rpm).
+inline std::string drill_job(const std::string& op, const std::string& tool_extra = "") {
+    return R"({"name": "t", "units": "mm", "clearance": 20, "tools": [
+  {"number": 1, "type": "drill", "diameter": 5, "rpm": 1000)" + tool_extra + R"(},
+  {"number": 2, "type": "tap", "diameter": 8, "rpm": 300}],
+"operations": [{"type": "drill", )" + op + R"(, "holes": [[10, 10], [30, 10]]}]})";
+}
+
+// Writes `text` to <scratch folder "job-NAME">/NAME.json and returns its path.
+inline std::string file_with(const std::string& name, const std::string& text) {
+    std::filesystem::path p = scratch("job-" + name) / (name + ".json");
+    std::ofstream(p) << text;
+    return p.string();
+}
+
 inline std::string read_file(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     std::ostringstream ss;

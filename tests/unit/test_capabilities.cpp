@@ -12,23 +12,11 @@ using namespace camgen;
 using test::post_job;
 using test::Run;
 using test::run;
+using test::drill_job;
+using test::file_with;
 
 namespace {
 
-// A job with one drilling operation given by its JSON keys (tool 1: a drill, tool 2: a tap).
-std::string drill_job(const std::string& op, const std::string& tool_extra = "") {
-    return R"({"name": "t", "units": "mm", "clearance": 20, "tools": [
-  {"number": 1, "type": "drill", "diameter": 5, "rpm": 1000)" + tool_extra + R"(},
-  {"number": 2, "type": "tap", "diameter": 8, "rpm": 300}],
-"operations": [{"type": "drill", )" + op + R"(, "holes": [[10, 10], [30, 10]]}]})";
-}
-
-// Writes `text` to a scratch file and returns its path.
-std::string file_with(const std::string& name, const std::string& text) {
-    std::filesystem::path p = test::scratch("safety-" + name) / (name + ".json");
-    std::ofstream(p) << text;
-    return p.string();
-}
 
 // The text of a built-in machine file.
 std::string machine_text(const std::string& name) {
