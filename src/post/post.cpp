@@ -409,6 +409,13 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth, DrillField::pecking_retract})
         if (auto mm = v.get(f); mm && xyz_fmt_.is_zero(*mm))
             refuse(f, fmt::format("{} {} mm is below the resolution of machine {}: it would be written as 0", key_of(f), *mm, m));
+    // A peck shorter than one unit of the last decimal: successive depths round onto each
+    // other, so pecks (and their dwells) would be written on the spot, two dwells in a row.
+    const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
+    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth})
+        if (auto mm = v.get(f); mm && *mm < unit)
+            refuse(f, fmt::format("{} {} mm is below the resolution of machine {} ({} mm): its pecks cannot be written",
+                                  key_of(f), *mm, m, unit));
     if (v.degression_type() == DegressionType::value && xyz_fmt_.is_zero(v.value_or(DrillField::degression, 0.0)))
         refuse(DrillField::degression, fmt::format("degression {} mm is below the resolution of machine {}: it would be "
                                                    "written as 0", v.value_or(DrillField::degression, 0.0), m));
