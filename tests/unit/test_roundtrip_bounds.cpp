@@ -75,6 +75,7 @@ std::vector<BoundCase> cases_of(CycleKind k, const Machine& m, double dwell_unit
         // 71 pecks of 0.3 mm; 71 pecks of a sub-millimetre step that does not divide the depth.
         add(R"("firstDepth": 0.3, "endDepth": 21.3)");
         add(R"("firstDepth": 0.2817, "endDepth": 20)");
+        add(R"("firstDepth": 3.7, "endDepth": 7.4004)");
     }
     if (used(DrillField::degression)) {
         // A value degression that shrinks the pecks over a long sequence (71 pecks and more).
@@ -105,7 +106,11 @@ std::vector<BoundCase> cases_of(CycleKind k, const Machine& m, double dwell_unit
         for (double s : {0.0, dwell_unit * 0.4, dwell_unit * 0.6, dwell_unit, dwell_unit * 1.5, dwell_unit * 2.5, 2.5})
             add(fmt::format(R"("{}": {})", key_of(f), num(s)));
         // Pecks with a dwell: a dwell per peck never becomes two dwells in a row.
-        if (is_pecking(k)) add(fmt::format(R"("{}": {}, "firstDepth": 0.0015)", key_of(f), num(dwell_unit * 1.5)));
+        // A last peck below the resolution (20.0004 = 5 x 4 + 0.0004) and 200 pecks of 0.0015 mm.
+        if (is_pecking(k)) {
+            add(fmt::format(R"("{}": {}, "firstDepth": 4, "endDepth": 20.0004)", key_of(f), num(dwell_unit * 1.5)));
+            add(fmt::format(R"("{}": {}, "firstDepth": 0.0015, "endDepth": 0.3)", key_of(f), num(dwell_unit * 1.5)));
+        }
     }
     return out;
 }
