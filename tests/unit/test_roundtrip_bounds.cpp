@@ -3,7 +3,7 @@
 // bounds and at awkward values (inch pitches, factors with 4 decimals, pecks that do not divide
 // the depth, 71 pecks with a degression, dwells near the machine's resolution, feeds at the
 // machine's limits), output canned and longhand, in mm and in inch where the machine accepts
-// inch: the job is posted, read back with camgen's reader and compared with the job within
+// inch, from a job in mm and the same numbers in an inch job: the job is posted, read back with camgen's reader and compared with the job within
 // the tolerance of the program's resolution. Where camgen refuses the job (job reading,
 // checked_cycle, choose_canned) it says so with an InputError; a mismatch or a program its
 // own reader rejects is a failure.
@@ -39,8 +39,9 @@ enum class Outcome { matched, refused, failed };
 // A number as JSON text, with enough digits to survive the round trip.
 std::string num(double v) { return fmt::format("{}", v); }
 
-// The job of one case: one drill operation of `kind` with `members`, two holes, in mm.
-std::string job_of(const BoundCase& c) {
+// The job of one case: one drill operation of `kind` with `members`, two holes, its values in
+// `units` (an inch job reads 0.79375 as inches: other values, the same awkward digits).
+std::string job_of(const BoundCase& c, Units units) {
     const bool tap = is_tapping(c.kind);
     std::string op = fmt::format(R"("type": "drill", "tool": {}, "cycle": "{}", "retractPlane": 5, "safeDistance": 1)",
                                  tap ? 2 : 1, name_of(cycle_kinds, c.kind));
@@ -52,7 +53,8 @@ std::string job_of(const BoundCase& c) {
     if ((c.kind == CycleKind::dwell || c.kind == CycleKind::bore_dwell) && c.members.find("bottomDwell") == std::string::npos)
         op += R"(, "bottomDwell": 0.5)";
     if (!c.members.empty()) op += ", " + c.members;
-    return R"({"name": "bounds", "clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 6, "rpm": 1200},)"
+    return R"({"name": "bounds", "units": ")" + std::string(name_of(unit_names, units)) +
+           R"(", "clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 6, "rpm": 1200},)"
            R"( {"number": 2, "type": "tap", "diameter": 8, "rpm": 300}], "operations": [{)" +
            op + R"(, "holes": [[10, 10], [30.5, 12.25]]}]})";
 }
@@ -169,16 +171,18 @@ TEST_CASE("every drilling field at its bounds and awkward values reads back as t
                 const std::string label = fmt::format("{} {} {}", machine.name, name_of(unit_names, units), longhand ? "longhand" : "canned");
                 const double dwell_unit = 2 * read_resolution(machine).dwell;
                 for (const auto& named : cycle_kinds)
-                    for (const BoundCase& c : cases_of(named.value, machine, dwell_unit)) {
-                        std::string detail;
-                        switch (run_case(job_of(c), machine, detail)) {
-                            case Outcome::matched: ++matched; break;
-                            case Outcome::refused: ++refused; break;
-                            case Outcome::failed:
-                                failures.push_back(fmt::format("{} {} {{{}}}: {}", label, name_of(cycle_kinds, c.kind), c.members, detail));
-                                break;
+                    for (const BoundCase& c : cases_of(named.value, machine, dwell_unit))
+                        for (Units job_units : {Units::mm, Units::inch}) {
+                            std::string detail;
+                            switch (run_case(job_of(c, job_units), machine, detail)) {
+                                case Outcome::matched: ++matched; break;
+                                case Outcome::refused: ++refused; break;
+                                case Outcome::failed:
+                                    failures.push_back(fmt::format("{} {} {} job {{{}}}: {}", label, name_of(cycle_kinds, c.kind),
+                                                                   name_of(unit_names, job_units), c.members, detail));
+                                    break;
+                            }
                         }
-                    }
             }
         }
     }
