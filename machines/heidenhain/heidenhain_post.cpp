@@ -43,7 +43,8 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
     if (tapping(c.kind)) {
         form = &heidenhain::rigid_tapping;
         const double pitch = p.get(DrillField::pitch).value_or(0.0) * (c.kind == CycleKind::tap_left ? -1.0 : 1.0);
-        v[Q::pitch] = len.format(pitch);
+        // Q239 times the speed is the feed: as many decimals as the pitch needs (1/32 in).
+        v[Q::pitch] = nc::exact_format(len.spec(), pitch, 6).format(pitch);
     } else if (!pecking(c.kind)) {
         form = &heidenhain::drilling;
         v[Q::plunge_feed] = feed.format(c.feed);

@@ -101,8 +101,10 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
         // R in one move; the control restores the spindle direction.
         on_rapid({at.x, at.y, position().z});
         on_rapid({at.x, at.y, c.safe_z});
+        // K times the speed is the feed: as many decimals as the pitch needs (1/32 in).
+        const double pitch = *c.values.get(DrillField::pitch);
         writer().add(g(iso::rigid_tap_code)).add(force_z(c.bottom_z))
-            .add(xyz_format().word("K", *c.values.get(DrillField::pitch))).end();
+            .add(nc::exact_format(xyz_format().spec(), pitch, 6).word("K", pitch)).end();
         forget_motion();
         assume_z(c.safe_z);
         on_rapid({at.x, at.y, c.retract_z});

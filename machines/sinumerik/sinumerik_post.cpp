@@ -2,6 +2,8 @@
 // whose parameter positions sinumerik_words.hpp names for the post and the reader.
 #include "machines/sinumerik/sinumerik_post.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
@@ -27,11 +29,13 @@ std::string join_parameters(std::vector<std::string> p) {
 std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
     const nc::Format len = machine.format("xyz"), sec = machine.format("dwell"), feed = machine.format("feed"),
                      rpm = machine.format("rpm");
-    // FRF is a factor: three decimals whatever the units.
+    // FRF is a factor, whatever the units: three decimals, or as many more (up to six) as the
+    // job's factor needs to be read back as itself (0.7803 is not 0.780).
+    const double frf = c.values.get(DrillField::first_feedrate_factor).value_or(1.0);
     nc::FormatSpec factor_spec = machine.format("xyz").spec();
     factor_spec.scale = 1.0;
     factor_spec.decimals = 3;
-    const nc::Format factor(factor_spec);
+    const nc::Format factor = nc::exact_format(factor_spec, frf, 6);
     const DrillValues& p = c.values;
     const sinumerik::CycleForm& form = sinumerik::cycle_form(c.kind);
     // The parameters by position; empty ones are the cycle's defaults.
@@ -60,7 +64,7 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
             if (p.degression_type() == DegressionType::value) v[q::dam] = len.format(*p.get(DrillField::degression));
             // DTB stays empty: it would dwell at every peck.
             if (full) v[q::dts] = dwell(p.get(DrillField::top_dwell));
-            v[q::frf] = factor.format(p.get(DrillField::first_feedrate_factor).value_or(1.0));
+            v[q::frf] = factor.format(frf);
             v[q::vari] = full ? one : zero;
             // _AXN stays empty: the tool axis.
             if (p.get(DrillField::minimum_depth)) v[q::mdep] = len.format(*p.get(DrillField::minimum_depth));
@@ -76,10 +80,13 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
             const double sst = p.get(DrillField::tapping_speed).value_or(c.spindle_rpm);
             v[q::dtb] = dwell(p.get(DrillField::bottom_dwell));
             v[q::sdac] = spindle_dir;  // the direction after the cycle; MPIT stays empty
-            v[q::pit] = len.format(pitch);  // negative: left-hand
+            // PIT, SST and SST1 multiply into the feed: as many decimals as the job's values need
+            // (an inch pitch of 0.79375 mm, 123.5 rpm), or the control taps at another feed.
+            v[q::pit] = nc::exact_format(len.spec(), pitch, 6).format(pitch);  // negative: left-hand
             v[q::poss] = zero;
-            v[q::sst] = rpm.format(sst);
-            v[q::sst1] = rpm.format(p.get(DrillField::retract_speed).value_or(sst));
+            v[q::sst] = nc::exact_format(rpm.spec(), sst, 3).format(sst);
+            const double sst1 = p.get(DrillField::retract_speed).value_or(sst);
+            v[q::sst1] = nc::exact_format(rpm.spec(), sst1, 3).format(sst1);
             break;
         }
         case CycleKind::ream: {
@@ -145,6 +152,13 @@ bool SinumerikPost::force_arc_end() const {
 std::optional<std::string> SinumerikPost::canned_limit(const DrillCycle& c, const DrillingCycleSpec&) const {
     if (c.values.degression_type() == DegressionType::factor)
         return "its DAM takes a degression value, not a factor";
+    // FRF reduces the first feed only: the control takes no factor above 1.
+    if (c.values.get(DrillField::first_feedrate_factor).value_or(1.0) > 1.0)
+        return "its FRF takes a factor up to 1, not above";
+    // The control feeds the first peck at F x FRF, unclamped: below the machine's minimum feed
+    // only longhand moves (clamped like every feed) run as the job says.
+    if (c.feed * c.values.get(DrillField::first_feedrate_factor).value_or(1.0) < machine().limits.min_feed)
+        return "its first feed F x FRF would be below the machine's minimum feed";
     return std::nullopt;
 }
 

@@ -67,8 +67,8 @@ struct Item {
 // A spindle change counts where it matters: before the next feed move, dwell or tool change,
 // and only if it changes the state then in effect. So a control that reverses its spindle
 // for a tap at the retract plane (LinuxCNC's M4 before G33.1) matches one that reverses at R,
-// and a speed written again unchanged says nothing.
-std::vector<Item> items_of(const Trace& t) {
+// and a speed written again unchanged says nothing. Rapids of `nowhere` mm or less are dropped.
+std::vector<Item> items_of(const Trace& t, double nowhere) {
     std::vector<Item> items;
     const Step* pending = nullptr;
     SpindleState state = SpindleState::off;
@@ -111,9 +111,29 @@ std::vector<Item> items_of(const Trace& t) {
         }
     }
     flush_spindle();
-    // A path that goes nowhere from a known start says nothing.
-    std::erase_if(items, [](const Item& i) { return i.kind == Item::Kind::path && i.path.start_known && i.path.segs.empty(); });
-    return items;
+    // A path that goes nowhere from a known start says nothing; nor does a rapid shorter than
+    // the resolution (a longhand re-approach that rounds onto the Z it starts from is not
+    // written at all).
+    std::erase_if(items, [&](const Item& i) {
+        if (i.kind != Item::Kind::path || !i.path.start_known) return false;
+        if (i.path.segs.empty()) return true;
+        if (!i.path.rapid) return false;
+        double length = 0.0;
+        for (const Seg& g : i.path.segs) length += g.length();
+        return length <= nowhere;
+    });
+    // What was on either side of a dropped rapid is one path again.
+    std::vector<Item> merged;
+    for (Item& i : items) {
+        if (!merged.empty() && i.kind == Item::Kind::path && merged.back().kind == Item::Kind::path &&
+            i.path.start_known && merged.back().path.rapid == i.path.rapid) {
+            auto& segs = merged.back().path.segs;
+            segs.insert(segs.end(), i.path.segs.begin(), i.path.segs.end());
+            continue;
+        }
+        merged.push_back(std::move(i));
+    }
+    return merged;
 }
 
 // A point of one path to be found on the other.
@@ -307,7 +327,7 @@ CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution&
 }
 
 std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tol) {
-    std::vector<Item> job = items_of(expected), prog = items_of(actual);
+    std::vector<Item> job = items_of(expected, tol.path), prog = items_of(actual, tol.path);
     size_t n = std::min(job.size(), prog.size());
     for (size_t i = 0; i < n; ++i) {
         const Item& a = job[i];

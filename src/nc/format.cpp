@@ -1,5 +1,6 @@
 #include "camgen/nc/format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -143,6 +144,14 @@ double Format::rounded(double value) const {
     if (d.negative) r = -r;
     if (r == 0.0) r = 0.0;  // no -0
     return r / spec_.scale;
+}
+
+Format exact_format(FormatSpec spec, double value, int max_decimals) {
+    for (; spec.decimals < max_decimals; ++spec.decimals) {
+        const Format f(spec);
+        if (std::abs(f.rounded(value) - value) <= 1e-9 * std::max(1.0, std::abs(value))) return f;
+    }
+    return Format(spec);
 }
 
 bool Format::is_zero(double value) const { return digits_of(spec_, value).zero(); }

@@ -315,6 +315,18 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
     for (DrillField f : drill_fields_used(cycle))
         if (!contains(fit.spec->fields, f)) fit.missing.emplace_back(std::string(key_of(f)));
     if (fit.missing.empty()) fit.limit = canned_limit(cycle, *fit.spec);
+    if (fit.missing.empty() && !fit.limit && is_pecking(cycle.kind)) {
+        // The control counts its pecks from the rounded depths: when they come to another
+        // number of pecks than the job's, only longhand pecks are the job's.
+        DrillCycle rounded = cycle;
+        for (DrillField f : {DrillField::first_depth, DrillField::degression, DrillField::minimum_depth})
+            if (auto v = cycle.values.get(f); v && contains(fit.spec->fields, f) &&
+                                              !(f == DrillField::degression && cycle.values.degression_type() != DegressionType::value))
+                rounded.values.set(f, xyz_fmt_.rounded(*v));
+        const size_t job_pecks = peck_depths(cycle).size(), control_pecks = peck_depths(rounded).size();
+        if (job_pecks != control_pecks)
+            fit.limit = fmt::format("its depths rounded to the program's decimals make {} pecks, not {}", control_pecks, job_pecks);
+    }
     return fit;
 }
 
@@ -397,6 +409,13 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth, DrillField::pecking_retract})
         if (auto mm = v.get(f); mm && xyz_fmt_.is_zero(*mm))
             refuse(f, fmt::format("{} {} mm is below the resolution of machine {}: it would be written as 0", key_of(f), *mm, m));
+    // A peck shorter than one unit of the last decimal: successive depths round onto each
+    // other, so pecks (and their dwells) would be written on the spot, two dwells in a row.
+    const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
+    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth})
+        if (auto mm = v.get(f); mm && *mm < unit)
+            refuse(f, fmt::format("{} {} mm is below the resolution of machine {} ({} mm): its pecks cannot be written",
+                                  key_of(f), *mm, m, unit));
     if (v.degression_type() == DegressionType::value && xyz_fmt_.is_zero(v.value_or(DrillField::degression, 0.0)))
         refuse(DrillField::degression, fmt::format("degression {} mm is below the resolution of machine {}: it would be "
                                                    "written as 0", v.value_or(DrillField::degression, 0.0), m));
@@ -418,6 +437,12 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
                                "mm/min); a tapping feed is never clamped, it must match the pitch: tap at {} rpm or less",
                                pitch * fastest, pitch, fastest, m, machine_.limits.max_feed,
                                std::floor(machine_.limits.max_feed / pitch)));
+        const double slowest = std::min(in, out);
+        if (pitch * slowest < machine_.limits.min_feed)
+            refuse(DrillField::pitch,
+                   fmt::format("the tap's feed {} mm/min (pitch {} mm x {} rpm) is below the minimum of machine {} ({} "
+                               "mm/min); a tapping feed is never clamped, it must match the pitch",
+                               pitch * slowest, pitch, slowest, m, machine_.limits.min_feed));
         if (machine_.limits.max_rpm > 0 && fastest > machine_.limits.max_rpm)
             refuse(DrillField::tapping_speed, fmt::format("tapping at {} rpm is above the limit of machine {} ({} rpm)",
                                                           fastest, m, machine_.limits.max_rpm));

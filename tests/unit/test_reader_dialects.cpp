@@ -357,8 +357,8 @@ TEST_CASE("inch programs: cycle parameters in inches; Sinumerik FRF stays a fact
     // FRF 0.5 whatever the units; _DIS1 the 1 mm clearance = 0.0394 in.
     CHECK(post_inch("sinumerik").find("CYCLE83(0.3937, 0.0000, 0.0787, -0.7874, , -0.1181, , , , , 0.500, 1, , , , , 0.0394)") !=
           std::string::npos);
-    // Q206: 100 mm/min = 3.9 in/min; Q208 99999 (FMAX) as written.
+    // Q206: 100 mm/min = 3.94 in/min (two decimals: 1 mm/min is 0.04, not 0.0); Q208 99999 (FMAX) as written.
     std::string tnc = post_inch("heidenhain");
-    CHECK(tnc.find("Q206=+3.9 ;") != std::string::npos);
+    CHECK(tnc.find("Q206=+3.94 ;") != std::string::npos);
     CHECK(tnc.find("Q208=+99999 ;") != std::string::npos);
 }

@@ -42,6 +42,10 @@ private:
     FormatSpec spec_;
 };
 
+// `spec` with as few decimals, from its own up to `max_decimals`, as write `value` exactly (a
+// factor, pitch or speed the control multiplies: 0.7803 must not become 0.780).
+Format exact_format(FormatSpec spec, double value, int max_decimals);
+
 // A modal NC word (CNC-Calc createVariable): remembers the last text it wrote and writes
 // nothing when the same text would be written again, unless forced or reset.
 class Word {
