@@ -405,12 +405,12 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     for (DrillField f : {DrillField::tapping_speed, DrillField::retract_speed})
         if (auto rpm = v.get(f); rpm && rpm_fmt_.is_zero(*rpm))
             refuse(f, fmt::format("{} {} rpm would be written as 0 on machine {}", key_of(f), *rpm, m));
-    // Lengths a control reads as 0: a peck of 0 never reaches the bottom.
-    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth, DrillField::pecking_retract})
-        if (auto mm = v.get(f); mm && xyz_fmt_.is_zero(*mm))
-            refuse(f, fmt::format("{} {} mm is below the resolution of machine {}: it would be written as 0", key_of(f), *mm, m));
-    // A peck shorter than one unit of the last decimal: successive depths round onto each
-    // other, so pecks (and their dwells) would be written on the spot, two dwells in a row.
+    // A back-off the control reads as 0 would not break the chip.
+    if (auto mm = v.get(DrillField::pecking_retract); mm && xyz_fmt_.is_zero(*mm))
+        refuse(DrillField::pecking_retract,
+               fmt::format("peckingRetract {} mm is below the resolution of machine {}: it would be written as 0", *mm, m));
+    // A peck shorter than one unit of the last decimal (or written as 0): successive depths
+    // round onto each other, so pecks (and their dwells) would be written on the spot.
     const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
     for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth})
         if (auto mm = v.get(f); mm && *mm < unit)
