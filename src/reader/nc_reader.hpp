@@ -7,6 +7,7 @@
 // sinumerik_reader.cpp, heidenhain_reader.cpp) says which words and codes exist and what they
 // do, as the post dialects do in machines/.
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -41,7 +42,12 @@ struct Block {
 };
 
 // A G or M code in tenths, so that G33.1 and G81 are both exact: code(81) == 810.
-constexpr int code(double c) { return static_cast<int>(c * 10.0 + (c < 0 ? -0.5 : 0.5)); }
+// A number too large to be a code (or not a number) gives a value no code has, never undefined
+// behaviour.
+constexpr int code(double c) {
+    if (!(c > -1e8 && c < 1e8)) return std::numeric_limits<int>::min();
+    return static_cast<int>(c * 10.0 + (c < 0 ? -0.5 : 0.5));
+}
 
 
 class NcReader {
