@@ -23,21 +23,28 @@ struct Posted {
 };
 
 // Posts a job given as JSON text for a machine given by name.
-inline Posted post_job(const std::string& job_json, const std::string& machine_name, bool snippet = false) {
-    Job job = read_job(job_json, "test.json");
-    Machine machine = load_machine(machine_name);
-    std::ostringstream out, warn;
+// Posts a job for a machine as the command line does (its work offset and program number);
+// warnings go to `warnings` when given.
+inline std::string post_program(const Job& job, const Machine& machine, bool snippet = false,
+                                std::ostream* warnings = nullptr) {
+    std::ostringstream out;
     PostOptions o;
     o.snippet = snippet;
     o.program_name = job.name;
-    o.warnings = &warn;
+    o.warnings = warnings;
     o.work_offset = job.work_offset;
     o.program_number = job.program_number;
     auto post = make_post(machine, out, o);
     post->open();
     expand_job(job, *post);
     post->close();
-    return {out.str(), warn.str()};
+    return out.str();
+}
+
+inline Posted post_job(const std::string& job_json, const std::string& machine_name, bool snippet = false) {
+    std::ostringstream warn;
+    std::string text = post_program(read_job(job_json, "test.json"), load_machine(machine_name), snippet, &warn);
+    return {std::move(text), warn.str()};
 }
 
 // The lines of a text.

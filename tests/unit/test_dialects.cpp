@@ -9,24 +9,10 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
+#include "support.hpp"
 
 using namespace camgen;
-
-namespace {
-
-// Posts `events` for `machine` as a snippet (no program start or end).
-std::string post_events(const Machine& machine, const std::vector<Event>& events) {
-    std::ostringstream out;
-    PostOptions o;
-    o.snippet = true;
-    auto post = make_post(machine, out, o);
-    post->open();
-    for (const Event& e : events) post->emit(e);
-    post->close();
-    return out.str();
-}
-
-}  // namespace
+using test::post_events;
 
 TEST_CASE("every dialect of the registry has a post and a reader; an unknown one has neither") {
     for (const char* name : {"fanuc", "linuxcnc", "grbl", "wabeco", "kosy", "sinumerik", "heidenhain"}) {

@@ -119,14 +119,7 @@ TEST_CASE("a machine's safe retract G53 G0 Z0: first where the height is unknown
     Machine m = load_machine("linuxcnc");
     m.frame.safe_retract = {"G53", "G0", "Z0"};
     const Job job = read_job(frame_job("", ""), "job.json");
-    std::ostringstream out;
-    PostOptions o;
-    o.program_name = job.name;
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(job, *post);
-    post->close();
-    const std::string program = out.str();
+    const std::string program = test::post_program(job, m);
     // Up in machine coordinates, across, down to the clearance with the length offset.
     CHECK(program.find("T1 M6\nS1000 M3\nG53 G0 Z0\nG0 X10 Y10\nG43 Z10 H1\n") != std::string::npos);
     CHECK(program.find("M5\nG53 G0 Z0\nM2\n") != std::string::npos);

@@ -77,16 +77,10 @@ TEST_CASE("every sample posted in inch for every machine with an inch mode reads
             CAPTURE(name);
             CAPTURE(f.path().string());
             Job job = read_job(test::read_file(f.path().string()), f.path().string());
-            std::ostringstream out;
-            PostOptions o;
-            o.program_name = job.name;
-            auto post = make_post(machine, out, o);
-            post->open();
-            expand_job(job, *post);
-            post->close();
+            const std::string program = test::post_program(job, machine);
             ReadResolution res;
             std::vector<ReadEvent> events;
-            REQUIRE_NOTHROW(events = read_program(out.str(), machine, "inch", &res));
+            REQUIRE_NOTHROW(events = read_program(program, machine, "inch", &res));
             CHECK(res.position > read_resolution(load_machine(name)).position);  // read in inches
             auto mismatch = compare_traces(trace_expected(expand_job(job), machine), trace_program(events, machine), compare_tolerance(machine, res, 0.0));
             CHECK_MESSAGE(!mismatch, (mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : ""));
