@@ -245,7 +245,10 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                 if (wrong_feed) break;  // the run of segments the point is near has ended
                 continue;
             }
-            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > tol.feed + eps) {
+            // A move that follows the spindle (a tap) feeds at pitch x speed: the speed written
+            // to the resolution of S moves its feed by up to pitch x that resolution.
+            double feed_limit = tol.feed + std::max(s.step->pitch, seg.step->pitch) * tol.rpm + eps;
+            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > feed_limit) {
                 // A point within the tolerance of a corner lies on both moves that meet there (a
                 // tiny arc written as one short line after a plunge): look on along the moves it
                 // is near for one at its feed before calling it a mismatch.

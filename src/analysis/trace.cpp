@@ -111,8 +111,12 @@ public:
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
                            ++trace_.canned_holes;
+                           // A tap's feed follows the spindle: its moves carry the pitch, so that a
+                           // comparison allows for the speed the program could write.
+                           pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
                            for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_))
                                add(ReadEvent{to_event(m), e.line, false, e.uncertainty});
+                           pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
                    },
@@ -143,6 +147,7 @@ private:
         s.to = to;
         s.from_known = from_known;
         s.feed = feed;
+        if (kind == StepKind::feed) s.pitch = pitch_;
         trace_.steps.push_back(s);
         pos_ = to;
         known_ = true;
@@ -155,6 +160,7 @@ private:
     int tool_ = 0;
     int line_ = 0;
     double uncertainty_ = 0.0;
+    double pitch_ = 0.0;  // while a tap is expanded
     std::optional<DrillCycle> cycle_;
 };
 

@@ -31,6 +31,7 @@ namespace {
 struct BoundCase {
     CycleKind kind;
     std::string members;  // `"key": value, ...` added to the operation (may be empty)
+    double tap_rpm = 300;  // the tap's speed (the tool's rpm)
 };
 
 // What a case came to: read back as the job, refused on input, or a failure with its text.
@@ -55,8 +56,8 @@ std::string job_of(const BoundCase& c, Units units) {
     if (!c.members.empty()) op += ", " + c.members;
     return R"({"name": "bounds", "units": ")" + std::string(name_of(unit_names, units)) +
            R"(", "clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 6, "rpm": 1200},)"
-           R"( {"number": 2, "type": "tap", "diameter": 8, "rpm": 300}], "operations": [{)" +
-           op + R"(, "holes": [[10, 10], [30.5, 12.25]]}]})";
+           R"( {"number": 2, "type": "tap", "diameter": 8, "rpm": )" + num(c.tap_rpm) + R"(}], "operations": [{)" + op +
+           R"(, "holes": [[10, 10], [30.5, 12.25]]}]})";
 }
 
 // The cases of one cycle kind on a machine: each field the kind uses at its bounds and at
@@ -97,6 +98,11 @@ std::vector<BoundCase> cases_of(CycleKind k, const Machine& m, double dwell_unit
         // Inch pitches: 1/32, 1/20, 1/13 in (as mm); metric fine and coarse; sub-resolution.
         for (double p : {0.79375, 1.27, 25.4 / 13, 0.35, 3.5, 0.0004, 0.001})
             add(fmt::format(R"("pitch": {})", num(p)));
+    if (is_tapping(k))
+        // Speeds that S rounds: the synchronised feed (pitch x speed) moves with the written S
+        // (a fuzz finding: 203.90625 rpm written S204 on linuxcnc, G33.1 feeding 255 mm/min).
+        for (double rpm : {203.90625, 299.965, 1.5})
+            out.push_back({k, "", rpm});
     if (used(DrillField::tapping_speed))
         for (double s : {0.4, 1.0, 333.0, 123.5, 1000.0})
             add(fmt::format(R"("tappingSpeed": {})", num(s)));

@@ -23,6 +23,7 @@ struct Step {
     Vec3 to;                         // rapid, feed: end
     bool from_known = true;          // false: from the tool-change position, path unknown
     double feed = 0.0;               // feed: mm/min as programmed
+    double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping), else 0
     std::optional<ArcGeometry> arc;  // feed: set for a circular move
     double seconds = 0.0;            // dwell
     int tool = 0;                    // the tool in the spindle (tool_change: the new one)
