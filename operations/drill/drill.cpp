@@ -147,7 +147,9 @@ std::vector<std::string_view> fields_used_by(CycleKind kind) {
     return out;
 }
 
-void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
+// The holes of the list are read at once (the document holds them already); the patterns are
+// counted now and made later (make_pending_holes), once the whole job's count is known.
+void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes, std::vector<HolePattern>& patterns) {
     const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line");
     if (!any)
         f.fail("", "a drill operation needs holes: give at least one of holes, grid, boltCircle "
@@ -189,8 +191,10 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         const double sx = in.length(g, "spacingX");
         const double sy = in.length(g, "spacingY");
         const Eigen::Isometry2d to_job = placement(origin, g.optional_number("rotation").value_or(0.0));
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) holes.push_back(apply(to_job, {i * sx, j * sy}));
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) out.push_back(apply(to_job, {i * sx, j * sy}));
+        });
     }
 
     if (const Json* value = f.member("boltCircle")) {
@@ -204,10 +208,12 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (count > max_pattern_holes) b.fail("count", "count is too large");
         in.claim_holes(count, b, "count");
         const double start = b.optional_number("startAngle").value_or(0.0);
-        for (int i = 0; i < count; ++i) {
-            const Vec2 u = unit_direction(start + 360.0 * i / count);
-            holes.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
-        }
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            for (int i = 0; i < count; ++i) {
+                const Vec2 u = unit_direction(start + 360.0 * i / count);
+                out.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
+            }
+        });
     }
 
     if (const Json* value = f.member("line")) {
@@ -219,18 +225,17 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (count < 1) l.fail("count", "count must be 1 or more");
         if (count > max_pattern_holes) l.fail("count", "count is too large");
         in.claim_holes(count, l, "count");
-        if (count == 1) {
-            holes.push_back(a);
-        } else {
-            for (int i = 0; i < count; ++i) {
-                if (i == count - 1) {
-                    holes.push_back(b);  // exactly the end point, no rounding
-                    break;
-                }
-                const double t = static_cast<double>(i) / (count - 1);
-                holes.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            if (count == 1) {
+                out.push_back(a);
+                return;
             }
-        }
+            for (int i = 0; i < count - 1; ++i) {
+                const double t = static_cast<double>(i) / (count - 1);
+                out.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});
+            }
+            out.push_back(b);  // exactly the end point, no rounding
+        });
     }
 }
 
@@ -394,8 +399,13 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     p.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     op.order = f.choice("order", hole_orders, HoleOrder::as_given);
 
-    read_holes(f, in, op.holes);
+    read_holes(f, in, op.holes, op.pending_patterns);
     return op;
+}
+
+void make_pending_holes(DrillOp& op) {
+    for (const HolePattern& make : op.pending_patterns) make(op.holes);
+    op.pending_patterns.clear();
 }
 
 std::string default_name(const DrillOp& d) {

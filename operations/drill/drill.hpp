@@ -2,6 +2,7 @@
 // The drill operation: a list of holes drilled with one cycle (the CNC-Calc drill header and
 // its MillDrillingFields), read from the job and expanded into a DrillCycle event, one
 // DrillPoint per hole and a DrillEnd.
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,9 @@ struct DrillParams {
     friend bool operator==(const DrillParams&, const DrillParams&) = default;
 };
 
+// Appends the holes of one pattern (a grid, bolt circle or line) to a list.
+using HolePattern = std::function<void(std::vector<Vec2>&)>;
+
 // Drill a list of holes with one cycle.
 struct DrillOp {
     static constexpr std::string_view type = "drill";
@@ -41,7 +45,14 @@ struct DrillOp {
     DrillParams params;
     std::vector<Vec2> holes;   // as the job gives them; expand() reorders them for order = shortest
     HoleOrder order = HoleOrder::as_given;
+    // Patterns read and counted against the job's hole limit but not made yet: read_job makes
+    // them (make_pending_holes) once every operation is read, so that a job over the limit is
+    // refused before any pattern allocates its holes.
+    std::vector<HolePattern> pending_patterns;
 };
+
+// Makes the pending patterns' holes, after the holes of the list, in the job's key order.
+void make_pending_holes(DrillOp& op);
 
 // Position above the first hole at the clearance, then down to the retract plane, the cycle
 // over every hole, and back up to the clearance.

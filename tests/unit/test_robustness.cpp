@@ -4,6 +4,9 @@
 #include <random>
 #include <set>
 #include <cctype>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <doctest/doctest.h>
 
@@ -139,6 +142,44 @@ TEST_CASE("limits: the holes of all operations together are counted before they 
     const test::Run many = test::run({"-", "--machine", "fanuc", "--max-holes", "1000"}, grids);
     CHECK(many.code == 1);
     CHECK(many.err.find("/operations/0/grid: the job would have more than 1000 holes") != std::string::npos);
+}
+
+// The memory (MiB, at most 255) that reading `job` under `limits` took at its peak, measured
+// in a child process so that nothing else the tests did counts; 255 when reading did not end
+// in an InputError.
+int mib_to_refuse(const std::string& job, JobLimits limits) {
+    const pid_t child = fork();
+    if (child == 0) {
+        rusage before{};
+        getrusage(RUSAGE_SELF, &before);
+        bool refused = false;
+        try {
+            read_job(job, "big.json", limits);
+        } catch (const InputError&) {
+            refused = true;
+        } catch (...) {
+        }
+        rusage after{};
+        getrusage(RUSAGE_SELF, &after);
+        const long mib = (after.ru_maxrss - before.ru_maxrss) / 1024;  // ru_maxrss is in KiB
+        _exit(refused ? static_cast<int>(std::min(mib, 254L)) : 255);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 255;
+}
+
+TEST_CASE("limits: a job over the hole limit is refused before any pattern makes its holes") {
+    // Ten million holes in the first operation (160 MB as points), then one over the limit.
+    const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
+      {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100,
+       "grid": {"origin": [0, 0], "countX": 10000, "countY": 1000, "spacingX": 1, "spacingY": 1}},
+      {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100, "holes": [[0, 0]]}]})";
+    JobLimits limits;
+    limits.holes = 10'000'000;
+    CHECK_THROWS_WITH_AS(read_job(job, "big.json", limits),
+                         doctest::Contains("/operations/1/holes: the job would have more than 10000000 holes"), InputError);
+    CHECK(mib_to_refuse(job, limits) < 20);
 }
 
 TEST_CASE("limits: contour path elements are counted; --max-elements raises the limit") {
