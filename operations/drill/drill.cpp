@@ -31,16 +31,6 @@ constexpr KeySpec drill_keys[] = {
      .description = "written as a comment before the operation"},
     {.key = "cycle", .type = JsonType::string, .default_json = "\"drill\"", .choices = &choices_of<cycle_kinds>,
      .description = "the drilling cycle"},
-    {.key = "retractPlane", .quantity = Quantity::length,
-     .description = "absolute Z the tool returns to between holes (default: clearance)"},
-    {.key = "referencePlane", .quantity = Quantity::length, .default_json = "0",
-     .description = "absolute Z of the surface; relative values are measured from it"},
-    {.key = "safeDistanceIsAbsolute", .type = JsonType::boolean, .default_json = "false",
-     .description = "safeDistance is an absolute Z (else: the height above referencePlane, >= 0)"},
-    {.key = "endDepth", .quantity = Quantity::length, .required = true,
-     .description = "bottom of the hole: depth below referencePlane (> 0), or an absolute Z with endDepthIsAbsolute"},
-    {.key = "endDepthIsAbsolute", .type = JsonType::boolean, .default_json = "false",
-     .description = "endDepth is an absolute Z (else: the depth below referencePlane, > 0)"},
     {.key = "drillTip", .type = JsonType::boolean, .default_json = "false",
      .description = "add the tool's tip length (from diameter and tipAngle) to the depth"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
@@ -107,9 +97,12 @@ KeySpec key_of_field(const DrillFieldInfo& d) {
     return k;
 }
 
-// The keys of a drill operation: drill_keys, then the drilling fields.
+// The keys of a drill operation: drill_keys with the heights after "cycle", then the drilling
+// fields (safeDistance is one of them).
 std::vector<KeySpec> all_drill_keys() {
     std::vector<KeySpec> keys(std::begin(drill_keys), std::end(drill_keys));
+    const std::vector<KeySpec> heights = height_keys(false);
+    keys.insert(keys.begin() + 4, heights.begin(), heights.end());
     for (const auto& d : drill_fields) keys.push_back(key_of_field(d));
     return keys;
 }
@@ -287,17 +280,6 @@ void read_degression(Fields& f, const JobInput& in, DrillValues& values) {
 
 }  // namespace
 
-DrillPlanes resolve_planes(const DrillParams& p) {
-    DrillPlanes z;
-    z.retract_z = p.retract_plane;
-    z.reference_z = p.reference_plane;
-    z.safe_z = !p.safe_distance               ? p.retract_plane
-               : p.safe_distance_is_absolute ? *p.safe_distance
-                                             : p.reference_plane + *p.safe_distance;
-    z.bottom_z = p.end_depth_is_absolute ? p.end_depth : p.reference_plane - p.end_depth;
-    return z;
-}
-
 std::vector<ObjectSpec> DrillOp::objects() {
     return {
         {.name = "drill", .description = "drill a list of holes with one cycle", .keys = all_drill_keys(),
@@ -346,45 +328,7 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     }
 
     // Planes and depths.
-    p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
-    p.reference_plane = in.optional_length(f, "referencePlane").value_or(0.0);
-    p.safe_distance = in.optional_length(f, "safeDistance");
-    p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
-    p.end_depth = in.length(f, "endDepth");
-    p.end_depth_is_absolute = f.boolean("endDepthIsAbsolute", false);
-
-    if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)
-        f.fail("safeDistance",
-               "a relative safeDistance cannot be negative (it is measured up from "
-               "referencePlane; set safeDistanceIsAbsolute for an absolute Z)");
-    if (!p.end_depth_is_absolute && p.end_depth <= 0)
-        f.fail("endDepth",
-               "a relative endDepth must be > 0 (it is the depth below referencePlane; set "
-               "endDepthIsAbsolute for an absolute Z)");
-    const DrillPlanes z = resolve_planes(p);
-    if (z.bottom_z >= z.safe_z)
-        f.fail("endDepth", fmt::format("endDepth is above the safe distance (hole bottom at Z {}, "
-                                       "safe distance at Z {})",
-                                       in.show(z.bottom_z), in.show(z.safe_z)));
-    if (p.retract_plane < z.safe_z)
-        f.fail("retractPlane",
-               fmt::format("retractPlane is below the safe distance (retract plane at Z {}{}, "
-                           "safe distance at Z {})",
-                           in.show(p.retract_plane), f.has("retractPlane") ? "" : ", the clearance",
-                           in.show(z.safe_z)));
-
-    // The stock top (referencePlane) is where the material starts: nothing may rapid below it.
-    if (p.retract_plane <= p.reference_plane)
-        f.fail("retractPlane",
-               fmt::format("retractPlane{} (Z {}) is not above referencePlane, the stock top (Z {}): between holes "
-                           "the tool would rapid through the material",
-                           f.has("retractPlane") ? "" : ", the clearance,", in.show(p.retract_plane),
-                           in.show(p.reference_plane)));
-    if (z.safe_z < p.reference_plane)
-        f.fail("safeDistance",
-               fmt::format("the safe distance (Z {}) is below referencePlane, the stock top (Z {}): the rapid "
-                           "approach would end inside the material",
-                           in.show(z.safe_z), in.show(p.reference_plane)));
+    static_cast<Heights&>(p) = read_heights(f, in, "hole");
 
     // The optional fields, by the vocabulary's table; then the degression, which reads two.
     for (const auto& d : drill_fields)
@@ -500,7 +444,7 @@ std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes) {
 
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     const DrillParams& p = op.params;
-    const DrillPlanes z = resolve_planes(p);
+    const Planes z = resolve_planes(p);
     DrillCycle c;
     c.kind = p.kind;
     c.output = p.output;
