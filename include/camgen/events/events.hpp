@@ -64,6 +64,7 @@ struct Rapid {
 struct Linear {
     Vec3 to;
     double feed = 0.0;
+    Movement movement = Movement::cutting;
     friend bool operator==(const Linear&, const Linear&) = default;
 };
 
@@ -79,6 +80,7 @@ struct Arc {
     Plane plane = Plane::xy;
     double feed = 0.0;
     int turns = 0;
+    Movement movement = Movement::cutting;
     friend bool operator==(const Arc&, const Arc&) = default;
 };
 
