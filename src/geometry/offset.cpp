@@ -269,6 +269,29 @@ struct Path {
     double length = 0.0;
 };
 
+// Appends a segment to a path. A line straight back along the line before it (a spike: where the
+// tool exactly fits a notch, the offsets of its two walls coincide) cancels with it.
+void append(Path& path, ProfileSegment s, std::optional<std::size_t> source) {
+    auto& segs = path.profile.segments;
+    while (!s.centre && !segs.empty() && !segs.back().centre) {
+        const Vec2 from = segs.size() >= 2 ? segs[segs.size() - 2].end : path.profile.start;
+        const Vec2 there = segs.back().end - from, back = s.end - segs.back().end;
+        if (std::abs(cross(there, back)) > 1e-9 * norm(there) * norm(back) || dot(there, back) >= 0) break;
+        // The two lines overlap: what remains is the line from `from` to s.end, if anything.
+        const bool longer_back = norm(back) > norm(there);
+        if (!longer_back) source = path.source.back();
+        segs.pop_back();
+        path.source.pop_back();
+        if (distance(from, s.end) <= min_piece) {
+            if (!segs.empty()) segs.back().end = s.end;
+            else path.profile.start = s.end;
+            return;
+        }
+    }
+    segs.push_back(s);
+    path.source.push_back(source);
+}
+
 // A chain as a profile: contiguous parts of one raw piece merged back, tiny parts dropped, a
 // closed chain's end put exactly on its start.
 Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, const std::vector<RawPiece>& raw,
@@ -291,12 +314,11 @@ Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, c
             s.centre = k.curve.c;
             s.direction = k.curve.sweep > 0 ? ArcDirection::ccw : ArcDirection::cw;
         }
-        path.profile.segments.push_back(s);
         const auto& e = raw[k.raw].element;
-        path.source.push_back(e ? std::optional<std::size_t>(elements[*e].segment) : std::nullopt);
-        path.length += k.curve.length();
+        append(path, s, e ? std::optional<std::size_t>(elements[*e].segment) : std::nullopt);
     }
     if (closed && !path.profile.segments.empty()) path.profile.segments.back().end = path.profile.start;
+    path.length = profile_length(path.profile);
     return path;
 }
 

@@ -99,6 +99,31 @@ Profile random_polygon(std::uint32_t seed, int n) {
     return polygon(v);
 }
 
+// The star-shaped polygon of random_polygon with some edges made arcs bulging out or in by up
+// to a fifth of their chord (seeded as well).
+Profile random_profile(std::uint32_t seed, int n) {
+    const Profile poly = random_polygon(seed, n);
+    Builder b(poly.start);
+    Vec2 from = poly.start;
+    for (const ProfileSegment& edge : poly.segments) {
+        seed = seed * 1664525u + 1013904223u;
+        const double u = (seed >> 8) / double(1u << 24);  // [0, 1)
+        const Vec2 to = edge.end, mid{(from.x + to.x) / 2, (from.y + to.y) / 2};
+        const double chord = std::hypot(to.x - from.x, to.y - from.y);
+        const Vec2 left{-(to.y - from.y) / chord, (to.x - from.x) / chord};
+        const double sagitta = (u - 0.5) * 0.4 * chord;  // + bulges left (in), - right (out)
+        if (std::abs(sagitta) < 0.05 * chord) {
+            b.line(to);
+        } else {
+            const double radius = (chord * chord / 4 + sagitta * sagitta) / (2 * std::abs(sagitta));
+            const double toward = sagitta > 0 ? -(radius - sagitta) : (radius + sagitta);  // centre from mid, along left
+            b.arc(to, {mid.x + left.x * toward, mid.y + left.y * toward}, sagitta > 0 ? ArcDirection::cw : ArcDirection::ccw);
+        }
+        from = to;
+    }
+    return b.p;
+}
+
 // Two 30 x 30 squares joined by a 40 long bar `neck` wide: inside offsets wider than half the
 // neck fall apart in two.
 Profile dumbbell(double neck) {
@@ -206,7 +231,7 @@ TEST_CASE("offset: closed profiles of every kind, both sides, both orientations:
         {"L", ell()},                            {"slot", slot(50, 10)},
         {"circle", circle({5, -3}, 20)},         {"tight concave arc", bitten(3)},
         {"concave arc", bitten(8)},              {"narrow notch", notched(4)},
-        {"wide notch", notched(16)},             {"star", star(5, 50, 20)},
+        {"wide notch", notched(16)},             {"notch a 10 mm tool just fits", notched(10)},             {"star", star(5, 50, 20)},
         {"dumbbell", dumbbell(8)},
     };
     for (const auto& [name, p] : profiles)
@@ -225,6 +250,23 @@ TEST_CASE("offset: deterministic random polygons, both sides") {
                 INFO("seed " << seed);
                 check_closed(random_polygon(seed, 7 + static_cast<int>(seed % 9)), d, region);
             }
+}
+
+TEST_CASE("offset: deterministic random profiles of lines and arcs bulging out and in, both sides") {
+    int tested = 0;
+    for (std::uint32_t seed = 100; seed < 116; ++seed) {
+        const Profile p = random_profile(seed, 5 + static_cast<int>(seed % 7));
+        if (!is_simple(p)) continue;
+        ++tested;
+        std::size_t arcs = arcs_in(p);
+        for (double d : {0.5, 2.0, 7.0})
+            for (Region region : {Region::outside, Region::inside}) {
+                INFO("seed " << seed);
+                check_closed(p, d, region);
+            }
+        CHECK(arcs > 0);
+    }
+    CHECK(tested >= 12);
 }
 
 TEST_CASE("offset: a 200 x 120 plate with R10 corners, by hand") {
@@ -351,6 +393,16 @@ TEST_CASE("offset: what the tool cannot follow is noted by segment, and trimmed"
         const double half = 400.0 + 2.0 * (20.0 - (6.0 + 12.5 * std::asin(0.8)));
         CHECK(enclosed_area(r.profile, 1e-6) == doctest::Approx(half).epsilon(1e-7));
         CHECK(enclosed_area(r.others[0], 1e-6) == doctest::Approx(half).epsilon(1e-7));
+    }
+    SUBCASE("a notch the tool exactly fits: no spike into it and back") {
+        const OffsetResult r = check_closed(notched(10), 5, Region::outside);
+        CHECK(is_simple(r.profile));
+        for (const ProfileSegment& s : r.profile.segments) CHECK_FALSE((s.end.x > 25.001 && s.end.x < 34.999 && s.end.y < 39.999));
+    }
+    SUBCASE("a slot as wide as the tool is consumed: the offsets of its sides coincide") {
+        const OffsetResult r = offset_profile(slot(50, 5), 5, OffsetSide::left);
+        CHECK(r.empty());
+        CHECK(has_note(r, OffsetNoteKind::consumed, std::nullopt));
     }
     SUBCASE("a slot narrower than the tool is consumed") {
         const OffsetResult r = offset_profile(slot(50, 5), 6, OffsetSide::left);
