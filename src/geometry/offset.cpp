@@ -139,6 +139,14 @@ bool within(const Curve& k, double t) {
     return t >= -slack && t <= 1.0 + slack;
 }
 
+// True when the lines x and y lie on one line (within min_piece), walked opposite ways.
+bool opposed_lines(const Curve& x, const Curve& y) {
+    if (x.arc || y.arc) return false;
+    const Vec2 dx = x.b - x.a, dy = y.b - y.a;
+    const double lx = norm(dx);
+    return dot(dx, dy) < 0 && std::abs(cross(dx, y.a - x.a)) / lx <= min_piece && std::abs(cross(dx, y.b - x.a)) / lx <= min_piece;
+}
+
 // The parameters on x where it meets y.
 std::vector<double> crossings(const Curve& x, const Curve& y) {
     std::vector<double> out;
@@ -269,29 +277,6 @@ struct Path {
     double length = 0.0;
 };
 
-// Appends a segment to a path. A line straight back along the line before it (a spike: where the
-// tool exactly fits a notch, the offsets of its two walls coincide) cancels with it.
-void append(Path& path, ProfileSegment s, std::optional<std::size_t> source) {
-    auto& segs = path.profile.segments;
-    while (!s.centre && !segs.empty() && !segs.back().centre) {
-        const Vec2 from = segs.size() >= 2 ? segs[segs.size() - 2].end : path.profile.start;
-        const Vec2 there = segs.back().end - from, back = s.end - segs.back().end;
-        if (std::abs(cross(there, back)) > 1e-9 * norm(there) * norm(back) || dot(there, back) >= 0) break;
-        // The two lines overlap: what remains is the line from `from` to s.end, if anything.
-        const bool longer_back = norm(back) > norm(there);
-        if (!longer_back) source = path.source.back();
-        segs.pop_back();
-        path.source.pop_back();
-        if (distance(from, s.end) <= min_piece) {
-            if (!segs.empty()) segs.back().end = s.end;
-            else path.profile.start = s.end;
-            return;
-        }
-    }
-    segs.push_back(s);
-    path.source.push_back(source);
-}
-
 // A chain as a profile: contiguous parts of one raw piece merged back, tiny parts dropped, a
 // closed chain's end put exactly on its start.
 Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, const std::vector<RawPiece>& raw,
@@ -315,7 +300,8 @@ Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, c
             s.direction = k.curve.sweep > 0 ? ArcDirection::ccw : ArcDirection::cw;
         }
         const auto& e = raw[k.raw].element;
-        append(path, s, e ? std::optional<std::size_t>(elements[*e].segment) : std::nullopt);
+        path.profile.segments.push_back(s);
+        path.source.push_back(e ? std::optional<std::size_t>(elements[*e].segment) : std::nullopt);
     }
     if (closed && !path.profile.segments.empty()) path.profile.segments.back().end = path.profile.start;
     path.length = profile_length(path.profile);
@@ -367,8 +353,15 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
             if (k.arc && other.arc && distance(k.c, other.c) < same_length && std::abs(k.r - other.r) < same_length) return;
             for (double t : crossings(k, other)) ts.push_back(std::clamp(t, 0.0, 1.0));
         };
-        for (std::size_t j = 0; j < raw.size(); ++j)
-            if (j != i) add(raw[j].curve);
+        // Where another raw line runs back along this one, this one is cut at its ends.
+        std::vector<const Curve*> opposed;
+        for (std::size_t j = 0; j < raw.size(); ++j) {
+            if (j == i) continue;
+            add(raw[j].curve);
+            if (!opposed_lines(k, raw[j].curve)) continue;
+            opposed.push_back(&raw[j].curve);
+            for (Vec2 end : {raw[j].curve.a, raw[j].curve.b}) ts.push_back(std::clamp(parameter_of(k, end), 0.0, 1.0));
+        }
         for (const Curve& c : cutters) add(c);
         std::sort(ts.begin(), ts.end());
         const double step = same_length / std::max(k.length(), same_length);
@@ -379,7 +372,15 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         else cuts.push_back(1.0);
         for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
             const Curve piece = part(k, cuts[j], cuts[j + 1]);
-            if (distance_to_elements(elements, piece.at(0.5)) < d - 1e-8) continue;
+            const Vec2 mid = piece.at(0.5);
+            if (distance_to_elements(elements, mid) < d - 1e-8) continue;
+            // Two walls exactly the tool's width apart: their offsets coincide, walked opposite
+            // ways; the zero-width strip between them is no path.
+            if (std::any_of(opposed.begin(), opposed.end(), [&](const Curve* o) {
+                    const double t = parameter_of(*o, mid);
+                    return t > 0.0 && t < 1.0;
+                }))
+                continue;
             kept.push_back({i, cuts[j], cuts[j + 1], piece});
             if (raw[i].element && piece.length() >= min_piece) element_kept[*raw[i].element] = true;
         }

@@ -124,6 +124,18 @@ Profile random_profile(std::uint32_t seed, int n) {
     return b.p;
 }
 
+// A comb: a base 10 high with `teeth` teeth `w` wide and 20 high, `gap` apart, ccw.
+Profile comb(int teeth, double w, double gap) {
+    std::vector<Vec2> v{{0, 0}, {teeth * w + (teeth - 1) * gap, 0}};
+    for (int i = teeth - 1; i >= 0; --i) {
+        const double x0 = i * (w + gap), x1 = x0 + w;
+        v.push_back({x1, 30});
+        v.push_back({x0, 30});
+        if (i > 0) v.push_back({x0, 10}), v.push_back({x0 - gap, 10});
+    }
+    return polygon(v);
+}
+
 // Two 30 x 30 squares joined by a 40 long bar `neck` wide: inside offsets wider than half the
 // neck fall apart in two.
 Profile dumbbell(double neck) {
@@ -267,6 +279,28 @@ TEST_CASE("offset: deterministic random profiles of lines and arcs bulging out a
         CHECK(arcs > 0);
     }
     CHECK(tested >= 12);
+}
+
+TEST_CASE("offset: combs whose gaps and teeth the tool just fits, fits easily or does not") {
+    for (double w : {4.0, 6.0, 10.0})
+        for (double gap : {4.0, 6.0, 10.0})
+            for (double d : {1.0, 2.0, 3.0, 5.0})
+                for (Region region : {Region::outside, Region::inside}) {
+                    INFO("teeth " << w << " gaps " << gap);
+                    const OffsetResult r = check_closed(comb(4, w, gap), d, region);
+                    CHECK(r.profile.segments.size() == r.source.size());
+                }
+    // A base exactly the tool's width high (10, d = 5): along it the offsets of its bottom and
+    // top coincide and are no path; under the two middle teeth the tool rises a little between
+    // the arcs about the gaps' corners: a lens 4 wide, of area
+    // 2 int_0^2 (5 - sqrt(25 - u^2)) du = 2 (10 - (sqrt 21 + 12.5 asin 0.4)) = 0.5468 mm^2.
+    const OffsetResult lenses = check_closed(comb(4, 4, 4), 5, Region::inside);
+    REQUIRE(lenses.others.size() == 1);
+    const double lens = 2 * (10 - (std::sqrt(21.0) + 12.5 * std::asin(0.4)));
+    // (the sampling's chords cut across the concave arcs: a few 1e-6 mm^2 too much)
+    CHECK(std::abs(enclosed_area(lenses.profile, 1e-6) - lens) < 1e-5);
+    CHECK(std::abs(enclosed_area(lenses.others[0], 1e-6) - lens) < 1e-5);
+    CHECK(is_simple(lenses.profile));
 }
 
 TEST_CASE("offset: a 200 x 120 plate with R10 corners, by hand") {
