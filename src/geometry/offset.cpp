@@ -139,6 +139,78 @@ bool within(const Curve& k, double t) {
     return t >= -slack && t <= 1.0 + slack;
 }
 
+// An axis-aligned box around a curve, mm: pairs of curves whose boxes are apart cannot meet,
+// and a curve whose box is farther from a point than another curve is not the nearest.
+struct Box {
+    double x0, y0, x1, y1;
+};
+
+Box box_of(const Curve& k) {
+    Box b{std::min(k.a.x, k.b.x), std::min(k.a.y, k.b.y), std::max(k.a.x, k.b.x), std::max(k.a.y, k.b.y)};
+    if (!k.arc) return b;
+    for (int quarter = 0; quarter < 4; ++quarter) {  // the extreme points the arc passes
+        const Vec2 p = k.c + unit_at(quarter * pi / 2) * k.r;
+        const double t = parameter_of(k, p);
+        if (t < 0.0 || t > 1.0) continue;
+        b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
+    }
+    return b;
+}
+
+bool apart(const Box& a, const Box& b) {
+    constexpr double slack = 1e-6;
+    return a.x1 + slack < b.x0 || b.x1 + slack < a.x0 || a.y1 + slack < b.y0 || b.y1 + slack < a.y0;
+}
+
+double box_distance(const Box& b, Vec2 p) {
+    return std::hypot(std::max({b.x0 - p.x, 0.0, p.x - b.x1}), std::max({b.y0 - p.y, 0.0, p.y - b.y1}));
+}
+
+// Boxes bucketed in a uniform grid of about one cell per box, so that the boxes near a query are
+// found without looking at all of them (a profile of a thousand short segments).
+class BoxGrid {
+public:
+    explicit BoxGrid(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
+        if (boxes_.empty()) return;
+        extent_ = boxes_.front();
+        for (const Box& b : boxes_)
+            extent_ = {std::min(extent_.x0, b.x0), std::min(extent_.y0, b.y0), std::max(extent_.x1, b.x1), std::max(extent_.y1, b.y1)};
+        const double w = extent_.x1 - extent_.x0, h = extent_.y1 - extent_.y0;
+        cell_ = std::max({std::sqrt(w * h / static_cast<double>(boxes_.size())), w / 512, h / 512, 1e-3});
+        nx_ = static_cast<int>(w / cell_) + 1;
+        ny_ = static_cast<int>(h / cell_) + 1;
+        cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+        for (std::size_t i = 0; i < boxes_.size(); ++i) visit(boxes_[i], [&](std::vector<std::size_t>& c) { c.push_back(i); });
+    }
+
+    // The indices of the boxes not apart from `query`, ascending.
+    std::vector<std::size_t> near(const Box& query) const {
+        std::vector<std::size_t> out;
+        if (boxes_.empty() || apart(query, extent_)) return out;
+        const_cast<BoxGrid*>(this)->visit(query, [&](const std::vector<std::size_t>& c) { out.insert(out.end(), c.begin(), c.end()); });
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        std::erase_if(out, [&](std::size_t i) { return apart(boxes_[i], query); });
+        return out;
+    }
+
+private:
+    template <class F>
+    void visit(const Box& b, F f) {
+        auto index = [&](double v, double origin, int n) { return std::clamp(static_cast<int>((v - origin) / cell_), 0, n - 1); };
+        const int i0 = index(b.x0 - 1e-6, extent_.x0, nx_), i1 = index(b.x1 + 1e-6, extent_.x0, nx_);
+        const int j0 = index(b.y0 - 1e-6, extent_.y0, ny_), j1 = index(b.y1 + 1e-6, extent_.y0, ny_);
+        for (int i = i0; i <= i1; ++i)
+            for (int j = j0; j <= j1; ++j) f(cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)]);
+    }
+
+    std::vector<Box> boxes_;
+    Box extent_{};
+    double cell_ = 1.0;
+    int nx_ = 0, ny_ = 0;
+    std::vector<std::vector<std::size_t>> cells_;
+};
+
 // True when the lines x and y lie on one line (within min_piece), walked opposite ways.
 bool opposed_lines(const Curve& x, const Curve& y) {
     if (x.arc || y.arc) return false;
@@ -167,20 +239,22 @@ double distance_to_curve(const Curve& k, Vec2 p) {
 struct Element {
     Curve curve;
     std::size_t segment = 0;
+    Box box;
 };
 std::vector<Element> elements_of(const Profile& p) {
     std::vector<Element> out;
     for (std::size_t i = 0; i < p.segments.size(); ++i) {
         const Curve k = curve_of(p, i);
-        if (k.length() > same_length) out.push_back({k, i});
+        if (k.length() > same_length) out.push_back({k, i, box_of(k)});
     }
     return out;
 }
 
-double distance_to_elements(const std::vector<Element>& elements, Vec2 p) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const Element& e : elements) best = std::min(best, distance_to_curve(e.curve, p));
-    return best;
+// True when some element is closer to p than `limit` (grid: the elements' boxes).
+bool closer_than(const std::vector<Element>& elements, const BoxGrid& grid, Vec2 p, double limit) {
+    for (std::size_t i : grid.near({p.x - limit, p.y - limit, p.x + limit, p.y + limit}))
+        if (box_distance(elements[i].box, p) < limit && distance_to_curve(elements[i].curve, p) < limit) return true;
+    return false;
 }
 
 // The offset of one curve by `d` to the side whose left-normal sign is `s` (+1 left, -1 right):
@@ -343,6 +417,14 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         cutters.push_back(arc_curve(e.curve.a, d, 0.0, two_pi));
     }
     if (!elements.empty() && !closed) cutters.push_back(arc_curve(elements.back().curve.b, d, 0.0, two_pi));
+    // Raw pieces and cutters in one grid: indices below raw.size() are raw pieces.
+    std::vector<Box> boxes;
+    for (const RawPiece& r : raw) boxes.push_back(box_of(r.curve));
+    for (const Curve& c : cutters) boxes.push_back(box_of(c));
+    const BoxGrid curves(boxes);
+    std::vector<Box> element_boxes;
+    for (const Element& e : elements) element_boxes.push_back(e.box);
+    const BoxGrid element_grid(element_boxes);
 
     std::vector<Kept> kept;
     std::vector<bool> element_kept(elements.size(), false);
@@ -355,14 +437,17 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         };
         // Where another raw line runs back along this one, this one is cut at its ends.
         std::vector<const Curve*> opposed;
-        for (std::size_t j = 0; j < raw.size(); ++j) {
+        for (std::size_t j : curves.near(boxes[i])) {
             if (j == i) continue;
+            if (j >= raw.size()) {
+                add(cutters[j - raw.size()]);
+                continue;
+            }
             add(raw[j].curve);
             if (!opposed_lines(k, raw[j].curve)) continue;
             opposed.push_back(&raw[j].curve);
             for (Vec2 end : {raw[j].curve.a, raw[j].curve.b}) ts.push_back(std::clamp(parameter_of(k, end), 0.0, 1.0));
         }
-        for (const Curve& c : cutters) add(c);
         std::sort(ts.begin(), ts.end());
         const double step = same_length / std::max(k.length(), same_length);
         std::vector<double> cuts{0.0};
@@ -373,7 +458,7 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
             const Curve piece = part(k, cuts[j], cuts[j + 1]);
             const Vec2 mid = piece.at(0.5);
-            if (distance_to_elements(elements, mid) < d - 1e-8) continue;
+            if (closer_than(elements, element_grid, mid, d - 1e-8)) continue;
             // Two walls exactly the tool's width apart: their offsets coincide, walked opposite
             // ways; the zero-width strip between them is no path.
             if (std::any_of(opposed.begin(), opposed.end(), [&](const Curve* o) {
@@ -400,6 +485,9 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
 
     std::vector<Path> paths;
     for (const auto& c : chain(kept)) {
+        double length = 0.0;
+        for (std::size_t i : c) length += kept[i].curve.length();
+        if (length < chain_gap) continue;  // a crumb where pieces cross
         Path p = path_of(c, kept, raw, elements, profile.plane, closed);
         // A closed path enclosing nothing is a slit where the tool exactly fits between two
         // sides: the region beyond the distance is empty there.
