@@ -180,14 +180,14 @@ public:
         nx_ = static_cast<int>(w / cell_) + 1;
         ny_ = static_cast<int>(h / cell_) + 1;
         cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
-        for (std::size_t i = 0; i < boxes_.size(); ++i) visit(boxes_[i], [&](std::vector<std::size_t>& c) { c.push_back(i); });
+        for (std::size_t i = 0; i < boxes_.size(); ++i) visit(boxes_[i], [&](std::size_t cell) { cells_[cell].push_back(i); });
     }
 
     // The indices of the boxes not apart from `query`, ascending.
     std::vector<std::size_t> near(const Box& query) const {
         std::vector<std::size_t> out;
         if (boxes_.empty() || apart(query, extent_)) return out;
-        const_cast<BoxGrid*>(this)->visit(query, [&](const std::vector<std::size_t>& c) { out.insert(out.end(), c.begin(), c.end()); });
+        visit(query, [&](std::size_t cell) { out.insert(out.end(), cells_[cell].begin(), cells_[cell].end()); });
         std::sort(out.begin(), out.end());
         out.erase(std::unique(out.begin(), out.end()), out.end());
         std::erase_if(out, [&](std::size_t i) { return apart(boxes_[i], query); });
@@ -195,13 +195,14 @@ public:
     }
 
 private:
+    // Calls f with the index of every cell that box b meets.
     template <class F>
-    void visit(const Box& b, F f) {
+    void visit(const Box& b, F f) const {
         auto index = [&](double v, double origin, int n) { return std::clamp(static_cast<int>((v - origin) / cell_), 0, n - 1); };
         const int i0 = index(b.x0 - 1e-6, extent_.x0, nx_), i1 = index(b.x1 + 1e-6, extent_.x0, nx_);
         const int j0 = index(b.y0 - 1e-6, extent_.y0, ny_), j1 = index(b.y1 + 1e-6, extent_.y0, ny_);
         for (int i = i0; i <= i1; ++i)
-            for (int j = j0; j <= j1; ++j) f(cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)]);
+            for (int j = j0; j <= j1; ++j) f(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i));
     }
 
     std::vector<Box> boxes_;
@@ -390,6 +391,11 @@ OffsetSide side_for(Orientation orientation, Region region) {
 }
 
 OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
+    if (!(d > 0.0)) {  // no offset: the profile itself
+        OffsetResult same{profile, {}, {}, {}};
+        for (std::size_t i = 0; i < profile.segments.size(); ++i) same.source.push_back(i);
+        return same;
+    }
     const double s = side == OffsetSide::left ? 1.0 : -1.0;
     const bool closed = is_closed(profile);
     const std::vector<Element> elements = elements_of(profile);
@@ -495,6 +501,8 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         if (p.length >= chain_gap && !p.profile.segments.empty() && !slit) paths.push_back(std::move(p));
     }
     if (paths.empty()) {
+        // What vanished on the way is no news then.
+        result.notes.clear();
         result.notes.push_back({OffsetNoteKind::consumed, std::nullopt,
                                 "nothing remains of the profile offset by " + mm(d) + " mm: it is smaller than the tool"});
         return result;

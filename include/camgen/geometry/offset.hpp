@@ -23,10 +23,12 @@ enum class Region { inside, outside };
 // counter-clockwise profile has its inside on the left, its outside on the right.
 OffsetSide side_for(Orientation orientation, Region region);
 
-// What the offset could not follow, naming the input segment.
+// What the offset could not follow, naming the input segment. A consumed profile has only
+// the `consumed` note.
 enum class OffsetNoteKind {
     arc_too_tight,    // a concave arc of radius below the distance: the tool cannot reach into it
-    element_removed,  // a segment whose offset vanished entirely after trimming
+    element_removed,  // a segment whose offset vanished entirely after trimming (a notch or a
+                      // step narrower than the tool, a short segment between concave corners)
     split,            // the offset fell apart into several paths (a neck narrower than the tool)
     consumed,         // nothing remains: the profile is smaller than the tool
 };
@@ -37,10 +39,11 @@ struct OffsetNote {
     std::string message;                 // a sentence for the user, e.g. "segment 3: ..."
 };
 
-// The result of offset_profile. `profile` is the main path (the longest one; empty, i.e. no
-// segments, when the profile is consumed), `others` any further paths it split into.
-// `source[i]` is the input segment that `profile.segments[i]` offsets, or nullopt for an arc
-// added around a convex corner.
+// The result of offset_profile. `profile` is the main path (the longest one; no segments when
+// the profile is consumed), `others` any further paths it split into, in the order of the
+// profile. `source[i]` is the input segment that `profile.segments[i]` offsets, or nullopt for
+// an arc added around a convex corner (one input segment may give several output segments
+// when the offset of something else cuts through it).
 struct OffsetResult {
     Profile profile;
     std::vector<std::optional<std::size_t>> source;
@@ -49,11 +52,14 @@ struct OffsetResult {
     bool empty() const { return profile.segments.empty(); }
 };
 
-// The profile offset by `distance` mm (> 0) to `side` of its direction of travel, walked the
-// same way: lines parallel, arcs about the same centre with the radius +- distance, an arc of
+// The profile offset by `distance` mm to `side` of its direction of travel, walked the same
+// way: lines parallel, arcs about the same centre with the radius +- distance, an arc of
 // radius `distance` around each convex corner, concave corners trimmed where the two offsets
-// meet, loops cut away where the offset would cross itself. A closed profile gives closed
-// paths; an open one its one-sided offset from the start's offset to the end's.
+// meet, loops cut away where the offset would cross itself, so that every point is at exactly
+// `distance` from the profile (within 1e-6 mm) and none closer. A closed profile gives closed
+// simple paths; an open one its one-sided offset, from the start's offset to the end's where
+// those are not cut away. Zero-length segments are passed over; a distance <= 0 gives the
+// profile itself. Cost: about the number of segments times those within 2 distance of each.
 OffsetResult offset_profile(const Profile& profile, double distance, OffsetSide side);
 
 // A position along a profile: the point, the unit tangent of travel there, and the segment.
