@@ -120,7 +120,9 @@ void expand_job(const Job& job, EventSink& sink) {
                 }
                 std::optional<double> tolerance;
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
-                sink.emit(OperationStart{default_name(o), o.path, tolerance});
+                std::vector<std::string> notes;
+                if constexpr (requires { o.notes; }) notes = o.notes;
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

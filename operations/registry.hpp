@@ -13,6 +13,7 @@
 #include "camgen/job/job.hpp"
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
+#include "operations/path/path.hpp"
 
 namespace camgen {
 
@@ -31,7 +32,7 @@ concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& 
 };
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

@@ -578,6 +578,7 @@ void Post::emit(const Event& event) {
                        op_path_ = op.path;
                        op_name_ = op.name;
                        op_tolerance_ = op.tolerance;
+                       for (const std::string& n : op.notes) note(fmt::format("{} ({}): {}", op.path, op.name, n));
                        on_operation_start(op);
                    },
                    [&](const OperationEnd&) { on_operation_end(); },

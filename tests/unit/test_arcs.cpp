@@ -368,7 +368,7 @@ TEST_CASE("rule: the operation's tolerance reaches the post from the job") {
     // the operation's 0.001 (see above); 0.05 is capped at 0.005.
     auto job = [](const std::string& tol) {
         return R"({"clearance": 20, "tools": [{"number": 1, "diameter": 6, "rpm": 2000, "type": "end-mill"}],
-          "operations": [{"type": "contour", "tool": 1, "depth": 0, "feed": 300, )" + tol + R"("start": [10, 0],
+          "operations": [{"type": "path", "tool": 1, "z": 0, "feed": 300, )" + tol + R"("start": [10, 0],
             "path": [{"arc": {"plane": "xz", "end": [0, 0, -10], "centre": [0, 0, 0], "direction": "ccw"}}]}]})";
     };
     auto feed_lines = [](const std::string& text) {

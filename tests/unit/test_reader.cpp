@@ -20,7 +20,7 @@ namespace {
 
 const std::string d_arc_job = R"({"name": "darc", "units": "mm", "clearance": 5,
  "tools": [{"number": 1, "type": "end-mill", "diameter": 4, "rpm": 2000}],
- "operations": [{"type": "contour", "tool": 1, "depth": -1, "feed": 300, "start": [0, 0],
+ "operations": [{"type": "path", "tool": 1, "z": -1, "feed": 300, "start": [0, 0],
    "path": [{"line": [10, 0]}, {"arc": {"end": [20, 10], "centre": [10, 10], "direction": "ccw"}}, {"line": [20, 0]}]}]})";
 
 std::vector<Event> motion_events(const std::vector<ReadEvent>& events) {

@@ -184,7 +184,7 @@ TEST_CASE("limits: a job over the hole limit is refused before any pattern makes
 
 TEST_CASE("limits: contour path elements are counted; --max-elements raises the limit") {
     const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
-      {"type": "contour", "tool": 1, "depth": -1, "feed": 100, "start": [0, 0],
+      {"type": "path", "tool": 1, "z": -1, "feed": 100, "start": [0, 0],
        "path": [{"line": [10, 0]}, {"line": [10, 10]}, {"line": [0, 10]}]}]})";
     const test::Run over = test::run({"-", "--machine", "fanuc", "--max-elements", "2"}, job);
     CHECK(over.code == 1);
