@@ -51,6 +51,9 @@ TEST_CASE("sense: a tap's feed above the machine's limit is refused, never clamp
 TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are refused") {
     CHECK(has(refusal(job_with(R"("tool": 1, "endDepth": 5, "plungingFeedrate": 100)", 0.4), "fanuc"),
               "spindle speed 0.4 rpm would be written as S0 on machine fanuc"));
+    // nccad has no S word: the speed is a message to the operator, which must not say 0 rpm.
+    CHECK(has(refusal(job_with(R"("tool": 1, "endDepth": 5, "plungingFeedrate": 100)", 0.4), "wabeco"),
+              "spindle speed 0.4 rpm would be written as S0 on machine wabeco"));
     CHECK(has(refusal(job_with(R"("tool": 2, "cycle": "tap", "endDepth": 10, "pitch": 1, "tappingSpeed": 0.3)"), "sinumerik"),
               "/operations/0/tappingSpeed: tappingSpeed 0.3 rpm would be written as 0 on machine sinumerik"));
     CHECK(has(refusal(job_with(R"("tool": 1, "cycle": "deep", "endDepth": 5, "firstDepth": 0.0001, "plungingFeedrate": 100)"),
