@@ -18,6 +18,7 @@
 #include <functional>
 #include <locale>
 #include <numbers>
+#include <random>
 #include <regex>
 #include <thread>
 
@@ -290,28 +291,48 @@ TEST_CASE("field failure: wrong arc direction in G18/G19") {
 }
 
 TEST_CASE("field failure: rounded arc end points off the circle") {
-    // An awkward circle (centre and radius off the output grid, ends at 20 and 110 degrees): as
-    // written, each arc block's end must lie on the circle through its start about its centre.
-    const double r = 12.3456, cx = 3.3217, cy = -7.1043;
-    auto at = [&](double deg) {
-        const double a = deg * std::numbers::pi / 180;
-        return fmt::format("[{:.10f}, {:.10f}]", cx + r * std::cos(a), cy + r * std::sin(a));
-    };
-    const std::string job = contour_job(at(20), fmt::format(R"([{{"arc": {{"end": {}, "centre": [{}, {}], "direction": "ccw"}}}},
-        {{"arc": {{"end": {}, "centre": [{}, {}], "direction": "cw"}}}}])", at(110), cx, cy, at(-35), cx, cy));
-    const auto ran = for_machines(every, [&](const Machine& m) {
-        for (const std::string& text : {job, sample("bracket"), sample("arcs")}) {
-            const ReadBack rb = post_and_read(text, m);
-            int arcs = 0;
-            for (const Step& s : rb.trace.steps) {
-                if (!s.arc) continue;
-                const PlanePoint c = to_plane(s.arc->centre, s.arc->plane), a = to_plane(s.from, s.arc->plane),
-                                 b = to_plane(s.to, s.arc->plane);
-                CAPTURE(s.line);
-                CHECK(std::abs(std::hypot(a.u - c.u, a.v - c.v) - std::hypot(b.u - c.u, b.v - c.v)) <= m.tolerance);
-                ++arcs;
+    // A chain of 300 awkward arcs (radii, centres and sweeps off the output grid, from a fixed
+    // seed): as written, each arc block's end must lie on the circle through its start about its
+    // centre, within the machine's tolerance. Plain rounding of the words misses that on some.
+    std::mt19937 rng(20261130);
+    auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * (rng() / 4294967296.0); };
+    double x = 0, y = 0;
+    std::string path;
+    for (int k = 0; k < 300; ++k) {
+        const double r = uniform(2, 40), to_centre = uniform(0, 2 * std::numbers::pi);
+        const double sweep = uniform(15, 175) * std::numbers::pi / 180, sign = rng() % 2 ? 1.0 : -1.0;
+        const double cx = x + r * std::cos(to_centre), cy = y + r * std::sin(to_centre);
+        const double a = std::atan2(y - cy, x - cx) + sign * sweep;
+        x = cx + r * std::cos(a);
+        y = cy + r * std::sin(a);
+        path += fmt::format(R"({}{{"arc": {{"end": [{:.10f}, {:.10f}], "centre": [{:.10f}, {:.10f}], "direction": "{}"}}}})",
+                            k ? ", " : "", x, y, cx, cy, sign > 0 ? "ccw" : "cw");
+    }
+    const std::string job = contour_job("[0, 0]", "[" + path + "]");
+    const auto ran = for_machines(every, [&](const Machine& machine) {
+        // At the built-in resolutions plain rounding is rarely off by more than the tolerance;
+        // the same machine writing lengths with 2 decimals shows the words are fitted, not rounded.
+        Machine coarse = machine;
+        for (const char* key : {"xyz", "ijk"}) {
+            nc::FormatSpec spec = coarse.formats.count(key) ? coarse.formats.at(key) : nc::FormatSpec{};
+            spec.decimals = 2;
+            coarse.formats[key] = spec;
+        }
+        for (const Machine& m : {machine, coarse}) {
+            for (const std::string& text : {job, sample("bracket"), sample("arcs")}) {
+                CAPTURE(m.format("xyz").spec().decimals);
+                const ReadBack rb = post_and_read(text, m);
+                int arcs = 0;
+                for (const Step& s : rb.trace.steps) {
+                    if (!s.arc) continue;
+                    const PlanePoint c = to_plane(s.arc->centre, s.arc->plane), a = to_plane(s.from, s.arc->plane),
+                                     b = to_plane(s.to, s.arc->plane);
+                    CAPTURE(s.line);
+                    CHECK(std::abs(std::hypot(a.u - c.u, a.v - c.v) - std::hypot(b.u - c.u, b.v - c.v)) <= m.tolerance);
+                    ++arcs;
+                }
+                CHECK(arcs >= 2);
             }
-            CHECK(arcs >= 2);
         }
     });
     CHECK(ran == all_machines);
