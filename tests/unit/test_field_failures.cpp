@@ -96,10 +96,10 @@ std::string holes_job(const std::string& op, const std::string& holes = "[[10, 1
                        clearance, op, holes);
 }
 
-// A job of one contour on a 4 mm end mill, its path elements given as JSON.
-std::string contour_job(const std::string& start, const std::string& path, double feed = 300) {
+// A job of one tool-centre path on a 4 mm end mill, its path elements given as JSON.
+std::string path_job(const std::string& start, const std::string& path, double feed = 300) {
     return fmt::format(R"({{"name": "field", "clearance": 10, "tools": [{{"number": 5, "type": "end-mill", "diameter": 4, "rpm": 4000}}],
- "operations": [{{"type": "contour", "tool": 5, "depth": -1, "feed": {}, "plungeFeed": 100, "start": {}, "path": {}}}]}})",
+ "operations": [{{"type": "path", "tool": 5, "z": -1, "feed": {}, "plungeFeed": 100, "start": {}, "path": {}}}]}})",
                        feed, start, path);
 }
 
@@ -271,7 +271,7 @@ TEST_CASE("field failure: wrong arc direction in G18/G19") {
     // The arcs sample's XZ arc (cw) and YZ arc (ccw) both dip into the material to Z-6 at their
     // middle; the wrong direction would bulge up to Z+4. Read back by the machine's reader and,
     // for the ISO and nccad dialects, by the interpreter of support.hpp that uses no camgen arc code.
-    const std::string job = contour_job("[200, 0]", R"([
+    const std::string job = path_job("[200, 0]", R"([
         {"arc": {"plane": "xz", "end": [210, 0, -1], "centre": [205, 0, -1], "direction": "cw"}},
         {"arc": {"plane": "yz", "end": [210, 10, -1], "centre": [210, 5, -1], "direction": "ccw"}}])");
     const auto ran = for_machines(every, [&](const Machine& m) {
@@ -308,7 +308,7 @@ TEST_CASE("field failure: rounded arc end points off the circle") {
         path += fmt::format(R"({}{{"arc": {{"end": [{:.10f}, {:.10f}], "centre": [{:.10f}, {:.10f}], "direction": "{}"}}}})",
                             k ? ", " : "", x, y, cx, cy, sign > 0 ? "ccw" : "cw");
     }
-    const std::string job = contour_job("[0, 0]", "[" + path + "]");
+    const std::string job = path_job("[0, 0]", "[" + path + "]");
     const auto ran = for_machines(every, [&](const Machine& machine) {
         // At the built-in resolutions plain rounding is rarely off by more than the tolerance;
         // the same machine writing lengths with 2 decimals shows the words are fitted, not rounded.
@@ -342,7 +342,7 @@ TEST_CASE("field failure: full circles and tiny arcs read as 360 degrees") {
     // A full circle must be read as one turn, never as nothing; an arc of r = 0.001 whose rounded
     // ends coincide must never be read as a full turn (a 360-degree arc block).
     const double tiny = 20 * std::numbers::pi / 180;
-    const std::string job = contour_job("[30, 10]", fmt::format(R"([
+    const std::string job = path_job("[30, 10]", fmt::format(R"([
         {{"arc": {{"end": [30, 10], "centre": [20, 10], "direction": "cw"}}}},
         {{"line": [5.001, 5]}},
         {{"arc": {{"end": [{:.10f}, {:.10f}], "centre": [5, 5], "direction": "ccw"}}}}])",
@@ -359,7 +359,7 @@ TEST_CASE("field failure: full circles and tiny arcs read as 360 degrees") {
 }
 
 TEST_CASE("field failure: helices sent to controls that cannot do them") {
-    const std::string job = contour_job("[150, 0]", R"([{"helix": {"centre": [150, 2], "direction": "ccw", "turns": 3, "depth": -7}}])");
+    const std::string job = path_job("[150, 0]", R"([{"helix": {"centre": [150, 2], "direction": "ccw", "turns": 3, "z": -7}}])");
     const auto ran = for_machines(every, [&](const Machine& m) {
         const ReadBack r = post_and_read(job, m);
         int helical = 0;
@@ -403,7 +403,7 @@ TEST_CASE("field failure: inch and mm mixed up") {
 
 TEST_CASE("field failure: a unit switch that changes coordinates but not feeds") {
     // 254 mm/min is 10 in/min: written in inch, the feed must read back as 254 mm/min, not 25.4x faster.
-    const std::string job = contour_job("[0, 0]", R"([{"line": [25.4, 0]}])", 254);
+    const std::string job = path_job("[0, 0]", R"([{"line": [25.4, 0]}])", 254);
     const auto ran = for_machines([](const Machine& m) { return m.accepts(Units::inch); }, [&](const Machine& m) {
         Machine inch = m;
         inch.units = Units::inch;
@@ -447,7 +447,7 @@ TEST_CASE("field failure: a decimal comma from the process locale") {
 TEST_CASE("field failure: exponent notation (F1.18e+06)") {
     // Values far beyond and far below the output's resolution: a feed of 987654.321 mm/min
     // (clamped), coordinates of 1e-7 mm and 123456.789 mm, given in exponent form.
-    const std::string job = contour_job("[1e-7, 1E-7]", R"([{"line": [1.23456789e5, 1e-7]}, {"line": [1e-7, 2.5e-8]}])", 987654.321);
+    const std::string job = path_job("[1e-7, 1E-7]", R"([{"line": [1.23456789e5, 1e-7]}, {"line": [1e-7, 2.5e-8]}])", 987654.321);
     const auto ran = for_machines(every, [&](const Machine& m) {
         const ReadBack r = post_and_read(job, m);
         CHECK(bad_number(r.text) == "");
@@ -479,12 +479,12 @@ TEST_CASE("field failure: a missing decimal point read as 1/1000 on a Fanuc-styl
 TEST_CASE("field failure: F0 or feeds above the machine's limit") {
     const auto ran = for_machines(every, [&](const Machine& m) {
         // A feed of 0 is refused as the job is read.
-        CHECK(has(refusal(contour_job("[0, 0]", R"([{"line": [10, 0]}])", 0), m), "/operations/0/feed"));
+        CHECK(has(refusal(path_job("[0, 0]", R"([{"line": [10, 0]}])", 0), m), "/operations/0/feed"));
         // A feed that would round to F0, and one above the limit: what is written reads back
         // between the machine's limits.
         for (double feed : {0.001, 1e6}) {
             CAPTURE(feed);
-            const ReadBack r = post_and_read(contour_job("[0, 0]", R"([{"line": [10, 0]}])", feed), m);
+            const ReadBack r = post_and_read(path_job("[0, 0]", R"([{"line": [10, 0]}])", feed), m);
             int feeds = 0;
             for (const Step& s : r.trace.steps)
                 if (s.kind == StepKind::feed) {
@@ -500,7 +500,7 @@ TEST_CASE("field failure: F0 or feeds above the machine's limit") {
             inch.units = Units::inch;
             std::string text;
             try {
-                text = post_program(read_job(contour_job("[0, 0]", R"([{"line": [10, 0]}])", 1), "job.json"), inch);
+                text = post_program(read_job(path_job("[0, 0]", R"([{"line": [10, 0]}])", 1), "job.json"), inch);
             } catch (const InputError& e) {
                 CHECK(has(e.what(), "would be written as F0"));
             }
