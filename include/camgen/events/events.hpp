@@ -18,11 +18,21 @@ enum class CompensationSide { off, left, right };
 
 // An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
 // is the operation's own tolerance for arcs that become lines (mm), if it has one.
+// The absolute heights of an operation that moves between them itself (a contour): the plane
+// it travels at, the stock top, and where rapid turns into feed.
+struct OperationPlanes {
+    double retract_z = 0.0;
+    double reference_z = 0.0;
+    double safe_z = 0.0;
+    friend bool operator==(const OperationPlanes&, const OperationPlanes&) = default;
+};
+
 struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
     std::vector<std::string> notes;  // what the operation decided that the job did not ask for
+    std::optional<OperationPlanes> planes;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
 
