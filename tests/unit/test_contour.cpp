@@ -299,3 +299,51 @@ TEST_CASE("contour: a concave corner arc tighter than the tool is trimmed, never
     CHECK(r.code == 0);
     CHECK(r.err.find("camgen: note: /operations/0 (contour): /operations/0/path/") != std::string::npos);
 }
+
+TEST_CASE("contour: wear compensation cuts camgen's offset path and switches G41 on for the wear; inverse wear writes G42") {
+    for (const auto& [mode, word] : {std::pair{"wear", "G41 D4"}, std::pair{"inverse-wear", "G42 D4"}}) {
+        CAPTURE(mode);
+        const std::string job = rectangle_job(fmt::format(R"("compensation": "{}")", mode));
+        const Job j = read_job(job, "r.json");
+        const Profile profile = profile_of(j);
+        int samples = 0;
+        for (const Move& m : moves_of(expand_job(j)))
+            if (!m.rapid && m.movement == Movement::cutting)
+                for (const Vec3& p : samples_of(m)) {
+                    CHECK(distance_to(profile, {p.x, p.y}) == doctest::Approx(5.0));
+                    ++samples;
+                }
+        CHECK(samples > 1000);
+        const Posted posted = post_job(job, "fanuc");
+        CHECK(posted.text.find(word) != std::string::npos);
+        CHECK(posted.text.find("G40 G1") != std::string::npos);
+    }
+}
+
+TEST_CASE("contour: a ramp along the profile descends at its angle, then goes back at depth before the full pass") {
+    // One pass 4 deep from the stock top at 0 on a closed rectangle, ramp 10 degrees: the ramp
+    // runs 4 / tan(10 deg) = 22.685 mm along the offset path, down from Z0 to Z-4.
+    const Job j = read_job(rectangle_job(R"("ramp": {"type": "along", "angle": 10}, "rampFeed": 300)"), "r.json");
+    double ramp_down = 0.0, ramp_back = 0.0;
+    double lowest_before_cut = 0.0;
+    bool cut = false;
+    for (const Move& m : moves_of(expand_job(j))) {
+        if (m.rapid) continue;
+        const double xy = std::hypot(m.to.x - m.from.x, m.to.y - m.from.y);
+        if (m.movement == Movement::ramp) {
+            CHECK_FALSE(cut);
+            if (m.to.z < m.from.z - 1e-9) {
+                CHECK((m.from.z - m.to.z) / xy == doctest::Approx(std::tan(10 * std::numbers::pi / 180)));
+                ramp_down += xy;
+            } else {
+                CHECK(m.to.z == doctest::Approx(-4.0));
+                ramp_back += xy;
+            }
+        }
+        if (m.movement == Movement::plunge) lowest_before_cut = std::min(lowest_before_cut, m.to.z);
+        if (m.movement == Movement::cutting) cut = true;
+    }
+    CHECK(ramp_down == doctest::Approx(4 / std::tan(10 * std::numbers::pi / 180)));
+    CHECK(ramp_back == doctest::Approx(ramp_down));
+    CHECK(lowest_before_cut == doctest::Approx(0.0));  // no plunge into the stock: down to the top only
+}
