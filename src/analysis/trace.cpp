@@ -89,7 +89,10 @@ public:
                            trace_.steps.push_back(s);
                        },
                        [&](const Rapid& r) { move(StepKind::rapid, r.to, 0.0, e.from_unknown); },
-                       [&](const Linear& l) { move(StepKind::feed, l.to, l.feed, false); },
+                       [&](const Linear& l) {
+                           move(StepKind::feed, l.to, l.feed, false);
+                           if (!trace_.steps.empty() && trace_.steps.back().kind == StepKind::feed) trace_.steps.back().movement = l.movement;
+                       },
                        [&](const Arc& a) {
                            if (!known_) throw std::logic_error("arc from an unknown position");
                            Step s = base(StepKind::feed);
@@ -97,6 +100,7 @@ public:
                            s.to = a.to;
                            s.feed = a.feed;
                            s.arc = resolve_arc(pos_, a);
+                           s.movement = a.movement;
                            trace_.steps.push_back(s);
                            pos_ = a.to;
                        },
@@ -123,6 +127,12 @@ public:
     }
 
     Trace finish() {
+        // A program does not say what kind a feed move is; its motion does where it goes down.
+        for (Step& s : trace_.steps) {
+            if (s.kind != StepKind::feed || s.movement != Movement::cutting || !(s.to.z < s.from.z)) continue;
+            const bool straight_down = !s.arc && s.to.x == s.from.x && s.to.y == s.from.y;
+            s.movement = straight_down ? Movement::plunge : Movement::ramp;
+        }
         trace_.holes = find_holes(trace_.steps);
         return std::move(trace_);
     }

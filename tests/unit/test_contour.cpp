@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "camgen/analysis/stats.hpp"
 #include "camgen/geometry/offset.hpp"
 #include "support.hpp"
 
@@ -346,4 +347,24 @@ TEST_CASE("contour: a ramp along the profile descends at its angle, then goes ba
     CHECK(ramp_down == doctest::Approx(4 / std::tan(10 * std::numbers::pi / 180)));
     CHECK(ramp_back == doctest::Approx(ramp_down));
     CHECK(lowest_before_cut == doctest::Approx(0.0));  // no plunge into the stock: down to the top only
+}
+
+TEST_CASE("contour: statistics tell the movement kinds apart") {
+    // From the job's events: every kind the operation used, lead-in and lead-out included.
+    const Job j = read_job(sample_text("plate-outline"), "plate-outline.json");
+    const Machine m = load_machine("fanuc");
+    const ProgramStats from_job = compute_stats(trace_events(expand_job(j), m), m);
+    for (Movement k : {Movement::cutting, Movement::plunge, Movement::lead_in, Movement::lead_out, Movement::finishing}) {
+        CAPTURE(name_of(movements, k));
+        CHECK(from_job.movement_length[static_cast<std::size_t>(k)] > 0);
+    }
+    // The lead-in is a quarter circle of radius 8, once for roughing and once for finishing.
+    CHECK(from_job.movement_length[static_cast<std::size_t>(Movement::lead_in)] == doctest::Approx(2 * 8 * std::numbers::pi / 2));
+    // Read back from a program, the motion shows the plunges and the helix ramp.
+    const Run r = run({CAMGEN_SOURCE_DIR "/samples/pocket-wall.json", "--machine", "linuxcnc", "--stats", "-o",
+                       (scratch("contour-stats") / "p.ngc").string()});
+    REQUIRE(r.code == 0);
+    CHECK(r.err.find("feed by kind   cutting ") != std::string::npos);
+    CHECK(r.err.find(", plunge ") != std::string::npos);
+    CHECK(r.err.find(", ramp ") != std::string::npos);
 }
