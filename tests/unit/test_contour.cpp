@@ -368,3 +368,22 @@ TEST_CASE("contour: statistics tell the movement kinds apart") {
     CHECK(r.err.find(", plunge ") != std::string::npos);
     CHECK(r.err.find(", ramp ") != std::string::npos);
 }
+
+TEST_CASE("contour: the backplot draws the width the tool cuts, one band per tool and depth, darker deeper") {
+    const std::filesystem::path dir = scratch("contour-plot");
+    const Run r = run({CAMGEN_SOURCE_DIR "/samples/plate-outline.json", "--machine", "fanuc", "-o", (dir / "p.nc").string(), "--plot",
+                       (dir / "p.svg").string()});
+    REQUIRE(r.code == 0);
+    const std::string svg = read_file((dir / "p.svg").string());
+    // Depth levels of the feed moves in XY: three roughing passes, the tab tops, the finishing pass.
+    std::vector<double> opacities;
+    for (std::size_t at = svg.find("stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-opacity=\""); at != std::string::npos;
+         at = svg.find("stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-opacity=\"", at + 1)) {
+        const std::size_t v = svg.find("stroke-opacity=\"", at) + 16;
+        opacities.push_back(std::stod(svg.substr(v, svg.find('"', v) - v)));
+    }
+    CHECK(opacities.size() == 5);
+    // Bands are drawn from the deepest (lowest Z, darkest) to the shallowest.
+    CHECK(std::is_sorted(opacities.rbegin(), opacities.rend()));
+    CHECK(opacities.front() == doctest::Approx(0.25));
+}
