@@ -308,6 +308,20 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     }
     op.lead_in = read_lead(f, in, "leadIn", tool.diameter);
     op.lead_out = read_lead(f, in, "leadOut", tool.diameter);
+    if (op.compensation != CompensationMode::computer) {
+        // The control switches compensation on along a straight lead: LinuxCNC refuses an
+        // entry move shorter than the tool radius ("Length of cutter compensation entry move is
+        // not greater than the tool radius"). A straight lead gets the length the arcs' entry
+        // line has (see Cutter::switch_length).
+        const double needed = std::max(op.tool_radius * 1.1, op.tool_radius + 0.1);
+        for (auto [lead, key] : {std::pair{&op.lead_in, "leadIn"}, std::pair{&op.lead_out, "leadOut"}})
+            if (lead->kind == Lead::Kind::line && lead->length < needed) {
+                op.notes.push_back(fmt::format("{}/{}: the line is {} long; with the control compensating it must be longer than "
+                                               "the tool radius: camgen makes it {}",
+                                               op.path, key, in.show(lead->length), in.show(needed)));
+                lead->length = needed;
+            }
+    }
     if (const Json* value = f.member("ramp")) {
         Fields r(*value, f.path_of("ramp"), in.source());
         JobInput::known_keys(r, ramp_keys);

@@ -387,3 +387,17 @@ TEST_CASE("contour: the backplot draws the width the tool cuts, one band per too
     CHECK(std::is_sorted(opacities.rbegin(), opacities.rend()));
     CHECK(opacities.front() == doctest::Approx(0.25));
 }
+
+TEST_CASE("contour: with control compensation a straight lead shorter than the tool radius is lengthened, with a note") {
+    const Job j = read_job(rectangle_job(R"("compensation": "control", "leadIn": {"type": "line", "length": 2}, "leadOut": {"type": "line", "length": 2, "angle": 90})"), "r.json");
+    const auto& op = std::get<ContourOp>(j.operations.at(0));
+    CHECK(op.lead_in.length == doctest::Approx(5.5));
+    CHECK(op.lead_out.length == doctest::Approx(5.5));
+    REQUIRE(op.notes.size() == 2);
+    CHECK(op.notes[0].find("/operations/0/leadIn: the line is 2.000 mm long") != std::string::npos);
+    // The entry move carrying G41 is then long enough for LinuxCNC (the rs274 oracle runs the
+    // samples; here the length is checked in the program).
+    const Posted p = post_job(rectangle_job(R"("compensation": "control", "leadIn": {"type": "line", "length": 2})"), "linuxcnc");
+    CHECK(p.text.find("X0 Y-5.5\n") != std::string::npos);  // the walk starts up the left side
+    CHECK(p.text.find("G41 D4 Y0\n") != std::string::npos);
+}
