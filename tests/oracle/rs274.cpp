@@ -48,6 +48,9 @@ std::string describe(const Step& s) {
         case Step::Kind::traverse: return fmt::format("traverse ({:.4f}, {:.4f}, {:.4f})", s.to.x, s.to.y, s.to.z);
         case Step::Kind::feed:
             return fmt::format("feed ({:.4f}, {:.4f}, {:.4f}) F{:.4f}", s.to.x, s.to.y, s.to.z, s.value);
+        case Step::Kind::arc:
+            return fmt::format("arc ({:.4f}, {:.4f}, {:.4f}) about ({:.4f}, {:.4f}) rotation {} F{:.4f}", s.to.x, s.to.y,
+                               s.to.z, s.centre.x, s.centre.y, s.rotation, s.value);
         case Step::Kind::dwell: return fmt::format("dwell {:.4f} s", s.value);
         case Step::Kind::spindle: return fmt::format("spindle {} {:.0f} rpm", s.spindle, s.value);
         case Step::Kind::rigid_tap: return fmt::format("rigid tap to ({:.4f}, {:.4f}, {:.4f})", s.to.x, s.to.y, s.to.z);
@@ -76,6 +79,7 @@ std::vector<Step> parse_canon(const std::string& canon) {
     Vec3 pos{0, 0, 0};
     double feed = 0.0, speed = 0.0;
     std::string spindle = "off";
+    std::string plane = "XY";
     auto push_spindle = [&](const std::string& state) {
         spindle = state;
         Step s;
@@ -108,6 +112,29 @@ std::vector<Step> parse_canon(const std::string& canon) {
             steps.push_back(s);
             // A rigid tap returns to where it started.
             if (s.kind != Step::Kind::rigid_tap) pos = to;
+        } else if (name == "SELECT_PLANE") {
+            const std::string arg = line.substr(open + 1, close - open - 1);
+            plane = arg.find("XZ") != std::string::npos ? "XZ" : arg.find("YZ") != std::string::npos ? "YZ" : "XY";
+        } else if (name == "ARC_FEED") {
+            // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end, ...):
+            // first and second are X, Y in XY, Z, X in XZ and Y, Z in YZ.
+            if (a.size() < 6) throw std::runtime_error("cannot read rs274 line: " + line);
+            Step s;
+            s.kind = Step::Kind::arc;
+            s.rotation = static_cast<int>(a[4]);
+            s.value = feed;
+            if (plane == "XY") {
+                s.to = {a[0], a[1], a[5]};
+                s.centre = {a[2], a[3], pos.z};
+            } else if (plane == "XZ") {
+                s.to = {a[1], a[5], a[0]};
+                s.centre = {a[3], pos.y, a[2]};
+            } else {
+                s.to = {a[5], a[0], a[1]};
+                s.centre = {pos.x, a[2], a[3]};
+            }
+            steps.push_back(s);
+            pos = s.to;
         } else if (name == "SET_FEED_RATE") {
             feed = a.at(0);
         } else if (name == "DWELL") {

@@ -15,10 +15,12 @@ namespace camgen::oracle {
 // way give equal lists: zero-length moves and zero dwells are dropped, a feed move carries
 // the feed rate in force, spindle entries appear only when the spindle's state changes.
 struct Step {
-    enum class Kind { traverse, feed, dwell, spindle, rigid_tap };
+    enum class Kind { traverse, feed, arc, dwell, spindle, rigid_tap };
     Kind kind = Kind::traverse;
-    Vec3 to;                 // traverse, feed, rigid_tap
-    double value = 0.0;      // feed: mm/min; dwell: seconds; spindle: rpm (0: stopped)
+    Vec3 to;                 // traverse, feed, arc, rigid_tap
+    Vec3 centre;             // arc: the centre, its normal coordinate the start's
+    int rotation = 0;        // arc: ARC_FEED's rotation (> 0 counter-clockwise, its size the turns begun)
+    double value = 0.0;      // feed, arc: mm/min; dwell: seconds; spindle: rpm (0: stopped)
     std::string spindle;     // spindle: "cw", "ccw" or "off"
 };
 
