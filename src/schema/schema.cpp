@@ -225,7 +225,53 @@ OJson operation_defs() {
     return all;
 }
 
+// The docs' name of what a number measures ("" when it needs none).
+std::string_view quantity_name(Quantity q) {
+    switch (q) {
+        case Quantity::length: return "length";
+        case Quantity::feed: return "feed";
+        case Quantity::time: return "time";
+        case Quantity::speed: return "speed";
+        case Quantity::angle: return "angle";
+        case Quantity::factor:
+        case Quantity::count:
+        case Quantity::choice: return "";
+    }
+    return "";
+}
+
+// A key's type in the docs: "number (length) > 0", "`"climb"`, `"conventional"`", "object".
+std::string type_markdown(const KeySpec& k) {
+    if (k.type == JsonType::string && k.choices) {
+        std::string s;
+        for (const auto& c : k.choices()) s += fmt::format("{}`\"{}\"`", s.empty() ? "" : ", ", c);
+        return s;
+    }
+    std::string s = k.type == JsonType::point    ? "point `[x, y]`"
+                    : k.type == JsonType::point3 ? "point `[x, y]` or `[x, y, z]`"
+                                                 : std::string(type_name(k.type));
+    const std::string_view q = quantity_name(k.quantity);
+    if (k.type == JsonType::number && !q.empty()) s += fmt::format(" ({})", q);
+    auto bound = [](const Bound& b, const char* strict, const char* inclusive) {
+        return fmt::format("{} {}", b.inclusive ? inclusive : strict, number_json(b.value).dump());
+    };
+    if (k.min) s += " " + bound(*k.min, ">", "≥");
+    if (k.max) s += std::string(k.min ? "," : "") + " " + bound(*k.max, "<", "≤");
+    return s;
+}
+
 }  // namespace
+
+std::string keys_markdown(const ObjectSpec& object) {
+    std::string s = "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
+    for (const KeySpec& k : object.keys) {
+        const std::string fallback = k.required              ? "**required**"
+                                     : k.default_json.empty() ? "–"
+                                                              : fmt::format("`{}`", k.default_json);
+        s += fmt::format("| `{}` | {} | {} | {} |\n", k.key, type_markdown(k), fallback, k.description);
+    }
+    return s;
+}
 
 OJson job_schema() {
     return file_schema("job", "camgen job", JobInput::objects(), operation_defs(), FileKind::job);

@@ -7,7 +7,9 @@
 #include <sstream>
 #include <string>
 
+#include "camgen/schema/schema.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
+#include "operations/registry.hpp"
 
 using namespace camgen;
 
@@ -65,4 +67,13 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     CHECK(table.find("| `bore-stop` | G86: feed in, spindle stop, rapid out | **plungingFeedrate**, bottomDwell |") !=
           std::string::npos);
     check_section("cycle kinds", table);
+}
+
+TEST_CASE("docs: the bore-mill key table is the operation's") {
+    const std::string table = keys_markdown(BoreMillOp::objects().front());
+    CHECK(table.find("| `diameter` | number (length) > 0 | **required** |") != std::string::npos);
+    CHECK(table.find("| `direction` | `\"climb\"`, `\"conventional\"` | `\"climb\"` |") != std::string::npos);
+    CHECK(table.find("| `stepOver` | number > 0, ≤ 1 | `0.5` |") != std::string::npos);
+    CHECK(table.find("| `boltCircle` | object | – |") != std::string::npos);
+    check_section("bore-mill keys", table);
 }

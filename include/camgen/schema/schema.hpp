@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camgen/common/key_spec.hpp"
+
 namespace camgen {
 
 // The schema of a job file.
@@ -20,6 +22,10 @@ nlohmann::ordered_json machine_schema();
 
 // The names `camgen schema` takes, in order: "job", "machine".
 std::vector<std::string> schema_names();
+
+// The keys of an object as a markdown table (key, type, default, meaning) for
+// docs/job-format.md, from the same table as its schema.
+std::string keys_markdown(const ObjectSpec& object);
 
 // The schema named `name` as text (2-space indent, trailing newline); nullopt for an unknown name.
 std::optional<std::string> schema_text(std::string_view name);
