@@ -125,6 +125,11 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
     op.pitch = in.length(f, "pitch");
     if (op.pitch <= 0) f.fail("pitch", "pitch must be > 0 (the helix goes down by at most pitch each turn)");
     const Planes z = resolve_planes(op.heights);
+    // The helix starts at the stock top: a bottom at or above it would mill nothing (or upwards).
+    if (z.bottom_z >= z.reference_z)
+        f.fail("endDepth", fmt::format("endDepth is not below referencePlane, the stock top (bore bottom at Z {}, stock "
+                                       "top at Z {}): there is nothing to mill",
+                                       in.show(z.bottom_z), in.show(z.reference_z)));
     if ((z.reference_z - z.bottom_z) / op.pitch > max_helix_turns)
         f.fail("pitch", fmt::format("pitch is too small: more than {} helix turns", max_helix_turns));
     op.step_over = f.optional_number("stepOver").value_or(0.5);

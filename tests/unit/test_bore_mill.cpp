@@ -303,6 +303,8 @@ TEST_CASE("bore-mill: bad input names the JSON path, exits 1 and writes nothing"
          {"more than 100000 helix turns"}},
         {bore_job(12, 6, R"("endDepth": -3, "pitch": 1, "holes": [[0, 0]])"), "/operations/0/endDepth",
          {"a relative endDepth must be > 0"}},
+        {bore_job(12, 6, R"("endDepth": 0.5, "endDepthIsAbsolute": true, "pitch": 1, "holes": [[0, 0]])"),
+         "/operations/0/endDepth", {"endDepth is not below referencePlane, the stock top (bore bottom at Z 0.500 mm"}},
         {bore_job(12, 6, R"("endDepth": 3, "referencePlane": 4.5, "pitch": 1, "holes": [[0, 0]])"),
          "/operations/0/retractPlane", {"retractPlane is below the safe distance"}},
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 1, "finishingAllowance": 3, "holes": [[0, 0]])"),
