@@ -14,7 +14,8 @@ namespace {
 
 using Fields = json::Fields;
 
-// At most this many helix turns per ring, so that a typo in the pitch cannot make millions of arcs.
+// At most this many helix turns per hole (and rings), so that a typo in the pitch or stepOver
+// cannot make millions of arcs.
 constexpr double max_helix_turns = 100000;
 
 // The innermost ring of a bore cleared ring by ring: its tool overlaps the centre by a tenth
@@ -82,11 +83,17 @@ ArcDirection arc_direction(MillingDirection milling, SpindleDirection spindle) {
 
 }  // namespace
 
+double ring_count(double bore, double tool, double step_over, double allowance) {
+    const double outer = (bore - tool) / 2.0 - allowance;
+    if (outer <= tool / 2.0) return 1;
+    return 1 + std::ceil((outer - inner_ring_fraction * tool) / (step_over * tool) - 1e-9);
+}
+
 std::vector<double> ring_radii(double bore, double tool, double step_over, double allowance) {
     const double outer = (bore - tool) / 2.0 - allowance;
     const double inner = inner_ring_fraction * tool;
-    if (outer <= tool / 2.0) return {outer};
-    const int rings = 1 + static_cast<int>(std::ceil((outer - inner) / (step_over * tool) - 1e-9));
+    const int rings = static_cast<int>(ring_count(bore, tool, step_over, allowance));
+    if (rings == 1) return {outer};
     std::vector<double> radii;
     for (int i = 0; i < rings; ++i) radii.push_back(inner + (outer - inner) * i / (rings - 1));
     radii.back() = outer;  // exactly, no rounding
@@ -130,8 +137,6 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
         f.fail("endDepth", fmt::format("endDepth is not below referencePlane, the stock top (bore bottom at Z {}, stock "
                                        "top at Z {}): there is nothing to mill",
                                        in.show(z.bottom_z), in.show(z.reference_z)));
-    if ((z.reference_z - z.bottom_z) / op.pitch > max_helix_turns)
-        f.fail("pitch", fmt::format("pitch is too small: more than {} helix turns", max_helix_turns));
     op.step_over = f.optional_number("stepOver").value_or(0.5);
     if (!(op.step_over > 0 && op.step_over <= 1)) f.fail("stepOver", "stepOver must be > 0 and at most 1");
     op.finishing_allowance = in.optional_length(f, "finishingAllowance").value_or(0.0);
@@ -142,6 +147,12 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
                fmt::format("finishingAllowance ({}) leaves the roughing nothing to mill: it must be less than half the "
                            "difference of the bore's and the tool's diameters ({})",
                            in.show(op.finishing_allowance), in.show(wall)));
+    // Counted before anything is made, so that a typo cannot make millions of arcs.
+    const double rings = ring_count(op.diameter, tool.diameter, op.step_over, op.finishing_allowance);
+    if (rings > max_helix_turns)
+        f.fail("stepOver", fmt::format("stepOver is too small for the bore: more than {} rings", max_helix_turns));
+    if (rings * std::ceil((z.reference_z - z.bottom_z) / op.pitch) > max_helix_turns)
+        f.fail("pitch", fmt::format("pitch is too small: more than {} helix turns a hole", max_helix_turns));
     if (tool.flute_length && z.reference_z - z.bottom_z > *tool.flute_length)
         f.fail("endDepth", fmt::format("the bore is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));

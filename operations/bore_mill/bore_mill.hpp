@@ -54,6 +54,9 @@ struct BoreMillOp : HoleSet {
 // (bore - tool) / 2 - `allowance`.
 std::vector<double> ring_radii(double bore, double tool, double step_over, double allowance);
 
+// How many rings ring_radii makes (a double, so that a huge count can be refused before it is made).
+double ring_count(double bore, double tool, double step_over, double allowance);
+
 // Whole helix turns from the stock top to the bottom (`drop` mm) at most `pitch` mm per turn:
 // the helix ends exactly at the depth and at the angle it started.
 int helix_turns(double drop, double pitch);

@@ -54,6 +54,23 @@ std::vector<Vec3> points_of(const camgen::Step& s) {
     return pts;
 }
 
+// How much of a feed move runs above the stock top (mm), measured along 256 pieces.
+double air_length(const camgen::Step& s, double stock_top) {
+    auto at = [&](double t) {
+        return s.arc ? point_on_arc(*s.arc, t)
+                     : Vec3{s.from.x + (s.to.x - s.from.x) * t, s.from.y + (s.to.y - s.from.y) * t,
+                            s.from.z + (s.to.z - s.from.z) * t};
+    };
+    double air = 0;
+    Vec3 a = at(0);
+    for (int i = 1; i <= 256; ++i) {
+        const Vec3 b = at(i / 256.0);
+        if (a.z > stock_top + 1e-6 && b.z > stock_top + 1e-6) air += std::hypot(b.x - a.x, b.y - a.y, b.z - a.z);
+        a = b;
+    }
+    return air;
+}
+
 // What one hole's moves make, measured.
 struct Measured {
     double bottom_radius = 0.0;   // largest tool centre radius at the lowest Z
@@ -63,7 +80,7 @@ struct Measured {
     double helix_turns = 0.0;     // ... and the turns they make doing it
     bool helix_one_way = true;    // every move of the helices and circles turns the same way
     double turn_sign = 0.0;       // +1 counter-clockwise, -1 clockwise
-    double longest_air_feed = 0;  // the longest feed move wholly at or above the stock top
+    double longest_air_feed = 0;  // the longest part of a feed move above the stock top
     double highest_feed_start = -1e9;
     double chord_error = 0.0;     // how far the middle of a straight piece of a circle is inside it
 };
@@ -85,8 +102,7 @@ std::vector<Measured> measure(const Trace& trace, const std::vector<Vec2>& holes
             h.largest_radius = std::max(h.largest_radius, radius_of(p, c));
             if (std::abs(p.z - bottom) < 1e-6) h.bottom_radius = std::max(h.bottom_radius, radius_of(p, c));
         }
-        const double length = s.arc ? arc_length(*s.arc) : std::hypot(s.to.x - s.from.x, s.to.y - s.from.y, s.to.z - s.from.z);
-        if (std::min(s.from.z, s.to.z) >= stock_top - 1e-6) h.longest_air_feed = std::max(h.longest_air_feed, length);
+        h.longest_air_feed = std::max(h.longest_air_feed, air_length(s, stock_top));
         // The helices and circles: moves that keep the distance from the centre.
         const bool on_circle = std::abs(radius_of(s.from, c) - radius_of(s.to, c)) < 0.002 && radius_of(s.to, c) > 0.01;
         if (!on_circle) continue;
@@ -300,7 +316,11 @@ TEST_CASE("bore-mill: bad input names the JSON path, exits 1 and writes nothing"
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 0, "holes": [[0, 0]])"), "/operations/0/pitch", {"pitch must be > 0"}},
         {bore_job(12, 6, R"("endDepth": 3, "pitch": -1, "holes": [[0, 0]])"), "/operations/0/pitch", {"pitch must be > 0"}},
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 0.00001, "holes": [[0, 0]])"), "/operations/0/pitch",
-         {"more than 100000 helix turns"}},
+         {"more than 100000 helix turns a hole"}},
+        {bore_job(2000, 6, R"("endDepth": 3, "pitch": 0.005, "holes": [[0, 0]])"), "/operations/0/pitch",
+         {"more than 100000 helix turns a hole"}},  // 333 rings of 600 turns
+        {bore_job(900000, 1, R"("endDepth": 3, "pitch": 1, "stepOver": 0.001, "holes": [[0, 0]])"),
+         "/operations/0/stepOver", {"more than 100000 rings"}},
         {bore_job(12, 6, R"("endDepth": -3, "pitch": 1, "holes": [[0, 0]])"), "/operations/0/endDepth",
          {"a relative endDepth must be > 0"}},
         {bore_job(12, 6, R"("endDepth": 0.5, "endDepthIsAbsolute": true, "pitch": 1, "holes": [[0, 0]])"),
@@ -325,6 +345,7 @@ TEST_CASE("bore-mill: bad input names the JSON path, exits 1 and writes nothing"
         const fs::path job = dir / "job.json";
         std::ofstream(job) << c.json;
         const fs::path out = dir / "out.ngc";
+        fs::remove(out);
         const test::Run r = test::run({job.string(), "--machine", "linuxcnc", "-o", out.string()});
         CHECK(r.code == 1);
         CHECK(r.err.find(c.path + ":") != std::string::npos);
