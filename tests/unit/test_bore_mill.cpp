@@ -361,3 +361,38 @@ TEST_CASE("bore-mill: bad input names the JSON path, exits 1 and writes nothing"
     CHECK(r.err.find("/operations/0/endDepth: the bore is 8.000 mm deep") != std::string::npos);
     CHECK(!fs::exists(dir / "out.ngc"));
 }
+
+TEST_CASE("hole sources: drill and bore-mill read them alike, each naming its own type") {
+    auto error_of = [](const std::string& json) -> std::string {
+        try {
+            read_job(json, "t.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string header = R"({"clearance": 10, "tools": [{"number": 1, "type": "end-mill", "diameter": 6, "rpm": 1000}],
+      "operations": [)";
+    const std::string drill = R"({"type": "drill", "tool": 1, "endDepth": 3, "plungingFeedrate": 100, )";
+    const std::string bore = R"({"type": "bore-mill", "tool": 1, "endDepth": 3, "diameter": 10, "pitch": 1, "feed": 100, )";
+    CHECK(error_of(header + drill + R"("comment": ""}]})").find(
+              "/operations/0: a drill operation needs holes: give at least one of holes, grid, boltCircle or line") !=
+          std::string::npos);
+    CHECK(error_of(header + drill + R"("holes": []}]})").find(
+              "/operations/0/holes: holes is empty: a drill operation needs at least one hole") != std::string::npos);
+    CHECK(error_of(header + bore + R"("holes": [[0, 0]], "grid": {"origin": [0, 0], "countX": 0, "countY": 1,
+      "spacingX": 1, "spacingY": 1}}]})")
+              .find("/operations/0/grid/countX: countX must be 1 or more") != std::string::npos);
+    // The same sources give the same holes in the same order, shortest order included.
+    const std::string sources = R"("order": "shortest", "holes": [[100, 0], [0, 0]],
+      "grid": {"origin": [10, 10], "countX": 2, "countY": 2, "spacingX": 30, "spacingY": 20, "rotation": 15},
+      "boltCircle": {"centre": [50, 50], "radius": 20, "count": 5, "startAngle": 10},
+      "line": {"start": [0, 80], "end": [90, 80], "count": 4}})";
+    const Job job = read_job(header + drill + sources + ", " + bore + sources + "]}", "t.json");
+    const auto& d = std::get<DrillOp>(job.operations.at(0));
+    const auto& b = std::get<BoreMillOp>(job.operations.at(1));
+    CHECK(d.holes.size() == 2 + 4 + 5 + 4);
+    CHECK(b.holes == d.holes);
+    CHECK(visit_order(b) == visit_order(d));
+    CHECK(visit_order(b) != b.holes);  // reordered
+}
