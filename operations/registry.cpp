@@ -120,12 +120,14 @@ void expand_job(const Job& job, EventSink& sink) {
                 }
                 std::optional<double> tolerance;
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
+                std::vector<std::string> notes;
+                if constexpr (requires { o.notes; }) notes = o.notes;
                 std::optional<OperationHeights> heights;
                 if constexpr (requires { o.heights; }) {
                     const Planes z = resolve_planes(o.heights);
                     heights = OperationHeights{z.retract_z, z.safe_z, z.reference_z};
                 }
-                sink.emit(OperationStart{default_name(o), o.path, tolerance, heights});
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, heights});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

@@ -14,6 +14,7 @@
 #include "operations/bore_mill/bore_mill.hpp"
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
+#include "operations/path/path.hpp"
 
 namespace camgen {
 
@@ -32,7 +33,7 @@ concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& 
 };
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, BoreMillOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

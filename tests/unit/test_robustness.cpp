@@ -32,32 +32,6 @@ void numbers(const nlohmann::json& j, const std::string& path, std::vector<std::
     }
 }
 
-// The first number in NC text that has an exponent or is minus zero, or NaN / inf; "" if none.
-// A number here is what follows a word letter or '=': sign, digits, decimal mark, digits.
-std::string bad_number(const std::string& text) {
-    for (size_t i = 0; i < text.size(); ++i) {
-        char c = text[i];
-        if (c == 'n' && text.compare(i, 3, "nan") == 0) return "nan";
-        if (c == 'i' && text.compare(i, 3, "inf") == 0 && text.compare(i, 4, "info") != 0) return "inf";
-        if (!(std::isupper(static_cast<unsigned char>(c)) || c == '=')) continue;
-        size_t j = i + 1;
-        bool minus = j < text.size() && text[j] == '-';
-        if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
-        size_t digits_start = j;
-        bool nonzero = false;
-        while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' || text[j] == ',')) {
-            if (std::isdigit(static_cast<unsigned char>(text[j])) && text[j] != '0') nonzero = true;
-            ++j;
-        }
-        if (j == digits_start || !std::isdigit(static_cast<unsigned char>(text[digits_start]))) continue;
-        if (j < text.size() && (text[j] == 'e' || text[j] == 'E') && j + 1 < text.size() &&
-            (std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '-' || text[j + 1] == '+'))
-            return text.substr(i, j + 2 - i);
-        if (minus && !nonzero) return text.substr(i, j - i);
-    }
-    return {};
-}
-
 }  // namespace
 
 TEST_CASE("the bad-number scanner finds exponents, minus zero and NaN") {
@@ -184,7 +158,7 @@ TEST_CASE("limits: a job over the hole limit is refused before any pattern makes
 
 TEST_CASE("limits: contour path elements are counted; --max-elements raises the limit") {
     const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
-      {"type": "contour", "tool": 1, "depth": -1, "feed": 100, "start": [0, 0],
+      {"type": "path", "tool": 1, "z": -1, "feed": 100, "start": [0, 0],
        "path": [{"line": [10, 0]}, {"line": [10, 10]}, {"line": [0, 10]}]}]})";
     const test::Run over = test::run({"-", "--machine", "fanuc", "--max-elements", "2"}, job);
     CHECK(over.code == 1);

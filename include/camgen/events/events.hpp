@@ -33,6 +33,7 @@ struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
+    std::vector<std::string> notes;  // what the operation decided that the job did not ask for
     std::optional<OperationHeights> heights = std::nullopt;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
