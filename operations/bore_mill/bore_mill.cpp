@@ -34,7 +34,7 @@ constexpr KeySpec bore_mill_keys[] = {
     {.key = "pitch", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
      .description = "the most the helix goes down per turn; it makes whole turns, so it may go down a little less"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"climb\"",
-     .choices = &choices_of<milling_directions>,
+     .choices = &choices_of<cut_directions>,
      .description = "climb or conventional milling (with the tool's spindle direction this decides G2 or G3)"},
     {.key = "stepOver", .quantity = Quantity::factor, .min = Bound{0, false}, .max = Bound{1, true},
      .default_json = "0.5",
@@ -76,8 +76,8 @@ double read_feed(Fields& f, const JobInput& in, std::string_view key, double fal
 // The direction the tool turns round the hole: climb milling inside a hole with a clockwise
 // spindle is counter-clockwise, conventional milling the other way; a counter-clockwise spindle
 // swaps them.
-ArcDirection arc_direction(MillingDirection milling, SpindleDirection spindle) {
-    const bool ccw = (milling == MillingDirection::climb) == (spindle == SpindleDirection::cw);
+ArcDirection arc_direction(CutDirection milling, SpindleDirection spindle) {
+    const bool ccw = (milling == CutDirection::climb) == (spindle == SpindleDirection::cw);
     return ccw ? ArcDirection::ccw : ArcDirection::cw;
 }
 
@@ -156,7 +156,7 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
     if (tool.flute_length && z.reference_z - z.bottom_z > *tool.flute_length)
         f.fail("endDepth", fmt::format("the bore is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));
-    op.direction = f.choice("direction", milling_directions, MillingDirection::climb);
+    op.direction = f.choice("direction", cut_directions, CutDirection::climb);
 
     f.required("feed");
     op.feed = in.optional_quantity(f, "feed", Quantity::feed).value_or(0.0);

@@ -17,14 +17,6 @@
 
 namespace camgen {
 
-// The side of the cut the tool's edge meets the material from: climb (the edge enters the
-// chip at its thickest) or conventional.
-enum class MillingDirection { climb, conventional };
-inline constexpr Named<MillingDirection> milling_directions[] = {
-    {MillingDirection::climb, "climb", "climb milling: counter-clockwise round a hole for a clockwise (M3) spindle"},
-    {MillingDirection::conventional, "conventional", "conventional milling: clockwise round a hole for an M3 spindle"},
-};
-
 // Mill circular holes with a smaller tool (the holes: HoleSet).
 struct BoreMillOp : HoleSet {
     static constexpr std::string_view type = "bore-mill";
@@ -40,7 +32,7 @@ struct BoreMillOp : HoleSet {
     double pitch = 0.0;                    // mm, the most the helix goes down per turn
     double step_over = 0.5;                // fraction of the tool diameter between rings
     double finishing_allowance = 0.0;      // mm, radial stock the roughing leaves for the finishing circle
-    MillingDirection direction = MillingDirection::climb;
+    CutDirection direction = CutDirection::climb;
     double feed = 0.0;                     // mm/min, the bottom circle and the way back to the centre
     double ramp_feed = 0.0;                // mm/min, the helix
     double plunge_feed = 0.0;              // mm/min, from above the centre to the start of the helix
