@@ -73,12 +73,10 @@ double read_feed(Fields& f, const JobInput& in, std::string_view key, double fal
     return v.value_or(fallback);
 }
 
-// The direction the tool turns round the hole: climb milling inside a hole with a clockwise
-// spindle is counter-clockwise, conventional milling the other way; a counter-clockwise spindle
-// swaps them.
-ArcDirection arc_direction(CutDirection milling, SpindleDirection spindle) {
-    const bool ccw = (milling == CutDirection::climb) == (spindle == SpindleDirection::cw);
-    return ccw ? ArcDirection::ccw : ArcDirection::cw;
+// The direction the tool turns round the hole: with the tool left of its travel (climb with a
+// clockwise spindle) it goes round the wall counter-clockwise.
+ArcDirection arc_direction(CutDirection cut, SpindleDirection spindle) {
+    return tool_left_of_travel(cut, spindle) ? ArcDirection::ccw : ArcDirection::cw;
 }
 
 }  // namespace

@@ -177,6 +177,11 @@ inline constexpr Named<CutDirection> cut_directions[] = {
     {CutDirection::conventional, "conventional", "up milling: the tool right of its travel (M3)"},
 };
 
+// Whether the tool is left of its travel for a cut direction and spindle direction.
+constexpr bool tool_left_of_travel(CutDirection cut, SpindleDirection spindle) {
+    return (cut == CutDirection::climb) == (spindle == SpindleDirection::cw);
+}
+
 enum class HoleOrder { as_given, shortest };
 inline constexpr Named<HoleOrder> hole_orders[] = {
     {HoleOrder::as_given, "as-given", "in the order the job lists them"},
