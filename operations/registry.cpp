@@ -122,12 +122,12 @@ void expand_job(const Job& job, EventSink& sink) {
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
                 std::vector<std::string> notes;
                 if constexpr (requires { o.notes; }) notes = o.notes;
-                std::optional<OperationHeights> heights;
+                std::optional<OperationPlanes> planes;
                 if constexpr (requires { o.heights; }) {
                     const Planes z = resolve_planes(o.heights);
-                    heights = OperationHeights{z.retract_z, z.safe_z, z.reference_z};
+                    planes = OperationPlanes{z.retract_z, z.reference_z, z.safe_z};
                 }
-                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, heights});
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, planes});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

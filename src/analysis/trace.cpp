@@ -65,11 +65,10 @@ public:
                        [&](const OperationStart&) {},
                        [&](const OperationEnd&) {},
                        [&](const Comment&) {},
-                       [&](const Compensation& c) {
-                           // No motion of its own; the offset path it asks for is not traced yet.
-                           if (c.side != CompensationSide::off)
-                               throw InputError("", "cutter radius compensation (G41/G42) cannot be read back yet", e.line);
-                       },
+                       // No motion of its own: with compensation on, the steps are the programmed
+                       // path (the profile), which is what a job with control compensation expects
+                       // too. The control's offset path is LinuxCNC's to show (the rs274 oracle).
+                       [&](const Compensation&) {},
                        [&](const ToolChange& t) {
                            tool_ = t.number;
                            Step s = base(StepKind::tool_change);

@@ -26,10 +26,6 @@ std::string event_to_json(const Event& event) {
                    [&](const OperationStart& e) {
                        j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}};
                        put_optional(j, "tolerance", e.tolerance);
-                       if (e.heights)
-                           j["heights"] = {{"retractZ", e.heights->retract_z},
-                                           {"safeZ", e.heights->safe_z},
-                                           {"referenceZ", e.heights->reference_z}};
                    },
                    [&](const OperationEnd&) { j = {{"event", "operation-end"}}; },
                    [&](const ToolChange& e) {

@@ -27,7 +27,7 @@ std::vector<Step> read_with_camgen(const std::string& program, const Machine& ma
                 if (s.kind == StepKind::feed) o.value = s.feed;
                 if (s.arc) {
                     // rs274's rotation: the turns begun, negative clockwise.
-                    o.centre = s.arc->centre;
+                    o.centre = {s.arc->centre.x, s.arc->centre.y};
                     const int turns = std::max(1, static_cast<int>(std::ceil(s.arc->sweep / (2 * std::numbers::pi) - 1e-9)));
                     o.rotation = s.arc->direction == ArcDirection::ccw ? turns : -turns;
                 }

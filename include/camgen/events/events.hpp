@@ -16,25 +16,23 @@ namespace camgen {
 enum class SpindleState { cw, ccw, off };
 enum class CompensationSide { off, left, right };
 
-// The heights of an operation that moves without a drilling cycle (absolute Z, mm): the
-// retract plane it travels at, where its rapids turn into feed, and the stock top.
-struct OperationHeights {
+// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
+// is the operation's own tolerance for arcs that become lines (mm), if it has one.
+// The absolute heights of an operation that moves between them itself (a contour): the plane
+// it travels at, the stock top, and where rapid turns into feed.
+struct OperationPlanes {
     double retract_z = 0.0;
-    double safe_z = 0.0;
     double reference_z = 0.0;
-    friend bool operator==(const OperationHeights&, const OperationHeights&) = default;
+    double safe_z = 0.0;
+    friend bool operator==(const OperationPlanes&, const OperationPlanes&) = default;
 };
 
-// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
-// is the operation's own tolerance for arcs that become lines (mm), if it has one. `heights`:
-// the operation's heights when it has them and no drilling cycle states them (the safety
-// checks hold its rapids to them).
 struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
     std::vector<std::string> notes;  // what the operation decided that the job did not ask for
-    std::optional<OperationHeights> heights = std::nullopt;
+    std::optional<OperationPlanes> planes;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
 

@@ -43,10 +43,10 @@ private:
     std::string op_path_;                  // the current operation's JSON path
     std::optional<DrillCycle> cycle_;      // the drilling cycle running, if any
     std::optional<double> op_retract_z_;   // the current operation's retract plane (else the clearance)
-    std::optional<double> op_safe_z_;      // where the current operation's rapids turn into feed, without a cycle
     std::optional<double> op_reference_z_; // the current operation's reference plane, if it has one
+    std::optional<double> op_safe_z_;      // where a contour's rapid approach may end
+    bool last_was_feed_ = false;           // the tool got where it is by feed
     std::optional<Vec3> pos_;              // where the tool is (unknown after a tool change)
-    bool cutting_ = false;                 // the last move was a feed (a cut the next feed continues)
     int tool_ = 0;
     std::map<std::pair<long long, long long>, double> holes_;  // the Z each hole reaches, by XY in nm
     std::optional<std::string> pending_descent_;  // a rapid down to a retract plane not yet known: the error
