@@ -11,6 +11,7 @@
 
 #include "camgen/events/events.hpp"
 #include "camgen/job/job.hpp"
+#include "operations/bore_mill/bore_mill.hpp"
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
 #include "operations/path/path.hpp"
@@ -32,7 +33,7 @@ concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& 
 };
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

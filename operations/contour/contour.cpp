@@ -176,7 +176,7 @@ double feed_of(Fields& f, const JobInput& in, std::string_view key, double fallb
 // The walk direction, the offsets and the notes of an operation just read.
 void plan(ContourOp& op, Fields& f, const JobInput& in) {
     // Climb: the tool left of its travel with a clockwise spindle, right with a counter-clockwise one.
-    op.tool_left = (op.direction == CutDirection::climb) == (op.spindle == SpindleDirection::cw);
+    op.tool_left = tool_left_of_travel(op.direction, op.spindle);
     Profile walk = op.profile;
     bool reversed_walk = false;
     if (op.side != ContourSide::on) {

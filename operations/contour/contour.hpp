@@ -30,13 +30,6 @@ inline constexpr Named<ContourSide> contour_sides[] = {
     {ContourSide::outside, "outside", "outside a closed profile (a part's outline)"},
 };
 
-// Climb: the tool is left of its travel (with a clockwise spindle, M3); conventional: right.
-enum class CutDirection { climb, conventional };
-inline constexpr Named<CutDirection> cut_directions[] = {
-    {CutDirection::climb, "climb", "down milling: the path is walked so that the tool is left of its travel (M3)"},
-    {CutDirection::conventional, "conventional", "up milling: the tool right of its travel (M3)"},
-};
-
 // Who offsets the tool radius (Fusion's compensation types).
 enum class CompensationMode { computer, control, wear, inverse_wear };
 inline constexpr Named<CompensationMode> compensation_modes[] = {

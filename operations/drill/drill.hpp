@@ -2,7 +2,6 @@
 // The drill operation: a list of holes drilled with one cycle (the CNC-Calc drill header and
 // its MillDrillingFields), read from the job and expanded into a DrillCycle event, one
 // DrillPoint per hole and a DrillEnd.
-#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +10,7 @@
 #include "camgen/job/job_input.hpp"
 #include "operations/context.hpp"
 #include "operations/heights.hpp"
+#include "operations/holes.hpp"
 
 namespace camgen {
 
@@ -24,11 +24,8 @@ struct DrillParams : Heights {
     friend bool operator==(const DrillParams&, const DrillParams&) = default;
 };
 
-// Appends the holes of one pattern (a grid, bolt circle or line) to a list.
-using HolePattern = std::function<void(std::vector<Vec2>&)>;
-
-// Drill a list of holes with one cycle.
-struct DrillOp {
+// Drill a list of holes with one cycle (the holes: HoleSet).
+struct DrillOp : HoleSet {
     static constexpr std::string_view type = "drill";
     // Reads one operation of this type (its "type" is already read).
     static DrillOp read(json::Fields& f, const JobInput& input);
@@ -38,16 +35,7 @@ struct DrillOp {
     std::string comment;
     int tool = 0;
     DrillParams params;
-    std::vector<Vec2> holes;   // as the job gives them; expand() reorders them for order = shortest
-    HoleOrder order = HoleOrder::as_given;
-    // Patterns read and counted against the job's hole limit but not made yet: read_job makes
-    // them (make_pending_holes) once every operation is read, so that a job over the limit is
-    // refused before any pattern allocates its holes.
-    std::vector<HolePattern> pending_patterns;
 };
-
-// Makes the pending patterns' holes, after the holes of the list, in the job's key order.
-void make_pending_holes(DrillOp& op);
 
 // Position above the first hole at the clearance, then down to the retract plane, the cycle
 // over every hole, and back up to the clearance.
@@ -55,14 +43,6 @@ void expand(const DrillOp& op, const Context& context, EventSink& sink);
 
 // The operation's name for comments: its comment, else "drill N holes".
 std::string default_name(const DrillOp& op);
-
-// Holes up to this count get 2-opt after nearest neighbour in shortest_order (2-opt is
-// O(n^2) per pass); larger operations keep the nearest-neighbour order.
-inline constexpr size_t max_two_opt_holes = 2000;
-
-// The holes in a short rapid order (order "shortest"): nearest neighbour from the first hole,
-// which stays first, then 2-opt (see max_two_opt_holes). Same holes, reordered.
-std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes);
 
 // The resolved drilling cycle of an operation (absolute planes, drill tip, tapping feed).
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool);

@@ -21,6 +21,7 @@
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "../unit/support.hpp"
+#include "camgen_motion.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
@@ -254,51 +255,6 @@ TEST_CASE("every linuxcnc golden file runs through rs274; G33.1 is a rigid tap t
 
 namespace {
 
-// The motion camgen's reader makes of a program, in the oracle's normalised form: moves of
-// zero length and zero dwells dropped, feeds with their rate, spindle entries on changes.
-std::vector<OStep> read_with_camgen(const std::string& program, const Machine& machine) {
-    Trace trace = trace_program(read_program(program, machine, "oracle.ngc"), machine);
-    std::vector<OStep> steps;
-    Vec3 at{0, 0, 0};  // rs274 starts at the origin
-    std::string spindle = "off";
-    for (const camgen::Step& s : trace.steps) {
-        switch (s.kind) {
-            case StepKind::rapid:
-            case StepKind::feed: {
-                if (s.to == at) break;
-                OStep o;
-                o.kind = s.kind == StepKind::rapid ? OStep::Kind::traverse : OStep::Kind::feed;
-                o.to = s.to;
-                if (s.kind == StepKind::feed) o.value = s.feed;
-                steps.push_back(o);
-                at = s.to;
-                break;
-            }
-            case StepKind::dwell:
-                if (s.seconds > 0) {
-                    OStep o;
-                    o.kind = OStep::Kind::dwell;
-                    o.value = s.seconds;
-                    steps.push_back(o);
-                }
-                break;
-            case StepKind::spindle: {
-                std::string state = s.spindle == SpindleState::cw ? "cw" : s.spindle == SpindleState::ccw ? "ccw" : "off";
-                if (state == spindle) break;
-                spindle = state;
-                OStep o;
-                o.kind = OStep::Kind::spindle;
-                o.spindle = state;
-                o.value = s.spindle == SpindleState::off ? 0.0 : s.rpm;
-                steps.push_back(o);
-                break;
-            }
-            case StepKind::tool_change: break;
-        }
-    }
-    return steps;
-}
-
 // The steps from the first move that reaches the first hole's XY on: the approach after the
 // tool change differs in how the two sides know the start (rs274 from its origin).
 std::vector<OStep> from_first_hole(const std::vector<OStep>& steps) {
@@ -322,7 +278,7 @@ TEST_CASE("camgen's reader expands the canned cycles exactly as LinuxCNC does") 
             INFO(fmt::format("{} from Z{}\n{}", code(kind), start_z, canned));
             REQUIRE(contains(canned, fmt::format(" {} X10 Y10 Z-7 R2", code(kind))));
             auto oracle_steps = from_first_hole(oracle::run_rs274(rs274, canned));
-            auto camgen_steps = from_first_hole(read_with_camgen(canned, machine));
+            auto camgen_steps = from_first_hole(oracle::read_with_camgen(canned, machine));
             REQUIRE(oracle_steps.size() > 3);
             check_same(oracle_steps, camgen_steps);
             ++compared;
@@ -387,7 +343,7 @@ TEST_CASE("field failure: a canned-cycle word the control requires left out (G86
             REQUIRE_NOTHROW(b = oracle::run_rs274(rs274, longhand));
             check_same(a, b);
             // camgen's own reader accepts what it wrote (P0 included) and moves the same way.
-            check_same(from_first_hole(a), from_first_hole(read_with_camgen(canned, machine)));
+            check_same(from_first_hole(a), from_first_hole(oracle::read_with_camgen(canned, machine)));
             ++compared;
         }
     }

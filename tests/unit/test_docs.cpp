@@ -11,8 +11,7 @@
 
 #include "camgen/schema/schema.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
-#include "operations/contour/contour.hpp"
-#include "operations/path/path.hpp"
+#include "operations/registry.hpp"
 
 using namespace camgen;
 
@@ -72,10 +71,12 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     check_section("cycle kinds", table);
 }
 
-TEST_CASE("docs: the contour and path key tables are the operations' key tables") {
+TEST_CASE("docs: the contour, path and bore-mill key tables are the operations' key tables") {
     std::vector<ObjectSpec> objects = ContourOp::objects();
     const std::vector<ObjectSpec> path = PathOp::objects();
     objects.insert(objects.end(), path.begin(), path.end());
+    // bore-mill's own object (its hole sources are drilling's, documented there).
+    objects.push_back(BoreMillOp::objects().front());
     for (const ObjectSpec& spec : objects) {
         const std::optional<std::string> table = keys_markdown(spec.name);
         REQUIRE(table);
@@ -88,5 +89,8 @@ TEST_CASE("docs: the contour and path key tables are the operations' key tables"
     CHECK(contour.find("| `side` | `\"left\"`, `\"right\"`, `\"on\"`, `\"inside\"`, `\"outside\"` | `\"outside\"` |") !=
           std::string::npos);
     CHECK(keys_markdown("contourLead")->find("| `sweep` | angle (degrees) > 0, <= 180 | `90` |") != std::string::npos);
+    const std::string bore = *keys_markdown("bore-mill");
+    CHECK(bore.find("| `diameter` | length (mm) > 0 | **required** |") != std::string::npos);
+    CHECK(bore.find("| `direction` | `\"climb\"`, `\"conventional\"` | `\"climb\"` |") != std::string::npos);
     CHECK_FALSE(keys_markdown("no such object"));
 }

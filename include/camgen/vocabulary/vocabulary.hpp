@@ -168,6 +168,20 @@ inline constexpr Named<Movement> movements[] = {
     {Movement::finishing, "finishing", "the finishing pass"},
 };
 
+// Which way a milling cutter meets the material (contour, bore-mill). Climb: the tool is left
+// of its travel with a clockwise spindle (M3), so it goes counter-clockwise round a hole;
+// conventional: right. A counter-clockwise spindle swaps them.
+enum class CutDirection { climb, conventional };
+inline constexpr Named<CutDirection> cut_directions[] = {
+    {CutDirection::climb, "climb", "down milling: the path is walked so that the tool is left of its travel (M3)"},
+    {CutDirection::conventional, "conventional", "up milling: the tool right of its travel (M3)"},
+};
+
+// Whether the tool is left of its travel for a cut direction and spindle direction.
+constexpr bool tool_left_of_travel(CutDirection cut, SpindleDirection spindle) {
+    return (cut == CutDirection::climb) == (spindle == SpindleDirection::cw);
+}
+
 enum class HoleOrder { as_given, shortest };
 inline constexpr Named<HoleOrder> hole_orders[] = {
     {HoleOrder::as_given, "as-given", "in the order the job lists them"},

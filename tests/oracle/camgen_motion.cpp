@@ -1,0 +1,63 @@
+#include "camgen_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "camgen/analysis/trace.hpp"
+#include "camgen/reader/reader.hpp"
+
+namespace camgen::oracle {
+
+std::vector<Step> read_with_camgen(const std::string& program, const Machine& machine) {
+    Trace trace = trace_program(read_program(program, machine, "oracle.ngc"), machine);
+    std::vector<Step> steps;
+    Vec3 at{0, 0, 0};  // rs274 starts at the origin
+    std::string spindle = "off";
+    for (const camgen::Step& s : trace.steps) {
+        switch (s.kind) {
+            case StepKind::rapid:
+            case StepKind::feed: {
+                if (s.to == at && !s.arc) break;  // a full circle ends where it starts
+                Step o;
+                o.kind = s.kind == StepKind::rapid ? Step::Kind::traverse
+                         : s.arc                  ? Step::Kind::arc
+                                                  : Step::Kind::feed;
+                o.to = s.to;
+                if (s.kind == StepKind::feed) o.value = s.feed;
+                if (s.arc) {
+                    // rs274's rotation: the turns begun, negative clockwise.
+                    o.centre = {s.arc->centre.x, s.arc->centre.y};
+                    const int turns = std::max(1, static_cast<int>(std::ceil(s.arc->sweep / (2 * std::numbers::pi) - 1e-9)));
+                    o.rotation = s.arc->direction == ArcDirection::ccw ? turns : -turns;
+                }
+                steps.push_back(o);
+                at = s.to;
+                break;
+            }
+            case StepKind::dwell:
+                if (s.seconds > 0) {
+                    Step o;
+                    o.kind = Step::Kind::dwell;
+                    o.value = s.seconds;
+                    steps.push_back(o);
+                }
+                break;
+            case StepKind::spindle: {
+                std::string state = s.spindle == SpindleState::cw ? "cw" : s.spindle == SpindleState::ccw ? "ccw" : "off";
+                if (state == spindle) break;
+                spindle = state;
+                Step o;
+                o.kind = Step::Kind::spindle;
+                o.spindle = state;
+                o.value = s.spindle == SpindleState::off ? 0.0 : s.rpm;
+                steps.push_back(o);
+                break;
+            }
+            case StepKind::tool_change: break;
+        }
+    }
+    return steps;
+}
+
+}  // namespace camgen::oracle
