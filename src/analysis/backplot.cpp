@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 
@@ -191,6 +192,7 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
     // The cut's width: each feed move in XY drawn as wide as its tool, deeper levels darker,
     // so that a bore milled with a smaller tool shows its full diameter and passes stand apart.
     {
+        constexpr long ramp_level = std::numeric_limits<long>::max();
         std::map<std::pair<int, long>, std::string> swept;  // (tool, Z in 0.01 mm) -> path
         std::map<std::pair<int, long>, Vec3> last;
         double lowest = 0.0, highest = 0.0;
@@ -198,19 +200,22 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
         for (const Step& s : trace.steps) {
             if (s.kind != StepKind::feed || !s.from_known || diameter[s.tool] <= 0) continue;
             if (!s.arc && xy_length(s) < 1e-9) continue;
-            const std::pair<int, long> key{s.tool, std::lround(std::min(s.from.z, s.to.z) * 100)};
+            // Moves at one Z are a pass; moves going up or down (ramps, helices, the lines a
+            // helix becomes) are drawn together, lightest.
+            const bool flat = std::abs(s.to.z - s.from.z) < 1e-9;
+            const std::pair<int, long> key{s.tool, flat ? std::lround(s.to.z * 100) : ramp_level};
             std::string& path = swept[key];
             if (!last.count(key) || !(last[key] == s.from)) path += fmt::format("M{}", v.at(s.from));
             path += path_of(s, v);
             last[key] = s.to;
-            const double z = std::min(s.from.z, s.to.z);
-            lowest = seen ? std::min(lowest, z) : z;
-            highest = seen ? std::max(highest, z) : z;
+            if (!flat) continue;
+            lowest = seen ? std::min(lowest, s.to.z) : s.to.z;
+            highest = seen ? std::max(highest, s.to.z) : s.to.z;
             seen = true;
         }
         for (const auto& [key, path] : swept) {
             const double z = key.second / 100.0;
-            const double depth = highest > lowest ? (highest - z) / (highest - lowest) : 1.0;
+            const double depth = key.second == ramp_level ? 0.0 : highest > lowest ? (highest - z) / (highest - lowest) : 1.0;
             body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" "
                                  "stroke-linejoin=\"round\" stroke-opacity=\"{}\"/>",
                                  path, colour_of(key.first), n(diameter[key.first] * v.scale), n(0.08 + 0.17 * depth)));
