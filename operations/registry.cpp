@@ -72,6 +72,21 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     return job;
 }
 
+void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name) {
+    for (const Operation& op : job.operations)
+        visit_exhaustive(
+            [&]<OperationType Op>(const Op& o) {
+                constexpr MachineKind made_for = machine_kind_of<Op>();
+                if (made_for == kind) return;
+                throw InputError(o.path + "/type",
+                                 fmt::format("operation \"{}\" ({}) is made for a {}, and machine {} is a {}: post the "
+                                             "job for a {} machine",
+                                             Op::type, default_name(o), name_of(machine_kinds, made_for), machine_name,
+                                             name_of(machine_kinds, kind), name_of(machine_kinds, made_for)));
+            },
+            op);
+}
+
 Job read_job_file(const std::string& filename) {
     std::string text;
     if (filename == "-") {

@@ -116,6 +116,7 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
         return;
     }
     Machine machine = machine_for(o);
+    check_machine_kind(job, machine.kind, machine.name);
     PostOptions po;
     po.snippet = o.snippet;
     po.program_name = job.name;
@@ -190,6 +191,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Job job;
     try {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
+        check_machine_kind(job, machine.kind, machine.name);
         CompareTolerance tolerance = compare_tolerance(machine, resolution);
         if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);

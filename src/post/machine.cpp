@@ -82,6 +82,8 @@ constexpr KeySpec machine_keys[] = {
      .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain"},
     {.key = "extension", .type = JsonType::string, .required = true,
      .description = "suggested file extension, without the dot"},
+    {.key = "kind", .type = JsonType::string, .default_json = "\"mill\"", .choices = &choices_of<machine_kinds>,
+     .description = "mill or lathe: the operations it runs (a job's operations of the other kind are refused)"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
      .description = "output units; one of acceptedUnits"},
     {.key = "acceptedUnits", .type = JsonType::array, .choices = &choices_of<unit_names>,
@@ -151,12 +153,19 @@ constexpr KeySpec globals_keys[] = {
      .description = "written before a block number (\"\" for Heidenhain)"},
     {.key = "sequenceNumberIncrement", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
      .max = Bound{max_sequence_increment, true}, .default_json = "5", .description = "the step between block numbers"},
+    {.key = "xDiameterProg", .type = JsonType::boolean, .default_json = "false",
+     .description = "lathes: X words are diameters (else radii)"},
+    {.key = "iDiameterProg", .type = JsonType::boolean, .default_json = "false",
+     .description = "lathes: the I word of arcs is a diameter (else a radius); only with xDiameterProg"},
 };
 
 // The keys of formats and inchFormats: one format per word family.
 constexpr KeySpec format_keys[] = {
     {.key = "xyz", .type = JsonType::object, .ref = "format", .description = "coordinates"},
     {.key = "ijk", .type = JsonType::object, .ref = "format", .description = "arc centres"},
+    {.key = "x", .type = JsonType::object, .ref = "format", .description = "X words, where they differ from xyz (a lathe's X)"},
+    {.key = "z", .type = JsonType::object, .ref = "format", .description = "Z words, where they differ from xyz"},
+    {.key = "i", .type = JsonType::object, .ref = "format", .description = "I words, where they differ from ijk"},
     {.key = "feed", .type = JsonType::object, .ref = "format", .description = "feeds"},
     {.key = "rpm", .type = JsonType::object, .ref = "format", .description = "spindle speeds"},
     {.key = "dwell", .type = JsonType::object, .ref = "format", .description = "dwell times"},
@@ -310,7 +319,8 @@ std::vector<std::string> expand_work_offset(const std::string& entry, const std:
 
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
-    if (key == "xyz" || key == "ijk" || key == "dwell" || key == "angle") s.decimals = 3;
+    if (key == "xyz" || key == "ijk" || key == "x" || key == "z" || key == "i" || key == "dwell" || key == "angle")
+        s.decimals = 3;
     if (key == "code") s.decimals = 1;
     return s;
 }
@@ -367,13 +377,19 @@ std::vector<ObjectSpec> machine_objects() {
 }
 
 nc::Format Machine::format(const std::string& key) const {
-    nc::FormatSpec spec = default_format(key);
-    if (auto it = formats.find(units == Units::inch ? "inch." + key : key); it != formats.end())
+    // An axis without a format of its own is written in its family's.
+    const bool axis = key == "x" || key == "z" || key == "i";
+    const std::string family = key == "i" ? "ijk" : "xyz";
+    const std::string lookup = axis && !formats.count(key) && !formats.count("inch." + key) ? family : key;
+    nc::FormatSpec spec = default_format(lookup);
+    if (auto it = formats.find(units == Units::inch ? "inch." + lookup : lookup); it != formats.end())
         spec = it->second;
-    else if (auto it2 = formats.find(key); it2 != formats.end())
+    else if (auto it2 = formats.find(lookup); it2 != formats.end())
         spec = it2->second;
     spec.decimal_mark = decimal_mark;
-    bool length = key == "xyz" || key == "ijk";
+    // Diameter programming (CNC-Calc xDiameterProg / iDiameterProg): the word is twice the radius.
+    if ((key == "x" && x_diameter) || (key == "i" && x_diameter && i_diameter)) spec.scale *= 2.0;
+    bool length = key == "xyz" || key == "ijk" || axis;
     if (length && units == Units::inch) spec.scale /= 25.4;
     if (key == "feed") {
         if (feed_unit == FeedUnit::tenth_mm_per_second) spec.scale /= 6.0;  // mm/min -> 0.1 mm/s
@@ -418,6 +434,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.description = f.string("description");
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
+    m.kind = f.choice("kind", machine_kinds, MachineKind::mill);
     m.units = f.choice("units", unit_names, Units::mm);
     m.accepted_units = {m.units};
     if (const auto* au = f.member("acceptedUnits")) {
@@ -461,6 +478,13 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                         fmt::format("sequenceNumberIncrement must be between 1 and {}", max_sequence_increment));
             m.block.sequence_increment = *v;
         }
+        m.x_diameter = gf.boolean("xDiameterProg", false);
+        m.i_diameter = gf.boolean("iDiameterProg", false);
+        // CNC-Calc: "only used in post processors for lathes".
+        for (const char* key : {"xDiameterProg", "iDiameterProg"})
+            if (m.kind == MachineKind::mill && gf.boolean(key, false))
+                gf.fail(key, fmt::format("{} is for lathes: a mill's X is a coordinate, never a diameter (set \"kind\": "
+                                         "\"lathe\")", key));
         gf.finish(globals_keys);
     }
     m.block.comment_style = f.choice("comments", comment_styles, nc::CommentStyle::parentheses);
@@ -677,6 +701,11 @@ std::string describe_machine(const Machine& m) {
     s += fmt::format("{}: {}\n", m.name, m.description);
     s += "globals\n";
     line("dialect", m.dialect);
+    line("kind", std::string(name_of(machine_kinds, m.kind)));
+    if (m.kind == MachineKind::lathe) {
+        line("xDiameterProg", m.x_diameter ? "yes: X words are diameters" : "no: X words are radii");
+        line("iDiameterProg", m.x_diameter && m.i_diameter ? "yes: I words are diameters" : "no: I words are radii");
+    }
     line("extension", "." + m.extension);
     line("units", m.units == Units::mm ? "mm" : "inch");
     line("acceptedUnits", m.accepted_unit_names());

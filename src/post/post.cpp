@@ -31,9 +31,12 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       dwell_fmt_(machine.format("dwell")),
       angle_fmt_(machine.format("angle")),
       code_fmt_(machine.format("code")),
-      x_("X", xyz_fmt_),
+      x_fmt_(machine.format("x")),
+      z_fmt_(machine.format("z")),
+      i_fmt_(machine.format("i")),
+      x_("X", x_fmt_),
       y_("Y", xyz_fmt_),
-      z_("Z", xyz_fmt_),
+      z_("Z", z_fmt_),
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
       plane_("G", code_fmt_) {
@@ -122,7 +125,8 @@ void Post::reset_modal_axes() {
 Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
     AxisWords w;
     w.x = forced.x ? x_.force(to.x) : x_.format(to.x);
-    w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
+    // A lathe has no Y axis: its tool stays in the XZ plane.
+    if (machine_.kind != MachineKind::lathe) w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
     w.z = forced.z ? z_.force(to.z) : z_.format(to.z);
     return w;
 }
@@ -130,7 +134,7 @@ Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
 Post::AxisWords Post::force_xy(Vec2 at) {
     AxisWords w;
     w.x = x_.force(at.x);
-    w.y = y_.force(at.y);
+    if (machine_.kind != MachineKind::lathe) w.y = y_.force(at.y);
     return w;
 }
 
@@ -276,7 +280,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     } else {
         Vec3 c = arc.centre;
         if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
-        if (arc.plane != Plane::yz) out_.add(ijk_fmt_.word("I", c.x));
+        if (arc.plane != Plane::yz) out_.add(i_fmt_.word("I", c.x));
         if (arc.plane != Plane::xz) out_.add(ijk_fmt_.word("J", c.y));
         if (arc.plane != Plane::xy) out_.add(ijk_fmt_.word("K", c.z));
     }

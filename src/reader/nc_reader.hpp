@@ -249,6 +249,10 @@ private:
     Block split(std::string_view line) const;
 
     nc::Format xyz_, ijk_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_;
+    nc::Format x_, z_, i_;  // the axis words' own formats (a lathe's diameter X)
+    // The format a word of this letter is written in (X, Z, I: their own; others: xyz / ijk).
+    const nc::Format& length_format(char letter) const;
+    const nc::Format& offset_format(char letter) const;
     std::array<double, 3> pos_{};
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position

@@ -85,6 +85,9 @@ struct Machine {
     std::string description;           // one line for --list-machines
     std::string dialect;               // the dialect code that writes for it: "iso", "nccad"
     std::string extension;             // suggested file extension, without dot
+    MachineKind kind = MachineKind::mill;  // machine file "kind": the operations it runs
+    bool x_diameter = false;           // CNC-Calc xDiameterProg (lathes): X words are diameters
+    bool i_diameter = false;           // CNC-Calc iDiameterProg (lathes): I words are diameters, where X is
     Units units = Units::mm;           // output units
     std::vector<Units> accepted_units = {Units::mm};  // the units the control has a mode for
     nc::BlockStyle block;
@@ -93,7 +96,8 @@ struct Machine {
     double tolerance = 0.002;          // mm (CNC-Calc tolerance): the arc tolerance. After rounding,
                                        // every arc block's start and end radii agree within it
     std::vector<std::string> notes;    // free text about the machine's choices, for --describe-machine
-    std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle"
+    std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle";
+                                                    // "x", "z", "i" where an axis has its own
     FeedUnit feed_unit = FeedUnit::per_minute;
     MachineLimits limits;
     ArcSettings arcs;
@@ -105,7 +109,9 @@ struct Machine {
     nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
     std::string source;                // where it was read from, for messages
 
-    // The format named `key` for the output units, with the decimal mark applied.
+    // The format named `key` for the output units, with the decimal mark applied. The axis
+    // formats "x", "z" and "i" are the machine's own where it gives them, else "xyz" / "ijk";
+    // "x" doubles its values under xDiameterProg, "i" under xDiameterProg and iDiameterProg.
     nc::Format format(const std::string& key) const;
     // Whether the control has a mode for these units (a unit word the post writes).
     bool accepts(Units u) const;

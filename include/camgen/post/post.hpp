@@ -191,6 +191,7 @@ private:
     PostOptions options_;
     nc::BlockWriter out_;
     nc::Format xyz_fmt_, ijk_fmt_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_, code_fmt_;
+    nc::Format x_fmt_, z_fmt_, i_fmt_;  // the axis words' own formats (a lathe's diameter X)
     nc::Word x_, y_, z_, feed_, motion_, plane_;
     Vec3 pos_;
     bool pos_known_ = false;

@@ -62,6 +62,16 @@ inline constexpr Named<Units> unit_names[] = {
     {Units::inch, "inch", "inches (lengths in in, feeds in in/min)"},
 };
 
+// What a machine is: a mill (the tool turns; XY positions, Z into the work) or a lathe (the
+// work turns; X is the distance from the spindle axis, Z runs along it). Operations are made
+// for one kind, and a machine of the other kind refuses them.
+enum class MachineKind { mill, lathe };
+inline constexpr Named<MachineKind> machine_kinds[] = {
+    {MachineKind::mill, "mill", "a milling machine: the tool turns, X and Y position it, Z feeds into the work"},
+    {MachineKind::lathe, "lathe", "a lathe: the work turns, X is the radius (written as a diameter where the control "
+                                  "programs diameters), Z runs along the spindle axis"},
+};
+
 // Coolant: off, flood (ISO M8) or mist (ISO M7).
 enum class CoolantMode { off, flood, mist };
 inline constexpr Named<CoolantMode> coolant_modes[] = {
