@@ -13,6 +13,7 @@
 #include "camgen/job/job.hpp"
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
+#include "operations/turn_drill/turn_drill.hpp"
 
 namespace camgen {
 
@@ -38,7 +39,7 @@ constexpr MachineKind machine_kind_of() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp>;
+using Operation = std::variant<DrillOp, ContourOp, TurnDrillOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

@@ -242,6 +242,14 @@ constexpr KeySpec drilling_keys[] = {
      .description = "the machine's drilling cycles; a kind not listed is written longhand"},
 };
 
+// The names a cycle's "fields" may hold: MillDrillingFields and TurnDrillingFields names.
+std::vector<std::string> cycle_field_names() {
+    std::vector<std::string> names = drill_field_keys();
+    for (std::string& t : turn_drill_field_keys())
+        if (std::find(names.begin(), names.end(), t) == names.end()) names.push_back(std::move(t));
+    return names;
+}
+
 // The keys of one drilling cycle.
 constexpr KeySpec cycle_keys[] = {
     {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G83, CYCLE83)"},
@@ -250,8 +258,9 @@ constexpr KeySpec cycle_keys[] = {
     {.key = "canned", .type = JsonType::boolean, .default_json = "true", .description = "false: written longhand"},
     {.key = "style", .type = JsonType::string, .default_json = "\"standard\"", .choices = &choices_of<canned_styles>,
      .description = "how the canned cycle is written"},
-    {.key = "fields", .type = JsonType::array, .choices = &drill_field_keys,
-     .description = "the drilling fields the canned cycle carries"},
+    {.key = "fields", .type = JsonType::array, .choices = &cycle_field_names,
+     .description = "the drilling fields the canned cycle carries: MillDrillingFields names on a mill (safeDistance, "
+                    "firstDepth, ...), TurnDrillingFields names on a lathe (firstPeckDepth, peckRetract, ...)"},
 };
 
 // Refuses machine-file text that is written into programs (prefixes, separators, codes, cycle
@@ -604,16 +613,20 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 c.style = cf.choice("style", canned_styles, CannedStyle::standard);
                 if (c.style == CannedStyle::rigid_g33_1 && m.tapping != TappingMode::rigid)
                     cf.fail("style", "style rigid-g33.1 taps rigidly: set drilling.tapping to rigid");
+                // A lathe's cycles name CNC-Calc's TurnDrillingFields, and carry the feed-start
+                // plane (safeDistance) whatever they list: a turn-drill always has one.
+                const bool lathe = m.kind == MachineKind::lathe;
+                if (lathe) c.fields.push_back(DrillField::safe_distance);
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {
                         std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
-                        const auto field = drill_field_named(fn);
+                        const auto field = lathe ? turn_drill_field_named(fn) : drill_field_named(fn);
                         if (field) c.fields.push_back(*field);
                         if (!field) {
-                            auto hint = json::did_you_mean(fn, drill_field_keys());
+                            auto hint = json::did_you_mean(fn, lathe ? turn_drill_field_keys() : drill_field_keys());
                             json::fail(source, fmt::format("{}/fields/{}", path, j),
-                                       fmt::format("unknown drilling field \"{}\"{}", fn,
+                                       fmt::format("unknown {} field \"{}\"{}", lathe ? "TurnDrillingFields" : "drilling", fn,
                                                    hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : ""));
                         }
                     }
@@ -753,7 +766,8 @@ std::string describe_machine(const Machine& m) {
     line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
     line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
                                                      : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
-    s += "drilling cycles (MillDrillingFields)\n";
+    const bool lathe = m.kind == MachineKind::lathe;
+    s += lathe ? "drilling cycles (TurnDrillingFields; the feed-start plane always)\n" : "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;
         const DrillingCycleSpec* c = m.canned_cycle(k);
@@ -762,7 +776,10 @@ std::string describe_machine(const Machine& m) {
             continue;
         }
         std::vector<std::string> f;
-        for (DrillField d : c->fields) f.emplace_back(key_of(d));
+        for (DrillField d : c->fields) {
+            if (!lathe) f.emplace_back(key_of(d));
+            else if (const TurnDrillFieldInfo* t = turn_field_of(d)) f.emplace_back(t->key);
+        }
         line(named.name, fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
     }
     return s;

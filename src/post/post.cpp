@@ -323,7 +323,8 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
         // The control counts its pecks from the rounded depths: when they come to another
         // number of pecks than the job's, only longhand pecks are the job's.
         DrillCycle rounded = cycle;
-        for (DrillField f : {DrillField::first_depth, DrillField::degression, DrillField::minimum_depth})
+        for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::degression,
+                             DrillField::minimum_depth})
             if (auto v = cycle.values.get(f); v && contains(fit.spec->fields, f) &&
                                               !(f == DrillField::degression && cycle.values.degression_type() != DegressionType::value))
                 rounded.values.set(f, xyz_fmt_.rounded(*v));
@@ -416,7 +417,7 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     // A peck shorter than one unit of the last decimal (or written as 0): successive depths
     // round onto each other, so pecks (and their dwells) would be written on the spot.
     const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
-    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth})
+    for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::minimum_depth})
         if (auto mm = v.get(f); mm && *mm < unit)
             refuse(f, fmt::format("{} {} mm is below the resolution of machine {} ({} mm): its pecks cannot be written",
                                   key_of(f), *mm, m, unit));

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "camgen/reader/reader.hpp"
-#include "support.hpp"
+#include "lathe_support.hpp"
 
 using namespace camgen;
 using camgen::test::Run;
@@ -17,21 +17,8 @@ using camgen::test::run;
 
 namespace {
 
-// An ISO lathe machine file: G18, 3 decimals, no length offsets.
-std::string lathe_text(bool x_diameter, bool i_diameter, const std::string& extra = "",
-                       const std::string& formats = R"("xyz": {"decimals": 3}, "ijk": {"decimals": 3}, "feed": {"decimals": 1})") {
-    return fmt::format(R"({{"description": "test lathe", "dialect": "iso", "extension": "nc", "kind": "lathe",
-  "globals": {{"xDiameterProg": {}, "iDiameterProg": {}}},
-  "formats": {{{}}},
-  "arcs": {{"planes": ["xz"]}}{},
-  "frame": {{"startBlock": ["G18", "G90"]}},
-  "settings": {{"programNumber": 0, "percentLines": false, "toolLengthOffset": false, "endCode": "M30"}}}})",
-                       x_diameter, i_diameter, formats, extra);
-}
-
-Machine lathe(bool x_diameter, bool i_diameter, const std::string& extra = "") {
-    return parse_machine(lathe_text(x_diameter, i_diameter, extra), "test-lathe", "test-lathe.json");
-}
+using test::lathe;
+using test::lathe_text;
 
 // The arc of LinuxCNC test C (reference/rs274/C): from radius 20 at Z0, clockwise about
 // (radius 10, Z0) to radius 10 at Z-10; the tool comes from radius 20 at Z5.

@@ -176,8 +176,8 @@ inline constexpr Named<HoleOrder> hole_orders[] = {
 // safeDistance for controls whose cycle has no separate feed-start plane). A machine's
 // drilling table names the fields each canned cycle carries.
 enum class DrillField {
-    safe_distance, plunging_feedrate, retract_feedrate, first_depth, degression_type,
-    degression, minimum_depth, pecking_retract, first_feedrate_factor, pitch, tapping_speed,
+    safe_distance, plunging_feedrate, retract_feedrate, first_depth, subsequent_depth, degression_type,
+    degression, minimum_depth, pecking_retract, peck_clearance, first_feedrate_factor, pitch, tapping_speed,
     retract_speed, top_dwell, bottom_dwell
 };
 
@@ -220,6 +220,10 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      {}, std::nullopt, false, "", "", "feed out of the hole (default: rapid out, or plungingFeedrate where the cycle feeds out)"},
     {DrillField::first_depth, "firstDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, pecking_kinds,
      std::nullopt, false, "a peck depth must be > 0", "(the depth of a peck)", "depth of each peck (the first one when a degression applies)"},
+    {DrillField::subsequent_depth, "subsequentDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, {},
+     std::nullopt, false, "a peck depth must be > 0", "",
+     "depth of every peck after the first (CNC-Calc turning's subsequentPecksDepths; default: firstDepth); not with a "
+     "degression"},
     {DrillField::degression_type, "degressionType", Quantity::choice, std::nullopt, pecking_kinds, {}, std::nullopt,
      false, "", "", "how pecks shrink: next = previous - degression (value) or previous x degression (factor)"},
     {DrillField::degression, "degression", Quantity::length, std::nullopt, pecking_kinds, {}, std::nullopt, false, "",
@@ -228,6 +232,9 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      false, "", "", "smallest peck once a degression applies; required with a degression"},
     {DrillField::pecking_retract, "peckingRetract", Quantity::length, Bound{0.0, false}, {CycleKind::chip_break}, {},
      std::nullopt, false, "", "", "how far the drill backs off between pecks to break the chip (default: the machine's peckClearance)"},
+    {DrillField::peck_clearance, "peckClearance", Quantity::length, Bound{0.0, false}, {CycleKind::deep}, {},
+     std::nullopt, false, "", "",
+     "where the rapid back into the hole turns to feed, above the previous peck (default: the machine's peckClearance)"},
     {DrillField::first_feedrate_factor, "firstFeedrateFactor", Quantity::factor, Bound{0.0, false}, pecking_kinds, {},
      1.0, false, "", "", "feed of the first peck = plungingFeedrate x factor"},
     {DrillField::pitch, "pitch", Quantity::length, Bound{0.0, false}, tapping_kinds, tapping_kinds, std::nullopt,
@@ -243,6 +250,36 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      CycleSet::all().without({CycleKind::drill}), {CycleKind::dwell, CycleKind::bore_dwell}, 0.0, false,
      "a dwell cannot be negative", "(seconds)", "dwell at the bottom of the hole"},
 });
+// One field of CNC-Calc's TurnDrillingFields (the parameters of onDrilling that a lathe's
+// drilling cycle may carry): its name in turn-drill operations and lathe machine files, and
+// the drilling field it is carried as (its quantity, bound and motion are that field's).
+struct TurnDrillFieldInfo {
+    std::string_view key;
+    DrillField field;
+    std::string_view description;
+};
+
+// The TurnDrillingFields, in CNC-Calc's order (its spellings evened out: subsequentPeckDepths,
+// peckRetract, lowerDwell). A turn-drill's feed-start plane (safeDistance) is always carried.
+inline constexpr auto turn_drill_fields = std::to_array<TurnDrillFieldInfo>({
+    {"plungingFeedrate", DrillField::plunging_feedrate, "feed into the hole"},
+    {"retractFeedrate", DrillField::retract_feedrate, "feed out of the hole (default: rapid out)"},
+    {"firstPeckDepth", DrillField::first_depth, "depth of the first peck; pecking when present"},
+    {"subsequentPeckDepths", DrillField::subsequent_depth, "depth of every later peck (default: firstPeckDepth)"},
+    {"peckClearance", DrillField::peck_clearance,
+     "full retract between pecks; the rapid back in turns to feed this far above the previous peck"},
+    {"peckRetract", DrillField::pecking_retract, "chip breaking: the drill backs off this far between pecks"},
+    {"upperDwell", DrillField::top_dwell, "dwell (s) at the feed-start plane before drilling (and before each deep peck)"},
+    {"lowerDwell", DrillField::bottom_dwell, "dwell (s) at the bottom of the hole"},
+    {"pitch", DrillField::pitch, "tapping on the axis: the thread lead; the feed is pitch x spindle speed"},
+});
+// The TurnDrillingFields row carried as drilling field `f`, if any.
+const TurnDrillFieldInfo* turn_field_of(DrillField f);
+// The drilling field of a TurnDrillingFields name ("firstPeckDepth"), if it is one.
+std::optional<DrillField> turn_drill_field_named(std::string_view key);
+// The TurnDrillingFields names, in table order.
+std::vector<std::string> turn_drill_field_keys();
+
 // How many drilling fields there are.
 inline constexpr std::size_t drill_field_count = drill_fields.size();
 
