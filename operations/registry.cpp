@@ -128,7 +128,9 @@ void expand_job(const Job& job, EventSink& sink) {
                 }
                 std::optional<double> tolerance;
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
-                sink.emit(OperationStart{default_name(o), o.path, tolerance});
+                FeedMode feed_mode = FeedMode::per_minute;
+                if constexpr (requires { o.feed_mode; }) feed_mode = o.feed_mode;
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, feed_mode});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

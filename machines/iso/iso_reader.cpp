@@ -142,6 +142,11 @@ void IsoReader::block(const Block& b) {
     for (const Word& x : b.words) {
         if (x.letter == 'G') {
             Code c{code_of(x), &x};
+            // A lathe's feed mode codes (frame feedModes; Fanuc T's G98/G99 are these, not return levels).
+            if (feed_mode_of(x)) {
+                set_group(feed_mode, c);
+                continue;
+            }
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
                 case code(iso::rigid_tap_code):
@@ -193,7 +198,8 @@ void IsoReader::block(const Block& b) {
     }
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
-    if (const Word* f = w.take('F')) feed_ = feed(*f);
+    if (feed_mode && feed_mode_of(*feed_mode->word)) set_feed_mode(*feed_mode_of(*feed_mode->word));
+    if (const Word* f = w.take('F')) set_feed(*f);
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
     if (const Word* t = w.take('T')) {
         if (tool_change_ == iso::ToolChangeStyle::pause)

@@ -34,6 +34,9 @@ constexpr KeySpec turn_drill_keys[] = {
      .description = "the drill's diameter for drillTip (default: the tool's)"},
     {.key = "drillTipAngle", .quantity = Quantity::angle, .min = Bound{30, true}, .max = Bound{180, false},
      .description = "the drill's included point angle for drillTip (default: the tool's tipAngle)"},
+    {.key = "feedMode", .type = JsonType::string, .default_json = "\"per-minute\"", .choices = &choices_of<feed_modes>,
+     .description = "plungingFeedrate and retractFeedrate per minute (mm/min) or per spindle revolution (mm/rev); the "
+                    "program feeds the same way (G94/G95, Fanuc T G98/G99)"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
      .description = "canned cycle or plain moves: auto, canned or longhand"},
 };
@@ -152,6 +155,10 @@ TurnDrillOp TurnDrillOp::read(Fields& f, const JobInput& in) {
                                               in.show(c.retract_z), in.show(c.reference_z)));
 
     c.values = read_turn_fields(f, in);
+    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
+    if (op.feed_mode == FeedMode::per_revolution)
+        for (DrillField feed : {DrillField::plunging_feedrate, DrillField::retract_feedrate})
+            if (auto per_rev = c.values.get(feed)) c.values.set(feed, *per_rev * tool.rpm);
     c.kind = kind_of(f, c.values, tool);
     c.bottom_z = end - tip_length(f, in, tool);
     c.output = f.choice("output", cycle_outputs, CycleOutput::automatic);

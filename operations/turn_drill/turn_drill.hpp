@@ -27,6 +27,7 @@ struct TurnDrillOp {
     std::string path;
     std::string comment;
     int tool = 0;
+    FeedMode feed_mode = FeedMode::per_minute;  // how the program states feeds (job: per revolution in mm/rev)
     // The resolved cycle (kind from the parameters, planes, drill tip, feed), without the
     // tool's spindle, which expand() takes from the context.
     DrillCycle cycle;

@@ -122,6 +122,9 @@ constexpr KeySpec frame_keys[] = {
                     "\"G54.1 P1..G54.1 P48\" is a range (default: none)"},
     {.key = "coolant", .type = JsonType::object, .ref = "coolantCodes",
      .description = "the code of each coolant mode the control has (default: none)"},
+    {.key = "feedModes", .type = JsonType::object, .ref = "feedModeCodes",
+     .description = "the code of each feed mode the control has (lathes: G94/G95, Fanuc T G98/G99); the "
+                    "startBlock selects per-minute (default: none, feeds per minute only)"},
     {.key = "safeRetract", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
      .description = "the words of a block that takes Z to the machine's safe height in machine coordinates "
                     "([\"G53\", \"G0\", \"Z0\"], iso only): written where the tool's height is unknown "
@@ -133,6 +136,12 @@ constexpr KeySpec coolant_keys[] = {
     {.key = "flood", .type = JsonType::string, .description = "flood coolant on (ISO M8)"},
     {.key = "mist", .type = JsonType::string, .description = "mist coolant on (ISO M7)"},
     {.key = "off", .type = JsonType::string, .description = "coolant off (ISO M9); needed with flood or mist"},
+};
+
+// The keys of frame.feedModes.
+constexpr KeySpec feed_mode_keys[] = {
+    {.key = "per-minute", .type = JsonType::string, .description = "feed per minute (ISO G94, Fanuc T G98)"},
+    {.key = "per-revolution", .type = JsonType::string, .description = "feed per revolution (ISO G95, Fanuc T G99)"},
 };
 
 // The keys of globals.
@@ -169,6 +178,7 @@ constexpr KeySpec format_keys[] = {
     {.key = "feed", .type = JsonType::object, .ref = "format", .description = "feeds"},
     {.key = "rpm", .type = JsonType::object, .ref = "format", .description = "spindle speeds"},
     {.key = "dwell", .type = JsonType::object, .ref = "format", .description = "dwell times"},
+    {.key = "feedPerRev", .type = JsonType::object, .ref = "format", .description = "feeds per revolution (mm or in)"},
     {.key = "angle", .type = JsonType::object, .ref = "format", .description = "angles (nccad D)"},
     {.key = "code", .type = JsonType::object, .ref = "format", .description = "G and M codes"},
 };
@@ -330,6 +340,7 @@ nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
     if (key == "xyz" || key == "ijk" || key == "x" || key == "z" || key == "i" || key == "dwell" || key == "angle")
         s.decimals = 3;
+    if (key == "feedPerRev") s.decimals = 4;
     if (key == "code") s.decimals = 1;
     return s;
 }
@@ -382,6 +393,7 @@ std::vector<ObjectSpec> machine_objects() {
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
+        spec("feedModeCodes", "the code of each feed mode", feed_mode_keys),
     };
 }
 
@@ -398,7 +410,7 @@ nc::Format Machine::format(const std::string& key) const {
     spec.decimal_mark = decimal_mark;
     // Diameter programming (CNC-Calc xDiameterProg / iDiameterProg): the word is twice the radius.
     if ((key == "x" && x_diameter) || (key == "i" && x_diameter && i_diameter)) spec.scale *= 2.0;
-    bool length = key == "xyz" || key == "ijk" || axis;
+    bool length = key == "xyz" || key == "ijk" || key == "feedPerRev" || axis;
     if (length && units == Units::inch) spec.scale /= 25.4;
     if (key == "feed") {
         if (feed_unit == FeedUnit::tenth_mm_per_second) spec.scale /= 6.0;  // mm/min -> 0.1 mm/s
@@ -657,6 +669,17 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 cf.fail("off", "a machine with coolant needs the code that switches it off");
             cf.finish(coolant_keys);
         }
+        if (const auto* fm = ff.member("feedModes")) {
+            json::Fields mf(*fm, "/frame/feedModes", source);
+            for (const auto& mode : feed_modes)
+                if (auto code = mf.optional_string(mode.name)) {
+                    check_program_text(*code, mf.path_of(mode.name), source);
+                    m.frame.feed_modes[mode.value] = *code;
+                }
+            if (!m.frame.feed_modes.empty() && m.frame.feed_modes.size() != 2)
+                mf.fail("", "a machine with feed modes needs the code of both (per-minute and per-revolution)");
+            mf.finish(feed_mode_keys);
+        }
         if (const auto* sr = ff.member("safeRetract")) {
             m.frame.safe_retract = strings_at(*sr, "/frame/safeRetract", source);
             // Read back as a move to the machine's top: the ISO reader's G53 G0 Z0.
@@ -764,6 +787,9 @@ std::string describe_machine(const Machine& m) {
     std::vector<std::string> coolant;
     for (const auto& [mode, code] : m.frame.coolant) coolant.push_back(fmt::format("{} {}", name_of(coolant_modes, mode), code));
     line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
+    std::vector<std::string> feed;
+    for (const auto& [mode, code] : m.frame.feed_modes) feed.push_back(fmt::format("{} {}", name_of(feed_modes, mode), code));
+    line("feedModes", feed.empty() ? std::string("per minute only") : fmt::format("{}", fmt::join(feed, ", ")));
     line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
                                                      : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
     const bool lathe = m.kind == MachineKind::lathe;

@@ -34,12 +34,14 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       x_fmt_(machine.format("x")),
       z_fmt_(machine.format("z")),
       i_fmt_(machine.format("i")),
+      feed_rev_fmt_(machine.format("feedPerRev")),
       x_("X", x_fmt_),
       y_("Y", xyz_fmt_),
       z_("Z", z_fmt_),
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
-      plane_("G", code_fmt_) {
+      plane_("G", code_fmt_),
+      feed_rev_("F", feed_rev_fmt_) {
     if (!machine.accepts(machine.units))
         throw InputError("/units", fmt::format("machine {} has no {} mode (its control accepts: {})", machine.name,
                                                name_of(unit_names, machine.units), machine.accepted_unit_names()),
@@ -88,6 +90,14 @@ void Post::fail(const std::string& key, const std::string& detail) const {
 
 std::string Post::feed_word(double mm_per_min) {
     const double f = clamped_feed(mm_per_min);
+    if (feed_mode_ == FeedMode::per_revolution) {
+        // The control feeds F x its spindle speed: F is the job's feed per revolution.
+        if (!(spindle_rpm_ > 0)) fail("", "a feed per revolution while the spindle stands still");
+        const double per_rev = f / spindle_rpm_;
+        if (feed_rev_fmt_.is_zero(per_rev))
+            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", per_rev, machine_.name));
+        return feed_rev_.format(per_rev);
+    }
     if (feed_fmt_.is_zero(f))
         fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
     return feed_.format(f);
@@ -139,6 +149,19 @@ Post::AxisWords Post::force_xy(Vec2 at) {
 }
 
 std::string Post::force_z(double z) { return z_.force(z); }
+
+void Post::select_feed_mode(FeedMode mode) {
+    if (mode == feed_mode_) return;
+    const auto code = machine_.frame.feed_modes.find(mode);
+    if (code == machine_.frame.feed_modes.end())
+        fail("/feedMode", fmt::format("machine {} has no feed {} mode (no frame feedModes)", machine_.name,
+                                      name_of(feed_modes, mode)));
+    out_.add(code->second).end();
+    feed_mode_ = mode;
+    // The F word means something else now: write it again.
+    feed_.reset();
+    feed_rev_.reset();
+}
 
 void Post::on_operation_start(const OperationStart& op) {
     if (!op.name.empty()) on_comment(op.name);
@@ -571,7 +594,10 @@ void Post::replay(const LonghandMove& event) {
                        pos_ = l.to;
                    },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
-                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Spindle& s) {
+                       spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                       on_spindle(s);
+                   },
                },
                event);
 }
@@ -584,6 +610,7 @@ void Post::emit(const Event& event) {
                        op_name_ = op.name;
                        op_tolerance_ = op.tolerance;
                        on_operation_start(op);
+                       select_feed_mode(op.feed_mode);
                    },
                    [&](const OperationEnd&) { on_operation_end(); },
                    [&](const ToolChange& t) {
@@ -592,7 +619,10 @@ void Post::emit(const Event& event) {
                        pos_known_ = false;
                        reset_modal_axes();
                    },
-                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Spindle& s) {
+                       spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                       on_spindle(s);
+                   },
                    [&](const Coolant& c) { on_coolant(c); },
                    [&](const Rapid& r) { replay(r); },
                    [&](const Linear& l) { replay(l); },

@@ -48,6 +48,7 @@ void NcReader::load_formats() {
     x_ = machine_.format("x");
     z_ = machine_.format("z");
     i_ = machine_.format("i");
+    feed_rev_fmt_ = machine_.format("feedPerRev");
 }
 
 const nc::Format& NcReader::length_format(char letter) const { return letter == 'X' ? x_ : letter == 'Z' ? z_ : xyz_; }
@@ -186,6 +187,30 @@ void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
     }
 }
 
+std::optional<FeedMode> NcReader::feed_mode_of(const Word& g) const {
+    for (const auto& [mode, c] : machine_.frame.feed_modes)
+        if (c == g.text || (c.size() > 1 && c[0] == 'G' && parse_number(c.substr(1)) == g.value)) return mode;
+    return std::nullopt;
+}
+
+void NcReader::set_feed_mode(FeedMode mode) {
+    if (mode == feed_mode_) return;
+    // RS274: a new feed mode needs a new F before the next feed move.
+    feed_mode_ = mode;
+    feed_.reset();
+    feed_per_rev_.reset();
+}
+
+void NcReader::set_feed(const Word& f) {
+    if (feed_mode_ == FeedMode::per_minute) {
+        feed_ = feed(f);
+        return;
+    }
+    if (!(f.value > 0)) fail(fmt::format("{}: a feed must be > 0", f.text));
+    feed_per_rev_ = f.value / feed_rev_fmt_.spec().scale;
+    feed_ = *feed_per_rev_ * rpm_;
+}
+
 std::optional<CoolantMode> NcReader::coolant_of(const Word& m) const {
     for (const auto& [mode, c] : machine_.frame.coolant)
         if (c == m.text || (c.size() > 1 && c[0] == 'M' && parse_number(c.substr(1)) == m.value)) return mode;
@@ -231,6 +256,7 @@ void NcReader::change_tool(int tool, const std::string& description) {
 
 void NcReader::spindle_speed(double rpm, const Word* switch_code) {
     rpm_ = rpm;
+    if (feed_per_rev_) feed_ = *feed_per_rev_ * rpm_;
     if (!switch_code && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
 }
 

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "camgen/post/longhand.hpp"
+#include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 
 using namespace camgen;
@@ -194,4 +195,27 @@ TEST_CASE("drill (mill): subsequentDepth and peckClearance are the milling side'
                                         "degression": 1, "minimumDepth": 1)"),
                                   "mill.json"),
                          doctest::Contains("subsequentDepth and a degression"), InputError);
+}
+
+TEST_CASE("turn-drill: feeds per revolution: the job's mm/rev, written after the machine's code") {
+    const std::string modes = R"(, "drilling": {"tapping": "floating"})";
+    // The test lathe's frame with G94/G95.
+    Machine m = test::lathe(true, false, modes);
+    m.frame.feed_modes = {{FeedMode::per_minute, "G94"}, {FeedMode::per_revolution, "G95"}};
+    Job j = read_job(job(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.12, "retractFeedrate": 0.3)"), "t.json");
+    const DrillCycle& c = std::get<TurnDrillOp>(j.operations.at(0)).cycle;
+    CHECK(c.feed == doctest::Approx(0.12 * 800));  // the events carry mm/min
+    const std::string text = test::post_program(j, m);
+    CHECK(text.find("G95\n") < text.find("G1 Z-20"));
+    CHECK(z_moves(text) == around({"G1 Z-20 F0.12", "G1 Z2 F0.3", "G0 Z10"}));
+    // Read back: F x S is the job's feed per minute.
+    std::vector<ReadEvent> back = read_program(text, m, "t.nc");
+    std::vector<double> feeds;
+    for (const ReadEvent& e : back)
+        if (auto* l = std::get_if<Linear>(&e.event)) feeds.push_back(l->feed);
+    CHECK(feeds == std::vector<double>{0.12 * 800, 0.3 * 800});
+    // A machine without feed modes refuses it, at the operation.
+    CHECK_THROWS_WITH_AS(test::post_program(j, test::lathe(true, false)),
+                         doctest::Contains("/operations/0/feedMode: machine test-lathe has no feed per-revolution mode"),
+                         InputError);
 }

@@ -18,10 +18,12 @@ enum class CompensationSide { off, left, right };
 
 // An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
 // is the operation's own tolerance for arcs that become lines (mm), if it has one.
+// `feed_mode` is how the program states its feeds (the events' feeds stay mm/min).
 struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
+    FeedMode feed_mode = FeedMode::per_minute;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
 

@@ -76,6 +76,7 @@ struct FrameSettings {
     std::vector<std::string> start_block;   // "G40", "G49", "G80", ...: before the unit word
     std::vector<std::string> work_offsets;  // "G54", "G59.1", "G54.1 P1": ranges expanded
     std::map<CoolantMode, std::string> coolant;  // the code of each coolant mode it has ("M8")
+    std::map<FeedMode, std::string> feed_modes;  // the code of each feed mode it has ("G95"); none: per minute only
     std::vector<std::string> safe_retract;  // the block that takes Z to the machine's safe height
                                             // ("G53", "G0", "Z0"); empty: the job's clearance
 };

@@ -72,6 +72,15 @@ inline constexpr Named<MachineKind> machine_kinds[] = {
                                   "programs diameters), Z runs along the spindle axis"},
 };
 
+// How feeds are given: per minute (ISO G94, Fanuc T G98) or per spindle revolution (ISO G95,
+// Fanuc T G99), as lathes feed. Events always carry mm/min; a post writes per revolution by
+// dividing by the spindle speed.
+enum class FeedMode { per_minute, per_revolution };
+inline constexpr Named<FeedMode> feed_modes[] = {
+    {FeedMode::per_minute, "per-minute", "feeds in mm/min (in/min)"},
+    {FeedMode::per_revolution, "per-revolution", "feeds in mm (in) per spindle revolution"},
+};
+
 // Coolant: off, flood (ISO M8) or mist (ISO M7).
 enum class CoolantMode { off, flood, mist };
 inline constexpr Named<CoolantMode> coolant_modes[] = {
