@@ -155,6 +155,14 @@ void IsoReader::block(const Block& b) {
                     set_group(motion, c);
                     break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
+                case code(7): case code(8):
+                    // LinuxCNC's diameter (G7) and radius (G8) modes: the machine's xDiameterProg says which.
+                    if (machine_.kind != MachineKind::lathe || (c.value == code(7)) != machine_.x_diameter)
+                        fail(fmt::format("{}: machine {} {}", x.text, machine_.name,
+                                         machine_.kind != MachineKind::lathe ? "is not a lathe"
+                                         : machine_.x_diameter           ? "programs X as a diameter (G7)"
+                                                                         : "programs X as a radius (G8)"));
+                    break;
                 case code(20): case code(21): set_group(units, c); break;
                 case code(90): break;
                 case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
@@ -309,6 +317,10 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     const std::string name = spec.name;
     if (w.has('I') || w.has('J') || w.has('K')) fail(fmt::format("I/J/K in a {} block", name));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    // A canned cycle drills along the plane's normal: on a lathe only G17 drills along Z.
+    if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
+                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
     Vec3 here = position();
     if (!initial_z_) initial_z_ = here.z;
     std::optional<double> x, y;

@@ -63,6 +63,8 @@ constexpr Named<ChordToleranceMode> chord_tolerance_modes[] = {
 constexpr Named<CannedStyle> canned_styles[] = {
     {CannedStyle::standard, "standard", "the dialect's usual canned cycle block"},
     {CannedStyle::rigid_g33_1, "rigid-g33.1", "LinuxCNC rigid tapping: G33.1 Z K, one synchronised move in and out"},
+    {CannedStyle::fanuc_g74, "fanuc-g74",
+     "Fanuc T end-face peck drilling on a lathe: G74 R(back-off) / G74 Z Q(peck in least increments) F (chip-break)"},
 };
 constexpr Named<BoreDwellFeedOut> bore_dwell_feed_outs[] = {
     {BoreDwellFeedOut::to_safe, "safe", "bore-dwell feeds out to R (Fanuc)"},
@@ -625,6 +627,8 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 c.style = cf.choice("style", canned_styles, CannedStyle::standard);
                 if (c.style == CannedStyle::rigid_g33_1 && m.tapping != TappingMode::rigid)
                     cf.fail("style", "style rigid-g33.1 taps rigidly: set drilling.tapping to rigid");
+                if (c.style == CannedStyle::fanuc_g74 && (c.kind != CycleKind::chip_break || m.kind != MachineKind::lathe))
+                    cf.fail("style", "style fanuc-g74 is a lathe's chip-break cycle: kind chip-break on a lathe");
                 // A lathe's cycles name CNC-Calc's TurnDrillingFields, and carry the feed-start
                 // plane (safeDistance) whatever they list: a turn-drill always has one.
                 const bool lathe = m.kind == MachineKind::lathe;

@@ -12,12 +12,15 @@ using namespace camgen;
 namespace {
 
 // A job whose every text field carries what a control could read as blocks.
-std::string nasty_job() {
+// A drill operation for a mill, a turn-drill for a lathe.
+std::string nasty_job(MachineKind kind) {
     const std::string nasty = R"(a\u000bG0 Z-50\u000cM30\u0000 100% (x) \u007f \u00d810 Bohrung f\u00fcr M6 \u2603;)";
+    const std::string op = kind == MachineKind::mill
+                               ? R"("type": "drill", "endDepth": 2, "holes": [[0, 0]], )"
+                               : R"("type": "turn-drill", "startDepth": 0, "endDepth": -2, "safeDistance": 1, )";
     return R"({"name": ")" + nasty + R"(", "clearance": 10,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000, "comment": ")" + nasty + R"("}],
-  "operations": [{"type": "drill", "tool": 1, "comment": ")" + nasty + R"(", "endDepth": 2,
-                  "plungingFeedrate": 100, "holes": [[0, 0]]}]})";
+  "operations": [{)" + op + R"("tool": 1, "comment": ")" + nasty + R"(", "plungingFeedrate": 100}]})";
 }
 
 }  // namespace
@@ -26,7 +29,7 @@ TEST_CASE("safe text: control bytes, non-ASCII, comment terminators and % never 
     for (const auto& listed : list_machines()) {
         const std::string& name = listed.first;
         CAPTURE(name);
-        const std::string text = test::post_job(nasty_job(), name).text;
+        const std::string text = test::post_job(nasty_job(load_machine(name).kind), name).text;
         const bool parentheses = load_machine(name).block.comment_style == nc::CommentStyle::parentheses;
         for (char c : text) {
             const unsigned char u = static_cast<unsigned char>(c);

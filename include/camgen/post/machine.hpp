@@ -24,7 +24,8 @@ enum class FeedUnit { per_minute, tenth_mm_per_second };
 
 // How a canned cycle is written: the dialect's standard form, or LinuxCNC's rigid tapping
 // (G33.1 Z K: one synchronised move in and out, positioned with G0, no cancel code).
-enum class CannedStyle { standard, rigid_g33_1 };
+// Fanuc T's two-block end-face peck drilling (G74 R(e) / G74 Z Q F) is a style of its own.
+enum class CannedStyle { standard, rigid_g33_1, fanuc_g74 };
 
 // How the machine can tap: rigid (the control synchronises the spindle to the feed: Fanuc
 // M29 G84, LinuxCNC G33.1, Heidenhain 207, Sinumerik CYCLE84), floating (a floating tap holder
