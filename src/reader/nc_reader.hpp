@@ -132,6 +132,9 @@ protected:
     // always writes one (a Fanuc-style control reads X10 as 0.010 mm).
     double length(const Word& w) const;
     double offset(const Word& w) const;
+    // The format a word of this letter is written in (X, Z, I: their own; others: xyz / ijk).
+    const nc::Format& length_format(char letter) const;
+    const nc::Format& offset_format(char letter) const;
     double feed(const Word& w) const;
     double rpm(const Word& w) const;
     double seconds(const Word& w) const;
@@ -256,9 +259,6 @@ private:
 
     nc::Format xyz_, ijk_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_;
     nc::Format x_, z_, i_;  // the axis words' own formats (a lathe's diameter X)
-    // The format a word of this letter is written in (X, Z, I: their own; others: xyz / ijk).
-    const nc::Format& length_format(char letter) const;
-    const nc::Format& offset_format(char letter) const;
     std::array<double, 3> pos_{};
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
