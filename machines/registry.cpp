@@ -15,6 +15,7 @@
 #include "machines/iso/iso_reader.hpp"
 #include "machines/nccad/nccad_post.hpp"
 #include "machines/nccad/nccad_reader.hpp"
+#include "machines/sinumerik/sinumerik_lathe_post.hpp"
 #include "machines/sinumerik/sinumerik_post.hpp"
 #include "machines/sinumerik/sinumerik_reader.hpp"
 
@@ -34,6 +35,7 @@ constexpr Dialect registry[] = {
     {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_reader},
     {"nccad", post_of<NccadPost>, reader::make_nccad_reader},
     {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader},
+    {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader},
     {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader},
 };
 

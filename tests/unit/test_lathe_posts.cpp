@@ -102,3 +102,30 @@ TEST_CASE("lathe machines describe their TurnDrillingFields") {
     const std::string l = describe_machine(load_machine("linuxcnc-lathe"));
     CHECK(has(l, "canned G83; fields: plungingFeedrate, firstPeckDepth, peckClearance"));
 }
+
+TEST_CASE("sinumerik-lathe: DIAMON and G18; axial drilling as G17, MCALL CYCLE83 at X0, MCALL, G18") {
+    const std::string text = post(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.1, "firstPeckDepth": 5,
+                                      "peckRetract": 0.5)", "sinumerik-lathe");
+    INFO(text);
+    CHECK(has(text, "N10 G18 DIAMON G40 G90 G94 G71\n"));
+    CHECK(has(text, " G95\n"));
+    // RTP 5, RFP 0, SDIS 2, DP -20, FDEP 2 - 5 = -3, FRF 1, VARI 0 (chip break), _VRT 0.5.
+    CHECK(has(text, " G17\nN"));
+    CHECK(has(text, " F0.100\n"));
+    CHECK(has(text, " MCALL CYCLE83(5.000, 0.000, 2.000, -20.000, , -3.000, , , , , 1.000, 0, , , 0.500)\n"));
+    CHECK(has(text, " G0 X0.000\n"));
+    CHECK(text.find(" MCALL\n") < text.find(" G18\n", text.find("MCALL CYCLE83")));
+    // Read back: the cycle at X0 with the job's pecks; DIAMON where the machine has no
+    // diameter X is refused.
+    const std::vector<ReadEvent> back = read_program(text, load_machine("sinumerik-lathe"), "t.mpf");
+    const DrillPoint* point = nullptr;
+    for (const ReadEvent& e : back)
+        if (auto* p = std::get_if<DrillPoint>(&e.event)) point = p;
+    REQUIRE(point != nullptr);
+    CHECK(point->at.x == 0.0);
+    CHECK_THROWS_WITH_AS(read_program(text, load_machine("sinumerik"), "t.mpf"),
+                         doctest::Contains("DIAMON: machine sinumerik does not program X as a diameter"), InputError);
+    // A peckClearance other than _DIS1's goes longhand.
+    const std::string deep = post(R"(, "plungingFeedrate": 90, "firstPeckDepth": 5, "peckClearance": 0.3)", "sinumerik-lathe");
+    CHECK_FALSE(has(deep, "CYCLE83"));
+}
