@@ -14,6 +14,7 @@
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
 #include "operations/turn_drill/turn_drill.hpp"
+#include "operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
 
@@ -39,7 +40,7 @@ constexpr MachineKind machine_kind_of() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, TurnDrillOp>;
+using Operation = std::variant<DrillOp, ContourOp, TurnDrillOp, TurnProfileOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

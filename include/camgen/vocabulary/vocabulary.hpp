@@ -81,6 +81,14 @@ inline constexpr Named<FeedMode> feed_modes[] = {
     {FeedMode::per_revolution, "per-revolution", "feeds in mm (in) per spindle revolution"},
 };
 
+// How a lathe job gives X: as the radius (the distance from the spindle axis) or as the
+// diameter, as drawings of turned parts do.
+enum class XValues { radius, diameter };
+inline constexpr Named<XValues> x_values[] = {
+    {XValues::radius, "radius", "X is the distance from the spindle axis"},
+    {XValues::diameter, "diameter", "X is the diameter (twice the distance from the spindle axis)"},
+};
+
 // Coolant: off, flood (ISO M8) or mist (ISO M7).
 enum class CoolantMode { off, flood, mist };
 inline constexpr Named<CoolantMode> coolant_modes[] = {
@@ -106,7 +114,7 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
     {SpindleDirection::ccw, "ccw", "counter-clockwise (M4)"},
 };
 
-enum class ToolType { drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill };
+enum class ToolType { drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, turning_tool };
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::drill, "drill", "drill"},
@@ -117,6 +125,7 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::boring_bar, "boring-bar", "boring bar"},
     {ToolType::end_mill, "end-mill", "end mill"},
     {ToolType::ball_mill, "ball-mill", "ball mill"},
+    {ToolType::turning_tool, "turning-tool", "turning tool"},
 };
 
 // Drilling cycle kinds, after the Fanuc/LinuxCNC canned cycles named in the descriptions.
