@@ -3,6 +3,8 @@
 // readers' refusals of what those controls would read differently.
 #include <doctest/doctest.h>
 
+#include <regex>
+
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 
@@ -128,4 +130,22 @@ TEST_CASE("sinumerik-lathe: DIAMON and G18; axial drilling as G17, MCALL CYCLE83
     // A peckClearance other than _DIS1's goes longhand.
     const std::string deep = post(R"(, "plungingFeedrate": 90, "firstPeckDepth": 5, "peckClearance": 0.3)", "sinumerik-lathe");
     CHECK_FALSE(has(deep, "CYCLE83"));
+}
+
+TEST_CASE("--plot of a lathe program is an XZ half-section: Z across, the radius up, the profile's arc an arc") {
+    const std::string dir = test::scratch("lathe-plot").string();
+    const std::string shaft = CAMGEN_SOURCE_DIR "/samples/shaft.json";
+    test::Run r = test::run({shaft, "--machine", "fanuc-lathe", "-q", "--plot", dir + "/s.svg"});
+    REQUIRE(r.code == 0);
+    const std::string svg = test::read_file(dir + "/s.svg");
+    CHECK(has(svg, "XZ half-section</text>"));
+    CHECK(has(svg, ">Z mm</text>"));
+    CHECK(has(svg, ">X mm</text>"));
+    CHECK(has(svg, ">Z0 X0</text>"));
+    // The R5 fillet is drawn as an SVG arc (the section maps G18 arcs onto the drawing's plane).
+    CHECK(std::regex_search(svg, std::regex("A[0-9.]+,[0-9.]+ 0 0 [01] ")));
+    // A mill's plot stays the XY view.
+    test::Run m = test::run({CAMGEN_SOURCE_DIR "/samples/plate.json", "--machine", "fanuc", "--plot", dir + "/p.svg"});
+    REQUIRE(m.code == 0);
+    CHECK(has(test::read_file(dir + "/p.svg"), "XY view</text>"));
 }
