@@ -6,6 +6,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -131,4 +133,25 @@ TEST_CASE("linuxcnc-lathe: X in G7 reads back in rs274 as the job's radius, I as
     std::string wrong = text;
     wrong.replace(wrong.find("K-5"), 3, "K-10");
     CHECK_THROWS_AS(oracle::run_rs274(rs274(), wrong), std::runtime_error);
+}
+
+TEST_CASE("every linuxcnc-lathe golden file runs through rs274") {
+    namespace fs = std::filesystem;
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(CAMGEN_SOURCE_DIR "/tests/golden/linuxcnc-lathe")) {
+        if (entry.path().extension() != ".ngc") continue;
+        ++files;
+        std::ifstream f(entry.path());
+        std::stringstream text;
+        text << f.rdbuf();
+        INFO(entry.path().string());
+        std::vector<OStep> steps;
+        REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text.str()));
+        // Nothing leaves the XZ plane, and no move goes below the spindle axis.
+        for (const OStep& s : steps) {
+            CHECK(s.to.y == 0.0);
+            CHECK(s.to.x >= 0.0);
+        }
+    }
+    CHECK(files >= 1);
 }
