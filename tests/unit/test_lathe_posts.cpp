@@ -29,14 +29,15 @@ bool has(const std::string& text, const std::string& part) { return text.find(pa
 }  // namespace
 
 TEST_CASE("fanuc-lathe: T0101, G50 S<maxRpm> then G97 S M3, G99 and feeds per revolution") {
-    const std::string text = post(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.15)", "fanuc-lathe");
+    const std::string text = post(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.1234)", "fanuc-lathe");
     INFO(text);
     CHECK(has(text, "N15 G99\n"));
     CHECK(has(text, " T0303\n"));
     CHECK(has(text, " G50 S3000\n"));
     CHECK(has(text, " G97 S800 M3\n"));
     CHECK(text.find("G50") < text.find("G97"));
-    CHECK(has(text, " G1 Z-20.000 F0.150\n"));
+    // Four decimals: a tenth of a micrometre per revolution is 0.4 mm/min at 4000 rpm.
+    CHECK(has(text, " G1 Z-20.000 F0.1234\n"));
     CHECK_FALSE(has(text, "G90"));  // system A: G90 is a turning cycle
     CHECK_FALSE(has(text, "M6"));
 }
@@ -113,7 +114,7 @@ TEST_CASE("sinumerik-lathe: DIAMON and G18; axial drilling as G17, MCALL CYCLE83
     CHECK(has(text, " G95\n"));
     // RTP 5, RFP 0, SDIS 2, DP -20, FDEP 2 - 5 = -3, FRF 1, VARI 0 (chip break), _VRT 0.5.
     CHECK(has(text, " G17\nN"));
-    CHECK(has(text, " F0.100\n"));
+    CHECK(has(text, " F0.1\n"));
     CHECK(has(text, " MCALL CYCLE83(5.000, 0.000, 2.000, -20.000, , -3.000, , , , , 1.000, 0, , , 0.500)\n"));
     CHECK(has(text, " G0 X0.000\n"));
     CHECK(text.find(" MCALL\n") < text.find(" G18\n", text.find("MCALL CYCLE83")));
