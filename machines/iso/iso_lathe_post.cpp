@@ -113,6 +113,12 @@ void IsoLathePost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpe
     on_rapid({at.x, at.y, c.retract_z});
 }
 
+bool IsoLathePost::writes_return_level() const {
+    for (const auto& [mode, code] : machine().frame.feed_modes)
+        if (code == "G98" || code == "G99") return false;
+    return true;
+}
+
 void IsoLathePost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
     IsoPost::on_drilling_footer(c, spec);
     if (drilling_plane_ && spec.style != CannedStyle::fanuc_g74) writer().add(g(18)).end();

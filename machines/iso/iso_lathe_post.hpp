@@ -34,6 +34,9 @@ protected:
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    // Fanuc T system A: G98/G99 are the feed modes, and a drilling cycle returns to the Z it
+    // started from (the retract plane, where the header put the tool).
+    bool writes_return_level() const override;
 
 private:
     bool drilling_plane_ = true;

@@ -44,6 +44,14 @@ bool turret_calls(const Machine& m) {
     return it != m.dialect_settings.end() && *it == "turret";
 }
 
+// Whether a lathe's canned cycles drill along Z only under G17 (iso-lathe setting
+// "drillingPlane", LinuxCNC); Fanuc T's face drilling cycles take no plane.
+bool drills_under_g17(const Machine& m) {
+    if (m.kind != MachineKind::lathe) return false;
+    const auto it = m.dialect_settings.find("drillingPlane");
+    return it == m.dialect_settings.end() || *it != false;
+}
+
 // A tool change announced by a comment, to be made by the M0 on the next line.
 struct InsertTool {
     int number = 0;
@@ -354,8 +362,8 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     const std::string name = spec.name;
     if (w.has('I') || w.has('J') || w.has('K')) fail(fmt::format("I/J/K in a {} block", name));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
-    // A canned cycle drills along the plane's normal: on a lathe only G17 drills along Z.
-    if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
+    // A canned cycle drills along the plane's normal: on such a lathe only G17 drills along Z.
+    if (drills_under_g17(machine_) && plane_ != Plane::xy)
         fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
                          plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
     Vec3 here = position();

@@ -5,6 +5,8 @@
 
 #include <regex>
 
+#include "camgen/analysis/compare.hpp"
+#include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 
@@ -149,4 +151,22 @@ TEST_CASE("--plot of a lathe program is an XZ half-section: Z across, the radius
     test::Run m = test::run({CAMGEN_SOURCE_DIR "/samples/plate.json", "--machine", "fanuc", "--plot", dir + "/p.svg"});
     REQUIRE(m.code == 0);
     CHECK(has(test::read_file(dir + "/p.svg"), "XY view</text>"));
+}
+
+TEST_CASE("fanuc-lathe with G83 X0 Z R Q F instead of G74 (the machine-file alternative): no G98/G99 in the block") {
+    // In G code system A G98/G99 are feed modes: a return level word would switch the feed.
+    Machine m = load_machine("fanuc-lathe");
+    m.drilling = {DrillingCycleSpec{"G83", CycleKind::deep, true, CannedStyle::standard,
+                                    {DrillField::safe_distance, DrillField::plunging_feedrate, DrillField::first_depth,
+                                     DrillField::peck_clearance}}};
+    const Job j = read_job(job(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.1, "firstPeckDepth": 6)"), "t.json");
+    const std::string text = test::post_program(j, m);
+    INFO(text);
+    CHECK(has(text, " G83 X0.000 Z-20.000 R2.000 Q6.000 F0.1\n"));
+    CHECK(text.find("G98 G83") == std::string::npos);
+    CHECK(text.find("G99 G83") == std::string::npos);
+    // It reads back as the job (the cycle returns to the retract plane it started from).
+    const Trace expected = trace_expected(expand_job(j), m);
+    const Trace actual = trace_program(read_program(text, m, "t.nc"), m);
+    CHECK_FALSE(compare_traces(expected, actual, compare_tolerance(m, read_resolution(m))));
 }
