@@ -155,3 +155,21 @@ TEST_CASE("every linuxcnc-lathe golden file runs through rs274") {
     }
     CHECK(files >= 1);
 }
+
+TEST_CASE("linuxcnc-lathe: tapping on the axis is G33.1 under G17, a rigid tap to the hole's bottom in rs274") {
+    // A rigid tap has no longhand (the machine taps rigidly): rs274 shows the synchronised move.
+    const std::string text = post_turn_drill(R"(, "pitch": 1.25)", "auto");
+    INFO(text);
+    REQUIRE(text.find("G17\n") != std::string::npos);
+    REQUIRE(text.find("G33.1 Z-17 K1.25\n") != std::string::npos);
+    std::vector<OStep> steps;
+    REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
+    int taps = 0;
+    for (const OStep& s : steps)
+        if (s.kind == OStep::Kind::rigid_tap) {
+            ++taps;
+            CHECK(s.to.x == 0.0);
+            CHECK(s.to.z == -17.0);
+        }
+    CHECK(taps == 1);
+}
