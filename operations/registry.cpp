@@ -67,6 +67,13 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     const nlohmann::json& operations = in.array(top, "operations");
     for (std::size_t i = 0; i < operations.size(); ++i)
         job.operations.push_back(read_operation(operations[i], "/operations/" + std::to_string(i), in));
+    // Every operation is read and its size claimed: only now do patterns make their holes.
+    for (Operation& op : job.operations)
+        visit_exhaustive(
+            []<OperationType Op>(Op& o) {
+                if constexpr (requires { make_pending_holes(o); }) make_pending_holes(o);
+            },
+            op);
     static_cast<JobHeader&>(job) = in.take_header();
     if (job.name.empty()) job.name = job_name(source_name);
     return job;
@@ -128,9 +135,11 @@ void expand_job(const Job& job, EventSink& sink) {
                 }
                 std::optional<double> tolerance;
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
+                std::vector<std::string> notes;
+                if constexpr (requires { o.notes; }) notes = o.notes;
                 FeedMode feed_mode = FeedMode::per_minute;
                 if constexpr (requires { o.feed_mode; }) feed_mode = o.feed_mode;
-                sink.emit(OperationStart{default_name(o), o.path, tolerance, feed_mode});
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, feed_mode});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

@@ -13,6 +13,7 @@
 #include "camgen/job/job.hpp"
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
+#include "operations/path/path.hpp"
 #include "operations/turn_drill/turn_drill.hpp"
 #include "operations/turn_profile/turn_profile.hpp"
 
@@ -40,7 +41,7 @@ constexpr MachineKind machine_kind_of() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, TurnDrillOp, TurnProfileOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, TurnDrillOp, TurnProfileOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

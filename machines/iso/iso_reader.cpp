@@ -144,6 +144,7 @@ void IsoReader::finish() {
         fail(fmt::format("the tool change announced on line {} (Insert tool {}) is not made: the program ends "
                          "without its M0",
                          pending_insert_->line, pending_insert_->number));
+    if (!ended_) fail("the program does not end with M2 or M30: it may have been cut short");
     NcReader::finish();
 }
 

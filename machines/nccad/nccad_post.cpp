@@ -63,7 +63,7 @@ void NccadPost::on_spindle(const Spindle& s) {
     if (pending_tool_) {
         flush_tool_message(s.rpm);
     } else if (s.rpm != speed_) {
-        writer().add(m(1)).add(writer().clean_comment(fmt::format("Set spindle speed to {} rpm", rpm_format().format(s.rpm)))).end();
+        writer().add(m(1)).add(writer().clean_comment(fmt::format("Set spindle speed to {} rpm", speed_text(s.rpm)))).end();
     }
     speed_ = s.rpm;
     writer().add(m(10)).add("O6.1").end();
@@ -74,7 +74,7 @@ void NccadPost::flush_tool_message(std::optional<double> rpm) {
     const ToolChange& t = *pending_tool_;
     std::string msg = fmt::format("Insert tool {}", t.number);
     if (!t.description.empty()) msg += " " + t.description;
-    if (rpm) msg += fmt::format(", spindle {} rpm", rpm_format().format(*rpm));
+    if (rpm) msg += fmt::format(", spindle {} rpm", speed_text(*rpm));
     // ';' starts a comment in nccad: it must not appear in the message.
     for (char& c : msg)
         if (c == ';') c = ',';

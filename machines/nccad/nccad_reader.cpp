@@ -35,6 +35,10 @@ protected:
     bool message_code(const Word& w) const override { return w.letter == 'M' && code(w.value) == code(1); }
     bool dotted_word(char letter) const override { return letter == 'O'; }
     void block(const Block& b) override;
+    void finish() override {
+        if (!ended_) fail("the program does not end with G99: it may have been cut short");
+        NcReader::finish();
+    }
 
 private:
     void message(const std::string& text);

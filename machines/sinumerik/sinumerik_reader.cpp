@@ -95,6 +95,7 @@ void SinumerikReader::line(std::string_view text) {
 void SinumerikReader::finish() {
     if (mcall_) fail(fmt::format("the program ends with the modal call {} of line {} still active (MCALL ends it)",
                                  mcall_->name, mcall_->line));
+    if (!ended_) fail("the program does not end with M30 or M2: it may have been cut short");
     NcReader::finish();
 }
 

@@ -1,47 +1,96 @@
 #pragma once
-// The contour operation: a path of lines, arcs and helices cut at one depth, entered by
-// feeding down from the clearance above its start.
+// The contour operation: a machinist's profile cut. A closed or open 2D profile of lines and
+// arcs in XY (the geometry layer's Profile), cut beside it (left, right, inside, outside) or on
+// it, climb or conventional, with the tool radius offset by camgen (computer), by the control
+// (G41/G42) or both (wear, inverse wear); in depth passes from the stock top down to the end
+// depth (the heights every operation takes), with an optional finishing pass, lead-in and
+// lead-out, plunge or ramp entry, and tabs that hold a through-cut part.
 #include <optional>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 #include "camgen/events/events.hpp"
+#include "camgen/geometry/offset.hpp"
+#include "camgen/geometry/profile.hpp"
 #include "camgen/job/job_input.hpp"
 #include "operations/context.hpp"
+#include "operations/heights.hpp"
 
 namespace camgen {
 
-// A straight line to an end point (a job's [x, y] is at the operation's depth).
-struct PathLine {
-    Vec3 end;
+// Where the tool cuts, seen along the profile as drawn (left, right), on it, or for a closed
+// profile inside or outside whatever the drawing direction.
+enum class ContourSide { left, right, on, inside, outside };
+inline constexpr Named<ContourSide> contour_sides[] = {
+    {ContourSide::left, "left", "left of the profile as drawn"},
+    {ContourSide::right, "right", "right of the profile as drawn"},
+    {ContourSide::on, "on", "the tool centre on the profile (no offset)"},
+    {ContourSide::inside, "inside", "inside a closed profile (a pocket wall)"},
+    {ContourSide::outside, "outside", "outside a closed profile (a part's outline)"},
 };
 
-// An arc in `plane` to an end point around an absolute centre, clockwise or counter-clockwise
-// seen looking down the plane's normal axis (Z, Y, X: the G17/G18/G19 convention). The
-// centre's coordinate along the normal axis is the start's. An end that differs from the start
-// along the normal axis makes a helical arc; an end equal to the start in the plane is a full
-// circle.
-struct PathArc {
-    Vec3 end;
-    Vec3 centre;
-    ArcDirection direction = ArcDirection::cw;
-    Plane plane = Plane::xy;
+// Climb: the tool is left of its travel (with a clockwise spindle, M3); conventional: right.
+enum class CutDirection { climb, conventional };
+inline constexpr Named<CutDirection> cut_directions[] = {
+    {CutDirection::climb, "climb", "down milling: the path is walked so that the tool is left of its travel (M3)"},
+    {CutDirection::conventional, "conventional", "up milling: the tool right of its travel (M3)"},
 };
 
-// Whole turns of a helix about an axis parallel to Z through `centre`, from the current point
-// to the same X and Y at `end_z`, Z changing evenly with the angle.
-struct PathHelix {
-    Vec2 centre;
-    ArcDirection direction = ArcDirection::cw;
-    int turns = 1;
-    double end_z = 0.0;
+// Who offsets the tool radius (Fusion's compensation types).
+enum class CompensationMode { computer, control, wear, inverse_wear };
+inline constexpr Named<CompensationMode> compensation_modes[] = {
+    {CompensationMode::computer, "computer", "camgen offsets the path by the tool radius; no G41/G42"},
+    {CompensationMode::control, "control",
+     "the program is the profile itself with G41/G42 (RL/RR): the control offsets by the radius in its tool table"},
+    {CompensationMode::wear, "wear",
+     "camgen offsets by the radius and writes G41/G42 too: the control's table holds only the wear (negative shrinks the cut)"},
+    {CompensationMode::inverse_wear, "inverse-wear", "as wear with G41 and G42 swapped: a positive wear shrinks the cut"},
 };
 
-using PathElement = std::variant<PathLine, PathArc, PathHelix>;
+// A lead-in or lead-out: none, a tangent arc (radius, sweep in degrees) or a straight line
+// (length, angle in degrees from the tangent towards the tool's side).
+struct Lead {
+    enum class Kind { none, arc, line } kind = Kind::none;
+    double radius = 0.0;
+    double sweep = 90.0;
+    double length = 0.0;
+    double angle = 0.0;
+};
 
-// Cut a path of lines, arcs and helices, starting at `start` at `depth`.
+// How the tool gets down to each pass: plunge straight down, ramp along the profile at an
+// angle (degrees above horizontal), or a helix of a radius at that angle before the lead-in.
+struct Ramp {
+    enum class Kind { plunge, along, helix } kind = Kind::plunge;
+    double angle = 5.0;
+    double radius = 0.0;
+};
+
+// Tabs on a closed through-cut: `count` evenly spaced (or one every `spacing` mm), each
+// `width` mm wide on the part and `height` mm above the bottom of the cut.
+struct Tabs {
+    int count = 0;
+    double width = 0.0;
+    double height = 0.0;
+};
+
+// The finishing pass: after roughing that leaves `radial_stock` on the wall and
+// `axial_stock` on the floor, one pass at the full depth and the final offset.
+struct Finishing {
+    double radial_stock = 0.0;
+    double axial_stock = 0.0;
+};
+
+// The feeds of each movement kind, mm/min (CNC-Calc's getFeedrate(movement)).
+struct ContourFeeds {
+    double cutting = 0.0;
+    double plunge = 0.0;
+    double ramp = 0.0;
+    double lead_in = 0.0;
+    double lead_out = 0.0;
+    double finishing = 0.0;
+};
+
 struct ContourOp {
     static constexpr std::string_view type = "contour";
     // Reads one operation of this type (its "type" is already read).
@@ -51,16 +100,36 @@ struct ContourOp {
     std::string path;
     std::string comment;
     int tool = 0;
-    Vec2 start;
-    std::vector<PathElement> elements;
-    std::vector<std::string> element_paths;  // JSON path of each element, for messages
-    double depth = 0.0;                  // absolute Z of the cut (and of [x, y] points)
-    double feed = 0.0;                   // mm/min
-    std::optional<double> plunge_feed;   // mm/min; absent: feed
-    std::optional<double> tolerance;     // mm, for arcs that become lines (capped by the machine's)
+    double tool_radius = 0.0;
+    Heights heights;
+    Profile profile;                         // as drawn, XY
+    std::vector<std::string> element_paths;  // JSON path of each segment, for messages
+    ContourSide side = ContourSide::outside;
+    CutDirection direction = CutDirection::climb;
+    SpindleDirection spindle = SpindleDirection::cw;
+    CompensationMode compensation = CompensationMode::computer;
+    double stock_to_leave = 0.0;             // radial, left on the wall after every pass
+    std::optional<double> step_down;         // absent: one pass
+    bool equal_steps = true;
+    std::optional<Finishing> finishing;
+    Lead lead_in, lead_out;
+    Ramp ramp;
+    std::optional<Tabs> tabs;
+    ContourFeeds feeds;
+    std::optional<double> tolerance;  // mm, for arcs that become lines (capped by the machine's)
+
+    // Planned on reading (so that what cannot be cut is an error naming the operation):
+    bool tool_left = true;            // the tool is left of its travel
+    Profile rough;                    // the path of the roughing passes (programmed path)
+    Profile finish;                   // the path of the finishing pass (empty: none)
+    std::vector<std::string> notes;   // what camgen decided that the job did not ask for
 };
 
-// Rapid above the start at the clearance, feed down to depth, cut the path, rapid up.
+// The pass depths from the top down (absolute Z): steps of at most `step_down` from `top` to
+// `bottom`, equal (each (top - bottom) / n) or full steps with a smaller last one.
+std::vector<double> pass_depths(double top, double bottom, std::optional<double> step_down, bool equal_steps);
+
+// Lead in, cut each pass, lead out, retract: see contour.cpp.
 void expand(const ContourOp& op, const Context& context, EventSink& sink);
 
 // The operation's name for comments: its comment, else "contour".

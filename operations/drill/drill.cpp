@@ -31,16 +31,6 @@ constexpr KeySpec drill_keys[] = {
      .description = "written as a comment before the operation"},
     {.key = "cycle", .type = JsonType::string, .default_json = "\"drill\"", .choices = &choices_of<cycle_kinds>,
      .description = "the drilling cycle"},
-    {.key = "retractPlane", .quantity = Quantity::length,
-     .description = "absolute Z the tool returns to between holes (default: clearance)"},
-    {.key = "referencePlane", .quantity = Quantity::length, .default_json = "0",
-     .description = "absolute Z of the surface; relative values are measured from it"},
-    {.key = "safeDistanceIsAbsolute", .type = JsonType::boolean, .default_json = "false",
-     .description = "safeDistance is an absolute Z (else: the height above referencePlane, >= 0)"},
-    {.key = "endDepth", .quantity = Quantity::length, .required = true,
-     .description = "bottom of the hole: depth below referencePlane (> 0), or an absolute Z with endDepthIsAbsolute"},
-    {.key = "endDepthIsAbsolute", .type = JsonType::boolean, .default_json = "false",
-     .description = "endDepth is an absolute Z (else: the depth below referencePlane, > 0)"},
     {.key = "drillTip", .type = JsonType::boolean, .default_json = "false",
      .description = "add the tool's tip length (from diameter and tipAngle) to the depth"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
@@ -107,9 +97,12 @@ KeySpec key_of_field(const DrillFieldInfo& d) {
     return k;
 }
 
-// The keys of a drill operation: drill_keys, then the drilling fields.
+// The keys of a drill operation: drill_keys with the heights after "cycle", then the drilling
+// fields (safeDistance is one of them).
 std::vector<KeySpec> all_drill_keys() {
     std::vector<KeySpec> keys(std::begin(drill_keys), std::end(drill_keys));
+    const std::vector<KeySpec> heights = height_keys(false);
+    keys.insert(keys.begin() + 4, heights.begin(), heights.end());
     for (const auto& d : drill_fields) keys.push_back(key_of_field(d));
     return keys;
 }
@@ -147,7 +140,9 @@ std::vector<std::string_view> fields_used_by(CycleKind kind) {
     return out;
 }
 
-void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
+// The holes of the list are read at once (the document holds them already); the patterns are
+// counted now and made later (make_pending_holes), once the whole job's count is known.
+void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes, std::vector<HolePattern>& patterns) {
     const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line");
     if (!any)
         f.fail("", "a drill operation needs holes: give at least one of holes, grid, boltCircle "
@@ -189,8 +184,10 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         const double sx = in.length(g, "spacingX");
         const double sy = in.length(g, "spacingY");
         const Eigen::Isometry2d to_job = placement(origin, g.optional_number("rotation").value_or(0.0));
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) holes.push_back(apply(to_job, {i * sx, j * sy}));
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i) out.push_back(apply(to_job, {i * sx, j * sy}));
+        });
     }
 
     if (const Json* value = f.member("boltCircle")) {
@@ -204,10 +201,12 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (count > max_pattern_holes) b.fail("count", "count is too large");
         in.claim_holes(count, b, "count");
         const double start = b.optional_number("startAngle").value_or(0.0);
-        for (int i = 0; i < count; ++i) {
-            const Vec2 u = unit_direction(start + 360.0 * i / count);
-            holes.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
-        }
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            for (int i = 0; i < count; ++i) {
+                const Vec2 u = unit_direction(start + 360.0 * i / count);
+                out.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
+            }
+        });
     }
 
     if (const Json* value = f.member("line")) {
@@ -219,18 +218,17 @@ void read_holes(Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
         if (count < 1) l.fail("count", "count must be 1 or more");
         if (count > max_pattern_holes) l.fail("count", "count is too large");
         in.claim_holes(count, l, "count");
-        if (count == 1) {
-            holes.push_back(a);
-        } else {
-            for (int i = 0; i < count; ++i) {
-                if (i == count - 1) {
-                    holes.push_back(b);  // exactly the end point, no rounding
-                    break;
-                }
-                const double t = static_cast<double>(i) / (count - 1);
-                holes.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});
+        patterns.push_back([=](std::vector<Vec2>& out) {
+            if (count == 1) {
+                out.push_back(a);
+                return;
             }
-        }
+            for (int i = 0; i < count - 1; ++i) {
+                const double t = static_cast<double>(i) / (count - 1);
+                out.push_back({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t});
+            }
+            out.push_back(b);  // exactly the end point, no rounding
+        });
     }
 }
 
@@ -284,17 +282,6 @@ void read_degression(Fields& f, const JobInput& in, DrillValues& values) {
 
 }  // namespace
 
-DrillPlanes resolve_planes(const DrillParams& p) {
-    DrillPlanes z;
-    z.retract_z = p.retract_plane;
-    z.reference_z = p.reference_plane;
-    z.safe_z = !p.safe_distance               ? p.retract_plane
-               : p.safe_distance_is_absolute ? *p.safe_distance
-                                             : p.reference_plane + *p.safe_distance;
-    z.bottom_z = p.end_depth_is_absolute ? p.end_depth : p.reference_plane - p.end_depth;
-    return z;
-}
-
 std::vector<ObjectSpec> DrillOp::objects() {
     return {
         {.name = "drill", .description = "drill a list of holes with one cycle", .keys = all_drill_keys(),
@@ -343,45 +330,7 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     }
 
     // Planes and depths.
-    p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
-    p.reference_plane = in.optional_length(f, "referencePlane").value_or(0.0);
-    p.safe_distance = in.optional_length(f, "safeDistance");
-    p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
-    p.end_depth = in.length(f, "endDepth");
-    p.end_depth_is_absolute = f.boolean("endDepthIsAbsolute", false);
-
-    if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)
-        f.fail("safeDistance",
-               "a relative safeDistance cannot be negative (it is measured up from "
-               "referencePlane; set safeDistanceIsAbsolute for an absolute Z)");
-    if (!p.end_depth_is_absolute && p.end_depth <= 0)
-        f.fail("endDepth",
-               "a relative endDepth must be > 0 (it is the depth below referencePlane; set "
-               "endDepthIsAbsolute for an absolute Z)");
-    const DrillPlanes z = resolve_planes(p);
-    if (z.bottom_z >= z.safe_z)
-        f.fail("endDepth", fmt::format("endDepth is above the safe distance (hole bottom at Z {}, "
-                                       "safe distance at Z {})",
-                                       in.show(z.bottom_z), in.show(z.safe_z)));
-    if (p.retract_plane < z.safe_z)
-        f.fail("retractPlane",
-               fmt::format("retractPlane is below the safe distance (retract plane at Z {}{}, "
-                           "safe distance at Z {})",
-                           in.show(p.retract_plane), f.has("retractPlane") ? "" : ", the clearance",
-                           in.show(z.safe_z)));
-
-    // The stock top (referencePlane) is where the material starts: nothing may rapid below it.
-    if (p.retract_plane <= p.reference_plane)
-        f.fail("retractPlane",
-               fmt::format("retractPlane{} (Z {}) is not above referencePlane, the stock top (Z {}): between holes "
-                           "the tool would rapid through the material",
-                           f.has("retractPlane") ? "" : ", the clearance,", in.show(p.retract_plane),
-                           in.show(p.reference_plane)));
-    if (z.safe_z < p.reference_plane)
-        f.fail("safeDistance",
-               fmt::format("the safe distance (Z {}) is below referencePlane, the stock top (Z {}): the rapid "
-                           "approach would end inside the material",
-                           in.show(z.safe_z), in.show(p.reference_plane)));
+    static_cast<Heights&>(p) = read_heights(f, in, "hole");
 
     // The optional fields, by the vocabulary's table; then the degression, which reads two.
     for (const auto& d : drill_fields)
@@ -396,8 +345,13 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     p.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     op.order = f.choice("order", hole_orders, HoleOrder::as_given);
 
-    read_holes(f, in, op.holes);
+    read_holes(f, in, op.holes, op.pending_patterns);
     return op;
+}
+
+void make_pending_holes(DrillOp& op) {
+    for (const HolePattern& make : op.pending_patterns) make(op.holes);
+    op.pending_patterns.clear();
 }
 
 std::string default_name(const DrillOp& d) {
@@ -492,7 +446,7 @@ std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes) {
 
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     const DrillParams& p = op.params;
-    const DrillPlanes z = resolve_planes(p);
+    const Planes z = resolve_planes(p);
     DrillCycle c;
     c.kind = p.kind;
     c.output = p.output;

@@ -2,6 +2,7 @@
 // The drill operation: a list of holes drilled with one cycle (the CNC-Calc drill header and
 // its MillDrillingFields), read from the job and expanded into a DrillCycle event, one
 // DrillPoint per hole and a DrillEnd.
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,24 +10,22 @@
 #include "camgen/events/events.hpp"
 #include "camgen/job/job_input.hpp"
 #include "operations/context.hpp"
+#include "operations/heights.hpp"
 
 namespace camgen {
 
 // The drilling parameters as the job gives them. Z values are absolute mm unless named
 // relative; the optional fields of the vocabulary's drill_fields table are in `values`.
-struct DrillParams {
+struct DrillParams : Heights {
     CycleKind kind = CycleKind::drill;
-    double retract_plane = 0.0;                  // absolute Z between holes
-    double reference_plane = 0.0;                // absolute Z of the surface
-    std::optional<double> safe_distance;         // where rapid turns into feed
-    bool safe_distance_is_absolute = false;
-    double end_depth = 0.0;                      // bottom of the hole
-    bool end_depth_is_absolute = false;          // false: depth below reference_plane (> 0)
     DrillValues values;                          // the optional fields the job set
     bool drill_tip = false;                      // add the tool's tip length to the depth
     CycleOutput output = CycleOutput::automatic;
     friend bool operator==(const DrillParams&, const DrillParams&) = default;
 };
+
+// Appends the holes of one pattern (a grid, bolt circle or line) to a list.
+using HolePattern = std::function<void(std::vector<Vec2>&)>;
 
 // Drill a list of holes with one cycle.
 struct DrillOp {
@@ -41,7 +40,14 @@ struct DrillOp {
     DrillParams params;
     std::vector<Vec2> holes;   // as the job gives them; expand() reorders them for order = shortest
     HoleOrder order = HoleOrder::as_given;
+    // Patterns read and counted against the job's hole limit but not made yet: read_job makes
+    // them (make_pending_holes) once every operation is read, so that a job over the limit is
+    // refused before any pattern allocates its holes.
+    std::vector<HolePattern> pending_patterns;
 };
+
+// Makes the pending patterns' holes, after the holes of the list, in the job's key order.
+void make_pending_holes(DrillOp& op);
 
 // Position above the first hole at the clearance, then down to the retract plane, the cycle
 // over every hole, and back up to the clearance.
@@ -57,16 +63,6 @@ inline constexpr size_t max_two_opt_holes = 2000;
 // The holes in a short rapid order (order "shortest"): nearest neighbour from the first hole,
 // which stays first, then 2-opt (see max_two_opt_holes). Same holes, reordered.
 std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes);
-
-// The absolute Z levels of a drilling operation: retract plane, reference plane, where the
-// feed starts, and the hole's bottom before any drill-tip length.
-struct DrillPlanes {
-    double retract_z = 0.0;
-    double reference_z = 0.0;
-    double safe_z = 0.0;
-    double bottom_z = 0.0;
-};
-DrillPlanes resolve_planes(const DrillParams& params);
 
 // The resolved drilling cycle of an operation (absolute planes, drill tip, tapping feed).
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool);

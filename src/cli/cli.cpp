@@ -314,6 +314,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             err << "camgen: --plot and --stats read the program back: they need --machine and no --events\n";
             return exit_usage;
         }
+        if ((!o.plot.empty() || o.stats) && o.snippet) {
+            // A snippet has no program end, and a program without its end is read as cut short.
+            err << "camgen: --plot and --stats read the program back: a --snippet is not a whole program\n";
+            return exit_usage;
+        }
         if (!o.machine.empty() && !o.events) {
             Machine machine = load_machine(o.machine);  // unknown machine: usage error first
             if ((!o.plot.empty() || o.stats) && !has_reader(machine.dialect)) {

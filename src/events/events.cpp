@@ -39,12 +39,16 @@ std::string event_to_json(const Event& event) {
                    },
                    [&](const Coolant& e) { j = {{"event", "coolant"}, {"mode", name_of(coolant_modes, e.mode)}}; },
                    [&](const Rapid& e) { j = {{"event", "rapid"}, {"to", xyz(e.to)}}; },
-                   [&](const Linear& e) { j = {{"event", "linear"}, {"to", xyz(e.to)}, {"feed", e.feed}}; },
+                   [&](const Linear& e) {
+                       j = {{"event", "linear"}, {"to", xyz(e.to)}, {"feed", e.feed}};
+                       if (e.movement != Movement::cutting) j["movement"] = name_of(movements, e.movement);
+                   },
                    [&](const Arc& e) {
                        j = {{"event", "arc"},         {"to", xyz(e.to)},
                             {"centre", xyz(e.centre)}, {"direction", e.direction == ArcDirection::cw ? "cw" : "ccw"},
                             {"plane", name_of(plane_names, e.plane)}, {"feed", e.feed}};
                        if (e.turns) j["turns"] = e.turns;
+                       if (e.movement != Movement::cutting) j["movement"] = name_of(movements, e.movement);
                    },
                    [&](const Dwell& e) { j = {{"event", "dwell"}, {"seconds", e.seconds}}; },
                    [&](const Compensation& e) {

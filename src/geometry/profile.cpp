@@ -99,7 +99,9 @@ bool is_simple(const Profile& profile, double tolerance) {
     }
     BgLine line;
     for (Vec2 v : sample_profile(profile, tolerance)) bg::append(line, BgPoint(v.x, v.y));
-    return bg::is_simple(line);
+    // Boost 1.74's is_simple calls a fine sampling of an S (two tangent arcs turning opposite
+    // ways) not simple; its self-intersection test answers the question asked.
+    return !bg::intersects(line);
 }
 
 Orientation orientation(const Profile& profile, double tolerance) {

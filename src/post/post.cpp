@@ -242,13 +242,15 @@ bool Post::force_arc_end() const { return machine_.arcs.force_xy; }
 
 Post::LinearLayout Post::linear_layout() { return {motion_word(1), false}; }
 
-std::string Post::speed_word(double rpm) const {
+std::string Post::speed_word(double rpm) const { return "S" + speed_text(rpm); }
+
+std::string Post::speed_text(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
         fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
                              machine_.limits.max_rpm));
     if (rpm_fmt_.is_zero(rpm))
         fail("", fmt::format("spindle speed {} rpm would be written as S0 on machine {}", rpm, machine_.name));
-    return rpm_fmt_.word("S", rpm);
+    return rpm_fmt_.format(rpm);
 }
 
 void Post::on_spindle(const Spindle& s) {
@@ -609,6 +611,7 @@ void Post::emit(const Event& event) {
                        op_path_ = op.path;
                        op_name_ = op.name;
                        op_tolerance_ = op.tolerance;
+                       for (const std::string& n : op.notes) note(fmt::format("{} ({}): {}", op.path, op.name, n));
                        on_operation_start(op);
                        select_feed_mode(op.feed_mode);
                    },

@@ -42,7 +42,8 @@ bool refused(const std::string& machine, const std::filesystem::path& sample) {
 
 }  // namespace
 
-TEST_CASE("every sample on every ISO machine, in mm and inch, runs through rs274 to PROGRAM_END") {
+TEST_CASE("field failure: codes the control rejects (rs274): every sample on every ISO machine, in mm and inch, runs "
+          "through rs274 to PROGRAM_END") {
     const std::optional<std::string> rs274 = oracle::find_rs274();
     REQUIRE_MESSAGE(rs274, "rs274 (linuxcnc-uspace) is not installed");
     namespace fs = std::filesystem;

@@ -356,7 +356,9 @@ std::vector<Variant> variants(CycleKind kind, const DrillingCycleSpec& spec) {
 
 }  // namespace
 
-TEST_CASE("every linuxcnc canned cycle is word-complete with and without each optional parameter") {
+// Field failure (REFERENCE.md §6): LinuxCNC G86/G89 without P ("Dwell time p word missing").
+TEST_CASE("field failure: a canned-cycle word the control requires left out (G86/G89 without P): every linuxcnc "
+          "canned cycle is word-complete with and without each optional parameter") {
     const std::string rs274 = rs274_path();
     const Machine machine = load_machine("linuxcnc");
     int compared = 0;

@@ -44,7 +44,7 @@ GOOD_JOB = {
          "holes": [[10, 10], {"x": 30, "y": 10}]},
         {"type": "drill", "tool": 2, "cycle": "tap", "endDepth": 10, "pitch": 1.25,
          "grid": {"origin": [0, 0], "countX": 2, "countY": 2, "spacingX": 10, "spacingY": 10}},
-        {"type": "contour", "tool": 3, "depth": -1, "feed": 300, "start": [20, 0],
+        {"type": "path", "tool": 3, "z": -1, "feed": 300, "start": [20, 0],
          "path": [{"line": [30, 0]},
                   {"arc": {"end": [40, 10], "centre": [30, 10], "direction": "ccw"}},
                   {"helix": {"centre": [40, 12], "direction": "cw", "turns": 2, "pitch": 1}}]},
@@ -80,7 +80,7 @@ BAD_JOBS = [
     ("a drill operation without holes", edited(["operations", 0, "holes"], delete=True), "anyOf", ["operations", 0]),
     ("a point of three numbers where two are needed", edited(["operations", 2, "start"], [1, 2, 3]), "maxItems",
      ["operations", 2, "start"]),
-    ("a helix with depth, turns and pitch", edited(["operations", 2, "path", 2, "helix", "depth"], -5), "oneOf",
+    ("a helix with z, turns and pitch", edited(["operations", 2, "path", 2, "helix", "z"], -5), "oneOf",
      ["operations", 2, "path", 2, "helix"]),
     ("a tool number of 0", edited(["tools", 0, "number"], 0), "minimum", ["tools", 0, "number"]),
 ]

@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the unit tests: run the pipeline in-process, split NC text into words.
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -242,6 +243,32 @@ inline std::string post_events(const Machine& machine, const std::vector<Event>&
     for (const Event& e : events) post->emit(e);
     post->close();
     return out.str();
+}
+
+// The first number in NC text that has an exponent or is minus zero, or NaN / inf; "" if none.
+// A number here is what follows a word letter or '=': sign, digits, decimal mark, digits.
+inline std::string bad_number(const std::string& text) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == 'n' && text.compare(i, 3, "nan") == 0) return "nan";
+        if (c == 'i' && text.compare(i, 3, "inf") == 0 && text.compare(i, 4, "info") != 0) return "inf";
+        if (!(std::isupper(static_cast<unsigned char>(c)) || c == '=')) continue;
+        size_t j = i + 1;
+        bool minus = j < text.size() && text[j] == '-';
+        if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
+        size_t digits_start = j;
+        bool nonzero = false;
+        while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' || text[j] == ',')) {
+            if (std::isdigit(static_cast<unsigned char>(text[j])) && text[j] != '0') nonzero = true;
+            ++j;
+        }
+        if (j == digits_start || !std::isdigit(static_cast<unsigned char>(text[digits_start]))) continue;
+        if (j < text.size() && (text[j] == 'e' || text[j] == 'E') && j + 1 < text.size() &&
+            (std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '-' || text[j + 1] == '+'))
+            return text.substr(i, j + 2 - i);
+        if (minus && !nonzero) return text.substr(i, j - i);
+    }
+    return {};
 }
 
 }  // namespace camgen::test

@@ -368,7 +368,7 @@ TEST_CASE("rule: the operation's tolerance reaches the post from the job") {
     // the operation's 0.001 (see above); 0.05 is capped at 0.005.
     auto job = [](const std::string& tol) {
         return R"({"clearance": 20, "tools": [{"number": 1, "diameter": 6, "rpm": 2000, "type": "end-mill"}],
-          "operations": [{"type": "contour", "tool": 1, "depth": 0, "feed": 300, )" + tol + R"("start": [10, 0],
+          "operations": [{"type": "path", "tool": 1, "z": 0, "feed": 300, )" + tol + R"("start": [10, 0],
             "path": [{"arc": {"plane": "xz", "end": [0, 0, -10], "centre": [0, 0, 0], "direction": "ccw"}}]}]})";
     };
     auto feed_lines = [](const std::string& text) {
@@ -737,4 +737,19 @@ TEST_CASE("fanuc breaks the 1522 mm arc into 11 chords within its tolerance") {
     CHECK(d <= load_machine("fanuc").arcs.chord_tolerance + 0.0007);
     // 11 chords of 0.0512708 / 11 = 0.00466098 rad: sagitta 1522 (1 - cos(0.00233049)) = 0.004133.
     CHECK(d > 0.004);
+}
+
+TEST_CASE("a full circle cut in two halves at the 180 degree limit reads back although rounding widens one half") {
+    // Radius hypot(3.8125, 10) = 10.702: the halves end at points whose rounded words give
+    // 180.005 degrees on kosy (3 decimals). A fuzz_mutated finding: verify refused camgen's own
+    // program ("an arc of 180.005 degrees in one block").
+    const std::string job = R"({"name": "c", "units": "mm", "clearance": 10,
+      "tools": [{"number": 5, "type": "end-mill", "diameter": 4, "rpm": 4000}],
+      "operations": [{"type": "path", "tool": 5, "z": -1, "feed": 300, "start": [20, 40],
+        "path": [{"arc": {"centre": [23.8125, 50], "direction": "ccw", "end": [20, 40]}}]}]})";
+    const std::string file = file_with("full-circle-halves", job);
+    const std::string program = scratch("full-circle-halves-out") / "c.knc";
+    REQUIRE(run({file, "--machine", "kosy", "-o", program}).code == 0);
+    const Run verify = run({"verify", program, "--machine", "kosy", "--job", file});
+    CHECK_MESSAGE(verify.code == 0, verify.err);
 }

@@ -66,6 +66,10 @@ TEST_CASE("usage errors exit 2") {
     CHECK(u.code == 2);
     CHECK(u.err.find("did you mean \"wabeco\"") != std::string::npos);
     CHECK(run({sample, "--machine", "fanuc", "--bogus"}).code == 2);
+    // A snippet has no program end: it cannot be read back as a whole program.
+    Run s = run({sample, "--machine", "fanuc", "--snippet", "--stats"});
+    CHECK(s.code == 2);
+    CHECK(s.err == "camgen: --plot and --stats read the program back: a --snippet is not a whole program\n");
     CHECK(run({"--version"}).code == 0);
 }
 

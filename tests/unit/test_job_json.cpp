@@ -68,7 +68,7 @@ std::string contour_job(const std::string& rest) {
   ],
   "operations": [
     {
-      "type": "contour",
+      "type": "path",
       "tool": 3,
 )" + rest + R"(
     }
@@ -102,7 +102,7 @@ TEST_CASE("a valid job: values and defaults") {
      "retractFeedrate": 500, "plungingFeedrate": 80, "firstFeedrateFactor": 0.5,
      "topDwell": 0.2, "bottomDwell": 0, "drillTip": true, "output": "longhand",
      "order": "shortest", "line": {"start": [0, 0], "end": [10, 0], "count": 2}},
-    {"type": "contour", "tool": 1, "depth": -2, "feed": 300, "start": [0, 0],
+    {"type": "path", "tool": 1, "z": -2, "feed": 300, "start": [0, 0],
      "path": [{"line": [10, 0]}, {"arc": {"end": [0, 0], "centre": [5, 0], "direction": "ccw"}}]}
   ]
 })",
@@ -177,10 +177,10 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK(pb.output == CycleOutput::longhand);
     REQUIRE(b.holes.size() == 2);
 
-    const auto& c = std::get<ContourOp>(job.operations.at(2));
+    const auto& c = std::get<PathOp>(job.operations.at(2));
     CHECK(c.path == "/operations/2");
     CHECK(c.tool == 1);
-    CHECK(c.depth == -2);
+    CHECK(c.z == -2);
     CHECK(c.feed == 300);
     CHECK_FALSE(c.plunge_feed.has_value());
     CHECK(c.start == Vec2{0, 0});
@@ -221,7 +221,7 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
      "plungingFeedrate": 5, "line": {"start": [0, 0], "end": [2, 0], "count": 3}},
     {"type": "drill", "tool": 1, "cycle": "tap", "endDepth": 0.5, "pitch": 0.05,
      "tappingSpeed": 300, "retractSpeed": 600, "holes": [[0, 0]]},
-    {"type": "contour", "tool": 1, "depth": -0.1, "feed": 10, "plungeFeed": 5, "start": [0, 0],
+    {"type": "path", "tool": 1, "z": -0.1, "feed": 10, "plungeFeed": 5, "start": [0, 0],
      "path": [{"line": [1, 0]}, {"arc": {"end": [1, 0], "centre": [0.5, 0], "direction": "cw"}}]}
   ]
 })",
@@ -266,8 +266,8 @@ TEST_CASE("inch input is converted to mm; rpm, angles, seconds and factors are n
     CHECK(*tap.values.get(DrillField::retract_speed) == 600);
     CHECK_FALSE(tap.values.get(DrillField::plunging_feedrate).has_value());
 
-    const auto& c = std::get<ContourOp>(job.operations.at(3));
-    CHECK(c.depth == doctest::Approx(-2.54));
+    const auto& c = std::get<PathOp>(job.operations.at(3));
+    CHECK(c.z == doctest::Approx(-2.54));
     CHECK(c.feed == doctest::Approx(254));
     CHECK(*c.plunge_feed == doctest::Approx(127));
     check_point({std::get<PathLine>(c.elements[0]).end.x, std::get<PathLine>(c.elements[0]).end.y}, 25.4, 0);
@@ -486,7 +486,8 @@ TEST_CASE("operation errors: type, tool, unknown keys") {
     {"type": "mill", "tool": 1}
   ]
 })",
-                "/operations/1/type", 6, "\"mill\" is not one of \"drill\", \"contour\", \"turn-drill\" or \"turn-profile\"");
+                "/operations/1/type", 6,
+                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"turn-drill\" or \"turn-profile\"");
     check_error(R"({
   "clearance": 5,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000}],
@@ -713,12 +714,12 @@ TEST_CASE("hole source errors, at nested levels") {
 }
 
 TEST_CASE("contour operations") {
-    const std::string ok = R"(      "depth": -1, "feed": 400, "start": [10, 0],
+    const std::string ok = R"(      "z": -1, "feed": 400, "start": [10, 0],
       "path": [
         {"arc": {"end": [10, 0], "centre": [0, 0], "direction": "cw"}}
       ])";
     const Job job = read_job(contour_job(ok), "c.json");
-    const auto& c = std::get<ContourOp>(job.operations.at(0));
+    const auto& c = std::get<PathOp>(job.operations.at(0));
     CHECK(c.tool == 3);
     REQUIRE(c.elements.size() == 1);
     const auto& full = std::get<PathArc>(c.elements[0]);
@@ -726,62 +727,62 @@ TEST_CASE("contour operations") {
     CHECK(full.direction == ArcDirection::cw);
     CHECK(c.element_paths == std::vector<std::string>{"/operations/0/path/0"});
 
-    check_error(contour_job(R"(      "depth": 10, "feed": 400, "start": [0, 0], "path": [{"line": [1, 0]}])"),
-                "/operations/0/depth", 10, "depth is above the clearance");
-    check_error(contour_job(R"(      "depth": -1, "feed": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": 10, "feed": 400, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+                "/operations/0/z", 10, "z is above the clearance");
+    check_error(contour_job(R"(      "z": -1, "feed": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/feed", 10, "feed must be > 0");
-    check_error(contour_job(R"(      "depth": -1, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": -1, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/feed", 7, "required key \"feed\" is missing");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "plungeFeed": -2, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "plungeFeed": -2, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/plungeFeed", 10, "plungeFeed must be > 0");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "path": [{"line": [1, 0]}])"),
                 "/operations/0/start", 7, "required key \"start\" is missing");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0], "path": [])"),
-                "/operations/0/path", 10, "a contour path needs at least one element");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0], "path": [])"),
+                "/operations/0/path", 10, "a path needs at least one element");
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [
         {"line": [1, 0]},
         {"line": [2, 0], "arc": {"end": [0, 0], "centre": [1, 0], "direction": "cw"}}
       ])"),
                 "/operations/0/path/1", 13, "exactly one of \"line\", \"arc\" or \"helix\"");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{}])"),
                 "/operations/0/path/0", 11, "exactly one of \"line\", \"arc\" or \"helix\"");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"lines": [1, 0]}])"),
                 "/operations/0/path/0/lines", 11, "unknown key \"lines\" (did you mean \"line\"?)");
     // start (0,0) is 12 from the centre (12,0); end (12,12.5) is 12.5 from it.
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [
         {"arc":
           {"end": [12, 12.5], "centre": [12, 0], "direction": "ccw"}}
       ])"),
                 "/operations/0/path/0/arc", 12, "start is 12.000 mm from the centre but end is 12.500 mm");
     // The arc starts where the previous element ended.
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [
         {"line": [5, 0]},
         {"arc": {"end": [0, 0], "centre": [2, 0], "direction": "ccw"}}
       ])"),
                 "/operations/0/path/1/arc", 13, "start is 3.000 mm from the centre but end is 2.000 mm");
     // Within 0.001 mm is accepted.
-    CHECK_NOTHROW(read_job(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    CHECK_NOTHROW(read_job(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"arc": {"end": [20.0009, 0], "centre": [10, 0], "direction": "ccw"}}])"),
                            "c.json"));
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"arc": {"end": [0, 0], "centre": [0.0001, 0], "direction": "ccw"}}])"),
                 "/operations/0/path/0/arc", 11, "must be more than 0.0005 mm");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"arc": {"end": [2, 0], "centre": [1, 0],
                         "direction": "clockwise"}}])"),
                 "/operations/0/path/0/arc/direction", 12, "\"clockwise\" is not one of \"cw\" or \"ccw\"");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"arc": {"end": [2, 0], "centre": [1, 0]}}])"),
                 "/operations/0/path/0/arc/direction", 11, "required key \"direction\" is missing");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0],
       "path": [{"line": [2, "x"]}])"),
                 "/operations/0/path/0/line/1", 11, "expected a number, got a string \"x\"");
-    check_error(contour_job(R"(      "depth": -1, "feed": 1, "start": [0, 0], "path": [{"line": [1, 0]}],
+    check_error(contour_job(R"(      "z": -1, "feed": 1, "start": [0, 0], "path": [{"line": [1, 0]}],
       "endDepth": 3)"),
                 "/operations/0/endDepth", 11, "unknown key \"endDepth\"");
 }
@@ -824,18 +825,18 @@ TEST_CASE("read_job_file") {
 }
 
 TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
-    const Job job = read_job(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0.002, "start": [0, 0],
+    const Job job = read_job(contour_job(R"(      "z": -1, "feed": 400, "tolerance": 0.002, "start": [0, 0],
       "path": [
         {"line": [10, 0, -2]},
         {"arc": {"plane": "xz", "end": [20, 0, -2], "centre": [15, 0, -2], "direction": "cw"}},
         {"arc": {"plane": "yz", "end": [20, 10, -2], "centre": [20, 5, -2], "direction": "ccw"}},
         {"arc": {"end": [20, 10, -4], "centre": [20, 5], "direction": "cw"}},
-        {"helix": {"centre": [20, 7], "direction": "ccw", "depth": -9.5, "pitch": 2}},
+        {"helix": {"centre": [20, 7], "direction": "ccw", "z": -9.5, "pitch": 2}},
         {"helix": {"centre": [20, 7], "direction": "cw", "turns": 2, "pitch": 0.5}},
         {"line": [0, 0]}
       ])"),
                              "c.json");
-    const auto& c = std::get<ContourOp>(job.operations.at(0));
+    const auto& c = std::get<PathOp>(job.operations.at(0));
     CHECK(*c.tolerance == 0.002);
     REQUIRE(c.elements.size() == 7);
     CHECK(std::get<PathLine>(c.elements[0]).end == Vec3{10, 0, -2});
@@ -877,7 +878,7 @@ TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
 
 TEST_CASE("contour: errors of 3D elements name their JSON path") {
     auto path_of = [](const std::string& elements) {
-        return contour_job(R"(      "depth": -1, "feed": 400, "start": [0, 0],
+        return contour_job(R"(      "z": -1, "feed": 400, "start": [0, 0],
       "path": [)" + elements + "]");
     };
     check_error(path_of(R"({"line": [1, 2, 3, 4]})"), "/operations/0/path/0/line", 11, "expected a point [x, y] or [x, y, z]");
@@ -900,23 +901,23 @@ TEST_CASE("contour: errors of 3D elements name their JSON path") {
     check_error(path_of(R"({"arc": {"plane": "uv", "end": [2, 0], "centre": [1, 0], "direction": "cw"}})"),
                 "/operations/0/path/0/arc/plane", 11, "\"uv\" is not one of");
     check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2}})"),
-                "/operations/0/path/0/helix", 11, "exactly two of \"depth\" (end Z), \"turns\" and \"pitch\"");
-    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "pitch": 1, "depth": -3}})"),
+                "/operations/0/path/0/helix", 11, "exactly two of \"z\" (end Z), \"turns\" and \"pitch\"");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "pitch": 1, "z": -3}})"),
                 "/operations/0/path/0/helix", 11, "exactly two of");
-    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 0, "depth": -3}})"),
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 0, "z": -3}})"),
                 "/operations/0/path/0/helix/turns", 11, "turns must be a whole number from 1 to 100000");
     check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "pitch": -1}})"),
                 "/operations/0/path/0/helix/pitch", 11, "pitch must be > 0");
-    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "depth": -1}})"),
-                "/operations/0/path/0/helix/depth", 11, "a helix must change Z");
-    check_error(path_of(R"({"helix": {"centre": [0, 0], "direction": "cw", "turns": 2, "depth": -3}})"),
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "z": -1}})"),
+                "/operations/0/path/0/helix/z", 11, "a helix must change Z");
+    check_error(path_of(R"({"helix": {"centre": [0, 0], "direction": "cw", "turns": 2, "z": -3}})"),
                 "/operations/0/path/0/helix/centre", 11, "the helix radius is 0.0000 mm");
-    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "depth": 12}})"),
-                "/operations/0/path/0/helix/depth", 11, "at or above the clearance");
-    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turn": 2, "depth": -3}})"),
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turns": 2, "z": 12}})"),
+                "/operations/0/path/0/helix/z", 11, "at or above the clearance");
+    check_error(path_of(R"({"helix": {"centre": [0, 2], "direction": "cw", "turn": 2, "z": -3}})"),
                 "/operations/0/path/0/helix/turn", 11, "unknown key \"turn\" (did you mean \"turns\"?)");
-    check_error(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": -1, "feed": 400, "tolerance": 0, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/tolerance", 10, "tolerance must be at least 0.0001 mm");
-    check_error(contour_job(R"(      "depth": -1, "feed": 400, "tolerance": 0.00001, "start": [0, 0], "path": [{"line": [1, 0]}])"),
+    check_error(contour_job(R"(      "z": -1, "feed": 400, "tolerance": 0.00001, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/tolerance", 10, "tolerance must be at least 0.0001 mm");
 }

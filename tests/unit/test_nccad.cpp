@@ -115,7 +115,7 @@ TEST_CASE("wabeco program frame, spindle, tool change message and drilling") {
 
 TEST_CASE("wabeco clamps feeds above 100 mm/s with a warning") {
     const char* job = R"({"clearance": 5, "tools": [{"number": 1, "diameter": 6, "rpm": 2000, "type": "end-mill"}],
-      "operations": [{"type": "contour", "tool": 1, "depth": -1, "feed": 9000, "plungeFeed": 60, "start": [0, 0], "path": [{"line": [10, 0]}]}]})";
+      "operations": [{"type": "path", "tool": 1, "z": -1, "feed": 9000, "plungeFeed": 60, "start": [0, 0], "path": [{"line": [10, 0]}]}]})";
     Posted p = post_job(job, "wabeco");
     CHECK(p.text.find("G01 Z-1 F10\nG01 X10 F1000\n") != std::string::npos);
     CHECK(p.warnings == "camgen: warning: /operations/0: feed 9000 mm/min is above the limit of machine wabeco; clamped to 6000 mm/min\n");

@@ -105,6 +105,14 @@ TEST_CASE("profile: crossings, touching and zero-length segments are found") {
     Profile ell{ProfilePlane::xy, {0, 0}, {}};
     ell = line_to(line_to(ell, {10, 0}), {10, 5});
     CHECK(is_simple(ell));
+    // An open chain that touches its first line at (5, 0).
+    Profile touch{ProfilePlane::xy, {0, 0}, {}};
+    touch = line_to(line_to(line_to(touch, {10, 0}), {10, 5}), {5, 0});
+    CHECK_FALSE(is_simple(touch));
+    // An S of two tangent arcs turning opposite ways is simple, however finely sampled.
+    Profile s{ProfilePlane::xy, {0, 0}, {}};
+    s = arc_to(arc_to(s, {20, 0}, {10, 0}, ArcDirection::cw), {40, 0}, {30, 0}, ArcDirection::ccw);
+    for (double tol : {0.1, 0.001, 0.0001}) CHECK(is_simple(s, tol));
 
     // An arc that bulges across the opposite side of a slot.
     Profile bulge{ProfilePlane::xy, {0, 0}, {}};

@@ -20,7 +20,7 @@ namespace {
 
 const std::string d_arc_job = R"({"name": "darc", "units": "mm", "clearance": 5,
  "tools": [{"number": 1, "type": "end-mill", "diameter": 4, "rpm": 2000}],
- "operations": [{"type": "contour", "tool": 1, "depth": -1, "feed": 300, "start": [0, 0],
+ "operations": [{"type": "path", "tool": 1, "z": -1, "feed": 300, "start": [0, 0],
    "path": [{"line": [10, 0]}, {"arc": {"end": [20, 10], "centre": [10, 10], "direction": "ccw"}}, {"line": [20, 0]}]}]})";
 
 std::vector<Event> motion_events(const std::vector<ReadEvent>& events) {
@@ -149,7 +149,7 @@ TEST_CASE("numbers: decimal comma, missing decimal point, exponent") {
           "prog.nc:4: X10 has no decimal point: machine fanuc always writes one, and a Fanuc-style control reads X10 as 0.01 mm");
     CHECK(error_of(head + "N20 G0 X1.18e+06 Y0.000 Z5.000\n", "fanuc")== "prog.nc:4: unknown word e+06");
     // Without a decimal point where the format allows it: nccad writes X10.
-    CHECK_NOTHROW(read_program("_\n_\nG90\nG00 X10 Y0 Z5\n", load_machine("wabeco")));
+    CHECK_NOTHROW(read_program("_\n_\nG90\nG00 X10 Y0 Z5\nG99\n", load_machine("wabeco")));
 }
 
 TEST_CASE("motion the machine cannot make, or from an unknown position, is an error") {
@@ -207,7 +207,7 @@ TEST_CASE("nccad: D-form and classic arcs, feeds in 0.1 mm/s, dwell in 1/18 s, t
 TEST_CASE("nccad G81/G79: B is the retract plane and the feed starts there") {
     Machine m = load_machine("wabeco");
     auto events = read_program("_\n_\nG90\nM01 Insert tool 1, spindle 1000 rpm\nM10 O6.1\nG00 X10 Y10\nG00 Z10\nG00 Z2\n"
-                               "G81 X10 Y10 Z-1.5 B2 F13.3\nG79 X50 Y10\nG00 Z10\n",
+                               "G81 X10 Y10 Z-1.5 B2 F13.3\nG79 X50 Y10\nG00 Z10\nG99\n",
                                m);
     Trace t = trace_program(events, m);
     REQUIRE(t.holes.size() == 2);
@@ -229,7 +229,7 @@ TEST_CASE("iso canned cycles: G98 returns to the initial Z, G99 to R, G83 pecks 
     Machine m = load_machine("fanuc");
     std::string head = "%\nO1000\nN10 G17 G21 G90 G94\nN15 T1 M6\nN20 S1000 M3\nN25 G0 X0.000 Y0.000\nN30 G43 Z10.000 H1\n";
     auto moves = [&](const std::string& body) {
-        Trace t = trace_program(read_program(head + body, m), m);
+        Trace t = trace_program(read_program(head + body + "N90 M30\n", m), m);
         std::vector<std::string> seen;
         for (const Step& s : t.steps)
             if ((s.kind == StepKind::rapid || s.kind == StepKind::feed) && s.from_known)
@@ -249,7 +249,7 @@ TEST_CASE("iso canned cycles: G98 returns to the initial Z, G99 to R, G83 pecks 
           std::vector<std::string>{"G0 0 0 2", "G1 0 0 -1", "G0 0 0 2", "G0 0 0 0", "G1 0 0 -4", "G0 0 0 2", "G0 0 0 -3",
                                    "G1 0 0 -7", "G0 0 0 2"});
     // G82 P500 on fanuc: P in ms.
-    auto ev = read_program(head + "N35 G99 G82 X0.000 Y0.000 Z-2.000 R2.000 P500 F100\nN40 G80\n", m);
+    auto ev = read_program(head + "N35 G99 G82 X0.000 Y0.000 Z-2.000 R2.000 P500 F100\nN40 G80\nN45 M30\n", m);
     Trace t = trace_program(ev, m);
     bool dwell = false;
     for (const Step& s : t.steps)
@@ -264,7 +264,7 @@ TEST_CASE("iso arcs: R with sign, absolute centre, XZ plane, inch") {
     std::string head = "%\nN10 G17 G21 G90 G94\nN15 T1 M6\nN20 S1000 M3\nN25 G0 X10.000 Y0.000 Z0.000\n";
     Machine m = load_machine("fanuc");
     auto arc_of = [&](const Machine& mm, const std::string& block) {
-        auto ev = read_program(head + block, mm);
+        auto ev = read_program(head + block + "N90 M30\n", mm);
         return std::get<Arc>(ev.back().event);
     };
     // R10 from (10,0) to (0,10) ccw: 90 deg, centre (0,0). R-10: 270 deg, centre (10,10).
@@ -286,7 +286,7 @@ TEST_CASE("iso arcs: R with sign, absolute centre, XZ plane, inch") {
     CHECK(d.plane == Plane::xz);
     CHECK(d.centre == Vec3{0, 0, 0});
     // G20: lengths in inch, feeds in in/min.
-    auto ev = read_program("%\nN10 G17 G20 G90 G94\nN15 T1 M6\nN20 G0 X1.0000 Y0.0000 Z0.0000\nN25 G1 X2.0000 F10.0\n",
+    auto ev = read_program("%\nN10 G17 G20 G90 G94\nN15 T1 M6\nN20 G0 X1.0000 Y0.0000 Z0.0000\nN25 G1 X2.0000 F10.0\nN30 M30\n",
                            [] { Machine i = load_machine("fanuc"); i.units = Units::inch; return i; }());
     CHECK(std::get<Linear>(ev.back().event).to.x == doctest::Approx(50.8));
     CHECK(std::get<Linear>(ev.back().event).feed == doctest::Approx(254.0));
@@ -400,7 +400,7 @@ TEST_CASE("block styles: no separator, decimal comma, sequence numbers, CRLF") {
     Machine m = load_machine("fanuc");
     m.block.separator = "";
     m.decimal_mark = ',';
-    auto ev = read_program("%\nN10G17G21G90G94\nN15T1M6\nN20G0X10,500Y-2,250Z5,000\n", m);
+    auto ev = read_program("%\nN10G17G21G90G94\nN15T1M6\nN20G0X10,500Y-2,250Z5,000\nN25M30\n", m);
     CHECK(std::get<Rapid>(ev.back().event).to == Vec3{10.5, -2.25, 5.0});
 }
 

@@ -178,7 +178,7 @@ TEST_CASE("grbl: a tool change is the comment (Insert tool n: ...) and M0 on the
     REQUIRE(changes.size() == 1);
     CHECK(changes[0] == ToolChange{5, 4.0, "4 mm end mill - cutter"});
     // Without a description.
-    CHECK(error_of("G17 G21 G90 G94\n(Insert tool 5)\nM0\n", "grbl") == "");
+    CHECK(error_of("G17 G21 G90 G94\n(Insert tool 5)\nM0\nM2\n", "grbl") == "");
     std::string head = "G17 G21 G90 G94\n";
     CHECK(error_of(head + "M0\n", "grbl").starts_with("prog.nc:2: M0 without the comment (Insert tool <n>: ...)"));
     CHECK(error_of(head + "(Insert tool 5: drill)\nS1000 M3\nM0\n", "grbl")
@@ -187,7 +187,7 @@ TEST_CASE("grbl: a tool change is the comment (Insert tool n: ...) and M0 on the
     CHECK(error_of(head + "T5 M6\n", "grbl").starts_with("prog.nc:2: T5: machine grbl has no tool changer"));
     CHECK(error_of(head + "(Insert tool five)\nM0\n", "grbl").starts_with("prog.nc:2: (Insert tool five): no tool number"));
     // On an M6 machine the same comment is only a comment, and M0 only a pause.
-    CHECK(error_of("%\nN10 G17 G21 G90 G94\n(Insert tool 5: drill)\nN15 M0\n", "fanuc") == "");
+    CHECK(error_of("%\nN10 G17 G21 G90 G94\n(Insert tool 5: drill)\nN15 M0\nN20 M30\n", "fanuc") == "");
 }
 
 TEST_CASE("linuxcnc G33.1: in to Z at pitch x speed, spindle reversed, out to the start Z, spindle restored") {
@@ -230,7 +230,7 @@ TEST_CASE("sinumerik CYCLE83 pecks worked out by hand; G4 F is a dwell, not a fe
     // CR=: 90 degrees ccw from (10,0) to (0,10) about (0,0); CR=-10 the 270 degrees about (10,10).
     Machine mm = load_machine("sinumerik");
     auto arc_end = [&](const std::string& block) {
-        auto ev = read_program(sinumerik_head + "N70 G0 X10.000 Y0.000 Z0.000\n" + block, mm);
+        auto ev = read_program(sinumerik_head + "N70 G0 X10.000 Y0.000 Z0.000\n" + block + "N90 M30\n", mm);
         return std::get<Arc>(ev.back().event).centre;
     };
     Vec3 c = arc_end("N80 G3 X0.000 Y10.000 CR=10.000 F100\n");

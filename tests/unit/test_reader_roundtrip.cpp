@@ -91,41 +91,6 @@ TEST_CASE("every sample posted in inch for every machine with an inch mode reads
     CHECK(checked >= 25);
 }
 
-TEST_CASE("every program of every sample on every machine moves Z up first where the height is unknown") {
-    // At the program start and after every tool change (an operator's pause included) the
-    // tool's height is unknown: the operator may have touched off on the stock. Read back, the
-    // first rapid of each such stretch must have moved Z alone first, up to the job's
-    // clearance, and only then X and Y.
-    int checked = 0;
-    for (const auto& listed : list_machines()) {
-        const std::string& name = listed.first;
-        const Machine machine = load_machine(name);
-        for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
-            if (f.path().extension() != ".json") continue;
-            fs::path golden = fs::path(CAMGEN_SOURCE_DIR "/tests/golden") / name / (f.path().stem().string() + "." + machine.extension);
-            if (!fs::exists(golden)) continue;
-            CAPTURE(golden.string());
-            Job job = read_job(test::read_file(f.path().string()), f.path().string());
-            std::vector<ReadEvent> events;
-            REQUIRE_NOTHROW(events = read_program(test::read_file(golden.string()), machine, golden.string()));
-            const double slack = read_resolution(machine).position;
-            int approaches = 0;
-            for (const ReadEvent& e : events) {
-                const auto* rapid = std::get_if<Rapid>(&e.event);
-                if (!rapid || !e.from_unknown) continue;
-                CAPTURE(e.line);
-                CHECK_MESSAGE(e.approach == Approach::z_first, "X or Y moved before Z while the height was unknown");
-                CHECK_MESSAGE(rapid->to.z >= job.clearance - slack, "across below the clearance " << job.clearance
-                                                                     << " at Z " << rapid->to.z);
-                ++approaches;
-            }
-            CHECK(approaches >= 1);
-            ++checked;
-        }
-    }
-    CHECK(checked >= 33);
-}
-
 TEST_CASE("the reader tells an XY-first approach from a Z-first one") {
     const Machine m = load_machine("linuxcnc");
     auto first_approach = [&](const std::string& program) {

@@ -4,6 +4,9 @@
 #include <random>
 #include <set>
 #include <cctype>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <doctest/doctest.h>
 
@@ -27,32 +30,6 @@ void numbers(const nlohmann::json& j, const std::string& path, std::vector<std::
     } else if (j.is_number()) {
         out.push_back(path);
     }
-}
-
-// The first number in NC text that has an exponent or is minus zero, or NaN / inf; "" if none.
-// A number here is what follows a word letter or '=': sign, digits, decimal mark, digits.
-std::string bad_number(const std::string& text) {
-    for (size_t i = 0; i < text.size(); ++i) {
-        char c = text[i];
-        if (c == 'n' && text.compare(i, 3, "nan") == 0) return "nan";
-        if (c == 'i' && text.compare(i, 3, "inf") == 0 && text.compare(i, 4, "info") != 0) return "inf";
-        if (!(std::isupper(static_cast<unsigned char>(c)) || c == '=')) continue;
-        size_t j = i + 1;
-        bool minus = j < text.size() && text[j] == '-';
-        if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
-        size_t digits_start = j;
-        bool nonzero = false;
-        while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' || text[j] == ',')) {
-            if (std::isdigit(static_cast<unsigned char>(text[j])) && text[j] != '0') nonzero = true;
-            ++j;
-        }
-        if (j == digits_start || !std::isdigit(static_cast<unsigned char>(text[digits_start]))) continue;
-        if (j < text.size() && (text[j] == 'e' || text[j] == 'E') && j + 1 < text.size() &&
-            (std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '-' || text[j + 1] == '+'))
-            return text.substr(i, j + 2 - i);
-        if (minus && !nonzero) return text.substr(i, j - i);
-    }
-    return {};
 }
 
 }  // namespace
@@ -141,9 +118,47 @@ TEST_CASE("limits: the holes of all operations together are counted before they 
     CHECK(many.err.find("/operations/0/grid: the job would have more than 1000 holes") != std::string::npos);
 }
 
+// The memory (MiB, at most 255) that reading `job` under `limits` took at its peak, measured
+// in a child process so that nothing else the tests did counts; 255 when reading did not end
+// in an InputError.
+int mib_to_refuse(const std::string& job, JobLimits limits) {
+    const pid_t child = fork();
+    if (child == 0) {
+        rusage before{};
+        getrusage(RUSAGE_SELF, &before);
+        bool refused = false;
+        try {
+            read_job(job, "big.json", limits);
+        } catch (const InputError&) {
+            refused = true;
+        } catch (...) {
+        }
+        rusage after{};
+        getrusage(RUSAGE_SELF, &after);
+        const long mib = (after.ru_maxrss - before.ru_maxrss) / 1024;  // ru_maxrss is in KiB
+        _exit(refused ? static_cast<int>(std::min(mib, 254L)) : 255);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 255;
+}
+
+TEST_CASE("limits: a job over the hole limit is refused before any pattern makes its holes") {
+    // Ten million holes in the first operation (160 MB as points), then one over the limit.
+    const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
+      {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100,
+       "grid": {"origin": [0, 0], "countX": 10000, "countY": 1000, "spacingX": 1, "spacingY": 1}},
+      {"type": "drill", "tool": 1, "endDepth": 2, "plungingFeedrate": 100, "holes": [[0, 0]]}]})";
+    JobLimits limits;
+    limits.holes = 10'000'000;
+    CHECK_THROWS_WITH_AS(read_job(job, "big.json", limits),
+                         doctest::Contains("/operations/1/holes: the job would have more than 10000000 holes"), InputError);
+    CHECK(mib_to_refuse(job, limits) < 20);
+}
+
 TEST_CASE("limits: contour path elements are counted; --max-elements raises the limit") {
     const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": [
-      {"type": "contour", "tool": 1, "depth": -1, "feed": 100, "start": [0, 0],
+      {"type": "path", "tool": 1, "z": -1, "feed": 100, "start": [0, 0],
        "path": [{"line": [10, 0]}, {"line": [10, 10]}, {"line": [0, 10]}]}]})";
     const test::Run over = test::run({"-", "--machine", "fanuc", "--max-elements", "2"}, job);
     CHECK(over.code == 1);

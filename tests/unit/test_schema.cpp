@@ -75,7 +75,8 @@ TEST_CASE("the schemas are draft 2020-12 and carry every key of the readers' tab
     }
     CHECK(defs["drill"]["properties"]["cycle"]["enum"] == names_of(cycle_kinds));
     CHECK(defs["tool"]["properties"]["diameter"]["exclusiveMinimum"] == 0);
-    CHECK(defs["contourArc"]["properties"]["plane"]["default"] == "xy");
+    CHECK(defs["pathArc"]["properties"]["plane"]["default"] == "xy");
+    CHECK(defs["contour"]["properties"]["side"]["enum"] == names_of(contour_sides));
     const std::string feed = defs["contour"]["properties"]["feed"]["description"];
     CHECK(feed.find("mm/min") != std::string::npos);
 

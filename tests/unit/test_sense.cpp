@@ -1,7 +1,7 @@
 // Values a machinist can type that a control would run differently from what the job says:
-// speeds, pecks and dwells below the machine's resolution, pecks beyond count, tap feeds
-// above the machine's limit (never clamped), canned feeds above it (clamped the same way on
-// every machine).
+// speeds, pecks and dwells below the machine's resolution, canned feeds above the limit
+// (clamped the same way on every machine). Pecks beyond count and tap feeds above the limit
+// are field failures (test_field_failures.cpp).
 #include <doctest/doctest.h>
 
 #include <string>
@@ -34,23 +34,12 @@ bool has(const std::string& text, const std::string& part) { return text.find(pa
 
 }  // namespace
 
-TEST_CASE("sense: a tap's feed above the machine's limit is refused, never clamped, on every machine that taps") {
-    // M12 x 1.75 at 12000 rpm: 21000 mm/min, above every built-in machine's maxFeed.
-    const std::string tap = job_with(R"("tool": 2, "cycle": "tap", "endDepth": 10, "pitch": 1.75)", 12000);
-    for (const char* m : {"fanuc", "linuxcnc", "sinumerik", "heidenhain"}) {
-        CAPTURE(m);
-        const std::string e = refusal(tap, m);
-        CHECK(has(e, "/operations/0/pitch: the tap's feed 21000 mm/min (pitch 1.75 mm x 12000 rpm) is above the limit of machine"));
-        CHECK(has(e, "a tapping feed is never clamped, it must match the pitch"));
-    }
-    // At a speed the machine can follow, it is written as asked: F = pitch x rpm.
-    const std::string slow = job_with(R"("tool": 2, "cycle": "tap", "endDepth": 10, "pitch": 1.75)", 1000);
-    CHECK(has(test::post_job(slow, "fanuc").text, "G84 X10.000 Y10.000 Z-10.000 R2.000 F1750"));
-}
-
 TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are refused") {
     CHECK(has(refusal(job_with(R"("tool": 1, "endDepth": 5, "plungingFeedrate": 100)", 0.4), "fanuc"),
               "spindle speed 0.4 rpm would be written as S0 on machine fanuc"));
+    // nccad has no S word: the speed is a message to the operator, which must not say 0 rpm.
+    CHECK(has(refusal(job_with(R"("tool": 1, "endDepth": 5, "plungingFeedrate": 100)", 0.4), "wabeco"),
+              "spindle speed 0.4 rpm would be written as S0 on machine wabeco"));
     CHECK(has(refusal(job_with(R"("tool": 2, "cycle": "tap", "endDepth": 10, "pitch": 1, "tappingSpeed": 0.3)"), "sinumerik"),
               "/operations/0/tappingSpeed: tappingSpeed 0.3 rpm would be written as 0 on machine sinumerik"));
     CHECK(has(refusal(job_with(R"("tool": 1, "cycle": "deep", "endDepth": 5, "firstDepth": 0.0001, "plungingFeedrate": 100)"),
@@ -59,15 +48,6 @@ TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are r
     CHECK(has(refusal(job_with(R"("tool": 1, "cycle": "dwell", "endDepth": 5, "bottomDwell": 1e-9, "plungingFeedrate": 100)"),
                       "linuxcnc"),
               "/operations/0/bottomDwell: bottomDwell 1e-09 s is below the resolution of machine linuxcnc"));
-}
-
-TEST_CASE("sense: too many pecks are refused canned and longhand alike") {
-    // 0.001 mm pecks over 20 mm: 20,000 pecks.
-    const std::string op = R"("tool": 1, "cycle": "deep", "endDepth": 18, "firstDepth": 0.001, "plungingFeedrate": 100)";
-    for (const char* m : {"fanuc", "grbl", "heidenhain", "sinumerik"}) {
-        CAPTURE(m);
-        CHECK(has(refusal(job_with(op), m), "more than 10000 pecks for one hole"));
-    }
 }
 
 TEST_CASE("sense: canned feeds above the machine's limit are clamped on every machine, with a warning") {

@@ -23,6 +23,7 @@ struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
+    std::vector<std::string> notes;  // what the operation decided that the job did not ask for
     FeedMode feed_mode = FeedMode::per_minute;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
@@ -66,6 +67,7 @@ struct Rapid {
 struct Linear {
     Vec3 to;
     double feed = 0.0;
+    Movement movement = Movement::cutting;
     friend bool operator==(const Linear&, const Linear&) = default;
 };
 
@@ -81,6 +83,7 @@ struct Arc {
     Plane plane = Plane::xy;
     double feed = 0.0;
     int turns = 0;
+    Movement movement = Movement::cutting;
     friend bool operator==(const Arc&, const Arc&) = default;
 };
 

@@ -22,9 +22,10 @@ namespace detail {
 // A type no variant holds: a visitor callable with it has a catch-all.
 struct NotAnAlternative {};
 
+// `Variant` as visited (const or not, lvalue or rvalue): each alternative as std::visit passes it.
 template <class Visitor, class Variant, std::size_t... I>
 constexpr bool handles_all(std::index_sequence<I...>) {
-    return (std::is_invocable_v<Visitor, const std::variant_alternative_t<I, Variant>&> && ...);
+    return (std::is_invocable_v<Visitor, decltype(std::get<I>(std::declval<Variant>()))> && ...);
 }
 }  // namespace detail
 
@@ -32,7 +33,7 @@ constexpr bool handles_all(std::index_sequence<I...>) {
 template <class Visitor, class Variant>
 inline constexpr bool is_exhaustive_visitor =
     !std::is_invocable_v<Visitor, const detail::NotAnAlternative&> &&
-    detail::handles_all<Visitor, Variant>(std::make_index_sequence<std::variant_size_v<Variant>>());
+    detail::handles_all<Visitor, const Variant&>(std::make_index_sequence<std::variant_size_v<Variant>>());
 
 // std::visit, refused at compile time unless the visitor is exhaustive (see above).
 template <class Visitor, class Variant>
@@ -40,7 +41,7 @@ decltype(auto) visit_exhaustive(Visitor&& visitor, Variant&& variant) {
     using V = std::remove_cvref_t<Variant>;
     static_assert(!std::is_invocable_v<Visitor, const detail::NotAnAlternative&>,
                   "camgen visitor has a catch-all overload: name every alternative instead");
-    static_assert(detail::handles_all<Visitor, V>(std::make_index_sequence<std::variant_size_v<V>>()),
+    static_assert(detail::handles_all<Visitor, Variant&&>(std::make_index_sequence<std::variant_size_v<V>>()),
                   "camgen visitor does not handle every alternative of the variant");
     return std::visit(std::forward<Visitor>(visitor), std::forward<Variant>(variant));
 }

@@ -118,8 +118,12 @@ protected:
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
     // converted to the machine's feed unit, modal.
     std::string feed_word(double mm_per_min);
-    // The S word for a spindle speed; an InputError above the machine's maxRpm.
+    // The S word for a spindle speed; an InputError above the machine's maxRpm or where it would
+    // be written as S0.
     std::string speed_word(double rpm) const;
+    // The spindle speed as the machine writes it, without a letter (for a message to the
+    // operator), checked as speed_word checks it.
+    std::string speed_text(double rpm) const;
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
     std::string motion_word(double code);
     // Forget modal state that the control may have changed (after a cycle, a tool change).

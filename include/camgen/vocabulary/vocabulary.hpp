@@ -184,6 +184,18 @@ inline constexpr Named<CycleOutput> cycle_outputs[] = {
     {CycleOutput::longhand, "longhand", "plain rapids, feeds and dwells"},
 };
 
+// The kind of a feed move, as CNC-Calc's getFeedrate(movement) tells them apart: each has its
+// own feed in a job, and statistics and the backplot show them apart.
+enum class Movement { cutting, plunge, ramp, lead_in, lead_out, finishing };
+inline constexpr Named<Movement> movements[] = {
+    {Movement::cutting, "cutting", "along the profile"},
+    {Movement::plunge, "plunge", "straight down into the material"},
+    {Movement::ramp, "ramp", "down along the profile or a helix"},
+    {Movement::lead_in, "lead-in", "onto the profile"},
+    {Movement::lead_out, "lead-out", "off the profile"},
+    {Movement::finishing, "finishing", "the finishing pass"},
+};
+
 enum class HoleOrder { as_given, shortest };
 inline constexpr Named<HoleOrder> hole_orders[] = {
     {HoleOrder::as_given, "as-given", "in the order the job lists them"},

@@ -1,0 +1,264 @@
+#include "operations/path/path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+#include "camgen/events/visit.hpp"
+
+namespace camgen {
+
+namespace {
+
+using Json = nlohmann::json;
+using Fields = json::Fields;
+
+// Arc end points may be this far off the circle through the start point, mm.
+constexpr double arc_radius_tolerance = 0.001;
+constexpr double min_arc_radius = 0.0005;
+
+// The keys of a path operation.
+constexpr KeySpec path_keys[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "a tool number from tools"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
+     .description = "written as a comment before the operation"},
+    {.key = "z", .quantity = Quantity::length, .required = true,
+     .description = "absolute Z where the path starts, below clearance; points given as [x, y] are at this Z"},
+    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false}, .description = "cutting feed"},
+    {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
+     .description = "feed down to z (default: feed)"},
+    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true},
+     .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
+                    "chordTolerance, which also caps it)"},
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "where the path starts [x, y], at z"},
+    {.key = "path", .type = JsonType::array, .required = true, .ref = "pathElement", .min_items = 1,
+     .description = "the path elements, each starting where the previous one ends"},
+};
+
+// The keys of a path element: exactly one of them.
+constexpr KeySpec element_keys[] = {
+    {.key = "line", .type = JsonType::point3, .quantity = Quantity::length,
+     .description = "a straight move to [x, y] or [x, y, z]"},
+    {.key = "arc", .type = JsonType::object, .ref = "pathArc", .description = "an arc about an absolute centre"},
+    {.key = "helix", .type = JsonType::object, .ref = "pathHelix",
+     .description = "whole turns about a vertical axis, back to the same X and Y at another Z"},
+};
+
+// The keys of an arc.
+constexpr KeySpec arc_keys[] = {
+    {.key = "end", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
+     .description = "end point [x, y] or [x, y, z]"},
+    {.key = "centre", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
+     .description = "absolute centre [x, y] (xy only) or [x, y, z]; along the plane's normal axis it is the start's"},
+    {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>,
+     .description = "seen looking down the plane's normal axis: cw (G2) or ccw (G3)"},
+    {.key = "plane", .type = JsonType::string, .default_json = "\"xy\"", .choices = &choices_of<plane_names>,
+     .description = "the arc's plane: xy (G17), xz (G18) or yz (G19)"},
+};
+
+// The keys of a helix: centre, direction and exactly two of z, turns and pitch.
+constexpr KeySpec helix_keys[] = {
+    {.key = "centre", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "the axis [x, y]"},
+    {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>,
+     .description = "seen from +Z: cw or ccw"},
+    {.key = "z", .quantity = Quantity::length, .description = "absolute Z at the end"},
+    {.key = "turns", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{100000, true}, .description = "number of whole turns"},
+    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false}, .description = "Z travel per turn, down"},
+};
+
+PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth) {
+    JobInput::known_keys(a, arc_keys);
+    PathArc arc;
+    arc.plane = a.choice("plane", plane_names, Plane::xy);
+    const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
+    const char* normal_axis = arc.plane == Plane::xy ? "z" : arc.plane == Plane::xz ? "y" : "x";
+    arc.end = in.point3(a, "end", depth);
+    const Json& centre = a.required("centre");
+    if (arc.plane != Plane::xy && !(centre.is_array() && centre.size() == 3))
+        a.fail("centre", fmt::format("an {} arc needs its centre as [x, y, z], got {}", plane_name, JobInput::describe(centre)));
+    arc.centre = in.point3(centre, a.path_of("centre"), current.z);
+    // The centre's coordinate along the normal axis is the start's: a centre elsewhere on the
+    // axis would be a different arc.
+    const double c_normal = to_plane(arc.centre, arc.plane).w, s_normal = to_plane(current, arc.plane).w;
+    if (std::abs(c_normal - s_normal) > arc_radius_tolerance)
+        a.fail("centre", fmt::format("the centre's {} ({}) must be the start's {} ({}) in an {} arc", normal_axis,
+                                     in.show(c_normal), normal_axis, in.show(s_normal), plane_name));
+    arc.centre = from_plane({to_plane(arc.centre, arc.plane).u, to_plane(arc.centre, arc.plane).v, s_normal}, arc.plane);
+    arc.direction = a.choice("direction", arc_directions);
+    const PlanePoint s = to_plane(current, arc.plane), e = to_plane(arc.end, arc.plane), c = to_plane(arc.centre, arc.plane);
+    const double r_start = std::hypot(s.u - c.u, s.v - c.v);
+    const double r_end = std::hypot(e.u - c.u, e.v - c.v);
+    if (std::abs(r_start - r_end) > arc_radius_tolerance)
+        a.fail("", fmt::format("start is {:.3f} mm from the centre but end is {:.3f} mm{}", r_start, r_end,
+                               arc.plane == Plane::xy ? "" : fmt::format(" (in the {} plane)", plane_name)));
+    if (r_start <= min_arc_radius)
+        a.fail("", fmt::format("the arc radius is {:.4f} mm; it must be more than {} mm", r_start, min_arc_radius));
+    // The highest point of the arc: an arc in XZ or YZ may rise above its ends.
+    const ArcGeometry g = resolve_arc(current, ArcSpec{arc.end, arc.centre, arc.direction, arc.plane, 0});
+    double top = std::max(current.z, arc.end.z);
+    if (arc.plane != Plane::xy) {
+        const double up = arc.plane == Plane::xz ? 0.0 : std::numbers::pi / 2;  // angle of +Z in (u, v)
+        double delta = arc.direction == ArcDirection::ccw ? up - g.start_angle : g.start_angle - up;
+        delta = std::fmod(delta, 2 * std::numbers::pi);
+        if (delta < 0) delta += 2 * std::numbers::pi;
+        if (delta <= g.sweep) top = std::max(top, (arc.plane == Plane::xz ? c.u : c.v) + r_start);
+    }
+    if (top >= in.header().clearance)
+        a.fail("", fmt::format("the arc reaches Z {}, at or above the clearance (Z {})", in.show(top), in.show(in.header().clearance)));
+    return arc;
+}
+
+PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
+    JobInput::known_keys(h, helix_keys);
+    PathHelix helix;
+    helix.centre = in.point(h, "centre");
+    helix.direction = h.choice("direction", arc_directions);
+    const double radius = std::hypot(current.x - helix.centre.x, current.y - helix.centre.y);
+    if (radius <= min_arc_radius)
+        h.fail("centre", fmt::format("the helix radius is {:.4f} mm; it must be more than {} mm", radius, min_arc_radius));
+    const bool has_depth = h.has("z"), has_turns = h.has("turns"), has_pitch = h.has("pitch");
+    if (int(has_depth) + int(has_turns) + int(has_pitch) != 2)
+        h.fail("", "a helix needs exactly two of \"z\" (end Z), \"turns\" and \"pitch\" (Z travel per turn, down)");
+    std::optional<double> pitch = in.optional_length(h, "pitch");
+    if (pitch && *pitch <= 0) h.fail("pitch", "pitch must be > 0 (the helix goes down by it each turn)");
+    if (has_turns) {
+        const int turns = h.integer("turns");
+        if (turns < 1 || turns > 100000) h.fail("turns", "turns must be a whole number from 1 to 100000");
+        helix.turns = turns;
+    }
+    if (has_depth) {
+        helix.end_z = in.length(h, "z");
+        if (std::abs(helix.end_z - current.z) < 1e-9)
+            h.fail("z", fmt::format("the helix starts and ends at Z {}; a helix must change Z (use an arc for a circle)",
+                                        in.show(current.z)));
+        if (helix.end_z >= in.header().clearance)
+            h.fail("z", fmt::format("z is at or above the clearance (Z {}, clearance at Z {})", in.show(helix.end_z),
+                                        in.show(in.header().clearance)));
+        if (pitch) {
+            const double turns = std::ceil(std::abs(helix.end_z - current.z) / *pitch - 1e-9);
+            if (turns > 100000) h.fail("pitch", "pitch is too small: more than 100000 turns");
+            helix.turns = static_cast<int>(turns);
+        }
+    } else {
+        helix.end_z = current.z - helix.turns * *pitch;
+    }
+    return helix;
+}
+
+}  // namespace
+
+std::vector<ObjectSpec> PathOp::objects() {
+    return {
+        {.name = "path", .description = "feed the tool centre along a path of lines, arcs in any plane and helices, at absolute Z",
+         .keys = {std::begin(path_keys), std::end(path_keys)}},
+        {.name = "pathElement", .description = "one element of a path: exactly one of line, arc or helix",
+         .keys = {std::begin(element_keys), std::end(element_keys)},
+         .groups = {{.keys = {"line", "arc", "helix"}, .min = 1, .max = 1,
+                     .description = "exactly one of line, arc or helix"}}},
+        {.name = "pathArc", .description = "an arc in a plane about an absolute centre",
+         .keys = {std::begin(arc_keys), std::end(arc_keys)}},
+        {.name = "pathHelix", .description = "whole turns of a helix: exactly two of z, turns and pitch",
+         .keys = {std::begin(helix_keys), std::end(helix_keys)},
+         .groups = {{.keys = {"z", "turns", "pitch"}, .min = 2, .max = 2,
+                     .description = "exactly two of z, turns and pitch"}}},
+    };
+}
+
+PathOp PathOp::read(Fields& f, const JobInput& in) {
+    JobInput::known_keys(f, path_keys);
+    const Tool& tool = in.tool(f);
+    PathOp op;
+    op.path = f.path();
+    op.tool = tool.number;
+    op.comment = f.optional_string("comment").value_or("");
+    op.z = in.length(f, "z");
+    if (op.z >= in.header().clearance)
+        f.fail("z", fmt::format("z is above the clearance (cut at Z {}, clearance at Z {}); "
+                                "it must be below",
+                                    in.show(op.z), in.show(in.header().clearance)));
+    op.feed = in.length(f, "feed");
+    if (op.feed <= 0) f.fail("feed", "feed must be > 0");
+    op.plunge_feed = in.optional_length(f, "plungeFeed");
+    if (op.plunge_feed && *op.plunge_feed <= 0) f.fail("plungeFeed", "plungeFeed must be > 0");
+    op.tolerance = in.optional_length(f, "tolerance");
+    // Finer than any control resolves; a smaller value only multiplies the segments of broken arcs.
+    if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
+    op.start = in.point(f, "start");
+
+    const Json& elements = in.array(f, "path");
+    if (elements.empty()) f.fail("path", "a path needs at least one element");
+    in.claim_path_elements(static_cast<double>(elements.size()), f, "path");
+    const std::string base = f.path_of("path");
+    Vec3 current{op.start.x, op.start.y, op.z};
+    auto below_clearance = [&](Fields& at, std::string_view key, double z, const char* what) {
+        if (z >= in.header().clearance)
+            at.fail(key, fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, in.show(z),
+                                     in.show(in.header().clearance)));
+    };
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+        const std::string path = base + "/" + std::to_string(k);
+        Fields e(elements[k], path, in.source());
+        JobInput::known_keys(e, element_keys);
+        const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
+        if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
+        if (e.has("line")) {
+            const Vec3 end = in.point3(e, "line", op.z);
+            below_clearance(e, "line", end.z, "the line's end");
+            op.elements.emplace_back(PathLine{end});
+            current = end;
+        } else if (e.has("arc")) {
+            Fields a(e.required("arc"), e.path_of("arc"), in.source());
+            PathArc arc = read_arc(a, in, current, op.z);
+            op.elements.emplace_back(arc);
+            current = arc.end;
+        } else {
+            Fields h(e.required("helix"), e.path_of("helix"), in.source());
+            PathHelix helix = read_helix(h, in, current);
+            op.elements.emplace_back(helix);
+            current.z = helix.end_z;
+        }
+        op.element_paths.push_back(path);
+    }
+    return op;
+}
+
+void expand(const PathOp& op, const Context& ctx, EventSink& sink) {
+    sink.emit(Rapid{{op.start.x, op.start.y, ctx.job.clearance}});
+    Vec3 at{op.start.x, op.start.y, op.z};
+    sink.emit(Linear{at, op.plunge_feed.value_or(op.feed)});
+    for (const PathElement& e : op.elements) {
+        visit_exhaustive(overloaded{
+                             [&](const PathLine& line) {
+                                 sink.emit(Linear{line.end, op.feed});
+                                 at = line.end;
+                             },
+                             [&](const PathArc& arc) {
+                                 sink.emit(Arc{arc.end, arc.centre, arc.direction, arc.plane, op.feed, 0});
+                                 at = arc.end;
+                             },
+                             [&](const PathHelix& helix) {
+                                 // Whole turns: the end is above or below the start; the first turn
+                                 // is the arc's own sweep, the others are extra turns.
+                                 Vec3 end{at.x, at.y, helix.end_z};
+                                 sink.emit(Arc{end, {helix.centre.x, helix.centre.y, at.z}, helix.direction, Plane::xy,
+                                               op.feed, helix.turns - 1});
+                                 at = end;
+                             },
+                         },
+                         e);
+    }
+    sink.emit(Rapid{{at.x, at.y, ctx.job.clearance}});
+}
+
+std::string default_name(const PathOp& c) { return c.comment.empty() ? "path" : c.comment; }
+
+}  // namespace camgen

@@ -1,0 +1,71 @@
+#pragma once
+// The path operation: the tool centre fed along lines, arcs in any plane and helices, at
+// absolute Z (no compensation, no depth passes: for engraving, 3D arcs and hand-made paths;
+// the contour operation is the machinist's profile), entered by feeding down from the
+// clearance above its start.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "camgen/events/events.hpp"
+#include "camgen/job/job_input.hpp"
+#include "operations/context.hpp"
+
+namespace camgen {
+
+// A straight line to an end point (a job's [x, y] is at the operation's depth).
+struct PathLine {
+    Vec3 end;
+};
+
+// An arc in `plane` to an end point around an absolute centre, clockwise or counter-clockwise
+// seen looking down the plane's normal axis (Z, Y, X: the G17/G18/G19 convention). The
+// centre's coordinate along the normal axis is the start's. An end that differs from the start
+// along the normal axis makes a helical arc; an end equal to the start in the plane is a full
+// circle.
+struct PathArc {
+    Vec3 end;
+    Vec3 centre;
+    ArcDirection direction = ArcDirection::cw;
+    Plane plane = Plane::xy;
+};
+
+// Whole turns of a helix about an axis parallel to Z through `centre`, from the current point
+// to the same X and Y at `end_z`, Z changing evenly with the angle.
+struct PathHelix {
+    Vec2 centre;
+    ArcDirection direction = ArcDirection::cw;
+    int turns = 1;
+    double end_z = 0.0;
+};
+
+using PathElement = std::variant<PathLine, PathArc, PathHelix>;
+
+// Cut a path of lines, arcs and helices, starting at `start` at `depth`.
+struct PathOp {
+    static constexpr std::string_view type = "path";
+    // Reads one operation of this type (its "type" is already read).
+    static PathOp read(json::Fields& f, const JobInput& input);
+    // The objects of its input, for the JSON Schema: the operation ("contour") first.
+    static std::vector<ObjectSpec> objects();
+    std::string path;
+    std::string comment;
+    int tool = 0;
+    Vec2 start;
+    std::vector<PathElement> elements;
+    std::vector<std::string> element_paths;  // JSON path of each element, for messages
+    double z = 0.0;                      // absolute Z of the start (and of [x, y] points): the job's "z"
+    double feed = 0.0;                   // mm/min
+    std::optional<double> plunge_feed;   // mm/min; absent: feed
+    std::optional<double> tolerance;     // mm, for arcs that become lines (capped by the machine's)
+};
+
+// Rapid above the start at the clearance, feed down to depth, cut the path, rapid up.
+void expand(const PathOp& op, const Context& context, EventSink& sink);
+
+// The operation's name for comments: its comment, else "path".
+std::string default_name(const PathOp& op);
+
+}  // namespace camgen
