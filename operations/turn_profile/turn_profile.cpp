@@ -136,15 +136,16 @@ Vec3 position_of(Vec2 p) { return {p.y, 0.0, p.x}; }
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
     const Vec3 start = position_of(op.profile.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
-    sink.emit(Linear{start, op.feed});
+    sink.emit(Linear{start, op.feed, Movement::lead_in});
+    // The profile is a finishing pass.
     for (const ProfileSegment& s : op.profile.segments) {
         if (s.centre)
-            sink.emit(Arc{position_of(s.end), position_of(*s.centre), s.direction, Plane::xz, op.feed});
+            sink.emit(Arc{position_of(s.end), position_of(*s.centre), s.direction, Plane::xz, op.feed, 0, Movement::finishing});
         else
-            sink.emit(Linear{position_of(s.end), op.feed});
+            sink.emit(Linear{position_of(s.end), op.feed, Movement::finishing});
     }
     const Vec3 end = position_of(op.profile.segments.back().end);
-    sink.emit(Linear{{op.retract_x, 0.0, end.z}, op.feed});
+    sink.emit(Linear{{op.retract_x, 0.0, end.z}, op.feed, Movement::lead_out});
     sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
 }
 

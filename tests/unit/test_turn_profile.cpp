@@ -48,9 +48,9 @@ TEST_CASE("turn-profile: the pass, from the clearance along Z to the start, out 
     // Radii: start 20, arc to 10 about 10; retract diameter 44 = radius 22.
     const std::vector<Event> expected = {
         Rapid{{20, 0, 5}},
-        Linear{{20, 0, 0}, 100},
-        Arc{{10, 0, -10}, {10, 0, 0}, ArcDirection::cw, Plane::xz, 100},
-        Linear{{22, 0, -10}, 100},
+        Linear{{20, 0, 0}, 100, Movement::lead_in},
+        Arc{{10, 0, -10}, {10, 0, 0}, ArcDirection::cw, Plane::xz, 100, 0, Movement::finishing},
+        Linear{{22, 0, -10}, 100, Movement::lead_out},
         Rapid{{22, 0, 5}},
     };
     CHECK(moves == expected);
