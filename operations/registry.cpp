@@ -137,9 +137,14 @@ void expand_job(const Job& job, EventSink& sink) {
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
                 std::vector<std::string> notes;
                 if constexpr (requires { o.notes; }) notes = o.notes;
+                std::optional<OperationPlanes> planes;
+                if constexpr (requires { o.heights; }) {
+                    const Planes z = resolve_planes(o.heights);
+                    planes = OperationPlanes{z.retract_z, z.reference_z, z.safe_z};
+                }
                 FeedMode feed_mode = FeedMode::per_minute;
                 if constexpr (requires { o.feed_mode; }) feed_mode = o.feed_mode;
-                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, feed_mode});
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, planes, feed_mode});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

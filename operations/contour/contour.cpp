@@ -609,9 +609,9 @@ private:
                 const Vec2 a = in.start;
                 if (first_) {
                     rapid({a.x, a.y, ctx_.job.clearance});
-                    rapid({a.x, a.y, z_.retract_z});
                     first_ = false;
                 }
+                rapid({a.x, a.y, z_.retract_z});
                 rapid({a.x, a.y, z_.safe_z});
                 // Along a ramp the tool enters at the previous level and ramps on the profile.
                 const double entry_z = op_.ramp.kind == Ramp::Kind::along ? std::max(z_prev, z) : z;
@@ -638,7 +638,8 @@ private:
                     follow(out, at_.z, at_.z, op_.feeds.lead_out, Movement::lead_out);
                 }
                 const bool done = last_run && k + 1 == depths.size();
-                rapid({at_.x, at_.y, done ? ctx_.job.clearance : z_.safe_z});
+                // Across to the next entry at the retract plane: rapids across stay above it.
+                rapid({at_.x, at_.y, done ? ctx_.job.clearance : z_.retract_z});
             }
         }
     }

@@ -243,6 +243,35 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
                              view.across, view.up));
     }
 
+    // The cut's width: each feed move in XY drawn as wide as its tool, deeper levels darker,
+    // so that a bore milled with a smaller tool shows its full diameter and passes stand apart.
+    {
+        std::map<std::pair<int, long>, std::string> swept;  // (tool, Z in 0.01 mm) -> path
+        std::map<std::pair<int, long>, Vec3> last;
+        double lowest = 0.0, highest = 0.0;
+        bool seen = false;
+        for (const Step& s : trace.steps) {
+            if (s.kind != StepKind::feed || !s.from_known || diameter[s.tool] <= 0) continue;
+            if (!s.arc && xy_length(s) < 1e-9) continue;
+            const std::pair<int, long> key{s.tool, std::lround(std::min(s.from.z, s.to.z) * 100)};
+            std::string& path = swept[key];
+            if (!last.count(key) || !(last[key] == s.from)) path += fmt::format("M{}", v.at(s.from));
+            path += path_of(s, v);
+            last[key] = s.to;
+            const double z = std::min(s.from.z, s.to.z);
+            lowest = seen ? std::min(lowest, z) : z;
+            highest = seen ? std::max(highest, z) : z;
+            seen = true;
+        }
+        for (const auto& [key, path] : swept) {
+            const double z = key.second / 100.0;
+            const double depth = highest > lowest ? (highest - z) / (highest - lowest) : 1.0;
+            body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" "
+                                 "stroke-linejoin=\"round\" stroke-opacity=\"{}\"/>",
+                                 path, colour_of(key.first), n(diameter[key.first] * v.scale), n(0.08 + 0.17 * depth)));
+        }
+    }
+
     // Moves: one path per tool and kind, rapids first so that cuts are drawn over them.
     for (StepKind kind : {StepKind::rapid, StepKind::feed}) {
         std::map<int, std::string> d;
@@ -378,6 +407,11 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
     legend.add(fmt::format("<polygon points=\"{},{} {},{} {},{}\" fill=\"#555\"/>", n(lx + 23), n(ly - 4), n(lx + 13), n(ly - 10),
                            n(lx + 13), n(ly + 2)));
     text(lx + 46, "feed, arrow = direction of cut");
+    ly += 18;
+    legend.add(fmt::format("<path d=\"M{},{}h36\" stroke=\"#555\" stroke-width=\"10\" stroke-opacity=\"0.25\" "
+                           "stroke-linecap=\"round\"/>",
+                           n(lx + 5), n(ly - 4)));
+    text(lx + 46, "width cut by the tool, darker = deeper");
     ly += 18;
     legend.add(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"#555\" fill-opacity=\"0.12\" stroke=\"#555\"/>", n(lx + 18),
                            n(ly - 4)));

@@ -130,6 +130,8 @@ ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
                     t.feed_length += len;
                     time = len / f * 60.0;
                     st.feed_time += time;
+                    st.movement_length[static_cast<std::size_t>(s.movement)] += len;
+                    st.movement_time[static_cast<std::size_t>(s.movement)] += time;
                 }
                 t.time += time;
                 break;
@@ -164,6 +166,13 @@ std::string format_stats(const ProgramStats& st) {
                              st.clamped_feeds ? fmt::format("; {} feed move{} clamped to the machine's limits",
                                                             st.clamped_feeds, st.clamped_feeds == 1 ? "" : "s")
                                               : std::string()));
+    std::vector<std::string> kinds;
+    for (const auto& m : movements) {
+        const auto k = static_cast<std::size_t>(m.value);
+        if (st.movement_length[k] > 0)
+            kinds.push_back(fmt::format("{} {} mm {}", m.name, num(st.movement_length[k]), format_duration(st.movement_time[k])));
+    }
+    if (!kinds.empty()) line("feed by kind", fmt::format("{}", fmt::join(kinds, ", ")));
     for (const ToolStats& t : st.tools) {
         line(fmt::format("tool {}", t.tool), t.description.empty() ? std::string("-") : t.description);
         if (!t.box.empty)

@@ -65,11 +65,10 @@ public:
                        [&](const OperationStart&) {},
                        [&](const OperationEnd&) {},
                        [&](const Comment&) {},
-                       [&](const Compensation& c) {
-                           // No motion of its own; the offset path it asks for is not traced yet.
-                           if (c.side != CompensationSide::off)
-                               throw InputError("", "cutter radius compensation (G41/G42) cannot be read back yet", e.line);
-                       },
+                       // No motion of its own: with compensation on, the steps are the programmed
+                       // path (the profile), which is what a job with control compensation expects
+                       // too. The control's offset path is LinuxCNC's to show (the rs274 oracle).
+                       [&](const Compensation&) {},
                        [&](const ToolChange& t) {
                            tool_ = t.number;
                            Step s = base(StepKind::tool_change);
@@ -90,7 +89,10 @@ public:
                            trace_.steps.push_back(s);
                        },
                        [&](const Rapid& r) { move(StepKind::rapid, r.to, 0.0, e.from_unknown); },
-                       [&](const Linear& l) { move(StepKind::feed, l.to, l.feed, false); },
+                       [&](const Linear& l) {
+                           move(StepKind::feed, l.to, l.feed, false);
+                           if (!trace_.steps.empty() && trace_.steps.back().kind == StepKind::feed) trace_.steps.back().movement = l.movement;
+                       },
                        [&](const Arc& a) {
                            if (!known_) throw std::logic_error("arc from an unknown position");
                            Step s = base(StepKind::feed);
@@ -98,6 +100,7 @@ public:
                            s.to = a.to;
                            s.feed = a.feed;
                            s.arc = resolve_arc(pos_, a);
+                           s.movement = a.movement;
                            trace_.steps.push_back(s);
                            pos_ = a.to;
                        },
@@ -124,6 +127,12 @@ public:
     }
 
     Trace finish() {
+        // A program does not say what kind a feed move is; its motion does where it goes down.
+        for (Step& s : trace_.steps) {
+            if (s.kind != StepKind::feed || s.movement != Movement::cutting || !(s.to.z < s.from.z)) continue;
+            const bool straight_down = !s.arc && s.to.x == s.from.x && s.to.y == s.from.y;
+            s.movement = straight_down ? Movement::plunge : Movement::ramp;
+        }
         trace_.holes = find_holes(trace_.steps);
         return std::move(trace_);
     }

@@ -158,6 +158,8 @@ constexpr KeySpec globals_keys[] = {
      .description = "the arc tolerance: every arc block's start and end radii agree within it after rounding"},
     {.key = "showSequenceNumbers", .type = JsonType::boolean, .default_json = "false",
      .description = "number the blocks"},
+    {.key = "cutterCompensation", .type = JsonType::boolean, .default_json = "true",
+     .description = "the control offsets by a tool radius (G41/G42): false refuses contours with control compensation"},
     {.key = "sequenceNumberStart", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
      .max = Bound{max_sequence_number, true}, .default_json = "10", .description = "the first block number"},
     {.key = "sequenceNumberPrefix", .type = JsonType::string, .default_json = "\"N\"",
@@ -486,6 +488,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             m.tolerance = *t;
         }
         m.block.sequence_numbers = gf.boolean("showSequenceNumbers", false);
+        m.cutter_compensation = gf.boolean("cutterCompensation", true);
         if (auto v = gf.optional_integer("sequenceNumberStart")) {
             if (*v < 0 || *v > max_sequence_number)
                 gf.fail("sequenceNumberStart", fmt::format("sequenceNumberStart must be between 0 and {}", max_sequence_number));
@@ -752,6 +755,7 @@ std::string describe_machine(const Machine& m) {
     line("decimalMark", std::string(1, m.decimal_mark));
     line("linebreak", m.block.line_break == "\n" ? "\\n" : "\\r\\n");
     line("variableDelimeter", "\"" + m.block.separator + "\"");
+    line("cutterCompensation", m.cutter_compensation ? "yes" : "no");
     line("showSequenceNumbers", m.block.sequence_numbers ? fmt::format("yes, from {} step {}", m.block.sequence_start, m.block.sequence_increment) : "no");
     line("modalMotion", m.modal_motion ? "yes" : "no, G code on every motion block");
     line("comments", m.block.comment_style == nc::CommentStyle::parentheses ? "(text)" : "; text");

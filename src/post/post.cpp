@@ -627,11 +627,19 @@ void Post::emit(const Event& event) {
                        on_spindle(s);
                    },
                    [&](const Coolant& c) { on_coolant(c); },
+                   // A compensation change waits for the next linear feed move (CNC-Calc): never
+                   // written on a rapid or an arc.
                    [&](const Rapid& r) { replay(r); },
                    [&](const Linear& l) { replay(l); },
                    [&](const Arc& a) { handle_arc(a); },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
-                   [&](const Compensation& c) { on_compensation(c); },
+                   [&](const Compensation& c) {
+                       if (c.side != CompensationSide::off && !machine_.cutter_compensation)
+                           fail("/compensation", fmt::format("machine {} has no cutter radius compensation (G41/G42): use "
+                                                             "compensation computer",
+                                                             machine_.name));
+                       on_compensation(c);
+                   },
                    [&](const DrillCycle& c) { handle_drill_cycle(c); },
                    [&](const DrillPoint& p) { handle_drill_point(p.at); },
                    [&](const DrillEnd&) { handle_drill_end(); },

@@ -52,7 +52,7 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         if (!across && to.z < from.z - eps && to.z < retract - eps) {
             // Down below the retract plane: only the final approach to the feed-start plane, or
             // back into a hole already drilled at least that deep.
-            const bool approach = cycle_ && to.z >= cycle_->safe_z - eps;
+            const bool approach = (cycle_ && to.z >= cycle_->safe_z - eps) || (op_safe_z_ && to.z >= *op_safe_z_ - eps);
             const std::optional<double> hole = drilled_to(xy);
             if (!approach && !(hole && *hole <= to.z + eps)) {
                 const std::string message = fmt::format("a rapid down to Z {} at X{} Y{} goes below the retract plane (Z {}) where no "
@@ -66,7 +66,8 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
                 pending_z_ = to.z;
             }
         }
-    } else if (op_reference_z_ && from.z < *op_reference_z_ - eps) {
+    } else if (!last_was_feed_ && op_reference_z_ && from.z < *op_reference_z_ - eps) {
+        // Below the stock top a feed may go on from where a feed (or arc) brought the tool.
         const std::optional<double> hole = drilled_to({from.x, from.y});
         if (!(hole && *hole <= from.z + eps))
             fail("", fmt::format("a feed starts at Z {}, below the reference plane (Z {}), at X{} Y{} where no hole has "
@@ -79,6 +80,7 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         if (!added) it->second = std::min(it->second, to.z);
     }
     pos_ = to;
+    last_was_feed_ = feed;
 }
 
 void SafetyCheck::finish() {
@@ -97,10 +99,17 @@ void SafetyCheck::emit(const Event& event) {
                 op_path_ = op.path;
                 op_retract_z_.reset();
                 op_reference_z_.reset();
+                op_safe_z_.reset();
+                if (op.planes) {
+                    op_retract_z_ = op.planes->retract_z;
+                    op_reference_z_ = op.planes->reference_z;
+                    op_safe_z_ = op.planes->safe_z;
+                }
             },
             [&](const OperationEnd&) {
                 op_retract_z_.reset();
                 op_reference_z_.reset();
+                op_safe_z_.reset();
             },
             [&](const ToolChange& t) {
                 tool_ = t.number;
@@ -112,6 +121,7 @@ void SafetyCheck::emit(const Event& event) {
             [&](const Arc& a) {
                 // An arc's ends: it does not start a hole; its plunge was a feed move before it.
                 pos_ = a.to;
+                last_was_feed_ = true;
             },
             [&](const Dwell&) {},
             [&](const Compensation&) {},

@@ -51,6 +51,9 @@ std::string describe(const Step& s) {
         case Step::Kind::dwell: return fmt::format("dwell {:.4f} s", s.value);
         case Step::Kind::spindle: return fmt::format("spindle {} {:.0f} rpm", s.spindle, s.value);
         case Step::Kind::rigid_tap: return fmt::format("rigid tap to ({:.4f}, {:.4f}, {:.4f})", s.to.x, s.to.y, s.to.z);
+        case Step::Kind::arc:
+            return fmt::format("arc {} to ({:.4f}, {:.4f}, {:.4f}) about ({:.4f}, {:.4f}) F{:.4f}", s.rotation > 0 ? "ccw" : "cw", s.to.x,
+                               s.to.y, s.to.z, s.centre.x, s.centre.y, s.value);
     }
     return "?";
 }
@@ -76,6 +79,7 @@ std::vector<Step> parse_canon(const std::string& canon) {
     Vec3 pos{0, 0, 0};
     double feed = 0.0, speed = 0.0;
     std::string spindle = "off";
+    bool xy_plane = true;
     auto push_spindle = [&](const std::string& state) {
         spindle = state;
         Step s;
@@ -108,6 +112,19 @@ std::vector<Step> parse_canon(const std::string& canon) {
             steps.push_back(s);
             // A rigid tap returns to where it started.
             if (s.kind != Step::Kind::rigid_tap) pos = to;
+        } else if (name == "SELECT_PLANE") {
+            xy_plane = line.find("CANON_PLANE_XY") != std::string::npos;
+        } else if (name == "ARC_FEED" && xy_plane) {
+            // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, ...)
+            if (a.size() < 6) throw std::runtime_error("cannot read rs274 line: " + line);
+            Step s;
+            s.kind = Step::Kind::arc;
+            s.to = {a[0], a[1], a[5]};
+            s.centre = {a[2], a[3]};
+            s.rotation = static_cast<int>(a[4]);
+            s.value = feed;
+            steps.push_back(s);
+            pos = s.to;
         } else if (name == "SET_FEED_RATE") {
             feed = a.at(0);
         } else if (name == "DWELL") {
@@ -134,7 +151,7 @@ std::vector<Step> parse_canon(const std::string& canon) {
     return steps;
 }
 
-std::vector<Step> run_rs274(const std::string& rs274, const std::string& program) {
+std::vector<Step> run_rs274(const std::string& rs274, const std::string& program, const std::map<int, double>& tool_diameters) {
     namespace fs = std::filesystem;
     fs::path dir = fs::temp_directory_path() / fmt::format("camgen-oracle-{}", ::getpid());
     fs::create_directories(dir);
@@ -148,7 +165,11 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
         f << program;
         // Tools 1 to 99, zero length: rs274's built-in table lacks some numbers.
         std::ofstream t(tools);
-        for (int i = 1; i < 100; ++i) t << fmt::format("T{} P{} Z0 D1 ;tool {}\n", i, i, i);
+        // Its table is in inches (the standalone interpreter's machine units).
+        for (int i = 1; i < 100; ++i) {
+            const auto d = tool_diameters.find(i);
+            t << fmt::format("T{} P{} Z0 D{:.9f} ;tool {}\n", i, i, d == tool_diameters.end() ? 1.0 : d->second / 25.4, i);
+        }
     }
     // rs274 keeps its tool table in $HOME/.tool.mmap, truncated at every start: two rs274 at
     // once (parallel test runs) would share it. Each run gets its own HOME.

@@ -9,6 +9,7 @@
 
 #include "camgen/post/post.hpp"
 #include "operations/registry.hpp"
+#include "../unit/support.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
@@ -20,18 +21,6 @@ std::string read_text(const std::filesystem::path& p) {
     std::stringstream s;
     s << f.rdbuf();
     return s.str();
-}
-
-// The program camgen writes for `job` on `machine`.
-std::string post_program(const Job& job, const Machine& machine) {
-    std::ostringstream out;
-    PostOptions o;
-    o.program_name = job.name;
-    auto post = make_post(machine, out, o);
-    post->open();
-    expand_job(job, *post);
-    post->close();
-    return out.str();
 }
 
 // True when `machine` refuses the sample: its golden file is an error message.
@@ -58,9 +47,9 @@ TEST_CASE("field failure: codes the control rejects (rs274): every sample on eve
                 Machine machine = load_machine(name);
                 machine.units = units;
                 INFO(name << " " << entry.path().filename().string() << (units == Units::inch ? " inch" : " mm"));
-                const std::string program = post_program(job, machine);
+                const std::string program = test::post_program(job, machine);
                 std::vector<oracle::Step> steps;
-                REQUIRE_NOTHROW(steps = oracle::run_rs274(*rs274, program));
+                REQUIRE_NOTHROW(steps = oracle::run_rs274(*rs274, program, test::tool_diameters(job)));
                 CHECK_FALSE(steps.empty());
                 ++programs;
             }
@@ -79,8 +68,9 @@ TEST_CASE("a linuxcnc machine with the safe retract G53 G0 Z0 runs every sample 
         if (entry.path().extension() != ".json") continue;
         if (refused("linuxcnc", entry.path())) continue;
         INFO(entry.path().filename().string());
-        const std::string program = post_program(read_job(read_text(entry.path()), entry.path().string()), machine);
+        const Job job = read_job(read_text(entry.path()), entry.path().string());
+        const std::string program = test::post_program(job, machine);
         CHECK(program.find("G53 G0 Z0\n") != std::string::npos);
-        CHECK_NOTHROW((void)oracle::run_rs274(*rs274, program));
+        CHECK_NOTHROW((void)oracle::run_rs274(*rs274, program, test::tool_diameters(job)));
     }
 }

@@ -20,6 +20,7 @@
 #include "camgen/analysis/trace.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
+#include "../unit/support.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
@@ -227,7 +228,13 @@ TEST_CASE("every linuxcnc golden file runs through rs274; G33.1 is a rigid tap t
         text << f.rdbuf();
         INFO(entry.path().string());
         std::vector<OStep> steps;
-        REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274, text.str()));
+        // The sample's tools in the tool table: cutter compensation offsets by their radius.
+        const fs::path sample = fs::path(CAMGEN_SOURCE_DIR "/samples") / (entry.path().stem().string() + ".json");
+        std::ifstream job_file(sample);
+        std::stringstream job_text;
+        job_text << job_file.rdbuf();
+        const std::map<int, double> diameters = test::tool_diameters(read_job(job_text.str(), sample.string()));
+        REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274, text.str(), diameters));
         CHECK_FALSE(steps.empty());
         if (entry.path().stem() == "tapping-rigid") {
             // Two M8 holes to Z-12, two left-hand M6 holes to Z-10.

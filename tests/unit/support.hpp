@@ -43,6 +43,13 @@ inline std::string post_program(const Job& job, const Machine& machine, bool sni
     return out.str();
 }
 
+// The diameter of each tool of a job, mm, by number (for an interpreter's tool table).
+inline std::map<int, double> tool_diameters(const Job& job) {
+    std::map<int, double> out;
+    for (const auto& [number, tool] : job.tools) out[number] = tool.diameter;
+    return out;
+}
+
 inline Posted post_job(const std::string& job_json, const std::string& machine_name, bool snippet = false) {
     std::ostringstream warn;
     std::string text = post_program(read_job(job_json, "test.json"), load_machine(machine_name), snippet, &warn);

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 // What a program does, in numbers: path lengths at feed and at rapid, bounding box per tool,
 // lowest Z, holes, estimated machining time (`camgen verify`, `--stats`, the backplot legend).
 #include <optional>
@@ -48,6 +49,9 @@ struct ProgramStats {
     double dwell_time = 0.0;        // s
     int clamped_feeds = 0;          // feed moves whose feed was outside the machine's limits
     double rapid_rate = 0.0;        // mm/min used for rapids
+    // Feed length (mm) and time (s) by movement kind, in the order of the vocabulary's table.
+    std::array<double, std::size(movements)> movement_length{};
+    std::array<double, std::size(movements)> movement_time{};
     Box box;
     std::vector<ToolStats> tools;   // in order of first use
     double total_time() const { return feed_time + rapid_time + dwell_time; }

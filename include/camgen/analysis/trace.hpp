@@ -24,6 +24,8 @@ struct Step {
     bool from_known = true;          // false: from the tool-change position, path unknown
     double feed = 0.0;               // feed: mm/min as programmed
     double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping), else 0
+    Movement movement = Movement::cutting;  // feed: as the job's events say; read back: plunge or ramp
+                                            // where the motion shows it (straight down, down along XY)
     std::optional<ArcGeometry> arc;  // feed: set for a circular move
     double seconds = 0.0;            // dwell
     int tool = 0;                    // the tool in the spindle (tool_change: the new one)

@@ -94,6 +94,7 @@ struct Machine {
     std::vector<Units> accepted_units = {Units::mm};  // the units the control has a mode for
     nc::BlockStyle block;
     bool modal_motion = true;          // false: G0/G1/G2/G3 written on every motion block
+    bool cutter_compensation = true;   // the control offsets by a tool radius (G41/G42, RL/RR)
     char decimal_mark = '.';
     double tolerance = 0.002;          // mm (CNC-Calc tolerance): the arc tolerance. After rounding,
                                        // every arc block's start and end radii agree within it

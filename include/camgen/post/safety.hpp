@@ -44,6 +44,8 @@ private:
     std::optional<DrillCycle> cycle_;      // the drilling cycle running, if any
     std::optional<double> op_retract_z_;   // the current operation's retract plane (else the clearance)
     std::optional<double> op_reference_z_; // the current operation's reference plane, if it has one
+    std::optional<double> op_safe_z_;      // where a contour's rapid approach may end
+    bool last_was_feed_ = false;           // the tool got where it is by feed
     std::optional<Vec3> pos_;              // where the tool is (unknown after a tool change)
     int tool_ = 0;
     std::map<std::pair<long long, long long>, double> holes_;  // the Z each hole reaches, by XY in nm
