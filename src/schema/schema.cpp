@@ -225,7 +225,68 @@ OJson operation_defs() {
     return all;
 }
 
+// Every operation type's objects, in registration order (each type's own object first).
+std::vector<ObjectSpec> operation_objects() {
+    std::vector<ObjectSpec> out;
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+        (
+            [&] {
+                const std::vector<ObjectSpec> objects = std::variant_alternative_t<I, Operation>::objects();
+                out.insert(out.end(), objects.begin(), objects.end());
+            }(),
+            ...);
+    }(std::make_index_sequence<std::variant_size_v<Operation>>());
+    return out;
+}
+
+// The value column of a key: its type, quantity, unit, bounds, choices or object.
+std::string value_text(const KeySpec& k) {
+    const auto bounded = [&](std::string s) {
+        if (k.min) s += (k.min->inclusive ? " >= " : " > ") + fmt::format("{}", k.min->value);
+        if (k.max) s += std::string(k.min ? "," : "") + (k.max->inclusive ? " <= " : " < ") + fmt::format("{}", k.max->value);
+        return s;
+    };
+    switch (k.type) {
+        case JsonType::point: return "`[x, y]`";
+        case JsonType::point3: return "`[x, y]` or `[x, y, z]`";
+        case JsonType::boolean: return "boolean";
+        case JsonType::integer: return bounded("integer");
+        case JsonType::object: return k.ref.empty() ? "object" : fmt::format("`{}` object", k.ref);
+        case JsonType::array:
+            if (k.ref.empty()) return "array";
+            return k.min_items > 0 ? fmt::format("array of `{}`, at least {}", k.ref, k.min_items)
+                                   : fmt::format("array of `{}`", k.ref);
+        case JsonType::string: {
+            if (!k.choices) return "string";
+            std::string s;
+            for (const auto& c : k.choices()) s += (s.empty() ? "`\"" : ", `\"") + c + "\"`";
+            return s;
+        }
+        case JsonType::number: break;
+    }
+    return k.quantity == Quantity::choice ? bounded("number") : quantity_text(k.quantity, k.min, k.max);
+}
+
 }  // namespace
+
+std::optional<std::string> keys_markdown(std::string_view name) {
+    for (const ObjectSpec& spec : operation_objects()) {
+        if (spec.name != name) continue;
+        std::string s = "| key | value | default | meaning |\n| --- | --- | --- | --- |\n";
+        for (const KeySpec& k : spec.keys) {
+            // A default that is no constant is in the description ("(default: the tool's radius)").
+            const bool described = k.description.find("(default:") != std::string_view::npos;
+            const std::string def = k.required              ? "**required**"
+                                    : !k.default_json.empty() ? fmt::format("`{}`", k.default_json)
+                                    : described               ? "see meaning"
+                                                              : "none";
+            s += fmt::format("| `{}` | {} | {} | {} |\n", k.key, value_text(k), def, k.description);
+        }
+        for (const KeyGroup& g : spec.groups) s += fmt::format("\nOf these: {}.\n", g.description);
+        return s;
+    }
+    return std::nullopt;
+}
 
 OJson job_schema() {
     return file_schema("job", "camgen job", JobInput::objects(), operation_defs(), FileKind::job);

@@ -74,11 +74,7 @@ std::string value_text(const DrillFieldInfo& f) {
         return s;
     }
     if (f.field == DrillField::degression) return "length (mm) or factor";
-    static constexpr const char* names[] = {"length", "feed", "time", "speed", "factor", "angle", "count", "choice"};
-    std::string s = names[static_cast<int>(f.quantity)];
-    if (!unit_of(f.quantity).empty()) s += " (" + std::string(unit_of(f.quantity)) + ")";
-    if (f.min) s += (f.min->inclusive ? " >= " : " > ") + number_text(f.min->value);
-    return s;
+    return quantity_text(f.quantity, f.min);
 }
 
 // The kinds of a set, by name, joined with ", "; "every cycle" for all of them.
@@ -96,6 +92,15 @@ std::string kinds_text(CycleSet set) {
 }
 
 }  // namespace
+
+std::string quantity_text(Quantity quantity, std::optional<Bound> min, std::optional<Bound> max) {
+    static constexpr const char* names[] = {"length", "feed", "time", "speed", "factor", "angle", "count", "choice"};
+    std::string s = names[static_cast<int>(quantity)];
+    if (!unit_of(quantity).empty()) s += " (" + std::string(unit_of(quantity)) + ")";
+    if (min) s += (min->inclusive ? " >= " : " > ") + number_text(min->value);
+    if (max) s += std::string(min ? "," : "") + (max->inclusive ? " <= " : " < ") + number_text(max->value);
+    return s;
+}
 
 std::string drill_fields_markdown() {
     std::string s = "| key | value | used by | meaning |\n| --- | --- | --- | --- |\n";

@@ -1,13 +1,18 @@
-// The tables of docs/job-format.md that are generated from the vocabulary tables: the file
+// The tables of docs/job-format.md that are generated from the vocabulary and key tables: the file
 // must hold exactly what the tables say. CAMGEN_UPDATE_DOCS=1 rewrites them.
 #include <doctest/doctest.h>
 
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "camgen/schema/schema.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
+#include "operations/contour/contour.hpp"
+#include "operations/path/path.hpp"
 
 using namespace camgen;
 
@@ -42,7 +47,7 @@ void check_section(const std::string& name, const std::string& expected) {
         return;
     }
     CHECK_MESSAGE(doc.substr(a, b - a) == expected,
-                  "docs/job-format.md section '" << name << "' differs from the vocabulary tables; run "
+                  "docs/job-format.md section '" << name << "' differs from the vocabulary or key tables; run "
                   "CAMGEN_UPDATE_DOCS=1 build/camgen_tests -tc='docs*'");
 }
 
@@ -65,4 +70,23 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     CHECK(table.find("| `bore-stop` | G86: feed in, spindle stop, rapid out | **plungingFeedrate**, bottomDwell |") !=
           std::string::npos);
     check_section("cycle kinds", table);
+}
+
+TEST_CASE("docs: the contour and path key tables are the operations' key tables") {
+    std::vector<ObjectSpec> objects = ContourOp::objects();
+    const std::vector<ObjectSpec> path = PathOp::objects();
+    objects.insert(objects.end(), path.begin(), path.end());
+    for (const ObjectSpec& spec : objects) {
+        const std::optional<std::string> table = keys_markdown(spec.name);
+        REQUIRE(table);
+        // Every key, with its default or "required".
+        for (const KeySpec& k : spec.keys) CHECK(table->find("| `" + std::string(k.key) + "` |") != std::string::npos);
+        check_section(std::string(spec.name) + " keys", *table);
+    }
+    const std::string contour = *keys_markdown("contour");
+    CHECK(contour.find("| `endDepth` | length (mm) | **required** |") != std::string::npos);
+    CHECK(contour.find("| `side` | `\"left\"`, `\"right\"`, `\"on\"`, `\"inside\"`, `\"outside\"` | `\"outside\"` |") !=
+          std::string::npos);
+    CHECK(keys_markdown("contourLead")->find("| `sweep` | angle (degrees) > 0, <= 180 | `90` |") != std::string::npos);
+    CHECK_FALSE(keys_markdown("no such object"));
 }

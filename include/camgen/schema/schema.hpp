@@ -21,6 +21,11 @@ nlohmann::ordered_json machine_schema();
 // The names `camgen schema` takes, in order: "job", "machine".
 std::vector<std::string> schema_names();
 
+// The keys of the job-file object named `name` (an operation type such as "contour", or one
+// of its objects such as "contourLead") as a Markdown table for docs/job-format.md: key, value,
+// default, meaning. nullopt for an unknown name.
+std::optional<std::string> keys_markdown(std::string_view name);
+
 // The schema named `name` as text (2-space indent, trailing newline); nullopt for an unknown name.
 std::optional<std::string> schema_text(std::string_view name);
 

@@ -322,6 +322,10 @@ std::optional<DrillField> drill_field_named(std::string_view key);
 // The keys of every drilling field, in table order.
 std::vector<std::string> drill_field_keys();
 
+// A quantity as the docs write it, with its unit and bounds: "length (mm) > 0",
+// "angle (degrees) > 0, <= 180".
+std::string quantity_text(Quantity quantity, std::optional<Bound> min, std::optional<Bound> max = std::nullopt);
+
 // The drilling fields as a Markdown table (key, value, cycles, meaning) for docs/job-format.md.
 std::string drill_fields_markdown();
 // The cycle kinds as a Markdown table (kind, what it does, the fields it uses; required ones
