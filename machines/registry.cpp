@@ -10,10 +10,12 @@
 #include "camgen/common/error.hpp"
 #include "machines/heidenhain/heidenhain_post.hpp"
 #include "machines/heidenhain/heidenhain_reader.hpp"
+#include "machines/iso/iso_lathe_post.hpp"
 #include "machines/iso/iso_post.hpp"
 #include "machines/iso/iso_reader.hpp"
 #include "machines/nccad/nccad_post.hpp"
 #include "machines/nccad/nccad_reader.hpp"
+#include "machines/sinumerik/sinumerik_lathe_post.hpp"
 #include "machines/sinumerik/sinumerik_post.hpp"
 #include "machines/sinumerik/sinumerik_reader.hpp"
 
@@ -30,8 +32,10 @@ std::unique_ptr<Post> post_of(const Machine& machine, std::ostream& out, PostOpt
 // Name, post, reader: one line per dialect.
 constexpr Dialect registry[] = {
     {"iso", post_of<IsoPost>, reader::make_iso_reader},
+    {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_reader},
     {"nccad", post_of<NccadPost>, reader::make_nccad_reader},
     {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader},
+    {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader},
     {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader},
 };
 

@@ -79,6 +79,21 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     return job;
 }
 
+void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name) {
+    for (const Operation& op : job.operations)
+        visit_exhaustive(
+            [&]<OperationType Op>(const Op& o) {
+                constexpr MachineKind made_for = machine_kind_of<Op>();
+                if (made_for == kind) return;
+                throw InputError(o.path + "/type",
+                                 fmt::format("operation \"{}\" ({}) is made for a {}, and machine {} is a {}: post the "
+                                             "job for a {} machine",
+                                             Op::type, default_name(o), name_of(machine_kinds, made_for), machine_name,
+                                             name_of(machine_kinds, kind), name_of(machine_kinds, made_for)));
+            },
+            op);
+}
+
 Job read_job_file(const std::string& filename) {
     std::string text;
     if (filename == "-") {
@@ -127,7 +142,9 @@ void expand_job(const Job& job, EventSink& sink) {
                     const Planes z = resolve_planes(o.heights);
                     planes = OperationPlanes{z.retract_z, z.reference_z, z.safe_z};
                 }
-                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, planes});
+                FeedMode feed_mode = FeedMode::per_minute;
+                if constexpr (requires { o.feed_mode; }) feed_mode = o.feed_mode;
+                sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, planes, feed_mode});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;
                 if (tool.number != current) {
                     sink.emit(ToolChange{tool.number, tool.diameter, describe(tool)});

@@ -15,6 +15,8 @@
 #include "operations/contour/contour.hpp"
 #include "operations/drill/drill.hpp"
 #include "operations/path/path.hpp"
+#include "operations/turn_drill/turn_drill.hpp"
+#include "operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
 
@@ -32,8 +34,15 @@ concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& 
     expand(op, ctx, sink);
 };
 
+// The kind of machine an operation type is made for: its `machine_kind`, else a mill.
+template <class Op>
+constexpr MachineKind machine_kind_of() {
+    if constexpr (requires { Op::machine_kind; }) return Op::machine_kind;
+    else return MachineKind::mill;
+}
+
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {
@@ -47,6 +56,11 @@ std::vector<std::string> operation_type_names();
 // Throws InputError (JSON path + line) on any problem. Inch input is converted to mm here.
 // `limits` bound its size (holes, path elements, nesting) before anything is allocated for it.
 Job read_job(std::string_view text, const std::string& source_name, JobLimits limits = {});
+
+// Refuses a job with an operation made for another kind of machine than `kind` (a drill
+// operation on a lathe, a turning operation on a mill): an InputError at the first such
+// operation's "type", naming the operation and both kinds.
+void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name);
 
 // Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.
 Job read_job_file(const std::string& filename);

@@ -118,7 +118,8 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
     const DrillValues& p = c.values;
     // G98 returns to the Z the tool had before the cycle: the retract plane, where the
     // operation put it. G99 returns to R.
-    writer().add(g(c.retract_z > c.safe_z ? 98 : 99)).add(motion_word(iso::cycle_code(c.kind))).add(w.x).add(w.y);
+    if (writes_return_level()) writer().add(g(c.retract_z > c.safe_z ? 98 : 99));
+    writer().add(motion_word(iso::cycle_code(c.kind))).add(w.x).add(w.y);
     writer().add(force_z(c.bottom_z)).add(xyz_format().word("R", c.safe_z));
     if ((c.kind == CycleKind::deep || c.kind == CycleKind::chip_break) && p.get(DrillField::first_depth))
         writer().add(xyz_format().word("Q", *p.get(DrillField::first_depth)));

@@ -25,6 +25,10 @@ protected:
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
 
+    // Whether a canned cycle block starts with its return level G98/G99 (not where those codes
+    // mean something else: Fanuc T system A's feed modes).
+    virtual bool writes_return_level() const { return true; }
+
     int program_number_ = 1000;
     bool percent_ = true;
     bool length_offset_ = true;

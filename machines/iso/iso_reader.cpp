@@ -6,6 +6,7 @@
 // G98/G99 (G98: back to the Z before the first cycle block, G99: to R), LinuxCNC G33.1 rigid
 // tapping, M2/M30.
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -36,6 +37,21 @@ iso::ToolChangeStyle tool_change_style(const Machine& m) {
     return iso::tool_change_setting(f);
 }
 
+// Whether a lathe calls its tools as a turret does (iso-lathe setting "toolCall": T0101).
+bool turret_calls(const Machine& m) {
+    if (m.kind != MachineKind::lathe) return false;
+    const auto it = m.dialect_settings.find("toolCall");
+    return it != m.dialect_settings.end() && *it == "turret";
+}
+
+// Whether a lathe's canned cycles drill along Z only under G17 (iso-lathe setting
+// "drillingPlane", LinuxCNC); Fanuc T's face drilling cycles take no plane.
+bool drills_under_g17(const Machine& m) {
+    if (m.kind != MachineKind::lathe) return false;
+    const auto it = m.dialect_settings.find("drillingPlane");
+    return it == m.dialect_settings.end() || *it != false;
+}
+
 // A tool change announced by a comment, to be made by the M0 on the next line.
 struct InsertTool {
     int number = 0;
@@ -46,7 +62,7 @@ struct InsertTool {
 class IsoReader : public NcReader {
 public:
     IsoReader(const Machine& machine, std::string source)
-        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)) {}
+        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)), turret_(turret_calls(machine)) {}
 
 protected:
     bool frame_line(std::string_view line) override { return line == "%"; }
@@ -59,10 +75,13 @@ private:
     void motion_block(int mode, BlockWords& w);
     void cycle_block(int g, BlockWords& w);
     void rigid_tap(BlockWords& w);
+    void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
     const DrillingCycleSpec* canned_spec(int g) const;
     std::optional<InsertTool> insert_tool(const std::string& comment) const;
 
     iso::ToolChangeStyle tool_change_;
+    bool turret_ = false;                 // T0101 calls tool 1 (a lathe's turret)
+    std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
     std::optional<InsertTool> pending_insert_;
     int motion_ = -1;  // the modal motion code (tenths); -1: none yet
     Plane plane_ = Plane::xy;
@@ -137,12 +156,17 @@ void IsoReader::block(const Block& b) {
         return;
     }
     std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
-    std::optional<Code> coolant, machine_coords;
+    std::optional<Code> coolant, machine_coords, spindle_mode;
     MCodes m;
     BlockWords w(*this, "XYZIJKRQPFSTHD");
     for (const Word& x : b.words) {
         if (x.letter == 'G') {
             Code c{code_of(x), &x};
+            // A lathe's feed mode codes (frame feedModes; Fanuc T's G98/G99 are these, not return levels).
+            if (feed_mode_of(x)) {
+                set_group(feed_mode, c);
+                continue;
+            }
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
                 case code(iso::rigid_tap_code):
@@ -151,6 +175,18 @@ void IsoReader::block(const Block& b) {
                     set_group(motion, c);
                     break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
+                case code(7): case code(8): {
+                    // LinuxCNC's diameter (G7) and radius (G8) modes, on a machine whose start block
+                    // selects one: its xDiameterProg says which.
+                    const auto& start = machine_.frame.start_block;
+                    const bool has_modes = std::find(start.begin(), start.end(), "G7") != start.end() ||
+                                           std::find(start.begin(), start.end(), "G8") != start.end();
+                    if (!has_modes) fail(fmt::format("unknown code {}", x.text));
+                    if ((c.value == code(7)) != machine_.x_diameter)
+                        fail(fmt::format("{}: machine {} {}", x.text, machine_.name,
+                                         machine_.x_diameter ? "programs X as a diameter (G7)" : "programs X as a radius (G8)"));
+                    break;
+                }
                 case code(20): case code(21): set_group(units, c); break;
                 case code(90): break;
                 case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
@@ -161,6 +197,11 @@ void IsoReader::block(const Block& b) {
                 case code(43): case code(49): set_group(length_offset, c); break;
                 case code(98): case code(99): set_group(return_level, c); break;
                 case code(4): set_group(dwell, c); break;
+                case code(iso::spindle_limit_code): case code(iso::constant_rpm_code):
+                    // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
+                    if (machine_.kind != MachineKind::lathe) fail(fmt::format("unknown code {}", x.text));
+                    set_group(spindle_mode, c);
+                    break;
                 case code(53): set_group(machine_coords, c); break;
                 default:
                     if (work_offset_code(c.value)) {
@@ -194,9 +235,23 @@ void IsoReader::block(const Block& b) {
     }
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
-    if (const Word* f = w.take('F')) feed_ = feed(*f);
+    if (feed_mode && feed_mode_of(*feed_mode->word)) set_feed_mode(*feed_mode_of(*feed_mode->word));
+    if (const Word* f = w.take('F')) set_feed(*f);
+    if (spindle_mode && spindle_mode->value == code(iso::spindle_limit_code)) {
+        // G50 S: the highest speed the spindle may turn, not a speed.
+        const Word* s = w.take('S');
+        if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", spindle_mode->word->text, spindle_mode->word->text));
+        if (machine_.limits.max_rpm > 0 && rpm(*s) > machine_.limits.max_rpm)
+            fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s->text, machine_.name, machine_.limits.max_rpm));
+    }
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
-    if (const Word* t = w.take('T')) {
+    if (const Word* t = w.take('T'); t && turret_) {
+        // A turret call T<tool><offset>: the tool with its own offset.
+        const int call = integer_of(*t);
+        if (call < 100 || call % 100 != call / 100)
+            fail(fmt::format("{}: machine {} calls tool n with its offset n, T0101 to T9999", t->text, machine_.name));
+        change_tool(call / 100, commented_description(call / 100));
+    } else if (t) {
         if (tool_change_ == iso::ToolChangeStyle::pause)
             fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
                              "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
@@ -301,9 +356,17 @@ void IsoReader::motion_block(int mode, BlockWords& w) {
 
 void IsoReader::cycle_block(int g, BlockWords& w) {
     const DrillingCycleSpec& spec = *canned_spec(g);
+    if (spec.style == CannedStyle::fanuc_g74) {
+        face_peck(spec, w);
+        return;
+    }
     const std::string name = spec.name;
     if (w.has('I') || w.has('J') || w.has('K')) fail(fmt::format("I/J/K in a {} block", name));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    // A canned cycle drills along the plane's normal: on such a lathe only G17 drills along Z.
+    if (drills_under_g17(machine_) && plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
+                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
     Vec3 here = position();
     if (!initial_z_) initial_z_ = here.z;
     std::optional<double> x, y;
@@ -352,6 +415,48 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     }
     if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
     drill_point({x.value_or(here.x), y.value_or(here.y)});
+}
+
+void IsoReader::face_peck(const DrillingCycleSpec& spec, BlockWords& w) {
+    // Fanuc T G74 in two blocks: G74 R(e) sets the back-off; G74 Z Q F pecks from where the tool
+    // stands (the start point, X0 on a centre hole) by Q, backs off e, ... to Z, and returns to
+    // the start point. Q is in least input increments without a decimal point.
+    const std::string& name = spec.name;
+    for (char letter : {'Y', 'I', 'J', 'K', 'P'})
+        if (const Word* x = w.find(letter)) fail(fmt::format("{} in a {} block: camgen drills with it on the axis only", x->text, name));
+    if (const Word* r = w.take('R')) {
+        if (w.has('Z') || w.has('Q') || w.has('X')) fail(fmt::format("{}: R(e) stands in the first {} block alone", r->text, name));
+        face_back_off_ = length(*r);
+        if (!(*face_back_off_ > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
+        return;
+    }
+    const Word* zw = w.take('Z');
+    const Word* qw = w.take('Q');
+    if (w.has('X')) fail(fmt::format("X in the second {} block: camgen drills at the start point's X", name));
+    if (!zw || !qw) fail(fmt::format("the second {} block needs the bottom Z and the peck Q", name));
+    if (!face_back_off_) fail(fmt::format("{} Z Q without the first block {} R(e)", name, name));
+    if (qw->has_point) fail(fmt::format("{}: Q is in least input increments, without a decimal point", qw->text));
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (!feed_) fail(fmt::format("{} without a feed F", name));
+    const Vec3 here = position();
+    const double bottom = length(*zw);
+    const double increments = std::pow(10.0, length_format('Z').spec().decimals);
+    const double peck = length_value(qw->value / increments);
+    if (!(peck > 0)) fail(fmt::format("{}: the peck Q must be > 0", qw->text));
+    if (!(bottom < here.z)) fail(fmt::format("{} {}: the bottom is not below the start point", name, zw->text));
+    DrillCycle c;
+    c.kind = CycleKind::chip_break;
+    c.output = CycleOutput::canned;
+    c.retract_z = c.reference_z = c.safe_z = here.z;
+    c.bottom_z = bottom;
+    c.feed = *feed_;
+    c.spindle_rpm = rpm_;
+    c.values.set(DrillField::first_depth, peck);
+    c.values.set(DrillField::pecking_retract, *face_back_off_);
+    c.values.set(DrillField::plunging_feedrate, *feed_);
+    drill_cycle(c);
+    drill_point({here.x, here.y});
+    drill_end();
 }
 
 void IsoReader::rigid_tap(BlockWords& w) {

@@ -28,6 +28,20 @@ constexpr double cycle_code(CycleKind kind) {
     return 81;
 }
 
+// Lathes: how a tool is called (the iso-lathe setting "toolCall"): the ISO tool change
+// (T.. M6), or a turret's T0101 (tool 01 with offset 01, Fanuc T).
+enum class LatheToolCall { m6, turret };
+
+// The settings of the iso-lathe dialect, beside the ISO ones.
+inline constexpr std::string_view lathe_setting_keys[] = {"drillingPlane", "toolCall", "spindleLimit"};
+
+// The maximum spindle speed code of Fanuc T (system A): G50 S<rpm>.
+inline constexpr double spindle_limit_code = 50;
+// Constant spindle speed (rpm), Fanuc T and LinuxCNC: G97.
+inline constexpr double constant_rpm_code = 97;
+// Fanuc T's end-face peck drilling cycle: G74 R(e) / G74 Z Q F.
+inline constexpr double face_peck_code = 74;
+
 // LinuxCNC's rigid tapping code: G33.1 Z K, one synchronised move in and out.
 inline constexpr double rigid_tap_code = 33.1;
 

@@ -78,6 +78,17 @@ void SinumerikReader::line(std::string_view text) {
         modal_call(trim(call));
         return;
     }
+    // DIAMON (a lathe's X as a diameter) is a word of its own, not an address: where the
+    // machine's start block selects it (and its xDiameterProg says so), it is read here.
+    if (const size_t at = text.find("DIAMON"); at != std::string_view::npos) {
+        const auto& start = machine_.frame.start_block;
+        if (std::find(start.begin(), start.end(), "DIAMON") == start.end() || !machine_.x_diameter)
+            fail(fmt::format("DIAMON: machine {} does not program X as a diameter", machine_.name));
+        std::string rest(text);
+        rest.erase(at, 6);
+        NcReader::line(rest);
+        return;
+    }
     NcReader::line(text);
 }
 
@@ -312,6 +323,11 @@ void SinumerikReader::block(const Block& b) {
             cr = &x;
         } else if (x.letter == 'G') {
             Code c{code_of(x), &x};
+            // A lathe's feed modes (frame feedModes: G94, G95 per revolution).
+            if (auto mode = feed_mode_of(x)) {
+                set_feed_mode(*mode);
+                continue;
+            }
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): set_group(motion, c); break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
@@ -345,7 +361,7 @@ void SinumerikReader::block(const Block& b) {
         if (b.words.size() != 2) fail(fmt::format("{} must stand in a block of its own with its F", dwell->word->text));
         emit(Dwell{seconds(*f)});
     }
-    if (const Word* f = dwell ? nullptr : w.take('F')) feed_ = feed(*f);
+    if (const Word* f = dwell ? nullptr : w.take('F')) set_feed(*f);
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
     if (const Word* t = w.take('T')) {
         selected_tool_ = integer_of(*t);
@@ -378,6 +394,10 @@ void SinumerikReader::block(const Block& b) {
                 fail(fmt::format("under the modal call {} of line {} camgen writes only G0 X Y hole positions",
                                  mcall_->name, mcall_->line));
             if (!position_known()) fail(fmt::format("{} from an unknown position", mcall_->name));
+            // The cycle drills along the plane's normal: on a lathe only G17 drills along Z.
+            if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
+                fail(fmt::format("{} under {}: a lathe drills on its axis under G17", mcall_->name,
+                                 plane_ == Plane::xz ? "G18" : "G19"));
             std::optional<double> x = w.length('X'), y = w.length('Y');
             rapid_to(x, y, std::nullopt);
             DrillCycle c = cycle_now();

@@ -74,7 +74,7 @@ std::vector<KeyRule> drill_rules() {
                      .values = {std::string(name_of(degression_types, DegressionType::value)),
                                 std::string(name_of(degression_types, DegressionType::factor))},
                      .require = {degression, minimum},
-                     .forbid = {}});
+                     .forbid = {key_of(DrillField::subsequent_depth)}});
     return rules;
 }
 
@@ -127,6 +127,8 @@ void read_degression(Fields& f, const JobInput& in, DrillValues& values) {
                        "peck is the previous one times the factor)");
             break;
     }
+    if (type != DegressionType::none && values.has(DrillField::subsequent_depth))
+        f.fail("subsequentDepth", "subsequentDepth and a degression both set the later pecks: give one of them");
     if (type != DegressionType::none && !minimum)
         f.fail("degressionType",
                "a degression needs a positive minimumDepth, or the pecks shrink towards zero "
@@ -211,11 +213,7 @@ DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     c.reference_z = z.reference_z;
     c.safe_z = z.safe_z;
     c.bottom_z = z.bottom_z;
-    if (p.drill_tip && tool.tip_angle) {
-        // Tip length of a point of included angle a on diameter d: (d/2) / tan(a/2).
-        double half = *tool.tip_angle * std::numbers::pi / 360.0;
-        c.bottom_z -= tool.diameter / 2.0 / std::tan(half);
-    }
+    if (p.drill_tip && tool.tip_angle) c.bottom_z -= drill_tip_length(tool.diameter, *tool.tip_angle);
     c.spindle_rpm = tool.rpm;
     c.spindle_direction = tool.direction;
     c.feed = is_tapping(p.kind) ? p.values.value_or(DrillField::pitch, 0.0) *
@@ -224,10 +222,17 @@ DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     return c;
 }
 
+double drill_tip_length(double diameter, double tip_angle) {
+    const double half = tip_angle * std::numbers::pi / 360.0;
+    return diameter / 2.0 / std::tan(half);
+}
+
 void expand(const DrillOp& op, const Context& ctx, EventSink& sink) {
     if (op.holes.empty()) return;
-    DrillCycle c = resolve_cycle(op, ctx.tool);
-    const std::vector<Vec2> holes = visit_order(op);
+    expand_cycle(resolve_cycle(op, ctx.tool), visit_order(op), ctx, sink);
+}
+
+void expand_cycle(const DrillCycle& c, const std::vector<Vec2>& holes, const Context& ctx, EventSink& sink) {
     const Vec2 first = holes.front();
     sink.emit(Rapid{{first.x, first.y, ctx.job.clearance}});
     if (c.retract_z != ctx.job.clearance) sink.emit(Rapid{{first.x, first.y, c.retract_z}});

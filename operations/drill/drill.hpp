@@ -47,4 +47,13 @@ std::string default_name(const DrillOp& op);
 // The resolved drilling cycle of an operation (absolute planes, drill tip, tapping feed).
 DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool);
 
+// The length of a drill's point of included angle `tip_angle` degrees on `diameter` mm:
+// (d/2) / tan(a/2), added to a hole's depth for drillTip.
+double drill_tip_length(double diameter, double tip_angle);
+
+// The events of one drilling cycle over `holes` (at least one, in order): rapid above the
+// first hole at the job's clearance, down to the retract plane, the cycle, one DrillPoint per
+// hole, its end, and back up to the clearance.
+void expand_cycle(const DrillCycle& cycle, const std::vector<Vec2>& holes, const Context& context, EventSink& sink);
+
 }  // namespace camgen

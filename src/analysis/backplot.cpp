@@ -120,7 +120,60 @@ std::string arrow(const Step& s, const View& v, const char* colour) {
 
 }  // namespace
 
+namespace {
+
+// What the drawing shows, for its notes: the XY view of a mill, the XZ half-section of a lathe.
+struct ViewText {
+    std::string_view note;        // under the legend
+    std::string_view name;        // in the subtitle
+    std::string_view across, up;  // the axes drawn to the right and up
+};
+constexpr ViewText xy_view{"XY view from above; moves along Z only show as points.", "XY view", "X", "Y"};
+constexpr ViewText section_view{"XZ half-section: Z right, X (radius) up.", "XZ half-section", "Z", "X"};
+
+// A position of a lathe's program in the half-section drawn as XY: (Z, X, Y).
+Vec3 section_of(const Vec3& p) { return {p.z, p.x, p.y}; }
+
+// The trace and statistics of a lathe's program mapped into the half-section: Z becomes the
+// drawing's X, the radius its Y. G18 arcs become XY arcs of the same turn (both planes' (u, v)
+// are (Z, X)). Holes on the axis are no circles in a section: their pecks show as moves.
+Trace section_of(const Trace& trace) {
+    Trace t = trace;
+    for (Step& s : t.steps) {
+        s.from = section_of(s.from);
+        s.to = section_of(s.to);
+        if (s.arc) {
+            ArcGeometry& g = *s.arc;
+            g.start = section_of(g.start);
+            g.end = section_of(g.end);
+            g.centre = section_of(g.centre);
+            // (Z, X, Y): the XZ plane's (u, v) = (Z, X) become XY's; XY's become YZ's, YZ's XZ's.
+            g.plane = g.plane == Plane::xz ? Plane::xy : g.plane == Plane::xy ? Plane::yz : Plane::xz;
+        }
+    }
+    t.holes.clear();
+    return t;
+}
+
+ProgramStats section_of(const ProgramStats& stats) {
+    ProgramStats s = stats;
+    s.box.min = section_of(stats.box.min);
+    s.box.max = section_of(stats.box.max);
+    return s;
+}
+
+std::string draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view);
+
+}  // namespace
+
 std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
+    if (options.kind == MachineKind::lathe) return draw_svg(section_of(trace), section_of(stats), options, section_view);
+    return draw_svg(trace, stats, options, xy_view);
+}
+
+namespace {
+
+std::string draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view) {
     // Colours by tool, in order of first use.
     std::map<int, const char*> colour;
     std::map<int, double> diameter;
@@ -171,9 +224,10 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
     for (double gy = std::ceil(min_y / step) * step; gy <= min_y + dy + 1e-9; gy += step)
         body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", n(left - 6), n(v.y(gy) + 3),
                              mm(std::abs(gy) < 1e-9 ? 0.0 : gy)));
-    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">X mm</text>", n(left + draw_w / 2), n(top + draw_h + 28)));
-    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">Y mm</text>",
-                         n(left - 40), n(top + draw_h / 2), n(left - 40), n(top + draw_h / 2)));
+    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} mm</text>", n(left + draw_w / 2), n(top + draw_h + 28),
+                         view.across));
+    body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{} mm</text>",
+                         n(left - 40), n(top + draw_h / 2), n(left - 40), n(top + draw_h / 2), view.up));
     body.add("</g>");
     body.add(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#bbb\"/>", n(left), n(top),
                          n(draw_w), n(draw_h)));
@@ -184,9 +238,10 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
         body.add(fmt::format("<g stroke=\"#444\" stroke-width=\"1.2\" fill=\"none\"><path d=\"M{0},{1}H{2}M{0},{1}V{3}\"/>"
                              "<circle cx=\"{0}\" cy=\"{1}\" r=\"4\"/></g>",
                              n(ox), n(oy), n(ox + 28), n(oy - 28)));
-        body.add(fmt::format("<g {} font-size=\"10\" fill=\"#444\"><text x=\"{}\" y=\"{}\">X</text><text x=\"{}\" y=\"{}\">Y</text>"
-                             "<text x=\"{}\" y=\"{}\">X0 Y0</text></g>",
-                             font, n(ox + 24), n(oy + 13), n(ox - 12), n(oy - 22), n(ox + 6), n(oy - 6)));
+        body.add(fmt::format("<g {} font-size=\"10\" fill=\"#444\"><text x=\"{}\" y=\"{}\">{}</text><text x=\"{}\" y=\"{}\">{}</text>"
+                             "<text x=\"{}\" y=\"{}\">{}0 {}0</text></g>",
+                             font, n(ox + 24), n(oy + 13), view.across, n(ox - 12), n(oy - 22), view.up, n(ox + 6), n(oy - 6),
+                             view.across, view.up));
     }
 
     // The cut's width: each feed move in XY drawn as wide as its tool, deeper levels darker,
@@ -421,7 +476,7 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
     }
     text(lx, "No stock outline: the job format has no stock yet.", 11, "normal", "#777");
     ly += 15;
-    text(lx, "XY view from above; moves along Z only show as points.", 11, "normal", "#777");
+    text(lx, std::string(view.note), 11, "normal", "#777");
     ly += 10;
 
     double height = std::max(top + draw_h + 70, ly + 20);
@@ -432,9 +487,11 @@ std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const Ba
     svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"18\" font-weight=\"bold\" fill=\"#111\">{}</text>", n(left), n(30), font,
                         escape(options.title.empty() ? "program" : options.title)));
     svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" fill=\"#555\">{}backplot of the program as camgen reads it back, "
-                        "XY view</text>",
-                        n(left), n(47), font, escape(options.machine.empty() ? "" : "machine " + options.machine + " - ")));
+                        "{}</text>",
+                        n(left), n(47), font, escape(options.machine.empty() ? "" : "machine " + options.machine + " - "), view.name));
     return svg.text() + body.text() + legend.text() + "</svg>\n";
 }
+
+}  // namespace
 
 }  // namespace camgen

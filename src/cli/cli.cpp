@@ -116,6 +116,7 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
         return;
     }
     Machine machine = machine_for(o);
+    check_machine_kind(job, machine.kind, machine.name);
     PostOptions po;
     po.snippet = o.snippet;
     po.program_name = job.name;
@@ -181,7 +182,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Trace trace = trace_program(read_program(text, machine, source, &resolution), machine);
     ProgramStats stats = compute_stats(trace, machine);
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
-    if (!v.plot.empty()) write_plot(v.plot, trace, stats, {base_name(source), machine.name});
+    if (!v.plot.empty()) write_plot(v.plot, trace, stats, {base_name(source), machine.name, machine.kind});
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;
@@ -190,6 +191,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Job job;
     try {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
+        check_machine_kind(job, machine.kind, machine.name);
         CompareTolerance tolerance = compare_tolerance(machine, resolution);
         if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
@@ -215,7 +217,7 @@ void read_back(const std::string& program, const Job& job, const Options& o, std
     Trace trace = trace_program(read_program(program, machine, name), machine);
     ProgramStats stats = compute_stats(trace, machine);
     if (o.stats) err << format_stats(stats);
-    if (!o.plot.empty()) plot.emplace(o.plot).stream() << backplot_svg(trace, stats, {name, machine.name});
+    if (!o.plot.empty()) plot.emplace(o.plot).stream() << backplot_svg(trace, stats, {name, machine.name, machine.kind});
 }
 
 }  // namespace

@@ -33,6 +33,8 @@ std::vector<double> peck_depths(const DrillCycle& cycle) {
         if (depths.size() > max_pecks)
             throw InputError(cycle.path + "/firstDepth",
                              fmt::format("more than {} pecks for one hole; use larger pecks", max_pecks));
+        // CNC-Calc turning: every peck after the first is subsequentDepth (never with a degression).
+        if (auto later = p.get(DrillField::subsequent_depth)) peck = *later;
         if (p.degression_type() == DegressionType::value)
             peck -= p.get(DrillField::degression).value_or(0.0);
         else if (p.degression_type() == DegressionType::factor)
@@ -101,6 +103,7 @@ std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& fr
             // G73: after each peck rapid up by the back-off only.
             const std::vector<double> depths = peck_depths(cycle);
             const double back_off = p.get(DrillField::pecking_retract).value_or(options.peck_clearance);
+            const double clearance = p.get(DrillField::peck_clearance).value_or(options.peck_clearance);
             top_dwell();
             for (size_t k = 0; k < depths.size(); ++k) {
                 ev.emplace_back(Linear{at(depths[k]), k == 0 ? first_feed : cycle.feed});
@@ -108,7 +111,7 @@ std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& fr
                 if (cycle.kind == CycleKind::deep) {
                     ev.emplace_back(Rapid{at(cycle.safe_z)});
                     top_dwell();
-                    ev.emplace_back(Rapid{at(depths[k] + options.peck_clearance)});
+                    ev.emplace_back(Rapid{at(depths[k] + clearance)});
                 } else {
                     ev.emplace_back(Rapid{at(depths[k] + back_off)});
                 }

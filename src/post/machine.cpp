@@ -63,6 +63,8 @@ constexpr Named<ChordToleranceMode> chord_tolerance_modes[] = {
 constexpr Named<CannedStyle> canned_styles[] = {
     {CannedStyle::standard, "standard", "the dialect's usual canned cycle block"},
     {CannedStyle::rigid_g33_1, "rigid-g33.1", "LinuxCNC rigid tapping: G33.1 Z K, one synchronised move in and out"},
+    {CannedStyle::fanuc_g74, "fanuc-g74",
+     "Fanuc T end-face peck drilling on a lathe: G74 R(back-off) / G74 Z Q(peck in least increments) F (chip-break)"},
 };
 constexpr Named<BoreDwellFeedOut> bore_dwell_feed_outs[] = {
     {BoreDwellFeedOut::to_safe, "safe", "bore-dwell feeds out to R (Fanuc)"},
@@ -82,6 +84,8 @@ constexpr KeySpec machine_keys[] = {
      .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain"},
     {.key = "extension", .type = JsonType::string, .required = true,
      .description = "suggested file extension, without the dot"},
+    {.key = "kind", .type = JsonType::string, .default_json = "\"mill\"", .choices = &choices_of<machine_kinds>,
+     .description = "mill or lathe: the operations it runs (a job's operations of the other kind are refused)"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
      .description = "output units; one of acceptedUnits"},
     {.key = "acceptedUnits", .type = JsonType::array, .choices = &choices_of<unit_names>,
@@ -120,6 +124,9 @@ constexpr KeySpec frame_keys[] = {
                     "\"G54.1 P1..G54.1 P48\" is a range (default: none)"},
     {.key = "coolant", .type = JsonType::object, .ref = "coolantCodes",
      .description = "the code of each coolant mode the control has (default: none)"},
+    {.key = "feedModes", .type = JsonType::object, .ref = "feedModeCodes",
+     .description = "the code of each feed mode the control has (lathes: G94/G95, Fanuc T G98/G99); the "
+                    "startBlock selects per-minute (default: none, feeds per minute only)"},
     {.key = "safeRetract", .type = JsonType::array, .default_json = "[]", .items = JsonType::string,
      .description = "the words of a block that takes Z to the machine's safe height in machine coordinates "
                     "([\"G53\", \"G0\", \"Z0\"], iso only): written where the tool's height is unknown "
@@ -131,6 +138,12 @@ constexpr KeySpec coolant_keys[] = {
     {.key = "flood", .type = JsonType::string, .description = "flood coolant on (ISO M8)"},
     {.key = "mist", .type = JsonType::string, .description = "mist coolant on (ISO M7)"},
     {.key = "off", .type = JsonType::string, .description = "coolant off (ISO M9); needed with flood or mist"},
+};
+
+// The keys of frame.feedModes.
+constexpr KeySpec feed_mode_keys[] = {
+    {.key = "per-minute", .type = JsonType::string, .description = "feed per minute (ISO G94, Fanuc T G98)"},
+    {.key = "per-revolution", .type = JsonType::string, .description = "feed per revolution (ISO G95, Fanuc T G99)"},
 };
 
 // The keys of globals.
@@ -153,15 +166,23 @@ constexpr KeySpec globals_keys[] = {
      .description = "written before a block number (\"\" for Heidenhain)"},
     {.key = "sequenceNumberIncrement", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
      .max = Bound{max_sequence_increment, true}, .default_json = "5", .description = "the step between block numbers"},
+    {.key = "xDiameterProg", .type = JsonType::boolean, .default_json = "false",
+     .description = "lathes: X words are diameters (else radii)"},
+    {.key = "iDiameterProg", .type = JsonType::boolean, .default_json = "false",
+     .description = "lathes: the I word of arcs is a diameter (else a radius); only with xDiameterProg"},
 };
 
 // The keys of formats and inchFormats: one format per word family.
 constexpr KeySpec format_keys[] = {
     {.key = "xyz", .type = JsonType::object, .ref = "format", .description = "coordinates"},
     {.key = "ijk", .type = JsonType::object, .ref = "format", .description = "arc centres"},
+    {.key = "x", .type = JsonType::object, .ref = "format", .description = "X words, where they differ from xyz (a lathe's X)"},
+    {.key = "z", .type = JsonType::object, .ref = "format", .description = "Z words, where they differ from xyz"},
+    {.key = "i", .type = JsonType::object, .ref = "format", .description = "I words, where they differ from ijk"},
     {.key = "feed", .type = JsonType::object, .ref = "format", .description = "feeds"},
     {.key = "rpm", .type = JsonType::object, .ref = "format", .description = "spindle speeds"},
     {.key = "dwell", .type = JsonType::object, .ref = "format", .description = "dwell times"},
+    {.key = "feedPerRev", .type = JsonType::object, .ref = "format", .description = "feeds per revolution (mm or in)"},
     {.key = "angle", .type = JsonType::object, .ref = "format", .description = "angles (nccad D)"},
     {.key = "code", .type = JsonType::object, .ref = "format", .description = "G and M codes"},
 };
@@ -235,6 +256,14 @@ constexpr KeySpec drilling_keys[] = {
      .description = "the machine's drilling cycles; a kind not listed is written longhand"},
 };
 
+// The names a cycle's "fields" may hold: MillDrillingFields and TurnDrillingFields names.
+std::vector<std::string> cycle_field_names() {
+    std::vector<std::string> names = drill_field_keys();
+    for (std::string& t : turn_drill_field_keys())
+        if (std::find(names.begin(), names.end(), t) == names.end()) names.push_back(std::move(t));
+    return names;
+}
+
 // The keys of one drilling cycle.
 constexpr KeySpec cycle_keys[] = {
     {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G83, CYCLE83)"},
@@ -243,8 +272,9 @@ constexpr KeySpec cycle_keys[] = {
     {.key = "canned", .type = JsonType::boolean, .default_json = "true", .description = "false: written longhand"},
     {.key = "style", .type = JsonType::string, .default_json = "\"standard\"", .choices = &choices_of<canned_styles>,
      .description = "how the canned cycle is written"},
-    {.key = "fields", .type = JsonType::array, .choices = &drill_field_keys,
-     .description = "the drilling fields the canned cycle carries"},
+    {.key = "fields", .type = JsonType::array, .choices = &cycle_field_names,
+     .description = "the drilling fields the canned cycle carries: MillDrillingFields names on a mill (safeDistance, "
+                    "firstDepth, ...), TurnDrillingFields names on a lathe (firstPeckDepth, peckRetract, ...)"},
 };
 
 // Refuses machine-file text that is written into programs (prefixes, separators, codes, cycle
@@ -312,7 +342,9 @@ std::vector<std::string> expand_work_offset(const std::string& entry, const std:
 
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
-    if (key == "xyz" || key == "ijk" || key == "dwell" || key == "angle") s.decimals = 3;
+    if (key == "xyz" || key == "ijk" || key == "x" || key == "z" || key == "i" || key == "dwell" || key == "angle")
+        s.decimals = 3;
+    if (key == "feedPerRev") s.decimals = 4;
     if (key == "code") s.decimals = 1;
     return s;
 }
@@ -365,17 +397,24 @@ std::vector<ObjectSpec> machine_objects() {
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
+        spec("feedModeCodes", "the code of each feed mode", feed_mode_keys),
     };
 }
 
 nc::Format Machine::format(const std::string& key) const {
-    nc::FormatSpec spec = default_format(key);
-    if (auto it = formats.find(units == Units::inch ? "inch." + key : key); it != formats.end())
+    // An axis without a format of its own is written in its family's.
+    const bool axis = key == "x" || key == "z" || key == "i";
+    const std::string family = key == "i" ? "ijk" : "xyz";
+    const std::string lookup = axis && !formats.count(key) && !formats.count("inch." + key) ? family : key;
+    nc::FormatSpec spec = default_format(lookup);
+    if (auto it = formats.find(units == Units::inch ? "inch." + lookup : lookup); it != formats.end())
         spec = it->second;
-    else if (auto it2 = formats.find(key); it2 != formats.end())
+    else if (auto it2 = formats.find(lookup); it2 != formats.end())
         spec = it2->second;
     spec.decimal_mark = decimal_mark;
-    bool length = key == "xyz" || key == "ijk";
+    // Diameter programming (CNC-Calc xDiameterProg / iDiameterProg): the word is twice the radius.
+    if ((key == "x" && x_diameter) || (key == "i" && x_diameter && i_diameter)) spec.scale *= 2.0;
+    bool length = key == "xyz" || key == "ijk" || key == "feedPerRev" || axis;
     if (length && units == Units::inch) spec.scale /= 25.4;
     if (key == "feed") {
         if (feed_unit == FeedUnit::tenth_mm_per_second) spec.scale /= 6.0;  // mm/min -> 0.1 mm/s
@@ -420,6 +459,7 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     m.description = f.string("description");
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
+    m.kind = f.choice("kind", machine_kinds, MachineKind::mill);
     m.units = f.choice("units", unit_names, Units::mm);
     m.accepted_units = {m.units};
     if (const auto* au = f.member("acceptedUnits")) {
@@ -464,6 +504,13 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                         fmt::format("sequenceNumberIncrement must be between 1 and {}", max_sequence_increment));
             m.block.sequence_increment = *v;
         }
+        m.x_diameter = gf.boolean("xDiameterProg", false);
+        m.i_diameter = gf.boolean("iDiameterProg", false);
+        // CNC-Calc: "only used in post processors for lathes".
+        for (const char* key : {"xDiameterProg", "iDiameterProg"})
+            if (m.kind == MachineKind::mill && gf.boolean(key, false))
+                gf.fail(key, fmt::format("{} is for lathes: a mill's X is a coordinate, never a diameter (set \"kind\": "
+                                         "\"lathe\")", key));
         gf.finish(globals_keys);
     }
     m.block.comment_style = f.choice("comments", comment_styles, nc::CommentStyle::parentheses);
@@ -583,16 +630,22 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
                 c.style = cf.choice("style", canned_styles, CannedStyle::standard);
                 if (c.style == CannedStyle::rigid_g33_1 && m.tapping != TappingMode::rigid)
                     cf.fail("style", "style rigid-g33.1 taps rigidly: set drilling.tapping to rigid");
+                if (c.style == CannedStyle::fanuc_g74 && (c.kind != CycleKind::chip_break || m.kind != MachineKind::lathe))
+                    cf.fail("style", "style fanuc-g74 is a lathe's chip-break cycle: kind chip-break on a lathe");
+                // A lathe's cycles name CNC-Calc's TurnDrillingFields, and carry the feed-start
+                // plane (safeDistance) whatever they list: a turn-drill always has one.
+                const bool lathe = m.kind == MachineKind::lathe;
+                if (lathe) c.fields.push_back(DrillField::safe_distance);
                 if (const auto* fields = cf.member("fields")) {
                     if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                     for (size_t j = 0; j < fields->size(); ++j) {
                         std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
-                        const auto field = drill_field_named(fn);
+                        const auto field = lathe ? turn_drill_field_named(fn) : drill_field_named(fn);
                         if (field) c.fields.push_back(*field);
                         if (!field) {
-                            auto hint = json::did_you_mean(fn, drill_field_keys());
+                            auto hint = json::did_you_mean(fn, lathe ? turn_drill_field_keys() : drill_field_keys());
                             json::fail(source, fmt::format("{}/fields/{}", path, j),
-                                       fmt::format("unknown drilling field \"{}\"{}", fn,
+                                       fmt::format("unknown {} field \"{}\"{}", lathe ? "TurnDrillingFields" : "drilling", fn,
                                                    hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : ""));
                         }
                     }
@@ -622,6 +675,17 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
             if (!m.frame.coolant.empty() && !m.frame.coolant.count(CoolantMode::off))
                 cf.fail("off", "a machine with coolant needs the code that switches it off");
             cf.finish(coolant_keys);
+        }
+        if (const auto* fm = ff.member("feedModes")) {
+            json::Fields mf(*fm, "/frame/feedModes", source);
+            for (const auto& mode : feed_modes)
+                if (auto code = mf.optional_string(mode.name)) {
+                    check_program_text(*code, mf.path_of(mode.name), source);
+                    m.frame.feed_modes[mode.value] = *code;
+                }
+            if (!m.frame.feed_modes.empty() && m.frame.feed_modes.size() != 2)
+                mf.fail("", "a machine with feed modes needs the code of both (per-minute and per-revolution)");
+            mf.finish(feed_mode_keys);
         }
         if (const auto* sr = ff.member("safeRetract")) {
             m.frame.safe_retract = strings_at(*sr, "/frame/safeRetract", source);
@@ -680,6 +744,11 @@ std::string describe_machine(const Machine& m) {
     s += fmt::format("{}: {}\n", m.name, m.description);
     s += "globals\n";
     line("dialect", m.dialect);
+    line("kind", std::string(name_of(machine_kinds, m.kind)));
+    if (m.kind == MachineKind::lathe) {
+        line("xDiameterProg", m.x_diameter ? "yes: X words are diameters" : "no: X words are radii");
+        line("iDiameterProg", m.x_diameter && m.i_diameter ? "yes: I words are diameters" : "no: I words are radii");
+    }
     line("extension", "." + m.extension);
     line("units", m.units == Units::mm ? "mm" : "inch");
     line("acceptedUnits", m.accepted_unit_names());
@@ -726,9 +795,13 @@ std::string describe_machine(const Machine& m) {
     std::vector<std::string> coolant;
     for (const auto& [mode, code] : m.frame.coolant) coolant.push_back(fmt::format("{} {}", name_of(coolant_modes, mode), code));
     line("coolant", coolant.empty() ? std::string("none") : fmt::format("{}", fmt::join(coolant, ", ")));
+    std::vector<std::string> feed;
+    for (const auto& [mode, code] : m.frame.feed_modes) feed.push_back(fmt::format("{} {}", name_of(feed_modes, mode), code));
+    line("feedModes", feed.empty() ? std::string("per minute only") : fmt::format("{}", fmt::join(feed, ", ")));
     line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
                                                      : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
-    s += "drilling cycles (MillDrillingFields)\n";
+    const bool lathe = m.kind == MachineKind::lathe;
+    s += lathe ? "drilling cycles (TurnDrillingFields; the feed-start plane always)\n" : "drilling cycles (MillDrillingFields)\n";
     for (const auto& named : cycle_kinds) {
         const CycleKind k = named.value;
         const DrillingCycleSpec* c = m.canned_cycle(k);
@@ -737,7 +810,10 @@ std::string describe_machine(const Machine& m) {
             continue;
         }
         std::vector<std::string> f;
-        for (DrillField d : c->fields) f.emplace_back(key_of(d));
+        for (DrillField d : c->fields) {
+            if (!lathe) f.emplace_back(key_of(d));
+            else if (const TurnDrillFieldInfo* t = turn_field_of(d)) f.emplace_back(t->key);
+        }
         line(named.name, fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
     }
     return s;

@@ -31,12 +31,17 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       dwell_fmt_(machine.format("dwell")),
       angle_fmt_(machine.format("angle")),
       code_fmt_(machine.format("code")),
-      x_("X", xyz_fmt_),
+      x_fmt_(machine.format("x")),
+      z_fmt_(machine.format("z")),
+      i_fmt_(machine.format("i")),
+      feed_rev_fmt_(machine.format("feedPerRev")),
+      x_("X", x_fmt_),
       y_("Y", xyz_fmt_),
-      z_("Z", xyz_fmt_),
+      z_("Z", z_fmt_),
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
-      plane_("G", code_fmt_) {
+      plane_("G", code_fmt_),
+      feed_rev_("F", feed_rev_fmt_) {
     if (!machine.accepts(machine.units))
         throw InputError("/units", fmt::format("machine {} has no {} mode (its control accepts: {})", machine.name,
                                                name_of(unit_names, machine.units), machine.accepted_unit_names()),
@@ -85,6 +90,14 @@ void Post::fail(const std::string& key, const std::string& detail) const {
 
 std::string Post::feed_word(double mm_per_min) {
     const double f = clamped_feed(mm_per_min);
+    if (feed_mode_ == FeedMode::per_revolution) {
+        // The control feeds F x its spindle speed: F is the job's feed per revolution.
+        if (!(spindle_rpm_ > 0)) fail("", "a feed per revolution while the spindle stands still");
+        const double per_rev = f / spindle_rpm_;
+        if (feed_rev_fmt_.is_zero(per_rev))
+            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", per_rev, machine_.name));
+        return feed_rev_.format(per_rev);
+    }
     if (feed_fmt_.is_zero(f))
         fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
     return feed_.format(f);
@@ -122,7 +135,8 @@ void Post::reset_modal_axes() {
 Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
     AxisWords w;
     w.x = forced.x ? x_.force(to.x) : x_.format(to.x);
-    w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
+    // A lathe has no Y axis: its tool stays in the XZ plane.
+    if (machine_.kind != MachineKind::lathe) w.y = forced.y ? y_.force(to.y) : y_.format(to.y);
     w.z = forced.z ? z_.force(to.z) : z_.format(to.z);
     return w;
 }
@@ -130,11 +144,24 @@ Post::AxisWords Post::axis_words(const Vec3& to, ForcedAxes forced) {
 Post::AxisWords Post::force_xy(Vec2 at) {
     AxisWords w;
     w.x = x_.force(at.x);
-    w.y = y_.force(at.y);
+    if (machine_.kind != MachineKind::lathe) w.y = y_.force(at.y);
     return w;
 }
 
 std::string Post::force_z(double z) { return z_.force(z); }
+
+void Post::select_feed_mode(FeedMode mode) {
+    if (mode == feed_mode_) return;
+    const auto code = machine_.frame.feed_modes.find(mode);
+    if (code == machine_.frame.feed_modes.end())
+        fail("/feedMode", fmt::format("machine {} has no feed {} mode (no frame feedModes)", machine_.name,
+                                      name_of(feed_modes, mode)));
+    out_.add(code->second).end();
+    feed_mode_ = mode;
+    // The F word means something else now: write it again.
+    feed_.reset();
+    feed_rev_.reset();
+}
 
 void Post::on_operation_start(const OperationStart& op) {
     if (!op.name.empty()) on_comment(op.name);
@@ -278,7 +305,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     } else {
         Vec3 c = arc.centre;
         if (s.format == ArcFormat::ijk_relative) c = {c.x - arc.start.x, c.y - arc.start.y, c.z - arc.start.z};
-        if (arc.plane != Plane::yz) out_.add(ijk_fmt_.word("I", c.x));
+        if (arc.plane != Plane::yz) out_.add(i_fmt_.word("I", c.x));
         if (arc.plane != Plane::xz) out_.add(ijk_fmt_.word("J", c.y));
         if (arc.plane != Plane::xy) out_.add(ijk_fmt_.word("K", c.z));
     }
@@ -321,7 +348,8 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
         // The control counts its pecks from the rounded depths: when they come to another
         // number of pecks than the job's, only longhand pecks are the job's.
         DrillCycle rounded = cycle;
-        for (DrillField f : {DrillField::first_depth, DrillField::degression, DrillField::minimum_depth})
+        for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::degression,
+                             DrillField::minimum_depth})
             if (auto v = cycle.values.get(f); v && contains(fit.spec->fields, f) &&
                                               !(f == DrillField::degression && cycle.values.degression_type() != DegressionType::value))
                 rounded.values.set(f, xyz_fmt_.rounded(*v));
@@ -414,7 +442,7 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     // A peck shorter than one unit of the last decimal (or written as 0): successive depths
     // round onto each other, so pecks (and their dwells) would be written on the spot.
     const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
-    for (DrillField f : {DrillField::first_depth, DrillField::minimum_depth})
+    for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::minimum_depth})
         if (auto mm = v.get(f); mm && *mm < unit)
             refuse(f, fmt::format("{} {} mm is below the resolution of machine {} ({} mm): its pecks cannot be written",
                                   key_of(f), *mm, m, unit));
@@ -568,7 +596,10 @@ void Post::replay(const LonghandMove& event) {
                        pos_ = l.to;
                    },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
-                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Spindle& s) {
+                       spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                       on_spindle(s);
+                   },
                },
                event);
 }
@@ -582,6 +613,7 @@ void Post::emit(const Event& event) {
                        op_tolerance_ = op.tolerance;
                        for (const std::string& n : op.notes) note(fmt::format("{} ({}): {}", op.path, op.name, n));
                        on_operation_start(op);
+                       select_feed_mode(op.feed_mode);
                    },
                    [&](const OperationEnd&) { on_operation_end(); },
                    [&](const ToolChange& t) {
@@ -590,7 +622,10 @@ void Post::emit(const Event& event) {
                        pos_known_ = false;
                        reset_modal_axes();
                    },
-                   [&](const Spindle& s) { on_spindle(s); },
+                   [&](const Spindle& s) {
+                       spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                       on_spindle(s);
+                   },
                    [&](const Coolant& c) { on_coolant(c); },
                    // A compensation change waits for the next linear feed move (CNC-Calc): never
                    // written on a rapid or an arc.

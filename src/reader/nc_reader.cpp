@@ -35,6 +35,7 @@ double half_unit(const nc::Format& f) { return 0.5 * std::pow(10.0, -f.spec().de
 
 NcReader::NcReader(const Machine& machine, std::string source) : machine_(machine), source_(std::move(source)) {
     load_formats();
+    forget_position();
 }
 
 void NcReader::load_formats() {
@@ -44,7 +45,15 @@ void NcReader::load_formats() {
     rpm_fmt_ = machine_.format("rpm");
     dwell_fmt_ = machine_.format("dwell");
     angle_fmt_ = machine_.format("angle");
+    x_ = machine_.format("x");
+    z_ = machine_.format("z");
+    i_ = machine_.format("i");
+    feed_rev_fmt_ = machine_.format("feedPerRev");
 }
+
+const nc::Format& NcReader::length_format(char letter) const { return letter == 'X' ? x_ : letter == 'Z' ? z_ : xyz_; }
+
+const nc::Format& NcReader::offset_format(char letter) const { return letter == 'I' ? i_ : ijk_; }
 
 void NcReader::set_units(Units units) {
     if (machine_.units == units) return;
@@ -87,7 +96,7 @@ void NcReader::emit(Event event, bool from_unknown, double uncertainty) {
 // ---- words ----
 
 double NcReader::length(const Word& w) const {
-    const nc::FormatSpec& s = xyz_.spec();
+    const nc::FormatSpec& s = length_format(w.letter).spec();
     if (s.force_decimal && s.decimals > 0 && !w.has_point)
         fail(fmt::format("{} has no decimal point: machine {} always writes one, and a Fanuc-style control "
                          "reads {} as {} {}", w.text, machine_.name, w.text,
@@ -96,7 +105,7 @@ double NcReader::length(const Word& w) const {
 }
 
 double NcReader::offset(const Word& w) const {
-    const nc::FormatSpec& s = ijk_.spec();
+    const nc::FormatSpec& s = offset_format(w.letter).spec();
     if (s.force_decimal && s.decimals > 0 && !w.has_point)
         fail(fmt::format("{} has no decimal point: machine {} always writes one", w.text, machine_.name));
     return w.value / s.scale;
@@ -178,6 +187,30 @@ void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
     }
 }
 
+std::optional<FeedMode> NcReader::feed_mode_of(const Word& g) const {
+    for (const auto& [mode, c] : machine_.frame.feed_modes)
+        if (c == g.text || (c.size() > 1 && c[0] == 'G' && parse_number(c.substr(1)) == g.value)) return mode;
+    return std::nullopt;
+}
+
+void NcReader::set_feed_mode(FeedMode mode) {
+    if (mode == feed_mode_) return;
+    // RS274: a new feed mode needs a new F before the next feed move.
+    feed_mode_ = mode;
+    feed_.reset();
+    feed_per_rev_.reset();
+}
+
+void NcReader::set_feed(const Word& f) {
+    if (feed_mode_ == FeedMode::per_minute) {
+        feed_ = feed(f);
+        return;
+    }
+    if (!(f.value > 0)) fail(fmt::format("{}: a feed must be > 0", f.text));
+    feed_per_rev_ = f.value / feed_rev_fmt_.spec().scale;
+    feed_ = *feed_per_rev_ * rpm_;
+}
+
 std::optional<CoolantMode> NcReader::coolant_of(const Word& m) const {
     for (const auto& [mode, c] : machine_.frame.coolant)
         if (c == m.text || (c.size() > 1 && c[0] == 'M' && parse_number(c.substr(1)) == m.value)) return mode;
@@ -223,6 +256,7 @@ void NcReader::change_tool(int tool, const std::string& description) {
 
 void NcReader::spindle_speed(double rpm, const Word* switch_code) {
     rpm_ = rpm;
+    if (feed_per_rev_) feed_ = *feed_per_rev_ * rpm_;
     if (!switch_code && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
 }
 
@@ -415,7 +449,10 @@ void NcReader::line(std::string_view text) {
 // ---- motion ----
 
 void NcReader::forget_position() {
-    known_ = {false, false, false};
+    // A lathe has no Y axis: its tool stays in the XZ plane (Y 0).
+    const bool lathe = machine_.kind == MachineKind::lathe;
+    known_ = {false, lathe, false};
+    if (lathe) pos_[1] = 0.0;
     was_unknown_ = true;
     approach_ = Approach::z_first;
     at_top_ = false;
@@ -563,6 +600,8 @@ void NcReader::arc(const ArcWords& a) {
 
 std::optional<NcReader::ArcWords> NcReader::move_or_arc(int motion, Plane plane, BlockWords& w) {
     std::optional<double> x = w.length('X'), y = w.length('Y'), z = w.length('Z');
+    if (y && machine_.kind == MachineKind::lathe)
+        fail(fmt::format("a Y word: machine {} is a lathe, its tool moves in X and Z only", machine_.name));
     if (motion == code(0)) {
         rapid_to(x, y, z);
         return std::nullopt;

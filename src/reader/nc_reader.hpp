@@ -132,6 +132,9 @@ protected:
     // always writes one (a Fanuc-style control reads X10 as 0.010 mm).
     double length(const Word& w) const;
     double offset(const Word& w) const;
+    // The format a word of this letter is written in (X, Z, I: their own; others: xyz / ijk).
+    const nc::Format& length_format(char letter) const;
+    const nc::Format& offset_format(char letter) const;
     double feed(const Word& w) const;
     double rpm(const Word& w) const;
     double seconds(const Word& w) const;
@@ -208,6 +211,12 @@ protected:
     // Checks the work offset a block selects with code `g` (its word `text`), taking its P word
     // from `w` where the machine's offsets have one; fails for an offset the machine lacks.
     void select_work_offset(int g, const Word& text, BlockWords& w);
+    // The feed mode a G word selects, where it is one of the machine's feed mode codes.
+    std::optional<FeedMode> feed_mode_of(const Word& g) const;
+    // The feed mode (frame feedModes) and an F word in it: per revolution the feed is F x S,
+    // so it follows later spindle speeds.
+    void set_feed_mode(FeedMode mode);
+    void set_feed(const Word& f);
     // The coolant mode an M word switches to, where it is one of the machine's coolant codes.
     std::optional<CoolantMode> coolant_of(const Word& m) const;
     // The tool diameter a camgen tool description starts with ("10 mm spot drill"), else 0.
@@ -249,6 +258,7 @@ private:
     Block split(std::string_view line) const;
 
     nc::Format xyz_, ijk_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_;
+    nc::Format x_, z_, i_;  // the axis words' own formats (a lathe's diameter X)
     std::array<double, 3> pos_{};
     std::array<bool, 3> known_{};
     bool was_unknown_ = true;         // the next emitted rapid starts from an unknown position
@@ -256,6 +266,9 @@ private:
     bool at_top_ = false;             // Z is at the machine's safe height (unknown in work coordinates)
     double xy_uncertainty_ = 0.0;     // mm, grows along chains of nccad D-form arcs
     std::optional<DrillCycle> cycle_;
+    FeedMode feed_mode_ = FeedMode::per_minute;
+    std::optional<double> feed_per_rev_;  // mm/rev, the F word per revolution
+    nc::Format feed_rev_fmt_;
     std::vector<ReadEvent> out_;
     ReadResolution coarsest_;
 };

@@ -33,6 +33,24 @@ std::optional<DrillField> drill_field_named(std::string_view key) {
     return std::nullopt;
 }
 
+const TurnDrillFieldInfo* turn_field_of(DrillField f) {
+    for (const auto& t : turn_drill_fields)
+        if (t.field == f) return &t;
+    return nullptr;
+}
+
+std::optional<DrillField> turn_drill_field_named(std::string_view key) {
+    for (const auto& t : turn_drill_fields)
+        if (t.key == key) return t.field;
+    return std::nullopt;
+}
+
+std::vector<std::string> turn_drill_field_keys() {
+    std::vector<std::string> out;
+    for (const auto& t : turn_drill_fields) out.emplace_back(t.key);
+    return out;
+}
+
 std::vector<std::string> drill_field_keys() {
     std::vector<std::string> out;
     for (const auto& f : drill_fields) out.emplace_back(f.key);

@@ -42,6 +42,7 @@ std::optional<std::string> post(const Job& job, const Machine& machine) {
     o.program_name = job.name;
     auto p = make_post(machine, out, o);
     try {
+        check_machine_kind(job, machine.kind, machine.name);
         p->open();
         expand_job(job, *p);
         p->close();

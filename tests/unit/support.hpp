@@ -35,6 +35,7 @@ inline std::string post_program(const Job& job, const Machine& machine, bool sni
     o.warnings = warnings;
     o.work_offset = job.work_offset;
     o.program_number = job.program_number;
+    check_machine_kind(job, machine.kind, machine.name);
     auto post = make_post(machine, out, o);
     post->open();
     expand_job(job, *post);

@@ -143,6 +143,7 @@ void check_bores(const std::string& job_json, const std::vector<Vec2>& holes, do
     for (const auto& [name, description] : list_machines()) {
         CAPTURE(name);
         const Machine machine = load_machine(name);
+        if (machine.kind != MachineKind::mill) continue;  // a lathe refuses a mill job (tested with the lathes)
         std::string program;
         try {
             program = test::post_program(job, machine);

@@ -147,11 +147,13 @@ TEST_CASE("--stats, --plot and verify read every machine's programs; an unknown 
         CAPTURE(name);
         Machine m = load_machine(name);
         CHECK(has_reader(m.dialect));
-        std::string job = samples + "drilling.json";
+        // A mill drills the drilling sample's 25 holes, a lathe the shaft's two centre holes.
+        const bool lathe = m.kind == MachineKind::lathe;
+        std::string job = samples + (lathe ? "shaft.json" : "drilling.json");
         fs::path program = dir / ("drilling." + m.extension), svg = dir / (name + ".svg");
         Run r = run({job, "--machine", name, "-o", program.string(), "--stats", "--plot", svg.string()});
         CHECK(r.code == 0);
-        CHECK(has_line(r.err, "holes          25"));
+        CHECK(has_line(r.err, lathe ? "holes          2" : "holes          25"));
         CHECK(test::read_file(svg.string()).ends_with("</svg>\n"));
         Run v = run({"verify", program.string(), "--machine", name, "--job", job});
         CHECK(v.code == 0);
@@ -170,7 +172,7 @@ TEST_CASE("--stats, --plot and verify read every machine's programs; an unknown 
     std::ofstream(prog) << "%\n%\n";
     Run v = run({"verify", prog.string(), "--machine", acme.string()});
     CHECK(v.code == 1);
-    CHECK(v.err.find("camgen cannot read programs of dialect \"acme\" (machine acme) yet; it reads: iso, nccad, sinumerik, heidenhain") !=
+    CHECK(v.err.find("camgen cannot read programs of dialect \"acme\" (machine acme) yet; it reads: iso, iso-lathe, nccad, sinumerik, sinumerik-lathe, heidenhain") !=
           std::string::npos);
 }
 
@@ -220,8 +222,9 @@ TEST_CASE("backplot arcs turn the right way: a ccw arc is SVG sweep flag 0 (y po
 
 TEST_CASE("the backplots committed under samples/ are up to date") {
     // samples/<name>.svg is the wabeco backplot of samples/<name>.json, or the fanuc one where
-    // wabeco cannot run the job (tests/golden/wabeco/<name>.err); scripts/update-golden
-    // rewrites them. Every sample has one.
+    // wabeco cannot run the job (tests/golden/wabeco/<name>.err), or the linuxcnc-lathe one
+    // for a lathe job (tests/golden/fanuc/<name>.err too); scripts/update-golden rewrites them.
+    // Every sample has one.
     fs::path dir = test::scratch("verify-samples-svg");
     int plots = 0;
     for (const auto& f : fs::directory_iterator(CAMGEN_SOURCE_DIR "/samples")) {
@@ -232,8 +235,10 @@ TEST_CASE("the backplots committed under samples/ are up to date") {
         REQUIRE_MESSAGE(fs::exists(svg), "no backplot: run scripts/update-golden");
         std::string sample = f.path().stem().string();
         bool wabeco = !fs::exists(fs::path(CAMGEN_SOURCE_DIR "/tests/golden/wabeco") / (sample + ".err"));
+        bool fanuc = !fs::exists(fs::path(CAMGEN_SOURCE_DIR "/tests/golden/fanuc") / (sample + ".err"));
+        const std::string machine = wabeco ? "wabeco" : fanuc ? "fanuc" : "linuxcnc-lathe";
         fs::path fresh = dir / svg.filename();
-        REQUIRE(run({f.path().string(), "--machine", wabeco ? "wabeco" : "fanuc", "--plot", fresh.string()}).code == 0);
+        REQUIRE(run({f.path().string(), "--machine", machine, "--plot", fresh.string()}).code == 0);
         ++plots;
         CHECK(test::read_file(fresh.string()) == test::read_file(svg.string()));
     }

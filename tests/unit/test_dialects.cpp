@@ -27,9 +27,9 @@ TEST_CASE("every dialect of the registry has a post and a reader; an unknown one
     CHECK(!has_reader(m.dialect));
     std::ostringstream out;
     CHECK_THROWS_WITH_AS(make_post(m, out, {}),
-                         doctest::Contains("unknown dialect \"klingon\"; dialects: heidenhain, iso, nccad, sinumerik"),
+                         doctest::Contains("unknown dialect \"klingon\"; dialects: heidenhain, iso, iso-lathe, nccad, sinumerik, sinumerik-lathe"),
                          InputError);
-    CHECK_THROWS_WITH_AS(read_program("", m), doctest::Contains("it reads: iso, nccad, sinumerik, heidenhain"),
+    CHECK_THROWS_WITH_AS(read_program("", m), doctest::Contains("it reads: iso, iso-lathe, nccad, sinumerik, sinumerik-lathe, heidenhain"),
                          InputError);
 }
 

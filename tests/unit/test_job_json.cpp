@@ -486,7 +486,8 @@ TEST_CASE("operation errors: type, tool, unknown keys") {
     {"type": "mill", "tool": 1}
   ]
 })",
-                "/operations/1/type", 6, "\"mill\" is not one of \"drill\", \"contour\", \"path\" or \"bore-mill\"");
+                "/operations/1/type", 6,
+                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"bore-mill\", \"turn-drill\" or \"turn-profile\"");
     check_error(R"({
   "clearance": 5,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000}],

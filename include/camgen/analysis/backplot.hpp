@@ -13,9 +13,12 @@ namespace camgen {
 struct BackplotOptions {
     std::string title;    // the program's name ("plate.nc")
     std::string machine;  // the machine's name
+    MachineKind kind = MachineKind::mill;  // a lathe's program is drawn as an XZ half-section
 };
 
-// The SVG text. Deterministic: every number goes through one fixed formatter.
+// The SVG text. Deterministic: every number goes through one fixed formatter. A lathe's
+// program (options.kind) is drawn as a half-section: Z to the right, X (the radius) up, the
+// spindle axis at X0 - the profile, the drilled hole's pecks along the axis, rapids dashed.
 std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options);
 
 }  // namespace camgen

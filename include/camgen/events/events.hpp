@@ -16,8 +16,6 @@ namespace camgen {
 enum class SpindleState { cw, ccw, off };
 enum class CompensationSide { off, left, right };
 
-// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
-// is the operation's own tolerance for arcs that become lines (mm), if it has one.
 // The absolute heights of an operation that moves between them itself (a contour): the plane
 // it travels at, the stock top, and where rapid turns into feed.
 struct OperationPlanes {
@@ -27,12 +25,16 @@ struct OperationPlanes {
     friend bool operator==(const OperationPlanes&, const OperationPlanes&) = default;
 };
 
+// An operation begins. `path` is its JSON path ("/operations/2"), for messages. `tolerance`
+// is the operation's own tolerance for arcs that become lines (mm), if it has one.
+// `feed_mode` is how the program states its feeds (the events' feeds stay mm/min).
 struct OperationStart {
     std::string name;
     std::string path;
     std::optional<double> tolerance;
     std::vector<std::string> notes;  // what the operation decided that the job did not ask for
     std::optional<OperationPlanes> planes;
+    FeedMode feed_mode = FeedMode::per_minute;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };
 

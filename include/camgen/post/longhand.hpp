@@ -17,11 +17,12 @@ enum class BoreDwellFeedOut { to_safe, to_retract };
 // Motion settings of the control being emulated.
 struct LonghandOptions {
     double peck_clearance = 1.0;  // mm: G83 re-approach stop above the last peck; G73 back-off
+                                  // (where the cycle gives no peckClearance / peckingRetract)
     BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;
 };
 
-// The depths at which successive pecks end, from safe_z down to bottom_z: first depth,
-// degression by value or factor bounded below by minimum_depth. One entry (bottom_z) for
+// The depths at which successive pecks end, from safe_z down to bottom_z: first depth, then
+// subsequent depth or a degression by value or factor bounded below by minimum_depth. One entry (bottom_z) for
 // cycles without pecking. Throws InputError when the pecks could not reach the bottom.
 std::vector<double> peck_depths(const DrillCycle& cycle);
 

@@ -24,7 +24,8 @@ enum class FeedUnit { per_minute, tenth_mm_per_second };
 
 // How a canned cycle is written: the dialect's standard form, or LinuxCNC's rigid tapping
 // (G33.1 Z K: one synchronised move in and out, positioned with G0, no cancel code).
-enum class CannedStyle { standard, rigid_g33_1 };
+// Fanuc T's two-block end-face peck drilling (G74 R(e) / G74 Z Q F) is a style of its own.
+enum class CannedStyle { standard, rigid_g33_1, fanuc_g74 };
 
 // How the machine can tap: rigid (the control synchronises the spindle to the feed: Fanuc
 // M29 G84, LinuxCNC G33.1, Heidenhain 207, Sinumerik CYCLE84), floating (a floating tap holder
@@ -76,6 +77,7 @@ struct FrameSettings {
     std::vector<std::string> start_block;   // "G40", "G49", "G80", ...: before the unit word
     std::vector<std::string> work_offsets;  // "G54", "G59.1", "G54.1 P1": ranges expanded
     std::map<CoolantMode, std::string> coolant;  // the code of each coolant mode it has ("M8")
+    std::map<FeedMode, std::string> feed_modes;  // the code of each feed mode it has ("G95"); none: per minute only
     std::vector<std::string> safe_retract;  // the block that takes Z to the machine's safe height
                                             // ("G53", "G0", "Z0"); empty: the job's clearance
 };
@@ -85,6 +87,9 @@ struct Machine {
     std::string description;           // one line for --list-machines
     std::string dialect;               // the dialect code that writes for it: "iso", "nccad"
     std::string extension;             // suggested file extension, without dot
+    MachineKind kind = MachineKind::mill;  // machine file "kind": the operations it runs
+    bool x_diameter = false;           // CNC-Calc xDiameterProg (lathes): X words are diameters
+    bool i_diameter = false;           // CNC-Calc iDiameterProg (lathes): I words are diameters, where X is
     Units units = Units::mm;           // output units
     std::vector<Units> accepted_units = {Units::mm};  // the units the control has a mode for
     nc::BlockStyle block;
@@ -94,7 +99,8 @@ struct Machine {
     double tolerance = 0.002;          // mm (CNC-Calc tolerance): the arc tolerance. After rounding,
                                        // every arc block's start and end radii agree within it
     std::vector<std::string> notes;    // free text about the machine's choices, for --describe-machine
-    std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle"
+    std::map<std::string, nc::FormatSpec> formats;  // "xyz", "ijk", "feed", "rpm", "dwell", "angle";
+                                                    // "x", "z", "i" where an axis has its own
     FeedUnit feed_unit = FeedUnit::per_minute;
     MachineLimits limits;
     ArcSettings arcs;
@@ -106,7 +112,9 @@ struct Machine {
     nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
     std::string source;                // where it was read from, for messages
 
-    // The format named `key` for the output units, with the decimal mark applied.
+    // The format named `key` for the output units, with the decimal mark applied. The axis
+    // formats "x", "z" and "i" are the machine's own where it gives them, else "xyz" / "ijk";
+    // "x" doubles its values under xDiameterProg, "i" under xDiameterProg and iDiameterProg.
     nc::Format format(const std::string& key) const;
     // Whether the control has a mode for these units (a unit word the post writes).
     bool accepts(Units u) const;

@@ -195,7 +195,14 @@ private:
     PostOptions options_;
     nc::BlockWriter out_;
     nc::Format xyz_fmt_, ijk_fmt_, feed_fmt_, rpm_fmt_, dwell_fmt_, angle_fmt_, code_fmt_;
+    nc::Format x_fmt_, z_fmt_, i_fmt_;  // the axis words' own formats (a lathe's diameter X)
+    nc::Format feed_rev_fmt_;           // feeds per revolution
     nc::Word x_, y_, z_, feed_, motion_, plane_;
+    nc::Word feed_rev_;                        // F per revolution
+    FeedMode feed_mode_ = FeedMode::per_minute;  // how F is written now (the start block: per minute)
+    double spindle_rpm_ = 0.0;                 // the spindle speed now, for feeds per revolution
+    // Switches the feed mode to the operation's: the machine's code in a block of its own.
+    void select_feed_mode(FeedMode mode);
     Vec3 pos_;
     bool pos_known_ = false;
     std::optional<Compensation> pending_compensation_;  // written by the next feed move

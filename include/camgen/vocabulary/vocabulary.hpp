@@ -62,6 +62,33 @@ inline constexpr Named<Units> unit_names[] = {
     {Units::inch, "inch", "inches (lengths in in, feeds in in/min)"},
 };
 
+// What a machine is: a mill (the tool turns; XY positions, Z into the work) or a lathe (the
+// work turns; X is the distance from the spindle axis, Z runs along it). Operations are made
+// for one kind, and a machine of the other kind refuses them.
+enum class MachineKind { mill, lathe };
+inline constexpr Named<MachineKind> machine_kinds[] = {
+    {MachineKind::mill, "mill", "a milling machine: the tool turns, X and Y position it, Z feeds into the work"},
+    {MachineKind::lathe, "lathe", "a lathe: the work turns, X is the radius (written as a diameter where the control "
+                                  "programs diameters), Z runs along the spindle axis"},
+};
+
+// How feeds are given: per minute (ISO G94, Fanuc T G98) or per spindle revolution (ISO G95,
+// Fanuc T G99), as lathes feed. Events always carry mm/min; a post writes per revolution by
+// dividing by the spindle speed.
+enum class FeedMode { per_minute, per_revolution };
+inline constexpr Named<FeedMode> feed_modes[] = {
+    {FeedMode::per_minute, "per-minute", "feeds in mm/min (in/min)"},
+    {FeedMode::per_revolution, "per-revolution", "feeds in mm (in) per spindle revolution"},
+};
+
+// How a lathe job gives X: as the radius (the distance from the spindle axis) or as the
+// diameter, as drawings of turned parts do.
+enum class XValues { radius, diameter };
+inline constexpr Named<XValues> x_values[] = {
+    {XValues::radius, "radius", "X is the distance from the spindle axis"},
+    {XValues::diameter, "diameter", "X is the diameter (twice the distance from the spindle axis)"},
+};
+
 // Coolant: off, flood (ISO M8) or mist (ISO M7).
 enum class CoolantMode { off, flood, mist };
 inline constexpr Named<CoolantMode> coolant_modes[] = {
@@ -87,7 +114,7 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
     {SpindleDirection::ccw, "ccw", "counter-clockwise (M4)"},
 };
 
-enum class ToolType { drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill };
+enum class ToolType { drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, turning_tool };
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::drill, "drill", "drill"},
@@ -98,6 +125,7 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::boring_bar, "boring-bar", "boring bar"},
     {ToolType::end_mill, "end-mill", "end mill"},
     {ToolType::ball_mill, "ball-mill", "ball mill"},
+    {ToolType::turning_tool, "turning-tool", "turning tool"},
 };
 
 // Drilling cycle kinds, after the Fanuc/LinuxCNC canned cycles named in the descriptions.
@@ -192,8 +220,8 @@ inline constexpr Named<HoleOrder> hole_orders[] = {
 // safeDistance for controls whose cycle has no separate feed-start plane). A machine's
 // drilling table names the fields each canned cycle carries.
 enum class DrillField {
-    safe_distance, plunging_feedrate, retract_feedrate, first_depth, degression_type,
-    degression, minimum_depth, pecking_retract, first_feedrate_factor, pitch, tapping_speed,
+    safe_distance, plunging_feedrate, retract_feedrate, first_depth, subsequent_depth, degression_type,
+    degression, minimum_depth, pecking_retract, peck_clearance, first_feedrate_factor, pitch, tapping_speed,
     retract_speed, top_dwell, bottom_dwell
 };
 
@@ -236,6 +264,10 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      {}, std::nullopt, false, "", "", "feed out of the hole (default: rapid out, or plungingFeedrate where the cycle feeds out)"},
     {DrillField::first_depth, "firstDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, pecking_kinds,
      std::nullopt, false, "a peck depth must be > 0", "(the depth of a peck)", "depth of each peck (the first one when a degression applies)"},
+    {DrillField::subsequent_depth, "subsequentDepth", Quantity::length, Bound{0.0, false}, pecking_kinds, {},
+     std::nullopt, false, "a peck depth must be > 0", "",
+     "depth of every peck after the first (CNC-Calc turning's subsequentPecksDepths; default: firstDepth); not with a "
+     "degression"},
     {DrillField::degression_type, "degressionType", Quantity::choice, std::nullopt, pecking_kinds, {}, std::nullopt,
      false, "", "", "how pecks shrink: next = previous - degression (value) or previous x degression (factor)"},
     {DrillField::degression, "degression", Quantity::length, std::nullopt, pecking_kinds, {}, std::nullopt, false, "",
@@ -244,6 +276,9 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      false, "", "", "smallest peck once a degression applies; required with a degression"},
     {DrillField::pecking_retract, "peckingRetract", Quantity::length, Bound{0.0, false}, {CycleKind::chip_break}, {},
      std::nullopt, false, "", "", "how far the drill backs off between pecks to break the chip (default: the machine's peckClearance)"},
+    {DrillField::peck_clearance, "peckClearance", Quantity::length, Bound{0.0, false}, {CycleKind::deep}, {},
+     std::nullopt, false, "", "",
+     "where the rapid back into the hole turns to feed, above the previous peck (default: the machine's peckClearance)"},
     {DrillField::first_feedrate_factor, "firstFeedrateFactor", Quantity::factor, Bound{0.0, false}, pecking_kinds, {},
      1.0, false, "", "", "feed of the first peck = plungingFeedrate x factor"},
     {DrillField::pitch, "pitch", Quantity::length, Bound{0.0, false}, tapping_kinds, tapping_kinds, std::nullopt,
@@ -259,6 +294,36 @@ inline constexpr auto drill_fields = std::to_array<DrillFieldInfo>({
      CycleSet::all().without({CycleKind::drill}), {CycleKind::dwell, CycleKind::bore_dwell}, 0.0, false,
      "a dwell cannot be negative", "(seconds)", "dwell at the bottom of the hole"},
 });
+// One field of CNC-Calc's TurnDrillingFields (the parameters of onDrilling that a lathe's
+// drilling cycle may carry): its name in turn-drill operations and lathe machine files, and
+// the drilling field it is carried as (its quantity, bound and motion are that field's).
+struct TurnDrillFieldInfo {
+    std::string_view key;
+    DrillField field;
+    std::string_view description;
+};
+
+// The TurnDrillingFields, in CNC-Calc's order (its spellings evened out: subsequentPeckDepths,
+// peckRetract, lowerDwell). A turn-drill's feed-start plane (safeDistance) is always carried.
+inline constexpr auto turn_drill_fields = std::to_array<TurnDrillFieldInfo>({
+    {"plungingFeedrate", DrillField::plunging_feedrate, "feed into the hole"},
+    {"retractFeedrate", DrillField::retract_feedrate, "feed out of the hole (default: rapid out)"},
+    {"firstPeckDepth", DrillField::first_depth, "depth of the first peck; pecking when present"},
+    {"subsequentPeckDepths", DrillField::subsequent_depth, "depth of every later peck (default: firstPeckDepth)"},
+    {"peckClearance", DrillField::peck_clearance,
+     "full retract between pecks; the rapid back in turns to feed this far above the previous peck"},
+    {"peckRetract", DrillField::pecking_retract, "chip breaking: the drill backs off this far between pecks"},
+    {"upperDwell", DrillField::top_dwell, "dwell (s) at the feed-start plane before drilling (and before each deep peck)"},
+    {"lowerDwell", DrillField::bottom_dwell, "dwell (s) at the bottom of the hole"},
+    {"pitch", DrillField::pitch, "tapping on the axis: the thread lead; the feed is pitch x spindle speed"},
+});
+// The TurnDrillingFields row carried as drilling field `f`, if any.
+const TurnDrillFieldInfo* turn_field_of(DrillField f);
+// The drilling field of a TurnDrillingFields name ("firstPeckDepth"), if it is one.
+std::optional<DrillField> turn_drill_field_named(std::string_view key);
+// The TurnDrillingFields names, in table order.
+std::vector<std::string> turn_drill_field_keys();
+
 // How many drilling fields there are.
 inline constexpr std::size_t drill_field_count = drill_fields.size();
 

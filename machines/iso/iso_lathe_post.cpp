@@ -1,0 +1,127 @@
+// The ISO lathe dialect: the ISO post in the XZ plane; canned drilling on the spindle axis
+// under G17 (LinuxCNC) or in Fanuc T's G74; T0101 turret calls; G50 S / G97 S spindle.
+#include "machines/iso/iso_lathe_post.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+#include "camgen/common/json_util.hpp"
+
+namespace camgen {
+
+namespace iso {
+LatheMachine::LatheMachine(const Machine& machine) : iso_machine(machine) {
+    for (std::string_view key : lathe_setting_keys) {
+        const std::string k(key);
+        if (!iso_machine.dialect_settings.contains(k)) continue;
+        lathe_settings[k] = iso_machine.dialect_settings[k];
+        iso_machine.dialect_settings.erase(k);
+    }
+}
+}  // namespace iso
+
+IsoLathePost::IsoLathePost(const Machine& machine, std::ostream& out, PostOptions options)
+    : iso::LatheMachine(machine), IsoPost(iso_machine, out, std::move(options)) {
+    json::Source source{machine.source, json::LineMap{}};
+    json::Fields f(lathe_settings, "/settings", source);
+    drilling_plane_ = f.boolean("drillingPlane", true);
+    tool_call_ = f.choice<iso::LatheToolCall>("toolCall", {{"m6", iso::LatheToolCall::m6}, {"turret", iso::LatheToolCall::turret}},
+                                              iso::LatheToolCall::m6);
+    spindle_limit_ = f.boolean("spindleLimit", false);
+    if (spindle_limit_ && !(machine.limits.max_rpm > 0))
+        throw InputError("/settings/spindleLimit", "spindleLimit writes G50 S<maxRpm>: the machine needs limits.maxRpm", 0,
+                         machine.source);
+    if (machine.kind != MachineKind::lathe)
+        throw InputError("/dialect", "the iso-lathe dialect writes for lathes: set \"kind\": \"lathe\"", 0, machine.source);
+}
+
+void IsoLathePost::on_open() {
+    IsoPost::on_open();
+    const auto& b = machine().frame.start_block;
+    if (std::find(b.begin(), b.end(), "G18") != b.end()) assume_plane(18);
+}
+
+void IsoLathePost::on_tool_change(const ToolChange& tool) {
+    if (tool_call_ == iso::LatheToolCall::m6) {
+        IsoPost::on_tool_change(tool);
+        return;
+    }
+    // A turret: T<tool><offset>, the tool's own offset number; the offset holds its length.
+    if (tool.number > 99) fail("", fmt::format("tool {}: a turret call T0101 takes tools 1 to 99", tool.number));
+    if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
+    writer().add(fmt::format("T{:02}{:02}", tool.number, tool.number)).end();
+    length_offset_pending_ = false;
+}
+
+void IsoLathePost::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off || !spindle_limit_) {
+        IsoPost::on_spindle(s);
+        return;
+    }
+    // Fanuc T: the speed limit first (it also caps constant surface speed), then the speed in rpm.
+    if (!limit_written_) {
+        writer().add(g(iso::spindle_limit_code)).add(rpm_format().word("S", machine().limits.max_rpm)).end();
+        limit_written_ = true;
+    }
+    writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+}
+
+std::optional<std::string> IsoLathePost::canned_limit(const DrillCycle& c, const DrillingCycleSpec& spec) const {
+    // LinuxCNC's G83 and G73 (and Fanuc's G83) come back or back off by the control's own
+    // clearance: a job's other value cannot be written.
+    const double fixed = machine().peck_clearance;
+    auto differs = [&](DrillField f) {
+        auto v = c.values.get(f);
+        return v && std::abs(*v - fixed) > 1e-9;
+    };
+    if (c.kind == CycleKind::deep && differs(DrillField::peck_clearance))
+        return fmt::format("its peck clearance is the control's, {} mm", fixed);
+    if (c.kind == CycleKind::chip_break && spec.style != CannedStyle::fanuc_g74 && differs(DrillField::pecking_retract))
+        return fmt::format("its back-off is the control's, {} mm", fixed);
+    return std::nullopt;
+}
+
+void IsoLathePost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    IsoPost::on_drilling_header(c, spec);
+    // Under G18 a canned cycle drills along Y (LinuxCNC): the axial hole needs G17.
+    if (drilling_plane_ && spec.style != CannedStyle::fanuc_g74) writer().add(g(17)).end();
+}
+
+void IsoLathePost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
+    if (spec.style != CannedStyle::fanuc_g74) {
+        IsoPost::on_drilling_point(c, spec, at, first);
+        return;
+    }
+    // G74: from the start point (X0 at the feed-start Z) peck Q, back off R(e), on to Z; the
+    // control then returns to the start point. Q is unsigned, in least input increments.
+    on_rapid({at.x, at.y, position().z});
+    on_rapid({at.x, at.y, c.safe_z});
+    const DrillValues& p = c.values;
+    const double back_off = p.get(DrillField::pecking_retract).value_or(machine().peck_clearance);
+    writer().add(g(iso::face_peck_code)).add(xyz_format().word("R", back_off)).end();
+    nc::FormatSpec q = xyz_format().spec();
+    q.scale *= std::pow(10.0, q.decimals);
+    q.decimals = 0;
+    q.force_decimal = false;
+    writer().add(g(iso::face_peck_code)).add(force_z(c.bottom_z)).add(nc::Format(q).word("Q", *p.get(DrillField::first_depth)))
+        .add(feed_word(c.feed)).end();
+    assume_z(c.safe_z);
+    forget_motion();
+    on_rapid({at.x, at.y, c.retract_z});
+}
+
+bool IsoLathePost::writes_return_level() const {
+    for (const auto& [mode, code] : machine().frame.feed_modes)
+        if (code == "G98" || code == "G99") return false;
+    return true;
+}
+
+void IsoLathePost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    IsoPost::on_drilling_footer(c, spec);
+    if (drilling_plane_ && spec.style != CannedStyle::fanuc_g74) writer().add(g(18)).end();
+}
+
+}  // namespace camgen

@@ -1,0 +1,39 @@
+#include "machines/sinumerik/sinumerik_lathe_post.hpp"
+
+#include <algorithm>
+
+#include "camgen/common/error.hpp"
+
+namespace camgen {
+
+SinumerikLathePost::SinumerikLathePost(const Machine& machine, std::ostream& out, PostOptions options)
+    : SinumerikPost(machine, out, std::move(options)) {
+    if (machine.kind != MachineKind::lathe)
+        throw InputError("/dialect", "the sinumerik-lathe dialect writes for lathes: set \"kind\": \"lathe\"", 0,
+                         machine.source);
+}
+
+void SinumerikLathePost::on_open() {
+    SinumerikPost::on_open();
+    const auto& b = machine().frame.start_block;
+    if (std::find(b.begin(), b.end(), "G18") != b.end()) assume_plane(18);
+}
+
+std::optional<std::string> SinumerikLathePost::canned_limit(const DrillCycle& c, const DrillingCycleSpec& spec) const {
+    if (auto v = c.values.get(DrillField::peck_clearance); v && *v != machine().peck_clearance)
+        return "its _DIS1 is the machine's peck clearance, " + xyz_format().format(machine().peck_clearance) + " mm";
+    return SinumerikPost::canned_limit(c, spec);
+}
+
+void SinumerikLathePost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    // Under G18 the cycle would drill along Y: the axial hole is drilled under G17.
+    writer().add(g(17)).end();
+    SinumerikPost::on_drilling_header(c, spec);
+}
+
+void SinumerikLathePost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
+    SinumerikPost::on_drilling_footer(c, spec);
+    writer().add(g(18)).end();
+}
+
+}  // namespace camgen

@@ -1,0 +1,21 @@
+#pragma once
+// The Sinumerik lathe post (dialect "sinumerik-lathe"): the Sinumerik post in G18 (the start
+// block's DIAMON makes X a diameter), with axial drilling as Autodesk's Siemens mill-turn post
+// writes it: G17, MCALL CYCLE8x(...) at X0, MCALL, back to G18.
+#include "machines/sinumerik/sinumerik_post.hpp"
+
+namespace camgen {
+
+class SinumerikLathePost : public SinumerikPost {
+public:
+    SinumerikLathePost(const Machine& machine, std::ostream& out, PostOptions options);
+
+protected:
+    void on_open() override;
+    void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
+    // CYCLE83's full retract comes back by the machine's _DIS1: another peckClearance cannot be written.
+    std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
+};
+
+}  // namespace camgen
