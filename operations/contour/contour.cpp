@@ -173,6 +173,33 @@ double feed_of(Fields& f, const JobInput& in, std::string_view key, double fallb
 }
 
 
+// What camgen cuts must be what the offset promises: every arc on its circle, and (for
+// profiles of ordinary size) every segment's ends and middle at `distance` from the profile
+// or farther. A path that is not is refused rather than cut (a fuzz finding: an offset "arc"
+// whose end lay 49 mm from its centre on a radius-5 arc, the pocket's side missing).
+void check_offset(const Profile& path, const Profile& walk, double distance, const char* which, Fields& f) {
+    constexpr double slack = 1e-5;
+    const bool sample = path.segments.size() * walk.segments.size() <= 25'000'000;
+    Vec2 from = path.start;
+    for (std::size_t k = 0; k < path.segments.size(); ++k) {
+        const ProfileSegment& s = path.segments[k];
+        bool bad = false;
+        if (s.centre) bad = std::abs(len(sub(from, *s.centre)) - len(sub(s.end, *s.centre))) > slack;
+        if (!bad && sample) {
+            Profile one;
+            one.start = from;
+            one.segments.push_back(s);
+            for (double t : {0.0, 0.5, 1.0})
+                if (distance_to(walk, point_at(one, t * profile_length(one)).point) < distance - slack) bad = true;
+        }
+        if (bad)
+            f.fail("path", fmt::format("camgen could not offset this profile for the {} path (segment {} of its offset is wrong): "
+                                       "please report it; use compensation control or side on meanwhile",
+                                       which, k));
+        from = s.end;
+    }
+}
+
 // The walk direction, the offsets and the notes of an operation just read.
 void plan(ContourOp& op, Fields& f, const JobInput& in) {
     // Climb: the tool left of its travel with a clockwise spindle, right with a counter-clockwise one.
@@ -209,6 +236,7 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
             if (note.segment && *note.segment < n) where = op.element_paths[reversed_walk ? n - 1 - *note.segment : *note.segment];
             op.notes.push_back(fmt::format("{}: the {} path: {}", where, which, note.message));
         }
+        check_offset(r.profile, walk, distance, which, f);
         if (!r.others.empty())
             op.notes.push_back(fmt::format("the {} path falls apart into {} pieces where the tool does not fit; only the longest "
                                            "is cut",

@@ -401,3 +401,30 @@ TEST_CASE("contour: with control compensation a straight lead shorter than the t
     CHECK(p.text.find("X0 Y-5.5\n") != std::string::npos);  // the walk starts up the left side
     CHECK(p.text.find("G41 D4 Y0\n") != std::string::npos);
 }
+
+TEST_CASE("contour: a near-tangent pocket (fuzz finding) is cut at the tool radius everywhere, or refused; never cut wrong") {
+    // pocket-wall with its joints moved by up to 0.08 mm: the offset once lost the pocket's
+    // bottom side and wrote an "arc" whose end lay 49 mm from its centre.
+    const std::string job = R"({"clearance":15,"name":"pocket-wall","operations":[{"direction":"climb","endDepth":8,"feed":600,
+      "leadIn":{"angle":90,"length":4,"type":"line"},"leadOut":{"angle":90,"length":6.6875,"type":"line"},
+      "path":[{"line":[121.92,40]},{"arc":{"centre":[122,48],"direction":"ccw","end":[130,48]}},{"line":[130,72]},
+        {"arc":{"centre":[122,72],"direction":"ccw","end":[122,80]}},{"line":[78,80]},{"arc":{"centre":[78,72],"direction":"ccw","end":[70,72]}},
+        {"line":[70,48.006]},{"arc":{"centre":[78,48],"direction":"ccw","end":[78,40]}}],
+      "plungeFeed":150,"ramp":{"angle":3,"radius":2,"type":"helix"},"rampFeed":400,"retractPlane":5,"safeDistance":1,"side":"inside",
+      "start":[78,40],"stepDown":2,"tool":2,"type":"contour"}],
+      "tools":[{"diameter":6,"number":2,"rpm":6000,"type":"end-mill"}],"units":"mm"})";
+    try {
+        const Job j = read_job(job, "pw.json");
+        const Profile profile = profile_of(j);
+        double along = 0.0;
+        for (const Move& m : moves_of(expand_job(j)))
+            if (!m.rapid && m.movement == Movement::cutting)
+                for (const Vec3& p : samples_of(m)) {
+                    CHECK(distance_to(profile, {p.x, p.y}) == doctest::Approx(3.0).epsilon(1e-6));
+                    along += 0.05;
+                }
+        CHECK(along > 4 * 150);  // four passes around a 60 x 40 pocket
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("camgen could not offset this profile") != std::string::npos);
+    }
+}
