@@ -69,6 +69,8 @@ constexpr KeySpec arc_keys[] = {
 constexpr KeySpec finishing_keys[] = {
     {.key = "radialStock", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0", .description = "what the roughing passes leave on the wall for the finishing pass"},
     {.key = "axialStock", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0", .description = "what the roughing passes leave on the floor for the finishing pass"},
+    {.key = "stepDown", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "the finishing step: the most each finishing pass takes in depth (default: one pass at endDepth)"},
 };
 
 constexpr Named<Lead::Kind> lead_kinds[] = {
@@ -332,6 +334,10 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
             fin.fail("axialStock", fmt::format("axialStock {} is not less than the depth of the cut ({})", in.show(finishing.axial_stock),
                                                in.show(total_depth)));
         if (op.side == ContourSide::on && finishing.radial_stock > 0) fin.fail("radialStock", "side on leaves no stock on a wall");
+        finishing.step_down = in.optional_length(fin, "stepDown");
+        if (finishing.step_down && !(*finishing.step_down > 0)) fin.fail("stepDown", "stepDown must be > 0");
+        if (finishing.step_down && total_depth / *finishing.step_down > max_passes)
+            fin.fail("stepDown", fmt::format("stepDown {} makes more than {} passes", in.show(*finishing.step_down), max_passes));
         op.finishing = finishing;
     }
     op.lead_in = read_lead(f, in, "leadIn", tool.diameter);
@@ -429,7 +435,9 @@ public:
         const bool has_finish = !op_.finish.segments.empty();
         first_ = true;
         cut_run(op_.rough, closed, depths, Movement::cutting, op_.feeds.cutting, !has_finish);
-        if (has_finish) cut_run(op_.finish, closed, {z_.bottom_z}, Movement::finishing, op_.feeds.finishing, true);
+        if (has_finish)
+            cut_run(op_.finish, closed, pass_depths(z_.reference_z, z_.bottom_z, op_.finishing->step_down, op_.equal_steps),
+                    Movement::finishing, op_.feeds.finishing, true);
     }
 
 private:

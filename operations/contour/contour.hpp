@@ -68,10 +68,12 @@ struct Tabs {
 };
 
 // The finishing pass: after roughing that leaves `radial_stock` on the wall and
-// `axial_stock` on the floor, one pass at the full depth and the final offset.
+// `axial_stock` on the floor, the final offset at the full depth: in one pass, or in steps of
+// at most `step_down` (a tall wall finished in several depths).
 struct Finishing {
     double radial_stock = 0.0;
     double axial_stock = 0.0;
+    std::optional<double> step_down;
 };
 
 // The feeds of each movement kind, mm/min (CNC-Calc's getFeedrate(movement)).

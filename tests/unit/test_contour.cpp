@@ -428,3 +428,16 @@ TEST_CASE("contour: a near-tangent pocket (fuzz finding) is cut at the tool radi
         CHECK(std::string(e.what()).find("camgen could not offset this profile") != std::string::npos);
     }
 }
+
+TEST_CASE("contour: the finishing step finishes the wall in several depths") {
+    // 4 deep, roughing in one pass leaving 0.5 on the wall; finishing in steps of at most 1.5:
+    // three equal passes of 4/3 at the final offset.
+    const Job j = read_job(rectangle_job(R"("finishing": {"radialStock": 0.5, "stepDown": 1.5})"), "r.json");
+    std::set<long> finishing_levels;
+    for (const Move& m : moves_of(expand_job(j)))
+        if (!m.rapid && m.movement == Movement::finishing && std::abs(m.to.z - m.from.z) < 1e-9)
+            finishing_levels.insert(std::lround(m.to.z * 1e4));
+    CHECK(finishing_levels == std::set<long>{-13333, -26667, -40000});
+    CHECK_THROWS_WITH_AS(read_job(rectangle_job(R"("finishing": {"stepDown": 0})"), "r.json"),
+                         doctest::Contains("/operations/0/finishing/stepDown: stepDown must be > 0"), InputError);
+}
