@@ -88,6 +88,18 @@ Curve curve_of(const Profile& p, std::size_t index) {
     return k;
 }
 
+// Segment `index` as the curves a tool follows: its curve_of, and where an arc's given end is
+// off its circle (the radius is the start's; a drawing's joints are often a little off) the
+// arc ending on its circle and the short radial line from there to the given end, so that the
+// next segment starts where the pieces end and the offsets of neighbours meet.
+std::vector<Curve> curves_of(const Profile& p, std::size_t index) {
+    Curve k = curve_of(p, index);
+    if (!k.arc || distance(k.at(1.0), k.b) <= same_length) return {k};
+    const Vec2 given = k.b;
+    k.b = k.at(1.0);
+    return {k, line_curve(k.b, given)};
+}
+
 // The parameter of a point on k's support (the line or the whole circle): outside [0, 1] when
 // it is beyond the ends. An arc's angle is taken on the side of [0, 1] it is closer to.
 double parameter_of(const Curve& k, Vec2 p) {
@@ -244,10 +256,9 @@ struct Element {
 };
 std::vector<Element> elements_of(const Profile& p) {
     std::vector<Element> out;
-    for (std::size_t i = 0; i < p.segments.size(); ++i) {
-        const Curve k = curve_of(p, i);
-        if (k.length() > same_length) out.push_back({k, i, box_of(k)});
-    }
+    for (std::size_t i = 0; i < p.segments.size(); ++i)
+        for (const Curve& k : curves_of(p, i))
+            if (k.length() > same_length) out.push_back({k, i, box_of(k)});
     return out;
 }
 
@@ -433,7 +444,8 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
     const BoxGrid element_grid(element_boxes);
 
     std::vector<Kept> kept;
-    std::vector<bool> element_kept(elements.size(), false);
+    // Per input segment: an arc off its circle is two elements, and kept when either is.
+    std::vector<bool> segment_kept(profile.segments.size(), false);
     for (std::size_t i = 0; i < raw.size(); ++i) {
         const Curve& k = raw[i].curve;
         std::vector<double> ts{0.0, 1.0};
@@ -464,7 +476,9 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
             const Curve piece = part(k, cuts[j], cuts[j + 1]);
             const Vec2 mid = piece.at(0.5);
-            if (closer_than(elements, element_grid, mid, d - 1e-8)) continue;
+            // (the margin is far below what a near-tangent joint's pieces come closer: a turn
+            // of 1e-4 rad brings them d 1e-9 closer; rounding is some 1e-13 mm)
+            if (closer_than(elements, element_grid, mid, d - 1e-11)) continue;
             // Two walls exactly the tool's width apart: their offsets coincide, walked opposite
             // ways; the zero-width strip between them is no path.
             if (std::any_of(opposed.begin(), opposed.end(), [&](const Curve* o) {
@@ -473,13 +487,13 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
                 }))
                 continue;
             kept.push_back({i, cuts[j], cuts[j + 1], piece});
-            if (raw[i].element && piece.length() >= min_piece) element_kept[*raw[i].element] = true;
+            if (raw[i].element && piece.length() >= min_piece) segment_kept[elements[*raw[i].element].segment] = true;
         }
     }
 
     for (std::size_t i = 0; i < raw.size(); ++i) {
         const auto& e = raw[i].element;
-        if (!e || element_kept[*e]) continue;
+        if (!e || segment_kept[elements[*e].segment]) continue;
         const bool noted = std::any_of(result.notes.begin(), result.notes.end(), [&](const OffsetNote& n) {
             return n.segment == elements[*e].segment;
         });
@@ -494,10 +508,13 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         double length = 0.0;
         for (std::size_t i : c) length += kept[i].curve.length();
         if (length < chain_gap) continue;  // a crumb where pieces cross
-        Path p = path_of(c, kept, raw, elements, profile.plane, closed);
+        // Only a chain that comes round to its start has its end put on it: moving the end of
+        // a chain that does not would bend its last arc off its circle.
+        const bool comes_round = closed && distance(kept[c.back()].curve.b, kept[c.front()].curve.a) <= chain_gap;
+        Path p = path_of(c, kept, raw, elements, profile.plane, comes_round);
         // A closed path enclosing nothing is a slit where the tool exactly fits between two
         // sides: the region beyond the distance is empty there.
-        const bool slit = closed && enclosed_area(p.profile) < chain_gap * p.length;
+        const bool slit = comes_round && enclosed_area(p.profile) < chain_gap * p.length;
         if (p.length >= chain_gap && !p.profile.segments.empty() && !slit) paths.push_back(std::move(p));
     }
     if (paths.empty()) {
@@ -560,7 +577,8 @@ Profile sub_profile(const Profile& profile, double from, double to) {
 double distance_to(const Profile& profile, Vec2 p) {
     if (profile.segments.empty()) return distance(profile.start, p);
     double best = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < profile.segments.size(); ++i) best = std::min(best, distance_to_curve(curve_of(profile, i), p));
+    for (std::size_t i = 0; i < profile.segments.size(); ++i)
+        for (const Curve& k : curves_of(profile, i)) best = std::min(best, distance_to_curve(k, p));
     return best;
 }
 

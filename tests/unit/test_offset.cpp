@@ -124,6 +124,26 @@ Profile random_profile(std::uint32_t seed, int n) {
     return b.p;
 }
 
+// The profile with every joint (the start, which is also the end, and each segment's end)
+// moved by 0.001 to 0.01 mm in a direction drawn from a fixed sequence, arc centres kept: the
+// joints of a drawing slightly off tangent, arcs whose end is a little off their circle (their
+// radius is the start's).
+Profile nudged(const Profile& p, std::uint32_t seed) {
+    auto next = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return (seed >> 8) / double(1u << 24);  // [0, 1)
+    };
+    auto nudge = [&](Vec2 v) {
+        const double by = 0.001 + 0.009 * next(), a = 2 * pi * next();
+        return Vec2{v.x + by * std::cos(a), v.y + by * std::sin(a)};
+    };
+    Profile q = p;
+    q.start = nudge(p.start);
+    for (std::size_t i = 0; i + 1 < q.segments.size(); ++i) q.segments[i].end = nudge(q.segments[i].end);
+    q.segments.back().end = q.start;
+    return q;
+}
+
 // A comb: a base 10 high with `teeth` teeth `w` wide and 20 high, `gap` apart, ccw.
 Profile comb(int teeth, double w, double gap) {
     std::vector<Vec2> v{{0, 0}, {teeth * w + (teeth - 1) * gap, 0}};
@@ -213,7 +233,7 @@ void check_region(const Profile& profile, const OffsetResult& r, double d, Regio
 
 // All the properties of the offset of a closed profile to `region` by d.
 OffsetResult check_closed(const Profile& profile, double d, Region region) {
-    INFO("offset by " << d << (region == Region::inside ? " inside" : " outside"));
+    INFO("offset by " << d << std::string(region == Region::inside ? " inside" : " outside"));
     const OffsetResult r = offset_profile(profile, d, side_for(orientation(profile), region));
     check_at_distance(profile, r, d);
     for (const Profile& path : paths_of(r)) {
@@ -569,4 +589,45 @@ TEST_CASE("profile helpers: point and tangent at a length, sub-profiles split ex
     CHECK(side_for(Orientation::ccw, Region::inside) == OffsetSide::left);
     CHECK(side_for(Orientation::cw, Region::outside) == OffsetSide::left);
     CHECK(side_for(Orientation::cw, Region::inside) == OffsetSide::right);
+}
+
+TEST_CASE("offset: a fuzzed pocket wall with slightly non-tangent joints (fuzz: an arc off its circle, a side missing)") {
+    const auto ccw = ArcDirection::ccw;
+    Builder b({78, 40});
+    b.line({121.92, 40}).arc({130, 48}, {122, 48}, ccw).line({130, 72}).arc({122, 80}, {122, 72}, ccw);
+    b.line({78, 80}).arc({70, 72}, {78, 72}, ccw).line({70, 48.006}).arc({78, 40}, {78, 48}, ccw);
+    check_closed(b.p, 3.0, Region::inside);
+}
+
+TEST_CASE("offset: rounded rectangles and slots with joints nudged off tangent by 0.001 to 0.01 mm, both sides") {
+    struct Shape {
+        std::string name;
+        Profile profile;
+        double radius;  // its arcs'
+    };
+    const std::vector<Shape> shapes{
+        {"pocket R8", rectangle(60, 40, 8), 8}, {"plate R10", rectangle(200, 120, 10), 10}, {"R3 corners", rectangle(50, 30, 3), 3}, {"slot", slot(30, 6), 6}};
+    int arcs_off = 0;
+    for (const auto& [name, shape, radius] : shapes)
+        for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+            const Profile p = nudged(seed % 2 ? shape : reversed(shape), seed * 7919u);
+            for (std::size_t i = 0; i < p.segments.size(); ++i) {
+                const ProfileSegment& s = p.segments[i];
+                const Vec2 from = i == 0 ? p.start : p.segments[i - 1].end;
+                if (s.centre && std::abs(std::hypot(s.end.x - s.centre->x, s.end.y - s.centre->y) -
+                                         std::hypot(from.x - s.centre->x, from.y - s.centre->y)) > 1e-4)
+                    ++arcs_off;
+            }
+            for (double d : {1.0, 3.0, 6.0})
+                for (Region region : {Region::outside, Region::inside}) {
+                    INFO(name << " seed " << seed);
+                    const OffsetResult r = check_closed(p, d, region);
+                    CHECK(r.others.empty());  // nothing here is narrower than the tool
+                    // An arc off its circle is two pieces, not two segments that vanish (inside,
+                    // arcs tighter than the tool do vanish).
+                    if (region == Region::outside || d < radius - 0.1)
+                        CHECK_FALSE(std::any_of(r.notes.begin(), r.notes.end(), [](const OffsetNote& n) { return n.kind == OffsetNoteKind::element_removed; }));
+                }
+        }
+    CHECK(arcs_off > 40);  // the family has what it is for: arcs whose ends are off their circles
 }

@@ -58,7 +58,9 @@ struct OffsetResult {
 // meet, loops cut away where the offset would cross itself, so that every point is at exactly
 // `distance` from the profile (within 1e-6 mm) and none closer. A closed profile gives closed
 // simple paths; an open one its one-sided offset, from the start's offset to the end's where
-// those are not cut away. Zero-length segments are passed over; a distance <= 0 gives the
+// those are not cut away. An arc whose given end is off its circle (its radius is the start's,
+// as resolve_arc) counts as the arc to its circle's end and a line on to the given end (a
+// drawing's slightly non-tangent joints). Zero-length segments are passed over; a distance <= 0 gives the
 // profile itself. Cost: about the number of segments times those within 2 distance of each.
 OffsetResult offset_profile(const Profile& profile, double distance, OffsetSide side);
 
