@@ -271,9 +271,12 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
         for (const auto& [key, path] : swept) {
             const double z = key.second / 100.0;
             const double depth = key.second == ramp_level ? 0.0 : highest > lowest ? (highest - z) / (highest - lowest) : 1.0;
-            body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" "
+            // Seen from above a mill's cutter is a circle: the band ends round. In a lathe's
+            // half-section a drill on the axis cuts to its end and no farther: square ends.
+            body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"{}\" "
                                  "stroke-linejoin=\"round\" stroke-opacity=\"{}\"/>",
-                                 path, colour_of(key.first), n(diameter[key.first] * v.scale), n(0.08 + 0.17 * depth)));
+                                 path, colour_of(key.first), n(diameter[key.first] * v.scale),
+                                 options.kind == MachineKind::lathe ? "butt" : "round", n(0.08 + 0.17 * depth)));
         }
     }
 
