@@ -73,6 +73,20 @@ constexpr KeySpec line_keys[] = {
      .description = "holes, evenly spaced including both ends"},
 };
 
+void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patterns);
+
+// The holes of a list read straight into numbers: each [x, y] is already two numbers, so only
+// the range of a length is checked, and a hole's path is made only for its message.
+void read_packed_holes(const json::PackedArray& packed, Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
+    in.claim_holes(static_cast<double>(packed.size()), f, "holes");
+    holes.reserve(holes.size() + packed.size());
+    const std::string base = f.path_of("holes");
+    for (std::size_t i = 0; i < packed.size(); ++i) {
+        auto path = [&](int k) { return [&, k] { return fmt::format("{}/{}/{}", base, i, k); }; };
+        holes.push_back({in.packed_coordinate(packed.x(i), path(0)), in.packed_coordinate(packed.y(i), path(1))});
+    }
+}
+
 // The holes of the list are read at once (the document holds them already); the patterns are
 // counted now and made later (make_pending_holes), once the whole job's count is known.
 void read_holes(Fields& f, const JobInput& in, std::string_view op_type, std::vector<Vec2>& holes,
@@ -84,6 +98,10 @@ void read_holes(Fields& f, const JobInput& in, std::string_view op_type, std::ve
                                op_type));
 
     if (f.has("holes")) {
+        if (const json::PackedArray* packed = in.packed(f.required("holes"))) {
+            read_packed_holes(*packed, f, in, holes);
+            return read_patterns(f, in, patterns);
+        }
         const Json& list = in.array(f, "holes");
         const std::string base = f.path_of("holes");
         in.claim_holes(static_cast<double>(list.size()), f, "holes");
@@ -104,7 +122,11 @@ void read_holes(Fields& f, const JobInput& in, std::string_view op_type, std::ve
         }
         if (holes.empty()) f.fail("holes", fmt::format("holes is empty: a {} operation needs at least one hole", op_type));
     }
+    read_patterns(f, in, patterns);
+}
 
+// The hole patterns (grid, boltCircle, line) of a hole source.
+void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patterns) {
     if (const Json* value = f.member("grid")) {
         Fields g(*value, f.path_of("grid"), in.source());
         JobInput::known_keys(g, grid_keys);

@@ -111,13 +111,11 @@ double len(Vec2 a) { return std::hypot(a.x, a.y); }
 Vec2 left_normal(Vec2 t) { return {-t.y, t.x}; }
 Vec2 rotate(Vec2 v, double a) { return {v.x * std::cos(a) - v.y * std::sin(a), v.x * std::sin(a) + v.y * std::cos(a)}; }
 
-Profile read_profile(Fields& f, const JobInput& in, std::vector<std::string>& paths) {
-    Profile p;
-    p.start = in.point(f, "start");
+// The elements of a profile as JSON (lines and arcs).
+void read_elements(Fields& f, const JobInput& in, const std::string& base, Profile& p) {
     const Json& elements = in.array(f, "path");
     if (elements.empty()) f.fail("path", "a contour needs at least one line or arc");
     in.claim_path_elements(static_cast<double>(elements.size()), f, "path");
-    const std::string base = f.path_of("path");
     Vec2 at = p.start;
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
@@ -139,11 +137,35 @@ Profile read_profile(Fields& f, const JobInput& in, std::vector<std::string>& pa
             if (r0 < min_segment) a.fail("centre", "the centre is the arc's start: an arc needs a radius");
         }
         p.segments.push_back(s);
-        paths.push_back(path);
         at = s.end;
     }
+}
+
+// The lines of a profile read straight into numbers ({"line": [x, y]} each, see PackedArray).
+void read_packed_lines(const json::PackedArray& packed, const std::string& base, const JobInput& in, Profile& p) {
+    p.segments.reserve(packed.size());
+    for (std::size_t k = 0; k < packed.size(); ++k) {
+        auto line_path = [&] { return fmt::format("{}/{}/line", base, k); };
+        if (packed.has_z(k)) json::fail(in.source(), line_path(), "expected a point [x, y], got an array");
+        ProfileSegment s;
+        s.end = {in.packed_coordinate(packed.x(k), [&] { return line_path() + "/0"; }),
+                 in.packed_coordinate(packed.y(k), [&] { return line_path() + "/1"; })};
+        p.segments.push_back(s);
+    }
+}
+
+Profile read_profile(Fields& f, const JobInput& in) {
+    Profile p;
+    p.start = in.point(f, "start");
+    const std::string base = f.path_of("path");
+    if (const json::PackedArray* packed = in.packed(f.required("path"))) {
+        in.claim_path_elements(static_cast<double>(packed->size()), f, "path");
+        read_packed_lines(*packed, base, in, p);
+    } else {
+        read_elements(f, in, base, p);
+    }
     if (auto k = first_short_segment(p, min_segment))
-        json::fail(in.source(), paths[*k], fmt::format("this element is shorter than {} mm: remove it", min_segment));
+        json::fail(in.source(), base + "/" + std::to_string(*k), fmt::format("this element is shorter than {} mm: remove it", min_segment));
     if (!is_simple(p))
         f.fail("path", is_closed(p) ? "the profile crosses or touches itself" : "the open profile crosses or touches itself");
     return p;
@@ -235,7 +257,7 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
                                        in.show(op.tool_radius), op.side == ContourSide::inside ? "inside" : "beside"));
         for (const OffsetNote& note : r.notes) {
             std::string where = op.path + "/path";
-            if (note.segment && *note.segment < n) where = op.element_paths[reversed_walk ? n - 1 - *note.segment : *note.segment];
+            if (note.segment && *note.segment < n) where = op.element_path(reversed_walk ? n - 1 - *note.segment : *note.segment);
             op.notes.push_back(fmt::format("{}: the {} path: {}", where, which, note.message));
         }
         check_offset(r.profile, walk, distance, which, f);
@@ -298,7 +320,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     op.tool_radius = tool.diameter / 2;
     op.spindle = tool.direction;
     op.heights = read_heights(f, in, "pass");
-    op.profile = read_profile(f, in, op.element_paths);
+    op.profile = read_profile(f, in);
     const bool closed = is_closed(op.profile);
 
     op.side = f.choice("side", contour_sides, ContourSide::outside);

@@ -93,12 +93,13 @@ struct ContourOp {
     // The objects of its input, for the JSON Schema: the operation ("contour") first.
     static std::vector<ObjectSpec> objects();
     std::string path;
+    // The JSON path of segment k, for messages.
+    std::string element_path(std::size_t k) const { return path + "/path/" + std::to_string(k); }
     std::string comment;
     int tool = 0;
     double tool_radius = 0.0;
     Heights heights;
     Profile profile;                         // as drawn, XY
-    std::vector<std::string> element_paths;  // JSON path of each segment, for messages
     ContourSide side = ContourSide::outside;
     CutDirection direction = CutDirection::climb;
     SpindleDirection spindle = SpindleDirection::cw;

@@ -194,15 +194,31 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
     if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
     op.start = in.point(f, "start");
 
+    const std::string base = f.path_of("path");
+    auto above_clearance = [&](double z, const char* what) {
+        return fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, in.show(z),
+                           in.show(in.header().clearance));
+    };
+    if (const json::PackedArray* packed = in.packed(f.required("path"))) {
+        // Lines read straight into numbers ({"line": [x, y(, z)]} each, see PackedArray).
+        in.claim_path_elements(static_cast<double>(packed->size()), f, "path");
+        op.elements.reserve(packed->size());
+        for (std::size_t k = 0; k < packed->size(); ++k) {
+            auto line_path = [&] { return fmt::format("{}/{}/line", base, k); };
+            Vec3 end{in.packed_coordinate(packed->x(k), [&] { return line_path() + "/0"; }),
+                     in.packed_coordinate(packed->y(k), [&] { return line_path() + "/1"; }), op.z};
+            if (packed->has_z(k)) end.z = in.packed_coordinate(packed->z(k), [&] { return line_path() + "/2"; });
+            if (end.z >= in.header().clearance) json::fail(in.source(), line_path(), above_clearance(end.z, "the line's end"));
+            op.elements.emplace_back(PathLine{end});
+        }
+        return op;
+    }
     const Json& elements = in.array(f, "path");
     if (elements.empty()) f.fail("path", "a path needs at least one element");
     in.claim_path_elements(static_cast<double>(elements.size()), f, "path");
-    const std::string base = f.path_of("path");
     Vec3 current{op.start.x, op.start.y, op.z};
     auto below_clearance = [&](Fields& at, std::string_view key, double z, const char* what) {
-        if (z >= in.header().clearance)
-            at.fail(key, fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, in.show(z),
-                                     in.show(in.header().clearance)));
+        if (z >= in.header().clearance) at.fail(key, above_clearance(z, what));
     };
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
@@ -226,7 +242,6 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
             op.elements.emplace_back(helix);
             current.z = helix.end_z;
         }
-        op.element_paths.push_back(path);
     }
     return op;
 }

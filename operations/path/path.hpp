@@ -51,11 +51,12 @@ struct PathOp {
     // The objects of its input, for the JSON Schema: the operation ("contour") first.
     static std::vector<ObjectSpec> objects();
     std::string path;
+    // The JSON path of element k, for messages.
+    std::string element_path(std::size_t k) const { return path + "/path/" + std::to_string(k); }
     std::string comment;
     int tool = 0;
     Vec2 start;
     std::vector<PathElement> elements;
-    std::vector<std::string> element_paths;  // JSON path of each element, for messages
     double z = 0.0;                      // absolute Z of the start (and of [x, y] points): the job's "z"
     double feed = 0.0;                   // mm/min
     std::optional<double> plunge_feed;   // mm/min; absent: feed

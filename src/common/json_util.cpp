@@ -300,15 +300,16 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 }  // namespace
 
-LineMap::LineMap(std::string_view text) {
+int LineMap::line_of(std::string_view pointer) const {
     // Kept in document order: building stays O(n); lookups (only made for error messages)
     // are a linear search.
-    Scanner(text).run(
-        [this](std::string_view pointer, int line) { entries_.emplace_back(pointer, line); },
-        [](std::string_view, int) {}, false);
-}
-
-int LineMap::line_of(std::string_view pointer) const {
+    if (!scanned_) {
+        scanned_ = true;
+        if (!text_.empty())
+            Scanner(text_).run(
+                [this](std::string_view p, int line) { entries_.emplace_back(p, line); },
+                [](std::string_view, int) {}, false);
+    }
     for (const auto& [p, line] : entries_)
         if (p == pointer) return line;
     return 0;
@@ -337,16 +338,219 @@ std::optional<std::size_t> too_deep_at(std::string_view text, int max_nesting) {
 }
 }  // namespace
 
-nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting) {
+namespace {
+
+using Json = nlohmann::json;
+
+// Placeholder of a packed array in the document: a binary value (which JSON text never
+// makes) of this subtype, holding the array's index.
+constexpr std::uint8_t packed_subtype = 0x63;
+
+// How a number was written, kept for each packed number.
+enum NumberKind : std::uint8_t { float_number, integer_number, unsigned_number };
+
+// Builds the document from nlohmann's SAX events as its own DOM parser does, and besides
+// - notes a key that an object already has (nlohmann would keep the last silently);
+// - packs the arrays PackedArray describes as they are read, without a value per number: an
+//   element that does not fit unpacks the array (its elements so far and the one begun) into
+//   the document, which then reads on as usual.
+class DocumentBuilder {
+public:
+    DocumentBuilder(Document& doc, bool pack) : doc_(doc), pack_(pack) {}
+    bool duplicate() const { return duplicate_; }
+
+    bool null() { return plain([&] { add(nullptr); }); }
+    bool boolean(bool v) { return plain([&] { add(v); }); }
+    bool number_integer(Json::number_integer_t v) {
+        return number(static_cast<double>(v), integer_number) || plain([&] { add(v); });
+    }
+    bool number_unsigned(Json::number_unsigned_t v) {
+        return number(static_cast<double>(v), unsigned_number) || plain([&] { add(v); });
+    }
+    bool number_float(Json::number_float_t v, const Json::string_t&) {
+        return number(v, float_number) || plain([&] { add(v); });
+    }
+    bool string(Json::string_t& v) { return plain([&] { add(std::move(v)); }); }
+    bool binary(Json::binary_t& v) { return plain([&] { add(std::move(v)); }); }
+
+    bool start_object(std::size_t) {
+        if (stage_ == Stage::element && packed_.form == PackedArray::Form::lines) {
+            stage_ = Stage::object;
+            return true;
+        }
+        return plain([&] { open(Json::value_t::object); });
+    }
+    bool key(Json::string_t& k) {
+        if (stage_ == Stage::object && k == "line") {
+            stage_ = Stage::line;
+            return true;
+        }
+        unpack();
+        auto& members = stack_.back()->get_ref<Json::object_t&>();
+        auto [it, inserted] = members.emplace(k, nullptr);
+        if (!inserted) {
+            duplicate_ = true;
+            it->second = nullptr;
+        }
+        member_ = &it->second;
+        next_packs_ = !pack_ ? Next::none : k == "holes" ? Next::points : k == "path" ? Next::lines : Next::none;
+        return true;
+    }
+    bool end_object() {
+        if (stage_ == Stage::closing) {
+            commit_element();
+            stage_ = Stage::element;
+            return true;
+        }
+        unpack();
+        stack_.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) {
+        if ((stage_ == Stage::element && packed_.form == PackedArray::Form::points) || stage_ == Stage::line) {
+            stage_ = Stage::numbers;
+            count_ = 0;
+            return true;
+        }
+        unpack();
+        const Next next = !stack_.empty() && stack_.back()->is_object() ? next_packs_ : Next::none;
+        open(Json::value_t::array);
+        if (next != Next::none) {
+            stage_ = Stage::element;
+            packed_ = PackedArray{};
+            packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
+        }
+        return true;
+    }
+    bool end_array() {
+        if (stage_ == Stage::numbers && (count_ == 2 || (count_ == 3 && packed_.form == PackedArray::Form::lines))) {
+            if (packed_.form == PackedArray::Form::lines) {
+                stage_ = Stage::closing;  // the element is complete when its object closes
+                return true;
+            }
+            commit_element();
+            stage_ = Stage::element;
+            return true;
+        }
+        if (stage_ == Stage::element) {
+            stage_ = Stage::none;
+            if (packed_.size() > 0) {
+                const auto index = static_cast<std::uint32_t>(doc_.packed.size());
+                *stack_.back() = Json::binary({static_cast<std::uint8_t>(index), static_cast<std::uint8_t>(index >> 8),
+                                               static_cast<std::uint8_t>(index >> 16), static_cast<std::uint8_t>(index >> 24)},
+                                              packed_subtype);
+                doc_.packed.push_back(std::move(packed_));
+            }
+            stack_.pop_back();
+            return true;
+        }
+        unpack();
+        stack_.pop_back();
+        return true;
+    }
+
+    template <class Exception>
+    bool parse_error(std::size_t, const std::string&, const Exception& ex) {
+        throw ex;
+    }
+
+private:
+    // Where a packed array is: none (not in one), between its elements, in a line element's
+    // object before its key, after the "line" key, in an element's numbers, after a line
+    // element's numbers (before the object closes).
+    enum class Stage { none, element, object, line, numbers, closing };
+    enum class Next { none, points, lines };
+
+    // An event that no packed array takes: unpack, then do it.
+    template <class Do>
+    bool plain(Do&& action) {
+        unpack();
+        action();
+        return true;
+    }
+
+    // Adds the element read (numbers_) to the packed array.
+    void commit_element() {
+        for (int i = 0; i < 3; ++i) {
+            packed_.xyz.push_back(i < count_ ? numbers_[i] : std::numeric_limits<double>::quiet_NaN());
+            packed_.kinds.push_back(i < count_ ? kinds_[i] : float_number);
+        }
+    }
+
+    // A number for the element being packed; false when it does not fit (then unpacked).
+    bool number(double v, NumberKind kind) {
+        if (stage_ == Stage::numbers && count_ < 3 && std::abs(v) <= 1e9) {
+            numbers_[count_] = v;
+            kinds_[count_++] = kind;
+            return true;
+        }
+        unpack();
+        return false;
+    }
+
+    Json* add(Json value) {
+        if (stack_.empty()) {
+            doc_.root = std::move(value);
+            return &doc_.root;
+        }
+        if (stack_.back()->is_array()) {
+            auto& items = stack_.back()->get_ref<Json::array_t&>();
+            items.push_back(std::move(value));
+            return &items.back();
+        }
+        *member_ = std::move(value);
+        return member_;
+    }
+    void open(Json::value_t type) { stack_.push_back(add(Json(type))); }
+
+    // Puts the packed elements into the document array and replays the element begun.
+    void unpack() {
+        if (stage_ == Stage::none) return;
+        const Stage stage = stage_;
+        stage_ = Stage::none;
+        *stack_.back() = packed_.to_json();
+        const bool lines = packed_.form == PackedArray::Form::lines;
+        if (stage == Stage::element) return;
+        if (lines) {
+            open(Json::value_t::object);
+            if (stage == Stage::object) return;
+            Json::string_t line = "line";
+            key(line);
+            if (stage == Stage::line) return;
+        }
+        open(Json::value_t::array);
+        for (int i = 0; i < count_; ++i) {
+            if (kinds_[i] == float_number) add(numbers_[i]);
+            else if (kinds_[i] == integer_number) add(static_cast<Json::number_integer_t>(numbers_[i]));
+            else add(static_cast<Json::number_unsigned_t>(numbers_[i]));
+        }
+        if (stage == Stage::closing) stack_.pop_back();
+    }
+
+    Document& doc_;
+    bool pack_;
+    std::vector<Json*> stack_;
+    Json* member_ = nullptr;
+    bool duplicate_ = false;
+    Next next_packs_ = Next::none;
+    Stage stage_ = Stage::none;
+    PackedArray packed_;
+    double numbers_[3] = {};
+    NumberKind kinds_[3] = {};
+    int count_ = 0;
+};
+
+// Reads `text` into `doc`; see parse.
+void parse_into(Document& doc, std::string_view text, const std::string& source_name, int max_nesting, bool pack) {
     if (const auto at = too_deep_at(text, max_nesting)) {
         const auto [line, column] = line_column(text, *at);
         throw InputError("", fmt::format("line {}, column {}: arrays and objects nested deeper than {} levels", line,
                                          column, max_nesting),
                          line, source_name);
     }
-    nlohmann::json value;
+    DocumentBuilder builder(doc, pack);
     try {
-        value = nlohmann::json::parse(text, nullptr, true, false);
+        Json::sax_parse(text, &builder, Json::input_format_t::json, true, false);
     } catch (const nlohmann::json::parse_error& e) {
         std::size_t index = e.byte > 0 ? e.byte - 1 : 0;
         const auto nan_at = nan_or_infinity_at(text, index);
@@ -378,13 +582,53 @@ nlohmann::json parse(std::string_view text, const std::string& source_name, int 
                          line, source_name);
     }
     // nlohmann keeps the last of two equal keys silently; a typo'd copy would go unnoticed.
-    Scanner(text).run([](std::string_view, int) {},
-                      [&](std::string_view pointer, int line) {
-                          throw InputError(std::string(pointer), "duplicate key", line,
-                                           source_name);
-                      },
-                      true);
-    return value;
+    // The scan that finds the first one's pointer and line runs only when there is one.
+    if (builder.duplicate())
+        Scanner(text).run([](std::string_view, int) {},
+                          [&](std::string_view pointer, int line) {
+                              throw InputError(std::string(pointer), "duplicate key", line, source_name);
+                          },
+                          true);
+}
+
+}  // namespace
+
+nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting) {
+    Document doc;
+    parse_into(doc, text, source_name, max_nesting, false);
+    return std::move(doc.root);
+}
+
+Document parse_document(std::string_view text, const std::string& source_name, int max_nesting) {
+    Document doc;
+    parse_into(doc, text, source_name, max_nesting, true);
+    return doc;
+}
+
+nlohmann::json PackedArray::to_json() const {
+    Json items = Json::array();
+    auto& list = items.get_ref<Json::array_t&>();
+    list.reserve(size());
+    for (std::size_t i = 0; i < size(); ++i) {
+        Json point = Json::array();
+        for (std::size_t k = 0; k < (has_z(i) ? 3u : 2u); ++k) {
+            const double v = xyz[3 * i + k];
+            if (kinds[3 * i + k] == float_number) point.push_back(v);
+            else if (kinds[3 * i + k] == integer_number) point.push_back(static_cast<Json::number_integer_t>(v));
+            else point.push_back(static_cast<Json::number_unsigned_t>(v));
+        }
+        if (form == Form::lines) list.push_back(Json{{"line", std::move(point)}});
+        else list.push_back(std::move(point));
+    }
+    return items;
+}
+
+const PackedArray* Document::packed_at(const nlohmann::json& value) const {
+    if (!value.is_binary()) return nullptr;
+    const auto& bytes = value.get_binary();
+    if (!bytes.has_subtype() || bytes.subtype() != packed_subtype || bytes.size() != 4) return nullptr;
+    const std::uint32_t index = bytes[0] | (bytes[1] << 8) | (bytes[2] << 16) | (static_cast<std::uint32_t>(bytes[3]) << 24);
+    return index < packed.size() ? &packed[index] : nullptr;
 }
 
 std::string pointer_escape(std::string_view key) {

@@ -69,7 +69,8 @@ std::vector<ObjectSpec> JobInput::objects() {
 }
 
 JobInput::JobInput(std::string_view text, const std::string& source_name, JobLimits limits)
-    : limits_(limits), root_(json::parse(text, source_name, limits.nesting)), source_{source_name, json::LineMap(text)} {}
+    : limits_(limits), doc_(json::parse_document(text, source_name, limits.nesting)),
+      source_{source_name, json::LineMap(text)} {}
 
 namespace {
 // Draws `count` from a budget of `limit`, or fails naming what would be too many.
@@ -104,7 +105,7 @@ std::string JobInput::describe(const Json& value) {
 void JobInput::known_keys(Fields& f, std::span<const KeySpec> table) { f.finish(table); }
 
 JobInput::Fields JobInput::read_header() {
-    Fields top(root_, "", source_);
+    Fields top(doc_.root, "", source_);
     known_keys(top, job_keys);
     top.optional_string("$schema");
     if (auto name = top.optional_string("name")) header_.name = *name;
@@ -199,6 +200,7 @@ Vec3 JobInput::point3(const Json& value, const std::string& path, double z) cons
 
 const JobInput::Json& JobInput::array(Fields& f, std::string_view key) const {
     const Json& value = f.required(key);
+    if (const json::PackedArray* packed = doc_.packed_at(value)) const_cast<Json&>(value) = packed->to_json();
     if (!value.is_array()) f.fail(key, "expected an array, got " + describe(value));
     return value;
 }

@@ -27,8 +27,13 @@ void SafetyCheck::fail(const std::string& key, const std::string& detail) const 
 }
 
 std::optional<double> SafetyCheck::drilled_to(Vec2 at) const {
-    if (auto it = holes_.find(key_of(at)); it != holes_.end()) return it->second;
-    return std::nullopt;
+    const auto key = key_of(at);
+    if (last_hole_ && key == last_key_) return *last_hole_;
+    const auto it = holes_.find(key);
+    if (it == holes_.end()) return std::nullopt;
+    last_key_ = key;
+    last_hole_ = const_cast<double*>(&it->second);
+    return it->second;
 }
 
 void SafetyCheck::move(const Vec3& to, bool feed) {
@@ -53,8 +58,11 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
             // Down below the retract plane: only the final approach to the feed-start plane, or
             // back into a hole already drilled at least that deep.
             const bool approach = (cycle_ && to.z >= cycle_->safe_z - eps) || (op_safe_z_ && to.z >= *op_safe_z_ - eps);
-            const std::optional<double> hole = drilled_to(xy);
-            if (!approach && !(hole && *hole <= to.z + eps)) {
+            const auto drilled_deep_enough = [&] {
+                const std::optional<double> hole = drilled_to(xy);
+                return hole && *hole <= to.z + eps;
+            };
+            if (!approach && !drilled_deep_enough()) {
                 const std::string message = fmt::format("a rapid down to Z {} at X{} Y{} goes below the retract plane (Z {}) where no "
                                      "hole has been drilled that deep",
                                      z_of(to.z), z_of(to.x), z_of(to.y), z_of(retract));
@@ -76,8 +84,15 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
     }
     // A feed straight down makes (or deepens) a hole.
     if (feed && !across && to.z < from.z) {
-        auto [it, added] = holes_.try_emplace(key_of(xy), to.z);
-        if (!added) it->second = std::min(it->second, to.z);
+        const auto key = key_of(xy);
+        if (last_hole_ && key == last_key_) {
+            *last_hole_ = std::min(*last_hole_, to.z);
+        } else {
+            auto [it, added] = holes_.try_emplace(key, to.z);
+            if (!added) it->second = std::min(it->second, to.z);
+            last_key_ = key;
+            last_hole_ = &it->second;
+        }
     }
     pos_ = to;
     last_was_feed_ = feed;

@@ -1,4 +1,5 @@
-// Error messages of bad jobs, compared with tests/errors/messages.txt: every sample is broken
+// Error messages of bad jobs, compared with tests/errors/messages.txt: every sample (and the
+// jobs in tests/errors) is broken
 // in many ways (each value replaced by a wrong type, a negative, zero, a fraction, a huge
 // number, null, or removed; each object given an unknown and a misspelt key; each member line
 // duplicated; the text cut short), posted in-process as the command line does, and what camgen
@@ -108,9 +109,12 @@ std::string outcome(const Case& c, const std::string& machine) {
 }  // namespace
 
 TEST_CASE("error messages of broken samples stay exactly as they were") {
+    // The samples, and jobs in tests/errors made of what the samples lack: contours and paths
+    // of lines only, 3D lines, inch holes.
     std::vector<std::filesystem::path> samples;
-    for (const auto& entry : std::filesystem::directory_iterator(samples_dir))
-        if (entry.path().extension() == ".json") samples.push_back(entry.path());
+    for (const auto& dir : {samples_dir, golden_path.parent_path()})
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+            if (entry.path().extension() == ".json") samples.push_back(entry.path());
     std::sort(samples.begin(), samples.end());
     std::ostringstream actual;
     for (const auto& path : samples) {

@@ -191,7 +191,7 @@ TEST_CASE("a valid job: values and defaults") {
     CHECK(arc.centre == Vec3{5, 0, -2});
     CHECK(arc.plane == Plane::xy);
     CHECK(arc.direction == ArcDirection::ccw);
-    CHECK(c.element_paths == std::vector<std::string>{"/operations/2/path/0", "/operations/2/path/1"});
+    CHECK(c.element_path(1) == "/operations/2/path/1");
 }
 
 TEST_CASE("name: explicit, file stem, or \"job\"; operations may be empty") {
@@ -725,7 +725,7 @@ TEST_CASE("contour operations") {
     const auto& full = std::get<PathArc>(c.elements[0]);
     CHECK(full.end == Vec3{10, 0, -1});  // end == start: a full circle
     CHECK(full.direction == ArcDirection::cw);
-    CHECK(c.element_paths == std::vector<std::string>{"/operations/0/path/0"});
+    CHECK(c.element_path(0) == "/operations/0/path/0");
 
     check_error(contour_job(R"(      "z": 10, "feed": 400, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/z", 10, "z is above the clearance");

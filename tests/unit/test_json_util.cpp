@@ -27,10 +27,11 @@ InputError parse_error(const std::string& text) {
 }
 
 struct Doc {
+    std::string text;  // the line map reads it when an error needs a line
     nlohmann::json value;
     cj::Source source;
-    explicit Doc(const std::string& text)
-        : value(cj::parse(text, "doc.json")), source{"doc.json", cj::LineMap(text)} {}
+    explicit Doc(std::string json)
+        : text(std::move(json)), value(cj::parse(text, "doc.json")), source{"doc.json", cj::LineMap(text)} {}
 };
 
 template <class F>
@@ -320,4 +321,42 @@ TEST_CASE("fail falls back to the nearest parent with a line") {
     CHECK(e.line() == 4);
     e = error_of([&] { cj::fail(doc.source, "/zz", "no"); });
     CHECK(e.line() == 1);
+}
+
+TEST_CASE("parse_document packs holes and path lines, and leaves everything else as parse does") {
+    const std::string text = R"({"holes": [[1, -2], [3.5, 4e2], [18446744073709551615, 0]], "a": {"holes": [[1, 2], [3, 4]],
+        "path": [{"line": [1, 2]}, {"line": [3, 4, -5.25]}]}, "b": {"path": [{"line": [1, 2]}, {"arc": 1}]},
+        "c": {"holes": [[1, 2], [3]]}, "d": {"path": [{"line": [1, 2], "x": 1}]}, "e": {"holes": []}, "f": [[1, 2]]})";
+    const cj::Document doc = cj::parse_document(text, "doc.json");
+    const nlohmann::json plain = cj::parse(text, "doc.json");
+    // A number above 1e9 keeps the first holes unpacked; those of "a" are packed, and its lines.
+    CHECK(doc.packed_at(doc.root["holes"]) == nullptr);
+    const cj::PackedArray* holes = doc.packed_at(doc.root["a"]["holes"]);
+    REQUIRE(holes != nullptr);
+    CHECK(holes->form == cj::PackedArray::Form::points);
+    CHECK(holes->size() == 2);
+    CHECK(holes->x(1) == 3);
+    CHECK(holes->y(1) == 4);
+    CHECK_FALSE(holes->has_z(0));
+    const cj::PackedArray* lines = doc.packed_at(doc.root["a"]["path"]);
+    REQUIRE(lines != nullptr);
+    CHECK(lines->form == cj::PackedArray::Form::lines);
+    CHECK(lines->has_z(1));
+    CHECK(lines->z(1) == -5.25);
+    // Unpacked, each is the JSON parse reads, number kinds included.
+    CHECK(holes->to_json().dump() == plain["a"]["holes"].dump());
+    CHECK(lines->to_json().dump() == plain["a"]["path"].dump());
+    // An element of another form, anywhere, leaves the whole array as parse reads it.
+    for (const char* key : {"holes", "b", "c", "d", "e", "f"}) {
+        const nlohmann::json& value = std::string(key) == "holes" ? doc.root["holes"] : doc.root[key];
+        CHECK(value.dump() == (std::string(key) == "holes" ? plain["holes"] : plain[key]).dump());
+    }
+}
+
+TEST_CASE("parse_document finds a duplicate key inside a packed element, with its line") {
+    const InputError e = error_of(
+        [] { cj::parse_document("{\"path\": [{\"line\": [1, 2]},\n {\"line\": [1, 2], \"line\": [3, 4]}]}", "in.json"); });
+    CHECK(e.path() == "/path/1/line");
+    CHECK(e.line() == 2);
+    CHECK(std::string(e.what()) == "in.json:2: /path/1/line: duplicate key");
 }

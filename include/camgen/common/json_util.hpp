@@ -1,5 +1,6 @@
 #pragma once
 // Reading JSON input (job and machine files) with errors that name the JSON path and line.
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -21,13 +22,17 @@ namespace camgen::json {
 class LineMap {
 public:
     LineMap() = default;
-    // Scans `text`, which must already be valid JSON.
-    explicit LineMap(std::string_view text);
+    // Remembers `text`, which must already be valid JSON and outlive the map. It is scanned on
+    // the first lookup: only error messages need lines, and a map of every value of a large
+    // job costs more than reading it.
+    explicit LineMap(std::string_view text) : text_(text) {}
     // Line where the value at `pointer` starts (for an object member: its key); 0 if unknown.
     int line_of(std::string_view pointer) const;
 
 private:
-    std::vector<std::pair<std::string, int>> entries_;  // sorted by pointer
+    std::string_view text_;
+    mutable bool scanned_ = false;
+    mutable std::vector<std::pair<std::string, int>> entries_;  // in document order
 };
 
 // Where an input came from: its name for messages and its line map.
@@ -40,6 +45,36 @@ struct Source {
 // nested deeper than `max_nesting` become an InputError naming the line and column. The
 // nesting is checked on the text before anything is built.
 nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting = 64);
+
+// A large array of a job read straight into numbers by parse_document: the holes
+// [[x, y], ...] of a "holes" key, or the lines [{"line": [x, y]}, {"line": [x, y, z]}, ...] of
+// a "path" key, when every element has that form and every number is at most 1e9 in size.
+// Anything else stays in the document, so that it gets the messages it always got.
+struct PackedArray {
+    enum class Form { points, lines };
+    Form form = Form::points;
+    std::vector<double> xyz;          // three per element; z is NaN where the element has two numbers
+    std::vector<std::uint8_t> kinds;  // three per element: how each number was written (float, integer, unsigned)
+
+    std::size_t size() const { return xyz.size() / 3; }
+    double x(std::size_t i) const { return xyz[3 * i]; }
+    double y(std::size_t i) const { return xyz[3 * i + 1]; }
+    double z(std::size_t i) const { return xyz[3 * i + 2]; }
+    bool has_z(std::size_t i) const { return z(i) == z(i); }
+    // The array as the document would have held it.
+    nlohmann::json to_json() const;
+};
+
+// A parsed job: the document, in which each packed array is a placeholder, and the packed arrays.
+struct Document {
+    nlohmann::json root;
+    std::vector<PackedArray> packed;
+    // The packed array `value` stands for, or nullptr when it is an ordinary value.
+    const PackedArray* packed_at(const nlohmann::json& value) const;
+};
+
+// parse, with the arrays PackedArray describes packed.
+Document parse_document(std::string_view text, const std::string& source_name, int max_nesting = 64);
 
 // Escapes a key for use in a JSON pointer ("~" -> "~0", "/" -> "~1").
 std::string pointer_escape(std::string_view key);

@@ -2,6 +2,7 @@
 // Reading a job file: the parsed document, its header and tool table, and the checked
 // accessors every operation's reader uses (lengths in the file's units, points, arrays), each
 // error naming the JSON path and line.
+#include <cmath>
 #include <optional>
 #include <span>
 #include <string>
@@ -49,7 +50,11 @@ public:
     const JobHeader& header() const { return header_; }
     JobHeader take_header() { return std::move(header_); }
     const json::Source& source() const { return source_; }
-    const Json& root() const { return root_; }
+    const Json& root() const { return doc_.root; }
+    // The packed array (holes or path lines, read straight into numbers) `value` stands for,
+    // or nullptr: a reader that knows packed arrays reads them so; array() unpacks them for
+    // the others.
+    const json::PackedArray* packed(const Json& value) const { return doc_.packed_at(value); }
 
     // A length or feed in the file's units, as mm (mm/min), within +-max_job_length.
     double checked_length(double value, const std::string& path) const;
@@ -58,13 +63,21 @@ public:
     // A value of `quantity` in the file's units, in internal units (lengths and feeds scaled).
     std::optional<double> optional_quantity(Fields& f, std::string_view key, Quantity quantity) const;
     double coordinate(const Json& value, const std::string& path) const;
+    // A coordinate of a packed array (a finite number within 1e9) as mm; `path()` names it
+    // and is made only when the value is out of range.
+    template <class Path>
+    double packed_coordinate(double value, Path&& path) const {
+        const double mm = value * scale_;
+        if (std::abs(mm) > max_job_length) checked_length(value, path());
+        return mm;
+    }
     // A point [x, y].
     Vec2 point(const Json& value, const std::string& path) const;
     Vec2 point(Fields& f, std::string_view key) const { return point(f.required(key), f.path_of(key)); }
     // A point [x, y] (at Z `z`, mm) or [x, y, z].
     Vec3 point3(const Json& value, const std::string& path, double z) const;
     Vec3 point3(Fields& f, std::string_view key, double z) const { return point3(f.required(key), f.path_of(key), z); }
-    // A required array member.
+    // A required array member (a packed array unpacked into the document).
     const Json& array(Fields& f, std::string_view key) const;
     // A length in mm as the file writes it, for messages ("12.000 mm", "0.5000 in").
     std::string show(double mm) const;
@@ -84,7 +97,7 @@ private:
     Tool read_tool(const Json& value, const std::string& path);
 
     JobLimits limits_;
-    Json root_;
+    mutable json::Document doc_;  // mutable: array() unpacks a packed array for a reader that wants JSON
     json::Source source_;
     // What the operations read so far have claimed: a budget the const readers draw on.
     mutable double holes_claimed_ = 0;

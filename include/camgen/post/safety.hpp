@@ -4,6 +4,7 @@
 // order, holes deeper than the tool's flutes. Each failure is an InputError naming the
 // operation's JSON path.
 #include <map>
+#include <unordered_map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -48,7 +49,20 @@ private:
     bool last_was_feed_ = false;           // the tool got where it is by feed
     std::optional<Vec3> pos_;              // where the tool is (unknown after a tool change)
     int tool_ = 0;
-    std::map<std::pair<long long, long long>, double> holes_;  // the Z each hole reaches, by XY in nm
+    // The key of an XY position in the hole table (nm) and its hash.
+    using HoleKey = std::pair<long long, long long>;
+    struct HoleHash {
+        std::size_t operator()(const HoleKey& k) const noexcept {
+            return std::hash<long long>{}(k.first * 0x9E3779B97F4A7C15LL ^ k.second);
+        }
+    };
+    // The Z each hole reaches, by XY in nm: hashed, as a job of a million holes looks up
+    // every one of them.
+    std::unordered_map<HoleKey, double, HoleHash> holes_;
+    // The hole looked up last (its entry stays put as the table grows): a cycle's pecks all
+    // look up the hole they are in.
+    mutable HoleKey last_key_{};
+    mutable double* last_hole_ = nullptr;
     std::optional<std::string> pending_descent_;  // a rapid down to a retract plane not yet known: the error
     double pending_z_ = 0.0;                      // ... and the Z it went down to
 };
