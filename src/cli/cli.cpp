@@ -58,18 +58,27 @@ struct VerifyOptions {
     std::string units;
 };
 
-// Reads the whole job text ("-" = standard input).
+// Reads the whole job text ("-" = standard input). A regular file is read straight into one
+// string of its size: a large job is not held twice on the way.
 std::string read_text(const std::string& file, std::istream& in) {
     std::ostringstream ss;
     if (file == "-") {
         ss << in.rdbuf();
-        return ss.str();
+        return std::move(ss).str();
     }
-    std::ifstream f(file, std::ios::binary);
+    std::ifstream f(file, std::ios::binary | std::ios::ate);
     if (!f) throw IoError(fmt::format("cannot read {}: {}", file, std::strerror(errno)));
+    const std::streamoff size = f.tellg();
+    f.seekg(0);
+    if (size > 0 && f) {
+        std::string text(static_cast<std::size_t>(size), '\0');
+        if (f.read(text.data(), size) && f.peek() == std::char_traits<char>::eof()) return text;
+        f.clear();
+        f.seekg(0);  // it changed while read: read it as a stream
+    }
     ss << f.rdbuf();
     if (f.bad()) throw IoError(fmt::format("cannot read {}", file));
-    return ss.str();
+    return std::move(ss).str();
 }
 
 std::string stem_of(const std::string& file) {
@@ -146,7 +155,8 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     expand_job(job, checked);
     check.finish();
     post->close();
-    out << buffer.str();
+    const std::string_view text = buffer.view();
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.flush();
     if (!out) throw IoError("cannot write the program", errno);
 }
@@ -210,7 +220,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
 
 // After posting: read the program back for --stats (to `err`) and --plot (into `plot`, not
 // yet committed, so that a failed plot leaves the program file as it was).
-void read_back(const std::string& program, const Job& job, const Options& o, std::ostream& err,
+void read_back(std::string_view program, const Job& job, const Options& o, std::ostream& err,
                std::optional<OutputFile>& plot) {
     Machine machine = machine_for(o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
@@ -352,8 +362,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             }
             std::optional<OutputFile> plot;
             if (read_back_wanted) {
-                destination << buffer.str();
-                read_back(buffer.str(), job, o, err, plot);
+                const std::string_view program = buffer.view();
+                destination.write(program.data(), static_cast<std::streamsize>(program.size()));
+                read_back(program, job, o, err, plot);
             }
             if (file) file->commit();
             else finish_stream(out, "standard output");
