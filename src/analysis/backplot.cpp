@@ -307,14 +307,23 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
         for (const std::string& a : arrows) body.add(a);
     }
 
-    // Plunges that are not holes: where a cutter feeds straight down into the work.
+    // Plunges that are not holes: where a cutter feeds straight down into the work. The holes
+    // are sorted by X, so that each plunge looks at those within 1e-6 mm of its X only (a
+    // program of many holes has as many plunges).
+    std::vector<Vec2> hole_places;
+    hole_places.reserve(trace.holes.size());
+    for (const Hole& h : trace.holes) hole_places.push_back(h.at);
+    std::sort(hole_places.begin(), hole_places.end(), [](Vec2 a, Vec2 b) { return a.x < b.x; });
+    auto is_hole = [&](Vec3 p) {
+        auto it = std::partition_point(hole_places.begin(), hole_places.end(), [&](Vec2 h) { return h.x <= p.x - 1e-6; });
+        for (; it != hole_places.end() && it->x < p.x + 1e-6; ++it)
+            if (std::abs(it->x - p.x) < 1e-6 && std::abs(it->y - p.y) < 1e-6) return true;
+        return false;
+    };
     for (size_t i = 0; i < trace.steps.size(); ++i) {
         const Step& s = trace.steps[i];
         if (s.kind != StepKind::feed || !s.from_known || s.arc || xy_length(s) >= 1e-9 || !(s.to.z < s.from.z)) continue;
-        bool hole = std::any_of(trace.holes.begin(), trace.holes.end(), [&](const Hole& h) {
-            return std::abs(h.at.x - s.to.x) < 1e-6 && std::abs(h.at.y - s.to.y) < 1e-6;
-        });
-        if (hole) continue;
+        if (is_hole(s.to)) continue;
         double cx = v.x(s.to.x), cy = v.y(s.to.y);
         body.add(fmt::format("<g stroke=\"{0}\" stroke-width=\"1.2\"><rect x=\"{1}\" y=\"{2}\" width=\"8\" height=\"8\" "
                              "fill=\"#fff\"/><path d=\"M{1},{2}l8,8M{3},{2}l-8,8\"/></g>",
