@@ -70,7 +70,7 @@ std::vector<ObjectSpec> JobInput::objects() {
 
 JobInput::JobInput(std::string_view text, const std::string& source_name, JobLimits limits)
     : limits_(limits), doc_(json::parse_document(text, source_name, limits.nesting)),
-      source_{source_name, json::LineMap(text)} {}
+      source_{source_name, json::LineMap::borrowing(text)} {}
 
 namespace {
 // Draws `count` from a budget of `limit`, or fails naming what would be too many.

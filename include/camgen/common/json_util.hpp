@@ -2,6 +2,7 @@
 // Reading JSON input (job and machine files) with errors that name the JSON path and line.
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <set>
 #include <span>
@@ -22,14 +23,23 @@ namespace camgen::json {
 class LineMap {
 public:
     LineMap() = default;
-    // Remembers `text`, which must already be valid JSON and outlive the map. It is scanned on
-    // the first lookup: only error messages need lines, and a map of every value of a large
-    // job costs more than reading it.
-    explicit LineMap(std::string_view text) : text_(text) {}
+    // Keeps a copy of `text`, which must already be valid JSON. It is scanned on the first
+    // lookup: only error messages need lines, and a map of every value of a large job costs
+    // more than reading it.
+    explicit LineMap(std::string_view text)
+        : copy_(std::make_shared<const std::string>(text)), text_(*copy_) {}
+    // The same without a copy, for a text that outlives the map and its copies (a job's text,
+    // which may be large).
+    static LineMap borrowing(std::string_view text) {
+        LineMap map;
+        map.text_ = text;
+        return map;
+    }
     // Line where the value at `pointer` starts (for an object member: its key); 0 if unknown.
     int line_of(std::string_view pointer) const;
 
 private:
+    std::shared_ptr<const std::string> copy_;  // shared: copies of a map share the text
     std::string_view text_;
     mutable bool scanned_ = false;
     mutable std::vector<std::pair<std::string, int>> entries_;  // in document order

@@ -34,8 +34,8 @@ public:
     using Json = nlohmann::json;
     using Fields = json::Fields;
 
-    // Parses `text`. Throws InputError naming the line for a syntax error or nesting deeper
-    // than limits.nesting.
+    // Parses `text`, which must outlive this object (its line map reads it for messages).
+    // Throws InputError naming the line for a syntax error or nesting deeper than limits.nesting.
     JobInput(std::string_view text, const std::string& source_name, JobLimits limits = {});
 
     // Counts `count` more holes (or path elements) against the job's limit before they are
