@@ -302,7 +302,14 @@ std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes) {
 }
 
 std::vector<Vec2> visit_order(const HoleSet& set) {
-    return set.order == HoleOrder::shortest ? shortest_order(set.holes) : set.holes;
+    std::vector<Vec2> storage;
+    return visit_order(set, storage);
+}
+
+const std::vector<Vec2>& visit_order(const HoleSet& set, std::vector<Vec2>& storage) {
+    if (set.order != HoleOrder::shortest) return set.holes;
+    storage = shortest_order(set.holes);
+    return storage;
 }
 
 }  // namespace camgen

@@ -55,5 +55,8 @@ std::vector<Vec2> shortest_order(const std::vector<Vec2>& holes);
 
 // The holes in the order the operation visits them.
 std::vector<Vec2> visit_order(const HoleSet& set);
+// The same without a copy when that is the job's own order (a million holes are 16 MB):
+// `storage` holds the list when it is reordered.
+const std::vector<Vec2>& visit_order(const HoleSet& set, std::vector<Vec2>& storage);
 
 }  // namespace camgen

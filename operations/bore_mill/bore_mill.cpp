@@ -173,7 +173,8 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
 void expand(const BoreMillOp& op, const Context& ctx, EventSink& sink) {
     if (op.holes.empty()) return;
     const Planes z = resolve_planes(op.heights);
-    const std::vector<Vec2> holes = visit_order(op);
+    std::vector<Vec2> reordered;
+    const std::vector<Vec2>& holes = visit_order(op, reordered);
     const std::vector<double> radii = ring_radii(op.diameter, ctx.tool.diameter, op.step_over, op.finishing_allowance);
     const double finish_radius = (op.diameter - ctx.tool.diameter) / 2.0;
     const ArcDirection direction = arc_direction(op.direction, ctx.tool.direction);

@@ -229,7 +229,8 @@ double drill_tip_length(double diameter, double tip_angle) {
 
 void expand(const DrillOp& op, const Context& ctx, EventSink& sink) {
     if (op.holes.empty()) return;
-    expand_cycle(resolve_cycle(op, ctx.tool), visit_order(op), ctx, sink);
+    std::vector<Vec2> reordered;
+    expand_cycle(resolve_cycle(op, ctx.tool), visit_order(op, reordered), ctx, sink);
 }
 
 void expand_cycle(const DrillCycle& c, const std::vector<Vec2>& holes, const Context& ctx, EventSink& sink) {

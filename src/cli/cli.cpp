@@ -119,6 +119,37 @@ Machine machine_for(const Options& o) {
     return machine;
 }
 
+// A stream buffer of 1 MB blocks, for a program that is written out only once it is complete:
+// a large program is held once, and never copied as a growing string is.
+class BlockBuffer : public std::streambuf {
+public:
+    BlockBuffer() { next_block(); }
+    // Writes the blocks to `out`, in order.
+    void write_to(std::ostream& out) const {
+        for (std::size_t i = 0; i < blocks_.size(); ++i) {
+            const std::size_t size = i + 1 < blocks_.size() ? block_size : static_cast<std::size_t>(pptr() - pbase());
+            out.write(blocks_[i].get(), static_cast<std::streamsize>(size));
+        }
+    }
+
+protected:
+    int_type overflow(int_type c) override {
+        if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+        if (pptr() == epptr()) next_block();
+        *pptr() = traits_type::to_char_type(c);
+        pbump(1);
+        return c;
+    }
+
+private:
+    static constexpr std::size_t block_size = std::size_t{1} << 20;
+    void next_block() {
+        blocks_.push_back(std::make_unique<char[]>(block_size));
+        setp(blocks_.back().get(), blocks_.back().get() + block_size);
+    }
+    std::vector<std::unique_ptr<char[]>> blocks_;
+};
+
 void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err) {
     if (o.events) {
         EventPrinter printer(out);
@@ -139,7 +170,8 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     SafetyLimits limits{job.clearance, {}, machine.longhand()};
     for (const auto& [number, tool] : job.tools)
         if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
-    std::ostringstream buffer;
+    BlockBuffer blocks;
+    std::ostream buffer(&blocks);
     std::unique_ptr<Post> post = make_post(machine, buffer, po);
     SafetyCheck check(limits);
     // Passes each event through the check, then to the post.
@@ -156,8 +188,7 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     expand_job(job, checked);
     check.finish();
     post->close();
-    const std::string_view text = buffer.view();
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    blocks.write_to(out);
     out.flush();
     if (!out) throw IoError("cannot write the program", errno);
 }
