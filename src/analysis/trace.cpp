@@ -117,7 +117,7 @@ public:
                            // A tap's feed follows the spindle: its moves carry the pitch, so that a
                            // comparison allows for the speed the program could write.
                            pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
-                           for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_))
+                           for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_, longhand_buffers_))
                                add(ReadEvent{to_event(m), e.line, false, e.uncertainty});
                            pitch_ = 0.0;
                        },
@@ -163,6 +163,7 @@ private:
     }
 
     LonghandOptions options_;
+    LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     Trace trace_;
     Vec3 pos_;
     bool known_ = false;

@@ -18,9 +18,18 @@ bool pecks(CycleKind kind) { return kind == CycleKind::deep || kind == CycleKind
 }  // namespace
 
 std::vector<double> peck_depths(const DrillCycle& cycle) {
-    const DrillValues& p = cycle.values;
-    if (!pecks(cycle.kind) || !p.get(DrillField::first_depth)) return {cycle.bottom_z};
     std::vector<double> depths;
+    peck_depths(cycle, depths);
+    return depths;
+}
+
+void peck_depths(const DrillCycle& cycle, std::vector<double>& depths) {
+    const DrillValues& p = cycle.values;
+    depths.clear();
+    if (!pecks(cycle.kind) || !p.get(DrillField::first_depth)) {
+        depths.push_back(cycle.bottom_z);
+        return;
+    }
     double peck = *p.get(DrillField::first_depth);
     double depth = cycle.safe_z;
     // As LinuxCNC: pecks are measured from the feed-start plane; the last one ends at bottom.
@@ -42,7 +51,6 @@ std::vector<double> peck_depths(const DrillCycle& cycle) {
         if (p.degression_type() != DegressionType::none) peck = std::max(peck, p.get(DrillField::minimum_depth).value_or(0.0));
     }
     depths.push_back(cycle.bottom_z);
-    return depths;
 }
 
 Event to_event(const LonghandMove& move) {
@@ -53,8 +61,15 @@ Event to_event(const LonghandMove& move) {
 
 std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options) {
+    LonghandBuffers buffers;
+    return longhand_moves(cycle, from, hole, options, buffers);
+}
+
+const std::vector<LonghandMove>& longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
+                                                const LonghandOptions& options, LonghandBuffers& buffers) {
     const DrillValues& p = cycle.values;
-    std::vector<LonghandMove> ev;
+    std::vector<LonghandMove>& ev = buffers.moves;
+    ev.clear();
     auto at = [&](double z) { return Vec3{hole.x, hole.y, z}; };
     double z = from.z;
     // Preliminary motion (LinuxCNC/Fanuc): up to the feed-start plane if below it, across in
@@ -101,7 +116,8 @@ std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& fr
         case CycleKind::chip_break: {
             // G83: after each peck rapid to R, rapid down to clearance above the last peck.
             // G73: after each peck rapid up by the back-off only.
-            const std::vector<double> depths = peck_depths(cycle);
+            std::vector<double>& depths = buffers.depths;
+            peck_depths(cycle, depths);
             const double back_off = p.get(DrillField::pecking_retract).value_or(options.peck_clearance);
             const double clearance = p.get(DrillField::peck_clearance).value_or(options.peck_clearance);
             top_dwell();

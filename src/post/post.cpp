@@ -503,7 +503,7 @@ void Post::handle_drill_point(Vec2 at) {
         ++canned_holes_;
     } else {
         ++longhand_holes_;
-        for (const LonghandMove& e : longhand_moves(*cycle_, pos_, at, machine_.longhand())) replay(e);
+        for (const LonghandMove& e : longhand_moves(*cycle_, pos_, at, machine_.longhand(), longhand_buffers_)) replay(e);
     }
     first_point_ = false;
 }

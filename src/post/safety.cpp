@@ -164,7 +164,7 @@ void SafetyCheck::emit(const Event& event) {
             [&](const DrillPoint& p) {
                 if (!cycle_) throw std::logic_error("drilling point outside a cycle");
                 if (!pos_) throw std::logic_error("drilling from an unknown position");
-                for (const LonghandMove& m : longhand_moves(*cycle_, *pos_, p.at, limits_.longhand))
+                for (const LonghandMove& m : longhand_moves(*cycle_, *pos_, p.at, limits_.longhand, longhand_buffers_))
                     visit_exhaustive(overloaded{[&](const Rapid& r) { move(r.to, false); },
                                                 [&](const Linear& l) { move(l.to, true); }, [](const Dwell&) {},
                                                 [](const Spindle&) {}},

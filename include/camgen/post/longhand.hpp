@@ -25,6 +25,8 @@ struct LonghandOptions {
 // subsequent depth or a degression by value or factor bounded below by minimum_depth. One entry (bottom_z) for
 // cycles without pecking. Throws InputError when the pecks could not reach the bottom.
 std::vector<double> peck_depths(const DrillCycle& cycle);
+// As above, into `depths` (emptied first).
+void peck_depths(const DrillCycle& cycle, std::vector<double>& depths);
 
 // The moves that drill one hole at `hole`, starting from `from`, as LinuxCNC/Fanuc canned
 // cycles move: if `from` is below safe_z (R), rapid up to it first; rapid in XY; rapid down to
@@ -37,5 +39,15 @@ Event to_event(const LonghandMove& move);
 
 std::vector<LonghandMove> longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
                                   const LonghandOptions& options);
+
+// Buffers longhand_moves reuses from hole to hole, so that a program of many holes allocates
+// nothing per hole or per peck.
+struct LonghandBuffers {
+    std::vector<LonghandMove> moves;
+    std::vector<double> depths;
+};
+// As above, into buffers.moves (emptied first), which it returns.
+const std::vector<LonghandMove>& longhand_moves(const DrillCycle& cycle, const Vec3& from, Vec2 hole,
+                                                const LonghandOptions& options, LonghandBuffers& buffers);
 
 }  // namespace camgen

@@ -204,6 +204,7 @@ private:
     // Switches the feed mode to the operation's: the machine's code in a block of its own.
     void select_feed_mode(FeedMode mode);
     Vec3 pos_;
+    LonghandBuffers longhand_buffers_;  // reused by every longhand hole's moves
     bool pos_known_ = false;
     std::optional<Compensation> pending_compensation_;  // written by the next feed move
     int tool_ = 0;

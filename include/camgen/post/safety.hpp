@@ -63,6 +63,7 @@ private:
     // look up the hole they are in.
     mutable HoleKey last_key_{};
     mutable double* last_hole_ = nullptr;
+    LonghandBuffers longhand_buffers_;     // reused by every hole's moves
     std::optional<std::string> pending_descent_;  // a rapid down to a retract plane not yet known: the error
     double pending_z_ = 0.0;                      // ... and the Z it went down to
 };
