@@ -353,20 +353,28 @@ BackplotDrawing draw_svg(const Trace& trace, const ProgramStats& stats, const Ba
     // the same place by several tools share one label.
     std::vector<std::pair<Vec2, std::vector<std::pair<int, int>>>> labels;  // place -> (number, tool)
     std::map<std::pair<long, long>, size_t> label_at;
+    std::map<int, std::string> rings;  // tool -> the circles of holes beyond options.hole_marks
     for (size_t i = 0; i < trace.holes.size(); ++i) {
         const Hole& h = trace.holes[i];
         double r = std::max(diameter[h.tool] / 2.0 * v.scale, 3.0);
         double cx = v.x(h.at.x), cy = v.y(h.at.y);
         const char* c = colour_of(h.tool);
-        body.add(fmt::format("<circle{} cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
-                             mark({h.tool}, BackplotLayer::hole), n(cx), n(cy), n(r), c, c));
-        body.add(fmt::format("<path{} d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", mark({h.tool}, BackplotLayer::hole),
-                             n(cx - r - 3), n(cy), n(cx + r + 3), n(cx), n(cy - r - 3), n(cy + r + 3), c));
+        if (i >= options.hole_marks) {
+            rings[h.tool] += fmt::format("M{0},{1}a{2},{2} 0 1 0 {3},0a{2},{2} 0 1 0 -{3},0", n(cx - r), n(cy), n(r), n(2 * r));
+        } else {
+            body.add(fmt::format("<circle{} cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                                 mark({h.tool}, BackplotLayer::hole), n(cx), n(cy), n(r), c, c));
+            body.add(fmt::format("<path{} d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", mark({h.tool}, BackplotLayer::hole),
+                                 n(cx - r - 3), n(cy), n(cx + r + 3), n(cx), n(cy - r - 3), n(cy + r + 3), c));
+        }
         auto key = std::make_pair(std::lround(h.at.x * 1000.0), std::lround(h.at.y * 1000.0));
         auto [it, fresh] = label_at.try_emplace(key, labels.size());
         if (fresh) labels.push_back({h.at, {}});
         labels[it->second].second.push_back({static_cast<int>(i) + 1, h.tool});
     }
+    for (const auto& [tool, d] : rings)
+        body.add(fmt::format("<path{} d=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                             mark({tool}, BackplotLayer::hole), d, colour_of(tool), colour_of(tool)));
     // Numbers where they fit: the first and last hole of each tool first, then in drilling
     // order, leaving out any that would overlap one already placed.
     std::vector<size_t> order(labels.size());

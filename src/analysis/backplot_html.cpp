@@ -396,6 +396,7 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
     const std::optional<Trace> thin = thinned(trace, stats, options.kind, limits);
     BackplotOptions layered = options;
     layered.layers = BackplotLayers::classes;
+    layered.hole_marks = limits.holes;
     const BackplotDrawing drawing = backplot_drawing(thin ? *thin : trace, stats, layered);
     const std::vector<std::string_view> lines = lines_of(program);
     const std::string title = options.title.empty() ? "program" : options.title;
@@ -459,6 +460,10 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
                         "whose points lie within half a pixel of one line). The slider and the numbers show every block.</p>\n",
                         grouped(static_cast<std::size_t>(count(trace))), grouped(static_cast<std::size_t>(count(*thin)))));
     }
+    if (trace.holes.size() > limits.holes && !lathe)
+        add(fmt::format("<p class=\"note\" id=\"plain-holes\">Holes beyond the first {} are drawn as plain circles (no cross), {} of "
+                        "{}.</p>\n",
+                        grouped(limits.holes), grouped(trace.holes.size() - limits.holes), grouped(trace.holes.size())));
     add("</section>\n");
 
     add(fmt::format("<section id=\"stats\"><h2>Statistics</h2>\n<pre>{}</pre></section>\n", html(format_stats(stats))));

@@ -195,3 +195,18 @@ TEST_CASE("html plot: --plot F.html writes the page, F.svg the drawing, on the m
     // verify reads the same program (named p.nc both times): the same page.
     CHECK(test::read_file(again) == test::read_file(html));
 }
+
+TEST_CASE("html plot: above the hole limit further holes are plain circles, one path per tool, saying so") {
+    const Plotted full = plot(nasty_job, "fanuc");
+    const Plotted plain = plot(nasty_job, "fanuc", {20000, 1});
+    CHECK(full.page.find("id=\"plain-holes\"") == std::string::npos);
+    CHECK(plain.page.find("id=\"plain-holes\"") != std::string::npos);
+    CHECK(occurrences(full.page, "<circle class=\"t1 k-hole\"") == 2);
+    CHECK(occurrences(plain.page, "<circle class=\"t1 k-hole\"") == 1);
+    // The second hole: a ring of two half circles ("a5,5 0 1 0 10,0a5,5 0 1 0 -10,0").
+    CHECK(occurrences(full.page, " 0 1 0 ") == 0);
+    CHECK(occurrences(plain.page, " 0 1 0 ") == 2);
+    // Both holes keep their numbers.
+    CHECK(plain.page.find(">1</tspan>") != std::string::npos);
+    CHECK(plain.page.find(">2</tspan>") != std::string::npos);
+}

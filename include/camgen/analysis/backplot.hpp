@@ -3,6 +3,8 @@
 // machinist looks at before running a program: rapids dashed, feed moves solid with their
 // direction, one colour per tool, holes marked and numbered in drilling order, a grid with
 // coordinates, the work zero, a scale bar and a legend with the statistics.
+#include <cstddef>
+#include <limits>
 #include <string>
 
 #include "camgen/analysis/trace.hpp"
@@ -38,6 +40,9 @@ struct BackplotOptions {
     std::string machine;  // the machine's name
     MachineKind kind = MachineKind::mill;  // a lathe's program is drawn as an XZ half-section
     BackplotLayers layers = BackplotLayers::none;
+    // Holes drawn with their own circle and cross, in drilling order; the rest as plain
+    // circles, one path per tool (a page with very many holes stays small).
+    std::size_t hole_marks = std::numeric_limits<std::size_t>::max();
 };
 
 // Where a drawing puts a position, in SVG user units: x = left + (u - min_u) * scale and

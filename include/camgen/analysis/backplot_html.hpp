@@ -18,6 +18,8 @@ struct HtmlPlotLimits {
     // Rapid and feed moves drawn as they are; above this, runs of straight moves whose inner
     // points lie within half a pixel of one line are drawn as that line (the page says so).
     std::size_t moves = 20000;
+    // Holes drawn with their own circle and cross; above this, the rest as plain circles.
+    std::size_t holes = 5000;
 };
 
 // The page for `program`, the NC text that was read back into `trace` (its steps' lines are
