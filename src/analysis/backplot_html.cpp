@@ -3,6 +3,7 @@
 #include "camgen/analysis/backplot_html.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -156,6 +157,7 @@ std::optional<Trace> thinned(const Trace& trace, const ProgramStats& stats, Mach
             run->add(drawn(s.to, kind));
         }
     }
+    if (t.steps.size() == trace.steps.size()) return std::nullopt;  // nothing to thin: no note
     return t;
 }
 
