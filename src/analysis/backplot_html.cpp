@@ -19,6 +19,10 @@ namespace {
 // resolution a program writes, 0.001 mm).
 constexpr double data_unit = 0.0001;
 
+// A coordinate in data units, held within 100 km so that the differences stay exact integers
+// (in the script's doubles too) whatever a program says.
+long long data_units(double mm) { return std::llround(std::clamp(mm / data_unit, -1e12, 1e12)); }
+
 // Text for the page's markup: the five characters that could open or close markup or an
 // attribute are written as references.
 std::string html(std::string_view s) {
@@ -183,9 +187,9 @@ BlockData block_data(const Trace& trace) {
         Record r{s.line, -1, x, y, z};
         if (is_move(s)) {
             r.kind = static_cast<int>(layer_of(s));
-            r.x = x = std::llround(s.to.x / data_unit);
-            r.y = y = std::llround(s.to.y / data_unit);
-            r.z = z = std::llround(s.to.z / data_unit);
+            r.x = x = data_units(s.to.x);
+            r.y = y = data_units(s.to.y);
+            r.z = z = data_units(s.to.z);
         }
         if (!records.empty() && records.back().line == r.line) records.back() = r;
         else records.push_back(r);
