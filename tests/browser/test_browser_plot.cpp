@@ -27,15 +27,14 @@ using namespace camgen;
 
 namespace {
 
-// Runs a shell command and returns its standard output.
-std::string output_of(const std::string& command) {
+// Runs a shell command and returns its standard output and exit status.
+std::pair<std::string, int> output_of(const std::string& command) {
     std::string out;
     FILE* pipe = popen(command.c_str(), "r");
     REQUIRE(pipe != nullptr);
     std::array<char, 65536> buffer{};
     for (size_t n; (n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) out.append(buffer.data(), n);
-    CHECK(pclose(pipe) == 0);
-    return out;
+    return {out, pclose(pipe)};
 }
 
 // Text of an HTML text node as the DOM serializer writes it, back to characters.
@@ -59,13 +58,16 @@ std::string unescape(std::string s) {
 
 // Loads `page` in headless chromium at `hash` and returns the lines the page's check wrote.
 std::vector<nlohmann::json> browse(const std::filesystem::path& page, const std::string& hash) {
-    const std::filesystem::path profile = page.parent_path() / "chromium-profile";
-    const std::string dom = output_of(fmt::format("timeout 60 chromium --headless --no-sandbox --disable-gpu --no-first-run "
-                                                  "--user-data-dir='{}' --dump-dom 'file://{}{}' 2>/dev/null",
-                                                  profile.string(), page.string(), hash));
+    // As root (CI) chromium needs --no-sandbox; containers often have a small /dev/shm.
+    const std::filesystem::path profile = page.parent_path() / "chromium-profile", log = page.parent_path() / "chromium.err";
+    const auto [dom, status] = output_of(fmt::format("timeout 60 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+                                                     "--no-first-run --user-data-dir='{}' --dump-dom 'file://{}{}' 2>'{}'",
+                                                     profile.string(), page.string(), hash, log.string()));
     const std::string open = "<pre id=\"steps\" hidden=\"\">";
     const auto from = dom.find(open);
-    REQUIRE_MESSAGE(from != std::string::npos, "the page has no check output: " << dom.substr(0, 400));
+    REQUIRE_MESSAGE((status == 0 && from != std::string::npos), "chromium exit status " << status << ", no check output in:\n"
+                                                                   << dom.substr(0, 400) << "\nchromium's errors:\n"
+                                                                   << test::read_file(log.string()));
     const auto to = dom.find("</pre>", from);
     std::vector<nlohmann::json> lines;
     for (const std::string& line : test::lines_of(unescape(dom.substr(from + open.size(), to - from - open.size()))))
