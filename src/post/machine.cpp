@@ -11,6 +11,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
+#include "src/post/machine_files.hpp"
 
 namespace camgen {
 
@@ -79,11 +80,14 @@ constexpr Named<TappingMode> tapping_modes[] = {
 
 // The top-level keys of a machine file.
 constexpr KeySpec machine_keys[] = {
-    {.key = "description", .type = JsonType::string, .required = true, .description = "one line for --list-machines"},
-    {.key = "dialect", .type = JsonType::string, .required = true,
-     .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain"},
-    {.key = "extension", .type = JsonType::string, .required = true,
-     .description = "suggested file extension, without the dot"},
+    {.key = "extends", .type = JsonType::string,
+     .description = "the machine (name, or path relative to this file) this file changes: only what differs is "
+                    "given, merged over it (objects member by member; arrays and values replace; null removes)"},
+    {.key = "description", .type = JsonType::string, .description = "one line for --list-machines (required unless extends)"},
+    {.key = "dialect", .type = JsonType::string,
+     .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain (required unless extends)"},
+    {.key = "extension", .type = JsonType::string,
+     .description = "suggested file extension, without the dot (required unless extends)"},
     {.key = "kind", .type = JsonType::string, .default_json = "\"mill\"", .choices = &choices_of<machine_kinds>,
      .description = "mill or lathe: the operations it runs (a job's operations of the other kind are refused)"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
@@ -386,8 +390,13 @@ std::vector<ObjectSpec> machine_objects() {
     auto spec = [](std::string_view name, std::string_view description, std::span<const KeySpec> keys) {
         return ObjectSpec{.name = name, .description = description, .keys = {keys.begin(), keys.end()}};
     };
+    ObjectSpec machine = spec("machine", "a camgen machine file: the settings of one control", machine_keys);
+    // A file that extends another gives only what differs.
+    for (std::string_view key : {"description", "dialect", "extension"})
+        machine.groups.push_back({.keys = {"extends", key}, .min = 1, .max = 2,
+                                  .description = "extends another machine, or says what the inherited file would"});
     return {
-        spec("machine", "a camgen machine file: the settings of one control", machine_keys),
+        machine,
         spec("globals", "block layout and numbers", globals_keys),
         spec("formats", "number formats per word family", format_keys),
         spec("format", "a number format (CNC-Calc createFormat)", format_spec_keys),
@@ -452,10 +461,14 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     json::Source source{source_name, json::LineMap{}};
     nlohmann::json root = json::parse(text, source_name);
     source.lines = json::LineMap(text);
+    return parse_machine_json(root, name, source);
+}
+
+Machine parse_machine_json(const nlohmann::json& root, const std::string& name, const json::Source& source) {
     json::Fields f(root, "", source);
     Machine m;
     m.name = name;
-    m.source = source_name;
+    m.source = source.name;
     m.description = f.string("description");
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
@@ -704,28 +717,6 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     }
     f.finish(machine_keys);
     return m;
-}
-
-Machine load_machine(const std::string& name_or_path) {
-    bool is_path = name_or_path.find('/') != std::string::npos ||
-                   (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
-    if (is_path) {
-        std::ifstream in(name_or_path, std::ios::binary);
-        if (!in) throw IoError(fmt::format("cannot read machine file {}", name_or_path));
-        std::stringstream ss;
-        ss << in.rdbuf();
-        std::string stem = name_or_path.substr(name_or_path.find_last_of('/') + 1);
-        if (stem.ends_with(".json")) stem.resize(stem.size() - 5);
-        return parse_machine(ss.str(), stem, name_or_path);
-    }
-    for (const auto& e : embedded_machines())
-        if (name_or_path == e.name) return parse_machine(e.text, e.name, std::string("machines/") + e.name + ".json");
-    std::vector<std::string> names;
-    for (const auto& e : embedded_machines()) names.emplace_back(e.name);
-    auto hint = json::did_you_mean(name_or_path, names);
-    throw UsageError(fmt::format("unknown machine \"{}\"{}; known machines: {} (or give a path to a machine JSON file)",
-                                 name_or_path, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
-                                 fmt::join(names, ", ")));
 }
 
 std::vector<std::pair<std::string, std::string>> list_machines() {
