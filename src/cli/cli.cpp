@@ -18,7 +18,7 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
