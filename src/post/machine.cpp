@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -11,6 +12,10 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
+
+#ifndef CAMGEN_MACHINES_FROM_BIN
+#define CAMGEN_MACHINES_FROM_BIN "../share/camgen/machines"
+#endif
 
 namespace camgen {
 
@@ -706,6 +711,41 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     return m;
 }
 
+std::vector<BuiltinMachine> machines_in(const std::string& dir) {
+    std::vector<BuiltinMachine> out;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+        const std::filesystem::path& path = entry.path();
+        if (path.extension() != ".json" || !entry.is_regular_file(error)) continue;
+        std::ifstream in(path, std::ios::binary);
+        std::stringstream text;
+        if (in) text << in.rdbuf();
+        if (!in) throw IoError(fmt::format("cannot read machine file {}", path.string()));
+        out.push_back({path.stem().string(), text.str(), path.string()});
+    }
+    if (error) throw IoError(fmt::format("cannot read machine folder {}: {}", dir, error.message()));
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    return out;
+}
+
+std::vector<BuiltinMachine> builtin_machines() {
+    // Where the executable is installed, its machine files are (CAMGEN_MACHINES_FROM_BIN, the
+    // path from the install's bin folder to them, comes from the build). Looked up once: the
+    // executable does not move while it runs.
+    static const std::string installed = [] {
+        std::error_code error;
+        const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+        if (error) return std::string();
+        const std::filesystem::path dir = exe.parent_path() / CAMGEN_MACHINES_FROM_BIN;
+        return std::filesystem::is_directory(dir, error) ? dir.lexically_normal().string() : std::string();
+    }();
+    if (!installed.empty()) return machines_in(installed);
+    std::vector<BuiltinMachine> out;
+    for (const auto& e : embedded_machines())
+        out.push_back({e.name, e.text, std::string("machines/") + e.name + ".json"});
+    return out;
+}
+
 Machine load_machine(const std::string& name_or_path) {
     bool is_path = name_or_path.find('/') != std::string::npos ||
                    (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
@@ -718,10 +758,11 @@ Machine load_machine(const std::string& name_or_path) {
         if (stem.ends_with(".json")) stem.resize(stem.size() - 5);
         return parse_machine(ss.str(), stem, name_or_path);
     }
-    for (const auto& e : embedded_machines())
-        if (name_or_path == e.name) return parse_machine(e.text, e.name, std::string("machines/") + e.name + ".json");
+    const std::vector<BuiltinMachine> builtin = builtin_machines();
+    for (const auto& e : builtin)
+        if (name_or_path == e.name) return parse_machine(e.text, e.name, e.source);
     std::vector<std::string> names;
-    for (const auto& e : embedded_machines()) names.emplace_back(e.name);
+    for (const auto& e : builtin) names.emplace_back(e.name);
     auto hint = json::did_you_mean(name_or_path, names);
     throw UsageError(fmt::format("unknown machine \"{}\"{}; known machines: {} (or give a path to a machine JSON file)",
                                  name_or_path, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
@@ -730,8 +771,8 @@ Machine load_machine(const std::string& name_or_path) {
 
 std::vector<std::pair<std::string, std::string>> list_machines() {
     std::vector<std::pair<std::string, std::string>> out;
-    for (const auto& e : embedded_machines()) {
-        Machine m = parse_machine(e.text, e.name, e.name);
+    for (const auto& e : builtin_machines()) {
+        Machine m = parse_machine(e.text, e.name, e.source);
         out.emplace_back(m.name, m.description);
     }
     std::sort(out.begin(), out.end());

@@ -1,6 +1,6 @@
 #pragma once
-// A machine: the settings of one control, read from machines/<name>.json (compiled in) or
-// from a file given by path, plus the name of the dialect code that writes for it.
+// A machine: the settings of one control, read from machines/<name>.json (installed or
+// compiled in, see builtin_machines) or from a file given by path, plus the name of the dialect code that writes for it.
 #include <map>
 #include <optional>
 #include <string>
@@ -136,6 +136,23 @@ struct EmbeddedMachine {
     const char* text;
 };
 const std::vector<EmbeddedMachine>& embedded_machines();
+
+// A built-in machine file: its name ("fanuc"), its text and where it came from (for messages
+// and --list-machines).
+struct BuiltinMachine {
+    std::string name;
+    std::string text;
+    std::string source;  // "/usr/share/camgen/machines/fanuc.json", or "machines/fanuc.json" compiled in
+};
+
+// The machine files of the folder `dir` (each *.json, named by its stem), sorted by name.
+// Throws IoError when one cannot be read.
+std::vector<BuiltinMachine> machines_in(const std::string& dir);
+
+// The built-in machines: those of the folder installed beside the running executable
+// (<prefix>/share/camgen/machines for <prefix>/bin/camgen) where there is one, else the
+// compiled-in copies (a run from the build folder, a program linked with the library).
+std::vector<BuiltinMachine> builtin_machines();
 
 // Parses a machine file's text. Throws InputError naming the JSON path and line.
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
