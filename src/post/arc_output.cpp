@@ -117,6 +117,10 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
     };
     double best = std::numeric_limits<double>::infinity();
     auto accept = [&](P2 c, double radius, double sweep, P2 end, double score) {
+        // A half circle whose centre word rounds off the chord reads wider than 180 degrees
+        // (180.029 on kosy: a fuzz finding); the reader allows the same slack as here.
+        const double widest = (std::min(f.max_sweep, 360.0) + 1e-3) / deg + grid_step(f.xyz) / radius;
+        if (!full && sweep > widest) return;
         if (score >= best) return;
         best = score;
         fit.block.start = from_plane({S.u, S.v, s3.w}, plane);

@@ -558,7 +558,8 @@ Vec3 Post::arc_control_start(const Vec3& start) const {
 }
 
 void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth) {
-    const ArcWordFormats formats{xyz_fmt_, ijk_fmt_, angle_fmt_, machine_.arcs.format, machine_.tolerance};
+    const ArcWordFormats formats{xyz_fmt_, ijk_fmt_, angle_fmt_, machine_.arcs.format, machine_.tolerance,
+                                 machine_.arcs.max_sweep};
     const ArcFit fit = fit_arc_block(piece, arc_control_start(piece.start), formats);
     switch (fit.result) {
         case ArcFitResult::ok:

@@ -753,3 +753,23 @@ TEST_CASE("a full circle cut in two halves at the 180 degree limit reads back al
     const Run verify = run({"verify", program, "--machine", "kosy", "--job", file});
     CHECK_MESSAGE(verify.code == 0, verify.err);
 }
+
+TEST_CASE("a half circle whose centre word rounds off the chord is refitted, not written wider than 180 degrees") {
+    // The centre (60, 64.0625) is half a grid step off the rounded ends' chord (Y 64.063), so
+    // plain rounding writes J-0.001 and the second half of the circle reads as 180.029 degrees
+    // on kosy, more than rounding can explain. A fuzz_mutated finding (a bore milled at
+    // Y 64.0625): verify refused camgen's own program. The fit must keep each block within the
+    // machine's per-block sweep.
+    const std::string job = R"({"name": "c", "units": "mm", "clearance": 10,
+      "tools": [{"number": 1, "type": "end-mill", "diameter": 10, "rpm": 4000}],
+      "operations": [{"type": "path", "tool": 1, "z": -1, "feed": 300, "start": [64, 64.0625],
+        "path": [{"arc": {"centre": [60, 64.0625], "direction": "ccw", "end": [64, 64.0625]}}]}]})";
+    const std::string file = file_with("half-circle-off-chord", job);
+    for (const std::string machine : {"kosy", "wabeco", "fanuc", "sinumerik", "heidenhain", "linuxcnc", "grbl"}) {
+        CAPTURE(machine);
+        const std::string program = scratch("half-circle-off-chord-out") / "c.nc";
+        REQUIRE(run({file, "--machine", machine, "-o", program}).code == 0);
+        const Run verify = run({"verify", program, "--machine", machine, "--job", file});
+        CHECK_MESSAGE(verify.code == 0, verify.err);
+    }
+}

@@ -47,6 +47,9 @@ struct ArcWordFormats {
     nc::Format angle;
     ArcFormat form = ArcFormat::ijk_relative;
     double tolerance = 0.002;
+    // The machine's widest arc block in degrees: rounding may not widen a piece cut at the
+    // limit past what the reader allows (one grid step over the radius).
+    double max_sweep = 360.0;
 };
 
 enum class ArcFitResult {
