@@ -54,8 +54,6 @@ install(FILES ${CMAKE_BINARY_DIR}/camgenConfig.cmake ${CMAKE_BINARY_DIR}/camgenC
 # Debian packages: cpack -G DEB --config build/CPackConfig.cmake (scripts/test-install).
 set(CPACK_PACKAGE_NAME camgen)
 set(CPACK_PACKAGE_VENDOR "camgen")
-set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "CAM for CNC mills and lathes: JSON job in, NC program out")
-set(CPACK_PACKAGE_DESCRIPTION "camgen turns a JSON job (drilling, contours, bores, paths, turning) into the NC program of a control: Fanuc, LinuxCNC, GRBL, Sinumerik, Heidenhain, nccad.")
 set(CPACK_PACKAGE_CONTACT "camgen developers <camgen@localhost>")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_GENERATOR DEB)
@@ -71,6 +69,11 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME camgen-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS "libfmt-dev, nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libboost-dev (>= 1.74)")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SUGGESTS "camgen")
+# A Debian description: its summary line, then the long description.
+set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "CAM for CNC mills and lathes: JSON job in, NC program out
+camgen turns a JSON job (drilling, contours, bores, tool paths, turning) into the NC program of a control: Fanuc, LinuxCNC, GRBL, Sinumerik, Heidenhain, nccad. This package holds the command, its machine files, the JSON Schemas of job and machine files, the man page and the bash and zsh completions.")
+set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION "camgen CAM as a C++ library
+The static library, the headers of its API (include/camgen) and the CMake package of camgen: find_package(camgen) and the target camgen::camgen.")
 include(CPack)
-cpack_add_component(runtime DISPLAY_NAME "camgen" DESCRIPTION "the camgen command, its machine files, schemas, man page and completions")
-cpack_add_component(development DISPLAY_NAME "camgen-dev" DESCRIPTION "camgen as a C++ library: headers, static library, CMake package")
+cpack_add_component(runtime DISPLAY_NAME "camgen")
+cpack_add_component(development DISPLAY_NAME "camgen-dev")
