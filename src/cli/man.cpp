@@ -46,10 +46,11 @@ public:
 
     // The positionals, then the other options, of one app (hidden ones left out, as --help does).
     std::string options(const CLI::App* app) const {
+        const auto shown = app->get_options([](const CLI::Option* o) { return !o->get_group().empty(); });
         std::string out;
-        for (const CLI::Option* opt : app->get_options([](const CLI::Option* o) { return !o->get_group().empty(); }))
+        for (const CLI::Option* opt : shown)
             if (!opt->nonpositional()) out += option(opt);
-        for (const CLI::Option* opt : app->get_options([](const CLI::Option* o) { return !o->get_group().empty(); }))
+        for (const CLI::Option* opt : shown)
             if (opt->nonpositional()) out += option(opt);
         return out;
     }
