@@ -42,6 +42,7 @@ struct Options {
     bool snippet = false;
     bool events = false;
     bool list_machines = false;
+    bool describe_json = false;
     std::string describe;
     std::string units;
     std::string plot;   // SVG backplot of the program as read back
@@ -173,6 +174,28 @@ void write_plot(const std::string& file, const Trace& trace, const ProgramStats&
 }
 
 // `camgen verify`: reads a program back, prints what it does, and compares it with a job.
+// --list-machines: a line a machine, its name first (shell completion reads the first word),
+// then its description and where it comes from. A user's file that cannot be read is listed
+// with the reason, so that the list still shows the rest.
+std::string machine_list() {
+    const std::vector<MachineEntry> entries = machine_catalogue();
+    std::size_t width = 0;
+    for (const auto& e : entries) width = std::max(width, e.name.size());
+    std::string s;
+    for (const auto& e : entries) {
+        std::string description;
+        try {
+            description = (e.text ? parse_machine(e.text, e.name, e.origin) : load_machine(e.path)).description;
+        } catch (const std::exception& ex) {
+            description = fmt::format("(cannot be read: {})", ex.what());
+        }
+        std::string origin = e.origin;
+        if (e.shadowed) origin += ", replaced by the file of this name above";
+        s += fmt::format("{:<{}}  {}  [{}]\n", e.name, width, description, origin);
+    }
+    return s;
+}
+
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Machine machine = load_machine(v.machine);
     apply_units(machine, v.units);
@@ -239,8 +262,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_flag("--snippet", o.snippet, "Clipboard export: no program start or end blocks");
     app.add_flag("--events", o.events, "Print the machine-independent events, one JSON object per line");
     app.add_option("--units", o.units, "Output units, overriding the machine file")->check(CLI::IsMember({"mm", "inch"}));
-    app.add_flag("--list-machines", o.list_machines, "List the built-in machines");
+    app.add_flag("--list-machines", o.list_machines,
+                 "List the machines: the user's (CAMGEN_MACHINES folders, then $XDG_CONFIG_HOME/camgen/machines) "
+                 "and the built-in ones, each with its source");
     app.add_option("--describe-machine", o.describe, "Print a machine's settings and drilling cycle table");
+    app.add_flag("--json", o.describe_json,
+                 "With --describe-machine: print the machine's complete file (its extends applied) as JSON, to start "
+                 "a machine file from");
     app.add_option("--plot", o.plot, "Also write an SVG backplot of the program as read back (XY view)");
     app.add_option("--max-holes", o.limits.holes,
                    fmt::format("Refuse jobs with more holes than this (default {})", JobLimits{}.holes));
@@ -302,13 +330,18 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             finish_stream(out, "standard output");
             return exit_ok;
         }
+        if (o.describe_json && o.describe.empty()) {
+            err << "camgen: --json goes with --describe-machine M\n";
+            return exit_usage;
+        }
         if (o.list_machines) {
-            for (const auto& [name, description] : list_machines()) out << fmt::format("{:<12}{}\n", name, description);
+            out << machine_list();
             finish_stream(out, "standard output");
             return exit_ok;
         }
         if (!o.describe.empty()) {
-            out << describe_machine(load_machine(o.describe));
+            if (o.describe_json) out << resolve_machine_json(o.describe).dump(2) << '\n';
+            else out << describe_machine(load_machine(o.describe));
             finish_stream(out, "standard output");
             return exit_ok;
         }

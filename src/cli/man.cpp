@@ -105,14 +105,20 @@ std::string man_page(const CLI::App& app, const std::string& version) {
         page += format.options(sub);
     }
     page += R"(.SH FILES
-Built-in machines are looked up by name in the order below; the first that has the name wins.
-A name that contains a slash or ends in \fI.json\fR is a machine file's path instead.
+A machine is looked up by name in the folders below, in this order; the first file
+\fINAME.json\fR wins. A name that contains a slash or ends in \fI.json\fR is a machine file's path instead.
+.TP
+each folder of \fBCAMGEN_MACHINES\fR (colon-separated)
+the user's machine files
+.TP
+\fI$XDG_CONFIG_HOME/camgen/machines\fR (\fI~/.config/camgen/machines\fR when XDG_CONFIG_HOME is unset)
+the user's machine files
 .TP
 \fI../share/camgen/machines/*.json\fR (beside the executable's \fIbin\fR folder)
-the machine files installed with camgen, e.g. \fI/usr/share/camgen/machines\fR
+the built-in machine files installed with camgen, e.g. \fI/usr/share/camgen/machines\fR
 .TP
 compiled in
-the same files as built into the program, used when there is no installed folder (a run from the build folder, a program linked with the camgen library)
+the same built-in files as built into the program, used when there is no installed folder (a run from the build folder, a program linked with the camgen library)
 .PP
 The JSON Schemas of job and machine files are installed in \fI../share/camgen/schema\fR (and printed by \fBcamgen schema job\fR and \fBcamgen schema machine\fR).
 .SH EXIT STATUS

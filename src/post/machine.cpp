@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -12,10 +11,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
-
-#ifndef CAMGEN_MACHINES_FROM_BIN
-#define CAMGEN_MACHINES_FROM_BIN "../share/camgen/machines"
-#endif
+#include "src/post/machine_files.hpp"
 
 namespace camgen {
 
@@ -84,11 +80,14 @@ constexpr Named<TappingMode> tapping_modes[] = {
 
 // The top-level keys of a machine file.
 constexpr KeySpec machine_keys[] = {
-    {.key = "description", .type = JsonType::string, .required = true, .description = "one line for --list-machines"},
-    {.key = "dialect", .type = JsonType::string, .required = true,
-     .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain"},
-    {.key = "extension", .type = JsonType::string, .required = true,
-     .description = "suggested file extension, without the dot"},
+    {.key = "extends", .type = JsonType::string,
+     .description = "the machine (name, or path relative to this file) this file changes: only what differs is "
+                    "given, merged over it (objects member by member; arrays and values replace; null removes)"},
+    {.key = "description", .type = JsonType::string, .description = "one line for --list-machines (required unless extends)"},
+    {.key = "dialect", .type = JsonType::string,
+     .description = "the dialect code that writes for it: iso, nccad, sinumerik or heidenhain (required unless extends)"},
+    {.key = "extension", .type = JsonType::string,
+     .description = "suggested file extension, without the dot (required unless extends)"},
     {.key = "kind", .type = JsonType::string, .default_json = "\"mill\"", .choices = &choices_of<machine_kinds>,
      .description = "mill or lathe: the operations it runs (a job's operations of the other kind are refused)"},
     {.key = "units", .type = JsonType::string, .default_json = "\"mm\"", .choices = &choices_of<unit_names>,
@@ -391,8 +390,13 @@ std::vector<ObjectSpec> machine_objects() {
     auto spec = [](std::string_view name, std::string_view description, std::span<const KeySpec> keys) {
         return ObjectSpec{.name = name, .description = description, .keys = {keys.begin(), keys.end()}};
     };
+    ObjectSpec machine = spec("machine", "a camgen machine file: the settings of one control", machine_keys);
+    // A file that extends another gives only what differs.
+    for (std::string_view key : {"description", "dialect", "extension"})
+        machine.groups.push_back({.keys = {"extends", key}, .min = 1, .max = 2,
+                                  .description = "extends another machine, or says what the inherited file would"});
     return {
-        spec("machine", "a camgen machine file: the settings of one control", machine_keys),
+        machine,
         spec("globals", "block layout and numbers", globals_keys),
         spec("formats", "number formats per word family", format_keys),
         spec("format", "a number format (CNC-Calc createFormat)", format_spec_keys),
@@ -457,10 +461,14 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     json::Source source{source_name, json::LineMap{}};
     nlohmann::json root = json::parse(text, source_name);
     source.lines = json::LineMap(text);
+    return parse_machine_json(root, name, source);
+}
+
+Machine parse_machine_json(const nlohmann::json& root, const std::string& name, const json::Source& source) {
     json::Fields f(root, "", source);
     Machine m;
     m.name = name;
-    m.source = source_name;
+    m.source = source.name;
     m.description = f.string("description");
     m.dialect = f.string("dialect");
     m.extension = f.string("extension");
@@ -711,68 +719,10 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
     return m;
 }
 
-std::vector<BuiltinMachine> machines_in(const std::string& dir) {
-    std::vector<BuiltinMachine> out;
-    std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-        const std::filesystem::path& path = entry.path();
-        if (path.extension() != ".json" || !entry.is_regular_file(error)) continue;
-        std::ifstream in(path, std::ios::binary);
-        std::stringstream text;
-        if (in) text << in.rdbuf();
-        if (!in) throw IoError(fmt::format("cannot read machine file {}", path.string()));
-        out.push_back({path.stem().string(), text.str(), path.string()});
-    }
-    if (error) throw IoError(fmt::format("cannot read machine folder {}: {}", dir, error.message()));
-    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-    return out;
-}
-
-std::vector<BuiltinMachine> builtin_machines() {
-    // Where the executable is installed, its machine files are (CAMGEN_MACHINES_FROM_BIN, the
-    // path from the install's bin folder to them, comes from the build). Looked up once: the
-    // executable does not move while it runs.
-    static const std::string installed = [] {
-        std::error_code error;
-        const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-        if (error) return std::string();
-        const std::filesystem::path dir = exe.parent_path() / CAMGEN_MACHINES_FROM_BIN;
-        return std::filesystem::is_directory(dir, error) ? dir.lexically_normal().string() : std::string();
-    }();
-    if (!installed.empty()) return machines_in(installed);
-    std::vector<BuiltinMachine> out;
-    for (const auto& e : embedded_machines())
-        out.push_back({e.name, e.text, std::string("machines/") + e.name + ".json"});
-    return out;
-}
-
-Machine load_machine(const std::string& name_or_path) {
-    bool is_path = name_or_path.find('/') != std::string::npos ||
-                   (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
-    if (is_path) {
-        std::ifstream in(name_or_path, std::ios::binary);
-        if (!in) throw IoError(fmt::format("cannot read machine file {}", name_or_path));
-        std::stringstream ss;
-        ss << in.rdbuf();
-        std::string stem = name_or_path.substr(name_or_path.find_last_of('/') + 1);
-        if (stem.ends_with(".json")) stem.resize(stem.size() - 5);
-        return parse_machine(ss.str(), stem, name_or_path);
-    }
-    const std::vector<BuiltinMachine> builtin = builtin_machines();
-    for (const auto& e : builtin)
-        if (name_or_path == e.name) return parse_machine(e.text, e.name, e.source);
-    std::vector<std::string> names;
-    for (const auto& e : builtin) names.emplace_back(e.name);
-    auto hint = json::did_you_mean(name_or_path, names);
-    throw UsageError(fmt::format("unknown machine \"{}\"{}; known machines: {} (or give a path to a machine JSON file)",
-                                 name_or_path, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
-                                 fmt::join(names, ", ")));
-}
-
 std::vector<std::pair<std::string, std::string>> list_machines() {
     std::vector<std::pair<std::string, std::string>> out;
-    for (const auto& e : builtin_machines()) {
-        Machine m = parse_machine(e.text, e.name, e.source);
+    for (const auto& e : embedded_machines()) {
+        Machine m = parse_machine(e.text, e.name, e.name);
         out.emplace_back(m.name, m.description);
     }
     std::sort(out.begin(), out.end());

@@ -10,6 +10,9 @@ scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 prefix=$scratch/prefix
 fail() { echo "check_install: $*" >&2; exit 1; }
+# Only the built-in machines: none of the user's running it.
+unset CAMGEN_MACHINES
+export XDG_CONFIG_HOME=$scratch/config
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
 camgen=$prefix/bin/camgen
@@ -48,11 +51,11 @@ cmp -s installed.knc built.knc || fail "the installed camgen posts plate.json di
 sed -i 's/"description": "[^"]*"/"description": "installed copy, edited"/' "$prefix/share/camgen/machines/wabeco.json"
 grep -q 'installed copy, edited' "$prefix/share/camgen/machines/wabeco.json" || fail "test setup: wabeco.json has no description"
 for exe in "$camgen" ./camgen-link; do
-  "$exe" --list-machines | grep -Eq '^wabeco[[:space:]]+installed copy, edited' ||
+  "$exe" --list-machines | grep -Fq "installed copy, edited  [built-in, $prefix/share/camgen/machines/wabeco.json]" ||
     fail "$exe --list-machines does not read $prefix/share/camgen/machines/wabeco.json"
 done
 # Without the installed folder: the compiled-in machines.
 rm -r "$prefix/share/camgen/machines"
-"$camgen" --list-machines | grep -Eq '^wabeco[[:space:]]+Wabeco mill' || fail "no fallback to the compiled-in machines"
+"$camgen" --list-machines | grep -Eq '^wabeco +Wabeco mill.*  \[built-in\]$' || fail "no fallback to the compiled-in machines"
 "$camgen" -q "$source_dir/samples/plate.json" --machine wabeco | cmp -s - built.knc || fail "the fallback posts differently"
 echo "check_install: installed layout, machine lookup beside the executable and public headers all right"

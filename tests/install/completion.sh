@@ -13,18 +13,13 @@ trap 'rm -rf "$scratch"' EXIT
 failures=0
 fail() { echo "completion: $*" >&2; failures=$((failures + 1)); }
 
-# A camgen that lists a machine of the user's besides the built-in ones, as --list-machines
-# does with user machine folders: completion asks the program, it has no list of its own.
-cat >"$scratch/camgen-with-user-machine" <<SH
-#!/bin/sh
-if [ "\$1" = --list-machines ]; then
-  "$camgen" --list-machines
-  echo "fanuc-shop  our Fanuc with sequence numbers"
-else
-  exec "$camgen" "\$@"
-fi
-SH
-chmod +x "$scratch/camgen-with-user-machine"
+# Only the machines this test gives: none of the user's running it.
+unset CAMGEN_MACHINES
+export XDG_CONFIG_HOME=$scratch/config
+# A machine of the user's (issue 14 part 2): completion asks the program, it has no list of
+# its own.
+mkdir "$scratch/machines"
+echo '{"extends": "fanuc", "description": "our Fanuc with sequence numbers"}' >"$scratch/machines/fanuc-shop.json"
 
 # Completes the words given (the last one is the word being completed) and prints COMPREPLY.
 complete_bash() {
@@ -43,7 +38,7 @@ touch "$scratch/jobs/plate.json" "$scratch/jobs/plate.nc"
 expect_bash "fanuc fanuc-lathe " "$camgen" --machine fa
 expect_bash "fanuc fanuc-lathe " "$camgen" -m fa
 expect_bash "fanuc fanuc-lathe " "$camgen" --describe-machine fa
-expect_bash "fanuc fanuc-lathe fanuc-shop " "$scratch/camgen-with-user-machine" --machine fa
+CAMGEN_MACHINES=$scratch/machines expect_bash "fanuc fanuc-lathe fanuc-shop " "$camgen" --machine fa
 expect_bash "--machine --max-elements --max-holes " "$camgen" --ma
 expect_bash "--job " "$camgen" verify --j
 expect_bash "job machine " "$camgen" schema ""
@@ -59,7 +54,7 @@ if ! command -v zsh >/dev/null; then
   fail "zsh is not installed (scripts/install-deps installs it)"
 else
   # zsh's completion system stubbed: what _camgen hands to _arguments and _describe.
-  zsh_out=$(zsh -f -c '
+  zsh_out=$(CAMGEN_MACHINES=$scratch/machines zsh -f -c '
     _call_program() { shift; eval "$@"; }
     _arguments() { print -l -- "$@"; }
     _describe() { print -l -- "${(@P)4}"; }
@@ -70,13 +65,15 @@ else
     _camgen
     _camgen_machines
     words=("$2" verify --); CURRENT=3
-    _camgen' _ "$source_dir/completions" "$scratch/camgen-with-user-machine")
+    _camgen' _ "$source_dir/completions" "$camgen")
   for want in '(-m --machine)--machine=[Machine name (see --list-machines) or path to a machine JSON file]:machine:_camgen_machines' \
               '(--units)--units=[Output units, overriding the machine file]:units:(mm inch)' \
               '(--job)--job=[The job the program should carry out]:job:_files -g "*.json(-.)"' \
               'fanuc:Generic Fanuc-style ISO mill (0i/18i): G81-G89 canned cycles, P in ms' \
               'fanuc-shop:our Fanuc with sequence numbers' '1: :_camgen_first' '1:NC program:_files'; do
-    grep -qxF -- "$want" <<<"$zsh_out" || fail "zsh: no [$want] in what _camgen passes on"
+    # A machine's line goes on with where it comes from ("  [built-in]").
+    awk -v want="$want" 'index($0, want) == 1 { found = 1 } END { exit !found }' <<<"$zsh_out" ||
+      fail "zsh: no [$want] in what _camgen passes on"
   done
   for option in $("$camgen" --help | sed -n 's/^ \{1,\}\(-[^ ]*\).*/\1/p' | tr ',' ' '); do
     grep -q -- "^([^)]*)$option[=+[]" <<<"$zsh_out" || fail "zsh: no spec for $option"

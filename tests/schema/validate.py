@@ -217,6 +217,21 @@ def main():
         else:
             print(f"ok   a machine file with {what} is rejected ({keyword})")
 
+    # A file that extends another gives only what differs; without extends the three are needed.
+    extension = {"extends": "fanuc", "globals": {"decimalMark": ",", "showSequenceNumbers": True}}
+    if not validators["machine"].is_valid(extension):
+        failures.append("a machine file that extends fanuc is rejected: "
+                        f"{describe_errors(validators['machine'], extension)}")
+    else:
+        print("ok   a machine file that extends fanuc and gives two globals is valid")
+    for key in ("description", "dialect", "extension"):
+        machine = copy.deepcopy(good_machine)
+        del machine[key]
+        if validators["machine"].is_valid(machine):
+            failures.append(f"the validator accepts a machine file without {key} that extends nothing")
+        else:
+            print(f"ok   a machine file without {key} that extends nothing is rejected")
+
     for f in failures:
         print("FAIL " + f)
     print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failure(s)")

@@ -1,6 +1,6 @@
 #pragma once
 // A machine: the settings of one control, read from machines/<name>.json (installed or
-// compiled in, see builtin_machines) or from a file given by path, plus the name of the dialect code that writes for it.
+// compiled in, see installed_machine_dir) or from a file given by path, plus the name of the dialect code that writes for it.
 #include <map>
 #include <optional>
 #include <string>
@@ -137,22 +137,11 @@ struct EmbeddedMachine {
 };
 const std::vector<EmbeddedMachine>& embedded_machines();
 
-// A built-in machine file: its name ("fanuc"), its text and where it came from (for messages
-// and --list-machines).
-struct BuiltinMachine {
-    std::string name;
-    std::string text;
-    std::string source;  // "/usr/share/camgen/machines/fanuc.json", or "machines/fanuc.json" compiled in
-};
-
-// The machine files of the folder `dir` (each *.json, named by its stem), sorted by name.
-// Throws IoError when one cannot be read.
-std::vector<BuiltinMachine> machines_in(const std::string& dir);
-
-// The built-in machines: those of the folder installed beside the running executable
-// (<prefix>/share/camgen/machines for <prefix>/bin/camgen) where there is one, else the
-// compiled-in copies (a run from the build folder, a program linked with the library).
-std::vector<BuiltinMachine> builtin_machines();
+// The folder of machine files installed beside the running executable, if there is one:
+// <prefix>/share/camgen/machines for <prefix>/bin/camgen, wherever the prefix is. It holds the
+// built-in machines of an installed camgen; without it (a run from the build folder, a program
+// linked with the library but not installed beside it) the compiled-in copies are the built-ins.
+std::optional<std::string> installed_machine_dir();
 
 // Parses a machine file's text. Throws InputError naming the JSON path and line.
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
@@ -161,8 +150,32 @@ Machine parse_machine(const std::string& text, const std::string& name, const st
 // globals, formats, format, limits, arcs, drilling, drillingCycle, frame and coolantCodes.
 std::vector<ObjectSpec> machine_objects();
 
-// A machine by name (compiled in) or by path to a JSON file (contains '/' or ends in .json).
-// Throws InputError for an unknown name, IoError for an unreadable file.
+// A machine camgen finds by name. Search order, first match wins: each folder of
+// CAMGEN_MACHINES (colon-separated), then $XDG_CONFIG_HOME/camgen/machines (default
+// ~/.config/camgen/machines), then the built-in machines (installed_machine_dir, else the
+// compiled-in copies). A user's file of a built-in's name
+// replaces it (and may extend it: "extends" of its own name means the next one down).
+struct MachineEntry {
+    std::string name;
+    std::string origin;           // "built-in" or the file's path
+    std::string path;             // the file; empty for a compiled-in machine
+    const char* text = nullptr;   // a compiled-in machine's text
+    bool shadowed = false;        // an entry of the same name earlier in the search order wins
+};
+// The user's machine folders, in search order (they need not exist).
+std::vector<std::string> user_machine_dirs();
+// Every machine file in search order, shadowed ones included.
+std::vector<MachineEntry> machine_catalogue();
+
+// The complete machine file of a name or path with its "extends" chain applied (each file is
+// merged over the one it extends as a JSON merge patch: objects member by member, arrays and
+// values replaced, null removes): what `--describe-machine M --json` prints. Throws InputError
+// naming the file for an unknown or cyclic "extends", IoError for an unreadable file.
+nlohmann::json resolve_machine_json(const std::string& name_or_path);
+
+// A machine by name (see MachineEntry) or by path to a JSON file (contains '/' or ends in
+// .json), with its "extends" chain applied. Errors name the file (of the chain) and line that
+// holds the value. Throws UsageError for an unknown name, IoError for an unreadable file.
 Machine load_machine(const std::string& name_or_path);
 
 // Names and one-line descriptions of the compiled-in machines, sorted by name.
