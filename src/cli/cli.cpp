@@ -19,12 +19,13 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
+#include "src/cli/man.hpp"
 #include "camgen/post/safety.hpp"
 
 #ifndef CAMGEN_VERSION
@@ -292,6 +293,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                  "No notes on standard error (\"camgen: note: ...\", e.g. a cycle written longhand although the machine "
                  "has it canned); warnings and errors are still printed");
 
+    // Hidden: the build writes the man page camgen.1 with it, from this same option table.
+    bool man = false;
+    app.add_flag("--man", man, "Print the man page (roff)")->group("");
+
     VerifyOptions vo;
     CLI::App* verify = app.add_subcommand(
         "verify", "Read an NC program back with a machine's settings: statistics, an optional SVG backplot, and with "
@@ -317,6 +322,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     }
 
     try {
+        if (man) {
+            out << man_page(app, CAMGEN_VERSION);
+            finish_stream(out, "standard output");
+            return exit_ok;
+        }
         if (verify->parsed()) return run_verify(vo, in, out);
         if (schema->parsed()) {
             const std::optional<std::string> text = schema_text(schema_name);
