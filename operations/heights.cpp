@@ -1,4 +1,4 @@
-#include "operations/heights.hpp"
+#include "camgen/operations/heights.hpp"
 
 
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "operations/holes.hpp"
+#include "camgen/operations/holes.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "operations/bore_mill/bore_mill.hpp"
+#include "camgen/operations/bore_mill/bore_mill.hpp"
 
 #include <algorithm>
 #include <cmath>

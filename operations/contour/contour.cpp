@@ -1,4 +1,4 @@
-#include "operations/contour/contour.hpp"
+#include "camgen/operations/contour/contour.hpp"
 
 #include <algorithm>
 #include <cmath>

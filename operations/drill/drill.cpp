@@ -1,4 +1,4 @@
-#include "operations/drill/drill.hpp"
+#include "camgen/operations/drill/drill.hpp"
 
 #include <cmath>
 #include <iterator>

@@ -1,4 +1,4 @@
-#include "operations/path/path.hpp"
+#include "camgen/operations/path/path.hpp"
 
 #include <algorithm>
 #include <cmath>

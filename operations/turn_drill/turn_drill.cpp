@@ -1,11 +1,11 @@
-#include "operations/turn_drill/turn_drill.hpp"
+#include "camgen/operations/turn_drill/turn_drill.hpp"
 
 #include <iterator>
 
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "operations/drill/drill.hpp"
+#include "camgen/operations/drill/drill.hpp"
 
 namespace camgen {
 

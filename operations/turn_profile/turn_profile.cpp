@@ -1,4 +1,4 @@
-#include "operations/turn_profile/turn_profile.hpp"
+#include "camgen/operations/turn_profile/turn_profile.hpp"
 
 #include <cmath>
 #include <iterator>

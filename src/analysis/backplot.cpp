@@ -100,7 +100,7 @@ std::string path_of(const Step& s, const View& v) {
 }
 
 // A small arrowhead at the middle of a feed move, pointing the way it goes.
-std::string arrow(const Step& s, const View& v, const char* colour) {
+std::string arrow(const Step& s, const View& v, const char* colour, const std::string& attributes) {
     Vec3 a, b, m;
     if (s.arc) {
         a = point_on_arc(*s.arc, 0.45), b = point_on_arc(*s.arc, 0.55), m = point_on_arc(*s.arc, 0.5);
@@ -114,7 +114,7 @@ std::string arrow(const Step& s, const View& v, const char* colour) {
     // Tip ahead of the middle, two corners behind it.
     double tx = cx + dx * size, ty = cy + dy * size;
     double bx = cx - dx * size, by = cy - dy * size;
-    return fmt::format("<polygon points=\"{},{} {},{} {},{}\" fill=\"{}\"/>", n(tx), n(ty), n(bx - dy * size * 0.6),
+    return fmt::format("<polygon{} points=\"{},{} {},{} {},{}\" fill=\"{}\"/>", attributes, n(tx), n(ty), n(bx - dy * size * 0.6),
                        n(by + dx * size * 0.6), n(bx + dy * size * 0.6), n(by - dx * size * 0.6), colour);
 }
 
@@ -162,18 +162,42 @@ ProgramStats section_of(const ProgramStats& stats) {
     return s;
 }
 
-std::string draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view);
+BackplotDrawing draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view);
 
 }  // namespace
 
 std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
+    return backplot_drawing(trace, stats, options).svg;
+}
+
+BackplotDrawing backplot_drawing(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
     if (options.kind == MachineKind::lathe) return draw_svg(section_of(trace), section_of(stats), options, section_view);
     return draw_svg(trace, stats, options, xy_view);
 }
 
+BackplotLayer layer_of(const Step& step) {
+    if (step.kind == StepKind::rapid) return BackplotLayer::rapid;
+    switch (step.movement) {
+        case Movement::plunge: return BackplotLayer::plunge;
+        case Movement::ramp: return BackplotLayer::ramp;
+        case Movement::lead_in:
+        case Movement::lead_out: return BackplotLayer::lead;
+        case Movement::cutting:
+        case Movement::finishing: break;
+    }
+    return BackplotLayer::feed;
+}
+
 namespace {
 
-std::string draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view) {
+BackplotDrawing draw_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options, const ViewText& view) {
+    // The layer classes an element carries for the HTML page ("t1 t7 k-hole"), or none.
+    auto mark = [&](const std::vector<int>& tools, BackplotLayer layer) {
+        if (options.layers == BackplotLayers::none) return std::string();
+        std::string classes;
+        for (int t : tools) classes += fmt::format("t{} ", t);
+        return fmt::format(" class=\"{}k-{}\"", classes, name_of(backplot_layers, layer));
+    };
     // Colours by tool, in order of first use.
     std::map<int, const char*> colour;
     std::map<int, double> diameter;
@@ -273,36 +297,40 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
             const double depth = key.second == ramp_level ? 0.0 : highest > lowest ? (highest - z) / (highest - lowest) : 1.0;
             // Seen from above a mill's cutter is a circle: the band ends round. In a lathe's
             // half-section a drill on the axis cuts to its end and no farther: square ends.
-            body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"{}\" "
+            body.add(fmt::format("<path{} d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"{}\" "
                                  "stroke-linejoin=\"round\" stroke-opacity=\"{}\"/>",
-                                 path, colour_of(key.first), n(diameter[key.first] * v.scale),
+                                 mark({key.first}, BackplotLayer::width), path, colour_of(key.first), n(diameter[key.first] * v.scale),
                                  options.kind == MachineKind::lathe ? "butt" : "round", n(0.08 + 0.17 * depth)));
         }
     }
 
-    // Moves: one path per tool and kind, rapids first so that cuts are drawn over them.
-    for (StepKind kind : {StepKind::rapid, StepKind::feed}) {
+    // Moves: one path per tool and kind, rapids first so that cuts are drawn over them. With
+    // layers, feed moves are split by their kind (plunge, ramp, lead) for the page's switches.
+    auto layer = [&](const Step& s) {
+        return options.layers == BackplotLayers::none && s.kind == StepKind::feed ? BackplotLayer::feed : layer_of(s);
+    };
+    for (BackplotLayer kind : {BackplotLayer::rapid, BackplotLayer::feed, BackplotLayer::plunge, BackplotLayer::ramp, BackplotLayer::lead}) {
         std::map<int, std::string> d;
         std::map<int, Vec3> last;
         std::vector<std::string> arrows;
         for (const Step& s : trace.steps) {
-            if (s.kind != kind || !s.from_known) continue;
+            if ((s.kind != StepKind::rapid && s.kind != StepKind::feed) || !s.from_known || layer(s) != kind) continue;
             if (!s.arc && xy_length(s) < 1e-9) continue;  // a move along Z only: seen from above it is a point
             std::string& path = d[s.tool];
             if (!last.count(s.tool) || !(last[s.tool] == s.from)) path += fmt::format("M{}", v.at(s.from));
             path += path_of(s, v);
             last[s.tool] = s.to;
             double px = s.arc ? s.arc->radius * s.arc->sweep * v.scale : xy_length(s) * v.scale;
-            if (kind == StepKind::feed && px >= 24) arrows.push_back(arrow(s, v, colour_of(s.tool)));
+            if (kind != BackplotLayer::rapid && px >= 24) arrows.push_back(arrow(s, v, colour_of(s.tool), mark({s.tool}, kind)));
         }
         for (const auto& [tool, path] : d) {
-            if (kind == StepKind::rapid)
-                body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1\" stroke-dasharray=\"5 4\" "
+            if (kind == BackplotLayer::rapid)
+                body.add(fmt::format("<path{} d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1\" stroke-dasharray=\"5 4\" "
                                      "stroke-opacity=\"0.75\"/>",
-                                     path, colour_of(tool)));
+                                     mark({tool}, kind), path, colour_of(tool)));
             else
-                body.add(fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\" stroke-linejoin=\"round\"/>",
-                                     path, colour_of(tool)));
+                body.add(fmt::format("<path{} d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\" stroke-linejoin=\"round\"/>",
+                                     mark({tool}, kind), path, colour_of(tool)));
         }
         for (const std::string& a : arrows) body.add(a);
     }
@@ -325,29 +353,37 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
         if (s.kind != StepKind::feed || !s.from_known || s.arc || xy_length(s) >= 1e-9 || !(s.to.z < s.from.z)) continue;
         if (is_hole(s.to)) continue;
         double cx = v.x(s.to.x), cy = v.y(s.to.y);
-        body.add(fmt::format("<g stroke=\"{0}\" stroke-width=\"1.2\"><rect x=\"{1}\" y=\"{2}\" width=\"8\" height=\"8\" "
+        body.add(fmt::format("<g{4} stroke=\"{0}\" stroke-width=\"1.2\"><rect x=\"{1}\" y=\"{2}\" width=\"8\" height=\"8\" "
                              "fill=\"#fff\"/><path d=\"M{1},{2}l8,8M{3},{2}l-8,8\"/></g>",
-                             colour_of(s.tool), n(cx - 4), n(cy - 4), n(cx + 4)));
+                             colour_of(s.tool), n(cx - 4), n(cy - 4), n(cx + 4), mark({s.tool}, BackplotLayer::plunge)));
     }
 
     // Holes: the drill's size where known, a cross, and the drilling order; holes drilled at
     // the same place by several tools share one label.
     std::vector<std::pair<Vec2, std::vector<std::pair<int, int>>>> labels;  // place -> (number, tool)
     std::map<std::pair<long, long>, size_t> label_at;
+    std::map<int, std::string> rings;  // tool -> the circles of holes beyond options.hole_marks
     for (size_t i = 0; i < trace.holes.size(); ++i) {
         const Hole& h = trace.holes[i];
         double r = std::max(diameter[h.tool] / 2.0 * v.scale, 3.0);
         double cx = v.x(h.at.x), cy = v.y(h.at.y);
         const char* c = colour_of(h.tool);
-        body.add(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
-                             n(cx), n(cy), n(r), c, c));
-        body.add(fmt::format("<path d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", n(cx - r - 3), n(cy), n(cx + r + 3),
-                             n(cx), n(cy - r - 3), n(cy + r + 3), c));
+        if (i >= options.hole_marks) {
+            rings[h.tool] += fmt::format("M{0},{1}a{2},{2} 0 1 0 {3},0a{2},{2} 0 1 0 -{3},0", n(cx - r), n(cy), n(r), n(2 * r));
+        } else {
+            body.add(fmt::format("<circle{} cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                                 mark({h.tool}, BackplotLayer::hole), n(cx), n(cy), n(r), c, c));
+            body.add(fmt::format("<path{} d=\"M{},{}H{}M{},{}V{}\" stroke=\"{}\" stroke-width=\"0.8\"/>", mark({h.tool}, BackplotLayer::hole),
+                                 n(cx - r - 3), n(cy), n(cx + r + 3), n(cx), n(cy - r - 3), n(cy + r + 3), c));
+        }
         auto key = std::make_pair(std::lround(h.at.x * 1000.0), std::lround(h.at.y * 1000.0));
         auto [it, fresh] = label_at.try_emplace(key, labels.size());
         if (fresh) labels.push_back({h.at, {}});
         labels[it->second].second.push_back({static_cast<int>(i) + 1, h.tool});
     }
+    for (const auto& [tool, d] : rings)
+        body.add(fmt::format("<path{} d=\"{}\" fill=\"{}\" fill-opacity=\"0.12\" stroke=\"{}\" stroke-width=\"1.2\"/>",
+                             mark({tool}, BackplotLayer::hole), d, colour_of(tool), colour_of(tool)));
     // Numbers where they fit: the first and last hole of each tool first, then in drilling
     // order, leaving out any that would overlap one already placed.
     std::vector<size_t> order(labels.size());
@@ -375,8 +411,8 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
         for (const auto& [number, tool] : numbers) r = std::max(r, diameter[tool] / 2.0 * v.scale);
         std::string spans, plain;
         for (size_t k = 0; k < numbers.size(); ++k) {
-            spans += fmt::format("{}<tspan fill=\"{}\">{}</tspan>", k ? "<tspan fill=\"#555\">, </tspan>" : "",
-                                 colour_of(numbers[k].second), numbers[k].first);
+            spans += fmt::format("{}<tspan{} fill=\"{}\">{}</tspan>", k ? "<tspan fill=\"#555\">, </tspan>" : "",
+                                 mark({numbers[k].second}, BackplotLayer::hole), colour_of(numbers[k].second), numbers[k].first);
             plain += fmt::format("{}{}", k ? ", " : "", numbers[k].first);
         }
         double tx = v.x(at.x) + r * 0.75 + 3, ty = v.y(at.y) - r * 0.75 - 3;
@@ -394,9 +430,9 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
         for (int cx = static_cast<int>(std::floor(box.x0 / cell)); cx <= static_cast<int>(std::floor(box.x1 / cell)); ++cx)
             for (int cy = static_cast<int>(std::floor(box.y0 / cell)); cy <= static_cast<int>(std::floor(box.y1 / cell)); ++cy)
                 placed[{cx, cy}].push_back(box);
-        body.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" font-weight=\"bold\" stroke=\"#fff\" stroke-width=\"3\" "
+        body.add(fmt::format("<text{} x=\"{}\" y=\"{}\" {} font-size=\"12\" font-weight=\"bold\" stroke=\"#fff\" stroke-width=\"3\" "
                              "paint-order=\"stroke\">{}</text>",
-                             n(tx), n(ty), font, spans));
+                             mark({}, BackplotLayer::hole), n(tx), n(ty), font, spans));
     }
 
     // Scale bar under the drawing, left.
@@ -501,7 +537,7 @@ std::string draw_svg(const Trace& trace, const ProgramStats& stats, const Backpl
     svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" fill=\"#555\">{}backplot of the program as camgen reads it back, "
                         "{}</text>",
                         n(left), n(47), font, escape(options.machine.empty() ? "" : "machine " + options.machine + " - "), view.name));
-    return svg.text() + body.text() + legend.text() + "</svg>\n";
+    return {svg.text() + body.text() + legend.text() + "</svg>\n", {v.min_x, v.max_y, v.scale, v.left, v.top}};
 }
 
 }  // namespace

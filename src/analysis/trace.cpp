@@ -91,7 +91,10 @@ public:
                        [&](const Rapid& r) { move(StepKind::rapid, r.to, 0.0, e.from_unknown); },
                        [&](const Linear& l) {
                            move(StepKind::feed, l.to, l.feed, false);
-                           if (!trace_.steps.empty() && trace_.steps.back().kind == StepKind::feed) trace_.steps.back().movement = l.movement;
+                           if (!trace_.steps.empty() && trace_.steps.back().kind == StepKind::feed) {
+                               trace_.steps.back().movement = l.movement;
+                               if (e.per_revolution > 0) trace_.steps.back().pitch = e.per_revolution;
+                           }
                        },
                        [&](const Arc& a) {
                            if (!known_) throw std::logic_error("arc from an unknown position");
@@ -101,6 +104,7 @@ public:
                            s.feed = a.feed;
                            s.arc = resolve_arc(pos_, a);
                            s.movement = a.movement;
+                           s.pitch = e.per_revolution;
                            trace_.steps.push_back(s);
                            pos_ = a.to;
                        },
@@ -118,7 +122,8 @@ public:
                            // comparison allows for the speed the program could write.
                            pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
                            for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_, longhand_buffers_))
-                               add(ReadEvent{to_event(m), e.line, false, e.uncertainty});
+                               add(ReadEvent{.event = to_event(m), .line = e.line, .uncertainty = e.uncertainty,
+                                             .per_revolution = e.per_revolution});
                            pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },

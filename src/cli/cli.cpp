@@ -12,18 +12,20 @@
 #include <fmt/format.h>
 
 #include "camgen/analysis/backplot.hpp"
+#include "camgen/analysis/backplot_html.hpp"
 #include "camgen/common/error.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
+#include "src/cli/man.hpp"
 #include "camgen/post/safety.hpp"
 
 #ifndef CAMGEN_VERSION
@@ -206,11 +208,19 @@ void finish_stream(std::ostream& out, const std::string& name) {
 
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
 
-// Writes the SVG backplot of a trace atomically.
-void write_plot(const std::string& file, const Trace& trace, const ProgramStats& stats, const BackplotOptions& options) {
-    OutputFile svg(file);
-    svg.stream() << backplot_svg(trace, stats, options);
-    svg.commit();
+// The backplot of `program` (read back into `trace`) for a --plot file: the interactive HTML
+// page for F.html, else the SVG drawing.
+std::string plot_text(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
+                      const BackplotOptions& options) {
+    return is_html_plot(file) ? backplot_html(program, trace, stats, options) : backplot_svg(trace, stats, options);
+}
+
+// Writes the backplot of a program atomically.
+void write_plot(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
+                const BackplotOptions& options) {
+    OutputFile plot(file);
+    plot.stream() << plot_text(file, program, trace, stats, options);
+    plot.commit();
 }
 
 // `camgen verify`: reads a program back, prints what it does, and compares it with a job.
@@ -246,7 +256,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Trace trace = trace_program(read_program(text, machine, source, &resolution), machine);
     ProgramStats stats = compute_stats(trace, machine);
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
-    if (!v.plot.empty()) write_plot(v.plot, trace, stats, {base_name(source), machine.name, machine.kind});
+    if (!v.plot.empty()) write_plot(v.plot, text, trace, stats, {base_name(source), machine.name, machine.kind});
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;
@@ -281,7 +291,7 @@ void read_back(std::string_view program, const Job& job, const Options& o, std::
     Trace trace = trace_program(read_program(program, machine, name), machine);
     ProgramStats stats = compute_stats(trace, machine);
     if (o.stats) err << format_stats(stats);
-    if (!o.plot.empty()) plot.emplace(o.plot).stream() << backplot_svg(trace, stats, {name, machine.name, machine.kind});
+    if (!o.plot.empty()) plot.emplace(o.plot).stream() << plot_text(o.plot, program, trace, stats, {name, machine.name, machine.kind});
 }
 
 }  // namespace
@@ -309,7 +319,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_flag("--json", o.describe_json,
                  "With --describe-machine: print the machine's complete file (its extends applied) as JSON, to start "
                  "a machine file from");
-    app.add_option("--plot", o.plot, "Also write an SVG backplot of the program as read back (XY view)");
+    app.add_option("--plot", o.plot,
+                   "Also write a backplot of the program as read back: F.svg a drawing (XY view, a lathe's XZ "
+                   "half-section), F.html an interactive page (block slider, layers, statistics)");
     app.add_option("--max-holes", o.limits.holes,
                    fmt::format("Refuse jobs with more holes than this (default {})", JobLimits{}.holes));
     app.add_option("--max-elements", o.limits.path_elements,
@@ -322,6 +334,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                  "No notes on standard error (\"camgen: note: ...\", e.g. a cycle written longhand although the machine "
                  "has it canned); warnings and errors are still printed");
 
+    // Hidden: the build writes the man page camgen.1 with it, from this same option table.
+    bool man = false;
+    app.add_flag("--man", man, "Print the man page (roff)")->group("");
+
     VerifyOptions vo;
     CLI::App* verify = app.add_subcommand(
         "verify", "Read an NC program back with a machine's settings: statistics, an optional SVG backplot, and with "
@@ -329,7 +345,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     verify->add_option("program", vo.program, "The NC program; - reads standard input")->required();
     verify->add_option("-m,--machine", vo.machine, "The machine the program was written for")->required();
     verify->add_option("--job", vo.job, "The job the program should carry out");
-    verify->add_option("--plot", vo.plot, "Write an SVG backplot of the program (XY view)");
+    verify->add_option("--plot", vo.plot, "Write a backplot of the program: F.svg a drawing, F.html an interactive page");
     verify->add_option("--units", vo.units, "The units the program was written in, if not the machine's (as camgen --units)")
         ->check(CLI::IsMember({"mm", "inch"}));
 
@@ -347,6 +363,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     }
 
     try {
+        if (man) {
+            out << man_page(app, CAMGEN_VERSION);
+            finish_stream(out, "standard output");
+            return exit_ok;
+        }
         if (verify->parsed()) return run_verify(vo, in, out);
         if (schema->parsed()) {
             const std::optional<std::string> text = schema_text(schema_name);

@@ -13,6 +13,10 @@
 #include "camgen/post/machine.hpp"
 #include "src/post/machine_files.hpp"
 
+#ifndef CAMGEN_MACHINES_FROM_BIN
+#define CAMGEN_MACHINES_FROM_BIN "../share/camgen/machines"
+#endif
+
 namespace camgen {
 
 namespace {
@@ -62,6 +66,19 @@ Layer read_layer(const MachineEntry& e) {
 }
 
 MachineEntry file_entry(const std::string& path) { return {stem_of(path), path, path, nullptr, false}; }
+
+// The machine files of a folder (*.json, not hidden), sorted; none if it does not exist.
+std::vector<std::string> machine_files_in(const std::string& dir) {
+    std::error_code ec;
+    std::vector<std::string> files;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string file = it->path().filename().string();
+        if (file.size() > 5 && file.ends_with(".json") && file[0] != '.' && it->is_regular_file(ec))
+            files.push_back(it->path().string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
 
 [[noreturn]] void unknown_machine(const std::string& name, const std::vector<MachineEntry>& catalogue) {
     std::vector<std::string> names;
@@ -192,21 +209,29 @@ std::vector<std::string> user_machine_dirs() {
     return dirs;
 }
 
+std::optional<std::string> installed_machine_dir() {
+    // CAMGEN_MACHINES_FROM_BIN, the path from the install's bin folder to its machine files,
+    // comes from the build (cmake/install.cmake). Looked up once: the executable stays put.
+    static const std::optional<std::string> dir = []() -> std::optional<std::string> {
+        std::error_code ec;
+        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (ec) return std::nullopt;
+        const fs::path machines = (exe.parent_path() / CAMGEN_MACHINES_FROM_BIN).lexically_normal();
+        if (!fs::is_directory(machines, ec)) return std::nullopt;
+        return machines.string();
+    }();
+    return dir;
+}
+
 std::vector<MachineEntry> machine_catalogue() {
     std::vector<MachineEntry> out;
-    for (const std::string& dir : user_machine_dirs()) {
-        std::error_code ec;
-        std::vector<std::string> files;
-        for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-            const std::string file = it->path().filename().string();
-            if (file.size() > 5 && file.ends_with(".json") && file[0] != '.' && it->is_regular_file(ec))
-                files.push_back(it->path().string());
-        }
-        std::sort(files.begin(), files.end());
-        for (const std::string& f : files) out.push_back(file_entry(f));
-    }
+    for (const std::string& dir : user_machine_dirs())
+        for (const std::string& f : machine_files_in(dir)) out.push_back(file_entry(f));
     const std::size_t first_builtin = out.size();
-    for (const auto& e : embedded_machines()) out.push_back({e.name, "built-in", "", e.text, false});
+    if (const auto installed = installed_machine_dir())
+        for (const std::string& f : machine_files_in(*installed)) out.push_back({stem_of(f), "built-in, " + f, f, nullptr, false});
+    else
+        for (const auto& e : embedded_machines()) out.push_back({e.name, "built-in", "", e.text, false});
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(first_builtin), out.end(),
               [](const MachineEntry& a, const MachineEntry& b) { return a.name < b.name; });
     for (std::size_t i = 0; i < out.size(); ++i)

@@ -90,7 +90,10 @@ void NcReader::finish() { drill_end(); }
 void NcReader::fail(const std::string& detail) const { throw InputError("", detail, line_, source_); }
 
 void NcReader::emit(Event event, bool from_unknown, double uncertainty) {
+    const bool feed_move = std::holds_alternative<Linear>(event) || std::holds_alternative<Arc>(event) ||
+                           std::holds_alternative<DrillPoint>(event);
     out_.push_back(ReadEvent{std::move(event), line_, from_unknown, uncertainty});
+    if (feed_move && feed_per_rev_) out_.back().per_revolution = *feed_per_rev_;
 }
 
 // ---- words ----

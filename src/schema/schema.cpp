@@ -11,7 +11,7 @@
 #include "camgen/common/key_spec.hpp"
 #include "camgen/job/job_input.hpp"
 #include "camgen/post/machine.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 
 namespace camgen {
 

@@ -15,7 +15,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 
 namespace camgen::fuzz {
 

@@ -18,7 +18,7 @@ LAYERS = [
     ("include/camgen/common/", "common"), ("src/common/", "common"), ("camgen/common/", "common"),
     ("include/camgen/events/", "events"), ("src/events/", "events"), ("camgen/events/", "events"),
     ("include/camgen/job/", "job"), ("src/job/", "job"), ("camgen/job/", "job"),
-    ("operations/", "operations"),
+    ("include/camgen/operations/", "operations"), ("operations/", "operations"), ("camgen/operations/", "operations"),
     ("include/camgen/nc/", "nc"), ("src/nc/", "nc"), ("camgen/nc/", "nc"),
     ("include/camgen/post/", "post"), ("src/post/", "post"), ("camgen/post/", "post"),
     ("include/camgen/reader/", "reader"), ("src/reader/", "reader"), ("camgen/reader/", "reader"),

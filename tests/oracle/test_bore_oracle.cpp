@@ -15,7 +15,7 @@
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen_motion.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;

@@ -8,7 +8,7 @@
 #include <doctest/doctest.h>
 
 #include "camgen/post/post.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "../unit/support.hpp"
 #include "rs274.hpp"
 

@@ -15,7 +15,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"

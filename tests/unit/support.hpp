@@ -12,7 +12,7 @@
 
 #include "camgen/cli/cli.hpp"
 #include "camgen/common/error.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "camgen/schema/schema.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 
 using namespace camgen;
 

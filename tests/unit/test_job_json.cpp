@@ -9,8 +9,8 @@
 #include <string>
 
 #include "camgen/common/error.hpp"
-#include "operations/registry.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 
 using namespace camgen;
 

@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "reader_support.hpp"

@@ -13,7 +13,7 @@
 
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"

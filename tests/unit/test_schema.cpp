@@ -7,7 +7,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/schema/schema.hpp"
-#include "operations/registry.hpp"
+#include "camgen/operations/registry.hpp"
 #include "support.hpp"
 
 using namespace camgen;

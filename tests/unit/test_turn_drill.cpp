@@ -219,3 +219,22 @@ TEST_CASE("turn-drill: feeds per revolution: the job's mm/rev, written after the
                          doctest::Contains("/operations/0/feedMode: machine test-lathe has no feed per-revolution mode"),
                          InputError);
 }
+
+TEST_CASE("a per-revolution feed at a spindle speed S rounds reads back within feed x the S resolution") {
+    // 0.2296875 mm/rev at 802.3125 rpm is 184.281 mm/min in the job; the program says S802, so
+    // the control feeds 184.219 mm/min: the feed per turn is kept, the speed is the machine's.
+    // A fuzz_mutated finding: verify refused camgen's own linuxcnc-lathe program.
+    const std::string job = R"({"name": "s", "units": "mm", "clearance": 20,
+      "tools": [{"number": 2, "type": "drill", "diameter": 10, "rpm": 802.3125, "tipAngle": 118}],
+      "operations": [{"type": "turn-drill", "tool": 2, "feedMode": "per-revolution", "plungingFeedrate": 0.2296875,
+        "startDepth": 0, "endDepth": -30, "firstPeckDepth": 6, "peckRetract": 1, "safeDistance": 2, "retractDistance": 5}]})";
+    const std::string file = test::file_with("per-rev-speed-rounding", job);
+    for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const std::string program = (test::scratch("per-rev-speed-rounding-out") / "p.nc").string();
+        const test::Run post = test::run({file, "--machine", machine, "-o", program, "-q"});
+        REQUIRE_MESSAGE(post.code == 0, post.err);
+        const test::Run verify = test::run({"verify", program, "--machine", machine, "--job", file});
+        CHECK_MESSAGE(verify.code == 0, verify.err);
+    }
+}

@@ -3,22 +3,66 @@
 // machinist looks at before running a program: rapids dashed, feed moves solid with their
 // direction, one colour per tool, holes marked and numbered in drilling order, a grid with
 // coordinates, the work zero, a scale bar and a legend with the statistics.
+#include <cstddef>
+#include <limits>
 #include <string>
 
 #include "camgen/analysis/trace.hpp"
 #include "camgen/analysis/stats.hpp"
+#include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen {
+
+// The layers of a drawing: each move, hole and band belongs to one, and to its tool.
+enum class BackplotLayer { rapid, feed, plunge, ramp, lead, width, hole };
+inline constexpr Named<BackplotLayer> backplot_layers[] = {
+    {BackplotLayer::rapid, "rapid", "rapid moves (G0)"},
+    {BackplotLayer::feed, "feed", "feed moves along the path (cutting, finishing)"},
+    {BackplotLayer::plunge, "plunge", "feed moves straight down, and their marks"},
+    {BackplotLayer::ramp, "ramp", "feed moves down along the path or a helix"},
+    {BackplotLayer::lead, "lead", "lead-in and lead-out moves"},
+    {BackplotLayer::width, "width", "the width the tool cuts"},
+    {BackplotLayer::hole, "hole", "holes and their numbers"},
+};
+
+// The layer of a rapid or feed move: rapid, or its feed's movement kind.
+BackplotLayer layer_of(const Step& step);
+
+// Whether the drawing's elements say which layer they belong to.
+enum class BackplotLayers {
+    none,     // a plain drawing (the SVG file)
+    classes,  // every element of a layer carries class="tN k-LAYER" (N: its tool), feed moves
+              // drawn apart by movement kind (the HTML page switches layers with them)
+};
 
 struct BackplotOptions {
     std::string title;    // the program's name ("plate.nc")
     std::string machine;  // the machine's name
     MachineKind kind = MachineKind::mill;  // a lathe's program is drawn as an XZ half-section
+    BackplotLayers layers = BackplotLayers::none;
+    // Holes drawn with their own circle and cross, in drilling order; the rest as plain
+    // circles, one path per tool (a page with very many holes stays small).
+    std::size_t hole_marks = std::numeric_limits<std::size_t>::max();
+};
+
+// Where a drawing puts a position, in SVG user units: x = left + (u - min_u) * scale and
+// y = top + (max_v - v) * scale, with (u, v) = (X, Y) in a mill's XY view and (Z, X) in a
+// lathe's half-section.
+struct BackplotFrame {
+    double min_u = 0, max_v = 0, scale = 1, left = 0, top = 0;
+};
+
+struct BackplotDrawing {
+    std::string svg;
+    BackplotFrame frame;
 };
 
 // The SVG text. Deterministic: every number goes through one fixed formatter. A lathe's
 // program (options.kind) is drawn as a half-section: Z to the right, X (the radius) up, the
 // spindle axis at X0 - the profile, the drilled hole's pecks along the axis, rapids dashed.
 std::string backplot_svg(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options);
+
+// The same drawing and its frame, for marks laid over it (the HTML page's tool marker).
+BackplotDrawing backplot_drawing(const Trace& trace, const ProgramStats& stats, const BackplotOptions& options);
 
 }  // namespace camgen

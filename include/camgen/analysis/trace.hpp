@@ -23,7 +23,8 @@ struct Step {
     Vec3 to;                         // rapid, feed: end
     bool from_known = true;          // false: from the tool-change position, path unknown
     double feed = 0.0;               // feed: mm/min as programmed
-    double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping), else 0
+    double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping, or a
+                                     // per-revolution feed, G95), else 0
     Movement movement = Movement::cutting;  // feed: as the job's events say; read back: plunge or ramp
                                             // where the motion shows it (straight down, down along XY)
     std::optional<ArcGeometry> arc;  // feed: set for a circular move

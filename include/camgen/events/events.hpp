@@ -31,9 +31,9 @@ struct OperationPlanes {
 struct OperationStart {
     std::string name;
     std::string path;
-    std::optional<double> tolerance;
-    std::vector<std::string> notes;  // what the operation decided that the job did not ask for
-    std::optional<OperationPlanes> planes;
+    std::optional<double> tolerance = std::nullopt;
+    std::vector<std::string> notes = {};  // what the operation decided that the job did not ask for
+    std::optional<OperationPlanes> planes = std::nullopt;
     FeedMode feed_mode = FeedMode::per_minute;
     friend bool operator==(const OperationStart&, const OperationStart&) = default;
 };

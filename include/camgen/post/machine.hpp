@@ -1,6 +1,6 @@
 #pragma once
-// A machine: the settings of one control, read from machines/<name>.json (compiled in) or
-// from a file given by path, plus the name of the dialect code that writes for it.
+// A machine: the settings of one control, read from machines/<name>.json (installed or
+// compiled in, see installed_machine_dir) or from a file given by path, plus the name of the dialect code that writes for it.
 #include <map>
 #include <optional>
 #include <string>
@@ -137,6 +137,12 @@ struct EmbeddedMachine {
 };
 const std::vector<EmbeddedMachine>& embedded_machines();
 
+// The folder of machine files installed beside the running executable, if there is one:
+// <prefix>/share/camgen/machines for <prefix>/bin/camgen, wherever the prefix is. It holds the
+// built-in machines of an installed camgen; without it (a run from the build folder, a program
+// linked with the library but not installed beside it) the compiled-in copies are the built-ins.
+std::optional<std::string> installed_machine_dir();
+
 // Parses a machine file's text. Throws InputError naming the JSON path and line.
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
 
@@ -146,7 +152,8 @@ std::vector<ObjectSpec> machine_objects();
 
 // A machine camgen finds by name. Search order, first match wins: each folder of
 // CAMGEN_MACHINES (colon-separated), then $XDG_CONFIG_HOME/camgen/machines (default
-// ~/.config/camgen/machines), then the built-in machines. A user's file of a built-in's name
+// ~/.config/camgen/machines), then the built-in machines (installed_machine_dir, else the
+// compiled-in copies). A user's file of a built-in's name
 // replaces it (and may extend it: "extends" of its own name means the next one down).
 struct MachineEntry {
     std::string name;

@@ -28,6 +28,8 @@ struct ReadEvent {
                                 // because the control computes it (nccad D-form arcs, the
                                 // depths of a canned cycle from its rounded parameters)
     Approach approach = Approach::z_first;  // a from_unknown Rapid: whether Z moved first
+    double per_revolution = 0.0;  // a feed move in per-revolution mode (G95): its mm per spindle
+                                  // turn (its feed follows the spindle speed); else 0
 };
 
 // How precisely a program for a machine states values: half a unit of the last decimal written,

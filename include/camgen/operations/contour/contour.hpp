@@ -14,8 +14,8 @@
 #include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/profile.hpp"
 #include "camgen/job/job_input.hpp"
-#include "operations/context.hpp"
-#include "operations/heights.hpp"
+#include "camgen/operations/context.hpp"
+#include "camgen/operations/heights.hpp"
 
 namespace camgen {
 

@@ -10,7 +10,7 @@
 #include "camgen/events/events.hpp"
 #include "camgen/geometry/profile.hpp"
 #include "camgen/job/job_input.hpp"
-#include "operations/context.hpp"
+#include "camgen/operations/context.hpp"
 
 namespace camgen {
 

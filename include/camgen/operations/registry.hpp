@@ -11,12 +11,12 @@
 
 #include "camgen/events/events.hpp"
 #include "camgen/job/job.hpp"
-#include "operations/bore_mill/bore_mill.hpp"
-#include "operations/contour/contour.hpp"
-#include "operations/drill/drill.hpp"
-#include "operations/path/path.hpp"
-#include "operations/turn_drill/turn_drill.hpp"
-#include "operations/turn_profile/turn_profile.hpp"
+#include "camgen/operations/bore_mill/bore_mill.hpp"
+#include "camgen/operations/contour/contour.hpp"
+#include "camgen/operations/drill/drill.hpp"
+#include "camgen/operations/path/path.hpp"
+#include "camgen/operations/turn_drill/turn_drill.hpp"
+#include "camgen/operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
 

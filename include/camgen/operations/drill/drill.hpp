@@ -8,9 +8,9 @@
 
 #include "camgen/events/events.hpp"
 #include "camgen/job/job_input.hpp"
-#include "operations/context.hpp"
-#include "operations/heights.hpp"
-#include "operations/holes.hpp"
+#include "camgen/operations/context.hpp"
+#include "camgen/operations/heights.hpp"
+#include "camgen/operations/holes.hpp"
 
 namespace camgen {
 
