@@ -242,7 +242,12 @@ bool Post::force_arc_end() const { return machine_.arcs.force_xy; }
 
 Post::LinearLayout Post::linear_layout() { return {motion_word(1), false}; }
 
-std::string Post::speed_word(double rpm) const { return "S" + speed_text(rpm); }
+std::string Post::speed_word(double rpm) const {
+    // Appended rather than "S" + text: gcc 12's -Wrestrict misreads the inlined insert.
+    std::string word = "S";
+    word += speed_text(rpm);
+    return word;
+}
 
 std::string Post::speed_text(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
