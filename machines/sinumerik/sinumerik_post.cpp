@@ -60,7 +60,11 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
         case CycleKind::chip_break: {
             namespace q = sinumerik::cycle83;
             const bool full = c.kind == CycleKind::deep;
-            v[q::fdep] = len.format(c.safe_z - p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
+            // The control pecks by the distance from RFP + SDIS to FDEP as written: taken from the
+            // rounded planes, a peck keeps its size (SDIS 4.3125 written 4.313 with FDEP from the
+            // exact plane made every peck 0.001 mm longer, 0.007 mm by the seventh: a fuzz finding).
+            const double written_safe = len.rounded(rfp) + len.rounded(c.safe_z - rfp);
+            v[q::fdep] = len.format(written_safe - p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
             if (p.degression_type() == DegressionType::value) v[q::dam] = len.format(*p.get(DrillField::degression));
             // DTB stays empty: it would dwell at every peck.
             if (full) v[q::dts] = dwell(p.get(DrillField::top_dwell));

@@ -353,9 +353,10 @@ TEST_CASE("inch programs: cycle parameters in inches; Sinumerik FRF stays a fact
         CHECK(round_trip_machine(j, out.str(), m) == "");
         return out.str();
     };
-    // RTP 10 mm = 0.3937 in, SDIS 2 mm = 0.0787 in, DP -0.7874, FDEP 2 - 5 = -3 mm = -0.1181;
+    // RTP 10 mm = 0.3937 in, SDIS 2 mm = 0.0787 in, DP -0.7874, FDEP from the written plane:
+    // 0.0787 - 5 mm (0.19685 in) = -0.11815 = -0.1182, so the control's peck is 0.1969 in;
     // FRF 0.5 whatever the units; _DIS1 the 1 mm clearance = 0.0394 in.
-    CHECK(post_inch("sinumerik").find("CYCLE83(0.3937, 0.0000, 0.0787, -0.7874, , -0.1181, , , , , 0.500, 1, , , , , 0.0394)") !=
+    CHECK(post_inch("sinumerik").find("CYCLE83(0.3937, 0.0000, 0.0787, -0.7874, , -0.1182, , , , , 0.500, 1, , , , , 0.0394)") !=
           std::string::npos);
     // Q206: 100 mm/min = 3.94 in/min (two decimals: 1 mm/min is 0.04, not 0.0); Q208 99999 (FMAX) as written.
     std::string tnc = post_inch("heidenhain");
