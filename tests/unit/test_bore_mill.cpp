@@ -397,3 +397,41 @@ TEST_CASE("hole sources: drill and bore-mill read them alike, each naming its ow
     CHECK(visit_order(b) == visit_order(d));
     CHECK(visit_order(b) != b.holes);  // reordered
 }
+
+TEST_CASE("verify follows a helix of a thousand turns turn by turn, and finds a block on the wrong turn") {
+    // The comparison looked at every turn of the job's helix for every point of the program: a
+    // bore at pitch 0.0006 mm (a fuzz_mutated finding) ran verify for minutes. It now looks at
+    // the turns after the last match and at the point's height; it must still place each
+    // point on its own turn.
+    const std::string job = R"({"name": "h", "units": "mm", "clearance": 10,
+      "tools": [{"number": 1, "type": "end-mill", "diameter": 10, "rpm": 4000}],
+      "operations": [{"type": "bore-mill", "tool": 1, "diameter": 40, "retractPlane": 5, "safeDistance": 1,
+        "endDepth": 12, "pitch": 0.01, "feed": 600, "holes": [[60, 50]]}]})";
+    const std::string file = test::file_with("helix-many-turns", job);
+    const std::string program = (test::scratch("helix-many-turns-out") / "h.nc").string();
+    REQUIRE(test::run({file, "--machine", "grbl", "-o", program, "-q"}).code == 0);
+    const test::Run good = test::run({"verify", program, "--machine", "grbl", "--job", file});
+    CHECK_MESSAGE(good.code == 0, good.err);
+    // One arc block in the middle lifted by half a millimetre (fifty turns up): a mismatch.
+    std::vector<std::string> lines = test::lines_of(test::read_file(program));
+    REQUIRE(lines.size() > 4000);
+    std::size_t mid = lines.size() / 2;
+    while (mid < lines.size() && lines[mid].find("Z") == std::string::npos) ++mid;
+    REQUIRE(mid < lines.size());
+    const std::size_t z = lines[mid].find('Z');
+    std::size_t end = lines[mid].find(' ', z);
+    const double value = std::stod(lines[mid].substr(z + 1, end == std::string::npos ? std::string::npos : end - z - 1));
+    lines[mid] = lines[mid].substr(0, z + 1) + fmt::format("{:.3f}", value + 0.5) +
+                 (end == std::string::npos ? std::string() : lines[mid].substr(end));
+    std::ofstream(program) << fmt::format("{}\n", fmt::join(lines, "\n"));
+    const test::Run bad = test::run({"verify", program, "--machine", "grbl", "--job", file});
+    CHECK(bad.code == 1);
+    // The first difference is at the lifted block (the turn it is on, which may begin a block
+    // or two before it): the moves before it were placed on their own turns.
+    const std::string tag = fmt::format("MISMATCH {}:", program);
+    const std::size_t at = bad.out.find(tag);
+    REQUIRE(at != std::string::npos);
+    const int line = std::stoi(bad.out.substr(at + tag.size()));
+    CAPTURE(mid + 1);
+    CHECK(std::abs(line - static_cast<int>(mid + 1)) <= 3);
+}
