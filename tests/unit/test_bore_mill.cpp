@@ -435,3 +435,24 @@ TEST_CASE("verify follows a helix of a thousand turns turn by turn, and finds a 
     CAPTURE(mid + 1);
     CHECK(std::abs(line - static_cast<int>(mid + 1)) <= 3);
 }
+
+TEST_CASE("verify finds a steep helix of a tiny radius written as chords, although rounding turns their angles") {
+    // A 0.07 mm tool in a 41 mm bore: the innermost ring is a helix of radius 0.028 mm at 3 mm a
+    // turn, which kosy writes as chords. A rounded X or Y turns a chord end by degrees, and at
+    // that pitch the point at the same angle is 0.0086 mm away while the nearest is 0.005 mm:
+    // verify refused camgen's own program (a fuzz_mutated finding).
+    const std::string job = R"({"name": "b", "units": "mm", "clearance": 13,
+      "tools": [{"number": 1, "type": "end-mill", "diameter": 0.0705777591678899, "rpm": 4000}],
+      "operations": [{"type": "bore-mill", "tool": 1, "diameter": 41.3125, "retractPlane": 5, "safeDistance": 1.117,
+        "endDepth": 12, "pitch": 3.25, "feed": 600, "rampFeed": 400, "plungeFeed": 300, "finishingAllowance": 0.2,
+        "finishingFeed": 400, "holes": [[60, 50]]}]})";
+    const std::string file = test::file_with("steep-tiny-helix", job);
+    for (const std::string machine : {"kosy", "wabeco", "grbl", "heidenhain"}) {
+        CAPTURE(machine);
+        const std::string program = (test::scratch("steep-tiny-helix-out") / "b.nc").string();
+        const test::Run post = test::run({file, "--machine", machine, "-o", program, "-q"});
+        REQUIRE_MESSAGE(post.code == 0, post.err);
+        const test::Run verify = test::run({"verify", program, "--machine", machine, "--job", file});
+        CHECK_MESSAGE(verify.code == 0, verify.out);
+    }
+}
