@@ -16,24 +16,77 @@ constexpr double eps = 1e-6;
 
 std::string z_of(double z) { return fmt::format("{:.3f}", z); }
 
-// The key of an XY position in the hole map (nm).
-std::pair<long long, long long> key_of(Vec2 at) { return {std::llround(at.x * 1e6), std::llround(at.y * 1e6)}; }
 }  // namespace
+
+DrilledHoles::Entry DrilledHoles::entry_of(Vec2 at, double z) {
+    return {std::llround(at.x * 1e6), std::llround(at.y * 1e6), z};
+}
+
+void DrilledHoles::drill(Vec2 at, double z) {
+    const Entry hole = entry_of(at, z);
+    if (current_ && same_place(*current_, hole)) {
+        current_->z = std::min(current_->z, z);
+        return;
+    }
+    if (current_) log_.push_back(*current_);
+    current_ = hole;
+}
+
+bool DrilledHoles::reaches(Vec2 at, double z, double eps) {
+    const Entry place = entry_of(at, z);
+    // A peck goes back into the hole it is drilling: no need to ask the log.
+    if (current_ && same_place(*current_, place) && current_->z <= z + eps) return true;
+    const std::optional<double> depth = lowest_at(place);
+    return depth && *depth <= z + eps;
+}
+
+std::optional<double> DrilledHoles::depth_at(Vec2 at) { return lowest_at(entry_of(at, 0.0)); }
+
+std::optional<double> DrilledHoles::lowest_at(const Entry& place) {
+    std::optional<double> depth = logged_depth(place);
+    if (current_ && same_place(*current_, place)) depth = std::min(depth.value_or(current_->z), current_->z);
+    return depth;
+}
+
+std::optional<double> DrilledHoles::logged_depth(const Entry& place) {
+    sort_tail();
+    std::optional<double> depth;
+    std::size_t begin = 0;
+    for (const std::size_t end : run_ends_) {
+        const auto first = log_.begin() + static_cast<std::ptrdiff_t>(begin);
+        const auto last = log_.begin() + static_cast<std::ptrdiff_t>(end);
+        // A place drilled twice (by two operations) has an entry for each.
+        for (auto it = std::lower_bound(first, last, place, before); it != last && same_place(*it, place); ++it)
+            depth = std::min(depth.value_or(it->z), it->z);
+        begin = end;
+    }
+    return depth;
+}
+
+void DrilledHoles::sort_tail() {
+    const std::size_t sorted = run_ends_.empty() ? 0 : run_ends_.back();
+    if (sorted == log_.size()) return;
+    std::sort(log_.begin() + static_cast<std::ptrdiff_t>(sorted), log_.end(), before);
+    run_ends_.push_back(log_.size());
+    // Merge the last run into the one before while it is at least as long: run lengths then
+    // at least halve from run to run, so there are at most log2(n) of them.
+    while (run_ends_.size() >= 2) {
+        const std::size_t end = run_ends_.back();
+        const std::size_t middle = run_ends_[run_ends_.size() - 2];
+        const std::size_t begin = run_ends_.size() >= 3 ? run_ends_[run_ends_.size() - 3] : 0;
+        if (end - middle < middle - begin) break;
+        std::inplace_merge(log_.begin() + static_cast<std::ptrdiff_t>(begin),
+                           log_.begin() + static_cast<std::ptrdiff_t>(middle),
+                           log_.begin() + static_cast<std::ptrdiff_t>(end), before);
+        run_ends_.pop_back();
+        run_ends_.back() = end;
+    }
+}
 
 SafetyCheck::SafetyCheck(SafetyLimits limits) : limits_(std::move(limits)) {}
 
 void SafetyCheck::fail(const std::string& key, const std::string& detail) const {
     throw InputError(op_path_ + key, detail);
-}
-
-std::optional<double> SafetyCheck::drilled_to(Vec2 at) const {
-    const auto key = key_of(at);
-    if (last_hole_ && key == last_key_) return *last_hole_;
-    const auto it = holes_.find(key);
-    if (it == holes_.end()) return std::nullopt;
-    last_key_ = key;
-    last_hole_ = const_cast<double*>(&it->second);
-    return it->second;
 }
 
 void SafetyCheck::move(const Vec3& to, bool feed) {
@@ -58,11 +111,7 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
             // Down below the retract plane: only the final approach to the feed-start plane, or
             // back into a hole already drilled at least that deep.
             const bool approach = (cycle_ && to.z >= cycle_->safe_z - eps) || (op_safe_z_ && to.z >= *op_safe_z_ - eps);
-            const auto drilled_deep_enough = [&] {
-                const std::optional<double> hole = drilled_to(xy);
-                return hole && *hole <= to.z + eps;
-            };
-            if (!approach && !drilled_deep_enough()) {
+            if (!approach && !holes_.reaches(xy, to.z, eps)) {
                 const std::string message = fmt::format("a rapid down to Z {} at X{} Y{} goes below the retract plane (Z {}) where no "
                                      "hole has been drilled that deep",
                                      z_of(to.z), z_of(to.x), z_of(to.y), z_of(retract));
@@ -76,24 +125,13 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         }
     } else if (!last_was_feed_ && op_reference_z_ && from.z < *op_reference_z_ - eps) {
         // Below the stock top a feed may go on from where a feed (or arc) brought the tool.
-        const std::optional<double> hole = drilled_to({from.x, from.y});
-        if (!(hole && *hole <= from.z + eps))
+        if (!holes_.reaches({from.x, from.y}, from.z, eps))
             fail("", fmt::format("a feed starts at Z {}, below the reference plane (Z {}), at X{} Y{} where no hole has "
                                  "been drilled: the tool would plunge into the stock at rapid",
                                  z_of(from.z), z_of(*op_reference_z_), z_of(from.x), z_of(from.y)));
     }
     // A feed straight down makes (or deepens) a hole.
-    if (feed && !across && to.z < from.z) {
-        const auto key = key_of(xy);
-        if (last_hole_ && key == last_key_) {
-            *last_hole_ = std::min(*last_hole_, to.z);
-        } else {
-            auto [it, added] = holes_.try_emplace(key, to.z);
-            if (!added) it->second = std::min(it->second, to.z);
-            last_key_ = key;
-            last_hole_ = &it->second;
-        }
-    }
+    if (feed && !across && to.z < from.z) holes_.drill(xy, to.z);
     pos_ = to;
     last_was_feed_ = feed;
 }

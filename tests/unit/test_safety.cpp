@@ -168,3 +168,44 @@ TEST_CASE("safety: every sample passes on every machine that can run it") {
         CHECK_NOTHROW(check_safety(expand_job(job), limits));
     }
 }
+
+TEST_CASE("safety: the table of drilled holes answers as a map of every hole's lowest Z") {
+    // Holes on a 7 x 7 grid drilled in a scrambled order, some twice (the second drilling
+    // shallower or deeper), with lookups of other holes between the drillings, so that the log
+    // is sorted into runs of many sizes and merged; every answer is checked against a map.
+    DrilledHoles holes;
+    std::map<std::pair<int, int>, double> lowest;
+    auto check_all = [&] {
+        for (int i = 0; i < 7; ++i)
+            for (int j = 0; j < 7; ++j) {
+                const Vec2 at{i * 2.5, j * -1.25};
+                const auto it = lowest.find({i, j});
+                const std::optional<double> depth = holes.depth_at(at);
+                CAPTURE(i);
+                CAPTURE(j);
+                REQUIRE(depth.has_value() == (it != lowest.end()));
+                if (!depth) continue;
+                CHECK(*depth == it->second);
+                CHECK(holes.reaches(at, it->second, 1e-6));
+                CHECK(holes.reaches(at, it->second + 1.0, 1e-6));
+                CHECK_FALSE(holes.reaches(at, it->second - 0.01, 1e-6));
+            }
+    };
+    unsigned state = 12345;
+    for (int n = 0; n < 400; ++n) {
+        state = state * 1103515245u + 12345u;
+        const int cell = static_cast<int>((state >> 8) % 49), i = cell / 7, j = cell % 7;
+        const double z = -static_cast<double>((state >> 16) % 40) / 4.0;
+        // A cycle's pecks deepen the hole they are in, step by step.
+        for (double peck = 0.0; peck >= z; peck -= 1.5) holes.drill({i * 2.5, j * -1.25}, peck);
+        holes.drill({i * 2.5, j * -1.25}, z);
+        const auto [it, added] = lowest.try_emplace({i, j}, z);
+        it->second = std::min({it->second, z, 0.0});
+        if (n % 13 == 0 || n < 20) check_all();
+    }
+    check_all();
+    CHECK_FALSE(holes.depth_at({1.0, 1.0}));
+    CHECK_FALSE(holes.reaches({1.0, 1.0}, 5.0, 1e-6));
+    // The same place within rounding to the nanometre.
+    CHECK(holes.depth_at({2.5 + 1e-10, -1.25}) == holes.depth_at({2.5, -1.25}));
+}

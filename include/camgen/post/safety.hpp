@@ -3,8 +3,8 @@
 // retract plane, feeds that start inside the stock where no hole is, planes in the wrong
 // order, holes deeper than the tool's flutes. Each failure is an InputError naming the
 // operation's JSON path.
+#include <cstddef>
 #include <map>
-#include <unordered_map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,6 +22,45 @@ struct SafetyLimits {
     LonghandOptions longhand;              // how the machine's cycles move (peck clearance)
 };
 
+// The holes drilled so far: the lowest Z reached at each XY (keyed in nm). A job of a million
+// holes drills each once, one after the other, and looks up only the hole it is in, so holes
+// are appended to a log (24 bytes each, no allocation per hole, no random access) and sorted
+// only when a lookup needs another hole: what was appended since becomes a sorted run, and runs
+// of similar size are merged (a binary counter), so an append costs O(log n) amortized and a
+// lookup O(log^2 n) even when lookups and new holes alternate.
+class DrilledHoles {
+public:
+    // Records that the hole at `at` reaches down to `z` (mm).
+    void drill(Vec2 at, double z);
+    // Whether a hole at `at` has been drilled down to `z` or deeper (within `eps`, mm).
+    bool reaches(Vec2 at, double z, double eps);
+    // The lowest Z a hole at `at` has been drilled to, if any.
+    std::optional<double> depth_at(Vec2 at);
+
+private:
+    // A hole: its XY in nm and the lowest Z (mm) one drilling reached there.
+    struct Entry {
+        long long x = 0, y = 0;
+        double z = 0.0;
+    };
+    static Entry entry_of(Vec2 at, double z);
+    static bool same_place(const Entry& a, const Entry& b) { return a.x == b.x && a.y == b.y; }
+    // The log's order: by X, then Y.
+    static bool before(const Entry& a, const Entry& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
+    // depth_at of an entry's place.
+    std::optional<double> lowest_at(const Entry& place);
+    // The lowest Z of the logged entries at `place`'s XY, if any (sorts the log's tail first).
+    std::optional<double> logged_depth(const Entry& place);
+    // Turns the unsorted tail of the log into a run and merges runs of similar size.
+    void sort_tail();
+
+    // The hole being drilled now (not in the log yet): the pecks of a cycle deepen it and look
+    // it up without touching the log.
+    std::optional<Entry> current_;
+    std::vector<Entry> log_;                // sorted runs, then the tail in drilling order
+    std::vector<std::size_t> run_ends_;     // where each sorted run ends in log_
+};
+
 // An event sink that checks the motion of the events it receives; drilling cycles are
 // checked as the moves they make (canned and longhand move alike).
 class SafetyCheck : public EventSink {
@@ -35,8 +74,6 @@ public:
 private:
     // A rapid or feed move to `to` (feed: true for a feed move).
     void move(const Vec3& to, bool feed);
-    // The Z a hole at `at` has been drilled down to, if any.
-    std::optional<double> drilled_to(Vec2 at) const;
     // InputError at the current operation's path plus `key`.
     [[noreturn]] void fail(const std::string& key, const std::string& detail) const;
 
@@ -49,20 +86,7 @@ private:
     bool last_was_feed_ = false;           // the tool got where it is by feed
     std::optional<Vec3> pos_;              // where the tool is (unknown after a tool change)
     int tool_ = 0;
-    // The key of an XY position in the hole table (nm) and its hash.
-    using HoleKey = std::pair<long long, long long>;
-    struct HoleHash {
-        std::size_t operator()(const HoleKey& k) const noexcept {
-            return std::hash<long long>{}(k.first * 0x9E3779B97F4A7C15LL ^ k.second);
-        }
-    };
-    // The Z each hole reaches, by XY in nm: hashed, as a job of a million holes looks up
-    // every one of them.
-    std::unordered_map<HoleKey, double, HoleHash> holes_;
-    // The hole looked up last (its entry stays put as the table grows): a cycle's pecks all
-    // look up the hole they are in.
-    mutable HoleKey last_key_{};
-    mutable double* last_hole_ = nullptr;
+    DrilledHoles holes_;
     LonghandBuffers longhand_buffers_;     // reused by every hole's moves
     std::optional<std::string> pending_descent_;  // a rapid down to a retract plane not yet known: the error
     double pending_z_ = 0.0;                      // ... and the Z it went down to
