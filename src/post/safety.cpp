@@ -111,7 +111,7 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
             // Down below the retract plane: only the final approach to the feed-start plane, or
             // back into a hole already drilled at least that deep.
             const bool approach = (cycle_ && to.z >= cycle_->safe_z - eps) || (op_safe_z_ && to.z >= *op_safe_z_ - eps);
-            if (!approach && !holes_.reaches(xy, to.z, eps)) {
+            if (!approach && !drilled(xy, to.z)) {
                 const std::string message = fmt::format("a rapid down to Z {} at X{} Y{} goes below the retract plane (Z {}) where no "
                                      "hole has been drilled that deep",
                                      z_of(to.z), z_of(to.x), z_of(to.y), z_of(retract));
@@ -125,15 +125,57 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         }
     } else if (!last_was_feed_ && op_reference_z_ && from.z < *op_reference_z_ - eps) {
         // Below the stock top a feed may go on from where a feed (or arc) brought the tool.
-        if (!holes_.reaches({from.x, from.y}, from.z, eps))
+        if (!drilled({from.x, from.y}, from.z))
             fail("", fmt::format("a feed starts at Z {}, below the reference plane (Z {}), at X{} Y{} where no hole has "
                                  "been drilled: the tool would plunge into the stock at rapid",
                                  z_of(from.z), z_of(*op_reference_z_), z_of(from.x), z_of(from.y)));
     }
     // A feed straight down makes (or deepens) a hole.
-    if (feed && !across && to.z < from.z) holes_.drill(xy, to.z);
+    if (feed && !across && to.z < from.z) {
+        holes_.drill(xy, to.z);
+        if (hole_checked_ && xy == *hole_checked_) own_depth_ = std::min(own_depth_.value_or(to.z), to.z);
+        else if (hole_checked_) own_answers_ = false;
+    }
     pos_ = to;
     last_was_feed_ = feed;
+}
+
+bool SafetyCheck::drilled(Vec2 at, double z) {
+    if (hole_checked_ && !(at == *hole_checked_ && own_depth_ && *own_depth_ <= z + eps)) own_answers_ = false;
+    return holes_.reaches(at, z, eps);
+}
+
+SafetyCheck::HoleShape SafetyCheck::shape_of(Vec2 hole) const {
+    const Vec3& from = *pos_;
+    const int across = from.x == hole.x && from.y == hole.y                             ? 0
+                       : std::abs(from.x - hole.x) > eps || std::abs(from.y - hole.y) > eps ? 2
+                                                                                           : 1;
+    return {from.z, last_was_feed_, across};
+}
+
+void SafetyCheck::drill_point(Vec2 at) {
+    if (!cycle_) throw std::logic_error("drilling point outside a cycle");
+    if (!pos_) throw std::logic_error("drilling from an unknown position");
+    const HoleShape shape = shape_of(at);
+    if (checked_hole_ && checked_hole_->shape == shape) {
+        if (checked_hole_->lowest_z) holes_.drill(at, *checked_hole_->lowest_z);
+        pos_ = Vec3{at.x, at.y, checked_hole_->end_z};
+        last_was_feed_ = checked_hole_->end_feed;
+        return;
+    }
+    hole_checked_ = at;
+    own_depth_.reset();
+    own_answers_ = true;
+    for (const LonghandMove& m : longhand_moves(*cycle_, *pos_, at, limits_.longhand, longhand_buffers_))
+        visit_exhaustive(overloaded{[&](const Rapid& r) { move(r.to, false); },
+                                    [&](const Linear& l) { move(l.to, true); }, [](const Dwell&) {},
+                                    [](const Spindle&) {}},
+                         m);
+    hole_checked_.reset();
+    // Every cycle ends above its hole; a hole that did not is checked in full each time.
+    const bool ends_above = pos_->x == at.x && pos_->y == at.y;
+    if (own_answers_ && ends_above) checked_hole_ = CheckedHole{shape, own_depth_, pos_->z, last_was_feed_};
+    else checked_hole_.reset();
 }
 
 void SafetyCheck::finish() {
@@ -146,6 +188,8 @@ void SafetyCheck::emit(const Event& event) {
         if (!c || c->retract_z > pending_z_ + eps) fail("", *pending_descent_);
         pending_descent_.reset();
     }
+    // A hole's check stands for the next holes of its cycle only: nothing may come between.
+    if (!std::holds_alternative<DrillPoint>(event)) checked_hole_.reset();
     visit_exhaustive(
         overloaded{
             [&](const OperationStart& op) {
@@ -199,15 +243,7 @@ void SafetyCheck::emit(const Event& event) {
                 op_retract_z_ = c.retract_z;
                 op_reference_z_ = c.reference_z;
             },
-            [&](const DrillPoint& p) {
-                if (!cycle_) throw std::logic_error("drilling point outside a cycle");
-                if (!pos_) throw std::logic_error("drilling from an unknown position");
-                for (const LonghandMove& m : longhand_moves(*cycle_, *pos_, p.at, limits_.longhand, longhand_buffers_))
-                    visit_exhaustive(overloaded{[&](const Rapid& r) { move(r.to, false); },
-                                                [&](const Linear& l) { move(l.to, true); }, [](const Dwell&) {},
-                                                [](const Spindle&) {}},
-                                     m);
-            },
+            [&](const DrillPoint& p) { drill_point(p.at); },
             [&](const DrillEnd&) { cycle_.reset(); },
             [&](const Comment&) {},
             [&](const Coolant&) {},

@@ -209,3 +209,78 @@ TEST_CASE("safety: the table of drilled holes answers as a map of every hole's l
     // The same place within rounding to the nanometre.
     CHECK(holes.depth_at({2.5 + 1e-10, -1.25}) == holes.depth_at({2.5, -1.25}));
 }
+
+namespace {
+// A drilling cycle of /operations/<op> (plain drill, feed from safe_z to bottom_z) at `holes`,
+// from the clearance (Z20), with its planes as the operation's.
+void add_cycle(std::vector<Event>& ev, int op, double reference_z, double safe_z, double bottom_z,
+               const std::vector<Vec2>& holes) {
+    const std::string path = "/operations/" + std::to_string(op);
+    DrillCycle c;
+    c.kind = CycleKind::drill;
+    c.path = path;
+    c.retract_z = 5;
+    c.reference_z = reference_z;
+    c.safe_z = safe_z;
+    c.bottom_z = bottom_z;
+    c.feed = 100;
+    c.values.set(DrillField::plunging_feedrate, 100.0);
+    ev.push_back(OperationStart{"drill", path, std::nullopt});
+    ev.push_back(ToolChange{op + 1, 5.0, "drill"});
+    ev.push_back(Rapid{{holes.front().x, holes.front().y, 20}});
+    ev.push_back(Rapid{{holes.front().x, holes.front().y, 5}});
+    ev.push_back(c);
+    for (const Vec2& h : holes) ev.push_back(DrillPoint{h});
+    ev.push_back(DrillEnd{});
+    ev.push_back(Rapid{{holes.back().x, holes.back().y, 20}});
+    ev.push_back(OperationEnd{});
+}
+}  // namespace
+
+TEST_CASE("safety: each hole of a cycle is checked, though holes of one shape are checked once") {
+    const SafetyLimits limits{20.0, {}, {}};
+    std::vector<Vec2> row;
+    for (int i = 0; i < 1000; ++i) row.push_back({i * 5.0, 0.0});
+    // A second operation feeds from Z-2, inside the stock (top Z0): only where the first drilled.
+    // Its first hole passes because of the first operation's hole, not by its own feeds: the
+    // next hole must be checked again, and fails.
+    std::vector<Event> second;
+    add_cycle(second, 0, 0.0, 2.0, -10.0, {{0, 0}});
+    add_cycle(second, 1, 0.0, -2.0, -8.0, {{0, 0}, {5, 0}});
+    CHECK_THROWS_WITH_AS(check_safety(second, limits),
+                         doctest::Contains("/operations/1: a feed starts at Z -2.000, below the reference plane (Z "
+                                           "0.000), at X5.000 Y0.000 where no hole has been drilled"),
+                         InputError);
+    // Every hole of the first is drilled: the second passes at each, and fails at the one hole
+    // the first left out (the 701st), after 700 that passed.
+    std::vector<Event> all;
+    add_cycle(all, 0, 0.0, 2.0, -10.0, row);
+    add_cycle(all, 1, 0.0, -2.0, -8.0, row);
+    CHECK_NOTHROW(check_safety(all, limits));
+    std::vector<Vec2> gap = row;
+    gap.erase(gap.begin() + 700);
+    std::vector<Event> missing;
+    add_cycle(missing, 0, 0.0, 2.0, -10.0, gap);
+    add_cycle(missing, 1, 0.0, -2.0, -8.0, row);
+    CHECK_THROWS_WITH_AS(check_safety(missing, limits), doctest::Contains("at X3500.000 Y0.000 where no hole"), InputError);
+    // Deeper than the first drilled: refused at the first hole too deep, whatever came before.
+    std::vector<Event> deeper;
+    add_cycle(deeper, 0, 0.0, 2.0, -10.0, row);
+    add_cycle(deeper, 1, 0.0, 2.0, -12.0, std::vector<Vec2>(row.begin(), row.begin() + 3));
+    add_cycle(deeper, 2, 0.0, -11.0, -14.0, std::vector<Vec2>(row.begin(), row.begin() + 10));
+    CHECK_THROWS_WITH_AS(check_safety(deeper, limits),
+                         doctest::Contains("/operations/2: a feed starts at Z -11.000, below the reference plane (Z "
+                                           "0.000), at X15.000 Y0.000"),
+                         InputError);
+    // The holes of a cycle checked once still count as drilled: a later rapid back into one.
+    std::vector<Event> back;
+    add_cycle(back, 0, 0.0, 2.0, -10.0, row);
+    back.push_back(OperationStart{"contour", "/operations/1", std::nullopt});
+    back.push_back(Rapid{{2500, 0, 20}});
+    back.push_back(Rapid{{2500, 0, -9}});
+    back.push_back(Rapid{{2500, 0, 20}});
+    CHECK_NOTHROW(check_safety(back, limits));
+    back.push_back(Rapid{{2502.5, 0, 20}});
+    back.push_back(Rapid{{2502.5, 0, -9}});
+    CHECK_THROWS_WITH_AS(check_safety(back, limits), doctest::Contains("a rapid down to Z -9.000 at X2502.500"), InputError);
+}

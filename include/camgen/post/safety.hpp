@@ -74,6 +74,37 @@ public:
 private:
     // A rapid or feed move to `to` (feed: true for a feed move).
     void move(const Vec3& to, bool feed);
+    // Whether a hole at `at` reaches `z`; notes whether the hole being checked answered it.
+    bool drilled(Vec2 at, double z);
+    // Checks the moves of one hole of the running cycle.
+    void drill_point(Vec2 at);
+
+    // What the moves of a cycle's hole depend on besides its XY: where the tool starts (its
+    // height, how it got there) and how far across it goes. Two holes of one cycle with the
+    // same shape make the same moves, shifted in XY (longhand_moves).
+    struct HoleShape {
+        double from_z = 0.0;
+        bool from_feed = false;
+        int across = 0;  // 0: already at the hole; 1: within eps of it; 2: farther
+        friend bool operator==(const HoleShape&, const HoleShape&) = default;
+    };
+    HoleShape shape_of(Vec2 hole) const;
+    // A hole whose moves passed, and every lookup of which was answered by its own feeds: a
+    // hole of the same shape passes as well (its own feeds drill the same depths before the
+    // same lookups, and more drilling only answers more lookups), so its moves need not be
+    // made and checked again. Only the drilling and where it leaves the tool remain.
+    struct CheckedHole {
+        HoleShape shape;
+        std::optional<double> lowest_z;  // the lowest of its feeds straight down, if any
+        double end_z = 0.0;              // where it leaves the tool, above the hole
+        bool end_feed = false;           // ... and whether by a feed
+    };
+    std::optional<CheckedHole> checked_hole_;  // the last hole checked, if the last event
+    // While a hole's moves are checked: the hole, the lowest Z its own feeds reached so far, and
+    // whether every lookup so far was answered by them.
+    std::optional<Vec2> hole_checked_;
+    std::optional<double> own_depth_;
+    bool own_answers_ = true;
     // InputError at the current operation's path plus `key`.
     [[noreturn]] void fail(const std::string& key, const std::string& detail) const;
 
