@@ -66,22 +66,38 @@ void round_text(double v, int decimals, Decimal& d) {
     }
 }
 
-// The digits of value x scale. Fast path: when the scaled value is small enough for double
-// arithmetic to be exact to far below half a unit, and not close to a rounding boundary,
-// rounding the binary value gives the same digits as rounding its decimal text.
-Decimal digits_of(const FormatSpec& spec, double value) {
-    double v = value * spec.scale;
+// value x scale, checked to be finite.
+double scaled_value(const FormatSpec& spec, double value) {
+    const double v = value * spec.scale;
     if (!std::isfinite(value) || !std::isfinite(v))
         throw std::logic_error("refusing to write a number that is not finite");
+    return v;
+}
+
+// Fast path: |v| in units of the last decimal, rounded, when the scaled value is small enough
+// for double arithmetic to be exact to far below half a unit and not close to a rounding
+// boundary: then rounding the binary value gives the same digits as rounding its decimal
+// text. nullopt where the exact path (round_text) must decide.
+std::optional<unsigned long long> rounded_units(double v, int decimals) {
+    const double scaled = std::abs(v) * static_cast<double>(pow10[decimals]);
+    if (!(scaled < 1e9)) return std::nullopt;
+    // scaled is >= 0: truncation is floor (and needs no call into libm).
+    const auto whole = static_cast<unsigned long long>(scaled);
+    const double frac = scaled - static_cast<double>(whole);
+    if (std::abs(frac - 0.5) < 1e-6) return std::nullopt;
+    return whole + (frac > 0.5 ? 1 : 0);
+}
+
+// The digits of value x scale.
+Decimal digits_of(const FormatSpec& spec, double value) {
+    const double v = scaled_value(spec, value);
     Decimal d;
-    double scaled = std::abs(v) * static_cast<double>(pow10[spec.decimals]);
-    double whole = std::floor(scaled);
-    double frac = scaled - whole;
-    if (!(scaled < 1e9) || std::abs(frac - 0.5) < 1e-6) {
+    const std::optional<unsigned long long> units = rounded_units(v, spec.decimals);
+    if (!units) {
         round_text(v, spec.decimals, d);
         return d;
     }
-    unsigned long long n = static_cast<unsigned long long>(whole) + (frac > 0.5 ? 1 : 0);
+    unsigned long long n = *units;
     d.negative = v < 0;
     unsigned long long integer = n / pow10[spec.decimals];
     unsigned long long fraction = n % pow10[spec.decimals];
@@ -101,10 +117,71 @@ Decimal digits_of(const FormatSpec& spec, double value) {
     return d;
 }
 
+// "00" .. "99": two digits at a time.
+constexpr char digit_pairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+// Writes the decimal digits of `n`, at least `min_digits` of them (leading zeros), so that
+// they end just before `end`; returns where they begin.
+char* write_digits(char* end, unsigned long long n, int min_digits) {
+    char* p = end;
+    while (n >= 100) {
+        const auto pair = static_cast<unsigned>(n % 100) * 2;
+        n /= 100;
+        *--p = digit_pairs[pair + 1];
+        *--p = digit_pairs[pair];
+    }
+    if (n >= 10) {
+        const auto pair = static_cast<unsigned>(n) * 2;
+        *--p = digit_pairs[pair + 1];
+        *--p = digit_pairs[pair];
+    } else {
+        *--p = static_cast<char>('0' + n);
+    }
+    while (end - p < min_digits) *--p = '0';
+    return p;
+}
+
 }  // namespace
 
 void Format::append(std::string& out, double value) const {
-    Decimal d = digits_of(spec_, value);
+    const double v = scaled_value(spec_, value);
+    const std::optional<unsigned long long> units = rounded_units(v, spec_.decimals);
+    if (!units) {
+        append_exact(out, v);
+        return;
+    }
+    // The number is written backwards into a buffer (fraction, point, integer, sign) and
+    // appended at once: the common case of every program line.
+    const unsigned long long scale = pow10[spec_.decimals];
+    unsigned long long fraction = *units % scale;
+    int fraction_digits = spec_.decimals;
+    if (!spec_.force_decimal)
+        for (; fraction_digits > 0 && fraction % 10 == 0; --fraction_digits) fraction /= 10;
+    char buffer[48];
+    char* const end = buffer + sizeof buffer;
+    char* p = end;
+    if (fraction_digits > 0) {
+        p = write_digits(p, fraction, fraction_digits);
+        *--p = spec_.decimal_mark;
+    }
+    p = write_digits(p, *units / scale, 1);
+    const int integer_digits = static_cast<int>(end - p) - (fraction_digits > 0 ? fraction_digits + 1 : 0);
+    out += spec_.prefix;
+    if (v < 0 && *units != 0)
+        out += '-';
+    else if (spec_.force_sign)
+        out += '+';
+    if (integer_digits < spec_.width)
+        out.append(static_cast<size_t>(spec_.width - integer_digits), spec_.zeropad ? '0' : ' ');
+    out.append(p, static_cast<size_t>(end - p));
+}
+
+void Format::append_exact(std::string& out, double v) const {
+    Decimal d;
+    round_text(v, spec_.decimals, d);
     out += spec_.prefix;
     if (d.negative && !d.zero())
         out += '-';

@@ -39,6 +39,8 @@ public:
     bool is_zero(double value) const;
 
 private:
+    // append for a value (already scaled) that only its decimal text can round exactly.
+    void append_exact(std::string& out, double scaled) const;
     FormatSpec spec_;
 };
 
