@@ -228,7 +228,10 @@ void check_offset(const Profile& path, const Profile& walk, double distance, con
 void plan(ContourOp& op, Fields& f, const JobInput& in) {
     // Climb: the tool left of its travel with a clockwise spindle, right with a counter-clockwise one.
     op.tool_left = tool_left_of_travel(op.direction, op.spindle);
-    Profile walk = op.profile;
+    // The profile in the direction the tool walks it: reversed into a copy of its own only when
+    // it must be (a contour of a million segments holds its profile and its paths, no more).
+    Profile reversed_profile;
+    const Profile* walk = &op.profile;
     bool reversed_walk = false;
     if (op.side != ContourSide::on) {
         OffsetSide drawn = OffsetSide::left;
@@ -240,7 +243,8 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
             case ContourSide::on: break;
         }
         if ((drawn == OffsetSide::left) != op.tool_left) {
-            walk = reversed(walk);
+            reversed_profile = reversed(op.profile);
+            walk = &reversed_profile;
             reversed_walk = true;
         }
     }
@@ -249,9 +253,11 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
     const double radius = computer && op.side != ContourSide::on ? op.tool_radius : 0.0;
     const double finishing_stock = op.finishing ? op.finishing->radial_stock : 0.0;
     const std::size_t n = op.profile.segments.size();
-    auto offset = [&](double distance, const char* which) {
-        if (distance <= 0) return walk;
-        OffsetResult r = offset_profile(walk, distance, side);
+    // `last`: the walk is not needed after this path (a reversed one may then be moved into it).
+    auto offset = [&](double distance, const char* which, bool last) -> Profile {
+        if (distance <= 0 && last && reversed_walk) return std::move(reversed_profile);
+        if (distance <= 0) return *walk;
+        OffsetResult r = offset_profile(*walk, distance, side);
         if (r.empty())
             f.fail("path", fmt::format("the {} path is empty: the tool (radius {}) with the stock left does not fit {} the profile", which,
                                        in.show(op.tool_radius), op.side == ContourSide::inside ? "inside" : "beside"));
@@ -260,15 +266,15 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
             if (note.segment && *note.segment < n) where = op.element_path(reversed_walk ? n - 1 - *note.segment : *note.segment);
             op.notes.push_back(fmt::format("{}: the {} path: {}", where, which, note.message));
         }
-        check_offset(r.profile, walk, distance, which, f);
+        check_offset(r.profile, *walk, distance, which, f);
         if (!r.others.empty())
             op.notes.push_back(fmt::format("the {} path falls apart into {} pieces where the tool does not fit; only the longest "
                                            "is cut",
                                            which, r.others.size() + 1));
         return r.profile;
     };
-    op.rough = offset(radius + op.stock_to_leave + finishing_stock, "roughing");
-    if (op.finishing) op.finish = offset(radius + op.stock_to_leave, "finishing");
+    op.rough = offset(radius + op.stock_to_leave + finishing_stock, "roughing", !op.finishing);
+    if (op.finishing) op.finish = offset(radius + op.stock_to_leave, "finishing", true);
 }
 
 }  // namespace

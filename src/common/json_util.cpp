@@ -435,6 +435,9 @@ public:
         if (stage_ == Stage::element) {
             stage_ = Stage::none;
             if (packed_.size() > 0) {
+                // Held until the job is read: no room to grow into (up to half of it).
+                packed_.xyz.shrink_to_fit();
+                packed_.kinds.shrink_to_fit();
                 const auto index = static_cast<std::uint32_t>(doc_.packed.size());
                 *stack_.back() = Json::binary({static_cast<std::uint8_t>(index), static_cast<std::uint8_t>(index >> 8),
                                                static_cast<std::uint8_t>(index >> 16), static_cast<std::uint8_t>(index >> 24)},

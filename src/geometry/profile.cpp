@@ -38,9 +38,27 @@ ArcGeometry arc_of(Vec2 from, const ProfileSegment& s) {
 // Where segment `index` starts.
 Vec2 start_of(const Profile& p, std::size_t index) { return index == 0 ? p.start : p.segments[index - 1].end; }
 
+// Calls `add` with each point of sample_profile in order, without a vector of them: a profile
+// of a million segments is sampled into the shape that checks it, not twice.
+template <class Add>
+void for_each_sample(const Profile& profile, double tolerance, Add&& add) {
+    add(profile.start);
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        const ProfileSegment& s = profile.segments[i];
+        if (s.centre) {
+            const ArcGeometry arc = arc_of(start_of(profile, i), s);
+            for (const Vec3& p : linearize_arc(arc, segments_for_tolerance(arc.radius, arc.sweep, tolerance)))
+                add(Vec2{p.x, p.y});
+        } else {
+            add(s.end);
+        }
+    }
+}
+
 BgRing ring_of(const Profile& profile, double tolerance) {
     BgRing ring;
-    for (Vec2 v : sample_profile(profile, tolerance)) bg::append(ring.outer(), BgPoint(v.x, v.y));
+    ring.outer().reserve(profile.segments.size() + 1);
+    for_each_sample(profile, tolerance, [&](Vec2 v) { bg::append(ring.outer(), BgPoint(v.x, v.y)); });
     return ring;
 }
 
@@ -77,17 +95,9 @@ double profile_length(const Profile& profile) {
 }
 
 std::vector<Vec2> sample_profile(const Profile& profile, double tolerance) {
-    std::vector<Vec2> out{profile.start};
-    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
-        const ProfileSegment& s = profile.segments[i];
-        if (s.centre) {
-            const ArcGeometry arc = arc_of(start_of(profile, i), s);
-            for (const Vec3& p : linearize_arc(arc, segments_for_tolerance(arc.radius, arc.sweep, tolerance)))
-                out.push_back({p.x, p.y});
-        } else {
-            out.push_back(s.end);
-        }
-    }
+    std::vector<Vec2> out;
+    out.reserve(profile.segments.size() + 1);
+    for_each_sample(profile, tolerance, [&](Vec2 v) { out.push_back(v); });
     return out;
 }
 
@@ -98,7 +108,8 @@ bool is_simple(const Profile& profile, double tolerance) {
         return bg::is_valid(ring);
     }
     BgLine line;
-    for (Vec2 v : sample_profile(profile, tolerance)) bg::append(line, BgPoint(v.x, v.y));
+    line.reserve(profile.segments.size() + 1);
+    for_each_sample(profile, tolerance, [&](Vec2 v) { bg::append(line, BgPoint(v.x, v.y)); });
     // Boost 1.74's is_simple calls a fine sampling of an S (two tangent arcs turning opposite
     // ways) not simple; its self-intersection test answers the question asked.
     return !bg::intersects(line);
