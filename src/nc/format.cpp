@@ -160,7 +160,7 @@ void Format::append(std::string& out, double value) const {
     int fraction_digits = spec_.decimals;
     if (!spec_.force_decimal)
         for (; fraction_digits > 0 && fraction % 10 == 0; --fraction_digits) fraction /= 10;
-    char buffer[48];
+    char buffer[96];
     char* const end = buffer + sizeof buffer;
     char* p = end;
     if (fraction_digits > 0) {
@@ -168,14 +168,22 @@ void Format::append(std::string& out, double value) const {
         *--p = spec_.decimal_mark;
     }
     p = write_digits(p, *units / scale, 1);
+    // Padding, sign and prefix go in front, in the buffer too, so that the line gets one
+    // append (a prefix or width too long for it is appended piece by piece).
     const int integer_digits = static_cast<int>(end - p) - (fraction_digits > 0 ? fraction_digits + 1 : 0);
-    out += spec_.prefix;
-    if (v < 0 && *units != 0)
-        out += '-';
-    else if (spec_.force_sign)
-        out += '+';
-    if (integer_digits < spec_.width)
-        out.append(static_cast<size_t>(spec_.width - integer_digits), spec_.zeropad ? '0' : ' ');
+    const int padding = std::max(0, spec_.width - integer_digits);
+    const char sign = v < 0 && *units != 0 ? '-' : spec_.force_sign ? '+' : '\0';
+    if (static_cast<std::size_t>(padding) + spec_.prefix.size() + 1 > static_cast<std::size_t>(p - buffer)) {
+        out += spec_.prefix;
+        if (sign) out += sign;
+        out.append(static_cast<size_t>(padding), spec_.zeropad ? '0' : ' ');
+        out.append(p, static_cast<size_t>(end - p));
+        return;
+    }
+    for (int k = 0; k < padding; ++k) *--p = spec_.zeropad ? '0' : ' ';
+    if (sign) *--p = sign;
+    p -= spec_.prefix.size();
+    std::copy(spec_.prefix.begin(), spec_.prefix.end(), p);
     out.append(p, static_cast<size_t>(end - p));
 }
 
@@ -231,7 +239,11 @@ Format exact_format(FormatSpec spec, double value, int max_decimals) {
     return Format(spec);
 }
 
-bool Format::is_zero(double value) const { return digits_of(spec_, value).zero(); }
+bool Format::is_zero(double value) const {
+    // Every feed is checked: the fast path answers without the digits.
+    if (const auto units = rounded_units(scaled_value(spec_, value), spec_.decimals)) return *units == 0;
+    return digits_of(spec_, value).zero();
+}
 
 Word::Word(std::string prefix, Format format, bool force)
     : prefix_(std::move(prefix)), format_(std::move(format)), force_(force) {}

@@ -216,6 +216,9 @@ TEST_CASE("property: every field of a format decorates the same rounded number")
         s.width = widths(rng);
         s.decimal_mark = coin(rng) == 1 ? ',' : '.';
         if (coin(rng) == 1) s.prefix.push_back('X');
+        // Now and then a prefix or width longer than the fast path's buffer.
+        if (i % 97 == 0) s.prefix.append(120, 'P');
+        if (i % 89 == 0) s.width = 100;
         const double v = mantissa(rng) * std::pow(10.0, exponent(rng));
         std::string text = reference_format(v, s.decimals);
         const bool negative = text[0] == '-';
