@@ -11,7 +11,13 @@ namespace camgen::nc {
 
 namespace {
 constexpr size_t flush_threshold = 1 << 20;
+
+// Appends a separator or line break: most are one character, which needs no copy of a string.
+void append_text(std::string& to, const std::string& text) {
+    if (text.size() == 1) to.push_back(text[0]);
+    else to += text;
 }
+}  // namespace
 
 BlockWriter::BlockWriter(BlockStyle style, std::ostream& out)
     : style_(std::move(style)), out_(out), sequence_(style_.sequence_start) {
@@ -28,7 +34,7 @@ BlockWriter::~BlockWriter() {
 
 BlockWriter& BlockWriter::add(std::string_view word) {
     if (word.empty()) return *this;
-    if (!block_.empty()) block_ += style_.separator;
+    if (!block_.empty()) append_text(block_, style_.separator);
     block_ += word;
     return *this;
 }
@@ -42,7 +48,7 @@ void BlockWriter::end() {
         sequence_ += style_.sequence_increment;
     }
     buffer_ += block_;
-    buffer_ += style_.line_break;
+    append_text(buffer_, style_.line_break);
     block_.clear();
     maybe_flush();
 }
