@@ -474,10 +474,9 @@ private:
 
     // Adds the element read (numbers_) to the packed array.
     void commit_element() {
-        for (int i = 0; i < 3; ++i) {
-            packed_.xyz.push_back(i < count_ ? numbers_[i] : std::numeric_limits<double>::quiet_NaN());
-            packed_.kinds.push_back(i < count_ ? kinds_[i] : float_number);
-        }
+        std::uint8_t kinds[3];
+        for (int i = 0; i < count_; ++i) kinds[i] = kinds_[i];
+        packed_.add(numbers_, kinds, count_);
     }
 
     // A number for the element being packed; false when it does not fit (then unpacked).
@@ -608,6 +607,24 @@ Document parse_document(std::string_view text, const std::string& source_name, i
     return doc;
 }
 
+void PackedArray::add(const double* numbers, const std::uint8_t* number_kinds, int count) {
+    if (count == 3 && stride == 2) {
+        // The first element with a z: every element gets a place for one.
+        std::vector<double> wide;
+        wide.reserve(xyz.capacity() / 2 * 3);
+        for (std::size_t i = 0; i < size(); ++i)
+            wide.insert(wide.end(), {xyz[2 * i], xyz[2 * i + 1], std::numeric_limits<double>::quiet_NaN()});
+        xyz = std::move(wide);
+        stride = 3;
+    }
+    xyz.push_back(numbers[0]);
+    xyz.push_back(numbers[1]);
+    if (stride == 3) xyz.push_back(count == 3 ? numbers[2] : std::numeric_limits<double>::quiet_NaN());
+    std::uint8_t packed_kinds = 0;
+    for (int k = 0; k < count; ++k) packed_kinds = static_cast<std::uint8_t>(packed_kinds | (number_kinds[k] << (2 * k)));
+    kinds.push_back(packed_kinds);
+}
+
 nlohmann::json PackedArray::to_json() const {
     Json items = Json::array();
     auto& list = items.get_ref<Json::array_t&>();
@@ -615,9 +632,10 @@ nlohmann::json PackedArray::to_json() const {
     for (std::size_t i = 0; i < size(); ++i) {
         Json point = Json::array();
         for (std::size_t k = 0; k < (has_z(i) ? 3u : 2u); ++k) {
-            const double v = xyz[3 * i + k];
-            if (kinds[3 * i + k] == float_number) point.push_back(v);
-            else if (kinds[3 * i + k] == integer_number) point.push_back(static_cast<Json::number_integer_t>(v));
+            const double v = xyz[stride * i + k];
+            const std::uint8_t written = kind(i, static_cast<int>(k));
+            if (written == float_number) point.push_back(v);
+            else if (written == integer_number) point.push_back(static_cast<Json::number_integer_t>(v));
             else point.push_back(static_cast<Json::number_unsigned_t>(v));
         }
         if (form == Form::lines) list.push_back(Json{{"line", std::move(point)}});

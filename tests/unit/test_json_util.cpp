@@ -346,6 +346,16 @@ TEST_CASE("parse_document packs holes and path lines, and leaves everything else
     // Unpacked, each is the JSON parse reads, number kinds included.
     CHECK(holes->to_json().dump() == plain["a"]["holes"].dump());
     CHECK(lines->to_json().dump() == plain["a"]["path"].dump());
+    // Lines with and without z in any order: each keeps its own (the first z widens the array).
+    const std::string mixed = R"({"path": [{"line": [1, 2.5]}, {"line": [3, 4]}, {"line": [5, 6, 7.5]}, {"line": [8, 9]}]})";
+    const cj::Document mixed_doc = cj::parse_document(mixed, "mixed.json");
+    const cj::PackedArray* path = mixed_doc.packed_at(mixed_doc.root["path"]);
+    REQUIRE(path != nullptr);
+    CHECK(path->size() == 4);
+    CHECK((path->x(1) == 3 && path->y(1) == 4 && !path->has_z(1)));
+    CHECK((path->x(2) == 5 && path->y(2) == 6 && path->z(2) == 7.5));
+    CHECK((path->x(3) == 8 && !path->has_z(3)));
+    CHECK(path->to_json().dump() == cj::parse(mixed, "mixed.json")["path"].dump());
     // An element of another form, anywhere, leaves the whole array as parse reads it.
     for (const char* key : {"holes", "b", "c", "d", "e", "f"}) {
         const nlohmann::json& value = std::string(key) == "holes" ? doc.root["holes"] : doc.root[key];

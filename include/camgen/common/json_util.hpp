@@ -2,6 +2,7 @@
 // Reading JSON input (job and machine files) with errors that name the JSON path and line.
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -63,14 +64,23 @@ nlohmann::json parse(std::string_view text, const std::string& source_name, int 
 struct PackedArray {
     enum class Form { points, lines };
     Form form = Form::points;
-    std::vector<double> xyz;          // three per element; z is NaN where the element has two numbers
-    std::vector<std::uint8_t> kinds;  // three per element: how each number was written (float, integer, unsigned)
+    // `stride` numbers per element: 2 while no element has a z, else 3 (z NaN where an element
+    // has two numbers), so that a million 2D points take 16 MB, not 24.
+    std::size_t stride = 2;
+    std::vector<double> xyz;
+    // One per element: how each of its numbers was written (float, integer, unsigned), two bits
+    // each, x in the lowest.
+    std::vector<std::uint8_t> kinds;
 
-    std::size_t size() const { return xyz.size() / 3; }
-    double x(std::size_t i) const { return xyz[3 * i]; }
-    double y(std::size_t i) const { return xyz[3 * i + 1]; }
-    double z(std::size_t i) const { return xyz[3 * i + 2]; }
+    std::size_t size() const { return kinds.size(); }
+    double x(std::size_t i) const { return xyz[stride * i]; }
+    double y(std::size_t i) const { return xyz[stride * i + 1]; }
+    double z(std::size_t i) const { return stride == 3 ? xyz[3 * i + 2] : std::numeric_limits<double>::quiet_NaN(); }
     bool has_z(std::size_t i) const { return z(i) == z(i); }
+    // How number k (0: x, 1: y, 2: z) of element i was written.
+    std::uint8_t kind(std::size_t i, int k) const { return (kinds[i] >> (2 * k)) & 3; }
+    // Appends an element of two or three numbers and how each was written.
+    void add(const double* numbers, const std::uint8_t* number_kinds, int count);
     // The array as the document would have held it.
     nlohmann::json to_json() const;
 };
