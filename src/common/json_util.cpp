@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -316,21 +317,34 @@ int LineMap::line_of(std::string_view pointer) const {
 }
 
 namespace {
-// Where the text first nests deeper than `max_nesting` (outside strings), if it does.
+// What a byte means to the nesting scan; most bytes of a job (digits, commas, spaces) nothing.
+enum NestingByte : std::uint8_t { plain_byte, quote_byte, escape_byte, open_byte, close_byte };
+constexpr std::array<std::uint8_t, 256> nesting_bytes = [] {
+    std::array<std::uint8_t, 256> t{};
+    t['"'] = quote_byte;
+    t['\\'] = escape_byte;
+    t['['] = t['{'] = open_byte;
+    t[']'] = t['}'] = close_byte;
+    return t;
+}();
+
+// Where the text first nests deeper than `max_nesting` (outside strings), if it does. One
+// table look-up per byte: this runs over every byte of a job before it is parsed.
 std::optional<std::size_t> too_deep_at(std::string_view text, int max_nesting) {
     int depth = 0;
     bool in_string = false;
     for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
+        const std::uint8_t kind = nesting_bytes[static_cast<unsigned char>(text[i])];
+        if (kind == plain_byte) continue;
         if (in_string) {
-            if (c == '\\') ++i;
-            else if (c == '"') in_string = false;
+            if (kind == escape_byte) ++i;
+            else if (kind == quote_byte) in_string = false;
             continue;
         }
-        if (c == '"') in_string = true;
-        else if (c == '[' || c == '{') {
+        if (kind == quote_byte) in_string = true;
+        else if (kind == open_byte) {
             if (++depth > max_nesting) return i;
-        } else if (c == ']' || c == '}') {
+        } else if (kind == close_byte) {
             --depth;
         }
     }

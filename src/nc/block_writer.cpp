@@ -1,6 +1,7 @@
 #include "camgen/nc/block_writer.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cerrno>
 
 #include <utility>
@@ -43,8 +44,10 @@ void BlockWriter::end() {
     if (block_.empty()) return;
     if (style_.sequence_numbers) {
         buffer_ += style_.sequence_prefix;
-        buffer_ += std::to_string(sequence_);
-        buffer_ += style_.separator;
+        char digits[24];
+        const auto written = std::to_chars(digits, digits + sizeof digits, sequence_);
+        buffer_.append(digits, written.ptr);
+        append_text(buffer_, style_.separator);
         sequence_ += style_.sequence_increment;
     }
     buffer_ += block_;

@@ -92,6 +92,12 @@ TEST_CASE("limits: JSON nested deeper than 64 levels is refused at once, naming 
     // Brackets inside strings do not count.
     const std::string in_string = R"({"name": ")" + std::string(1000, '[') + R"(", "clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": []})";
     CHECK(test::run({"-", "--machine", "fanuc"}, in_string).code == 0);
+    // Nor after an escaped quote; an escaped backslash ends before the string's own quote.
+    const std::string escaped = R"({"name": "a\"b)" + std::string(1000, '[') + R"(c\\", "clearance": 10, "tools": [{"number": 1, "diameter": 3, "rpm": 1000}], "operations": []})";
+    CHECK(test::run({"-", "--machine", "fanuc"}, escaped).code == 0);
+    const std::string deep_after = R"({"name": "a\\", "x": )" + std::string(100, '[') + std::string(100, ']') + "}";
+    CHECK(test::run({"-", "--machine", "fanuc"}, deep_after).err.find("line 1, column 85: arrays and objects nested deeper than 64 "
+                                                                      "levels") != std::string::npos);
 }
 
 TEST_CASE("limits: the holes of all operations together are counted before they are made; --max-holes raises it") {
