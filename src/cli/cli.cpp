@@ -246,17 +246,85 @@ std::string machine_list() {
     return s;
 }
 
+// A stream buffer over text that is kept elsewhere (standard input's program, read again).
+class TextBuffer : public std::streambuf {
+public:
+    explicit TextBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+};
+
+// The program verify reads back, once for each pass over it: a file is opened again for each;
+// standard input cannot be read twice, so its text is kept when a second pass needs it.
+class ProgramInput {
+public:
+    ProgramInput(const std::string& file, std::istream& in, bool keep_stdin) : file_(file), in_(in) {
+        if (file == "-" && keep_stdin) text_ = read_text(file, in);
+    }
+    // A stream at the program's start.
+    std::istream& open() {
+        if (text_) {
+            buffer_.emplace(*text_);
+            stream_ = std::make_unique<std::istream>(&*buffer_);
+            return *stream_;
+        }
+        if (file_ == "-") return in_;
+        auto f = std::make_unique<std::ifstream>(file_, std::ios::binary);
+        if (!*f) throw IoError(fmt::format("cannot read {}: {}", file_, std::strerror(errno)));
+        stream_ = std::move(f);
+        return *stream_;
+    }
+
+private:
+    std::string file_;
+    std::istream& in_;
+    std::optional<std::string> text_;
+    std::optional<TextBuffer> buffer_;
+    std::unique_ptr<std::istream> stream_;
+};
+
+// Compares the program with the job's events in a pass of its own: the job leads, and the
+// program is read as far as the comparison needs it.
+std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
+                                         const Machine& machine, const CompareTolerance& tolerance) {
+    std::unique_ptr<ProgramReader> reader;
+    TraceComparer comparer(tolerance, [&] { return reader->advance(); });
+    TraceBuilder program_trace(machine, comparer.actual());
+    reader = std::make_unique<ProgramReader>(program.open(), machine, source, program_trace);
+    FeedClamp clamp(machine, comparer.expected());
+    TraceBuilder job_trace(machine, clamp);
+    // The job's events one at a time; once the first difference is known the rest says nothing.
+    struct Expected : EventSink {
+        TraceComparer& comparer;
+        TraceBuilder& trace;
+        Expected(TraceComparer& c, TraceBuilder& t) : comparer(c), trace(t) {}
+        void emit(const Event& e) override {
+            if (!comparer.decided()) trace.add_job_event(e);
+        }
+    } expected(comparer, job_trace);
+    expand_job(job, expected);
+    job_trace.finish();
+    return comparer.mismatch();
+}
+
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Machine machine = load_machine(v.machine);
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
-    std::string text = read_text(v.program, in);
-    ReadResolution resolution;
-    Trace trace = trace_program(read_program(text, machine, source, &resolution), machine);
-    ProgramStats stats = compute_stats(trace, machine);
-    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
-    if (!v.plot.empty()) write_plot(v.plot, text, trace, stats, {base_name(source), machine.name, machine.kind});
+    // The program is read as a stream, never whole: a first pass measures it (and keeps the
+    // trace for a drawing), a second compares it with the job. The HTML page shows the text.
+    const bool html = !v.plot.empty() && is_html_plot(v.plot);
+    ProgramInput program(v.program, in, !v.job.empty() || html);
+    std::string text;
+    if (html) text = read_text(v.program, program.open());
+    StatsAccumulator stats(machine);
+    TraceCollector collected;
+    TraceFanOut first_pass(v.plot.empty() ? std::vector<TraceSink*>{&stats} : std::vector<TraceSink*>{&stats, &collected});
+    TraceBuilder trace(machine, first_pass);
+    ProgramReader reader(program.open(), machine, source, trace);
+    reader.read_all();
+    const ReadResolution resolution = reader.coarsest_resolution();
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats.stats());
+    if (!v.plot.empty()) write_plot(v.plot, text, collected.take(), stats.stats(), {base_name(source), machine.name, machine.kind});
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;
@@ -267,7 +335,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
         check_machine_kind(job, machine.kind, machine.name);
         CompareTolerance tolerance = compare_tolerance(machine, resolution);
-        if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
+        if (auto m = compare_with_job(program, source, job, machine, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             finish_stream(out, "standard output");
             return exit_invalid_input;

@@ -30,6 +30,7 @@ void read_program(std::string_view text, const Machine& machine, const std::stri
                   ReadResolution* resolution) {
     auto reader = reader::make_reader(machine, source);
     reader->read(text, sink);
+    sink.finish();
     if (resolution) *resolution = reader->coarsest_resolution();
 }
 
@@ -44,7 +45,7 @@ std::vector<ReadEvent> read_program(std::string_view text, const Machine& machin
 }
 
 ProgramReader::ProgramReader(std::istream& in, const Machine& machine, const std::string& source, ReadEventSink& sink)
-    : in_(in), reader_(reader::make_reader(machine, source)) {
+    : in_(in), sink_(sink), reader_(reader::make_reader(machine, source)) {
     reader_->start(sink);
 }
 
@@ -74,6 +75,7 @@ bool ProgramReader::advance() {
         }
         done_ = true;
         reader_->finish();
+        sink_.finish();
         return false;
     }
     reader_->read_line(std::string_view(buffer_).substr(next_, nl - next_));

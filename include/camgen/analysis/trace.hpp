@@ -114,7 +114,7 @@ public:
     void read_event(const ReadEvent& event) override;
     void add_job_event(const Event& event);
     // The end of the events: the last hole, then sink.finish.
-    void finish();
+    void finish() override;
 
 private:
     class Impl;

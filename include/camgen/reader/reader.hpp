@@ -51,6 +51,8 @@ class ReadEventSink {
 public:
     virtual ~ReadEventSink() = default;
     virtual void read_event(const ReadEvent& event) = 0;
+    // The end of the program: every event was handed on.
+    virtual void finish() {}
 };
 
 namespace reader {
@@ -76,6 +78,7 @@ public:
 
 private:
     std::istream& in_;
+    ReadEventSink& sink_;
     std::unique_ptr<reader::NcReader> reader_;
     std::string buffer_;  // a block of the stream; lines are cut from it
     std::size_t next_ = 0;  // where the next line starts in buffer_
