@@ -281,6 +281,18 @@ private:
     std::unique_ptr<std::istream> stream_;
 };
 
+// Draws the program's SVG backplot in a second pass over it (`plan` and `stats` from the
+// first) and writes it atomically.
+void write_svg_plot(const std::string& file, ProgramInput& program, const std::string& source, const Machine& machine,
+                    const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options) {
+    BackplotDrawer drawer(plan, stats, options);
+    TraceBuilder trace(machine, drawer);
+    ProgramReader(program.open(), machine, source, trace).read_all();
+    OutputFile plot(file);
+    plot.stream() << drawer.take().svg;
+    plot.commit();
+}
+
 // Compares the program with the job's events in a pass of its own: the job leads, and the
 // program is read as far as the comparison needs it.
 std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
@@ -310,21 +322,27 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
-    // The program is read as a stream, never whole: a first pass measures it (and keeps the
-    // trace for a drawing), a second compares it with the job. The HTML page shows the text.
+    // The program is read as a stream, never whole: a first pass measures it (and plans the
+    // drawing), a second draws it, another compares it with the job. The HTML page shows the
+    // text, so it keeps it and the trace.
     const bool html = !v.plot.empty() && is_html_plot(v.plot);
-    ProgramInput program(v.program, in, !v.job.empty() || html);
+    ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
     std::string text;
     if (html) text = read_text(v.program, program.open());
     StatsAccumulator stats(machine);
+    BackplotPlan plan(machine.kind);
     TraceCollector collected;
-    TraceFanOut first_pass(v.plot.empty() ? std::vector<TraceSink*>{&stats} : std::vector<TraceSink*>{&stats, &collected});
-    TraceBuilder trace(machine, first_pass);
+    std::vector<TraceSink*> first_pass{&stats};
+    if (!v.plot.empty()) first_pass.push_back(html ? static_cast<TraceSink*>(&collected) : &plan);
+    TraceFanOut sinks(first_pass);
+    TraceBuilder trace(machine, sinks);
     ProgramReader reader(program.open(), machine, source, trace);
     reader.read_all();
     const ReadResolution resolution = reader.coarsest_resolution();
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats.stats());
-    if (!v.plot.empty()) write_plot(v.plot, text, collected.take(), stats.stats(), {base_name(source), machine.name, machine.kind});
+    const BackplotOptions plot_options{base_name(source), machine.name, machine.kind};
+    if (html) write_plot(v.plot, text, collected.take(), stats.stats(), plot_options);
+    else if (!v.plot.empty()) write_svg_plot(v.plot, program, source, machine, plan, stats.stats(), plot_options);
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;

@@ -52,7 +52,7 @@ struct BackplotOptions {
     // tool covered before, and holes as plain circles numbered only where they are a tool's
     // last: the drawing of a program of millions of lines stays within what its picture
     // shows. The legend says how many were left out.
-    std::size_t exact = 100000;
+    std::size_t exact = 10000;
 };
 
 // Where a drawing puts a position, in SVG user units: x = left + (u - min_u) * scale and
