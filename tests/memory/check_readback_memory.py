@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The read-back streams: `camgen verify` of a 200,000-hole grbl program (3.2 million lines)
-must stay within the job's size plus 50 MB of peak memory, with and without --job. A read-back that keeps the whole program (its text, events or steps) needs
+must stay within the job's size plus 50 MB of peak memory, with and without --job and with
+--plot F.svg. A read-back that keeps the whole program (its text, events or steps) needs
 gigabytes and fails here. Each run's peak comes from wait4's rusage of that child alone.
 
 Usage: check_readback_memory.py CAMGEN SOURCE_DIR [CXX_FLAGS]
@@ -44,6 +45,7 @@ def main():
         runs = {
             "verify": [],
             "verify --job": ["--job", job],
+            "verify --plot F.svg": ["--plot", os.path.join(work, "plot.svg")],
         }
         for name, extra in runs.items():
             out = os.path.join(work, "out.txt")
