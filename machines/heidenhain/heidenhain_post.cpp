@@ -33,7 +33,7 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
     // The set-up clearance is unsigned: when the feed starts below the surface, the
     // feed-start plane is given as the surface.
     const double surface = std::min(c.reference_z, c.safe_z);
-    auto dwell = [&](const std::optional<double>& s) { return sec.format(s.value_or(0.0)); };
+    auto dwell = [&](DrillField f) { return sec.format(p.get(f).value_or(0.0)); };  // none: 0
     // The values by parameter; the cycle's form gives their order and comments.
     std::map<Q, std::string> v = {{Q::setup_clearance, len.format(c.safe_z - surface)},
                                   {Q::depth, len.format(c.bottom_z - surface)},
@@ -49,19 +49,19 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
         form = &heidenhain::drilling;
         v[Q::plunge_feed] = feed.format(c.feed);
         v[Q::plunging_depth] = len.format(surface - c.bottom_z);  // all in one plunge
-        v[Q::top_dwell] = dwell(std::nullopt);
-        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+        v[Q::top_dwell] = sec.format(0.0);
+        v[Q::bottom_dwell] = dwell(DrillField::bottom_dwell);
     } else {
         form = &heidenhain::universal_drilling;
         const bool full = c.kind == CycleKind::deep;
         const double decrement = p.degression_type() == DegressionType::value ? *p.get(DrillField::degression) : 0.0;
         v[Q::plunge_feed] = feed.format(c.feed);
         v[Q::plunging_depth] = len.format(p.get(DrillField::first_depth).value_or(c.safe_z - c.bottom_z));
-        v[Q::top_dwell] = dwell(full ? p.get(DrillField::top_dwell) : std::nullopt);
+        v[Q::top_dwell] = full ? dwell(DrillField::top_dwell) : sec.format(0.0);
         v[Q::decrement] = len.format(decrement);
         v[Q::breaks] = full ? "+0" : fmt::format("+{}", heidenhain::max_breaks);
         v[Q::min_plunging_depth] = len.format(p.get(DrillField::minimum_depth).value_or(0.0));
-        v[Q::bottom_dwell] = dwell(p.get(DrillField::bottom_dwell));
+        v[Q::bottom_dwell] = dwell(DrillField::bottom_dwell);
         // FMAX is the same number in mm and inch programs: written as it is, not converted.
         v[Q::retraction_feed] = !full && p.get(DrillField::retract_feedrate)
                                     ? feed.format(*p.get(DrillField::retract_feedrate))

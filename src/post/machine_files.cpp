@@ -53,13 +53,19 @@ struct Layer {
     json::LineMap lines;
 };
 
+// What names a machine file however it was reached (a relative path, a link, a built-in).
+std::string identity_of(const MachineEntry& e) {
+    if (e.text) return "built-in " + e.name;
+    std::error_code ec;
+    std::string canonical = fs::weakly_canonical(e.path, ec).string();
+    return ec || canonical.empty() ? e.path : canonical;
+}
+
 Layer read_layer(const MachineEntry& e) {
     Layer l;
     const std::string text = e.text ? std::string(e.text) : read_file(e.path);
     l.source = e.text ? "machines/" + e.name + ".json" : e.path;
-    std::error_code ec;
-    l.identity = e.text ? "built-in " + e.name : fs::weakly_canonical(e.path, ec).string();
-    if (ec || l.identity.empty()) l.identity = e.path;
+    l.identity = identity_of(e);
     l.doc = json::parse(text, l.source);
     l.lines = json::LineMap(text);
     return l;
@@ -80,13 +86,19 @@ std::vector<std::string> machine_files_in(const std::string& dir) {
     return files;
 }
 
-[[noreturn]] void unknown_machine(const std::string& name, const std::vector<MachineEntry>& catalogue) {
+// "(did you mean ...); known machines: ..." for a name not in the catalogue (each name once).
+std::string known_machines_hint(const std::string& name, const std::vector<MachineEntry>& catalogue) {
     std::vector<std::string> names;
     for (const auto& e : catalogue)
         if (!e.shadowed) names.push_back(e.name);
     auto hint = json::did_you_mean(name, names);
-    throw UsageError(fmt::format("unknown machine \"{}\"{}; known machines: {} (or give a path to a machine JSON file)", name,
-                                 hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", fmt::join(names, ", ")));
+    return fmt::format("{}; known machines: {}", hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                       fmt::join(names, ", "));
+}
+
+[[noreturn]] void unknown_machine(const std::string& name, const std::vector<MachineEntry>& catalogue) {
+    throw UsageError(fmt::format("unknown machine \"{}\"{} (or give a path to a machine JSON file)", name,
+                                 known_machines_hint(name, catalogue)));
 }
 
 // The entry a name means, searching from `from` on in the catalogue.
@@ -133,19 +145,13 @@ std::vector<Layer> read_chain(const std::string& name_or_path) {
                 for (std::size_t i = 0; i < catalogue.size(); ++i)
                     if (catalogue[i].origin == entry.origin) from = i + 1;
             const MachineEntry* e = find_entry(catalogue, base, from);
-            if (!e) {
-                std::vector<std::string> names;
-                for (const auto& c : catalogue) names.push_back(c.name);
-                auto hint = json::did_you_mean(base, names);
+            if (!e)
                 json::fail(source, "/extends",
-                           fmt::format("no machine \"{}\" to extend{}; known machines: {}", base,
-                                       hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", fmt::join(names, ", ")));
-            }
+                           fmt::format("no machine \"{}\" to extend{}", base, known_machines_hint(base, catalogue)));
             entry = *e;
         }
         // A cycle: the next file is one of the chain already.
-        std::error_code ec;
-        const std::string next = entry.text ? "built-in " + entry.name : fs::weakly_canonical(entry.path, ec).string();
+        const std::string next = identity_of(entry);
         for (const Layer& l : chain)
             if (l.identity == next) {
                 std::vector<std::string> files;

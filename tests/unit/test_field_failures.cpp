@@ -725,28 +725,3 @@ TEST_CASE("field failure: output renamed over a FIFO or device used for DNC") {
     });
     CHECK(ran == all_machines);
 }
-
-TEST_CASE("sinumerik CYCLE83: the first depth is taken from the written planes, so rounding does not lengthen every peck") {
-    // A safe distance of 4.3125 is written SDIS=4.313; FDEP from the exact plane (-1.6875,
-    // written -1.688) made each peck 6.001 mm, and the seventh peck 0.007 mm deeper than the
-    // job's. A fuzz_mutated finding (sinumerik-lathe): verify refused camgen's own program.
-    const std::string mill = R"({"name": "p", "units": "mm", "clearance": 20,
-      "tools": [{"number": 1, "type": "drill", "diameter": 10, "rpm": 800}],
-      "operations": [{"type": "drill", "tool": 1, "cycle": "deep", "plungingFeedrate": 100, "safeDistance": 4.3125,
-        "retractPlane": 10, "endDepth": 60, "firstDepth": 6, "holes": [[0, 0]]}]})";
-    const std::string lathe = R"({"name": "s", "units": "mm", "clearance": 20,
-      "tools": [{"number": 2, "type": "drill", "diameter": 10, "rpm": 800, "tipAngle": 118}],
-      "operations": [{"type": "turn-drill", "tool": 2, "plungingFeedrate": 100, "startDepth": 0, "endDepth": -60,
-        "firstPeckDepth": 6, "peckRetract": 1, "safeDistance": 4.3125, "retractDistance": 5}]})";
-    for (const auto& [machine, job] : {std::pair<std::string, std::string>{"sinumerik", mill}, {"sinumerik-lathe", lathe}}) {
-        CAPTURE(machine);
-        const std::string file = test::file_with("cycle83-rounded-planes-" + machine, job);
-        const std::string program = (test::scratch("cycle83-rounded-planes-out") / "p.mpf").string();
-        const test::Run post = test::run({file, "--machine", machine, "-o", program, "-q"});
-        REQUIRE_MESSAGE(post.code == 0, post.err);
-        CHECK(post.out.empty());
-        CHECK(test::read_file(program).find("CYCLE83") != std::string::npos);
-        const test::Run verify = test::run({"verify", program, "--machine", machine, "--job", file});
-        CHECK_MESSAGE(verify.code == 0, verify.err);
-    }
-}

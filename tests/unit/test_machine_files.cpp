@@ -171,6 +171,18 @@ TEST_CASE("a user's file of a built-in's name replaces it, and extending its own
     REQUIRE(list.code == 0);
     CHECK(list.out.find("our grbl  [" + (user.machines() / "grbl.json").string() + "]") != std::string::npos);
     CHECK(list.out.find("[built-in, replaced by the file of this name above]") != std::string::npos);
+    // The known machines of a message name grbl once, though two files of that name exist.
+    user.write("orphan.json", R"({"extends": "grbll"})");
+    try {
+        load_machine("orphan");
+        FAIL("extended an unknown machine");
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        CHECK(what.find("did you mean \"grbl\"") != std::string::npos);
+        const auto known = what.substr(what.find("known machines:"));
+        CHECK(known.find("grbl,") != std::string::npos);
+        CHECK(known.find("grbl,") == known.rfind("grbl,"));
+    }
 }
 
 TEST_CASE("CAMGEN_MACHINES folders come before the XDG folder, and --list-machines shows each machine's source") {
