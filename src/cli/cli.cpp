@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -208,20 +209,42 @@ void finish_stream(std::ostream& out, const std::string& name) {
 
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
 
-// The backplot of `program` (read back into `trace`) for a --plot file: the interactive HTML
-// page for F.html, else the SVG drawing.
-std::string plot_text(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
-                      const BackplotOptions& options) {
-    return is_html_plot(file) ? backplot_html(program, trace, stats, options) : backplot_svg(trace, stats, options);
-}
+// Reading a program back for its statistics and a --plot file, in passes over it: `pass` reads
+// the program once into a sink (the file again, or the text kept) and returns the coarsest
+// resolution it used. The first pass measures the program and plans the SVG drawing (the HTML
+// page keeps the trace it shows), a second draws the SVG.
+class ReadBack {
+public:
+    using Pass = std::function<ReadResolution(ReadEventSink&)>;
+    ReadBack(const Machine& machine, const std::string& plot_file, Pass pass)
+        : machine_(machine), html_(!plot_file.empty() && is_html_plot(plot_file)), pass_(std::move(pass)), stats_(machine),
+          plan_(machine.kind) {
+        std::vector<TraceSink*> sinks{&stats_};
+        if (!plot_file.empty()) sinks.push_back(html_ ? static_cast<TraceSink*>(&trace_) : &plan_);
+        TraceFanOut fan(std::move(sinks));
+        TraceBuilder trace(machine_, fan);
+        resolution_ = pass_(trace);
+    }
+    const ProgramStats& stats() const { return stats_.stats(); }
+    ReadResolution resolution() const { return resolution_; }
+    // The --plot file's text: the HTML page (it shows `program`, the text) or the SVG drawing.
+    std::string plot_text(std::string_view program, const BackplotOptions& options) {
+        if (html_) return backplot_html(program, trace_.take(), stats(), options);
+        BackplotDrawer drawer(plan_, stats(), options);
+        TraceBuilder trace(machine_, drawer);
+        (void)pass_(trace);
+        return drawer.take().svg;
+    }
 
-// Writes the backplot of a program atomically.
-void write_plot(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
-                const BackplotOptions& options) {
-    OutputFile plot(file);
-    plot.stream() << plot_text(file, program, trace, stats, options);
-    plot.commit();
-}
+private:
+    const Machine& machine_;
+    bool html_;
+    Pass pass_;
+    StatsAccumulator stats_;
+    BackplotPlan plan_;
+    TraceCollector trace_;
+    ReadResolution resolution_;
+};
 
 // `camgen verify`: reads a program back, prints what it does, and compares it with a job.
 // --list-machines: a line a machine, its name first (shell completion reads the first word),
@@ -281,18 +304,6 @@ private:
     std::unique_ptr<std::istream> stream_;
 };
 
-// Draws the program's SVG backplot in a second pass over it (`plan` and `stats` from the
-// first) and writes it atomically.
-void write_svg_plot(const std::string& file, ProgramInput& program, const std::string& source, const Machine& machine,
-                    const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options) {
-    BackplotDrawer drawer(plan, stats, options);
-    TraceBuilder trace(machine, drawer);
-    ProgramReader(program.open(), machine, source, trace).read_all();
-    OutputFile plot(file);
-    plot.stream() << drawer.take().svg;
-    plot.commit();
-}
-
 // Compares the program with the job's events in a pass of its own: the job leads, and the
 // program is read as far as the comparison needs it.
 std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
@@ -322,27 +333,23 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
-    // The program is read as a stream, never whole: a first pass measures it (and plans the
-    // drawing), a second draws it, another compares it with the job. The HTML page shows the
-    // text, so it keeps it and the trace.
+    // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job). The
+    // HTML page shows the text, so it keeps it.
     const bool html = !v.plot.empty() && is_html_plot(v.plot);
     ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
     std::string text;
     if (html) text = read_text(v.program, program.open());
-    StatsAccumulator stats(machine);
-    BackplotPlan plan(machine.kind);
-    TraceCollector collected;
-    std::vector<TraceSink*> first_pass{&stats};
-    if (!v.plot.empty()) first_pass.push_back(html ? static_cast<TraceSink*>(&collected) : &plan);
-    TraceFanOut sinks(first_pass);
-    TraceBuilder trace(machine, sinks);
-    ProgramReader reader(program.open(), machine, source, trace);
-    reader.read_all();
-    const ReadResolution resolution = reader.coarsest_resolution();
-    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats.stats());
-    const BackplotOptions plot_options{base_name(source), machine.name, machine.kind};
-    if (html) write_plot(v.plot, text, collected.take(), stats.stats(), plot_options);
-    else if (!v.plot.empty()) write_svg_plot(v.plot, program, source, machine, plan, stats.stats(), plot_options);
+    ReadBack back(machine, v.plot, [&](ReadEventSink& sink) {
+        ProgramReader reader(program.open(), machine, source, sink);
+        reader.read_all();
+        return reader.coarsest_resolution();
+    });
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back.stats());
+    if (!v.plot.empty()) {
+        OutputFile plot(v.plot);
+        plot.stream() << back.plot_text(text, {base_name(source), machine.name, machine.kind});
+        plot.commit();
+    }
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;
@@ -352,7 +359,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     try {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
         check_machine_kind(job, machine.kind, machine.name);
-        CompareTolerance tolerance = compare_tolerance(machine, resolution);
+        CompareTolerance tolerance = compare_tolerance(machine, back.resolution());
         if (auto m = compare_with_job(program, source, job, machine, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             finish_stream(out, "standard output");
@@ -374,10 +381,13 @@ void read_back(std::string_view program, const Job& job, const Options& o, std::
                std::optional<OutputFile>& plot) {
     Machine machine = machine_for(o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
-    Trace trace = trace_program(read_program(program, machine, name), machine);
-    ProgramStats stats = compute_stats(trace, machine);
-    if (o.stats) err << format_stats(stats);
-    if (!o.plot.empty()) plot.emplace(o.plot).stream() << plot_text(o.plot, program, trace, stats, {name, machine.name, machine.kind});
+    ReadBack back(machine, o.plot, [&](ReadEventSink& sink) {
+        ReadResolution resolution;
+        read_program(program, machine, name, sink, &resolution);
+        return resolution;
+    });
+    if (o.stats) err << format_stats(back.stats());
+    if (!o.plot.empty()) plot.emplace(o.plot).stream() << back.plot_text(program, {name, machine.name, machine.kind});
 }
 
 }  // namespace
