@@ -8,6 +8,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -35,18 +36,27 @@ std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num(p.x), n
 
 double dist(const Vec3& a, const Vec3& b) { return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z)); }
 
-// One straight or circular piece of a path.
+// One straight or circular piece of a path: what the comparison needs of its step (a long path
+// is held while it is compared: a helix of thousands of turns written as millions of chords).
 struct Seg {
-    Step step;
     Vec3 a, b;
+    std::shared_ptr<const ArcGeometry> arc;  // a circular move (shared: paths are copied as they merge)
+    double feed = 0.0;         // mm/min
+    double pitch = 0.0;        // see Step::pitch
+    double uncertainty = 0.0;  // mm, see Step::uncertainty
+    int line = 0;
+    StepKind kind = StepKind::feed;
+    explicit Seg(const Step& s)
+        : a(s.from), b(s.to), arc(s.arc ? std::make_shared<const ArcGeometry>(*s.arc) : nullptr), feed(s.feed), pitch(s.pitch),
+          uncertainty(s.uncertainty), line(s.line), kind(s.kind) {}
     double length() const {
-        if (!step.arc) return dist(a, b);
-        const ArcGeometry& g = *step.arc;
+        if (!arc) return dist(a, b);
+        const ArcGeometry& g = *arc;
         PlanePoint s = to_plane(g.start, g.plane), e = to_plane(g.end, g.plane);
         return std::hypot(g.radius * g.sweep, e.w - s.w);
     }
     Vec3 at(double t) const {
-        if (step.arc) return point_on_arc(*step.arc, t);
+        if (arc) return point_on_arc(*arc, t);
         return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
     }
 };
@@ -57,7 +67,7 @@ struct Path {
     Vec3 start;
     std::vector<Seg> segs;
     Vec3 end() const { return segs.empty() ? start : segs.back().b; }
-    int first_line() const { return segs.empty() ? 0 : segs.front().step.line; }
+    int first_line() const { return segs.empty() ? 0 : segs.front().line; }
 };
 
 struct Item {
@@ -99,7 +109,7 @@ public:
                     it.path.start = s.from_known ? s.from : s.to;
                     made(std::move(it));
                 }
-                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) open_->path.segs.push_back({s, s.from, s.to});
+                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) open_->path.segs.emplace_back(s);
                 break;
             }
         }
@@ -174,26 +184,29 @@ private:
 struct Sample {
     Vec3 p;
     size_t seg = 0;              // index of the segment it lies on
-    const Step* step = nullptr;  // the step it lies on (nullptr: the path's start)
+    const Seg* step = nullptr;  // the move it lies on (nullptr: the path's start)
     bool vertex = false;         // a block end (else a point inside a move)
     bool check_feed = false;     // inside a move: the feeds must agree here
 };
 
-std::vector<Sample> samples_of(const Path& path) {
-    std::vector<Sample> out;
-    out.push_back({path.start, 0, path.segs.empty() ? nullptr : &path.segs.front().step, true, false});
+// Hands each sample of the path to `f`, in order, until it returns a mismatch (made one at a
+// time: a helix of thousands of turns written as chords has millions).
+template <class F>
+std::optional<Mismatch> each_sample(const Path& path, F f) {
+    if (auto m = f(Sample{path.start, 0, path.segs.empty() ? nullptr : &path.segs.front(), true, false})) return m;
     for (size_t i = 0; i < path.segs.size(); ++i) {
         const Seg& s = path.segs[i];
         int n = 2;
-        if (s.step.arc) {
-            const ArcGeometry& g = *s.step.arc;
+        if (s.arc) {
+            const ArcGeometry& g = *s.arc;
             n = static_cast<int>(std::ceil(std::max(g.sweep / (5.0 * std::numbers::pi / 180.0), s.length() / 1.0)));
             n = std::clamp(n, 4, 5000);
         }
-        for (int k = 1; k < n; ++k) out.push_back({s.at(double(k) / n), i, &s.step, false, true});
-        out.push_back({s.b, i, &s.step, true, false});
+        for (int k = 1; k < n; ++k)
+            if (auto m = f(Sample{s.at(double(k) / n), i, &s, false, true})) return m;
+        if (auto m = f(Sample{s.b, i, &s, true, false})) return m;
     }
-    return out;
+    return std::nullopt;
 }
 
 // Where on a segment a point lies: the parameter t in [0, 1] nearest to it, at or after t_min
@@ -206,7 +219,7 @@ struct Hit {
 Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
     double len = s.length();
     double slack = len > 0 ? tol / len : 1.0;
-    if (!s.step.arc) {
+    if (!s.arc) {
         Vec3 ab{s.b.x - s.a.x, s.b.y - s.a.y, s.b.z - s.a.z};
         double l2 = ab.x * ab.x + ab.y * ab.y + ab.z * ab.z;
         double t = l2 > 0 ? ((p.x - s.a.x) * ab.x + (p.y - s.a.y) * ab.y + (p.z - s.a.z) * ab.z) / l2 : 0.0;
@@ -214,7 +227,7 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
         if (t < t_min - slack) return {};
         return {std::max(t, t_min), dist(p, s.at(t))};
     }
-    const ArcGeometry& g = *s.step.arc;
+    const ArcGeometry& g = *s.arc;
     PlanePoint c = to_plane(g.centre, g.plane), q = to_plane(p, g.plane);
     double phi = std::atan2(q.v - c.v, q.u - c.u) - g.start_angle;
     if (g.direction == ArcDirection::cw) phi = -phi;
@@ -277,9 +290,9 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
 std::string describe_path(const Path& p) { return p.rapid ? "rapid" : "feed"; }
 
 std::string describe_seg(const Seg& s) {
-    if (!s.step.arc)
-        return fmt::format("{} move from {} to {}", s.step.kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
-    const ArcGeometry& g = *s.step.arc;
+    if (!s.arc)
+        return fmt::format("{} move from {} to {}", s.kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
+    const ArcGeometry& g = *s.arc;
     return fmt::format("{} arc from {} to {} about {}", g.direction == ArcDirection::cw ? "cw" : "ccw", point(s.a), point(s.b),
                        point(g.centre));
 }
@@ -306,7 +319,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                const CompareTolerance& tol) {
     size_t k = 0;
     double t = 0.0;
-    for (const Sample& s : samples_of(from)) {
+    return each_sample(from, [&](const Sample& s) -> std::optional<Mismatch> {
         double extra = s.step ? s.step->uncertainty : 0.0;
         bool found = false;
         std::optional<Mismatch> wrong_feed;
@@ -314,7 +327,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             const Seg& seg = onto.segs[j];
             // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
             // chords or have a rounded centre.
-            double limit = (s.vertex && !seg.step.arc ? tol.position : tol.path) + extra + seg.step.uncertainty + eps;
+            double limit = (s.vertex && !seg.arc ? tol.position : tol.path) + extra + seg.uncertainty + eps;
             Hit h = locate(seg, s.p, j == k ? t : 0.0, limit);
             if (h.d > limit) {
                 if (wrong_feed) break;  // the run of segments the point is near has ended
@@ -323,14 +336,14 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             // A move that follows the spindle (a tap, a per-revolution feed) feeds at pitch x
             // speed: the speed written to the resolution of S moves its feed by up to pitch x
             // that resolution (a fuzz finding: 0.2296875 mm/rev at 802.3125 rpm, S802).
-            double feed_limit = tol.feed + std::max(s.step->pitch, seg.step.pitch) * tol.rpm + eps;
-            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step.feed) > feed_limit) {
+            double feed_limit = tol.feed + std::max(s.step->pitch, seg.pitch) * tol.rpm + eps;
+            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.feed) > feed_limit) {
                 // A point within the tolerance of a corner lies on both moves that meet there (a
                 // tiny arc written as one short line after a plunge): look on along the moves it
                 // is near for one at its feed before calling it a mismatch.
                 if (!wrong_feed) {
-                    const Step& job = from_is_job ? *s.step : seg.step;
-                    const Step& prog = from_is_job ? seg.step : *s.step;
+                    const Seg& job = from_is_job ? *s.step : seg;
+                    const Seg& prog = from_is_job ? seg : *s.step;
                     wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
                                                                  num(prog.feed), num(job.feed), point(s.p))};
                 }
@@ -342,7 +355,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
         }
         if (!found && wrong_feed) return wrong_feed;
         if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + eps;
-        if (found) continue;
+        if (found) return std::nullopt;
         // Where the other path goes on from the last point both share: inside the segment
         // matched last, or after it.
         bool inside = k < onto.segs.size() && t < 1.0 - 1e-9;
@@ -356,18 +369,17 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                 : fmt::format("{} path from {}", describe_path(from), point(from.start));
         std::string there = near ? describe_seg(*near) : fmt::format("{} path that stays at {}", describe_path(onto), point(onto.start));
         if (from_is_job)
-            return Mismatch{near ? near->step.line : from.first_line(),
+            return Mismatch{near ? near->line : from.first_line(),
                             fmt::format("the job's {} is not in the program (there the program has a {})", what, there)};
-        return Mismatch{mine ? mine->step.line : from.first_line(),
+        return Mismatch{mine ? mine->line : from.first_line(),
                         fmt::format("the program's {} is not in the job (there the job has a {})", what, there)};
-    }
-    return std::nullopt;
+    });
 }
 
 std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const Path* job_next, const Path* prog_next,
                                       const CompareTolerance& tol) {
-    double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().step.uncertainty;
-    double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().step.uncertainty;
+    double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().uncertainty;
+    double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().uncertainty;
     if (dist(job.start, prog.start) > tol.position + eps + prog_start_extra) {
         return Mismatch{prog.first_line(), fmt::format("the program's {} path starts at {}, the job's at {}", describe_path(prog),
                                                        point(prog.start), point(job.start))};
@@ -375,7 +387,7 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     if (auto m = follow(job, prog, prog_next, true, tol)) return m;
     if (auto m = follow(prog, job, job_next, false, tol)) return m;
     if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + eps) {
-        int line = prog.segs.empty() ? 0 : prog.segs.back().step.line;
+        int line = prog.segs.empty() ? 0 : prog.segs.back().line;
         return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end()),
                                           point(job.end()))};
     }
