@@ -59,7 +59,7 @@ public:
 
     // Reads a whole program, handing each event to `sink` as it is read.
     void read(std::string_view text, ReadEventSink& sink);
-    // The same a line at a time: start(), line() for each line (without its line break),
+    // The same a line at a time: start(), read_line() for each line (without its line break),
     // finish() at the end of the text. Events go to the sink as they are read.
     void start(ReadEventSink& sink);
     void read_line(std::string_view line);
@@ -67,6 +67,8 @@ public:
     virtual ReadResolution resolution() const;
     // The coarsest resolution in effect anywhere in the program read.
     ReadResolution coarsest_resolution() const { return coarsest_; }
+    // The end of the text: close what is open (a dialect checks the program's end here).
+    virtual void finish();
 
 protected:
     // ---- dialect hooks ----
@@ -85,11 +87,7 @@ protected:
     virtual bool dotted_word(char letter) const;
     // Interprets one block (words are already split; the sequence number is removed).
     virtual void block(const Block& block) = 0;
-public:
-    // The end of the text: close what is open.
-    virtual void finish();
 
-protected:
 
     // ---- shared machinery ----
     [[noreturn]] void fail(const std::string& detail) const;
