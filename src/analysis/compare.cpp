@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
+#include <functional>
+#include <memory>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -33,18 +36,27 @@ std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num(p.x), n
 
 double dist(const Vec3& a, const Vec3& b) { return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z)); }
 
-// One straight or circular piece of a path.
+// One straight or circular piece of a path: what the comparison needs of its step (a long path
+// is held while it is compared: a helix of thousands of turns written as millions of chords).
 struct Seg {
-    const Step* step = nullptr;
     Vec3 a, b;
+    std::shared_ptr<const ArcGeometry> arc;  // a circular move (shared: paths are copied as they merge)
+    double feed = 0.0;         // mm/min
+    double pitch = 0.0;        // see Step::pitch
+    double uncertainty = 0.0;  // mm, see Step::uncertainty
+    int line = 0;
+    StepKind kind = StepKind::feed;
+    explicit Seg(const Step& s)
+        : a(s.from), b(s.to), arc(s.arc ? std::make_shared<const ArcGeometry>(*s.arc) : nullptr), feed(s.feed), pitch(s.pitch),
+          uncertainty(s.uncertainty), line(s.line), kind(s.kind) {}
     double length() const {
-        if (!step->arc) return dist(a, b);
-        const ArcGeometry& g = *step->arc;
+        if (!arc) return dist(a, b);
+        const ArcGeometry& g = *arc;
         PlanePoint s = to_plane(g.start, g.plane), e = to_plane(g.end, g.plane);
         return std::hypot(g.radius * g.sweep, e.w - s.w);
     }
     Vec3 at(double t) const {
-        if (step->arc) return point_on_arc(*step->arc, t);
+        if (arc) return point_on_arc(*arc, t);
         return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
     }
 };
@@ -55,112 +67,146 @@ struct Path {
     Vec3 start;
     std::vector<Seg> segs;
     Vec3 end() const { return segs.empty() ? start : segs.back().b; }
-    int first_line() const { return segs.empty() ? 0 : segs.front().step->line; }
+    int first_line() const { return segs.empty() ? 0 : segs.front().line; }
 };
 
 struct Item {
     enum class Kind { path, tool, spindle, dwell } kind = Kind::path;
-    const Step* step = nullptr;  // tool, spindle, dwell
+    Step step;  // tool, spindle, dwell
     Path path;
-    int line() const { return kind == Kind::path ? path.first_line() : step->line; }
+    int line() const { return kind == Kind::path ? path.first_line() : step.line; }
 };
 
+// Turns one side's steps into items as they come, handing each on once it is complete.
 // A spindle change counts where it matters: before the next feed move, dwell or tool change,
 // and only if it changes the state then in effect. So a control that reverses its spindle
 // for a tap at the retract plane (LinuxCNC's M4 before G33.1) matches one that reverses at R,
 // and a speed written again unchanged says nothing. Rapids of `nowhere` mm or less are dropped.
-std::vector<Item> items_of(const Trace& t, double nowhere) {
-    std::vector<Item> items;
-    const Step* pending = nullptr;
-    SpindleState state = SpindleState::off;
-    double rpm = 0.0;
-    auto flush_spindle = [&] {
-        if (!pending) return;
-        bool same = pending->spindle == state && (state == SpindleState::off || pending->rpm == rpm);
-        if (!same) items.push_back({Item::Kind::spindle, pending, {}});
-        state = pending->spindle;
-        rpm = pending->rpm;
-        pending = nullptr;
-    };
-    for (const Step& s : t.steps) {
+class ItemBuilder {
+public:
+    ItemBuilder(double nowhere, std::function<void(Item&&)> out) : nowhere_(nowhere), out_(std::move(out)) {}
+
+    void step(const Step& s) {
         switch (s.kind) {
             case StepKind::tool_change:
                 flush_spindle();
-                items.push_back({Item::Kind::tool, &s, {}});
+                made({Item::Kind::tool, s, {}});
                 break;
-            case StepKind::spindle: pending = &s; break;
+            case StepKind::spindle: pending_ = s; break;
             case StepKind::dwell:
                 flush_spindle();
-                items.push_back({Item::Kind::dwell, &s, {}});
+                made({Item::Kind::dwell, s, {}});
                 break;
             case StepKind::rapid:
             case StepKind::feed: {
                 bool rapid = s.kind == StepKind::rapid;
                 if (!rapid) flush_spindle();
-                bool extend = !items.empty() && items.back().kind == Item::Kind::path &&
-                              items.back().path.rapid == rapid && s.from_known;
+                bool extend = open_ && open_->path.rapid == rapid && s.from_known;
                 if (!extend) {
-                    Item it{Item::Kind::path, nullptr, {}};
+                    Item it{Item::Kind::path, {}, {}};
                     it.path.rapid = rapid;
                     it.path.start_known = s.from_known;
                     it.path.start = s.from_known ? s.from : s.to;
-                    items.push_back(it);
+                    made(std::move(it));
                 }
-                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) items.back().path.segs.push_back({&s, s.from, s.to});
+                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) open_->path.segs.emplace_back(s);
                 break;
             }
         }
     }
-    flush_spindle();
+
+    void finish() {
+        flush_spindle();
+        close_path();
+        if (last_) out_(std::move(*last_));
+        last_.reset();
+    }
+
+private:
+    void flush_spindle() {
+        if (!pending_) return;
+        bool same = pending_->spindle == state_ && (state_ == SpindleState::off || pending_->rpm == rpm_);
+        state_ = pending_->spindle;
+        rpm_ = pending_->rpm;
+        if (!same) made({Item::Kind::spindle, *pending_, {}});
+        pending_.reset();
+    }
+
+    // A new item: the path before it is complete. A path stays open for the moves that extend it.
+    void made(Item&& item) {
+        close_path();
+        if (item.kind == Item::Kind::path) open_ = std::move(item);
+        else kept(std::move(item));
+    }
+
+    void close_path() {
+        if (!open_) return;
+        Item path = std::move(*open_);
+        open_.reset();
+        if (!dropped(path)) kept(std::move(path));
+    }
+
     // A path that goes nowhere from a known start says nothing; nor does a rapid shorter than
     // the resolution (a longhand re-approach that rounds onto the Z it starts from is not
     // written at all).
-    std::erase_if(items, [&](const Item& i) {
-        if (i.kind != Item::Kind::path || !i.path.start_known) return false;
+    bool dropped(const Item& i) const {
+        if (!i.path.start_known) return false;
         if (i.path.segs.empty()) return true;
         if (!i.path.rapid) return false;
         double length = 0.0;
         for (const Seg& g : i.path.segs) length += g.length();
-        return length <= nowhere;
-    });
-    // What was on either side of a dropped rapid is one path again.
-    std::vector<Item> merged;
-    for (Item& i : items) {
-        if (!merged.empty() && i.kind == Item::Kind::path && merged.back().kind == Item::Kind::path &&
-            i.path.start_known && merged.back().path.rapid == i.path.rapid) {
-            auto& segs = merged.back().path.segs;
-            segs.insert(segs.end(), i.path.segs.begin(), i.path.segs.end());
-            continue;
-        }
-        merged.push_back(std::move(i));
+        return length <= nowhere_;
     }
-    return merged;
-}
+
+    // What was on either side of a dropped rapid is one path again: the last item kept waits
+    // for the next, which it may take in.
+    void kept(Item&& i) {
+        if (last_ && i.kind == Item::Kind::path && last_->kind == Item::Kind::path && i.path.start_known &&
+            last_->path.rapid == i.path.rapid) {
+            auto& segs = last_->path.segs;
+            segs.insert(segs.end(), std::make_move_iterator(i.path.segs.begin()), std::make_move_iterator(i.path.segs.end()));
+            return;
+        }
+        if (last_) out_(std::move(*last_));
+        last_ = std::move(i);
+    }
+
+    double nowhere_;
+    std::function<void(Item&&)> out_;
+    std::optional<Step> pending_;  // a spindle step not yet in effect
+    SpindleState state_ = SpindleState::off;
+    double rpm_ = 0.0;
+    std::optional<Item> open_;  // the path being made
+    std::optional<Item> last_;  // the last item kept
+};
 
 // A point of one path to be found on the other.
 struct Sample {
     Vec3 p;
     size_t seg = 0;              // index of the segment it lies on
-    const Step* step = nullptr;  // the step it lies on (nullptr: the path's start)
+    const Seg* step = nullptr;  // the move it lies on (nullptr: the path's start)
     bool vertex = false;         // a block end (else a point inside a move)
     bool check_feed = false;     // inside a move: the feeds must agree here
 };
 
-std::vector<Sample> samples_of(const Path& path) {
-    std::vector<Sample> out;
-    out.push_back({path.start, 0, path.segs.empty() ? nullptr : path.segs.front().step, true, false});
+// Hands each sample of the path to `f`, in order, until it returns a mismatch (made one at a
+// time: a helix of thousands of turns written as chords has millions).
+template <class F>
+std::optional<Mismatch> each_sample(const Path& path, F f) {
+    if (auto m = f(Sample{path.start, 0, path.segs.empty() ? nullptr : &path.segs.front(), true, false})) return m;
     for (size_t i = 0; i < path.segs.size(); ++i) {
         const Seg& s = path.segs[i];
         int n = 2;
-        if (s.step->arc) {
-            const ArcGeometry& g = *s.step->arc;
+        if (s.arc) {
+            const ArcGeometry& g = *s.arc;
             n = static_cast<int>(std::ceil(std::max(g.sweep / (5.0 * std::numbers::pi / 180.0), s.length() / 1.0)));
             n = std::clamp(n, 4, 5000);
         }
-        for (int k = 1; k < n; ++k) out.push_back({s.at(double(k) / n), i, s.step, false, true});
-        out.push_back({s.b, i, s.step, true, false});
+        for (int k = 1; k < n; ++k)
+            if (auto m = f(Sample{s.at(double(k) / n), i, &s, false, true})) return m;
+        if (auto m = f(Sample{s.b, i, &s, true, false})) return m;
     }
-    return out;
+    return std::nullopt;
 }
 
 // Where on a segment a point lies: the parameter t in [0, 1] nearest to it, at or after t_min
@@ -173,7 +219,7 @@ struct Hit {
 Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
     double len = s.length();
     double slack = len > 0 ? tol / len : 1.0;
-    if (!s.step->arc) {
+    if (!s.arc) {
         Vec3 ab{s.b.x - s.a.x, s.b.y - s.a.y, s.b.z - s.a.z};
         double l2 = ab.x * ab.x + ab.y * ab.y + ab.z * ab.z;
         double t = l2 > 0 ? ((p.x - s.a.x) * ab.x + (p.y - s.a.y) * ab.y + (p.z - s.a.z) * ab.z) / l2 : 0.0;
@@ -181,7 +227,7 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
         if (t < t_min - slack) return {};
         return {std::max(t, t_min), dist(p, s.at(t))};
     }
-    const ArcGeometry& g = *s.step->arc;
+    const ArcGeometry& g = *s.arc;
     PlanePoint c = to_plane(g.centre, g.plane), q = to_plane(p, g.plane);
     double phi = std::atan2(q.v - c.v, q.u - c.u) - g.start_angle;
     if (g.direction == ArcDirection::cw) phi = -phi;
@@ -244,9 +290,9 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
 std::string describe_path(const Path& p) { return p.rapid ? "rapid" : "feed"; }
 
 std::string describe_seg(const Seg& s) {
-    if (!s.step->arc)
-        return fmt::format("{} move from {} to {}", s.step->kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
-    const ArcGeometry& g = *s.step->arc;
+    if (!s.arc)
+        return fmt::format("{} move from {} to {}", s.kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
+    const ArcGeometry& g = *s.arc;
     return fmt::format("{} arc from {} to {} about {}", g.direction == ArcDirection::cw ? "cw" : "ccw", point(s.a), point(s.b),
                        point(g.centre));
 }
@@ -263,7 +309,7 @@ std::string describe_step(const Step& s) {
 }
 
 std::string describe_item(const Item& i) {
-    if (i.kind != Item::Kind::path) return describe_step(*i.step);
+    if (i.kind != Item::Kind::path) return describe_step(i.step);
     return fmt::format("{} moves to {}", describe_path(i.path), point(i.path.end()));
 }
 
@@ -273,7 +319,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                const CompareTolerance& tol) {
     size_t k = 0;
     double t = 0.0;
-    for (const Sample& s : samples_of(from)) {
+    return each_sample(from, [&](const Sample& s) -> std::optional<Mismatch> {
         double extra = s.step ? s.step->uncertainty : 0.0;
         bool found = false;
         std::optional<Mismatch> wrong_feed;
@@ -281,7 +327,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             const Seg& seg = onto.segs[j];
             // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
             // chords or have a rounded centre.
-            double limit = (s.vertex && !seg.step->arc ? tol.position : tol.path) + extra + seg.step->uncertainty + eps;
+            double limit = (s.vertex && !seg.arc ? tol.position : tol.path) + extra + seg.uncertainty + eps;
             Hit h = locate(seg, s.p, j == k ? t : 0.0, limit);
             if (h.d > limit) {
                 if (wrong_feed) break;  // the run of segments the point is near has ended
@@ -290,14 +336,14 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             // A move that follows the spindle (a tap, a per-revolution feed) feeds at pitch x
             // speed: the speed written to the resolution of S moves its feed by up to pitch x
             // that resolution (a fuzz finding: 0.2296875 mm/rev at 802.3125 rpm, S802).
-            double feed_limit = tol.feed + std::max(s.step->pitch, seg.step->pitch) * tol.rpm + eps;
-            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.step->feed) > feed_limit) {
+            double feed_limit = tol.feed + std::max(s.step->pitch, seg.pitch) * tol.rpm + eps;
+            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.feed) > feed_limit) {
                 // A point within the tolerance of a corner lies on both moves that meet there (a
                 // tiny arc written as one short line after a plunge): look on along the moves it
                 // is near for one at its feed before calling it a mismatch.
                 if (!wrong_feed) {
-                    const Step& job = from_is_job ? *s.step : *seg.step;
-                    const Step& prog = from_is_job ? *seg.step : *s.step;
+                    const Seg& job = from_is_job ? *s.step : seg;
+                    const Seg& prog = from_is_job ? seg : *s.step;
                     wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
                                                                  num(prog.feed), num(job.feed), point(s.p))};
                 }
@@ -309,7 +355,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
         }
         if (!found && wrong_feed) return wrong_feed;
         if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + eps;
-        if (found) continue;
+        if (found) return std::nullopt;
         // Where the other path goes on from the last point both share: inside the segment
         // matched last, or after it.
         bool inside = k < onto.segs.size() && t < 1.0 - 1e-9;
@@ -323,18 +369,17 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                 : fmt::format("{} path from {}", describe_path(from), point(from.start));
         std::string there = near ? describe_seg(*near) : fmt::format("{} path that stays at {}", describe_path(onto), point(onto.start));
         if (from_is_job)
-            return Mismatch{near ? near->step->line : from.first_line(),
+            return Mismatch{near ? near->line : from.first_line(),
                             fmt::format("the job's {} is not in the program (there the program has a {})", what, there)};
-        return Mismatch{mine ? mine->step->line : from.first_line(),
+        return Mismatch{mine ? mine->line : from.first_line(),
                         fmt::format("the program's {} is not in the job (there the job has a {})", what, there)};
-    }
-    return std::nullopt;
+    });
 }
 
 std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const Path* job_next, const Path* prog_next,
                                       const CompareTolerance& tol) {
-    double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().step->uncertainty;
-    double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().step->uncertainty;
+    double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().uncertainty;
+    double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().uncertainty;
     if (dist(job.start, prog.start) > tol.position + eps + prog_start_extra) {
         return Mismatch{prog.first_line(), fmt::format("the program's {} path starts at {}, the job's at {}", describe_path(prog),
                                                        point(prog.start), point(job.start))};
@@ -342,18 +387,90 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     if (auto m = follow(job, prog, prog_next, true, tol)) return m;
     if (auto m = follow(prog, job, job_next, false, tol)) return m;
     if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + eps) {
-        int line = prog.segs.empty() ? 0 : prog.segs.back().step->line;
+        int line = prog.segs.empty() ? 0 : prog.segs.back().line;
         return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end()),
                                           point(job.end()))};
     }
     return std::nullopt;
 }
 
-const Path* next_path(const std::vector<Item>& items, size_t i) {
-    for (size_t j = i + 1; j < items.size(); ++j)
-        if (items[j].kind == Item::Kind::path) return &items[j].path;
-    return nullptr;
+// The first difference between two items at the same place in their traces. `job_next` and
+// `prog_next`: the next path on each side (for messages).
+std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* job_next, const Path* prog_next,
+                                      const CompareTolerance& tol) {
+    if (a.kind != b.kind)
+        return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+    switch (a.kind) {
+        case Item::Kind::tool:
+            if (a.step.tool != b.step.tool)
+                return Mismatch{b.line(), fmt::format("the program changes to tool {}, the job to tool {}", b.step.tool, a.step.tool)};
+            break;
+        case Item::Kind::spindle:
+            if (a.step.spindle != b.step.spindle || std::abs(a.step.rpm - b.step.rpm) > tol.rpm + eps)
+                return Mismatch{b.line(), fmt::format("the program sets {}, the job {}", describe_step(b.step), describe_step(a.step))};
+            break;
+        case Item::Kind::dwell:
+            if (std::abs(a.step.seconds - b.step.seconds) > tol.dwell + eps)
+                return Mismatch{b.line(), fmt::format("the program has {}, the job {}", describe_step(b.step), describe_step(a.step))};
+            break;
+        case Item::Kind::path:
+            if (a.path.rapid != b.path.rapid)
+                return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+            return compare_paths(a.path, b.path, job_next, prog_next, tol);
+    }
+    return std::nullopt;
 }
+
+// One side of a comparison: its items not compared yet.
+class Side : public TraceSink {
+public:
+    Side(double nowhere, std::function<void()> changed)
+        : builder_(nowhere, [this](Item&& i) { add(std::move(i)); }), changed_(std::move(changed)) {}
+    void step(const Step& s) override {
+        if (!stopped_) builder_.step(s);
+    }
+    void hole(const Hole&) override {}
+    void finish(const TraceSummary&) override {
+        if (!stopped_) builder_.finish();
+        ended_ = true;
+        changed_();
+    }
+    // Its first item can be compared: it is there and so is the next path after it, or the
+    // side has ended.
+    bool ready() const { return !items_.empty() && (ended_ || next_path() != nullptr); }
+    bool exhausted() const { return ended_ && items_.empty(); }
+    bool has_items() const { return !items_.empty(); }
+    bool ended() const { return ended_; }
+    const Item& front() const { return items_.front(); }
+    const Path* next_path() const {
+        for (size_t j = 1; j < items_.size(); ++j)
+            if (items_[j].kind == Item::Kind::path) return &items_[j].path;
+        return nullptr;
+    }
+    void pop() {
+        last_line_ = items_.front().line();
+        items_.pop_front();
+    }
+    // The line of the last item compared (0: none).
+    int last_line() const { return last_line_; }
+    // The result is known: the rest is not looked at.
+    void stop() {
+        stopped_ = true;
+        items_.clear();
+    }
+
+private:
+    void add(Item&& i) {
+        items_.push_back(std::move(i));
+        changed_();
+    }
+    ItemBuilder builder_;
+    std::function<void()> changed_;
+    std::deque<Item> items_;
+    bool ended_ = false;
+    bool stopped_ = false;
+    int last_line_ = 0;
+};
 
 }  // namespace
 
@@ -372,40 +489,86 @@ CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution&
     return t;
 }
 
-std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tol) {
-    std::vector<Item> job = items_of(expected, tol.path), prog = items_of(actual, tol.path);
-    size_t n = std::min(job.size(), prog.size());
-    for (size_t i = 0; i < n; ++i) {
-        const Item& a = job[i];
-        const Item& b = prog[i];
-        if (a.kind != b.kind)
-            return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
-        switch (a.kind) {
-            case Item::Kind::tool:
-                if (a.step->tool != b.step->tool)
-                    return Mismatch{b.line(), fmt::format("the program changes to tool {}, the job to tool {}", b.step->tool, a.step->tool)};
+class TraceComparer::Impl {
+public:
+    Impl(const CompareTolerance& tol, std::function<bool()> more_actual)
+        : tol_(tol), more_actual_(std::move(more_actual)), job_(tol.path, [this] { advance(); }),
+          prog_(tol.path, [this] { advance(); }) {}
+
+    // Compares what both sides have, asking for more of the actual side while the expected one
+    // waits for it.
+    void advance() {
+        if (advancing_) return;
+        advancing_ = true;
+        while (!decided_) {
+            if (job_.ready() && prog_.ready()) {
+                if (auto m = compare_items(job_.front(), prog_.front(), job_.next_path(), prog_.next_path(), tol_)) {
+                    decide(std::move(m));
+                    break;
+                }
+                job_.pop();
+                prog_.pop();
+            } else if (job_.exhausted() && prog_.exhausted()) {
+                decide(std::nullopt);
+            } else if (prog_.exhausted() && job_.has_items()) {
+                decide(Mismatch{prog_.last_line(), fmt::format("the program ends where the job still has {}", describe_item(job_.front()))});
+            } else if (job_.exhausted() && prog_.has_items()) {
+                decide(Mismatch{prog_.front().line(),
+                                fmt::format("the program has {} after the end of the job's motion", describe_item(prog_.front()))});
+            } else if ((job_.ready() || job_.exhausted()) && !prog_.ended() && more_actual_) {
+                if (!more_actual_() && !prog_.ended()) throw std::logic_error("the actual trace ended without finishing");
+            } else {
                 break;
-            case Item::Kind::spindle:
-                if (a.step->spindle != b.step->spindle || std::abs(a.step->rpm - b.step->rpm) > tol.rpm + eps)
-                    return Mismatch{b.line(), fmt::format("the program sets {}, the job {}", describe_step(*b.step), describe_step(*a.step))};
-                break;
-            case Item::Kind::dwell:
-                if (std::abs(a.step->seconds - b.step->seconds) > tol.dwell + eps)
-                    return Mismatch{b.line(), fmt::format("the program has {}, the job {}", describe_step(*b.step), describe_step(*a.step))};
-                break;
-            case Item::Kind::path:
-                if (a.path.rapid != b.path.rapid)
-                    return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
-                if (auto m = compare_paths(a.path, b.path, next_path(job, i), next_path(prog, i), tol)) return m;
-                break;
+            }
         }
+        advancing_ = false;
     }
-    if (job.size() > n)
-        return Mismatch{prog.empty() ? 0 : prog.back().line(),
-                        fmt::format("the program ends where the job still has {}", describe_item(job[n]))};
-    if (prog.size() > n)
-        return Mismatch{prog[n].line(), fmt::format("the program has {} after the end of the job's motion", describe_item(prog[n]))};
-    return std::nullopt;
+
+    void decide(std::optional<Mismatch> m) {
+        mismatch_ = std::move(m);
+        decided_ = true;
+        job_.stop();
+        prog_.stop();
+    }
+
+    CompareTolerance tol_;
+    std::function<bool()> more_actual_;
+    Side job_, prog_;
+    bool advancing_ = false, decided_ = false;
+    std::optional<Mismatch> mismatch_;
+};
+
+TraceComparer::TraceComparer(const CompareTolerance& tolerance, std::function<bool()> more_actual)
+    : impl_(std::make_unique<Impl>(tolerance, std::move(more_actual))) {}
+
+TraceComparer::~TraceComparer() = default;
+
+TraceSink& TraceComparer::expected() { return impl_->job_; }
+
+TraceSink& TraceComparer::actual() { return impl_->prog_; }
+
+bool TraceComparer::decided() const { return impl_->decided_; }
+
+const std::optional<Mismatch>& TraceComparer::mismatch() const { return impl_->mismatch_; }
+
+std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tol) {
+    // The expected trace leads and the actual one follows as it is asked for, as verify --job
+    // reads a program.
+    size_t next = 0;
+    TraceComparer* self = nullptr;
+    TraceComparer comparer(tol, [&] {
+        if (next < actual.steps.size()) {
+            self->actual().step(actual.steps[next++]);
+            return true;
+        }
+        if (next++ == actual.steps.size()) self->actual().finish({});
+        return false;
+    });
+    self = &comparer;
+    for (const Step& s : expected.steps) comparer.expected().step(s);
+    comparer.expected().finish({});
+    if (!comparer.decided()) throw std::logic_error("a comparison of two finished traces is not decided");
+    return comparer.mismatch();
 }
 
 }  // namespace camgen

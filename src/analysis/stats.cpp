@@ -84,67 +84,85 @@ Box box_of(const Step& s) {
     return b;
 }
 
-ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
-    ProgramStats st;
-    const MachineLimits& lim = machine.limits;
-    st.rapid_rate = lim.rapid_rate;
-    auto tool_stats = [&](int tool) -> ToolStats& {
-        for (ToolStats& t : st.tools)
-            if (t.tool == tool) return t;
-        ToolStats t;
-        t.tool = tool;
-        for (const ToolInfo& i : trace.tools)
-            if (i.number == tool) t.diameter = i.diameter, t.description = i.description;
-        st.tools.push_back(t);
-        return st.tools.back();
-    };
-    for (const Step& s : trace.steps) {
-        switch (s.kind) {
-            case StepKind::tool_change: (void)tool_stats(s.tool); break;
-            case StepKind::spindle: break;
-            case StepKind::dwell: {
-                st.dwell_time += s.seconds;
-                tool_stats(s.tool).time += s.seconds;
-                break;
+StatsAccumulator::StatsAccumulator(const Machine& machine) : limits_(machine.limits) {
+    stats_.rapid_rate = limits_.rapid_rate;
+}
+
+ToolStats& StatsAccumulator::tool_stats(int tool) {
+    for (ToolStats& t : stats_.tools)
+        if (t.tool == tool) return t;
+    ToolStats t;
+    t.tool = tool;
+    stats_.tools.push_back(t);
+    return stats_.tools.back();
+}
+
+void StatsAccumulator::step(const Step& s) {
+    ProgramStats& st = stats_;
+    const MachineLimits& lim = limits_;
+    switch (s.kind) {
+        case StepKind::tool_change: (void)tool_stats(s.tool); break;
+        case StepKind::spindle: break;
+        case StepKind::dwell: {
+            st.dwell_time += s.seconds;
+            tool_stats(s.tool).time += s.seconds;
+            break;
+        }
+        case StepKind::rapid:
+        case StepKind::feed: {
+            ToolStats& t = tool_stats(s.tool);
+            Box b = box_of(s);
+            t.box.add(b);
+            st.box.add(b);
+            st.lowest_z = st.lowest_z ? std::min(*st.lowest_z, b.min.z) : b.min.z;
+            double len = length_of(s);
+            double time;
+            if (s.kind == StepKind::rapid) {
+                if (!s.from_known) ++st.unmeasured_rapids;
+                st.rapid_length += len;
+                if (s.from_known) st.rapid_xy_length += std::hypot(s.to.x - s.from.x, s.to.y - s.from.y);
+                t.rapid_length += len;
+                time = len / lim.rapid_rate * 60.0;
+                st.rapid_time += time;
+            } else {
+                double f = std::clamp(s.feed, lim.min_feed, lim.max_feed);
+                if (f != s.feed) ++st.clamped_feeds;
+                st.feed_length += len;
+                t.feed_length += len;
+                time = len / f * 60.0;
+                st.feed_time += time;
+                st.movement_length[static_cast<std::size_t>(s.movement)] += len;
+                st.movement_time[static_cast<std::size_t>(s.movement)] += time;
             }
-            case StepKind::rapid:
-            case StepKind::feed: {
-                ToolStats& t = tool_stats(s.tool);
-                Box b = box_of(s);
-                t.box.add(b);
-                st.box.add(b);
-                st.lowest_z = st.lowest_z ? std::min(*st.lowest_z, b.min.z) : b.min.z;
-                double len = length_of(s);
-                double time;
-                if (s.kind == StepKind::rapid) {
-                    if (!s.from_known) ++st.unmeasured_rapids;
-                    st.rapid_length += len;
-                    if (s.from_known) st.rapid_xy_length += std::hypot(s.to.x - s.from.x, s.to.y - s.from.y);
-                    t.rapid_length += len;
-                    time = len / lim.rapid_rate * 60.0;
-                    st.rapid_time += time;
-                } else {
-                    double f = std::clamp(s.feed, lim.min_feed, lim.max_feed);
-                    if (f != s.feed) ++st.clamped_feeds;
-                    st.feed_length += len;
-                    t.feed_length += len;
-                    time = len / f * 60.0;
-                    st.feed_time += time;
-                    st.movement_length[static_cast<std::size_t>(s.movement)] += len;
-                    st.movement_time[static_cast<std::size_t>(s.movement)] += time;
-                }
-                t.time += time;
-                break;
-            }
+            t.time += time;
+            break;
         }
     }
-    st.holes = static_cast<int>(trace.holes.size());
-    st.canned_holes = std::min(trace.canned_holes, st.holes);
+}
+
+void StatsAccumulator::hole(const Hole& h) {
+    ++stats_.holes;
+    ++tool_stats(h.tool).holes;
+}
+
+void StatsAccumulator::finish(const TraceSummary& summary) {
+    ProgramStats& st = stats_;
+    st.canned_holes = std::min(summary.canned_holes, st.holes);
     st.longhand_holes = st.holes - st.canned_holes;
-    for (const Hole& h : trace.holes) ++tool_stats(h.tool).holes;
+    // Descriptions as the trace knows them at its end (a later change may name a tool).
+    for (ToolStats& t : st.tools)
+        for (const ToolInfo& i : summary.tools)
+            if (i.number == t.tool) t.diameter = i.diameter, t.description = i.description;
     // A tool that never moved (a snippet's tool 0 with no motion) says nothing.
     std::erase_if(st.tools, [](const ToolStats& t) { return t.box.empty && t.holes == 0 && t.time == 0.0; });
-    return st;
+}
+
+ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
+    StatsAccumulator stats(machine);
+    for (const Step& s : trace.steps) stats.step(s);
+    for (const Hole& h : trace.holes) stats.hole(h);
+    stats.finish({trace.canned_holes, trace.tools});
+    return stats.stats();
 }
 
 std::string format_stats(const ProgramStats& st) {

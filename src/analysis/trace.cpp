@@ -18,45 +18,49 @@ bool xy_moves(const Step& s) {
     return s.arc || std::hypot(s.to.x - s.from.x, s.to.y - s.from.y) > same_xy;
 }
 
-// A hole is a run of moves at one XY position that feeds down and then leaves upwards.
-std::vector<Hole> find_holes(const std::vector<Step>& steps) {
-    std::vector<Hole> holes;
-    bool active = false, down = false, up_after = false;
-    Hole hole;
-    auto close = [&] {
-        if (active && down && up_after) holes.push_back(hole);
-        active = down = up_after = false;
-    };
-    for (const Step& s : steps) {
+// A hole is a run of moves at one XY position that feeds down and then leaves upwards; it is
+// known once the tool moves on in XY, changes or the trace ends.
+class HoleFinder {
+public:
+    // The step that comes next; a hole it ends goes to the sink first.
+    void step(const Step& s, TraceSink& sink) {
         if (s.kind == StepKind::tool_change) {
-            close();
-            continue;
+            close(sink);
+            return;
         }
-        if (s.kind != StepKind::rapid && s.kind != StepKind::feed) continue;
+        if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
         if (!s.from_known || xy_moves(s)) {
-            close();
-            active = true;
-            hole = Hole{{s.to.x, s.to.y}, s.to.z, s.tool, s.line};
-            continue;
+            close(sink);
+            active_ = true;
+            hole_ = Hole{{s.to.x, s.to.y}, s.to.z, s.tool, s.line};
+            return;
         }
         if (s.kind == StepKind::feed && s.to.z < s.from.z) {
-            if (!down || s.to.z < hole.bottom_z) {
-                hole.bottom_z = s.to.z;
-                hole.line = s.line;
+            if (!down_ || s.to.z < hole_.bottom_z) {
+                hole_.bottom_z = s.to.z;
+                hole_.line = s.line;
             }
-            down = true;
-            up_after = false;
-        } else if (s.to.z > s.from.z && down) {
-            up_after = true;
+            down_ = true;
+            up_after_ = false;
+        } else if (s.to.z > s.from.z && down_) {
+            up_after_ = true;
         }
     }
-    close();
-    return holes;
-}
+    void close(TraceSink& sink) {
+        if (active_ && down_ && up_after_) sink.hole(hole_);
+        active_ = down_ = up_after_ = false;
+    }
 
-class Tracer {
+private:
+    bool active_ = false, down_ = false, up_after_ = false;
+    Hole hole_;
+};
+
+}  // namespace
+
+class TraceBuilder::Impl {
 public:
-    explicit Tracer(const Machine& machine) : options_(machine.longhand()) {}
+    Impl(const Machine& machine, TraceSink& sink) : options_(machine.longhand()), sink_(sink) {}
 
     void add(const ReadEvent& e) {
         line_ = e.line;
@@ -71,13 +75,12 @@ public:
                        [&](const Compensation&) {},
                        [&](const ToolChange& t) {
                            tool_ = t.number;
-                           Step s = base(StepKind::tool_change);
-                           trace_.steps.push_back(s);
+                           emit(base(StepKind::tool_change));
                            known_ = false;
-                           auto it = std::find_if(trace_.tools.begin(), trace_.tools.end(),
+                           auto it = std::find_if(summary_.tools.begin(), summary_.tools.end(),
                                                   [&](const ToolInfo& i) { return i.number == t.number; });
-                           if (it == trace_.tools.end())
-                               trace_.tools.push_back({t.number, t.diameter, t.description});
+                           if (it == summary_.tools.end())
+                               summary_.tools.push_back({t.number, t.diameter, t.description});
                            else if (it->diameter == 0.0)
                                *it = {t.number, t.diameter, t.description};
                        },
@@ -86,14 +89,16 @@ public:
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;
                            s.rpm = sp.rpm;
-                           trace_.steps.push_back(s);
+                           emit(s);
                        },
-                       [&](const Rapid& r) { move(StepKind::rapid, r.to, 0.0, e.from_unknown); },
+                       [&](const Rapid& r) {
+                           if (auto s = move(StepKind::rapid, r.to, 0.0, e.from_unknown)) emit(*s);
+                       },
                        [&](const Linear& l) {
-                           move(StepKind::feed, l.to, l.feed, false);
-                           if (!trace_.steps.empty() && trace_.steps.back().kind == StepKind::feed) {
-                               trace_.steps.back().movement = l.movement;
-                               if (e.per_revolution > 0) trace_.steps.back().pitch = e.per_revolution;
+                           if (auto s = move(StepKind::feed, l.to, l.feed, false)) {
+                               s->movement = l.movement;
+                               if (e.per_revolution > 0) s->pitch = e.per_revolution;
+                               emit(*s);
                            }
                        },
                        [&](const Arc& a) {
@@ -105,19 +110,19 @@ public:
                            s.arc = resolve_arc(pos_, a);
                            s.movement = a.movement;
                            s.pitch = e.per_revolution;
-                           trace_.steps.push_back(s);
                            pos_ = a.to;
+                           emit(s);
                        },
                        [&](const Dwell& d) {
                            Step s = base(StepKind::dwell);
                            s.seconds = d.seconds;
-                           trace_.steps.push_back(s);
+                           emit(s);
                        },
                        [&](const DrillCycle& c) { cycle_ = c; },
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
-                           ++trace_.canned_holes;
+                           ++summary_.canned_holes;
                            // A tap's feed follows the spindle: its moves carry the pitch, so that a
                            // comparison allows for the speed the program could write.
                            pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
@@ -131,15 +136,9 @@ public:
                    e.event);
     }
 
-    Trace finish() {
-        // A program does not say what kind a feed move is; its motion does where it goes down.
-        for (Step& s : trace_.steps) {
-            if (s.kind != StepKind::feed || s.movement != Movement::cutting || !(s.to.z < s.from.z)) continue;
-            const bool straight_down = !s.arc && s.to.x == s.from.x && s.to.y == s.from.y;
-            s.movement = straight_down ? Movement::plunge : Movement::ramp;
-        }
-        trace_.holes = find_holes(trace_.steps);
-        return std::move(trace_);
+    void finish() {
+        holes_.close(sink_);
+        sink_.finish(summary_);
     }
 
 private:
@@ -152,24 +151,38 @@ private:
         return s;
     }
 
-    void move(StepKind kind, const Vec3& to, double feed, bool from_unknown) {
+    // A step to the sink, its holes found first. A program does not say what kind a feed move
+    // is; its motion does where it goes down.
+    void emit(Step s) {
+        if (s.kind == StepKind::feed && s.movement == Movement::cutting && s.to.z < s.from.z) {
+            const bool straight_down = !s.arc && s.to.x == s.from.x && s.to.y == s.from.y;
+            s.movement = straight_down ? Movement::plunge : Movement::ramp;
+        }
+        holes_.step(s, sink_);
+        sink_.step(s);
+    }
+
+    // The step of a straight move, or none where it goes nowhere from a known position.
+    std::optional<Step> move(StepKind kind, const Vec3& to, double feed, bool from_unknown) {
         bool from_known = known_ && !from_unknown;
         if (kind == StepKind::feed && !from_known) throw std::logic_error("feed move from an unknown position");
-        if (from_known && to == pos_) return;
+        if (from_known && to == pos_) return std::nullopt;
         Step s = base(kind);
         s.from = from_known ? pos_ : to;
         s.to = to;
         s.from_known = from_known;
         s.feed = feed;
         if (kind == StepKind::feed) s.pitch = pitch_;
-        trace_.steps.push_back(s);
         pos_ = to;
         known_ = true;
+        return s;
     }
 
     LonghandOptions options_;
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
-    Trace trace_;
+    TraceSink& sink_;
+    HoleFinder holes_;
+    TraceSummary summary_;
     Vec3 pos_;
     bool known_ = false;
     int tool_ = 0;
@@ -179,35 +192,71 @@ private:
     std::optional<DrillCycle> cycle_;
 };
 
-}  // namespace
+TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink) : impl_(std::make_unique<Impl>(machine, sink)) {}
+
+TraceBuilder::~TraceBuilder() = default;
+
+void TraceBuilder::read_event(const ReadEvent& event) { impl_->add(event); }
+
+void TraceBuilder::add_job_event(const Event& e) {
+    ReadEvent r{e};
+    if (std::holds_alternative<ToolChange>(e)) known_ = false;
+    if (std::holds_alternative<Rapid>(e)) {
+        r.from_unknown = !known_;
+        known_ = true;
+    }
+    impl_->add(r);
+}
+
+void TraceBuilder::finish() { impl_->finish(); }
+
+void TraceFanOut::step(const Step& step) {
+    for (TraceSink* s : sinks_) s->step(step);
+}
+
+void TraceFanOut::hole(const Hole& hole) {
+    for (TraceSink* s : sinks_) s->hole(hole);
+}
+
+void TraceFanOut::finish(const TraceSummary& summary) {
+    for (TraceSink* s : sinks_) s->finish(summary);
+}
+
+void TraceCollector::finish(const TraceSummary& summary) {
+    trace_.canned_holes = summary.canned_holes;
+    trace_.tools = summary.tools;
+}
+
+void FeedClamp::step(const Step& step) {
+    if (step.kind != StepKind::feed) return next_.step(step);
+    Step s = step;
+    s.feed = std::clamp(s.feed, min_, max_);
+    next_.step(s);
+}
 
 Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine) {
-    Tracer t(machine);
-    for (const ReadEvent& e : events) t.add(e);
-    return t.finish();
+    TraceCollector trace;
+    TraceBuilder t(machine, trace);
+    for (const ReadEvent& e : events) t.read_event(e);
+    t.finish();
+    return trace.take();
 }
 
 Trace trace_events(const std::vector<Event>& events, const Machine& machine) {
-    Tracer t(machine);
-    bool known = false;
-    for (const Event& e : events) {
-        ReadEvent r{e};
-        if (std::holds_alternative<ToolChange>(e)) known = false;
-        if (std::holds_alternative<Rapid>(e)) {
-            r.from_unknown = !known;
-            known = true;
-        }
-        t.add(r);
-    }
-    return t.finish();
+    TraceCollector trace;
+    TraceBuilder t(machine, trace);
+    for (const Event& e : events) t.add_job_event(e);
+    t.finish();
+    return trace.take();
 }
 
 Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine) {
-    Trace t = trace_events(job_events, machine);
-    // The posts clamp every feed to the machine's limits (with a warning).
-    for (Step& s : t.steps)
-        if (s.kind == StepKind::feed) s.feed = std::clamp(s.feed, machine.limits.min_feed, machine.limits.max_feed);
-    return t;
+    TraceCollector trace;
+    FeedClamp clamp(machine, trace);
+    TraceBuilder t(machine, clamp);
+    for (const Event& e : job_events) t.add_job_event(e);
+    t.finish();
+    return trace.take();
 }
 
 }  // namespace camgen

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -208,20 +209,42 @@ void finish_stream(std::ostream& out, const std::string& name) {
 
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
 
-// The backplot of `program` (read back into `trace`) for a --plot file: the interactive HTML
-// page for F.html, else the SVG drawing.
-std::string plot_text(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
-                      const BackplotOptions& options) {
-    return is_html_plot(file) ? backplot_html(program, trace, stats, options) : backplot_svg(trace, stats, options);
-}
+// Reading a program back for its statistics and a --plot file, in passes over it: `pass` reads
+// the program once into a sink (the file again, or the text kept) and returns the coarsest
+// resolution it used. The first pass measures the program and plans the SVG drawing (the HTML
+// page keeps the trace it shows), a second draws the SVG.
+class ReadBack {
+public:
+    using Pass = std::function<ReadResolution(ReadEventSink&)>;
+    ReadBack(const Machine& machine, const std::string& plot_file, Pass pass)
+        : machine_(machine), html_(!plot_file.empty() && is_html_plot(plot_file)), pass_(std::move(pass)), stats_(machine),
+          plan_(machine.kind) {
+        std::vector<TraceSink*> sinks{&stats_};
+        if (!plot_file.empty()) sinks.push_back(html_ ? static_cast<TraceSink*>(&trace_) : &plan_);
+        TraceFanOut fan(std::move(sinks));
+        TraceBuilder trace(machine_, fan);
+        resolution_ = pass_(trace);
+    }
+    const ProgramStats& stats() const { return stats_.stats(); }
+    ReadResolution resolution() const { return resolution_; }
+    // The --plot file's text: the HTML page (it shows `program`, the text) or the SVG drawing.
+    std::string plot_text(std::string_view program, const BackplotOptions& options) {
+        if (html_) return backplot_html(program, trace_.take(), stats(), options);
+        BackplotDrawer drawer(plan_, stats(), options);
+        TraceBuilder trace(machine_, drawer);
+        (void)pass_(trace);
+        return drawer.take().svg;
+    }
 
-// Writes the backplot of a program atomically.
-void write_plot(const std::string& file, std::string_view program, const Trace& trace, const ProgramStats& stats,
-                const BackplotOptions& options) {
-    OutputFile plot(file);
-    plot.stream() << plot_text(file, program, trace, stats, options);
-    plot.commit();
-}
+private:
+    const Machine& machine_;
+    bool html_;
+    Pass pass_;
+    StatsAccumulator stats_;
+    BackplotPlan plan_;
+    TraceCollector trace_;
+    ReadResolution resolution_;
+};
 
 // `camgen verify`: reads a program back, prints what it does, and compares it with a job.
 // --list-machines: a line a machine, its name first (shell completion reads the first word),
@@ -246,17 +269,87 @@ std::string machine_list() {
     return s;
 }
 
+// A stream buffer over text that is kept elsewhere (standard input's program, read again).
+class TextBuffer : public std::streambuf {
+public:
+    explicit TextBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+};
+
+// The program verify reads back, once for each pass over it: a file is opened again for each;
+// standard input cannot be read twice, so its text is kept when a second pass needs it.
+class ProgramInput {
+public:
+    ProgramInput(const std::string& file, std::istream& in, bool keep_stdin) : file_(file), in_(in) {
+        if (file == "-" && keep_stdin) text_ = read_text(file, in);
+    }
+    // A stream at the program's start.
+    std::istream& open() {
+        if (text_) {
+            buffer_.emplace(*text_);
+            stream_ = std::make_unique<std::istream>(&*buffer_);
+            return *stream_;
+        }
+        if (file_ == "-") return in_;
+        auto f = std::make_unique<std::ifstream>(file_, std::ios::binary);
+        if (!*f) throw IoError(fmt::format("cannot read {}: {}", file_, std::strerror(errno)));
+        stream_ = std::move(f);
+        return *stream_;
+    }
+
+private:
+    std::string file_;
+    std::istream& in_;
+    std::optional<std::string> text_;
+    std::optional<TextBuffer> buffer_;
+    std::unique_ptr<std::istream> stream_;
+};
+
+// Compares the program with the job's events in a pass of its own: the job leads, and the
+// program is read as far as the comparison needs it.
+std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
+                                         const Machine& machine, const CompareTolerance& tolerance) {
+    std::unique_ptr<ProgramReader> reader;
+    TraceComparer comparer(tolerance, [&] { return reader->advance(); });
+    TraceBuilder program_trace(machine, comparer.actual());
+    reader = std::make_unique<ProgramReader>(program.open(), machine, source, program_trace);
+    FeedClamp clamp(machine, comparer.expected());
+    TraceBuilder job_trace(machine, clamp);
+    // The job's events one at a time; once the first difference is known the rest says nothing.
+    struct Expected : EventSink {
+        TraceComparer& comparer;
+        TraceBuilder& trace;
+        Expected(TraceComparer& c, TraceBuilder& t) : comparer(c), trace(t) {}
+        void emit(const Event& e) override {
+            if (!comparer.decided()) trace.add_job_event(e);
+        }
+    } expected(comparer, job_trace);
+    expand_job(job, expected);
+    job_trace.finish();
+    return comparer.mismatch();
+}
+
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Machine machine = load_machine(v.machine);
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
-    std::string text = read_text(v.program, in);
-    ReadResolution resolution;
-    Trace trace = trace_program(read_program(text, machine, source, &resolution), machine);
-    ProgramStats stats = compute_stats(trace, machine);
-    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(stats);
-    if (!v.plot.empty()) write_plot(v.plot, text, trace, stats, {base_name(source), machine.name, machine.kind});
+    // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job). The
+    // HTML page shows the text, so it keeps it.
+    const bool html = !v.plot.empty() && is_html_plot(v.plot);
+    ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
+    std::string text;
+    if (html) text = read_text(v.program, program.open());
+    ReadBack back(machine, v.plot, [&](ReadEventSink& sink) {
+        ProgramReader reader(program.open(), machine, source, sink);
+        reader.read_all();
+        return reader.coarsest_resolution();
+    });
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back.stats());
+    if (!v.plot.empty()) {
+        OutputFile plot(v.plot);
+        plot.stream() << back.plot_text(text, {base_name(source), machine.name, machine.kind});
+        plot.commit();
+    }
     if (v.job.empty()) {
         finish_stream(out, "standard output");
         return exit_ok;
@@ -266,8 +359,8 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     try {
         job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
         check_machine_kind(job, machine.kind, machine.name);
-        CompareTolerance tolerance = compare_tolerance(machine, resolution);
-        if (auto m = compare_traces(trace_expected(expand_job(job), machine), trace, tolerance)) {
+        CompareTolerance tolerance = compare_tolerance(machine, back.resolution());
+        if (auto m = compare_with_job(program, source, job, machine, tolerance)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             finish_stream(out, "standard output");
             return exit_invalid_input;
@@ -288,10 +381,13 @@ void read_back(std::string_view program, const Job& job, const Options& o, std::
                std::optional<OutputFile>& plot) {
     Machine machine = machine_for(o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
-    Trace trace = trace_program(read_program(program, machine, name), machine);
-    ProgramStats stats = compute_stats(trace, machine);
-    if (o.stats) err << format_stats(stats);
-    if (!o.plot.empty()) plot.emplace(o.plot).stream() << plot_text(o.plot, program, trace, stats, {name, machine.name, machine.kind});
+    ReadBack back(machine, o.plot, [&](ReadEventSink& sink) {
+        ReadResolution resolution;
+        read_program(program, machine, name, sink, &resolution);
+        return resolution;
+    });
+    if (o.stats) err << format_stats(back.stats());
+    if (!o.plot.empty()) plot.emplace(o.plot).stream() << back.plot_text(program, {name, machine.name, machine.kind});
 }
 
 }  // namespace

@@ -89,11 +89,12 @@ void NcReader::finish() { drill_end(); }
 
 void NcReader::fail(const std::string& detail) const { throw InputError("", detail, line_, source_); }
 
-void NcReader::emit(Event event, bool from_unknown, double uncertainty) {
+void NcReader::emit(Event event, bool from_unknown, double uncertainty, Approach approach) {
     const bool feed_move = std::holds_alternative<Linear>(event) || std::holds_alternative<Arc>(event) ||
                            std::holds_alternative<DrillPoint>(event);
-    out_.push_back(ReadEvent{std::move(event), line_, from_unknown, uncertainty});
-    if (feed_move && feed_per_rev_) out_.back().per_revolution = *feed_per_rev_;
+    ReadEvent e{std::move(event), line_, from_unknown, uncertainty, approach};
+    if (feed_move && feed_per_rev_) e.per_revolution = *feed_per_rev_;
+    sink_->read_event(e);
 }
 
 // ---- words ----
@@ -406,23 +407,29 @@ Block NcReader::split(std::string_view line) const {
     return b;
 }
 
-std::vector<ReadEvent> NcReader::read(std::string_view text) {
-    out_.clear();
-    coarsest_ = resolution();
-    line_ = 0;
+void NcReader::read(std::string_view text, ReadEventSink& sink) {
+    start(sink);
     size_t pos = 0;
     while (pos < text.size()) {
         size_t nl = text.find('\n', pos);
-        std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        read_line(text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos));
         pos = nl == std::string_view::npos ? text.size() : nl + 1;
-        ++line_;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        std::string_view t = trim(line);
-        if (t.empty() || frame_line(t)) continue;
-        this->line(line);
     }
     finish();
-    return std::move(out_);
+}
+
+void NcReader::start(ReadEventSink& sink) {
+    sink_ = &sink;
+    coarsest_ = resolution();
+    line_ = 0;
+}
+
+void NcReader::read_line(std::string_view line) {
+    ++line_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    std::string_view t = trim(line);
+    if (t.empty() || frame_line(t)) return;
+    this->line(line);
 }
 
 Block NcReader::split_line(std::string_view text) {
@@ -485,8 +492,7 @@ void NcReader::rapid_to(std::optional<double> x, std::optional<double> y, std::o
     if (!position_known()) return;  // still partly unknown: the move cannot be traced yet
     if (was_known && before == position() && !was_unknown_) return;
     const bool from_unknown = was_unknown_ || !was_known;
-    emit(Rapid{position()}, from_unknown, xy_uncertainty_);
-    if (from_unknown) out_.back().approach = approach_;
+    emit(Rapid{position()}, from_unknown, xy_uncertainty_, from_unknown ? approach_ : Approach::z_first);
     was_unknown_ = false;
 }
 

@@ -57,12 +57,18 @@ public:
     NcReader(const NcReader&) = delete;
     NcReader& operator=(const NcReader&) = delete;
 
-    // Reads a whole program.
-    std::vector<ReadEvent> read(std::string_view text);
+    // Reads a whole program, handing each event to `sink` as it is read.
+    void read(std::string_view text, ReadEventSink& sink);
+    // The same a line at a time: start(), read_line() for each line (without its line break),
+    // finish() at the end of the text. Events go to the sink as they are read.
+    void start(ReadEventSink& sink);
+    void read_line(std::string_view line);
     // How precisely this dialect states values (in the units in effect).
     virtual ReadResolution resolution() const;
     // The coarsest resolution in effect anywhere in the program read.
     ReadResolution coarsest_resolution() const { return coarsest_; }
+    // The end of the text: close what is open (a dialect checks the program's end here).
+    virtual void finish();
 
 protected:
     // ---- dialect hooks ----
@@ -81,8 +87,7 @@ protected:
     virtual bool dotted_word(char letter) const;
     // Interprets one block (words are already split; the sequence number is removed).
     virtual void block(const Block& block) = 0;
-    // The end of the text: close what is open.
-    virtual void finish();
+
 
     // ---- shared machinery ----
     [[noreturn]] void fail(const std::string& detail) const;
@@ -125,7 +130,7 @@ protected:
     Block split_line(std::string_view text);
     // Emits a block's comments as Comment events (and remembers the last one).
     void emit_comments(const Block& block);
-    void emit(Event event, bool from_unknown = false, double uncertainty = 0.0);
+    void emit(Event event, bool from_unknown = false, double uncertainty = 0.0, Approach approach = Approach::z_first);
 
     // Values of words in internal units (mm, mm/min, rpm, s, degrees), through the machine's
     // formats and their scales. Lengths without a decimal point are an error where the format
@@ -269,7 +274,7 @@ private:
     FeedMode feed_mode_ = FeedMode::per_minute;
     std::optional<double> feed_per_rev_;  // mm/rev, the F word per revolution
     nc::Format feed_rev_fmt_;
-    std::vector<ReadEvent> out_;
+    ReadEventSink* sink_ = nullptr;  // where events go (set by start)
     ReadResolution coarsest_;
 };
 

@@ -1,5 +1,7 @@
 // Reading programs through the dialect registry (machines/registry.cpp), which names each
 // dialect's reader beside its post.
+#include <istream>
+
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
@@ -24,13 +26,69 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 
 }  // namespace reader
 
+void read_program(std::string_view text, const Machine& machine, const std::string& source, ReadEventSink& sink,
+                  ReadResolution* resolution) {
+    auto reader = reader::make_reader(machine, source);
+    reader->read(text, sink);
+    sink.finish();
+    if (resolution) *resolution = reader->coarsest_resolution();
+}
+
 std::vector<ReadEvent> read_program(std::string_view text, const Machine& machine, const std::string& source,
                                     ReadResolution* resolution) {
-    auto reader = reader::make_reader(machine, source);
-    std::vector<ReadEvent> events = reader->read(text);
-    if (resolution) *resolution = reader->coarsest_resolution();
-    return events;
+    struct Collect : ReadEventSink {
+        std::vector<ReadEvent> events;
+        void read_event(const ReadEvent& e) override { events.push_back(e); }
+    } collect;
+    read_program(text, machine, source, collect, resolution);
+    return std::move(collect.events);
 }
+
+ProgramReader::ProgramReader(std::istream& in, const Machine& machine, const std::string& source, ReadEventSink& sink)
+    : in_(in), sink_(sink), reader_(reader::make_reader(machine, source)) {
+    reader_->start(sink);
+}
+
+ProgramReader::~ProgramReader() = default;
+
+bool ProgramReader::advance() {
+    if (done_) return false;
+    // Blocks of 64 KiB: a line longer than what is left of one moves to the front and the
+    // block grows until the line ends.
+    constexpr std::size_t block = std::size_t{1} << 16;
+    std::size_t nl = buffer_.find('\n', next_);
+    while (nl == std::string::npos && in_) {
+        buffer_.erase(0, next_);
+        next_ = 0;
+        const std::size_t kept = buffer_.size();
+        buffer_.resize(kept + block);
+        in_.read(buffer_.data() + kept, static_cast<std::streamsize>(block));
+        buffer_.resize(kept + static_cast<std::size_t>(in_.gcount()));
+        nl = buffer_.find('\n', kept);
+    }
+    if (nl == std::string::npos) {
+        if (in_.bad()) throw IoError("cannot read the program");
+        if (next_ < buffer_.size()) {  // a last line without its line break
+            reader_->read_line(std::string_view(buffer_).substr(next_));
+            next_ = buffer_.size();
+            return true;
+        }
+        done_ = true;
+        reader_->finish();
+        sink_.finish();
+        return false;
+    }
+    reader_->read_line(std::string_view(buffer_).substr(next_, nl - next_));
+    next_ = nl + 1;
+    return true;
+}
+
+void ProgramReader::read_all() {
+    while (advance()) {
+    }
+}
+
+ReadResolution ProgramReader::coarsest_resolution() const { return reader_->coarsest_resolution(); }
 
 ReadResolution read_resolution(const Machine& machine) { return reader::make_reader(machine, {})->resolution(); }
 

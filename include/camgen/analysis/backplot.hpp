@@ -5,7 +5,11 @@
 // coordinates, the work zero, a scale bar and a legend with the statistics.
 #include <cstddef>
 #include <limits>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "camgen/analysis/trace.hpp"
 #include "camgen/analysis/stats.hpp"
@@ -43,6 +47,12 @@ struct BackplotOptions {
     // Holes drawn with their own circle and cross, in drilling order; the rest as plain
     // circles, one path per tool (a page with very many holes stays small).
     std::size_t hole_marks = std::numeric_limits<std::size_t>::max();
+    // Moves of each kind, plunge marks, cut widths and holes drawn as they are up to this many
+    // each; beyond, only those that cover a pixel of the drawing that none of their kind and
+    // tool covered before, and holes as plain circles numbered only where they are a tool's
+    // last: the drawing of a program of millions of lines stays within what its picture
+    // shows. The legend says how many were left out.
+    std::size_t exact = 10000;
 };
 
 // Where a drawing puts a position, in SVG user units: x = left + (u - min_u) * scale and
@@ -55,6 +65,44 @@ struct BackplotFrame {
 struct BackplotDrawing {
     std::string svg;
     BackplotFrame frame;
+};
+
+// What a drawing must know before its first move, from a first pass over the trace (its
+// statistics come from the same pass): the extent of each tool's holes, their places (a plunge
+// there is a hole's, not a plunge mark: 16 bytes a hole) and each tool's first and last hole.
+class BackplotPlan : public TraceSink {
+public:
+    explicit BackplotPlan(MachineKind kind);
+    void step(const Step&) override {}
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+
+    std::map<int, Box> hole_centres;                // tool -> the box around its holes' centres
+    std::vector<Vec2> places;                       // every hole's place, by X after finish
+    std::map<int, std::pair<int, int>> first_last;  // tool -> its first and last hole's number
+    std::size_t holes = 0;
+
+private:
+    MachineKind kind_;
+};
+
+// The drawing as the trace is read a second time (the streaming core of backplot_svg): each
+// step and hole drawn as it comes, into buffers that options.exact bounds.
+class BackplotDrawer : public TraceSink {
+public:
+    // `plan` (finished) and `stats` of the first pass; the plan must outlive the drawer.
+    BackplotDrawer(const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options);
+    ~BackplotDrawer() override;
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+    // The drawing, once finished.
+    BackplotDrawing take() { return std::move(drawing_); }
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
+    BackplotDrawing drawing_;
 };
 
 // The SVG text. Deterministic: every number goes through one fixed formatter. A lathe's

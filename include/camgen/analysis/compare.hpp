@@ -1,5 +1,7 @@
 #pragma once
 // Comparing two traces (verify --job): does a program make the motion its job asks for?
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -40,5 +42,30 @@ struct Mismatch {
 // order, and points sampled along arcs too. Moves from an unknown position compare only by
 // their end.
 std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actual, const CompareTolerance& tolerance);
+
+// The same comparison as two traces are made (the streaming core of compare_traces): the
+// expected trace (a job's) and the actual one (a program's) are handed in step by step, each
+// to its sink, and the comparer keeps only the paths it has not compared yet (a run of rapid or
+// feed moves and the one after it), so that a million-hole program is compared in constant
+// memory. The expected side may lead: when the comparer needs more of the actual trace it calls
+// `more_actual`, which hands on the next part of it (false: there is no more, the actual
+// sink has finished). Without it the actual side must lead.
+class TraceComparer {
+public:
+    TraceComparer(const CompareTolerance& tolerance, std::function<bool()> more_actual = {});
+    ~TraceComparer();
+    TraceComparer(const TraceComparer&) = delete;
+    TraceComparer& operator=(const TraceComparer&) = delete;
+    TraceSink& expected();
+    TraceSink& actual();
+    // True once the result is known (the first difference, or both traces finished).
+    bool decided() const;
+    // The first difference; nullopt when both traces finished and match. Only once decided.
+    const std::optional<Mismatch>& mismatch() const;
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace camgen

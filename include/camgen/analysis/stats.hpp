@@ -57,6 +57,23 @@ struct ProgramStats {
     double total_time() const { return feed_time + rapid_time + dwell_time; }
 };
 
+// Measures a trace as it is made (the streaming core of compute_stats): constant memory
+// whatever the program's length (a little per tool).
+class StatsAccumulator : public TraceSink {
+public:
+    explicit StatsAccumulator(const Machine& machine);
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+    // The statistics, complete after finish.
+    const ProgramStats& stats() const { return stats_; }
+
+private:
+    ToolStats& tool_stats(int tool);
+    MachineLimits limits_;
+    ProgramStats stats_;
+};
+
 // Measures a trace. Feeds are clamped to machine.limits, rapids run at limits.rapid_rate.
 ProgramStats compute_stats(const Trace& trace, const Machine& machine);
 

@@ -3,6 +3,7 @@
 // the posts' longhand semantics (longhand.hpp), arcs kept as arcs. Built from a program read
 // back (reader.hpp) or from a job's events, so the two can be compared (compare.hpp), measured
 // (stats.hpp) and drawn (backplot.hpp).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,81 @@ struct Trace {
     std::vector<Hole> holes;      // in drilling order
     int canned_holes = 0;         // holes drilled by a canned cycle (the others are longhand)
     std::vector<ToolInfo> tools;  // in order of first use
+};
+
+// What a trace says beyond its steps and holes, known at its end.
+struct TraceSummary {
+    int canned_holes = 0;         // holes drilled by a canned cycle
+    std::vector<ToolInfo> tools;  // in order of first use
+};
+
+// Receives a trace as it is made: its steps in order, each hole once the tool has left it
+// (before the step that shows it has), then the end. The read-back's consumers (statistics,
+// comparison, drawing) are sinks, so that no one keeps a whole program's steps.
+class TraceSink {
+public:
+    virtual ~TraceSink() = default;
+    virtual void step(const Step& step) = 0;
+    virtual void hole(const Hole& hole) = 0;
+    virtual void finish(const TraceSummary& summary) = 0;
+};
+
+// Hands a trace to several sinks, each step to each in the order given.
+class TraceFanOut : public TraceSink {
+public:
+    explicit TraceFanOut(std::vector<TraceSink*> sinks) : sinks_(std::move(sinks)) {}
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+
+private:
+    std::vector<TraceSink*> sinks_;
+};
+
+// Keeps a whole trace (what trace_program returns).
+class TraceCollector : public TraceSink {
+public:
+    void step(const Step& step) override { trace_.steps.push_back(step); }
+    void hole(const Hole& hole) override { trace_.holes.push_back(hole); }
+    void finish(const TraceSummary& summary) override;
+    Trace take() { return std::move(trace_); }
+
+private:
+    Trace trace_;
+};
+
+// Turns events into steps one at a time (the streaming core of trace_program and
+// trace_events): canned cycles expanded, holes found in the motion. Read events come from a
+// reader (it is a ReadEventSink); a job's events through add_job_event, which knows where the
+// position is unknown as the posts do.
+class TraceBuilder : public ReadEventSink {
+public:
+    // `machine` gives the peck clearance of longhand cycles.
+    TraceBuilder(const Machine& machine, TraceSink& sink);
+    ~TraceBuilder() override;
+    void read_event(const ReadEvent& event) override;
+    void add_job_event(const Event& event);
+    // The end of the events: the last hole, then sink.finish.
+    void finish() override;
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
+    bool known_ = false;  // job events: the position is known (a rapid since the last tool change)
+};
+
+// Passes a trace on with every feed clamped to the machine's limits, as every post writes it
+// (what a job's events should become on `machine`: trace_expected).
+class FeedClamp : public TraceSink {
+public:
+    FeedClamp(const Machine& machine, TraceSink& next) : min_(machine.limits.min_feed), max_(machine.limits.max_feed), next_(next) {}
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override { next_.hole(hole); }
+    void finish(const TraceSummary& summary) override { next_.finish(summary); }
+
+private:
+    double min_, max_;
+    TraceSink& next_;
 };
 
 // The motion of a program read back. `machine` gives the peck clearance of longhand cycles.

@@ -3,6 +3,8 @@
 // same machine file into events. Used by `camgen verify`, the round-trip tests and the SVG
 // backplot. The machine's globals set up the reader as the CNC-Calc manual (section 7) sets up
 // a backplot: arc type, decimal mark, formats and their scales, block style, comments.
+#include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +44,50 @@ struct ReadResolution {
     double rpm = 0.5;          // rev/min
     double dwell = 0.0005;     // s
 };
+
+// Receives the events of a program one at a time, in program order, as they are read: nothing
+// needs to keep the whole program (a million-hole program is read in constant memory).
+class ReadEventSink {
+public:
+    virtual ~ReadEventSink() = default;
+    virtual void read_event(const ReadEvent& event) = 0;
+    // The end of the program: every event was handed on.
+    virtual void finish() {}
+};
+
+namespace reader {
+class NcReader;
+}
+
+// Reads a program from a stream a line at a time (in blocks of the stream, never the whole
+// text), handing each event to the sink as its line is read. The same checks and messages as
+// read_program; advance() throws them.
+class ProgramReader {
+public:
+    ProgramReader(std::istream& in, const Machine& machine, const std::string& source, ReadEventSink& sink);
+    ~ProgramReader();
+    ProgramReader(const ProgramReader&) = delete;
+    ProgramReader& operator=(const ProgramReader&) = delete;
+    // Reads the next line. At the end of the stream closes the program (a program cut short
+    // throws) and returns false; every later call returns false.
+    bool advance();
+    // Reads the rest.
+    void read_all();
+    // The coarsest resolution in effect in the lines read so far.
+    ReadResolution coarsest_resolution() const;
+
+private:
+    std::istream& in_;
+    ReadEventSink& sink_;
+    std::unique_ptr<reader::NcReader> reader_;
+    std::string buffer_;  // a block of the stream; lines are cut from it
+    std::size_t next_ = 0;  // where the next line starts in buffer_
+    bool done_ = false;
+};
+
+// Reads a program as read_program does, handing each event to `sink` as it is read.
+void read_program(std::string_view text, const Machine& machine, const std::string& source, ReadEventSink& sink,
+                  ReadResolution* resolution = nullptr);
 
 // Reads an NC program written for `machine`. `source` names the program in messages. When
 // `resolution` is given it receives the coarsest resolution the program used (an ISO program

@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""The read-back streams: `camgen verify` of a 200,000-hole grbl program (3.2 million lines)
+must stay within the job's size plus 50 MB of peak memory, with and without --job and with
+--plot F.svg. A read-back that keeps the whole program (its text, events or steps) needs
+gigabytes and fails here. Each run's peak comes from wait4's rusage of that child alone.
+
+Usage: check_readback_memory.py CAMGEN SOURCE_DIR [CXX_FLAGS]
+Skipped (exit 77) in a sanitizer build, whose shadow memory is no measure of camgen's."""
+import os
+import subprocess
+import sys
+import tempfile
+
+HOLES = 200_000
+SLACK_MB = 50
+
+
+def peak_kb(args, out_path):
+    """Runs args with stdout to out_path; returns (exit status, peak resident KB). Through
+    /usr/bin/time where there is one: a child forked from Python starts with Python's pages."""
+    with open(out_path, "wb") as out:
+        if os.path.exists("/usr/bin/time"):
+            report = out_path + ".time"
+            code = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", report, *args], stdout=out,
+                                  stderr=subprocess.STDOUT).returncode
+            return code, int(open(report).read().split()[-1])
+        child = subprocess.Popen(args, stdout=out, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(child.pid, 0)
+    return os.waitstatus_to_exitcode(status), usage.ru_maxrss
+
+
+def main():
+    camgen, source = sys.argv[1], sys.argv[2]
+    if "sanitize" in (sys.argv[3] if len(sys.argv) > 3 else ""):
+        print("skipped: a sanitizer build")
+        return 77
+    with tempfile.TemporaryDirectory() as work:
+        job, program = os.path.join(work, "job.json"), os.path.join(work, "grbl.nc")
+        with open(job, "w") as f:
+            subprocess.run([sys.executable, os.path.join(source, "bench", "gen_holes.py"), str(HOLES)], stdout=f, check=True)
+        subprocess.run([camgen, job, "--machine", "grbl", "-o", program], check=True)
+        limit_kb = os.path.getsize(job) // 1024 + SLACK_MB * 1024
+        lines = sum(1 for _ in open(program, "rb"))
+        failed = False
+        runs = {
+            "verify": [],
+            "verify --job": ["--job", job],
+            "verify --plot F.svg": ["--plot", os.path.join(work, "plot.svg")],
+        }
+        for name, extra in runs.items():
+            out = os.path.join(work, "out.txt")
+            code, kb = peak_kb([camgen, "verify", program, "--machine", "grbl", *extra], out)
+            text = open(out, encoding="utf-8", errors="replace").read()
+            ok = code == 0 and kb <= limit_kb and (name != "verify --job" or "matches job" in text)
+            failed |= not ok
+            print(f"{name} of {HOLES} holes ({lines} lines): exit {code}, peak {kb // 1024} MB, limit {limit_kb // 1024} MB: "
+                  f"{'ok' if ok else 'FAILED'}")
+            if code != 0:
+                print(text[-2000:])
+        return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
