@@ -25,11 +25,35 @@ namespace {
 constexpr std::size_t max_input = 64 * 1024;
 // A small job budget keeps each input fast.
 constexpr JobLimits limits{2000, 2000, 64};
-// Programs beyond this are posted (and pass the post's own safety check) but not read back: a
-// job of a few hundred bytes can ask for millions of lines (a bore's helix at 0.002 mm a turn is
-// 6,000 turns, 2.2M chords on kosy), and reading those back under the sanitizers outlasts any
-// timeout. Big programs are measured by bench/run and ctest readback/memory.
-constexpr std::size_t max_readback = 4 * 1024 * 1024;
+// Programs are posted up to this size and then dropped, neither finished nor read back: a job of
+// a few hundred bytes can ask for millions of lines (a bore's helix at 0.0006 mm a turn is 20,000
+// turns, 151 MB of chords on kosy, 4.7 s in Release), and posting or reading those under the
+// sanitizers outlasts any timeout. Big programs are measured by bench/run and ctest
+// readback/memory.
+constexpr std::size_t max_program = 4 * 1024 * 1024;
+
+// The program's text, refused beyond max_program: the stream then fails, and the post's next
+// flush (every 1 MB) stops it with an IoError.
+class BoundedText : public std::streambuf {
+public:
+    std::string text;
+    bool too_big = false;
+
+protected:
+    std::streamsize xsputn(const char* s, std::streamsize n) override {
+        if (text.size() + static_cast<std::size_t>(n) > max_program) {
+            too_big = true;
+            return 0;
+        }
+        text.append(s, static_cast<std::size_t>(n));
+        return n;
+    }
+    int_type overflow(int_type c) override {
+        if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+        const char ch = traits_type::to_char_type(c);
+        return xsputn(&ch, 1) == 1 ? c : traits_type::eof();
+    }
+};
 
 const std::vector<Machine>& machines() {
     static const std::vector<Machine> all = [] {
@@ -40,9 +64,11 @@ const std::vector<Machine>& machines() {
     return all;
 }
 
-// Posts a job for a machine; nullopt when the machine refuses it (an InputError).
+// Posts a job for a machine; nullopt when the machine refuses it (an InputError) or the program
+// grows beyond max_program.
 std::optional<std::string> post(const Job& job, const Machine& machine) {
-    std::ostringstream out;
+    BoundedText text;
+    std::ostream out(&text);
     PostOptions o;
     o.program_name = job.name;
     auto p = make_post(machine, out, o);
@@ -53,8 +79,12 @@ std::optional<std::string> post(const Job& job, const Machine& machine) {
         p->close();
     } catch (const InputError&) {
         return std::nullopt;
+    } catch (const IoError&) {
+        if (text.too_big) return std::nullopt;
+        throw;
     }
-    return out.str();
+    if (text.too_big) return std::nullopt;
+    return std::move(text.text);
 }
 
 // Runs `f`, turning an unexpected exception into a finding.
@@ -141,7 +171,7 @@ std::optional<std::string> mutated_sample(const std::uint8_t* data, std::size_t 
     return guarded([&]() -> std::optional<std::string> {
         const Job parsed = read_job(text, "mutant.json", limits);
         const std::optional<std::string> program = post(parsed, machine);
-        if (!program || program->size() > max_readback) return std::nullopt;
+        if (!program) return std::nullopt;
         ReadResolution resolution;
         Trace actual;
         try {
