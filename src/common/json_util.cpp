@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "camgen/common/error.hpp"
+#include "src/common/fast_json_reader.hpp"
 
 namespace camgen::json {
 
@@ -556,7 +557,16 @@ private:
     int count_ = 0;
 };
 
-// Reads `text` into `doc`; see parse.
+// The fast reader's document, or nothing when it gave up or found a duplicate key (then
+// nlohmann's reading decides, and names the error).
+std::optional<Document> read_fast(std::string_view text, int max_nesting, bool pack) {
+    Document doc;
+    DocumentBuilder builder(doc, pack);
+    if (!detail::FastJsonReader(text, builder, max_nesting).run() || builder.duplicate()) return std::nullopt;
+    return doc;
+}
+
+// Reads `text` into `doc` with nlohmann's parser; see parse.
 void parse_into(Document& doc, std::string_view text, const std::string& source_name, int max_nesting, bool pack) {
     if (const auto at = too_deep_at(text, max_nesting)) {
         const auto [line, column] = line_column(text, *at);
@@ -610,12 +620,22 @@ void parse_into(Document& doc, std::string_view text, const std::string& source_
 }  // namespace
 
 nlohmann::json parse(std::string_view text, const std::string& source_name, int max_nesting) {
+    if (auto doc = read_fast(text, max_nesting, false)) return std::move(doc->root);
     Document doc;
     parse_into(doc, text, source_name, max_nesting, false);
     return std::move(doc.root);
 }
 
 Document parse_document(std::string_view text, const std::string& source_name, int max_nesting) {
+    if (auto doc = read_fast(text, max_nesting, true)) return std::move(*doc);
+    return parse_document_with_nlohmann(text, source_name, max_nesting);
+}
+
+std::optional<Document> parse_document_fast(std::string_view text, int max_nesting) {
+    return read_fast(text, max_nesting, true);
+}
+
+Document parse_document_with_nlohmann(std::string_view text, const std::string& source_name, int max_nesting) {
     Document doc;
     parse_into(doc, text, source_name, max_nesting, true);
     return doc;

@@ -94,7 +94,15 @@ struct Document {
 };
 
 // parse, with the arrays PackedArray describes packed.
+//
+// Both read well-formed text with a fast reader of camgen's own, and any other text (or text
+// with a \u escape, a byte-order mark, a duplicate key, ...) again with nlohmann's parser,
+// which names the error: the messages are nlohmann's whichever reader was fast enough.
 Document parse_document(std::string_view text, const std::string& source_name, int max_nesting = 64);
+// The two readers apart, for tests that hold them to the same documents: the fast one gives
+// nothing where it leaves the text to nlohmann's.
+std::optional<Document> parse_document_fast(std::string_view text, int max_nesting = 64);
+Document parse_document_with_nlohmann(std::string_view text, const std::string& source_name, int max_nesting = 64);
 
 // Escapes a key for use in a JSON pointer ("~" -> "~0", "/" -> "~1").
 std::string pointer_escape(std::string_view key);
