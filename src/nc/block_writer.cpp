@@ -35,25 +35,42 @@ BlockWriter::~BlockWriter() {
 
 BlockWriter& BlockWriter::add(std::string_view word) {
     if (word.empty()) return *this;
-    if (!block_.empty()) append_text(block_, style_.separator);
-    block_ += word;
+    if (block_start_ == no_block) open_block();
+    else append_text(buffer_, style_.separator);
+    buffer_ += word;
     return *this;
 }
 
+void BlockWriter::open_block() {
+    block_start_ = buffer_.size();
+    if (!style_.sequence_numbers) return;
+    buffer_ += style_.sequence_prefix;
+    char digits[24];
+    const auto written = std::to_chars(digits, digits + sizeof digits, sequence_);
+    buffer_.append(digits, written.ptr);
+    append_text(buffer_, style_.separator);
+}
+
 void BlockWriter::end() {
-    if (block_.empty()) return;
-    if (style_.sequence_numbers) {
-        buffer_ += style_.sequence_prefix;
-        char digits[24];
-        const auto written = std::to_chars(digits, digits + sizeof digits, sequence_);
-        buffer_.append(digits, written.ptr);
-        append_text(buffer_, style_.separator);
-        sequence_ += style_.sequence_increment;
-    }
-    buffer_ += block_;
+    if (block_start_ == no_block) return;
     append_text(buffer_, style_.line_break);
-    block_.clear();
+    block_start_ = no_block;
+    if (style_.sequence_numbers) sequence_ += style_.sequence_increment;
     maybe_flush();
+}
+
+std::string BlockWriter::take_open_block() {
+    if (block_start_ == no_block) return {};
+    std::string text = buffer_.substr(block_start_);
+    buffer_.resize(block_start_);
+    block_start_ = no_block;
+    return text;
+}
+
+void BlockWriter::restore_open_block(const std::string& text) {
+    if (text.empty()) return;
+    block_start_ = buffer_.size();
+    buffer_ += text;
 }
 
 namespace {
@@ -115,6 +132,7 @@ std::string BlockWriter::clean_comment(std::string_view text) const {
 }
 
 void BlockWriter::comment(std::string_view text) {
+    const std::string open = take_open_block();
     std::string c = clean_comment(text);
     if (style_.comment_style == CommentStyle::parentheses) {
         buffer_ += '(';
@@ -126,12 +144,15 @@ void BlockWriter::comment(std::string_view text) {
     }
     buffer_ += style_.line_break;
     maybe_flush();
+    restore_open_block(open);
 }
 
 void BlockWriter::raw(std::string_view line) {
+    const std::string open = take_open_block();
     buffer_ += line;
     buffer_ += style_.line_break;
     maybe_flush();
+    restore_open_block(open);
 }
 
 void BlockWriter::maybe_flush() {
@@ -140,9 +161,11 @@ void BlockWriter::maybe_flush() {
 
 void BlockWriter::flush() {
     errno = 0;
-    if (!buffer_.empty()) {
-        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-        buffer_.clear();
+    const std::size_t finished = block_start_ == no_block ? buffer_.size() : block_start_;
+    if (finished > 0) {
+        out_.write(buffer_.data(), static_cast<std::streamsize>(finished));
+        buffer_.erase(0, finished);
+        if (block_start_ != no_block) block_start_ = 0;
     }
     out_.flush();
     if (!out_) throw IoError("writing the NC program failed", errno);

@@ -147,6 +147,38 @@ TEST_CASE("block writer: sequence numbers, separator, line break, comments") {
     CHECK(semi.str() == "G1X2\n; line one line two\n");
 }
 
+TEST_CASE("block writer: a comment or raw line while a block is built comes before the block") {
+    // The block is built in the output buffer itself: what interrupts it must not split it.
+    std::ostringstream out;
+    {
+        camgen::nc::BlockStyle style{.sequence_numbers = true, .sequence_start = 10, .sequence_increment = 10};
+        camgen::nc::BlockWriter w(style, out);
+        w.add("G1").add("X1");
+        w.comment("between");
+        w.add("Y2");
+        w.raw("%");
+        w.add("F100").end();
+        w.add("M30").end();
+    }
+    CHECK(out.str() == "(between)\n%\nN10 G1 X1 Y2 F100\nN20 M30\n");
+}
+
+TEST_CASE("block writer: flushing hands over finished blocks only; an unfinished block is dropped") {
+    std::ostringstream out;
+    {
+        camgen::nc::BlockWriter w(camgen::nc::BlockStyle{}, out);
+        w.add("G0").add("Z5").end();
+        w.add("G1").add("Z-1");
+        w.flush();
+        CHECK(out.str() == "G0 Z5\n");
+        w.add("F100").end();
+        w.flush();
+        CHECK(out.str() == "G0 Z5\nG1 Z-1 F100\n");
+        w.add("X1");  // never ended: a post that failed halfway through a block
+    }
+    CHECK(out.str() == "G0 Z5\nG1 Z-1 F100\n");
+}
+
 namespace {
 
 // Reference rounding for the property test: round the shortest decimal text of v half away

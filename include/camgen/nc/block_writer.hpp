@@ -1,6 +1,7 @@
 #pragma once
 // Writes NC blocks: sequence numbers, word separator, line break, comments. Buffers the text
 // and hands it to the stream in large pieces.
+#include <cstddef>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -37,11 +38,14 @@ public:
     BlockWriter& add(std::string_view word);
     // Ends the block: writes it with its sequence number, unless it is empty.
     void end();
-    // Writes a comment on a line of its own (no sequence number).
+    // Writes a comment on a line of its own (no sequence number); a block being built comes
+    // after it.
     void comment(std::string_view text);
-    // Writes a line as it is (no sequence number): "%", "_", program frames.
+    // Writes a line as it is (no sequence number): "%", "_", program frames; a block being
+    // built comes after it.
     void raw(std::string_view line);
-    // Hands buffered text to the stream. Throws IoError when the stream failed.
+    // Hands the finished blocks to the stream (a block not ended yet stays, and is dropped if
+    // it never ends). Throws IoError when the stream failed.
     void flush();
     const BlockStyle& style() const { return style_; }
     // Comment text made safe for the style, the one place every post's text goes through:
@@ -52,11 +56,19 @@ public:
     std::string clean_comment(std::string_view text) const;
 
 private:
+    static constexpr std::size_t no_block = static_cast<std::size_t>(-1);
     void maybe_flush();
+    // Starts the block being built at the end of the buffer: its sequence number first.
+    void open_block();
+    // The text of the block being built, taken out of the buffer ("" when none is open).
+    std::string take_open_block();
+    // Puts back a block taken out of the buffer, to be built on.
+    void restore_open_block(const std::string& text);
     BlockStyle style_;
     std::ostream& out_;
+    // The finished blocks, then the block being built: each word is written here once.
     std::string buffer_;
-    std::string block_;
+    std::size_t block_start_ = no_block;  // where the block being built begins in buffer_
     long sequence_;
 };
 
