@@ -160,7 +160,7 @@ void HeidenhainPost::on_circular(const ArcGeometry& arc, double feed) {
     // The machine file allows XY arcs only; others arrive here as lines.
     nc::Word cx("X", xyz_format(), true), cy("Y", xyz_format(), true);
     writer().add("CC").add(cx.format(arc.centre.x)).add(cy.format(arc.centre.y)).end();
-    std::string fs = feed_word(feed);
+    const std::string_view fs = feed_word(feed);
     const AxisWords w = axis_words(arc.end, {true, true, false});
     writer().add("C").add(w.x).add(w.y).add(w.z)
         .add(arc.direction == ArcDirection::ccw ? "DR+" : "DR-").add(fs).end();

@@ -246,36 +246,42 @@ bool Format::is_zero(double value) const {
 }
 
 Word::Word(std::string prefix, Format format, bool force)
-    : prefix_(std::move(prefix)), format_(std::move(format)), force_(force) {}
+    : prefix_(std::move(prefix)), format_(std::move(format)), force_(force), texts_{prefix_, prefix_} {}
 
-std::string Word::format(double value) {
+std::string& Word::compose(double value) {
+    std::string& spare = texts_[1 - last_];
+    spare.resize(prefix_.size());
+    format_.append(spare, value);
+    return spare;
+}
+
+std::string_view Word::take_spare() {
+    last_ = 1 - last_;
+    return texts_[last_];
+}
+
+std::string_view Word::format(double value) {
     // The same number gives the same text: no need to format it again.
-    if (last_value_ && *last_value_ == value && !last_text_.empty()) return force_ ? last_text_ : std::string();
-    std::string text = prefix_;
-    format_.append(text, value);
+    if (last_value_ && *last_value_ == value) return force_ ? std::string_view(texts_[last_]) : std::string_view();
+    const std::string& text = compose(value);
+    const bool unchanged = last_value_ && text == texts_[last_];
     last_value_ = value;
-    if (!force_ && text == last_text_) return {};
-    last_text_ = text;
-    return text;
+    if (unchanged && !force_) return {};
+    return take_spare();
 }
 
-std::string Word::force(double value) {
-    std::string text = prefix_;
-    format_.append(text, value);
+std::string_view Word::force(double value) {
+    compose(value);
     last_value_ = value;
-    last_text_ = text;
-    return text;
+    return take_spare();
 }
 
-void Word::reset() {
-    last_text_.clear();
-    last_value_.reset();
-}
+void Word::reset() { last_value_.reset(); }
 
 void Word::set_last(double value) {
-    last_text_ = prefix_;
-    format_.append(last_text_, value);
+    compose(value);
     last_value_ = value;
+    take_spare();
 }
 
 }  // namespace camgen::nc

@@ -88,7 +88,7 @@ void Post::fail(const std::string& key, const std::string& detail) const {
     throw InputError(op_path_ + key, detail);
 }
 
-std::string Post::feed_word(double mm_per_min) {
+std::string_view Post::feed_word(double mm_per_min) {
     const double f = clamped_feed(mm_per_min);
     if (feed_mode_ == FeedMode::per_revolution) {
         // The control feeds F x its spindle speed: F is the job's feed per revolution.
@@ -121,7 +121,7 @@ double Post::clamped_feed(double mm_per_min) {
     return f;
 }
 
-std::string Post::motion_word(double code) {
+std::string_view Post::motion_word(double code) {
     return machine_.modal_motion ? motion_.format(code) : motion_.force(code);
 }
 
@@ -148,7 +148,7 @@ Post::AxisWords Post::force_xy(Vec2 at) {
     return w;
 }
 
-std::string Post::force_z(double z) { return z_.force(z); }
+std::string_view Post::force_z(double z) { return z_.force(z); }
 
 void Post::select_feed_mode(FeedMode mode) {
     if (mode == feed_mode_) return;
@@ -271,22 +271,21 @@ void Post::on_linear(const Vec3& to, double feed) {
     if (pending_compensation_) comp = compensation_words(*pending_compensation_);
     const AxisWords w = axis_words(to);
     if (w.x.empty() && w.y.empty() && w.z.empty() && comp.empty()) return;
-    std::string fs = feed_word(feed);
+    const std::string_view fs = feed_word(feed);
     const LinearLayout layout = linear_layout();
-    const std::string none;
-    const std::string& before = layout.compensation_after_axes ? none : comp;
-    const std::string& after = layout.compensation_after_axes ? comp : none;
+    const std::string_view before = layout.compensation_after_axes ? std::string_view() : comp;
+    const std::string_view after = layout.compensation_after_axes ? comp : std::string_view();
     out_.add(before).add(layout.motion).add(w.x).add(w.y).add(w.z).add(after).add(fs).end();
     pending_compensation_.reset();
 }
 
 void Post::on_circular(const ArcGeometry& arc, double feed) {
     const ArcSettings& s = machine_.arcs;
-    std::string plane;
+    std::string_view plane;
     if (machine_.arcs.planes.size() > 1)
         plane = plane_.format(arc.plane == Plane::xy ? 17 : arc.plane == Plane::xz ? 18 : 19);
-    std::string motion = motion_word(arc.direction == ArcDirection::cw ? 2 : 3);
-    std::string fs = feed_word(feed);
+    const std::string_view motion = motion_word(arc.direction == ArcDirection::cw ? 2 : 3);
+    const std::string_view fs = feed_word(feed);
     if (s.format == ArcFormat::nccad_angle) {
         // nccad: G02 D<sweep> I J, no end point: the control computes it. Remember the end.
         nc::Word i("I", ijk_fmt_, true), j("J", ijk_fmt_, true);

@@ -179,6 +179,25 @@ TEST_CASE("block writer: flushing hands over finished blocks only; an unfinished
     CHECK(out.str() == "G0 Z5\nG1 Z-1 F100\n");
 }
 
+TEST_CASE("a modal word's text stays valid until the word writes again, whatever its length") {
+    Word x("X", fmt3()), y("Y", fmt3());
+    const std::string_view a = x.format(1.5);
+    const std::string_view b = y.format(2.5);
+    CHECK(a == "X1.5");  // another word's text does not disturb it
+    CHECK(b == "Y2.5");
+    // Texts longer than a short string's own storage, through the exact path too.
+    const std::string long_prefix(40, 'P');
+    Word w(long_prefix, fmt3(true));
+    CHECK(w.format(1e20) == long_prefix + "100000000000000000000.000");
+    CHECK(w.format(1e20 + 1) == "");  // the same text: modal
+    CHECK(w.format(2.0005) == long_prefix + "2.001");
+    CHECK(w.format(2.0005000001) == "");
+    CHECK(w.force(2.0005) == long_prefix + "2.001");
+    w.reset();
+    CHECK(w.format(2.0005) == long_prefix + "2.001");
+    CHECK(w.last() == 2.0005);
+}
+
 namespace {
 
 // Reference rounding for the property test: round the shortest decimal text of v half away

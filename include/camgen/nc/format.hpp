@@ -49,16 +49,19 @@ private:
 Format exact_format(FormatSpec spec, double value, int max_decimals);
 
 // A modal NC word (CNC-Calc createVariable): remembers the last text it wrote and writes
-// nothing when the same text would be written again, unless forced or reset.
+// nothing when the same text would be written again, unless forced or reset. A word keeps its
+// texts in storage of its own, reused: writing one allocates nothing once the word has held
+// its longest text.
 class Word {
 public:
     Word() = default;
     Word(std::string prefix, Format format, bool force = false);
 
-    // The word's text ("X12.5"), or "" when it is modal and unchanged.
-    std::string format(double value);
-    // The word's text, written even when unchanged; becomes the last value.
-    std::string force(double value);
+    // The word's text ("X12.5"), or "" when it is modal and unchanged. The text lives in the
+    // word: it stays valid until the next call of format, force or set_last.
+    std::string_view format(double value);
+    // The word's text, written even when unchanged; becomes the last value. Valid as format's.
+    std::string_view force(double value);
     // Forget the last value: the next format() writes (the control's state is unknown).
     void reset();
     // Record `value` as if it had been written (the control knows it by other means).
@@ -68,10 +71,17 @@ public:
     const Format& fmt() const { return format_; }
 
 private:
+    // Formats `value` after the prefix into the spare text; returns it, not yet the last.
+    std::string& compose(double value);
+    // The spare text becomes the last text written.
+    std::string_view take_spare();
     std::string prefix_;
     Format format_;
     bool force_ = false;
-    std::string last_text_;
+    // The last text and a spare one for the next, both starting with the prefix; swapped by
+    // index, never copied. The last text means something only while last_value_ is set.
+    std::string texts_[2];
+    int last_ = 0;
     std::optional<double> last_value_;
 };
 

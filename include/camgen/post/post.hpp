@@ -94,7 +94,7 @@ protected:
     virtual bool force_arc_end() const;
     // How a feed move's block is laid out: its motion word and where the compensation words go.
     struct LinearLayout {
-        std::string motion;                    // "G1", or "L" (Heidenhain)
+        std::string_view motion;               // "G1" (motion_word), or "L" (Heidenhain)
         bool compensation_after_axes = false;  // false: before the motion word
     };
     // The layout of the feed move being written (the base: the modal G1, compensation first).
@@ -116,8 +116,10 @@ protected:
     // feed. Fails for a feed that is not a number above 0.
     double clamped_feed(double mm_per_min);
     // The F word for a feed in mm/min: clamped to the machine's limits (with a warning),
-    // converted to the machine's feed unit, modal.
-    std::string feed_word(double mm_per_min);
+    // converted to the machine's feed unit, modal. Like every word the post's modal words
+    // write (motion_word, axis_words, force_xy, force_z), the text lives in its word: valid
+    // until that word is written again, so add it to the block first.
+    std::string_view feed_word(double mm_per_min);
     // The S word for a spindle speed; an InputError above the machine's maxRpm or where it would
     // be written as S0.
     std::string speed_word(double rpm) const;
@@ -125,7 +127,7 @@ protected:
     // operator), checked as speed_word checks it.
     std::string speed_text(double rpm) const;
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
-    std::string motion_word(double code);
+    std::string_view motion_word(double code);
     // Forget modal state that the control may have changed (after a cycle, a tool change).
     void reset_modal_axes();
     // Writes a warning (where the options say).
@@ -159,9 +161,9 @@ protected:
     // The tool now stands at `at` (a dialect moved it on its own, such as to a retract plane).
     void set_position(const Vec3& at) { pos_ = at; }
 
-    // The axis words of one block; an empty string is a word not written.
+    // The axis words of one block; an empty text is a word not written.
     struct AxisWords {
-        std::string x, y, z;
+        std::string_view x, y, z;
     };
     // Which axis words a block writes even when the control already has the value.
     struct ForcedAxes {
@@ -174,7 +176,7 @@ protected:
     // The X and Y words of a position, written whatever the modal state (z stays empty).
     AxisWords force_xy(Vec2 at);
     // The Z word, written whatever the modal state.
-    std::string force_z(double z);
+    std::string_view force_z(double z);
     // The Z the control was last told, if known.
     std::optional<double> written_z() const { return z_.last(); }
     // The control stands at this Z without a Z word saying so (a cycle returned it there).
