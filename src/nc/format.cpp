@@ -146,45 +146,46 @@ char* write_digits(char* end, unsigned long long n, int min_digits) {
 
 }  // namespace
 
-void Format::append(std::string& out, double value) const {
+// Digits the fast path writes besides prefix and padding: a sign, 10 digits (it takes fewer
+// than 1e9 units), the decimal mark and 12 decimals, with room to spare.
+constexpr std::size_t fast_digits = 26;
+
+char* Format::write_backwards(char* end, std::size_t room, double value) const {
     const double v = scaled_value(spec_, value);
     const std::optional<unsigned long long> units = rounded_units(v, spec_.decimals);
-    if (!units) {
-        append_exact(out, v);
-        return;
-    }
-    // The number is written backwards into a buffer (fraction, point, integer, sign) and
-    // appended at once: the common case of every program line.
-    const unsigned long long scale = pow10[spec_.decimals];
-    unsigned long long fraction = *units % scale;
+    if (!units || room < spec_.prefix.size() + static_cast<std::size_t>(std::max(spec_.width, 0)) + fast_digits)
+        return nullptr;
+    // Trailing zeros of the fraction go first (unless forced), then the digits are written
+    // backwards one by one: every division is by the constant 10.
+    unsigned long long n = *units;
     int fraction_digits = spec_.decimals;
     if (!spec_.force_decimal)
-        for (; fraction_digits > 0 && fraction % 10 == 0; --fraction_digits) fraction /= 10;
-    char buffer[96];
-    char* const end = buffer + sizeof buffer;
+        for (; fraction_digits > 0 && n % 10 == 0; --fraction_digits) n /= 10;
     char* p = end;
     if (fraction_digits > 0) {
-        p = write_digits(p, fraction, fraction_digits);
+        for (int k = 0; k < fraction_digits; ++k, n /= 10) *--p = static_cast<char>('0' + n % 10);
         *--p = spec_.decimal_mark;
     }
-    p = write_digits(p, *units / scale, 1);
-    // Padding, sign and prefix go in front, in the buffer too, so that the line gets one
-    // append (a prefix or width too long for it is appended piece by piece).
-    const int integer_digits = static_cast<int>(end - p) - (fraction_digits > 0 ? fraction_digits + 1 : 0);
-    const int padding = std::max(0, spec_.width - integer_digits);
-    const char sign = v < 0 && *units != 0 ? '-' : spec_.force_sign ? '+' : '\0';
-    if (static_cast<std::size_t>(padding) + spec_.prefix.size() + 1 > static_cast<std::size_t>(p - buffer)) {
-        out += spec_.prefix;
-        if (sign) out += sign;
-        out.append(static_cast<size_t>(padding), spec_.zeropad ? '0' : ' ');
-        out.append(p, static_cast<size_t>(end - p));
-        return;
-    }
-    for (int k = 0; k < padding; ++k) *--p = spec_.zeropad ? '0' : ' ';
-    if (sign) *--p = sign;
+    char* const integer_end = p;
+    p = write_digits(p, n, 1);
+    for (int padding = spec_.width - static_cast<int>(integer_end - p); padding > 0; --padding)
+        *--p = spec_.zeropad ? '0' : ' ';
+    if (v < 0 && *units != 0) *--p = '-';
+    else if (spec_.force_sign) *--p = '+';
     p -= spec_.prefix.size();
     std::copy(spec_.prefix.begin(), spec_.prefix.end(), p);
-    out.append(p, static_cast<size_t>(end - p));
+    return p;
+}
+
+void Format::append(std::string& out, double value) const {
+    // The common case of every program line: written backwards into a buffer, appended at once.
+    char buffer[64];
+    char* const end = buffer + sizeof buffer;
+    if (const char* begin = write_backwards(end, sizeof buffer, value)) {
+        out.append(begin, static_cast<std::size_t>(end - begin));
+        return;
+    }
+    append_exact(out, scaled_value(spec_, value));
 }
 
 void Format::append_exact(std::string& out, double v) const {

@@ -253,11 +253,13 @@ TEST_CASE("property: the fast path rounds exactly like the decimal text of the v
 }
 
 TEST_CASE("property: every field of a format decorates the same rounded number") {
-    // The fast path writes sign, padding, decimals and mark itself: each combination must give
-    // the text of the rounded number (reference_format) laid out as the fields say.
+    // The fast path (write_backwards) writes sign, padding, decimals and mark itself: each
+    // combination must give the text of the rounded number (reference_format) laid out as the
+    // fields say.
     std::mt19937_64 rng(777);
     std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
     std::uniform_int_distribution<int> exponent(-5, 7), decimals(0, 5), coin(0, 1), widths(0, 5);
+    int written_backwards = 0;
     for (int i = 0; i < 50000; ++i) {
         FormatSpec s;
         s.decimals = decimals(rng);
@@ -295,5 +297,21 @@ TEST_CASE("property: every field of a format decorates the same rounded number")
             CAPTURE(s.width);
             REQUIRE(got == want);
         }
+        // write_backwards, where it writes at all, writes the same text, in any room it takes.
+        char buffer[200];
+        const std::size_t room = i % 3 == 0 ? sizeof buffer : static_cast<std::size_t>(30 + i % 40);
+        char* const end = buffer + room;
+        if (const char* begin = Format(s).write_backwards(end, room, v)) {
+            ++written_backwards;
+            const std::string_view text(begin, static_cast<std::size_t>(end - begin));
+            if (text != want) {
+                CAPTURE(v);
+                CAPTURE(s.decimals);
+                CAPTURE(room);
+                REQUIRE(text == want);
+            }
+        }
     }
+    // Nearly every case is in its range: the comparison is not vacuous.
+    CHECK(written_backwards > 40000);
 }

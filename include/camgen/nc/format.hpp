@@ -2,6 +2,7 @@
 // Number formatting for NC words, after CNC-Calc's createFormat / createVariable.
 // One formatter for every number camgen writes: never an exponent, never "-0", the decimal
 // mark of the machine, independent of the process locale.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,6 +32,11 @@ public:
     // Appends prefix and number to `out`. Throws std::logic_error for NaN or infinity.
     void append(std::string& out, double value) const;
     std::string format(double value) const;
+    // append's fast path: prefix and number written backwards so that they end just before
+    // `end`, within `room` chars; returns where the text begins, or nullptr where only the
+    // exact path writes the value right (near a rounding tie, 1e9 units or more) or the text
+    // may need more room (a long prefix or width). Throws std::logic_error as append does.
+    char* write_backwards(char* end, std::size_t room, double value) const;
     // `letter` followed by the formatted value: word("R", 2) is "R2.000".
     std::string word(std::string_view letter, double value) const;
     // The value a control reads back from the text, in input units (rounded, unscaled).
