@@ -33,12 +33,10 @@ BlockWriter::~BlockWriter() {
     }
 }
 
-BlockWriter& BlockWriter::add(std::string_view word) {
-    if (word.empty()) return *this;
+void BlockWriter::add_word(std::string_view word) {
     if (block_start_ == no_block) open_block();
     else append_text(buffer_, style_.separator);
     buffer_ += word;
-    return *this;
 }
 
 void BlockWriter::open_block() {

@@ -247,25 +247,35 @@ bool Format::is_zero(double value) const {
 }
 
 Word::Word(std::string prefix, Format format, bool force)
-    : prefix_(std::move(prefix)), format_(std::move(format)), force_(force), texts_{prefix_, prefix_} {}
+    : prefix_(std::move(prefix)), format_(std::move(format)), force_(force) {}
 
-std::string& Word::compose(double value) {
-    std::string& spare = texts_[1 - last_];
-    spare.resize(prefix_.size());
-    format_.append(spare, value);
-    return spare;
+std::string_view Word::compose(double value) {
+    Text& spare = texts_[1 - last_];
+    constexpr std::size_t size = sizeof spare.chars;
+    char* const end = spare.chars + size;
+    char* begin = prefix_.size() < size ? format_.write_backwards(end, size - prefix_.size(), value) : nullptr;
+    spare.spilled = begin == nullptr;
+    if (spare.spilled) {
+        spare.spill = prefix_;
+        format_.append(spare.spill, value);
+        return spare.spill;
+    }
+    // The prefix is a letter or two: copied by hand, a call to memmove costs more.
+    for (auto c = prefix_.rbegin(); c != prefix_.rend(); ++c) *--begin = *c;
+    spare.begin = static_cast<unsigned char>(begin - spare.chars);
+    return {begin, static_cast<std::size_t>(end - begin)};
 }
 
 std::string_view Word::take_spare() {
     last_ = 1 - last_;
-    return texts_[last_];
+    return texts_[last_].view();
 }
 
 std::string_view Word::format(double value) {
     // The same number gives the same text: no need to format it again.
-    if (last_value_ && *last_value_ == value) return force_ ? std::string_view(texts_[last_]) : std::string_view();
-    const std::string& text = compose(value);
-    const bool unchanged = last_value_ && text == texts_[last_];
+    if (last_value_ && *last_value_ == value) return force_ ? texts_[last_].view() : std::string_view();
+    const std::string_view text = compose(value);
+    const bool unchanged = last_value_ && text == texts_[last_].view();
     last_value_ = value;
     if (unchanged && !force_) return {};
     return take_spare();

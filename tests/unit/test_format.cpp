@@ -196,6 +196,17 @@ TEST_CASE("a modal word's text stays valid until the word writes again, whatever
     w.reset();
     CHECK(w.format(2.0005) == long_prefix + "2.001");
     CHECK(w.last() == 2.0005);
+    // The same text from the exact path (a written half) and from the fast one is unchanged.
+    Word z("Z", fmt3());
+    CHECK(z.format(2.0005) == "Z2.001");
+    CHECK(z.format(2.001) == "");
+    CHECK(z.format(-1e12) == "Z-1000000000000");
+    CHECK(z.format(-1e12 - 0.0001) == "");
+    CHECK(z.format(1.25) == "Z1.25");
+    Word copy = z;  // a copy's texts are its own
+    CHECK(z.force(3) == "Z3");
+    CHECK(copy.force(1.25) == "Z1.25");
+    CHECK(copy.format(3) == "Z3");
 }
 
 namespace {

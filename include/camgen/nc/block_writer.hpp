@@ -34,8 +34,12 @@ public:
     BlockWriter(const BlockWriter&) = delete;
     BlockWriter& operator=(const BlockWriter&) = delete;
 
-    // Adds a word to the block being built; empty words are skipped.
-    BlockWriter& add(std::string_view word);
+    // Adds a word to the block being built; empty words (modal words not written) are skipped
+    // here, inline, before any call.
+    BlockWriter& add(std::string_view word) {
+        if (!word.empty()) add_word(word);
+        return *this;
+    }
     // Ends the block: writes it with its sequence number, unless it is empty.
     void end();
     // Writes a comment on a line of its own (no sequence number); a block being built comes
@@ -58,6 +62,8 @@ public:
 private:
     static constexpr std::size_t no_block = static_cast<std::size_t>(-1);
     void maybe_flush();
+    // Adds a word that is not empty.
+    void add_word(std::string_view word);
     // Starts the block being built at the end of the buffer: its sequence number first.
     void open_block();
     // The text of the block being built, taken out of the buffer ("" when none is open).

@@ -56,8 +56,8 @@ Format exact_format(FormatSpec spec, double value, int max_decimals);
 
 // A modal NC word (CNC-Calc createVariable): remembers the last text it wrote and writes
 // nothing when the same text would be written again, unless forced or reset. A word keeps its
-// texts in storage of its own, reused: writing one allocates nothing once the word has held
-// its longest text.
+// texts in storage of its own: writing one allocates nothing (unless it is longer than 47
+// characters).
 class Word {
 public:
     Word() = default;
@@ -77,16 +77,28 @@ public:
     const Format& fmt() const { return format_; }
 
 private:
+    // One text of the word: at the end of `chars` when it fits, as nearly every word does
+    // (written there by Format::write_backwards, no string made), else in `spill`. Offsets,
+    // not pointers, so that a copied word's texts are its own.
+    struct Text {
+        char chars[48];
+        unsigned char begin = sizeof chars;  // where the text starts in chars
+        bool spilled = false;
+        std::string spill;
+        std::string_view view() const {
+            return spilled ? std::string_view(spill) : std::string_view(chars + begin, sizeof chars - begin);
+        }
+    };
     // Formats `value` after the prefix into the spare text; returns it, not yet the last.
-    std::string& compose(double value);
+    std::string_view compose(double value);
     // The spare text becomes the last text written.
     std::string_view take_spare();
     std::string prefix_;
     Format format_;
     bool force_ = false;
-    // The last text and a spare one for the next, both starting with the prefix; swapped by
-    // index, never copied. The last text means something only while last_value_ is set.
-    std::string texts_[2];
+    // The last text and a spare one for the next; swapped by index, never copied. The last
+    // text means something only while last_value_ is set.
+    Text texts_[2];
     int last_ = 0;
     std::optional<double> last_value_;
 };
