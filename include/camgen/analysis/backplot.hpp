@@ -78,7 +78,7 @@ public:
     void finish(const TraceSummary& summary) override;
 
     std::map<int, Box> hole_centres;                // tool -> the box around its holes' centres
-    std::vector<Vec2> places;                       // every hole's place, by X after finish
+    std::vector<Vec2> places;                       // every hole's place, by X then Y after finish
     std::map<int, std::pair<int, int>> first_last;  // tool -> its first and last hole's number
     std::size_t holes = 0;
 
