@@ -4,14 +4,13 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <ostream>
 #include <sstream>
-#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
