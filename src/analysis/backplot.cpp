@@ -521,8 +521,8 @@ private:
     }
 
     // Plunges that are not holes: where a cutter feeds straight down into the work. The holes'
-    // places are sorted by X, so that each plunge looks at those within 1e-6 mm of its X only
-    // (a program of many holes has as many plunges).
+    // places are sorted by X, then Y, so that each plunge is a binary search (a program of many
+    // holes has as many plunges, and a grid's column as many holes as it has rows).
     void plunge(const Step& s) {
         if (s.kind != StepKind::feed || !s.from_known || s.arc || xy_length(s) >= 1e-9 || !(s.to.z < s.from.z)) return;
         if (is_hole(s.to)) return;
@@ -539,8 +539,14 @@ private:
     bool is_hole(Vec3 p) const {
         const std::vector<Vec2>& places = plan_.places;
         auto it = std::partition_point(places.begin(), places.end(), [&](Vec2 h) { return h.x <= p.x - 1e-6; });
-        for (; it != places.end() && it->x < p.x + 1e-6; ++it)
-            if (std::abs(it->x - p.x) < 1e-6 && std::abs(it->y - p.y) < 1e-6) return true;
+        // Each X within reach (as a rule one) holds its places by Y.
+        while (it != places.end() && it->x < p.x + 1e-6) {
+            const double x = it->x;
+            const auto same_x = std::partition_point(it, places.end(), [x](Vec2 h) { return h.x == x; });
+            const auto at = std::partition_point(it, same_x, [&](Vec2 h) { return h.y <= p.y - 1e-6; });
+            if (at != same_x && at->y < p.y + 1e-6 && std::abs(x - p.x) < 1e-6) return true;
+            it = same_x;
+        }
         return false;
     }
 
@@ -642,7 +648,7 @@ void BackplotPlan::hole(const Hole& h) {
 }
 
 void BackplotPlan::finish(const TraceSummary&) {
-    std::sort(places.begin(), places.end(), [](Vec2 a, Vec2 b) { return a.x < b.x; });
+    std::sort(places.begin(), places.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
 }
 
 BackplotDrawer::BackplotDrawer(const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options)

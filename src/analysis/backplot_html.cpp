@@ -3,10 +3,14 @@
 #include "camgen/analysis/backplot_html.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
+#include <ostream>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -133,95 +137,140 @@ bool continues(const Step& last, const Step& s, MachineKind kind) {
            distance(drawn(s.from, kind), drawn(s.to, kind)) > 0;
 }
 
-// The trace as drawn when it has more moves than `limits.moves`: runs of straight moves whose
-// inner points lie within half a pixel of the line from the run's start to its end become that
-// line (one pass, constant work per move). Half a pixel: the drawing is at most 720 px wide for at least 1.12 times the span of
+// The steps as drawn when a program has more moves than `limits.moves`: runs of straight moves
+// whose inner points lie within half a pixel of the line from the run's start to its end become
+// that line (one pass, constant work and memory per move: the step that may still grow is held
+// back). Half a pixel: the drawing is at most 720 px wide for at least 1.12 times the span of
 // the positions in view, so a pixel is at least span / 643 mm; span / 1500 is under half.
-std::optional<Trace> thinned(const Trace& trace, const ProgramStats& stats, MachineKind kind, const HtmlPlotLimits& limits) {
-    const auto moves = static_cast<std::size_t>(std::count_if(trace.steps.begin(), trace.steps.end(), is_move));
-    if (moves <= limits.moves) return std::nullopt;
-    const Box& b = stats.box;
-    const Vec2 lo = drawn(b.min, kind), hi = drawn(b.max, kind);
-    const double tolerance = std::max({hi.x - lo.x, hi.y - lo.y, 10.0}) / 1500.0;
-    Trace t;
-    t.holes = trace.holes;
-    t.canned_holes = trace.canned_holes;
-    t.tools = trace.tools;
-    std::optional<Run> run;  // the run that ends with t.steps.back(), when that is a straight move
-    for (const Step& s : trace.steps) {
-        if (run && is_move(s) && continues(t.steps.back(), s, kind) && run->reaches(drawn(s.to, kind))) {
-            run->add(drawn(s.to, kind));
-            t.steps.back().to = s.to;
-            continue;
+class Thinning : public TraceSink {
+public:
+    Thinning(TraceSink& out, const ProgramStats& stats, MachineKind kind) : out_(out), kind_(kind) {
+        const Box& b = stats.box;
+        const Vec2 lo = drawn(b.min, kind), hi = drawn(b.max, kind);
+        tolerance_ = std::max({hi.x - lo.x, hi.y - lo.y, 10.0}) / 1500.0;
+    }
+    void step(const Step& s) override {
+        if (run_ && is_move(s) && continues(*held_, s, kind_) && run_->reaches(drawn(s.to, kind_))) {
+            run_->add(drawn(s.to, kind_));
+            held_->to = s.to;
+            merged_ = true;
+            return;
         }
-        t.steps.push_back(s);
-        run.reset();
+        pass_on();
+        held_ = s;
+        run_.reset();
         if (is_move(s) && !s.arc && s.from_known) {
-            run.emplace(drawn(s.from, kind), tolerance);
-            run->add(drawn(s.to, kind));
+            run_.emplace(drawn(s.from, kind_), tolerance_);
+            run_->add(drawn(s.to, kind_));
         }
     }
-    if (t.steps.size() == trace.steps.size()) return std::nullopt;  // nothing to thin: no note
-    return t;
-}
+    void hole(const Hole& h) override { out_.hole(h); }
+    void finish(const TraceSummary& summary) override {
+        pass_on();
+        out_.finish(summary);
+    }
+    // Whether any moves became one line (else the drawing is the program's, and says nothing).
+    bool merged() const { return merged_; }
+    // The moves drawn.
+    std::size_t moves() const { return moves_; }
 
-// The per-block data: for each line that moves the tool or changes it, (line step, layer or
-// -1 for "position unknown", X, Y, Z steps in data units); each value as a difference from the
-// record before, which keeps the numbers short. A block's last move gives its position.
-struct BlockData {
-    std::string moves;  // the flat integer list
-    std::string tools;  // (line step, tool) pairs
+private:
+    void pass_on() {
+        if (!held_) return;
+        if (is_move(*held_)) ++moves_;
+        out_.step(*held_);
+        held_.reset();
+    }
+
+    TraceSink& out_;
+    MachineKind kind_;
+    double tolerance_ = 0.0;
+    std::optional<Step> held_;  // the last step, passed on when the next does not extend it
+    std::optional<Run> run_;    // the run that ends with held_, when that is a straight move
+    bool merged_ = false;
+    std::size_t moves_ = 0;
 };
 
-BlockData block_data(const Trace& trace) {
+// The per-block data, written as the steps come (a pass of its own, while the page is
+// written): for each line that moves the tool or changes it, (line step, layer or -1 for
+// "position unknown", X, Y, Z steps in data units); each value as a difference from the record
+// before, which keeps the numbers short. A block's last move gives its position, so each
+// record is held until a step of another line comes.
+class BlockMoves : public TraceSink {
+public:
+    explicit BlockMoves(std::ostream& out) : out_(out) {}
+    void step(const Step& s) override {
+        if (!is_move(s) && s.kind != StepKind::tool_change) return;
+        Record r{s.line, -1, x_, y_, z_};
+        if (is_move(s)) {
+            r.kind = static_cast<int>(layer_of(s));
+            r.x = x_ = data_units(s.to.x);
+            r.y = y_ = data_units(s.to.y);
+            r.z = z_ = data_units(s.to.z);
+        }
+        if (!held_ || held_->line != r.line) write_held();
+        held_ = r;
+    }
+    void hole(const Hole&) override {}
+    void finish(const TraceSummary&) override {
+        write_held();
+        out_ << text_;
+    }
+
+private:
     struct Record {
         int line, kind;
         long long x, y, z;
     };
-    std::vector<Record> records;
-    std::vector<std::pair<int, int>> tools;
-    long long x = 0, y = 0, z = 0;  // the last known position, in data units
-    for (const Step& s : trace.steps) {
-        if (s.kind == StepKind::tool_change) tools.emplace_back(s.line, s.tool);
-        if (!is_move(s) && s.kind != StepKind::tool_change) continue;
-        Record r{s.line, -1, x, y, z};
-        if (is_move(s)) {
-            r.kind = static_cast<int>(layer_of(s));
-            r.x = x = data_units(s.to.x);
-            r.y = y = data_units(s.to.y);
-            r.z = z = data_units(s.to.z);
+    void write_held() {
+        if (!held_) return;
+        const Record& r = *held_;
+        fmt::format_to(std::back_inserter(text_), "{}{},{},{},{},{}", written_any_ ? "," : "", r.line - written_.line, r.kind,
+                       r.x - written_.x, r.y - written_.y, r.z - written_.z);
+        if (text_.size() > 65536) {
+            out_ << text_;
+            text_.clear();
         }
-        if (!records.empty() && records.back().line == r.line) records.back() = r;
-        else records.push_back(r);
+        written_any_ = true;
+        written_ = r;
+        held_.reset();
     }
-    BlockData d;
-    Record prev{0, 0, 0, 0, 0};
-    for (const Record& r : records) {
-        fmt::format_to(std::back_inserter(d.moves), "{}{},{},{},{},{}", d.moves.empty() ? "" : ",", r.line - prev.line, r.kind,
-                       r.x - prev.x, r.y - prev.y, r.z - prev.z);
-        prev = r;
-    }
-    int line = 0;
-    for (const auto& [at, tool] : tools) {
-        fmt::format_to(std::back_inserter(d.tools), "{}{},{}", d.tools.empty() ? "" : ",", at - line, tool);
-        line = at;
-    }
-    return d;
-}
 
-// The program's lines as the reader counts them: split at '\n', a trailing '\r' dropped, no
-// block after a final newline.
-std::vector<std::string_view> lines_of(std::string_view program) {
-    std::vector<std::string_view> lines;
+    std::ostream& out_;
+    std::string text_;  // records not yet written out
+    bool written_any_ = false;
+    long long x_ = 0, y_ = 0, z_ = 0;  // the last known position, in data units
+    std::optional<Record> held_;
+    Record written_{0, 0, 0, 0, 0};
+};
+
+// Calls f with each of the program's lines as the reader counts them: split at '\n', a
+// trailing '\r' dropped, no block after a final newline.
+template <class F>
+void for_each_line(std::string_view program, F&& f) {
     std::size_t pos = 0;
     while (pos < program.size()) {
         const std::size_t nl = program.find('\n', pos);
         std::string_view line = program.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        lines.push_back(line);
+        f(line);
         pos = nl == std::string_view::npos ? program.size() : nl + 1;
     }
-    return lines;
+}
+
+// The program's lines joined by '\n' as one script_json string, made a line at a time (a line
+// break is ASCII: no UTF-8 sequence, valid or not, spans one, so each line's escapes are those
+// of the whole).
+void write_program_json(std::ostream& out, std::string_view program) {
+    out << '"';
+    bool first = true;
+    for_each_line(program, [&](std::string_view line) {
+        if (!first) out << "\\n";
+        first = false;
+        const std::string quoted = script_json(std::string(line));
+        out.write(quoted.data() + 1, static_cast<std::streamsize>(quoted.size() - 2));
+    });
+    out << '"';
 }
 
 constexpr const char* style = R"CSS(
@@ -396,19 +445,99 @@ bool is_html_plot(std::string_view file) {
     return ends(".html") || ends(".htm");
 }
 
+namespace {
+// The drawing's options on the page: its layers marked for the switches, and hole marks up to
+// the limit.
+BackplotOptions layered(const BackplotOptions& options, const HtmlPlotLimits& limits) {
+    BackplotOptions o = options;
+    o.layers = BackplotLayers::classes;
+    o.hole_marks = limits.holes;
+    return o;
+}
+}  // namespace
+
+class HtmlPlot::Impl {
+public:
+    Impl(const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options, const HtmlPlotLimits& limits)
+        : plan_(plan), stats_(stats), options_(options), limits_(limits), drawer_(plan, stats, layered(options, limits)) {
+        if (plan.moves > limits.moves) thinning_.emplace(drawer_, stats, options.kind);
+    }
+
+    void step(const Step& s) {
+        if (is_move(s)) {
+            ++counts_[static_cast<std::size_t>(layer_of(s))];
+            ++moves_;
+        }
+        if (s.kind == StepKind::tool_change) {
+            fmt::format_to(std::back_inserter(tools_), "{}{},{}", tools_.empty() ? "" : ",", s.line - tool_line_, s.tool);
+            tool_line_ = s.line;
+        }
+        drawing().step(s);
+    }
+    void hole(const Hole& h) { drawing().hole(h); }
+    void finish(const TraceSummary& summary) {
+        drawing().finish(summary);
+        drawing_ = drawer_.take();
+    }
+
+    void write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const;
+
+private:
+    TraceSink& drawing() { return thinning_ ? static_cast<TraceSink&>(*thinning_) : drawer_; }
+
+    const BackplotPlan& plan_;
+    const ProgramStats& stats_;
+    BackplotOptions options_;
+    HtmlPlotLimits limits_;
+    BackplotDrawer drawer_;
+    std::optional<Thinning> thinning_;  // between the steps and the drawer, beyond limits.moves
+    std::string tools_;  // the (line step, tool) pairs of the tool changes
+    int tool_line_ = 0;
+    std::array<std::size_t, std::size(backplot_layers)> counts_{};  // moves of each layer
+    std::size_t moves_ = 0;
+    BackplotDrawing drawing_;
+};
+
+HtmlPlot::HtmlPlot(const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options, const HtmlPlotLimits& limits)
+    : impl_(std::make_unique<Impl>(plan, stats, options, limits)) {}
+HtmlPlot::~HtmlPlot() = default;
+void HtmlPlot::step(const Step& step) { impl_->step(step); }
+void HtmlPlot::hole(const Hole& hole) { impl_->hole(hole); }
+void HtmlPlot::finish(const TraceSummary& summary) { impl_->finish(summary); }
+void HtmlPlot::write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const {
+    impl_->write(out, program, read_again);
+}
+
 std::string backplot_html(std::string_view program, const Trace& trace, const ProgramStats& stats,
                           const BackplotOptions& options, const HtmlPlotLimits& limits) {
+    BackplotPlan plan(options.kind);
+    for (const Step& s : trace.steps) plan.step(s);
+    for (const Hole& h : trace.holes) plan.hole(h);
+    plan.finish({});
+    HtmlPlot plot(plan, stats, options, limits);
+    const auto replay = [&](TraceSink& sink) {
+        for (const Step& s : trace.steps) sink.step(s);
+        for (const Hole& h : trace.holes) sink.hole(h);
+        sink.finish({});
+    };
+    replay(plot);
+    std::ostringstream page;
+    plot.write(page, program, replay);
+    return std::move(page).str();
+}
+
+void HtmlPlot::Impl::write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const {
+    const BackplotOptions& options = options_;
+    const ProgramStats& stats = stats_;
+    const HtmlPlotLimits& limits = limits_;
     const bool lathe = options.kind == MachineKind::lathe;
-    const std::optional<Trace> thin = thinned(trace, stats, options.kind, limits);
-    BackplotOptions layered = options;
-    layered.layers = BackplotLayers::classes;
-    layered.hole_marks = limits.holes;
-    const BackplotDrawing drawing = backplot_drawing(thin ? *thin : trace, stats, layered);
-    const std::vector<std::string_view> lines = lines_of(program);
+    const bool thin = thinning_ && thinning_->merged();
+    const BackplotDrawing& drawing = drawing_;
+    std::size_t lines = 0;
+    for_each_line(program, [&](std::string_view) { ++lines; });
     const std::string title = options.title.empty() ? "program" : options.title;
 
-    std::string page;
-    auto add = [&](std::string_view s) { page += s; };
+    auto add = [&](std::string_view s) { out << s; };
     add("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
     add("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n");
     add(fmt::format("<title>{} - camgen backplot</title>\n", html(title)));
@@ -424,9 +553,9 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
     add("<section id=\"block\"><h2>Block</h2>\n<div class=\"controls\"><button id=\"prev\" type=\"button\" title=\"previous "
         "block\">&#9664;</button>");
     add(fmt::format("<input id=\"slider\" type=\"range\" min=\"1\" max=\"{}\" value=\"1\" aria-label=\"block\">",
-                    std::max<std::size_t>(lines.size(), 1)));
+                    std::max<std::size_t>(lines, 1)));
     add("<button id=\"next\" type=\"button\" title=\"next block\">&#9654;</button></div>\n");
-    add(fmt::format("<p>line <output id=\"line-no\">1</output> of {}</p>\n", lines.size()));
+    add(fmt::format("<p>line <output id=\"line-no\">1</output> of {}</p>\n", lines));
     add("<pre id=\"nc-before\"></pre><pre id=\"nc-current\"><span id=\"nc-no\"></span>  <span id=\"nc-text\"></span></pre>"
         "<pre id=\"nc-after\"></pre>\n");
     add("<h2>Tool after this block</h2>\n<table>\n");
@@ -445,11 +574,9 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
         add(fmt::format("<label><input type=\"checkbox\" checked data-class=\"t{0}\"><span class=\"swatch\" data-class=\"t{0}\"></span>"
                         "T{0} {1}</label>\n",
                         t.tool, html(t.description)));
-    std::array<std::size_t, std::size(backplot_layers)> counts{};
-    for (const Step& s : trace.steps)
-        if (is_move(s)) ++counts[static_cast<std::size_t>(layer_of(s))];
+    std::array<std::size_t, std::size(backplot_layers)> counts = counts_;
     counts[static_cast<std::size_t>(BackplotLayer::width)] = counts[static_cast<std::size_t>(BackplotLayer::feed)];
-    counts[static_cast<std::size_t>(BackplotLayer::hole)] = lathe ? 0 : trace.holes.size();
+    counts[static_cast<std::size_t>(BackplotLayer::hole)] = lathe ? 0 : plan_.holes;
     for (const auto& layer : backplot_layers) {
         const std::size_t n = counts[static_cast<std::size_t>(layer.value)];
         const bool moves = layer.value != BackplotLayer::width && layer.value != BackplotLayer::hole;
@@ -460,40 +587,37 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
                                : layer.value == BackplotLayer::hole ? fmt::format(", {}", grouped(n))
                                                                     : std::string()));
     }
-    if (thin) {
-        const auto count = [](const Trace& t) { return std::count_if(t.steps.begin(), t.steps.end(), is_move); };
+    if (thin)
         add(fmt::format("<p class=\"note\" id=\"thinned\">Drawing thinned: {} moves are drawn as {} lines (runs of straight moves "
                         "whose points lie within half a pixel of one line). The slider and the numbers show every block.</p>\n",
-                        grouped(static_cast<std::size_t>(count(trace))), grouped(static_cast<std::size_t>(count(*thin)))));
-    }
-    if (trace.holes.size() > limits.holes && !lathe)
+                        grouped(moves_), grouped(thinning_->moves())));
+    if (plan_.holes > limits.holes && !lathe)
         add(fmt::format("<p class=\"note\" id=\"plain-holes\">Holes beyond the first {} are drawn as plain circles (no cross), {} of "
                         "{}.</p>\n",
-                        grouped(limits.holes), grouped(trace.holes.size() - limits.holes), grouped(trace.holes.size())));
+                        grouped(limits.holes), grouped(plan_.holes - limits.holes), grouped(plan_.holes)));
     add("</section>\n");
 
     add(fmt::format("<section id=\"stats\"><h2>Statistics</h2>\n<pre>{}</pre></section>\n", html(format_stats(stats))));
     add("</aside>\n</main>\n<pre id=\"steps\" hidden></pre>\n");
 
-    // The data: every block's text, and where each block leaves the tool.
-    const BlockData blocks = block_data(trace);
-    std::string nc;
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        if (i) nc += '\n';
-        nc += lines[i];
-    }
+    // The data: every block's text, and where each block leaves the tool (written in pieces:
+    // the lists and the text are the size of the program).
     const BackplotFrame& f = drawing.frame;
     std::string kinds;
     for (const auto& layer : backplot_layers) kinds += fmt::format("{}\"{}\"", kinds.empty() ? "" : ",", layer.name);
     add("<script type=\"application/json\" id=\"camgen-data\">");
-    add(fmt::format("{{\"lathe\":{},\"unit\":{},\"frame\":[{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}],\"kinds\":[{}],\n\"tools\":[{}],\n"
-                    "\"moves\":[{}],\n\"nc\":{}}}",
-                    lathe ? "true" : "false", data_unit, f.min_u + 0.0, f.max_v + 0.0, f.scale, f.left, f.top, kinds, blocks.tools, blocks.moves,
-                    script_json(nc)));
+    add(fmt::format("{{\"lathe\":{},\"unit\":{},\"frame\":[{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}],\"kinds\":[{}],\n\"tools\":[",
+                    lathe ? "true" : "false", data_unit, f.min_u + 0.0, f.max_v + 0.0, f.scale, f.left, f.top, kinds));
+    add(tools_);
+    add("],\n\"moves\":[");
+    BlockMoves moves(out);
+    read_again(moves);
+    add("],\n\"nc\":");
+    write_program_json(out, program);
+    add("}");
     add("</script>\n<script>");
     add(script);
     add("</script>\n</body>\n</html>\n");
-    return page;
 }
 
 }  // namespace camgen

@@ -60,7 +60,8 @@ private:
 
 class TraceBuilder::Impl {
 public:
-    Impl(const Machine& machine, TraceSink& sink) : options_(machine.longhand()), sink_(sink) {}
+    Impl(const Machine& machine, TraceSink& sink)
+        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), sink_(sink) {}
 
     void add(const ReadEvent& e) {
         line_ = e.line;
@@ -152,11 +153,13 @@ private:
     }
 
     // A step to the sink, its holes found first. A program does not say what kind a feed move
-    // is; its motion does where it goes down.
+    // is; its motion does where it goes down. On a lathe Z is the spindle's axis: a feed towards
+    // the chuck turns the work, except on the axis, where a drill plunges.
     void emit(Step s) {
         if (s.kind == StepKind::feed && s.movement == Movement::cutting && s.to.z < s.from.z) {
             const bool straight_down = !s.arc && s.to.x == s.from.x && s.to.y == s.from.y;
-            s.movement = straight_down ? Movement::plunge : Movement::ramp;
+            if (!lathe_) s.movement = straight_down ? Movement::plunge : Movement::ramp;
+            else if (straight_down && s.to.x == 0.0 && s.to.y == 0.0) s.movement = Movement::plunge;
         }
         holes_.step(s, sink_);
         sink_.step(s);
@@ -179,6 +182,7 @@ private:
     }
 
     LonghandOptions options_;
+    bool lathe_;  // Z is the spindle axis
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     TraceSink& sink_;
     HoleFinder holes_;

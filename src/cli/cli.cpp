@@ -211,8 +211,8 @@ std::string base_name(const std::string& file) { return file.substr(file.find_la
 
 // Reading a program back for its statistics and a --plot file, in passes over it: `pass` reads
 // the program once into a sink (the file again, or the text kept) and returns the coarsest
-// resolution it used. The first pass measures the program and plans the SVG drawing (the HTML
-// page keeps the trace it shows), a second draws the SVG.
+// resolution it used. The first pass measures the program and plans the drawing, a second
+// draws the SVG or the HTML page's drawing, and a third writes the page's block data.
 class ReadBack {
 public:
     using Pass = std::function<ReadResolution(ReadEventSink&)>;
@@ -220,20 +220,29 @@ public:
         : machine_(machine), html_(!plot_file.empty() && is_html_plot(plot_file)), pass_(std::move(pass)), stats_(machine),
           plan_(machine.kind) {
         std::vector<TraceSink*> sinks{&stats_};
-        if (!plot_file.empty()) sinks.push_back(html_ ? static_cast<TraceSink*>(&trace_) : &plan_);
+        if (!plot_file.empty()) sinks.push_back(&plan_);
         TraceFanOut fan(std::move(sinks));
         TraceBuilder trace(machine_, fan);
         resolution_ = pass_(trace);
     }
     const ProgramStats& stats() const { return stats_.stats(); }
     ReadResolution resolution() const { return resolution_; }
-    // The --plot file's text: the HTML page (it shows `program`, the text) or the SVG drawing.
-    std::string plot_text(std::string_view program, const BackplotOptions& options) {
-        if (html_) return backplot_html(program, trace_.take(), stats(), options);
+    // Writes the --plot file: the HTML page (it shows `program`, the text) or the SVG drawing.
+    void write_plot(std::ostream& out, std::string_view program, const BackplotOptions& options) {
+        if (html_) {
+            HtmlPlot page(plan_, stats(), options);
+            const auto read = [&](TraceSink& sink) {
+                TraceBuilder trace(machine_, sink);
+                (void)pass_(trace);
+            };
+            read(page);
+            page.write(out, program, read);
+            return;
+        }
         BackplotDrawer drawer(plan_, stats(), options);
         TraceBuilder trace(machine_, drawer);
         (void)pass_(trace);
-        return drawer.take().svg;
+        out << drawer.take().svg;
     }
 
 private:
@@ -242,7 +251,6 @@ private:
     Pass pass_;
     StatsAccumulator stats_;
     BackplotPlan plan_;
-    TraceCollector trace_;
     ReadResolution resolution_;
 };
 
@@ -347,7 +355,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back.stats());
     if (!v.plot.empty()) {
         OutputFile plot(v.plot);
-        plot.stream() << back.plot_text(text, {base_name(source), machine.name, machine.kind});
+        back.write_plot(plot.stream(), text, {base_name(source), machine.name, machine.kind});
         plot.commit();
     }
     if (v.job.empty()) {
@@ -387,7 +395,7 @@ void read_back(std::string_view program, const Job& job, const Options& o, std::
         return resolution;
     });
     if (o.stats) err << format_stats(back.stats());
-    if (!o.plot.empty()) plot.emplace(o.plot).stream() << back.plot_text(program, {name, machine.name, machine.kind});
+    if (!o.plot.empty()) back.write_plot(plot.emplace(o.plot).stream(), program, {name, machine.name, machine.kind});
 }
 
 }  // namespace

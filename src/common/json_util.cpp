@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <unordered_set>
 
@@ -639,6 +640,26 @@ Document parse_document_with_nlohmann(std::string_view text, const std::string& 
     Document doc;
     parse_into(doc, text, source_name, max_nesting, true);
     return doc;
+}
+
+std::string fingerprint(const Document& doc) {
+    std::string out = doc.root.dump();
+    for (const auto& packed : doc.packed) {
+        out += packed.form == PackedArray::Form::points ? "\npoints" : "\nlines";
+        out += " stride ";
+        out += std::to_string(packed.stride);
+        for (const double v : packed.xyz) {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, &v, sizeof bits);
+            out += ' ';
+            out += std::to_string(bits);
+        }
+        for (const auto k : packed.kinds) {
+            out += " k";
+            out += std::to_string(k);
+        }
+    }
+    return out;
 }
 
 void PackedArray::add(const double* numbers, const std::uint8_t* number_kinds, int count) {

@@ -13,6 +13,7 @@
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/common/error.hpp"
+#include "camgen/common/json_util.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/operations/registry.hpp"
@@ -128,6 +129,15 @@ void numbers_of(nlohmann::json& j, std::vector<nlohmann::json*>& out) {
 std::optional<std::string> job_input(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), std::min(size, max_input));
     return guarded([&]() -> std::optional<std::string> {
+        // Whatever the fast JSON reader reads, nlohmann's must read to the same document.
+        if (const auto fast = json::parse_document_fast(text, limits.nesting)) {
+            try {
+                if (json::fingerprint(*fast) != json::fingerprint(json::parse_document_with_nlohmann(text, "fuzz.json", limits.nesting)))
+                    return std::string("the fast JSON reader and nlohmann's read different documents");
+            } catch (const InputError& e) {
+                return std::string("the fast JSON reader took a text nlohmann's refuses: ") + e.what();
+            }
+        }
         const Job job = read_job(text, "fuzz.json", limits);
         for (const Machine& m : machines()) (void)post(job, m);
         return std::nullopt;

@@ -8,8 +8,11 @@
 
 #include <fmt/format.h>
 
+#include "camgen/analysis/stats.hpp"
+#include "camgen/analysis/trace.hpp"
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
+#include "support.hpp"
 
 using namespace camgen;
 using camgen::test::Run;
@@ -145,4 +148,19 @@ TEST_CASE("lathe: --describe-machine says the kind and the diameter globals") {
     Run mill = run({"--describe-machine", "fanuc"});
     CHECK(mill.out.find("kind                    mill") != std::string::npos);
     CHECK(mill.out.find("xDiameterProg") == std::string::npos);
+}
+
+TEST_CASE("lathe: read back, a feed along Z turns the work; only a drill on the axis plunges") {
+    for (const char* name : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        INFO(name);
+        const Machine m = load_machine(name);
+        const Trace trace = trace_program(read_program(test::post_job(test::read_file(CAMGEN_SOURCE_DIR "/samples/shaft.json"), name).text, m, "p"), m);
+        const ProgramStats stats = compute_stats(trace, m);
+        const auto length = [&](Movement kind) { return stats.movement_length[static_cast<std::size_t>(kind)]; };
+        // The shaft: a centre drill and a drill on the axis (tools 1 and 2), then a turning tool.
+        REQUIRE(stats.tools.size() == 3);
+        CHECK(length(Movement::plunge) == doctest::Approx(stats.tools[0].feed_length + stats.tools[1].feed_length));
+        CHECK(length(Movement::cutting) == doctest::Approx(stats.tools[2].feed_length));
+        CHECK(length(Movement::ramp) == 0.0);
+    }
 }

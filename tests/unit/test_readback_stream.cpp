@@ -155,6 +155,34 @@ TEST_CASE("stream plot: beyond `exact` elements of a kind the drawing is thinned
     CHECK(circles(thin) == 52);
 }
 
+TEST_CASE("stream plot: a plunge at a hole's place is the hole's, one beside it in the same column is marked") {
+    // Holes in columns (equal X, as a grid has them; drilled downwards, so that the lookup must
+    // sort them), plunges at each of them and between them.
+    Trace trace;
+    auto plunge = [&](double x, double y) {
+        Step down;
+        down.kind = StepKind::feed;
+        down.tool = 1;
+        down.feed = 100;
+        down.from = {x, y, 2};
+        down.to = {x, y, -3};
+        trace.steps.push_back(down);
+    };
+    for (int column = 0; column < 3; ++column)
+        for (int row = 49; row >= 0; --row) trace.holes.push_back({{column * 10.0, row * 2.0}, -3, 1, 0});
+    for (const Hole& h : trace.holes) plunge(h.at.x, h.at.y);
+    plunge(10, 2.0000004);  // a hole's place within 1e-6 mm
+    plunge(10, 3);          // between two holes of a column
+    plunge(10, 200);        // beyond the column's last
+    plunge(10.5, 40);       // between the columns
+    trace.tools.push_back({1, 3, "drill"});
+    const Machine m = load_machine("fanuc");
+    const std::string svg = backplot_svg(trace, compute_stats(trace, m), BackplotOptions{"p.nc", m.name, m.kind});
+    std::size_t marks = 0;
+    for (auto at = svg.find("l8,8M"); at != std::string::npos; at = svg.find("l8,8M", at + 1)) ++marks;
+    CHECK(marks == 3 + 1);  // and the key's
+}
+
 TEST_CASE("stream verify: a program from standard input is read twice for --job and --plot, as a file is") {
     const std::string job_json = grid_job(40);
     const auto dir = std::filesystem::temp_directory_path() / "camgen-stream-verify";

@@ -73,12 +73,15 @@ struct BackplotDrawing {
 class BackplotPlan : public TraceSink {
 public:
     explicit BackplotPlan(MachineKind kind);
-    void step(const Step&) override {}
+    void step(const Step& step) override {
+        if (step.kind == StepKind::rapid || step.kind == StepKind::feed) ++moves;
+    }
     void hole(const Hole& hole) override;
     void finish(const TraceSummary& summary) override;
 
+    std::size_t moves = 0;                          // rapid and feed moves (the HTML page thins beyond a count)
     std::map<int, Box> hole_centres;                // tool -> the box around its holes' centres
-    std::vector<Vec2> places;                       // every hole's place, by X after finish
+    std::vector<Vec2> places;                       // every hole's place, by X then Y after finish
     std::map<int, std::pair<int, int>> first_last;  // tool -> its first and last hole's number
     std::size_t holes = 0;
 

@@ -5,6 +5,9 @@
 // after it (numbers and a marker in the drawing), switches for the drawing's layers (each tool,
 // each kind of move) and the statistics. Everything comes from the program as read back.
 #include <cstddef>
+#include <functional>
+#include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -20,6 +23,29 @@ struct HtmlPlotLimits {
     std::size_t moves = 20000;
     // Holes drawn with their own circle and cross; above this, the rest as plain circles.
     std::size_t holes = 5000;
+};
+
+// The page as the trace is read a second time (the streaming core of backplot_html, as
+// BackplotDrawer is backplot_svg's): the drawing made as the steps come (beyond limits.moves
+// moves of the plan, thinned as they come); then, as the page is written, a third reading
+// writes each block's position straight into it. So the page of a program of millions of
+// blocks holds the program's text (which it shows) and a drawing of bounded size, not its trace.
+class HtmlPlot : public TraceSink {
+public:
+    // `plan` (finished) and `stats` of the first pass; both must outlive the plot.
+    HtmlPlot(const BackplotPlan& plan, const ProgramStats& stats, const BackplotOptions& options,
+             const HtmlPlotLimits& limits = {});
+    ~HtmlPlot() override;
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+    // Writes the page, once finished, for `program`: the text that was read back.
+    // `read_again` hands the trace once more to the sink it is given (steps, holes, finish).
+    void write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const;
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
 };
 
 // The page for `program`, the NC text that was read back into `trace` (its steps' lines are

@@ -103,6 +103,10 @@ Document parse_document(std::string_view text, const std::string& source_name, i
 // nothing where it leaves the text to nlohmann's.
 std::optional<Document> parse_document_fast(std::string_view text, int max_nesting = 64);
 Document parse_document_with_nlohmann(std::string_view text, const std::string& source_name, int max_nesting = 64);
+// A document as text that tells apart everything the job reader could see: number kinds (1,
+// 1.0 and -1 differ), strings byte for byte, the packed arrays with their forms, strides and
+// every number's bits and kind. For holding the two readers to the same documents.
+std::string fingerprint(const Document& doc);
 
 // Escapes a key for use in a JSON pointer ("~" -> "~0", "/" -> "~1").
 std::string pointer_escape(std::string_view key);
