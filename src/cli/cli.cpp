@@ -153,7 +153,9 @@ private:
     std::vector<std::unique_ptr<char[]>> blocks_;
 };
 
-void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err) {
+// Posts the job into `out`. Unless `out` discards what it got when the run fails (a temporary
+// file), the program is held until it is complete, so that a failure writes nothing.
+void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err, bool out_discards_failures) {
     if (o.events) {
         EventPrinter printer(out);
         expand_job(job, printer);
@@ -175,7 +177,7 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
         if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
     BlockBuffer blocks;
     std::ostream buffer(&blocks);
-    std::unique_ptr<Post> post = make_post(machine, buffer, po);
+    std::unique_ptr<Post> post = make_post(machine, out_discards_failures ? out : buffer, po);
     SafetyCheck check(limits);
     // Passes each event through the check, then to the post.
     struct Checked : EventSink {
@@ -191,7 +193,7 @@ void write_program(const Job& job, const Options& o, std::ostream& out, std::ost
     expand_job(job, checked);
     check.finish();
     post->close();
-    blocks.write_to(out);
+    if (!out_discards_failures) blocks.write_to(out);
     out.flush();
     if (!out) throw IoError("cannot write the program", errno);
 }
@@ -541,7 +543,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             std::ostream& destination = file ? file->stream() : out;
             std::ostringstream buffer;
             try {
-                write_program(job, o, read_back_wanted ? buffer : destination, err);
+                // Into a temporary file straight away: a failure removes it (a million holes
+                // longhand are 100 MB of text, held otherwise).
+                if (read_back_wanted) write_program(job, o, buffer, err, false);
+                else write_program(job, o, destination, err, file && file->discarded_unless_committed());
             } catch (const IoError& e) {
                 // The block writer knows the reason, not the file.
                 const std::string where = file ? o.output : std::string("standard output");

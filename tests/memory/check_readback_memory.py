@@ -4,7 +4,9 @@ must stay within the job's size plus 50 MB of peak memory, with and without --jo
 --plot F.svg; with --plot F.html, whose page shows the program's text and keeps it, within the
 job's and the program's size plus 50 MB. A read-back that keeps the whole program's events or
 steps needs gigabytes and fails here (the HTML page of 100,000 holes took 888 MB when it kept
-the trace). Each run's peak comes from wait4's rusage of that child alone.
+the trace). And posting: a job of 1,000,000 holes posted longhand for grbl into a file (16
+million lines, 100 MB) within issue 13's bound for reading a job, 3 x the job file + 50 MB: the
+program goes into the file's temporary as it is made (it took 161 MB when it was held whole). Each run's peak comes from wait4's rusage of that child alone.
 
 Usage: check_readback_memory.py CAMGEN SOURCE_DIR [CXX_FLAGS]
 Skipped (exit 77) in a sanitizer build, whose shadow memory is no measure of camgen's."""
@@ -14,6 +16,7 @@ import sys
 import tempfile
 
 HOLES = 200_000
+POSTED_HOLES = 1_000_000
 SLACK_MB = 50
 
 
@@ -62,6 +65,18 @@ def main():
                   f"{'ok' if ok else 'FAILED'}")
             if code != 0:
                 print(text[-2000:])
+        # Posting a large job longhand into a file.
+        big_job, big_program = os.path.join(work, "big.json"), os.path.join(work, "big.nc")
+        with open(big_job, "w") as f:
+            subprocess.run([sys.executable, os.path.join(source, "bench", "gen_holes.py"), str(POSTED_HOLES)], stdout=f, check=True)
+        out = os.path.join(work, "out.txt")
+        code, kb = peak_kb([camgen, big_job, "--machine", "grbl", "-o", big_program], out)
+        limit_kb = 3 * os.path.getsize(big_job) // 1024 + SLACK_MB * 1024
+        big_lines = sum(1 for _ in open(big_program, "rb")) if code == 0 else 0
+        ok = code == 0 and kb <= limit_kb and big_lines > 16 * POSTED_HOLES
+        failed |= not ok
+        print(f"post of {POSTED_HOLES} holes for grbl into a file ({big_lines} lines): exit {code}, peak {kb // 1024} MB, "
+              f"limit {limit_kb // 1024} MB: {'ok' if ok else 'FAILED'}")
         return 1 if failed else 0
 
 

@@ -16,6 +16,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "support.hpp"
 
 using namespace camgen;
@@ -225,4 +227,40 @@ TEST_CASE("a --plot that cannot be written leaves -o as it was: nothing is commi
     const test::Run r2 = test::run({plate, "--machine", "fanuc", "-o", (dir / "new.nc").string(), "--plot", (dir / "missing" / "p.svg").string()});
     CHECK(r2.code == 3);
     CHECK_FALSE(fs::exists(dir / "new.nc"));
+}
+
+TEST_CASE("a program posted straight into its temporary file: a refusal after text was written leaves nothing") {
+    // 20,000 holes are posted (the post hands its text to the file as it goes), then the second
+    // operation is refused by the safety check: too deep for the tool's flutes.
+    std::string holes;
+    for (int i = 0; i < 20000; ++i) holes += fmt::format("{}[{}, {}]", i ? ", " : "", i % 200 * 2, i / 200 * 2);
+    const std::string job_text = fmt::format(
+        R"({{"clearance": 20, "tools": [{{"number": 1, "diameter": 1, "rpm": 2000}}, {{"number": 2, "diameter": 3, "rpm": 2000, "fluteLength": 20}}],
+  "operations": [{{"type": "drill", "tool": 1, "retractPlane": 5, "endDepth": 3, "plungingFeedrate": 100, "holes": [{}]}},
+                 {{"type": "drill", "tool": 2, "retractPlane": 5, "endDepth": 25, "plungingFeedrate": 100, "holes": [[1, 1]]}}]}})",
+        holes);
+    const fs::path dir = test::scratch("output-streamed");
+    write(dir / "job.json", job_text);
+    const fs::path out = dir / "part.nc";
+    write(out, "old program\n");
+    for (const char* machine : {"wabeco", "grbl", "fanuc"}) {
+        CAPTURE(machine);
+        const test::Run r = test::run({(dir / "job.json").string(), "--machine", machine, "-o", out.string()});
+        CHECK(r.code == 1);
+        CHECK(r.err.find("/operations/1/endDepth: the hole is 25.000 mm deep") != std::string::npos);
+        CHECK(test::read_file(out.string()) == "old program\n");
+        CHECK(temporaries_in(dir) == 0);
+        // To standard output, which cannot take text back, nothing is written either.
+        const test::Run s = test::run({(dir / "job.json").string(), "--machine", machine});
+        CHECK(s.code == 1);
+        CHECK(s.out.empty());
+    }
+    // And the same job without the refused operation is written whole.
+    const std::string good = job_text.substr(0, job_text.find(",\n                 {")) + "]}";
+    write(dir / "good.json", good);
+    REQUIRE(test::run({(dir / "good.json").string(), "--machine", "wabeco", "-o", out.string()}).code == 0);
+    const std::string program = test::read_file(out.string());
+    CHECK(program.size() > 200000);
+    CHECK(program == test::run({(dir / "good.json").string(), "--machine", "wabeco"}).out);  // held whole, then written
+    CHECK(temporaries_in(dir) == 0);
 }

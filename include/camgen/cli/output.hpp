@@ -28,6 +28,9 @@ public:
     void commit();
     // The file being written to: the temporary, or the target itself.
     const std::string& written_path() const { return temp_.empty() ? target_ : temp_; }
+    // Whether what is written vanishes unless committed (a temporary): then a writer may stream
+    // into it, where otherwise it must hold its output until it is complete.
+    bool discarded_unless_committed() const { return !temp_.empty(); }
 
 private:
     std::string path_;    // as given, for messages
