@@ -2,15 +2,20 @@
 // per-block data of the read-back trace, and a small script that steps through it.
 #include "camgen/analysis/backplot_html.hpp"
 
+#include "camgen/common/error.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <istream>
 #include <numbers>
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <streambuf>
+#include <string>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -245,23 +250,22 @@ private:
 };
 
 // Calls f with each of the program's lines as the reader counts them: split at '\n', a
-// trailing '\r' dropped, no block after a final newline.
+// trailing '\r' dropped, no block after a final newline (std::getline's split). One line is
+// held at a time.
 template <class F>
-void for_each_line(std::string_view program, F&& f) {
-    std::size_t pos = 0;
-    while (pos < program.size()) {
-        const std::size_t nl = program.find('\n', pos);
-        std::string_view line = program.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        f(line);
-        pos = nl == std::string_view::npos ? program.size() : nl + 1;
+void for_each_line(std::istream& program, F&& f) {
+    std::string line;
+    while (std::getline(program, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        f(std::string_view(line));
     }
+    if (program.bad()) throw IoError("cannot read the program again for the page: the read failed");
 }
 
 // The program's lines joined by '\n' as one script_json string, made a line at a time (a line
 // break is ASCII: no UTF-8 sequence, valid or not, spans one, so each line's escapes are those
 // of the whole).
-void write_program_json(std::ostream& out, std::string_view program) {
+void write_program_json(std::ostream& out, std::istream& program) {
     out << '"';
     bool first = true;
     for_each_line(program, [&](std::string_view line) {
@@ -272,6 +276,16 @@ void write_program_json(std::ostream& out, std::string_view program) {
     });
     out << '"';
 }
+
+// A read-only stream buffer over text kept elsewhere.
+class ViewBuffer : public std::streambuf {
+public:
+    explicit ViewBuffer(std::string_view text) {
+        char* begin = const_cast<char*>(text.data());  // never written: the buffer has no put area
+        setg(begin, begin, begin + text.size());
+    }
+    void rewind() { setg(eback(), eback(), egptr()); }
+};
 
 constexpr const char* style = R"CSS(
 body{margin:0;font:14px/1.4 "DejaVu Sans",Arial,Helvetica,sans-serif;color:#222;background:#f4f4f4}
@@ -480,7 +494,8 @@ public:
         drawing_ = drawer_.take();
     }
 
-    void write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const;
+    void write(std::ostream& out, const std::function<std::istream&()>& program,
+               const std::function<void(TraceSink&)>& read_again) const;
 
 private:
     TraceSink& drawing() { return thinning_ ? static_cast<TraceSink&>(*thinning_) : drawer_; }
@@ -504,7 +519,8 @@ HtmlPlot::~HtmlPlot() = default;
 void HtmlPlot::step(const Step& step) { impl_->step(step); }
 void HtmlPlot::hole(const Hole& hole) { impl_->hole(hole); }
 void HtmlPlot::finish(const TraceSummary& summary) { impl_->finish(summary); }
-void HtmlPlot::write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const {
+void HtmlPlot::write(std::ostream& out, const std::function<std::istream&()>& program,
+                     const std::function<void(TraceSink&)>& read_again) const {
     impl_->write(out, program, read_again);
 }
 
@@ -522,11 +538,19 @@ std::string backplot_html(std::string_view program, const Trace& trace, const Pr
     };
     replay(plot);
     std::ostringstream page;
-    plot.write(page, program, replay);
+    ViewBuffer buffer(program);
+    std::istream text(&buffer);
+    const auto open = [&]() -> std::istream& {
+        buffer.rewind();
+        text.clear();
+        return text;
+    };
+    plot.write(page, open, replay);
     return std::move(page).str();
 }
 
-void HtmlPlot::Impl::write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const {
+void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&()>& program,
+                           const std::function<void(TraceSink&)>& read_again) const {
     const BackplotOptions& options = options_;
     const ProgramStats& stats = stats_;
     const HtmlPlotLimits& limits = limits_;
@@ -534,7 +558,7 @@ void HtmlPlot::Impl::write(std::ostream& out, std::string_view program, const st
     const bool thin = thinning_ && thinning_->merged();
     const BackplotDrawing& drawing = drawing_;
     std::size_t lines = 0;
-    for_each_line(program, [&](std::string_view) { ++lines; });
+    for_each_line(program(), [&](std::string_view) { ++lines; });
     const std::string title = options.title.empty() ? "program" : options.title;
 
     auto add = [&](std::string_view s) { out << s; };
@@ -613,7 +637,7 @@ void HtmlPlot::Impl::write(std::ostream& out, std::string_view program, const st
     BlockMoves moves(out);
     read_again(moves);
     add("],\n\"nc\":");
-    write_program_json(out, program);
+    write_program_json(out, program());
     add("}");
     add("</script>\n<script>");
     add(script);

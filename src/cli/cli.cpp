@@ -229,8 +229,9 @@ public:
     }
     const ProgramStats& stats() const { return stats_.stats(); }
     ReadResolution resolution() const { return resolution_; }
-    // Writes the --plot file: the HTML page (it shows `program`, the text) or the SVG drawing.
-    void write_plot(std::ostream& out, std::string_view program, const BackplotOptions& options) {
+    // Writes the --plot file: the HTML page (it shows the text that `program` opens at its
+    // start) or the SVG drawing.
+    void write_plot(std::ostream& out, const std::function<std::istream&()>& program, const BackplotOptions& options) {
         if (html_) {
             HtmlPlot page(plan_, stats(), options);
             const auto read = [&](TraceSink& sink) {
@@ -279,10 +280,31 @@ std::string machine_list() {
     return s;
 }
 
-// A stream buffer over text that is kept elsewhere (standard input's program, read again).
+// A read-only stream buffer over text that is kept elsewhere (standard input's program, or the
+// program just posted, read again).
 class TextBuffer : public std::streambuf {
 public:
-    explicit TextBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+    explicit TextBuffer(std::string_view text) {
+        char* begin = const_cast<char*>(text.data());  // never written: the buffer has no put area
+        setg(begin, begin, begin + text.size());
+    }
+};
+
+// Opens text kept in memory as a stream at its start, again at each call.
+class TextStream {
+public:
+    explicit TextStream(std::string_view text) : text_(text) {}
+    std::istream& open() {
+        stream_.reset();
+        buffer_.emplace(text_);
+        stream_.emplace(&*buffer_);
+        return *stream_;
+    }
+
+private:
+    std::string_view text_;
+    std::optional<TextBuffer> buffer_;
+    std::optional<std::istream> stream_;
 };
 
 // The program verify reads back, once for each pass over it: a file is opened again for each;
@@ -290,15 +312,16 @@ public:
 class ProgramInput {
 public:
     ProgramInput(const std::string& file, std::istream& in, bool keep_stdin) : file_(file), in_(in) {
-        if (file == "-" && keep_stdin) text_ = read_text(file, in);
+        if (file == "-" && keep_stdin) {
+            text_ = read_text(file, in);
+            kept_.emplace(*text_);
+        }
     }
+    ProgramInput(const ProgramInput&) = delete;  // kept_ views text_
+    ProgramInput& operator=(const ProgramInput&) = delete;
     // A stream at the program's start.
     std::istream& open() {
-        if (text_) {
-            buffer_.emplace(*text_);
-            stream_ = std::make_unique<std::istream>(&*buffer_);
-            return *stream_;
-        }
+        if (kept_) return kept_->open();
         if (file_ == "-") return in_;
         auto f = std::make_unique<std::ifstream>(file_, std::ios::binary);
         if (!*f) throw IoError(fmt::format("cannot read {}: {}", file_, std::strerror(errno)));
@@ -310,7 +333,7 @@ private:
     std::string file_;
     std::istream& in_;
     std::optional<std::string> text_;
-    std::optional<TextBuffer> buffer_;
+    std::optional<TextStream> kept_;  // over text_
     std::unique_ptr<std::istream> stream_;
 };
 
@@ -343,12 +366,9 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
-    // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job). The
-    // HTML page shows the text, so it keeps it.
-    const bool html = !v.plot.empty() && is_html_plot(v.plot);
+    // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job; the
+    // HTML page's copy of the text).
     ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
-    std::string text;
-    if (html) text = read_text(v.program, program.open());
     ReadBack back(machine, v.plot, [&](ReadEventSink& sink) {
         ProgramReader reader(program.open(), machine, source, sink);
         reader.read_all();
@@ -357,7 +377,8 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back.stats());
     if (!v.plot.empty()) {
         OutputFile plot(v.plot);
-        back.write_plot(plot.stream(), text, {base_name(source), machine.name, machine.kind});
+        back.write_plot(plot.stream(), [&]() -> std::istream& { return program.open(); },
+                        {base_name(source), machine.name, machine.kind});
         plot.commit();
     }
     if (v.job.empty()) {
@@ -397,7 +418,10 @@ void read_back(std::string_view program, const Job& job, const Options& o, std::
         return resolution;
     });
     if (o.stats) err << format_stats(back.stats());
-    if (!o.plot.empty()) back.write_plot(plot.emplace(o.plot).stream(), program, {name, machine.name, machine.kind});
+    if (o.plot.empty()) return;
+    TextStream text(program);
+    back.write_plot(plot.emplace(o.plot).stream(), [&]() -> std::istream& { return text.open(); },
+                    {name, machine.name, machine.kind});
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """The read-back streams: `camgen verify` of a 200,000-hole grbl program (3.2 million lines)
-must stay within the job's size plus 50 MB of peak memory, with and without --job and with
---plot F.svg; with --plot F.html, whose page shows the program's text and keeps it, within the
-job's and the program's size plus 50 MB. A read-back that keeps the whole program's events or
-steps needs gigabytes and fails here (the HTML page of 100,000 holes took 888 MB when it kept
-the trace). And posting: a job of 1,000,000 holes posted longhand for grbl into a file (16
+must stay within the job's size plus 50 MB of peak memory, with and without --job, with
+--plot F.svg and with --plot F.html (whose page shows the program's text, copied into it a line
+at a time). A read-back that keeps the whole program's events or steps needs gigabytes and
+fails here (the HTML page of 100,000 holes took 888 MB when it kept the trace). The page is
+made of the program with 700,000 comment lines more (66 MB of text that costs little to read):
+a page that keeps the text needs 104 MB for it, within the limit 22 MB. And posting: a job of 1,000,000 holes posted longhand for grbl into a file (16
 million lines, 100 MB) within issue 13's bound for reading a job, 3 x the job file + 50 MB: the
 program goes into the file's temporary as it is made (it took 161 MB when it was held whole). Each run's peak comes from wait4's rusage of that child alone.
 
@@ -18,6 +19,7 @@ import tempfile
 HOLES = 200_000
 POSTED_HOLES = 1_000_000
 SLACK_MB = 50
+PADDING_LINES = 700_000
 
 
 def peak_kb(args, out_path):
@@ -45,6 +47,14 @@ def main():
             subprocess.run([sys.executable, os.path.join(source, "bench", "gen_holes.py"), str(HOLES)], stdout=f, check=True)
         subprocess.run([camgen, job, "--machine", "grbl", "-o", program], check=True)
         lines = sum(1 for _ in open(program, "rb"))
+        padded = os.path.join(work, "padded.nc")
+        with open(program) as f, open(padded, "w") as out:
+            head = [f.readline(), f.readline()]
+            out.writelines(head)
+            for i in range(PADDING_LINES):
+                out.write(f"(padding: a comment line of the program text, which the page shows and need not keep {i:07d})\n")
+            for line in f:
+                out.write(line)
         failed = False
         runs = {
             "verify": [],
@@ -54,14 +64,14 @@ def main():
         }
         for name, extra in runs.items():
             out = os.path.join(work, "out.txt")
-            code, kb = peak_kb([camgen, "verify", program, "--machine", "grbl", *extra], out)
+            read = padded if name.endswith(".html") else program
+            code, kb = peak_kb([camgen, "verify", read, "--machine", "grbl", *extra], out)
             text = open(out, encoding="utf-8", errors="replace").read()
             limit_kb = os.path.getsize(job) // 1024 + SLACK_MB * 1024
-            if name.endswith(".html"):
-                limit_kb += os.path.getsize(program) // 1024
             ok = code == 0 and kb <= limit_kb and (name != "verify --job" or "matches job" in text)
             failed |= not ok
-            print(f"{name} of {HOLES} holes ({lines} lines): exit {code}, peak {kb // 1024} MB, limit {limit_kb // 1024} MB: "
+            described = f"{lines} lines" + (f" and {PADDING_LINES} of comments" if read == padded else "")
+            print(f"{name} of {HOLES} holes ({described}): exit {code}, peak {kb // 1024} MB, limit {limit_kb // 1024} MB: "
                   f"{'ok' if ok else 'FAILED'}")
             if code != 0:
                 print(text[-2000:])

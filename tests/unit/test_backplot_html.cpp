@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -194,6 +195,41 @@ TEST_CASE("html plot: --plot F.html writes the page, F.svg the drawing, on the m
     CHECK(test::read_file(svg).rfind("<svg", 0) == 0);
     // verify reads the same program (named p.nc both times): the same page.
     CHECK(test::read_file(again) == test::read_file(html));
+}
+
+TEST_CASE("html plot: verify copies the text from the file or standard input, line by line, as the page of the text in memory") {
+    const Machine m = load_machine("fanuc");
+    // CR LF line ends, a blank line, bytes that are no UTF-8 in a comment, no final newline.
+    std::string text;
+    for (const std::string& line : test::lines_of(test::post_job(nasty_job, "fanuc").text)) {
+        text += line + "\r\n";
+        if (text.size() < 80 && line.find('(') != std::string::npos) text += "\r\n(\xff\xfe </pre> \xc3\xa9)\r\n";
+    }
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    REQUIRE(text.find("\xff\xfe") != std::string::npos);
+    const std::filesystem::path dir = test::scratch("html-plot-stream");
+    const std::string file = (dir / "p.nc").string(), from_file = (dir / "f.html").string(), from_stdin = (dir / "s.html").string();
+    std::ofstream(file, std::ios::binary) << text;
+    REQUIRE(test::run({"verify", file, "--machine", "fanuc", "--plot", from_file}).code == 0);
+    REQUIRE(test::run({"verify", "-", "--machine", "fanuc", "--plot", from_stdin}, text).code == 0);
+    const Trace trace = trace_program(read_program(text, m, "p.nc"), m);
+    const ProgramStats stats = compute_stats(trace, m);
+    const std::string page = test::read_file(from_file);
+    CHECK(page == backplot_html(text, trace, stats, {"p.nc", m.name, m.kind}));
+    CHECK(test::read_file(from_stdin) == backplot_html(text, trace, stats, {"<stdin>", m.name, m.kind}));
+    // The text as the reader counts its lines: '\r' dropped, joined by '\n', the slider over all.
+    const std::vector<std::string> lines = test::lines_of(text);
+    std::string joined;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (i > 0) joined += '\n';
+        std::string_view line = lines[i];
+        if (line.ends_with('\r')) line.remove_suffix(1);
+        joined += line;
+    }
+    for (auto at = joined.find("\xff\xfe"); at != std::string::npos; at = joined.find("\xff\xfe"))
+        joined.replace(at, 2, "\xef\xbf\xbd\xef\xbf\xbd");  // each byte that is no UTF-8 shown as U+FFFD
+    CHECK(test::page_data(page)["nc"].get<std::string>() == joined);
+    CHECK(page.find(fmt::format("max=\"{}\"", lines.size())) != std::string::npos);
 }
 
 TEST_CASE("html plot: above the hole limit further holes are plain circles, one path per tool, saying so") {

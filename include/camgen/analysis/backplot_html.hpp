@@ -28,8 +28,9 @@ struct HtmlPlotLimits {
 // The page as the trace is read a second time (the streaming core of backplot_html, as
 // BackplotDrawer is backplot_svg's): the drawing made as the steps come (beyond limits.moves
 // moves of the plan, thinned as they come); then, as the page is written, a third reading
-// writes each block's position straight into it. So the page of a program of millions of
-// blocks holds the program's text (which it shows) and a drawing of bounded size, not its trace.
+// writes each block's position straight into it, and the program's text is copied into it a
+// line at a time. So the page of a program of millions of blocks holds a drawing of bounded
+// size, neither the program's trace nor its text.
 class HtmlPlot : public TraceSink {
 public:
     // `plan` (finished) and `stats` of the first pass; both must outlive the plot.
@@ -39,9 +40,11 @@ public:
     void step(const Step& step) override;
     void hole(const Hole& hole) override;
     void finish(const TraceSummary& summary) override;
-    // Writes the page, once finished, for `program`: the text that was read back.
-    // `read_again` hands the trace once more to the sink it is given (steps, holes, finish).
-    void write(std::ostream& out, std::string_view program, const std::function<void(TraceSink&)>& read_again) const;
+    // Writes the page, once finished. `program` opens the text that was read back, at its
+    // start (it is called twice: the lines are counted, then copied); `read_again` hands the
+    // trace once more to the sink it is given (steps, holes, finish).
+    void write(std::ostream& out, const std::function<std::istream&()>& program,
+               const std::function<void(TraceSink&)>& read_again) const;
 
 private:
     class Impl;
