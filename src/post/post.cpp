@@ -435,6 +435,14 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
         throw InputError(cycle.path + "/" + std::string(key_of(field)), detail);
     };
     const std::string& m = machine_.name;
+    // A hole whose depth rounds to 0 from where its feed starts would be written 0 deep: no
+    // hole, and on heidenhain a CYCL DEF 200 with Q201=+0, which the control skips.
+    const double feed_start = std::min(c.reference_z, c.safe_z);
+    if (xyz_fmt_.is_zero(feed_start - c.bottom_z))
+        throw InputError(cycle.path + "/endDepth",
+                         fmt::format("the hole is {} mm deep (Z {} to {}), below the resolution of machine {}: it would be "
+                                     "written 0 deep and not drilled",
+                                     feed_start - c.bottom_z, feed_start, c.bottom_z, m));
     // Speeds that would be written as S0 (or SST=0).
     for (DrillField f : {DrillField::tapping_speed, DrillField::retract_speed})
         if (auto rpm = v.get(f); rpm && rpm_fmt_.is_zero(*rpm))

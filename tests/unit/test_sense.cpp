@@ -50,16 +50,32 @@ TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are r
               "/operations/0/bottomDwell: bottomDwell 1e-09 s is below the resolution of machine linuxcnc"));
 }
 
-TEST_CASE("sense: canned feeds above the machine's limit are clamped on every machine, with a warning") {
-    const std::string job = job_with(R"("tool": 1, "cycle": "ream", "endDepth": 5, "plungingFeedrate": 50000,
-        "retractFeedrate": 60000)");
-    const test::Posted heidenhain = test::post_job(job, "heidenhain");
-    CHECK_FALSE(has(heidenhain.text, "50000"));
-    CHECK(has(heidenhain.warnings, "feed 50000 mm/min is above the limit of machine heidenhain"));
-    const test::Posted sinumerik = test::post_job(job, "sinumerik");
-    CHECK_FALSE(has(sinumerik.text, "50000"));
-    CHECK_FALSE(has(sinumerik.text, "60000"));
-    CHECK(has(sinumerik.text, "CYCLE85("));
-    CHECK(has(sinumerik.warnings, "feed 60000 mm/min is above the limit of machine sinumerik"));
-    CHECK(has(test::post_job(job, "fanuc").text, "F10000"));
+TEST_CASE("sense: a hole whose depth rounds to 0 is refused on every machine, canned or longhand (fuzz finding 11)") {
+    // heidenhain wrote CYCL DEF 203 with Q201=+0 (the control skips the cycle), which its own
+    // read-back refused; the others wrote a feed from Z0 to Z0.
+    auto mill = [](const std::string& cycle, const std::string& depth) {
+        const std::string peck = cycle == "chip-break" ? R"(, "firstDepth": 2.5)" : "";
+        return job_with(R"("tool": 1, "plungingFeedrate": 90, "cycle": ")" + cycle + R"(", "endDepth": )" + depth + peck);
+    };
+    for (const std::string machine : {"fanuc", "grbl", "heidenhain", "kosy", "linuxcnc", "sinumerik", "wabeco"})
+        for (const std::string cycle : {"drill", "chip-break"}) {
+            CAPTURE(machine);
+            CAPTURE(cycle);
+            CHECK(has(refusal(mill(cycle, "3.2398696036443e-09"), machine),
+                      "/operations/0/endDepth: the hole is 3.2398696036443e-09 mm deep (Z 0 to -3.2398696036443e-09), below "
+                      "the resolution of machine " + machine + ": it would be written 0 deep and not drilled"));
+            CHECK(refusal(mill(cycle, "0.001"), machine) == "");  // one unit of the last decimal is a hole
+        }
+    auto lathe = [](const std::string& depth, const std::string& peck) {
+        return R"({"clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}],
+          "operations": [{"type": "turn-drill", "tool": 1, "startDepth": 0, "endDepth": )" + depth +
+               R"(, "safeDistance": 2, "retractDistance": 5, "plungingFeedrate": 90)" + peck + "}]}";
+    };
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"})
+        for (const std::string peck : {"", R"(, "firstPeckDepth": 1)"}) {
+            CAPTURE(machine);
+            CAPTURE(peck);
+            CHECK(has(refusal(lathe("-1e-9", peck), machine), "/operations/0/endDepth: the hole is 1e-09 mm deep"));
+            CHECK(refusal(lathe("-0.001", peck), machine) == "");
+        }
 }
