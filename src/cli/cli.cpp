@@ -1,7 +1,9 @@
 #include "camgen/cli/cli.hpp"
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -62,21 +64,29 @@ struct VerifyOptions {
     std::string units;
 };
 
-// Reads the whole job text ("-" = standard input). A regular file is read straight into one
-// string of its size: a large job is not held twice on the way.
+// True for a file that can be read more than once: not a pipe (`camgen verify <(...)`), FIFO
+// or device.
+bool is_regular(const std::string& file) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(file, ec);
+}
+
+// Reads the whole text ("-" = standard input). A regular file is read straight into one string
+// of its size: a large job is not held twice on the way; a pipe, FIFO or device as a stream
+// (it cannot seek).
 std::string read_text(const std::string& file, std::istream& in) {
     std::ostringstream ss;
     if (file == "-") {
         ss << in.rdbuf();
         return std::move(ss).str();
     }
-    std::ifstream f(file, std::ios::binary | std::ios::ate);
+    std::ifstream f(file, std::ios::binary);
     if (!f) throw IoError(fmt::format("cannot read {}: {}", file, std::strerror(errno)));
-    const std::streamoff size = f.tellg();
-    f.seekg(0);
-    if (size > 0 && f) {
+    std::error_code ec;
+    const std::uintmax_t size = is_regular(file) ? std::filesystem::file_size(file, ec) : 0;
+    if (!ec && size > 0) {
         std::string text(static_cast<std::size_t>(size), '\0');
-        if (f.read(text.data(), size) && f.peek() == std::char_traits<char>::eof()) return text;
+        if (f.read(text.data(), static_cast<std::streamsize>(size)) && f.peek() == std::char_traits<char>::eof()) return text;
         f.clear();
         f.seekg(0);  // it changed while read: read it as a stream
     }
@@ -308,11 +318,12 @@ private:
 };
 
 // The program verify reads back, once for each pass over it: a file is opened again for each;
-// standard input cannot be read twice, so its text is kept when a second pass needs it.
+// standard input, a pipe, a FIFO or a device cannot be read twice, so its text is kept when a
+// second pass needs it.
 class ProgramInput {
 public:
-    ProgramInput(const std::string& file, std::istream& in, bool keep_stdin) : file_(file), in_(in) {
-        if (file == "-" && keep_stdin) {
+    ProgramInput(const std::string& file, std::istream& in, bool several_passes) : file_(file), in_(in) {
+        if (several_passes && (file == "-" || !is_regular(file))) {
             text_ = read_text(file, in);
             kept_.emplace(*text_);
         }

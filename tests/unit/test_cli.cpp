@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include "camgen/cli/cli.hpp"
 #include "support.hpp"
@@ -36,6 +37,55 @@ TEST_CASE("a job from standard input") {
     Run r = run({"-", "--machine", "fanuc"}, test::read_file(sample));
     CHECK(r.code == 0);
     CHECK(r.out.find("G81") != std::string::npos);
+}
+
+namespace {
+
+// A pipe holding `text` (written whole, the writing end closed), named as the shell's <(...)
+// names it: /dev/fd/N. Reading it again gives nothing, as with a FIFO's writer gone.
+class PipeFile {
+public:
+    explicit PipeFile(const std::string& text) {
+        REQUIRE(::pipe(fds_) == 0);
+        REQUIRE(text.size() < 65536);  // a pipe's buffer: the write must not wait for a reader
+        REQUIRE(::write(fds_[1], text.data(), text.size()) == static_cast<ssize_t>(text.size()));
+        ::close(fds_[1]);
+    }
+    ~PipeFile() { ::close(fds_[0]); }
+    std::string path() const { return "/dev/fd/" + std::to_string(fds_[0]); }
+
+private:
+    int fds_[2]{-1, -1};
+};
+
+}  // namespace
+
+TEST_CASE("a job and a program from pipes (<(...)): read once, as a stream, and kept for the passes that need them") {
+    const std::string drilling = test::read_file(CAMGEN_SOURCE_DIR "/samples/drilling.json");
+    const Run from_file = run({CAMGEN_SOURCE_DIR "/samples/drilling.json", "--machine", "grbl"});
+    REQUIRE(from_file.code == 0);
+    {
+        // It could not seek to the end for the size: "cannot read /dev/fd/N: Illegal seek".
+        PipeFile job(drilling);
+        const Run r = run({job.path(), "--machine", "grbl"});
+        CHECK(r.code == 0);
+        CHECK(r.err == "");
+        CHECK(r.out == from_file.out);
+    }
+    // verify with --job and --plot reads the program three times: a pipe's text is kept, as
+    // standard input's is (the second pass read nothing: "the program does not end with M2").
+    const fs::path dir = test::scratch("cli-pipes");
+    const std::string plot = (dir / "p.html").string(), again = (dir / "f.html").string(), program = (dir / "p.nc").string();
+    write(program, from_file.out);
+    PipeFile job(drilling), nc(from_file.out);
+    const Run r = run({"verify", nc.path(), "--machine", "grbl", "--job", job.path(), "--plot", plot});
+    CHECK(r.code == 0);
+    CHECK(r.out.find("matches job /dev/fd/") != std::string::npos);
+    REQUIRE(run({"verify", program, "--machine", "grbl", "--plot", again}).code == 0);
+    // The same page, but for the title (which the drawing shows too).
+    const std::string a = test::read_file(plot), b = test::read_file(again);
+    REQUIRE(a.find("<g stroke") != std::string::npos);
+    CHECK(a.substr(a.find("<g stroke")) == b.substr(b.find("<g stroke")));
 }
 
 TEST_CASE("--events prints one JSON object per line") {
