@@ -126,8 +126,9 @@ void apply_units(Machine& machine, const std::string& units) {
     machine.units = u;
 }
 
-Machine machine_for(const Options& o) {
-    Machine machine = load_machine(o.machine);
+// The machine of --machine (loaded once: its file may be a pipe) with --units applied.
+Machine machine_for(const Machine& loaded, const Options& o) {
+    Machine machine = loaded;
     apply_units(machine, o.units);
     return machine;
 }
@@ -165,13 +166,14 @@ private:
 
 // Posts the job into `out`. Unless `out` discards what it got when the run fails (a temporary
 // file), the program is held until it is complete, so that a failure writes nothing.
-void write_program(const Job& job, const Options& o, std::ostream& out, std::ostream& err, bool out_discards_failures) {
+void write_program(const Job& job, const Options& o, const Machine* loaded, std::ostream& out, std::ostream& err,
+                   bool out_discards_failures) {
     if (o.events) {
         EventPrinter printer(out);
         expand_job(job, printer);
         return;
     }
-    Machine machine = machine_for(o);
+    Machine machine = machine_for(*loaded, o);
     check_machine_kind(job, machine.kind, machine.name);
     PostOptions po;
     po.snippet = o.snippet;
@@ -419,9 +421,9 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
 
 // After posting: read the program back for --stats (to `err`) and --plot (into `plot`, not
 // yet committed, so that a failed plot leaves the program file as it was).
-void read_back(std::string_view program, const Job& job, const Options& o, std::ostream& err,
+void read_back(std::string_view program, const Job& job, const Options& o, const Machine& loaded, std::ostream& err,
                std::optional<OutputFile>& plot) {
-    Machine machine = machine_for(o);
+    Machine machine = machine_for(loaded, o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
     ReadBack back(machine, o.plot, [&](ReadEventSink& sink) {
         ReadResolution resolution;
@@ -555,12 +557,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             err << "camgen: --plot and --stats read the program back: a --snippet is not a whole program\n";
             return exit_usage;
         }
+        std::optional<Machine> machine;
         if (!o.machine.empty() && !o.events) {
-            Machine machine = load_machine(o.machine);  // unknown machine: usage error first
-            if ((!o.plot.empty() || o.stats) && !has_reader(machine.dialect)) {
+            machine = load_machine(o.machine);  // unknown machine: usage error first
+            if ((!o.plot.empty() || o.stats) && !has_reader(machine->dialect)) {
                 err << fmt::format("camgen: --plot and --stats read the program back, and camgen cannot read the {} "
                                    "dialect of machine {} yet\n",
-                                   machine.dialect, machine.name);
+                                   machine->dialect, machine->name);
                 return exit_usage;
             }
         }
@@ -580,8 +583,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             try {
                 // Into a temporary file straight away: a failure removes it (a million holes
                 // longhand are 100 MB of text, held otherwise).
-                if (read_back_wanted) write_program(job, o, buffer, err, false);
-                else write_program(job, o, destination, err, file && file->discarded_unless_committed());
+                const Machine* m = machine ? &*machine : nullptr;  // none for --events
+                if (read_back_wanted) write_program(job, o, m, buffer, err, false);
+                else write_program(job, o, m, destination, err, file && file->discarded_unless_committed());
             } catch (const IoError& e) {
                 // The block writer knows the reason, not the file.
                 const std::string where = file ? o.output : std::string("standard output");
@@ -593,7 +597,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             if (read_back_wanted) {
                 const std::string_view program = buffer.view();
                 destination.write(program.data(), static_cast<std::streamsize>(program.size()));
-                read_back(program, job, o, err, plot);
+                read_back(program, job, o, *machine, err, plot);
             }
             if (file) file->commit();
             else finish_stream(out, "standard output");

@@ -72,6 +72,15 @@ TEST_CASE("a job and a program from pipes (<(...)): read once, as a stream, and 
         CHECK(r.err == "");
         CHECK(r.out == from_file.out);
     }
+    {
+        // A machine file from a pipe was loaded three times (the usage check, the post, the
+        // read-back): "line 1, column 1: syntax error ... unexpected end of input".
+        PipeFile machine(test::read_file(CAMGEN_SOURCE_DIR "/machines/grbl.json"));
+        const Run r = run({CAMGEN_SOURCE_DIR "/samples/drilling.json", "--machine", machine.path(), "--stats"});
+        CHECK(r.code == 0);
+        CHECK(r.out == from_file.out);
+        CHECK(r.err.find("holes          25\n") != std::string::npos);
+    }
     // verify with --job and --plot reads the program three times: a pipe's text is kept, as
     // standard input's is (the second pass read nothing: "the program does not end with M2").
     const fs::path dir = test::scratch("cli-pipes");
