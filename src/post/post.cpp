@@ -435,14 +435,21 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
         throw InputError(cycle.path + "/" + std::string(key_of(field)), detail);
     };
     const std::string& m = machine_.name;
-    // A hole whose depth rounds to 0 from where its feed starts would be written 0 deep: no
-    // hole, and on heidenhain a CYCL DEF 200 with Q201=+0, which the control skips.
+    // A hole whose bottom is not below where its feed starts, or whose depth is written as 0
+    // (its depth, or its two Zs, rounding alike): no hole, and on heidenhain a CYCL DEF 200
+    // with Q201=+0 (the control skips it) or a positive Q201 (the control refuses it).
     const double feed_start = std::min(c.reference_z, c.safe_z);
-    if (xyz_fmt_.is_zero(feed_start - c.bottom_z))
+    const double depth = feed_start - c.bottom_z;
+    if (!(depth > 0))
+        throw InputError(cycle.path + "/endDepth",
+                         fmt::format("the hole's bottom (Z {}) is not below where its feed starts (Z {}): nothing would be "
+                                     "drilled",
+                                     c.bottom_z, feed_start));
+    if (xyz_fmt_.is_zero(depth) || !(xyz_fmt_.rounded(c.bottom_z) < xyz_fmt_.rounded(feed_start)))
         throw InputError(cycle.path + "/endDepth",
                          fmt::format("the hole is {} mm deep (Z {} to {}), below the resolution of machine {}: it would be "
                                      "written 0 deep and not drilled",
-                                     feed_start - c.bottom_z, feed_start, c.bottom_z, m));
+                                     depth, feed_start, c.bottom_z, m));
     // Speeds that would be written as S0 (or SST=0).
     for (DrillField f : {DrillField::tapping_speed, DrillField::retract_speed})
         if (auto rpm = v.get(f); rpm && rpm_fmt_.is_zero(*rpm))
@@ -535,6 +542,21 @@ void Post::handle_drill_end() {
 void Post::handle_arc(const Arc& arc) {
     if (!pos_known_) throw std::logic_error("arc from an unknown position");
     const ArcGeometry geo = resolve_arc(pos_, arc);
+    if (arc.turns > 0) {
+        // A helix of whole turns whose travel a turn is below the resolution: several turns
+        // would be written at one Z (or Y, X), the tool circling in place, and the read-back
+        // cannot tell those turns apart (fuzz finding 12: a bore at pitch 0.00043 mm on grbl).
+        const double travel = std::abs(geo.plane == Plane::xy   ? geo.end.z - geo.start.z
+                                       : geo.plane == Plane::xz ? geo.end.y - geo.start.y
+                                                                : geo.end.x - geo.start.x);
+        const double per_turn = travel * 2 * std::numbers::pi / geo.sweep;
+        const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
+        if (travel > 0 && per_turn < unit * (1 - 1e-6))  // a pitch of one unit passes
+            fail("", fmt::format("a helix of {} turns moves {:.6g} mm along its axis a turn, below the resolution of machine {} ({} "
+                                 "mm): turns would be written at one height, the tool circling in place (bore-mill and a "
+                                 "path's helix: a larger pitch; a contour's helix ramp: a larger angle or radius)",
+                                 arc.turns + 1, per_turn, machine_.name, unit));
+    }
     const ArcSettings& s = machine_.arcs;
     const double tolerance = effective_chord_tolerance(s, op_tolerance_);
     const ArcPlan plan = plan_arc(geo, s, tolerance);

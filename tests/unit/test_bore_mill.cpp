@@ -456,3 +456,39 @@ TEST_CASE("verify finds a steep helix of a tiny radius written as chords, althou
         CHECK_MESSAGE(verify.code == 0, verify.out);
     }
 }
+
+TEST_CASE("a helix that moves less than the machine's resolution a turn is refused, naming the operation (fuzz finding 12)") {
+    // A bore at pitch 0.00043 mm: 28,160 turns, written on grbl as full circles at one Z
+    // (Z-12.000 several times at F400, then the bottom circle at F600), which the read-back
+    // could not tell apart from the job's.
+    auto refusal = [](const std::string& job, const std::string& machine) {
+        try {
+            (void)test::post_job(job, machine);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string bore = bore_job(20, 10, R"("endDepth": 12, "pitch": 0.00042614590919896715, "holes": [[60, 53.3125]])");
+    for (const std::string machine : {"grbl", "fanuc", "sinumerik", "kosy", "wabeco", "heidenhain"}) {
+        CAPTURE(machine);
+        CHECK(refusal(bore, machine) ==
+              "/operations/0: a helix of 28160 turns moves 0.000426136 mm along its axis a turn, below the resolution of "
+              "machine " + machine + " (0.001 mm): turns would be written at one height, the tool circling in place (bore-mill "
+              "and a path's helix: a larger pitch; a contour's helix ramp: a larger angle or radius)");
+        // One unit a turn is a helix (3 mm at 0.001: 3,000 turns).
+        CHECK(refusal(bore_job(20, 10, R"("endDepth": 3, "pitch": 0.001, "holes": [[0, 0]])"), machine) == "");
+    }
+    CHECK(refusal(bore, "linuxcnc") == "");  // 4 decimals
+    // A path's helix and a contour's helix ramp, the same way.
+    const std::string path = R"({"clearance": 10, "tools": [{"number": 1, "type": "end-mill", "diameter": 4, "rpm": 4000}],
+      "operations": [{"type": "path", "tool": 1, "z": -1, "feed": 300, "plungeFeed": 100, "start": [10, 0],
+        "path": [{"helix": {"centre": [10, 2], "direction": "ccw", "turns": 3000, "pitch": 0.0005}}]}]})";
+    CHECK(refusal(path, "fanuc").starts_with("/operations/0: a helix of 3000 turns moves 0.0005 mm along its axis a turn"));
+    const std::string contour = R"({"clearance": 10, "tools": [{"number": 1, "type": "end-mill", "diameter": 4, "rpm": 4000}],
+      "operations": [{"type": "contour", "tool": 1, "endDepth": 1, "feed": 300, "plungeFeed": 100, "side": "outside",
+        "retractPlane": 5, "safeDistance": 1, "ramp": {"type": "helix", "angle": 0.09, "radius": 0.05},
+        "start": [0, 0], "path": [{"line": [20, 0]}, {"line": [20, 20]}, {"line": [0, 20]}, {"line": [0, 0]}]}]})";
+    CHECK(refusal(contour, "grbl").starts_with("/operations/0: a helix of "));
+    CHECK(refusal(contour, "linuxcnc") == "");
+}

@@ -50,7 +50,7 @@ TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are r
               "/operations/0/bottomDwell: bottomDwell 1e-09 s is below the resolution of machine linuxcnc"));
 }
 
-TEST_CASE("sense: a hole whose depth rounds to 0 is refused on every machine, canned or longhand (fuzz finding 11)") {
+TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused on every machine (fuzz finding 11)") {
     // heidenhain wrote CYCL DEF 203 with Q201=+0 (the control skips the cycle), which its own
     // read-back refused; the others wrote a feed from Z0 to Z0.
     auto mill = [](const std::string& cycle, const std::string& depth) {
@@ -66,6 +66,20 @@ TEST_CASE("sense: a hole whose depth rounds to 0 is refused on every machine, ca
                       "the resolution of machine " + machine + ": it would be written 0 deep and not drilled"));
             CHECK(refusal(mill(cycle, "0.001"), machine) == "");  // one unit of the last decimal is a hole
         }
+    // Both Zs rounding alike (R0.000 Z0.000 on fanuc, G0 Z0 and back on grbl), and a bottom
+    // above the reference plane (heidenhain wrote Q201=+1, which the control refuses).
+    const std::string flat = R"({"clearance": 20, "tools": [{"number": 1, "diameter": 5, "rpm": 1000}], "operations": [
+        {"type": "drill", "retractPlane": 5, "safeDistance": 0, "referencePlane": 0.0004, "tool": 1, "plungingFeedrate": 90,
+         "endDepth": 0.0008, "holes": [[10, 10]]}]})";
+    const std::string above = job_with(R"("tool": 1, "plungingFeedrate": 90, "endDepth": 1, "endDepthIsAbsolute": true)");
+    for (const std::string machine : {"fanuc", "grbl", "heidenhain", "sinumerik"}) {
+        CAPTURE(machine);
+        CHECK(has(refusal(flat, machine), "/operations/0/endDepth: the hole is 0.0008 mm deep (Z 0.0004 to -0.0004), below "
+                                          "the resolution of machine " + machine));
+        CHECK(has(refusal(above, machine),
+                  "/operations/0/endDepth: the hole's bottom (Z 1) is not below where its feed starts (Z 0): nothing would "
+                  "be drilled"));
+    }
     auto lathe = [](const std::string& depth, const std::string& peck) {
         return R"({"clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}],
           "operations": [{"type": "turn-drill", "tool": 1, "startDepth": 0, "endDepth": )" + depth +
@@ -78,4 +92,18 @@ TEST_CASE("sense: a hole whose depth rounds to 0 is refused on every machine, ca
             CHECK(has(refusal(lathe("-1e-9", peck), machine), "/operations/0/endDepth: the hole is 1e-09 mm deep"));
             CHECK(refusal(lathe("-0.001", peck), machine) == "");
         }
+}
+
+TEST_CASE("sense: canned feeds above the machine's limit are clamped on every machine, with a warning") {
+    const std::string job = job_with(R"("tool": 1, "cycle": "ream", "endDepth": 5, "plungingFeedrate": 50000,
+        "retractFeedrate": 60000)");
+    const test::Posted heidenhain = test::post_job(job, "heidenhain");
+    CHECK_FALSE(has(heidenhain.text, "50000"));
+    CHECK(has(heidenhain.warnings, "feed 50000 mm/min is above the limit of machine heidenhain"));
+    const test::Posted sinumerik = test::post_job(job, "sinumerik");
+    CHECK_FALSE(has(sinumerik.text, "50000"));
+    CHECK_FALSE(has(sinumerik.text, "60000"));
+    CHECK(has(sinumerik.text, "CYCLE85("));
+    CHECK(has(sinumerik.warnings, "feed 60000 mm/min is above the limit of machine sinumerik"));
+    CHECK(has(test::post_job(job, "fanuc").text, "F10000"));
 }
