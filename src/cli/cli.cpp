@@ -71,6 +71,15 @@ bool is_regular(const std::string& file) {
     return std::filesystem::is_regular_file(file, ec);
 }
 
+// Opens a file to read; a folder is refused by name (reading one gives nothing, not an error).
+std::unique_ptr<std::ifstream> open_to_read(const std::string& file) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) throw IoError(fmt::format("cannot read {}: {}", file, std::strerror(EISDIR)));
+    auto f = std::make_unique<std::ifstream>(file, std::ios::binary);
+    if (!*f) throw IoError(fmt::format("cannot read {}: {}", file, std::strerror(errno)));
+    return f;
+}
+
 // Reads the whole text ("-" = standard input). A regular file is read straight into one string
 // of its size: a large job is not held twice on the way; a pipe, FIFO or device as a stream
 // (it cannot seek).
@@ -80,8 +89,8 @@ std::string read_text(const std::string& file, std::istream& in) {
         ss << in.rdbuf();
         return std::move(ss).str();
     }
-    std::ifstream f(file, std::ios::binary);
-    if (!f) throw IoError(fmt::format("cannot read {}: {}", file, std::strerror(errno)));
+    const std::unique_ptr<std::ifstream> stream = open_to_read(file);
+    std::ifstream& f = *stream;
     std::error_code ec;
     const std::uintmax_t size = is_regular(file) ? std::filesystem::file_size(file, ec) : 0;
     if (!ec && size > 0) {
@@ -336,9 +345,7 @@ public:
     std::istream& open() {
         if (kept_) return kept_->open();
         if (file_ == "-") return in_;
-        auto f = std::make_unique<std::ifstream>(file_, std::ios::binary);
-        if (!*f) throw IoError(fmt::format("cannot read {}: {}", file_, std::strerror(errno)));
-        stream_ = std::move(f);
+        stream_ = open_to_read(file_);
         return *stream_;
     }
 

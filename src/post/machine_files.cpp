@@ -1,7 +1,9 @@
 // Finding machine files (the user's folders before the built-in machines) and applying
 // "extends": a machine file may give only what differs from another.
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,6 +39,8 @@ std::string stem_of(const std::string& path) {
 }
 
 std::string read_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw IoError(fmt::format("cannot read machine file {}: {}", path, std::strerror(EISDIR)));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(fmt::format("cannot read machine file {}", path));
     std::stringstream ss;

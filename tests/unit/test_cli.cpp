@@ -181,6 +181,25 @@ TEST_CASE("an error while posting keeps an existing output file and names the li
 TEST_CASE("an unreadable job or unwritable output exits 3") {
     CHECK(run({"/nonexistent/job.json", "--machine", "fanuc"}).code == 3);
     CHECK(run({sample, "--machine", "fanuc", "-o", "/nonexistent/dir/out.nc"}).code == 3);
+    // A folder given as a file: named, not read as an empty text ("unexpected end of input",
+    // "the program does not end with M2 or M30", or std::bad_alloc).
+    const fs::path dir = test::scratch("cli-folder-args") / "a.json";
+    fs::create_directories(dir);
+    const std::string folder = dir.string(), program = CAMGEN_SOURCE_DIR "/tests/golden/fanuc/plate.nc";
+    const std::vector<std::vector<std::string>> runs = {
+        {folder, "--machine", "fanuc"},
+        {"verify", folder, "--machine", "fanuc"},
+        {"verify", folder, "--machine", "fanuc", "--plot", (dir.parent_path() / "p.svg").string()},
+        {"verify", program, "--machine", "fanuc", "--job", folder},
+    };
+    for (const auto& args : runs) {
+        const Run r = run(args);
+        CHECK(r.code == 3);
+        CHECK(r.err == "camgen: cannot read " + folder + ": Is a directory\n");
+    }
+    const Run m = run({sample, "--machine", folder});
+    CHECK(m.code == 3);
+    CHECK(m.err == "camgen: cannot read machine file " + folder + ": Is a directory\n");
 }
 
 TEST_CASE("--machine takes the path of a machine file: a decimal comma and no sequence numbers") {
