@@ -349,9 +349,13 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
         if (!contains(fit.spec->fields, f)) fit.missing.emplace_back(std::string(key_of(f)));
     if (fit.missing.empty()) fit.limit = canned_limit(cycle, *fit.spec);
     if (fit.missing.empty() && !fit.limit && is_pecking(cycle.kind)) {
-        // The control counts its pecks from the rounded depths: when they come to another
-        // number of pecks than the job's, only longhand pecks are the job's.
+        // The control counts its pecks from the rounded depths and planes: when they come to
+        // another number of pecks than the job's, only longhand pecks are the job's (fuzz
+        // finding 13: endDepth 4.0000000016 at pecks of 2.5 is three pecks, the last one
+        // 1.6e-9 mm; from Z-4.000 the control makes two).
         DrillCycle rounded = cycle;
+        for (double DrillCycle::*z : {&DrillCycle::retract_z, &DrillCycle::reference_z, &DrillCycle::safe_z, &DrillCycle::bottom_z})
+            rounded.*z = xyz_fmt_.rounded(cycle.*z);
         for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::degression,
                              DrillField::minimum_depth})
             if (auto v = cycle.values.get(f); v && contains(fit.spec->fields, f) &&

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "reader_support.hpp"
 #include "support.hpp"
 
 using namespace camgen;
@@ -106,4 +107,22 @@ TEST_CASE("sense: canned feeds above the machine's limit are clamped on every ma
     CHECK(has(sinumerik.text, "CYCLE85("));
     CHECK(has(sinumerik.warnings, "feed 60000 mm/min is above the limit of machine sinumerik"));
     CHECK(has(test::post_job(job, "fanuc").text, "F10000"));
+}
+
+TEST_CASE("sense: pecks are canned only when the control, from the rounded planes, makes as many as the job (fuzz finding 13)") {
+    // endDepth 3.0000000016 at pecks of 2.5 from Z2: the job pecks to -0.5, -3 and -3.0000000016;
+    // from G73 ... Z-3.000 R2.000 Q2.500 the control pecks twice. Written longhand, with a note.
+    const std::string job = job_with(R"("tool": 1, "cycle": "chip-break", "endDepth": 3.000000001605697, "firstDepth": 2.5,
+        "plungingFeedrate": 90)");
+    for (const std::string machine : {"fanuc", "linuxcnc", "sinumerik", "heidenhain"}) {
+        CAPTURE(machine);
+        const test::Run r = test::run({test::file_with("pecks", job), "--machine", machine});
+        REQUIRE(r.code == 0);
+        CHECK(has(r.err, "the chip-break cycle is written longhand because machine " + machine));
+        CHECK(has(r.err, "its depths rounded to the program's decimals make 2 pecks, not 3"));
+        CHECK(test::round_trip(job, r.out, machine) == "");
+    }
+    // On the grid, canned.
+    const std::string even = job_with(R"("tool": 1, "cycle": "chip-break", "endDepth": 3, "firstDepth": 2.5, "plungingFeedrate": 90)");
+    CHECK(has(test::post_job(even, "fanuc").text, "G73"));
 }
