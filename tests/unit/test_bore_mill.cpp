@@ -492,3 +492,27 @@ TEST_CASE("a helix that moves less than the machine's resolution a turn is refus
     CHECK(refusal(contour, "grbl").starts_with("/operations/0: a helix of "));
     CHECK(refusal(contour, "linuxcnc") == "");
 }
+
+TEST_CASE("verify follows a helix of a tiny radius whose centre was rounded, and still finds a turn at the wrong depth") {
+    // A 0.032 mm tool: the first ring is a helix of radius 0.013 mm about Y32.5745, written
+    // about J-0.001 from Y32.575. Its points lie 0.0005 mm off the job's, but 2.2 degrees round
+    // the turn, 0.009 mm of height at 1.5 mm a turn: the nearest point comes after the one at
+    // the same angle, which lay before where the last sample was found, so verify skipped it and
+    // refused camgen's own program on grbl, fanuc and sinumerik (fuzz finding 14).
+    const std::string job = R"({"name": "b", "units": "mm", "clearance": 11,
+      "tools": [{"number": 1, "type": "end-mill", "diameter": 0.03166325390338898, "rpm": 4000}],
+      "operations": [{"type": "bore-mill", "tool": 1, "diameter": 0.2, "retractPlane": 5, "safeDistance": 1,
+        "endDepth": 6, "pitch": 1.5, "feed": 600, "rampFeed": 400, "plungeFeed": 300,
+        "holes": [[93.01440132878666, 32.5745]]}]})";
+    for (const std::string machine : {"grbl", "fanuc", "sinumerik", "linuxcnc", "kosy", "wabeco", "heidenhain"}) {
+        CAPTURE(machine);
+        const std::string program = test::post_job(job, machine).text;
+        CHECK(test::round_trip(job, program, machine) == "");
+    }
+    // A turn ending 0.2 mm too deep is found. (0.1 mm is not: a helix this narrow is nearly a
+    // line, and at 1.6 mm a turn instead of 1.5 its points stay within 0.005 mm of the job's,
+    // inside the 0.008 mm allowed on arcs.)
+    const std::string grbl = test::post_job(job, "grbl").text;
+    const std::string wrong = test::replace_once(grbl, "X93.027 Y32.575 Z-3 I-0.013", "X93.027 Y32.575 Z-3.2 I-0.013");
+    CHECK(test::round_trip(job, wrong, "grbl").find("line 13: the job's ccw arc") == 0);
+}
