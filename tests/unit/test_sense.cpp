@@ -72,11 +72,20 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
     const std::string flat = R"({"clearance": 20, "tools": [{"number": 1, "diameter": 5, "rpm": 1000}], "operations": [
         {"type": "drill", "retractPlane": 5, "safeDistance": 0, "referencePlane": 0.0004, "tool": 1, "plungingFeedrate": 90,
          "endDepth": 0.0008, "holes": [[10, 10]]}]})";
+    // linuxcnc writes 4 decimals: there 0.0004 to -0.0004 is a hole, 0.00004 to -0.00004 is not.
+    const std::string finer = R"({"clearance": 20, "tools": [{"number": 1, "diameter": 5, "rpm": 1000}], "operations": [
+        {"type": "drill", "retractPlane": 5, "safeDistance": 0, "referencePlane": 0.00004, "tool": 1, "plungingFeedrate": 90,
+         "endDepth": 0.00008, "holes": [[10, 10]]}]})";
     const std::string above = job_with(R"("tool": 1, "plungingFeedrate": 90, "endDepth": 1, "endDepthIsAbsolute": true)");
-    for (const std::string machine : {"fanuc", "grbl", "heidenhain", "sinumerik"}) {
+    for (const std::string machine : {"fanuc", "grbl", "heidenhain", "kosy", "linuxcnc", "sinumerik", "wabeco"}) {
         CAPTURE(machine);
-        CHECK(has(refusal(flat, machine), "/operations/0/endDepth: the hole is 0.0008 mm deep (Z 0.0004 to -0.0004), below "
-                                          "the resolution of machine " + machine));
+        if (machine == "linuxcnc")
+            CHECK(refusal(flat, machine) == "");
+        else
+            CHECK(has(refusal(flat, machine), "/operations/0/endDepth: the hole is 0.0008 mm deep (Z 0.0004 to -0.0004), below "
+                                              "the resolution of machine " + machine));
+        CHECK(has(refusal(finer, machine), "/operations/0/endDepth: the hole is 8e-05 mm deep (Z 4e-05 to -4e-05), below "
+                                           "the resolution of machine " + machine));
         CHECK(has(refusal(above, machine),
                   "/operations/0/endDepth: the hole's bottom (Z 1) is not below where its feed starts (Z 0): nothing would "
                   "be drilled"));
@@ -93,6 +102,27 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
             CHECK(has(refusal(lathe("-1e-9", peck), machine), "/operations/0/endDepth: the hole is 1e-09 mm deep"));
             CHECK(refusal(lathe("-0.001", peck), machine) == "");
         }
+    // Both Zs rounding alike on a lathe: a face at Z0.00004 and a bottom at Z-0.00004 (every
+    // lathe), at Z0.0004 and Z-0.0004 (all but linuxcnc-lathe, which writes 4 decimals).
+    auto lathe_from = [](const std::string& start, const std::string& end) {
+        return R"({"clearance": 20, "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}],
+          "operations": [{"type": "turn-drill", "tool": 1, "startDepth": )" + start + R"(, "endDepth": )" + end +
+               R"(, "safeDistance": 2, "retractDistance": 5, "plungingFeedrate": 90}]})";
+    };
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        CHECK(has(refusal(lathe_from("0.00004", "-0.00004"), machine),
+                  "/operations/0/endDepth: the hole is 8e-05 mm deep (Z 4e-05 to -4e-05), below the resolution of machine " +
+                      machine));
+        if (machine == "linuxcnc-lathe")
+            CHECK(refusal(lathe_from("0.0004", "-0.0004"), machine) == "");
+        else
+            CHECK(has(refusal(lathe_from("0.0004", "-0.0004"), machine),
+                      "/operations/0/endDepth: the hole is 0.0008 mm deep (Z 0.0004 to -0.0004), below the resolution of "
+                      "machine " + machine));
+        // A bottom above the face is refused by the operation before any machine sees it.
+        CHECK(has(refusal(lathe_from("0", "1"), machine), "/operations/0/endDepth: endDepth (Z 1.000 mm) is not below startDepth"));
+    }
 }
 
 TEST_CASE("sense: canned feeds above the machine's limit are clamped on every machine, with a warning") {
