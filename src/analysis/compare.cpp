@@ -210,14 +210,13 @@ std::optional<Mismatch> each_sample(const Path& path, F f) {
 }
 
 // Where on a segment a point lies: the parameter t in [0, 1] nearest to it, at or after t_min
-// (minus `slack`), and its distance. Arcs: the angle about the centre, over every turn; on a
-// helix, with `refine`, the nearest point near that angle where the angle's own is not within `tol`.
+// (minus `slack`), and its distance. Arcs: the angle about the centre, over every turn.
 struct Hit {
     double t = 0.0;
     double d = 1e300;
 };
 
-Hit locate(const Seg& s, const Vec3& p, double t_min, double tol, bool refine = true) {
+Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
     double len = s.length();
     double slack = len > 0 ? tol / len : 1.0;
     if (!s.arc) {
@@ -269,7 +268,7 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol, bool refine = 
         if (t_angle < t_min - slack && (!helical || t_angle + quarter < t_min - slack)) continue;
         double t = std::max(t_angle, t_min - slack);
         double d = dist(p, s.at(t));
-        if (d > tol && helical && refine) {
+        if (d > tol && helical) {
             // On a steep helix of a small radius the point at the same angle is not the nearest:
             // a rounded X or Y turns the angle, and the pitch turns that into height (a chord of
             // a 0.028 mm helix at 3 mm a turn read 0.0086 mm off at its angle, 0.005 mm off in
@@ -291,19 +290,6 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol, bool refine = 
         if (d < best.d) best = {std::max(t, t_min), d};
     }
     return best;
-}
-
-// Two moves on one helix (the turns a program writes of it): arcs of one direction and plane
-// about centres and of radii within `tol`, both going the same way along the axis.
-bool same_helix(const Seg& a, const Seg& b, double tol) {
-    if (!a.arc || !b.arc) return false;
-    const ArcGeometry &g = *a.arc, &h = *b.arc;
-    if (g.direction != h.direction || g.plane != h.plane || std::abs(g.radius - h.radius) > tol) return false;
-    const PlanePoint ca = to_plane(g.centre, g.plane), cb = to_plane(h.centre, h.plane);
-    if (std::hypot(ca.u - cb.u, ca.v - cb.v) > tol) return false;
-    const double da = to_plane(a.b, g.plane).w - to_plane(a.a, g.plane).w;
-    const double db = to_plane(b.b, h.plane).w - to_plane(b.a, h.plane).w;
-    return (da > 1e-12 && db > 1e-12) || (da < -1e-12 && db < -1e-12);
 }
 
 std::string describe_path(const Path& p) { return p.rapid ? "rapid" : "feed"; }
@@ -367,27 +353,6 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                                                  num(prog.feed), num(job.feed), point(s.p))};
                 }
                 continue;
-            }
-            // On a helix of a pitch below the tolerance a point lies within it of several turns,
-            // and the first one found may lag behind: a helix sampled every 1.2 turns (the
-            // sample limit) stayed up to four turns behind the program's turns, and at the
-            // bottom circle those turns' feed was taken for a wrong one (fuzz finding 15). The
-            // point is on the nearest of the turns that follow at its feed, up to the first that
-            // starts beyond the tolerance past the point's height (at the same angle only: on
-            // a helix this fine that is the nearest point, and the refinement would cost most of
-            // the time of a helix of ordinary pitch).
-            const double w_p = to_plane(s.p, seg.arc ? seg.arc->plane : Plane::xy).w;
-            for (std::size_t m = j + 1; m < onto.segs.size() && same_helix(onto.segs[m - 1], onto.segs[m], limit); ++m) {
-                const Seg& next = onto.segs[m];
-                const Plane plane = next.arc->plane;
-                const double w0 = to_plane(next.a, plane).w, down = to_plane(next.b, plane).w < w0 ? 1.0 : -1.0;
-                if ((w_p - w0) * down > limit) break;  // past the point's height, and every turn after it
-                if (s.check_feed && !from.rapid && std::abs(s.step->feed - next.feed) > feed_limit) break;
-                const Hit n = locate(next, s.p, 0.0, limit, false);
-                if (n.d < h.d) {
-                    h = n;
-                    j = m;
-                }
             }
             k = j;
             t = h.t;

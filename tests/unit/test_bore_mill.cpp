@@ -516,30 +516,3 @@ TEST_CASE("verify follows a helix of a tiny radius whose centre was rounded, and
     const std::string wrong = test::replace_once(grbl, "X93.027 Y32.575 Z-3 I-0.013", "X93.027 Y32.575 Z-3.2 I-0.013");
     CHECK(test::round_trip(job, wrong, "grbl").find("line 13: the job's ccw arc") == 0);
 }
-
-TEST_CASE("verify keeps up with the turns of a helix finer than its tolerance, and still finds a wrong feed or turn") {
-    // 0.002 mm a turn, 5,948 turns: the job's helix is sampled every 1.2 turns (the sample
-    // limit), and each sample lay within the 0.008 mm allowed on arcs of several of the
-    // program's turns. The first one found was taken, so the samples fell up to four turns
-    // behind, and at the bottom circle (F600) those turns (F400) read as a wrong feed: on the
-    // machines of 3 decimals, whose last turn is two half turns about the rounded centre, the
-    // search for a turn at the right feed ended at the half turn that does not pass the point.
-    // verify refused camgen's own program on grbl, fanuc and sinumerik (fuzz finding 15).
-    const std::string job = R"({"name": "b", "units": "mm", "clearance": 10,
-      "tools": [{"number": 1, "type": "end-mill", "diameter": 10, "rpm": 3000}],
-      "operations": [{"type": "bore-mill", "tool": 1, "diameter": 12, "retractPlane": 5, "safeDistance": 1,
-        "endDepth": 12, "pitch": 0.002017553501547107, "feed": 600, "rampFeed": 400, "plungeFeed": 300,
-        "holes": [[60, 53.3125]]}]})";
-    for (const std::string machine : {"grbl", "fanuc", "sinumerik", "linuxcnc"}) {
-        CAPTURE(machine);
-        const std::string program = test::post_job(job, machine).text;
-        CHECK(test::round_trip(job, program, machine) == "");
-    }
-    const std::string grbl = test::post_job(job, "grbl").text;
-    // The bottom circle at the ramp's feed is found, at its line.
-    const std::string slow = test::replace_once(grbl, "X61 Y53.313 I-1 J-0.001 F600", "X61 Y53.313 I-1 J-0.001 F400");
-    CHECK(test::round_trip(job, slow, "grbl").find("line 5966: the program feeds at 400.000 mm/min where the job feeds at 600.000") == 0);
-    // A turn ending 0.02 mm too deep half-way down is found where the program climbs back.
-    const std::string deep = test::replace_once(grbl, "X61 Y53.312 Z-6.02 I-1", "X61 Y53.312 Z-6.04 I-1");
-    CHECK(test::round_trip(job, deep, "grbl").find("line 3001: the program's ccw arc") == 0);
-}
