@@ -9,6 +9,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/operations/part_guard.hpp"
 
 namespace camgen {
 
@@ -224,6 +225,39 @@ void check_offset(const Profile& path, const Profile& walk, double distance, con
     }
 }
 
+// The shortest move written under G41/G42, mm (see plan).
+constexpr double control_min_move = 0.01;
+
+// Removes the segments shorter than `min_length` from a path: a line after one starts where the
+// one before ends; else the segment before is extended to its end. Returns how many were removed.
+std::size_t merge_short_segments(Profile& p, double min_length) {
+    if (p.segments.size() < 2) return 0;
+    std::vector<ProfileSegment> kept;
+    kept.reserve(p.segments.size());
+    std::size_t removed = 0;
+    Vec2 from = p.start;
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+        const ProfileSegment& s = p.segments[k];
+        Profile one;
+        one.start = from;
+        one.segments.push_back(s);
+        const bool next_is_line = k + 1 < p.segments.size() && !p.segments[k + 1].centre;
+        if (profile_length(one) < min_length && (next_is_line || !kept.empty()) && p.segments.size() - removed > 2) {
+            // The segment before reaches its end (an arc's end then lies off its circle by less
+            // than min_length, which every control tolerates).
+            if (!next_is_line) kept.back().end = s.end;
+            // else: the next line starts where the one before ended
+            ++removed;
+            if (!next_is_line) from = s.end;
+            continue;
+        }
+        kept.push_back(s);
+        from = s.end;
+    }
+    p.segments = std::move(kept);
+    return removed;
+}
+
 // The walk direction, the offsets and the notes of an operation just read.
 void plan(ContourOp& op, Fields& f, const JobInput& in) {
     // Climb: the tool left of its travel with a clockwise spindle, right with a counter-clockwise one.
@@ -275,7 +309,23 @@ void plan(ContourOp& op, Fields& f, const JobInput& in) {
     };
     op.rough = offset(radius + op.stock_to_leave + finishing_stock, "roughing", !op.finishing);
     if (op.finishing) op.finish = offset(radius + op.stock_to_leave, "finishing", true);
+    if (!computer || op.compensation != CompensationMode::computer) {
+        // Under G41/G42 a move of a few microns (a stock offset's corner arc at a nearly straight
+        // joint) is written rounded and may point anywhere: the control takes it for a corner it
+        // cannot reach. Such moves are merged into their neighbours.
+        std::size_t merged = merge_short_segments(op.rough, control_min_move);
+        if (op.finishing) merged += merge_short_segments(op.finish, control_min_move);
+        if (merged > 0)
+            op.notes.push_back(fmt::format("{}: {} move{} shorter than {} mm merged into {} neighbour{} (the control compensates: a "
+                                           "shorter move, rounded, may point any way)",
+                                           op.path, merged, merged == 1 ? "" : "s", control_min_move, merged == 1 ? "its" : "their",
+                                           merged == 1 ? "" : "s"));
+    }
 }
+
+// Runs the operation's moves through the part-aware check (see part_guard.hpp): a move that
+// would cut into what the part keeps, or that the control would refuse, is an error naming it.
+void guard_against_part(const ContourOp& op, Fields& f, const JobInput& in, const Tool& tool);
 
 }  // namespace
 
@@ -392,6 +442,10 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
         if (!(op.ramp.angle > 0 && op.ramp.angle <= 45)) r.fail("angle", "angle must be more than 0 and at most 45 degrees");
         op.ramp.radius = in.optional_length(r, "radius").value_or(op.tool_radius);
         if (!(op.ramp.radius > 0)) r.fail("radius", "radius must be > 0");
+        if (op.ramp.kind == Ramp::Kind::along && op.compensation == CompensationMode::control)
+            r.fail("type", "an along ramp goes down along the profile and back at depth; with the control compensating, the way "
+                           "back reverses the path and the control offsets it to the other side of the line (into the part): "
+                           "use a helix or plunge ramp, or compensation computer");
     }
     if (const Json* value = f.member("tabs")) {
         Fields t(*value, f.path_of("tabs"), in.source());
@@ -439,6 +493,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     op.tolerance = in.optional_length(f, "tolerance");
     if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
     plan(op, f, in);
+    guard_against_part(op, f, in, tool);
     return op;
 }
 
@@ -453,8 +508,9 @@ namespace {
 // Emits the moves of a contour, keeping track of where the tool is.
 class Cutter {
 public:
-    Cutter(const ContourOp& op, const Context& ctx, EventSink& sink)
-        : op_(op), ctx_(ctx), sink_(sink), z_(resolve_planes(op.heights)) {}
+    // `guard`: the part check the events go to (it is also `sink`), told what each run keeps.
+    Cutter(const ContourOp& op, const Context& ctx, EventSink& sink, PartGuard* guard = nullptr)
+        : op_(op), ctx_(ctx), sink_(sink), z_(resolve_planes(op.heights)), guard_(guard) {}
 
     void run() {
         const bool closed = is_closed(op_.rough);
@@ -462,10 +518,13 @@ public:
         const std::vector<double> depths = pass_depths(z_.reference_z, rough_bottom, op_.step_down, op_.equal_steps);
         const bool has_finish = !op_.finish.segments.empty();
         first_ = true;
+        if (guard_) guard_->keep(op_.stock_to_leave + (op_.finishing ? op_.finishing->radial_stock : 0.0), rough_bottom);
         cut_run(op_.rough, closed, depths, Movement::cutting, op_.feeds.cutting, !has_finish);
-        if (has_finish)
+        if (has_finish) {
+            if (guard_) guard_->keep(op_.stock_to_leave, z_.bottom_z);
             cut_run(op_.finish, closed, pass_depths(z_.reference_z, z_.bottom_z, op_.finishing->step_down, op_.equal_steps),
                     Movement::finishing, op_.feeds.finishing, true);
+        }
     }
 
 private:
@@ -483,11 +542,53 @@ private:
 
     Vec2 side_normal(Vec2 t) const { return op_.tool_left ? left_normal(t) : scale(left_normal(t), -1); }
 
+    // A straight lead under control compensation: the control sets the tool a radius square to
+    // the move that switches compensation on (LinuxCNC) or to the next one (Fanuc), so that move
+    // runs from where the tool goes down, clear of the part, to a point on the profile's tangent
+    // a little before its start, and a straight run along the tangent takes the tool onto the
+    // profile; the lead's angle and length are those of the first move (none: square to the
+    // path). The lead-out mirrors it: on along the path (a closed one: over its start again; an
+    // open one: straight on past its end), then away.
+    Profile control_line_lead_in(const Profile& p) const {
+        const ProfilePoint s = point_at(p, 0.0);
+        Lead lead = op_.lead_in;
+        if (lead.kind == Lead::Kind::none) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 90};
+        const double a = lead.angle * deg;
+        const Vec2 q = sub(s.point, scale(s.tangent, switch_length()));
+        Profile out;
+        out.start = add(sub(q, scale(s.tangent, lead.length * std::cos(a))), scale(side_normal(s.tangent), lead.length * std::sin(a)));
+        out.segments.push_back({q, std::nullopt, ArcDirection::ccw});
+        out.segments.push_back({s.point, std::nullopt, ArcDirection::ccw});
+        return out;
+    }
+
+    Profile control_line_lead_out(const Profile& p) const {
+        Lead lead = op_.lead_out;
+        if (lead.kind == Lead::Kind::none) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 90};
+        const double a = lead.angle * deg;
+        const double total = profile_length(p);
+        Profile out;
+        out.start = point_at(p, total).point;
+        ProfilePoint e;
+        if (is_closed(p)) {
+            const Profile over = sub_profile(p, 0.0, std::min(switch_length(), total));
+            out.segments = over.segments;
+            e = point_at(over, profile_length(over));
+        } else {
+            e = point_at(p, total);
+            e.point = add(e.point, scale(e.tangent, switch_length()));
+            out.segments.push_back({e.point, std::nullopt, ArcDirection::ccw});
+        }
+        const Vec2 away = add(add(e.point, scale(e.tangent, lead.length * std::cos(a))), scale(side_normal(e.tangent), lead.length * std::sin(a)));
+        out.segments.push_back({away, std::nullopt, ArcDirection::ccw});
+        return out;
+    }
+
     // The lead-in onto `p`'s start; its path's start is where the tool goes down.
     Profile lead_in(const Profile& p) const {
         const ProfilePoint s = point_at(p, 0.0);
         Lead lead = op_.lead_in;
-        if (lead.kind == Lead::Kind::none && control_compensates()) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 0};
+        if (control_compensates() && lead.kind != Lead::Kind::arc) return control_line_lead_in(p);
         Profile out;
         out.start = s.point;
         Vec2 tangent_at_start = s.tangent;  // of travel where the lead begins
@@ -520,7 +621,7 @@ private:
     Profile lead_out(const Profile& p) const {
         const ProfilePoint e = point_at(p, profile_length(p));
         Lead lead = op_.lead_out;
-        if (lead.kind == Lead::Kind::none && control_compensates()) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 0};
+        if (control_compensates() && lead.kind != Lead::Kind::arc) return control_line_lead_out(p);
         Profile out;
         out.start = e.point;
         Vec2 tangent_at_end = e.tangent;
@@ -726,10 +827,73 @@ private:
     const Context& ctx_;
     EventSink& sink_;
     const Planes z_;
+    PartGuard* guard_ = nullptr;
     Vec3 at_;
     bool known_ = false;
     bool first_ = true;
 };
+
+void guard_against_part(const ContourOp& op, Fields& f, const JobInput& in, const Tool& tool) {
+    if (op.side == ContourSide::on) return;  // the tool centre on the line: no side to keep
+    GuardedPart part;
+    part.profile = &op.profile;
+    part.tool_radius = op.tool_radius;
+    part.top_z = resolve_planes(op.heights).reference_z;
+    if (is_closed(op.profile)) {
+        // The tool's side is air: inside for a pocket wall, outside for an outline; left or right
+        // of a closed profile is one of the two by its turning.
+        const bool tool_inside = op.side == ContourSide::inside ||
+                                 (op.side == ContourSide::left && orientation(op.profile) == Orientation::ccw) ||
+                                 (op.side == ContourSide::right && orientation(op.profile) == Orientation::cw);
+        part.material_inside = !tool_inside;
+    }
+    PartGuard guard(part);
+    Cutter(op, Context{in.header(), tool}, guard, &guard).run();
+    const std::optional<Violation>& v = guard.violation();
+    if (!v) return;
+    std::string key;
+    std::string hint;
+    if (!v->control_refuses.empty()) {
+        key = "compensation";
+        f.fail(key, fmt::format("the control would refuse this program at the {} (its cutter compensation says: \"{}\"): the tool "
+                                "(radius {}) does not fit the profile there as the control offsets it; use a smaller tool, or "
+                                "compensation computer to see where it does not fit",
+                                movement_words(v->movement, v->rapid), v->control_refuses, in.show(op.tool_radius)));
+    }
+    switch (v->rapid ? Movement::cutting : v->movement) {
+        case Movement::lead_in:
+            key = "leadIn";
+            hint = op.compensation == CompensationMode::control
+                       ? "start the profile in the middle of a straight side with room for the tool beside it, or give a leadIn that "
+                         "stays clear"
+                       : "give a shorter or different leadIn, or start the profile where the lead has room";
+            break;
+        case Movement::lead_out:
+            key = "leadOut";
+            hint = "give a shorter or different leadOut, or end the profile where the lead has room";
+            break;
+        case Movement::ramp:
+            key = "ramp";
+            hint = "give a smaller ramp radius, a plunge, or start the profile where the ramp has room";
+            break;
+        case Movement::plunge:
+            // The tool goes down where the lead-in starts: the lead decides where that is.
+            key = "leadIn";
+            hint = op.compensation == CompensationMode::control
+                       ? "start the profile in the middle of a straight side with room for the tool beside it, or give a leadIn that "
+                         "starts clear of the part"
+                       : "give a leadIn that starts clear of the part, or start the profile where there is room";
+            break;
+        case Movement::cutting:
+        case Movement::finishing:
+            key = "path";
+            hint = "the tool does not fit the profile there";
+            break;
+    }
+    if (!f.has(key)) key = "";
+    f.fail(key, fmt::format("the {}{} {}: {}", movement_words(v->movement, v->rapid),
+                            v->movement == Movement::plunge && !v->rapid ? " at the lead-in's start" : "", v->what, hint));
+}
 
 }  // namespace
 

@@ -213,6 +213,7 @@ ProfileClearance::ProfileClearance(const Profile& profile, double reach) : reach
         ny_ = static_cast<std::size_t>(h / cell_ + 1);
     }
     grid_.assign(nx_ * ny_, {});
+    seen_.assign(pieces_.size(), 0u);
     for (std::size_t k = 0; k < pieces_.size(); ++k)
         for (std::size_t c : cells_of(boxes[k][0], boxes[k][1], boxes[k][2], boxes[k][3])) grid_[c].push_back(k);
 }
@@ -238,16 +239,24 @@ Approach ProfileClearance::nearest(const PathPiece& move) const {
             }
     }
     Approach best{reach_, move.start};
-    std::vector<std::size_t> seen;
-    for (std::size_t c : cells_of(bx0 - reach_, by0 - reach_, bx1 + reach_, by1 + reach_))
-        for (std::size_t k : grid_[c]) {
-            if (std::find(seen.begin(), seen.end(), k) != seen.end()) continue;
-            seen.push_back(k);
-            const bool point = len(sub(move.segment.end, move.start)) == 0 && !move.segment.centre;
-            const Approach a = point ? Approach{point_piece_distance(move.start, pieces_[k]).distance, move.start}
-                                     : piece_distance(move, pieces_[k]);
-            keep(best, a);
-        }
+    const bool point = len(sub(move.segment.end, move.start)) == 0 && !move.segment.centre;
+    ++stamp_;
+    if (stamp_ == 0) {
+        std::fill(seen_.begin(), seen_.end(), 0u);
+        stamp_ = 1;
+    }
+    auto ix = [&](double x) { return static_cast<std::size_t>(std::clamp((x - x0_) / cell_, 0.0, static_cast<double>(nx_ - 1))); };
+    auto iy = [&](double y) { return static_cast<std::size_t>(std::clamp((y - y0_) / cell_, 0.0, static_cast<double>(ny_ - 1))); };
+    const std::size_t i0 = ix(bx0 - reach_), i1 = ix(bx1 + reach_), j0 = iy(by0 - reach_), j1 = iy(by1 + reach_);
+    for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i)
+            for (std::size_t k : grid_[j * nx_ + i]) {
+                if (seen_[k] == stamp_) continue;
+                seen_[k] = stamp_;
+                const Approach a = point ? Approach{point_piece_distance(move.start, pieces_[k]).distance, move.start}
+                                         : piece_distance(move, pieces_[k]);
+                keep(best, a);
+            }
     return best;
 }
 

@@ -47,6 +47,9 @@ private:
     double x0_ = 0, y0_ = 0, cell_ = 1;
     std::size_t nx_ = 1, ny_ = 1;
     std::vector<std::vector<std::size_t>> grid_;
+    // Which pieces one query has looked at already (a stamp per query, not a set).
+    mutable std::vector<unsigned> seen_;
+    mutable unsigned stamp_ = 0;
 };
 
 }  // namespace camgen
