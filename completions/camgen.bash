@@ -52,7 +52,7 @@ _camgen() {
         [[ $cur == */* || $cur == .* ]] && _camgen_files "$cur" '*.json'
         return 0
         ;;
-    -o | --output | --plot)
+    -o | --output | --plot | --tool-table)
         _camgen_files "$cur" '*'
         return 0
         ;;
@@ -60,7 +60,7 @@ _camgen() {
         _camgen_files "$cur" '*.json'
         return 0
         ;;
-    --units)
+    --units | --tool-table-units)
         COMPREPLY=($(compgen -W 'mm inch' -- "$cur"))
         return 0
         ;;

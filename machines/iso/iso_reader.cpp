@@ -287,8 +287,10 @@ void IsoReader::block(const Block& b) {
         if (comp->value == code(40)) {
             emit(Compensation{CompensationSide::off});
         } else {
-            if (!w.take('D')) fail(fmt::format("{} without its offset number D", comp->word->text));
-            emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right});
+            const Word* d = w.take('D');
+            if (!d) fail(fmt::format("{} without its offset number D", comp->word->text));
+            // The radius is the control's, in its offset register D (trace_program applies it).
+            emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right, integer_of(*d)});
         }
     }
     if (length_offset && length_offset->value == code(43) && !w.take('H'))

@@ -2,9 +2,14 @@
 // found in the motion itself so that canned and longhand drilling count alike.
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <set>
+
+#include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/post/longhand.hpp"
 #include "camgen/analysis/trace.hpp"
 
@@ -60,21 +65,25 @@ private:
 
 class TraceBuilder::Impl {
 public:
-    Impl(const Machine& machine, TraceSink& sink)
-        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), sink_(sink) {}
+    Impl(const Machine& machine, TraceSink& sink, TraceOptions options)
+        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), sink_(sink),
+          trace_options_(std::move(options)) {}
 
-    void add(const ReadEvent& e) {
+    // `job`: an event of a job (its Compensation carries the radius), not of a program.
+    void add(const ReadEvent& e, bool job) {
         line_ = e.line;
         uncertainty_ = e.uncertainty;
         visit_exhaustive(overloaded{
-                       [&](const OperationStart&) {},
+                       [&](const OperationStart& o) { operation_path_ = o.path; },
                        [&](const OperationEnd&) {},
                        [&](const Comment&) {},
-                       // No motion of its own: with compensation on, the steps are the programmed
-                       // path (the profile), which is what a job with control compensation expects
-                       // too. The control's offset path is LinuxCNC's to show (the rs274 oracle).
-                       [&](const Compensation&) {},
+                       // No motion of its own: the moves after it are offset as the control
+                       // offsets them (comp_move), so the steps are the tool centre's path.
+                       [&](const Compensation& c) { compensation(c, job); },
                        [&](const ToolChange& t) {
+                           if (comp_ && comp_->active())
+                               refuse(CompError{"Cannot change tools with cutter radius compensation on", 0});
+                           end_compensation();
                            tool_ = t.number;
                            emit(base(StepKind::tool_change));
                            known_ = false;
@@ -90,36 +99,49 @@ public:
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;
                            s.rpm = sp.rpm;
-                           emit(s);
+                           emit_in_order(s);
                        },
                        [&](const Rapid& r) {
-                           if (auto s = move(StepKind::rapid, r.to, 0.0, e.from_unknown)) emit(*s);
+                           Programmed p = programmed(StepKind::rapid, 0.0, Movement::cutting, 0.0, e.from_unknown);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::rapid, r.to), p);
+                           straight(r.to, p);
                        },
                        [&](const Linear& l) {
-                           if (auto s = move(StepKind::feed, l.to, l.feed, false)) {
-                               s->movement = l.movement;
-                               if (e.per_revolution > 0) s->pitch = e.per_revolution;
-                               emit(*s);
-                           }
+                           Programmed p = programmed(StepKind::feed, l.feed, l.movement,
+                                                     e.per_revolution > 0 ? e.per_revolution : pitch_, false);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, l.to), p);
+                           straight(l.to, p);
                        },
                        [&](const Arc& a) {
+                           Programmed p = programmed(StepKind::feed, a.feed, a.movement, e.per_revolution, false);
+                           p.centre_z = a.centre.z;
+                           if (comp_ && a.plane == Plane::xy) {
+                               CompMove m;
+                               m.kind = CompMove::Kind::arc;
+                               m.end = a.to;
+                               m.centre = {a.centre.x, a.centre.y};
+                               m.direction = a.direction;
+                               m.turns = a.turns;
+                               return comp_move(m, p);
+                           }
+                           if (comp_ && comp_->radius() > 0)
+                               refuse(CompError{"an arc outside the XY plane under cutter radius compensation (camgen "
+                                                "interprets G41/G42 in the XY plane only)", 0});
+                           end_compensation();
                            if (!known_) throw std::logic_error("arc from an unknown position");
-                           Step s = base(StepKind::feed);
-                           s.from = pos_;
-                           s.to = a.to;
-                           s.feed = a.feed;
-                           s.arc = resolve_arc(pos_, a);
-                           s.movement = a.movement;
-                           s.pitch = e.per_revolution;
-                           pos_ = a.to;
-                           emit(s);
+                           arc(resolve_arc(pos_, a), a.to, p);
                        },
                        [&](const Dwell& d) {
                            Step s = base(StepKind::dwell);
                            s.seconds = d.seconds;
-                           emit(s);
+                           emit_in_order(s);
                        },
-                       [&](const DrillCycle& c) { cycle_ = c; },
+                       [&](const DrillCycle& c) {
+                           if (comp_ && comp_->active())
+                               refuse(CompError{"Cannot use canned cycles with cutter compensation on", 0});
+                           end_compensation();
+                           cycle_ = c;
+                       },
                        [&](const DrillPoint& p) {
                            if (!cycle_) throw std::logic_error("drill point outside a cycle");
                            if (!known_) throw std::logic_error("drilling from an unknown position");
@@ -129,7 +151,8 @@ public:
                            pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
                            for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_, longhand_buffers_))
                                add(ReadEvent{.event = to_event(m), .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution});
+                                             .per_revolution = e.per_revolution},
+                                   job);
                            pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
@@ -138,11 +161,33 @@ public:
     }
 
     void finish() {
+        end_compensation();
         holes_.close(sink_);
+        summary_.notes = notes_;
         sink_.finish(summary_);
     }
 
+    const std::vector<std::string>& notes() const { return notes_; }
+
 private:
+    // What a programmed move carries to the steps made of it (under compensation: to the tool
+    // centre's moves, which the control makes later, once the next move decides the corner).
+    struct Programmed {
+        std::size_t source = 0;  // its tag in CutterCompensation
+        StepKind kind = StepKind::feed;
+        double feed = 0.0;
+        Movement movement = Movement::cutting;
+        double pitch = 0.0;
+        bool from_unknown = false;
+        int line = 0;
+        double uncertainty = 0.0;
+        std::optional<double> centre_z;  // an arc's centre Z as programmed
+    };
+
+    Programmed programmed(StepKind kind, double feed, Movement movement, double pitch, bool from_unknown) const {
+        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt};
+    }
+
     Step base(StepKind kind) const {
         Step s;
         s.kind = kind;
@@ -165,42 +210,179 @@ private:
         sink_.step(s);
     }
 
-    // The step of a straight move, or none where it goes nowhere from a known position.
-    std::optional<Step> move(StepKind kind, const Vec3& to, double feed, bool from_unknown) {
-        bool from_known = known_ && !from_unknown;
-        if (kind == StepKind::feed && !from_known) throw std::logic_error("feed move from an unknown position");
-        if (from_known && to == pos_) return std::nullopt;
-        Step s = base(kind);
+    // A step without motion (dwell, spindle): under compensation it waits behind the moves
+    // programmed before it that the control still holds, as the control's queue keeps it.
+    void emit_in_order(const Step& s) {
+        if (comp_) held_.push_back({next_source_ - 1, s});
+        else emit(s);
+    }
+
+    // The step of a straight move, unless it goes nowhere from a known position.
+    void straight(const Vec3& to, const Programmed& p) {
+        const bool from_known = known_ && !p.from_unknown;
+        if (p.kind == StepKind::feed && !from_known) throw std::logic_error("feed move from an unknown position");
+        if (from_known && to == pos_) return;
+        Step s = base(p.kind);
+        s.line = p.line;
+        s.uncertainty = p.uncertainty;
         s.from = from_known ? pos_ : to;
         s.to = to;
         s.from_known = from_known;
-        s.feed = feed;
-        if (kind == StepKind::feed) s.pitch = pitch_;
+        if (p.kind == StepKind::feed) {
+            s.feed = p.feed;
+            s.pitch = p.pitch;
+            s.movement = p.movement;
+        }
         pos_ = to;
         known_ = true;
-        return s;
+        emit(s);
+    }
+
+    void arc(const ArcGeometry& geometry, const Vec3& to, const Programmed& p) {
+        Step s = base(StepKind::feed);
+        s.line = p.line;
+        s.uncertainty = p.uncertainty;
+        s.from = pos_;
+        s.to = to;
+        s.feed = p.feed;
+        s.arc = geometry;
+        s.movement = p.movement;
+        s.pitch = p.pitch;
+        pos_ = to;
+        emit(s);
+    }
+
+    // ---- cutter compensation (G41/G42 ... G40) ----
+    // From G41/G42 to the move after G40 the moves go through CutterCompensation (comp_); the
+    // tool centre's moves come back to tool_move as the control makes them.
+
+    void compensation(const Compensation& c, bool job) {
+        if (c.side == CompensationSide::off) {
+            if (comp_)
+                if (auto err = comp_->off(0)) refuse(*err);
+            return;
+        }
+        if (lathe_) {
+            note_once(-1, fmt::format("line {}: tool nose radius compensation (G41/G42) on a lathe is not interpreted: "
+                                      "the moves are taken as programmed",
+                                      line_));
+            return;
+        }
+        const double radius = job ? c.radius : radius_of(c);
+        if (!comp_) {
+            comp_.emplace([this](const CompMove& m) { tool_move(m); });
+            if (known_) comp_->set_position(pos_);
+        }
+        if (auto err = comp_->on(c.side == CompensationSide::left ? CompSide::left : CompSide::right, radius, 0))
+            refuse(*err);
+    }
+
+    // The radius the control offsets by for a program's G41/G42 (0 where unknown, with a note).
+    double radius_of(const Compensation& c) {
+        if (c.radius > 0) return c.radius;
+        const int reg = c.d_register != 0 ? c.d_register : tool_;
+        if (auto it = trace_options_.compensation_radii.find(reg); it != trace_options_.compensation_radii.end())
+            return it->second;
+        for (const ToolInfo& t : summary_.tools)
+            if (t.number == reg && t.diameter > 0) return t.diameter / 2;
+        note_once(reg, fmt::format("line {}: cutter radius compensation with offset register D{}, whose radius camgen "
+                                   "does not know (verify --tool-table gives it): its moves are taken as programmed, "
+                                   "not as the control offsets them",
+                                   line_, reg));
+        return 0.0;
+    }
+
+    void note_once(int key, std::string text) {
+        if (noted_.insert(key).second) notes_.push_back(std::move(text));
+    }
+
+    static CompMove comp_straight(CompMove::Kind kind, const Vec3& to) {
+        CompMove m;
+        m.kind = kind;
+        m.end = to;
+        return m;
+    }
+
+    void comp_move(CompMove m, Programmed p) {
+        m.source = p.source = next_source_++;
+        programmed_.push_back(p);
+        if (auto err = comp_->move(m)) refuse(*err);
+        // The move after G40 was the last the control offsets: the rest is as programmed.
+        if (!comp_->active()) end_compensation();
+    }
+
+    // A tool-centre move, made of the programmed move tagged m.source.
+    void tool_move(const CompMove& m) {
+        while (!programmed_.empty() && programmed_.front().source < m.source) programmed_.pop_front();
+        release_held(m.source);
+        if (programmed_.empty() || programmed_.front().source != m.source)
+            throw std::logic_error("a tool-centre move of no programmed move");
+        const Programmed& p = programmed_.front();
+        if (m.kind != CompMove::Kind::arc) {
+            Programmed q = p;
+            q.kind = m.kind == CompMove::Kind::rapid ? StepKind::rapid : StepKind::feed;
+            return straight(m.end, q);
+        }
+        if (!known_) throw std::logic_error("arc from an unknown position");
+        // A corner the control adds turns at the height of the move before it.
+        const ArcSpec spec{m.end, {m.centre.x, m.centre.y, p.centre_z.value_or(pos_.z)}, m.direction, Plane::xy, m.turns};
+        arc(resolve_arc(pos_, spec), m.end, p);
+    }
+
+    // The steps without motion that wait for the moves programmed before them.
+    void release_held(std::size_t before) {
+        std::size_t n = 0;
+        while (n < held_.size() && held_[n].first < before) emit(held_[n++].second);
+        held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(n));
+    }
+
+    // The control hands on what it holds (before a tool change, a canned cycle, the end).
+    void end_compensation() {
+        if (!comp_) return;
+        comp_->flush();
+        release_held(next_source_);
+        comp_.reset();
+        programmed_.clear();
+    }
+
+    [[noreturn]] void refuse(const CompError& err) const {
+        int line = line_;
+        for (const Programmed& p : programmed_)
+            if (p.source == err.source && err.source != 0) line = p.line;
+        const std::string detail = "the control refuses this: " + err.message;
+        if (line == 0) throw ControlRefusal(operation_path_, detail);
+        throw ControlRefusal("", detail, line);
     }
 
     LonghandOptions options_;
     bool lathe_;  // Z is the spindle axis
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     TraceSink& sink_;
+    TraceOptions trace_options_;
     HoleFinder holes_;
     TraceSummary summary_;
-    Vec3 pos_;
+    Vec3 pos_;  // where the tool centre is (after the steps emitted)
     bool known_ = false;
     int tool_ = 0;
     int line_ = 0;
     double uncertainty_ = 0.0;
     double pitch_ = 0.0;  // while a tap is expanded
     std::optional<DrillCycle> cycle_;
+    std::string operation_path_;  // of a job's events: the operation's JSON path, for a refusal
+    std::optional<CutterCompensation> comp_;  // from G41/G42 to the move after G40
+    std::deque<Programmed> programmed_;       // the moves comp_ may still make steps of
+    std::vector<std::pair<std::size_t, Step>> held_;  // steps without motion, after the programmed move tagged first
+    std::size_t next_source_ = 1;
+    std::vector<std::string> notes_;
+    std::set<int> noted_;  // the registers (and -1: the lathe) noted
 };
 
-TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink) : impl_(std::make_unique<Impl>(machine, sink)) {}
+TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)
+    : impl_(std::make_unique<Impl>(machine, sink, std::move(options))) {}
 
 TraceBuilder::~TraceBuilder() = default;
 
-void TraceBuilder::read_event(const ReadEvent& event) { impl_->add(event); }
+void TraceBuilder::read_event(const ReadEvent& event) { impl_->add(event, false); }
 
 void TraceBuilder::add_job_event(const Event& e) {
     ReadEvent r{e};
@@ -209,10 +391,12 @@ void TraceBuilder::add_job_event(const Event& e) {
         r.from_unknown = !known_;
         known_ = true;
     }
-    impl_->add(r);
+    impl_->add(r, true);
 }
 
 void TraceBuilder::finish() { impl_->finish(); }
+
+const std::vector<std::string>& TraceBuilder::notes() const { return impl_->notes(); }
 
 void TraceFanOut::step(const Step& step) {
     for (TraceSink* s : sinks_) s->step(step);
@@ -229,6 +413,7 @@ void TraceFanOut::finish(const TraceSummary& summary) {
 void TraceCollector::finish(const TraceSummary& summary) {
     trace_.canned_holes = summary.canned_holes;
     trace_.tools = summary.tools;
+    trace_.notes = summary.notes;
 }
 
 void FeedClamp::step(const Step& step) {
@@ -238,9 +423,9 @@ void FeedClamp::step(const Step& step) {
     next_.step(s);
 }
 
-Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine) {
+Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine, const TraceOptions& options) {
     TraceCollector trace;
-    TraceBuilder t(machine, trace);
+    TraceBuilder t(machine, trace, options);
     for (const ReadEvent& e : events) t.read_event(e);
     t.finish();
     return trace.take();

@@ -1,5 +1,6 @@
 #include "camgen/cli/cli.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -26,6 +28,7 @@
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
+#include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/analysis/stats.hpp"
 #include "src/cli/man.hpp"
@@ -55,13 +58,15 @@ struct Options {
     bool quiet = false; // no notes on stderr (warnings and errors still)
 };
 
-// `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg]`
+// `camgen verify PROGRAM --machine M [--job JOB] [--plot F.svg] [--tool-table F [--tool-table-units inch]]`
 struct VerifyOptions {
     std::string program;
     std::string machine;
     std::string job;
     std::string plot;
     std::string units;
+    std::string tool_table;                // the control's tool table (LinuxCNC's format): G41/G42 radii
+    std::string tool_table_units = "mm";   // its lengths
 };
 
 // True for a file that can be read more than once: not a pipe (`camgen verify <(...)`), FIFO
@@ -239,16 +244,19 @@ std::string base_name(const std::string& file) { return file.substr(file.find_la
 class ReadBack {
 public:
     using Pass = std::function<ReadResolution(ReadEventSink&)>;
-    ReadBack(const Machine& machine, const std::string& plot_file, Pass pass)
-        : machine_(machine), html_(!plot_file.empty() && is_html_plot(plot_file)), pass_(std::move(pass)), stats_(machine),
-          plan_(machine.kind) {
+    ReadBack(const Machine& machine, const std::string& plot_file, Pass pass, TraceOptions options)
+        : machine_(machine), html_(!plot_file.empty() && is_html_plot(plot_file)), pass_(std::move(pass)),
+          options_(std::move(options)), stats_(machine), plan_(machine.kind) {
         std::vector<TraceSink*> sinks{&stats_};
         if (!plot_file.empty()) sinks.push_back(&plan_);
         TraceFanOut fan(std::move(sinks));
-        TraceBuilder trace(machine_, fan);
+        TraceBuilder trace(machine_, fan, options_);
         resolution_ = pass_(trace);
+        notes_ = trace.notes();
     }
     const ProgramStats& stats() const { return stats_.stats(); }
+    // What the trace took as given (a G41/G42 radius it does not know).
+    const std::vector<std::string>& notes() const { return notes_; }
     ReadResolution resolution() const { return resolution_; }
     // Writes the --plot file: the HTML page (it shows the text that `program` opens at its
     // start) or the SVG drawing.
@@ -256,7 +264,7 @@ public:
         if (html_) {
             HtmlPlot page(plan_, stats(), options);
             const auto read = [&](TraceSink& sink) {
-                TraceBuilder trace(machine_, sink);
+                TraceBuilder trace(machine_, sink, options_);
                 (void)pass_(trace);
             };
             read(page);
@@ -264,7 +272,7 @@ public:
             return;
         }
         BackplotDrawer drawer(plan_, stats(), options);
-        TraceBuilder trace(machine_, drawer);
+        TraceBuilder trace(machine_, drawer, options_);
         (void)pass_(trace);
         out << drawer.take().svg;
     }
@@ -273,6 +281,8 @@ private:
     const Machine& machine_;
     bool html_;
     Pass pass_;
+    TraceOptions options_;
+    std::vector<std::string> notes_;
     StatsAccumulator stats_;
     BackplotPlan plan_;
     ReadResolution resolution_;
@@ -360,10 +370,11 @@ private:
 // Compares the program with the job's events in a pass of its own: the job leads, and the
 // program is read as far as the comparison needs it.
 std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
-                                         const Machine& machine, const CompareTolerance& tolerance) {
+                                         const Machine& machine, const CompareTolerance& tolerance,
+                                         const TraceOptions& options) {
     std::unique_ptr<ProgramReader> reader;
     TraceComparer comparer(tolerance, [&] { return reader->advance(); });
-    TraceBuilder program_trace(machine, comparer.actual());
+    TraceBuilder program_trace(machine, comparer.actual(), options);
     reader = std::make_unique<ProgramReader>(program.open(), machine, source, program_trace);
     FeedClamp clamp(machine, comparer.expected());
     TraceBuilder job_trace(machine, clamp);
@@ -381,37 +392,97 @@ std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::strin
     return comparer.mismatch();
 }
 
+// The radius of each offset register (D) that a program written for `job` offsets by: the radius
+// the job's own G41/G42 carry (its tool's radius where the control offsets, 0 where it only adds
+// the wear), else the radius of the job's tool of that number.
+std::map<int, double> job_compensation_radii(const Job& job) {
+    std::map<int, double> radii;
+    for (const auto& [number, tool] : job.tools)
+        if (tool.diameter > 0) radii[number] = tool.diameter / 2;
+    struct Radii : EventSink {
+        std::map<int, double> given;
+        int tool = 0;
+        void emit(const Event& e) override {
+            if (const auto* t = std::get_if<ToolChange>(&e)) tool = t->number;
+            const auto* c = std::get_if<Compensation>(&e);
+            if (!c || c->side == CompensationSide::off) return;
+            double& r = given.try_emplace(c->d_register != 0 ? c->d_register : tool, 0.0).first->second;
+            r = std::max(r, c->radius);  // a register the job offsets by in full, and elsewhere by the wear only, is the radius
+        }
+    } events;
+    expand_job(job, events);
+    for (const auto& [reg, radius] : events.given) radii[reg] = radius;
+    return radii;
+}
+
+// Where a program's G41/G42 radii come from: verify --tool-table, else the job's.
+TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, std::istream& in) {
+    TraceOptions options;
+    if (!v.tool_table.empty()) {
+        const std::string text = read_text(v.tool_table, in);
+        for (const auto& [number, diameter] :
+             read_tool_table(text, v.tool_table == "-" ? "<stdin>" : v.tool_table,
+                             v.tool_table_units == "inch" ? Units::inch : Units::mm))
+            options.compensation_radii[number] = diameter / 2;
+    } else if (job) {
+        options.compensation_radii = job_compensation_radii(*job);
+    }
+    return options;
+}
+
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     Machine machine = load_machine(v.machine);
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
+    if (v.tool_table == "-" && (v.program == "-" || v.job == "-"))
+        throw UsageError("only one of the program, the job and the tool table can come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
+    // The job first: its tools give the radii of the program's G41/G42.
+    std::string job_text;
+    std::optional<Job> job;
+    if (!v.job.empty()) {
+        job_text = read_text(v.job, in);
+        try {
+            job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
+            check_machine_kind(*job, machine.kind, machine.name);
+        } catch (const InputError& e) {
+            throw locate(e, v.job, job_text);
+        }
+    }
+    const TraceOptions options = program_trace_options(v, job ? &*job : nullptr, in);
     // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job; the
     // HTML page's copy of the text).
     ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
-    ReadBack back(machine, v.plot, [&](ReadEventSink& sink) {
-        ProgramReader reader(program.open(), machine, source, sink);
-        reader.read_all();
-        return reader.coarsest_resolution();
-    });
-    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back.stats());
+    std::optional<ReadBack> back;
+    try {
+        back.emplace(machine, v.plot, [&](ReadEventSink& sink) {
+            ProgramReader reader(program.open(), machine, source, sink);
+            reader.read_all();
+            return reader.coarsest_resolution();
+        }, options);
+    } catch (const ControlRefusal& e) {
+        // The control would stop there: with a job that is the first difference.
+        if (!job) throw e.located(source, e.line());
+        out << fmt::format("{} on machine {}\n", source, machine.name)
+            << fmt::format("MISMATCH {}{}: {}\n", source, e.line() > 0 ? fmt::format(":{}", e.line()) : "", e.detail());
+        finish_stream(out, "standard output");
+        return exit_invalid_input;
+    }
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_stats(back->stats());
+    for (const std::string& note : back->notes()) out << "note: " << note << '\n';
     if (!v.plot.empty()) {
         OutputFile plot(v.plot);
-        back.write_plot(plot.stream(), [&]() -> std::istream& { return program.open(); },
-                        {base_name(source), machine.name, machine.kind});
+        back->write_plot(plot.stream(), [&]() -> std::istream& { return program.open(); },
+                         {base_name(source), machine.name, machine.kind});
         plot.commit();
     }
-    if (v.job.empty()) {
+    if (!job) {
         finish_stream(out, "standard output");
         return exit_ok;
     }
-    std::string job_text = read_text(v.job, in);
-    Job job;
     try {
-        job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
-        check_machine_kind(job, machine.kind, machine.name);
-        CompareTolerance tolerance = compare_tolerance(machine, back.resolution());
-        if (auto m = compare_with_job(program, source, job, machine, tolerance)) {
+        CompareTolerance tolerance = compare_tolerance(machine, back->resolution());
+        if (auto m = compare_with_job(program, source, *job, machine, tolerance, options)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             finish_stream(out, "standard output");
             return exit_invalid_input;
@@ -432,12 +503,23 @@ void read_back(std::string_view program, const Job& job, const Options& o, const
                std::optional<OutputFile>& plot) {
     Machine machine = machine_for(loaded, o);
     std::string name = o.output == "-" ? job.name + "." + machine.extension : base_name(o.output);
-    ReadBack back(machine, o.plot, [&](ReadEventSink& sink) {
-        ReadResolution resolution;
-        read_program(program, machine, name, sink, &resolution);
-        return resolution;
-    });
+    std::optional<ReadBack> read;
+    try {
+        read.emplace(
+            machine, o.plot,
+            [&](ReadEventSink& sink) {
+                ReadResolution resolution;
+                read_program(program, machine, name, sink, &resolution);
+                return resolution;
+            },
+            TraceOptions{job_compensation_radii(job)});
+    } catch (const ControlRefusal& e) {
+        throw e.located(name, e.line());
+    }
+    ReadBack& back = *read;
     if (o.stats) err << format_stats(back.stats());
+    if (!o.quiet)
+        for (const std::string& note : back.notes()) err << "camgen: note: " << note << '\n';
     if (o.plot.empty()) return;
     TextStream text(program);
     back.write_plot(plot.emplace(o.plot).stream(), [&]() -> std::istream& { return text.open(); },
@@ -497,6 +579,12 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     verify->add_option("--job", vo.job, "The job the program should carry out");
     verify->add_option("--plot", vo.plot, "Write a backplot of the program: F.svg a drawing, F.html an interactive page");
     verify->add_option("--units", vo.units, "The units the program was written in, if not the machine's (as camgen --units)")
+        ->check(CLI::IsMember({"mm", "inch"}));
+    verify->add_option("--tool-table", vo.tool_table,
+                       "The control's tool table (LinuxCNC's format: T1 P1 D6 ...): the diameters its G41/G42 offset by "
+                       "(default: the job's tools, else the program's tool comments)");
+    verify->add_option("--tool-table-units", vo.tool_table_units,
+                       "The units of the tool table's lengths: mm (default) or inch (LinuxCNC's standalone rs274 table)")
         ->check(CLI::IsMember({"mm", "inch"}));
 
     std::string schema_name;

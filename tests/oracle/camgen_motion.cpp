@@ -9,8 +9,34 @@
 
 namespace camgen::oracle {
 
+namespace {
+
+std::vector<Step> normalised(const Trace& trace);
+
+}  // namespace
+
 std::vector<Step> read_with_camgen(const std::string& program, const Machine& machine) {
-    Trace trace = trace_program(read_program(program, machine, "oracle.ngc"), machine);
+    return normalised(trace_program(read_program(program, machine, "oracle.ngc"), machine));
+}
+
+CompensatedRead read_with_camgen(const std::string& program, const Machine& machine, const std::map<int, double>& radii) {
+    CompensatedRead out;
+    try {
+        TraceCollector collect;
+        TraceBuilder trace(machine, collect, TraceOptions{radii});
+        read_program(program, machine, "oracle.ngc", trace);
+        out.steps = normalised(collect.take());
+    } catch (const ControlRefusal& e) {
+        out.refused_line = e.line();
+        const std::string prefix = "the control refuses this: ";
+        out.refusal = e.detail().rfind(prefix, 0) == 0 ? e.detail().substr(prefix.size()) : e.detail();
+    }
+    return out;
+}
+
+namespace {
+
+std::vector<Step> normalised(const Trace& trace) {
     std::vector<Step> steps;
     Vec3 at{0, 0, 0};  // rs274 starts at the origin
     std::string spindle = "off";
@@ -59,5 +85,7 @@ std::vector<Step> read_with_camgen(const std::string& program, const Machine& ma
     }
     return steps;
 }
+
+}  // namespace
 
 }  // namespace camgen::oracle

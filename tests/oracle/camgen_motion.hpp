@@ -1,6 +1,7 @@
 #pragma once
 // camgen's own reading of a program in the oracle's normalised form (rs274.hpp's Step), so
 // that what camgen's reader and trace make of a program can be compared with rs274's motion.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,5 +13,15 @@ namespace camgen::oracle {
 // The motion camgen's reader makes of a program: moves of zero length and zero dwells
 // dropped, feeds and arcs with their rate, spindle entries on changes.
 std::vector<Step> read_with_camgen(const std::string& program, const Machine& machine);
+
+// The same with G41/G42 applied as the control applies them, offset register -> radius from
+// `radii` (mm): the tool centre's moves, or where the control refuses the program, camgen's
+// line and message (the ControlRefusal's detail without "the control refuses this: ").
+struct CompensatedRead {
+    std::vector<Step> steps;
+    int refused_line = 0;  // 0: not refused
+    std::string refusal;
+};
+CompensatedRead read_with_camgen(const std::string& program, const Machine& machine, const std::map<int, double>& radii);
 
 }  // namespace camgen::oracle

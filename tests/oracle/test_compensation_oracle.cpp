@@ -13,6 +13,8 @@
 #include <fmt/format.h>
 
 #include "camgen/geometry/compensation.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen_motion.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
@@ -189,6 +191,76 @@ TEST_CASE("compensation: camgen's G41/G42 interpretation cuts what rs274 cuts, a
     }
     MESSAGE(fmt::format("compensation oracle: seed {}, {} programs ({} with arcs): {} cut alike, {} refused by both", seed, count,
                         with_arcs, accepted, refused));
+    CHECK(accepted > count / 4);
+    CHECK(refused > 0);
+}
+
+// The same random programs read back by camgen (the linuxcnc reader and the TraceBuilder, which
+// applies CutterCompensation in the read-back): the trace is rs274's motion, move for move, or
+// both refuse, camgen at the line rs274 stops at.
+TEST_CASE("compensation: camgen's read-back of a G41/G42 program traces what rs274 cuts, and refuses at rs274's line") {
+    const auto rs274 = find_rs274();
+    REQUIRE_MESSAGE(rs274, "rs274 (linuxcnc-uspace) is needed for the compensation oracle");
+    const Machine machine = load_machine("linuxcnc");
+    const unsigned seed = std::getenv("CAMGEN_COMP_SEED") ? static_cast<unsigned>(std::atoi(std::getenv("CAMGEN_COMP_SEED"))) : 2413u;
+    const int count = std::getenv("CAMGEN_COMP_CASES") ? std::atoi(std::getenv("CAMGEN_COMP_CASES")) : 100;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int accepted = 0, refused = 0;
+    const auto with = [](std::string text, const std::string& from, const std::string& to) {
+        const std::size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        return text.replace(at, from.size(), to);
+    };
+    for (int k = 0; k < count; ++k) {
+        const double tool_r = r3(0.5 + 6 * u(rng));
+        const bool left = u(rng) < 0.5;
+        bool has_arcs = false;
+        const Programmed p = random_program(rng, tool_r, left, has_arcs);
+        // As the linuxcnc machine writes it: H and D words, a spindle speed before M3.
+        std::string text = with(with(p.text, "G43\n", "G43 H1\n"), left ? "G41\n" : "G42\n", left ? "G41 D1\n" : "G42 D1\n");
+        text = with(text, "M3 S1000\n", "S1000 M3\n");
+        INFO("seed ", seed, " case ", k, " tool radius ", tool_r, "\n", text);
+        std::optional<std::string> theirs_error;
+        std::vector<Step> theirs;
+        try {
+            theirs = moving(run_rs274(*rs274, text, {{1, 2 * tool_r}}));
+        } catch (const std::exception& e) {
+            theirs_error = e.what();
+        }
+        const CompensatedRead ours = read_with_camgen(text, machine, {{1, tool_r}});
+        if (ours.refused_line == 0) {
+            const std::vector<Step> mine = moving(ours.steps);
+            REQUIRE_MESSAGE(!theirs_error, "rs274 refused: ", theirs_error.value_or(""));
+            ++accepted;
+            REQUIRE(mine.size() == theirs.size());
+            for (std::size_t i = 0; i < mine.size(); ++i) {
+                INFO("move ", i, ": rs274 ", describe(theirs[i]), ", camgen ", describe(mine[i]));
+                CHECK(mine[i].kind == theirs[i].kind);
+                CHECK(std::hypot(mine[i].to.x - theirs[i].to.x, mine[i].to.y - theirs[i].to.y, mine[i].to.z - theirs[i].to.z) < 0.001);
+                if (mine[i].kind == Step::Kind::arc) {
+                    CHECK(std::hypot(mine[i].centre.x - theirs[i].centre.x, mine[i].centre.y - theirs[i].centre.y) < 0.001);
+                    CHECK(mine[i].rotation == theirs[i].rotation);
+                }
+            }
+        } else {
+            REQUIRE_MESSAGE(theirs_error, "camgen refused at line ", ours.refused_line, ": ", ours.refusal);
+            ++refused;
+            // rs274 prints its message and then the block it stopped at.
+            const std::vector<std::string> lines = [&] {
+                std::vector<std::string> out;
+                std::istringstream in(text);
+                for (std::string l; std::getline(in, l);) out.push_back(l);
+                return out;
+            }();
+            REQUIRE(ours.refused_line <= static_cast<int>(lines.size()));
+            CHECK_MESSAGE(theirs_error->find(ours.refusal + "\n" + lines[static_cast<std::size_t>(ours.refused_line - 1)]) !=
+                              std::string::npos,
+                          "rs274: ", *theirs_error, " camgen: line ", ours.refused_line, ": ", ours.refusal);
+        }
+    }
+    MESSAGE(fmt::format("compensation read-back oracle: seed {}, {} programs: {} traced alike, {} refused by both at one line",
+                        seed, count, accepted, refused));
     CHECK(accepted > count / 4);
     CHECK(refused > 0);
 }

@@ -1,6 +1,7 @@
 // LinuxCNC's interpreter applies cutter compensation itself: for every sample with control
 // compensation, camgen's linuxcnc program run through `rs274 -g` with the tool's diameter in
 // its tool table cuts the same path as camgen's own computer-compensated program.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../unit/support.hpp"
+#include "camgen_motion.hpp"
 #include "rs274.hpp"
 
 using namespace camgen;
@@ -80,7 +82,31 @@ TEST_CASE("contour: rs274's own compensation of camgen's G41/G42 program cuts ca
         CHECK(control_program.find("G41 D") != std::string::npos);
         CHECK(computer_program.find("G41 D") == std::string::npos);
         // rs274 accepts every entry and exit camgen writes, or this throws with its message.
-        const std::vector<Step> by_control = cutting_moves(run_rs274(*rs274, control_program, diameters));
+        const std::vector<Step> rs274_motion = run_rs274(*rs274, control_program, diameters);
+        const std::vector<Step> by_control = cutting_moves(rs274_motion);
+        // camgen's own read-back of the G41/G42 program (the radius from its tool comment) is
+        // the tool centre's path: rs274's motion, move for move from the first feed (before it
+        // rs274 starts from the origin, camgen's reader from an unknown position).
+        const auto from_first_feed = [](std::vector<Step> steps) {
+            const auto feed = std::find_if(steps.begin(), steps.end(), [](const Step& s) { return s.kind == Step::Kind::feed; });
+            steps.erase(steps.begin(), feed);
+            return steps;
+        };
+        const std::vector<Step> read_back = from_first_feed(read_with_camgen(control_program, machine));
+        const std::vector<Step> rs274_from_feed = from_first_feed(rs274_motion);
+        REQUIRE(read_back.size() > 40);
+        REQUIRE(read_back.size() == rs274_from_feed.size());
+        for (std::size_t i = 0; i < read_back.size(); ++i) {
+            CAPTURE(i);
+            CAPTURE(describe(read_back[i]));
+            CAPTURE(describe(rs274_from_feed[i]));
+            CHECK(read_back[i].kind == rs274_from_feed[i].kind);
+            CHECK(dist(read_back[i].to, rs274_from_feed[i].to) < 0.001);
+            if (read_back[i].kind == Step::Kind::arc) {
+                CHECK(std::hypot(read_back[i].centre.x - rs274_from_feed[i].centre.x, read_back[i].centre.y - rs274_from_feed[i].centre.y) < 0.001);
+                CHECK(read_back[i].rotation == rs274_from_feed[i].rotation);
+            }
+        }
         const std::vector<Step> by_camgen = cutting_moves(run_rs274(*rs274, computer_program, diameters));
         REQUIRE(by_camgen.size() > 10);
         REQUIRE(by_control.size() == by_camgen.size());

@@ -3,11 +3,13 @@
 // the posts' longhand semantics (longhand.hpp), arcs kept as arcs. Built from a program read
 // back (reader.hpp) or from a job's events, so the two can be compared (compare.hpp), measured
 // (stats.hpp) and drawn (backplot.hpp).
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "camgen/common/error.hpp"
 #include "camgen/geometry/arc.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/post/machine.hpp"
@@ -59,12 +61,33 @@ struct Trace {
     std::vector<Hole> holes;      // in drilling order
     int canned_holes = 0;         // holes drilled by a canned cycle (the others are longhand)
     std::vector<ToolInfo> tools;  // in order of first use
+    std::vector<std::string> notes;  // what the trace took as given (see TraceSummary::notes)
 };
 
 // What a trace says beyond its steps and holes, known at its end.
 struct TraceSummary {
     int canned_holes = 0;         // holes drilled by a canned cycle
     std::vector<ToolInfo> tools;  // in order of first use
+    std::vector<std::string> notes;  // what the steps took as given where the program did not say (a
+                                     // G41/G42 whose radius is unknown: its moves as programmed)
+};
+
+// How a program's steps are made. A program says G41/G42 and an offset register (D; none: the
+// tool's number); the radius is the control's. `compensation_radii` is that register's radius in
+// mm, as the control holds it (LinuxCNC: the tool of that number in its tool table); a register
+// missing here takes the diameter the program gives its tool (a ToolChange), else its moves are
+// taken as programmed, with a note. A job's events carry their radius and need none of this.
+struct TraceOptions {
+    std::map<int, double> compensation_radii;
+};
+
+// The control refuses the program: cutter compensation it cannot apply without gouging, a
+// canned cycle or a tool change while it is on, in the control's own words ("the control
+// refuses this: ..."). At the program line (line()) of a program read back; for a job's events
+// at no line, with path() the operation's JSON path. Exit code 1, as any InputError.
+class ControlRefusal : public InputError {
+public:
+    using InputError::InputError;
 };
 
 // Receives a trace as it is made: its steps in order, each hole once the tool has left it
@@ -103,18 +126,25 @@ private:
 };
 
 // Turns events into steps one at a time (the streaming core of trace_program and
-// trace_events): canned cycles expanded, holes found in the motion. Read events come from a
-// reader (it is a ReadEventSink); a job's events through add_job_event, which knows where the
-// position is unknown as the posts do.
+// trace_events): canned cycles expanded, holes found in the motion, and cutter compensation
+// (G41/G42 in the XY plane) applied as the control applies it (geometry/compensation.hpp,
+// LinuxCNC's rules), so that the steps are where the tool centre goes, never the programmed
+// line. Under compensation it holds at most one move in XY and the moves after it without XY
+// motion (and the dwells and spindle changes among them) until the next move decides the corner.
+// What the control refuses throws ControlRefusal. Read events come from a reader (it is a
+// ReadEventSink); a job's events through add_job_event, which knows where the position is
+// unknown as the posts do.
 class TraceBuilder : public ReadEventSink {
 public:
-    // `machine` gives the peck clearance of longhand cycles.
-    TraceBuilder(const Machine& machine, TraceSink& sink);
+    // `machine` gives the peck clearance of longhand cycles; `options` the compensation radii.
+    TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options = {});
     ~TraceBuilder() override;
     void read_event(const ReadEvent& event) override;
     void add_job_event(const Event& event);
     // The end of the events: the last hole, then sink.finish.
     void finish() override;
+    // The notes so far (TraceSummary::notes), for a caller whose sinks do not keep them.
+    const std::vector<std::string>& notes() const;
 
 private:
     class Impl;
@@ -136,8 +166,9 @@ private:
     TraceSink& next_;
 };
 
-// The motion of a program read back. `machine` gives the peck clearance of longhand cycles.
-Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine);
+// The motion of a program read back. `machine` gives the peck clearance of longhand cycles,
+// `options` the compensation radii.
+Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine, const TraceOptions& options = {});
 
 // The motion of a job's events (the position is unknown at the start and after every tool
 // change, as in the posts).
