@@ -269,9 +269,9 @@ std::vector<std::pair<double, double>> tab_room(const TabRun& r, double half) {
     return out;
 }
 
-// Tabs spread by length: `count` of them over the runs' room, one a run on the runs with the
-// most room first, then each next one on the run whose room per tab stays largest (ties: the
-// earlier run), evenly within each stretch. `centres` empty when they do not fit; `capacity`:
+// Tabs spread by length: `count` of them over the runs' room, one a straight run on those with
+// the most room first, then each next one on the run (straight or arc) whose room per tab stays
+// largest (ties: the earlier run), evenly within each stretch. `centres` empty when they do not fit; `capacity`:
 // how many would.
 struct TabSpread {
     std::vector<double> centres;
@@ -295,10 +295,14 @@ TabSpread spread_tabs(const std::vector<TabRun>& runs, int count, double half, d
             out.capacity += stretches.back().capacity();
         }
     if (out.capacity < count) return out;
-    std::vector<std::size_t> usable;
+    // One a run first on the straight runs (the sides; arcs too when there is no straight run).
+    std::vector<std::size_t> usable, sides;
     for (std::size_t i = 0; i < runs.size(); ++i)
         if (room[i] >= 0) usable.push_back(i);
-    std::stable_sort(usable.begin(), usable.end(), [&](std::size_t a, std::size_t b) { return room[a] > room[b]; });
+    for (std::size_t i : usable)
+        if (!runs[i].arc) sides.push_back(i);
+    if (sides.empty()) sides = usable;
+    std::stable_sort(sides.begin(), sides.end(), [&](std::size_t a, std::size_t b) { return room[a] > room[b]; });
     // A run's next tab goes to its stretch with the most room per tab that takes one more.
     auto more = [&](std::size_t i) { return std::any_of(stretches.begin(), stretches.end(), [&](const Stretch& s) { return s.run == i && s.more(); }); };
     auto add_to = [&](std::size_t i) {
@@ -309,11 +313,10 @@ TabSpread spread_tabs(const std::vector<TabRun>& runs, int count, double half, d
     };
     std::vector<int> per_run(runs.size(), 0);
     int placed = 0;
-    for (std::size_t k = 0; k < usable.size() && placed < count; ++k, ++placed) {
-        add_to(usable[k]);
-        ++per_run[usable[k]];
+    for (std::size_t k = 0; k < sides.size() && placed < count; ++k, ++placed) {
+        add_to(sides[k]);
+        ++per_run[sides[k]];
     }
-    std::sort(usable.begin(), usable.end());
     for (; placed < count; ++placed) {
         std::optional<std::size_t> pick;
         for (std::size_t i : usable)

@@ -157,6 +157,34 @@ TEST_CASE("tabs: more tabs than sides go on every side, more on the long ones, e
     }
 }
 
+TEST_CASE("tabs: spread tabs go on the straight sides before the corner arcs; a circle takes them evenly, clear of its start") {
+    // The plate sample's outline (200 x 120, R10 corners): eight tabs, all on the four sides.
+    const std::string plate = R"([{"line": [190, 0]}, {"arc": {"end": [200, 10], "centre": [190, 10], "direction": "ccw"}},
+      {"line": [200, 110]}, {"arc": {"end": [190, 120], "centre": [190, 110], "direction": "ccw"}}, {"line": [10, 120]},
+      {"arc": {"end": [0, 110], "centre": [10, 110], "direction": "ccw"}}, {"line": [0, 10]},
+      {"arc": {"end": [10, 0], "centre": [10, 10], "direction": "ccw"}}])";
+    const Job job = read_job(tab_job("[10, 0]", plate, 10, 6, R"("tabs": {"count": 8, "width": 6, "height": 1.5})"), "t.json");
+    const ContourOp& op = contour_of(job);
+    REQUIRE(op.tabs->centres.size() == 8);
+    for (double c : op.tabs->centres) {
+        CAPTURE(c);
+        CHECK_FALSE(op.profile.segments.at(point_at(op.profile, c).segment).centre.has_value());
+    }
+    // A circle of radius 50 drawn as two arcs from (50, 0): one run (the arcs' joint at (-50, 0)
+    // is no corner), three tabs evenly over its room, which leaves the start clear.
+    const std::string circle = R"([{"arc": {"end": [-50, 0], "centre": [0, 0], "direction": "ccw"}}, {"arc": {"end": [50, 0], "centre": [0, 0], "direction": "ccw"}}])";
+    const Job round = read_job(tab_job("[50, 0]", circle, 6, 5, R"("tabs": {"count": 3, "width": 5, "height": 1})"), "t.json");
+    const std::vector<double>& c = contour_of(round).tabs->centres;
+    REQUIRE(c.size() == 3);
+    const double total = 2 * std::numbers::pi * 50;
+    const double half_on_profile = (2.5 + 3) * 50 / 53;  // the tool path's radius is 53
+    const double room = total - 2 * half_on_profile;
+    CHECK(c[0] == doctest::Approx(half_on_profile + room / 6));
+    CHECK(c[1] - c[0] == doctest::Approx(room / 3));
+    CHECK(c[2] - c[1] == doctest::Approx(room / 3));
+    CHECK(total - c[2] == doctest::Approx(half_on_profile + room / 6));
+}
+
 TEST_CASE("tabs: a 40 x 30 outline started in the middle of a side takes a 12 mm tab on that side, clear of the start") {
     // Issue 24: started at (60, 0), the 40 mm side is drawn as 10 + 30 mm; a 12 mm tab was
     // refused against "the shortest side 10.000 mm". The side is one straight run.
