@@ -99,10 +99,12 @@ constexpr KeySpec ramp_keys[] = {
 };
 
 constexpr KeySpec tab_keys[] = {
-    {.key = "count", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true}, .max = Bound{1000, true}, .description = "tabs evenly spaced along the profile"},
-    {.key = "spacing", .quantity = Quantity::length, .min = Bound{0, false}, .description = "or one tab every so many mm"},
-    {.key = "width", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "width of a tab on the part"},
+    {.key = "count", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true}, .max = Bound{1000, true}, .description = "tabs spread by length over the profile's straight runs (and arcs long enough), clear of the corners"},
+    {.key = "spacing", .quantity = Quantity::length, .min = Bound{0, false}, .description = "or one tab every so many mm of the profile, spread the same way"},
+    {.key = "at", .type = JsonType::array, .quantity = Quantity::length, .min_items = 1, .description = "or tabs at these places: each a distance along the profile as drawn from its start, or a point [x, y] near the profile (its nearest point; at most the tool's diameter away)"},
+    {.key = "width", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "width of a tab on the part (at its top)"},
     {.key = "height", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "height of a tab above the bottom of the cut"},
+    {.key = "rampAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{90, true}, .default_json = "90", .description = "degrees of a tab's flanks above horizontal: below 90 a trapezoid, the tool climbing and descending along the path"},
 };
 
 Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
@@ -111,6 +113,312 @@ Vec2 scale(Vec2 a, double k) { return {a.x * k, a.y * k}; }
 double len(Vec2 a) { return std::hypot(a.x, a.y); }
 Vec2 left_normal(Vec2 t) { return {-t.y, t.x}; }
 Vec2 rotate(Vec2 v, double a) { return {v.x * std::cos(a) - v.y * std::sin(a), v.x * std::sin(a) + v.y * std::cos(a)}; }
+
+// ---- Where the tabs go: planned on reading, on the profile as drawn.
+
+// The length of segment k of `p`, which starts at `from` (an arc: its sweep times the start's radius).
+double tab_segment_length(const Profile& p, std::size_t k, Vec2 from) {
+    const ProfileSegment& s = p.segments[k];
+    return s.centre ? segment_sweep(p, k) * len(sub(from, *s.centre)) : len(sub(s.end, from));
+}
+
+// The unit tangent of travel of segment `s` at its point `at`.
+Vec2 tab_tangent(const ProfileSegment& s, Vec2 from, Vec2 at) {
+    if (!s.centre) return scale(sub(s.end, from), 1.0 / len(sub(s.end, from)));
+    const Vec2 radial = scale(sub(at, *s.centre), 1.0 / len(sub(at, *s.centre)));
+    return s.direction == ArcDirection::ccw ? left_normal(radial) : scale(left_normal(radial), -1);
+}
+
+// The point of `p` nearest to `x`: how far along `p` it is, and how far from `x`.
+struct TabNearest {
+    double along = 0.0;
+    double distance = 0.0;
+};
+TabNearest tab_nearest(const Profile& p, Vec2 x) {
+    TabNearest best{0.0, len(sub(x, p.start))};
+    double done = 0.0;
+    Vec2 from = p.start;
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+        const ProfileSegment& s = p.segments[k];
+        const double l = tab_segment_length(p, k, from);
+        auto consider = [&](double along, double d) {
+            if (d < best.distance) best = {along, d};
+        };
+        if (l > 0 && !s.centre) {
+            const Vec2 d = sub(s.end, from);
+            const double t = std::clamp((sub(x, from).x * d.x + sub(x, from).y * d.y) / (l * l), 0.0, 1.0);
+            consider(done + t * l, len(sub(x, add(from, scale(d, t)))));
+        } else if (l > 0) {
+            const Vec2 c = *s.centre;
+            const double r = len(sub(from, c));
+            const double sweep = l / r;
+            const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+            double delta = sign * (std::atan2(x.y - c.y, x.x - c.x) - std::atan2(from.y - c.y, from.x - c.x));
+            delta = std::fmod(std::fmod(delta, 2 * pi) + 2 * pi, 2 * pi);
+            if (delta <= sweep) consider(done + delta * r, std::abs(len(sub(x, c)) - r));
+            consider(done, len(sub(x, from)));
+            consider(done + l, len(sub(x, s.end)));
+        }
+        done += l;
+        from = s.end;
+    }
+    return best;
+}
+
+// A stretch of a closed profile that can hold tabs: a straight run (consecutive collinear
+// lines, across the profile's start too) or an arc (consecutive arcs about one centre), from
+// `from` to `from + length` mm along the profile (`from` < 0: it goes on past the profile's
+// end onto its start), with what the tool's path does there.
+struct TabRun {
+    double from = 0.0;
+    double length = 0.0;
+    bool arc = false;
+    double scale = 1.0;        // the tool path's length per mm of the profile: an arc's (R -+ d) / R
+    double corner_in = 0.0;    // what a concave corner at either end takes off the tool path, mm
+    double corner_out = 0.0;
+    Vec2 t_in, t_out;          // tangents of travel at its ends
+    Vec2 centre;               // an arc's
+    double radius = 0.0;
+    ArcDirection direction = ArcDirection::ccw;
+};
+
+// The runs of closed profile `p` with the tool `tool_left` of its drawn direction, its centre
+// `d` mm from the profile (0: on it).
+std::vector<TabRun> tab_runs(const Profile& p, bool tool_left, double d) {
+    std::vector<TabRun> runs;
+    auto joins = [](const TabRun& a, const TabRun& b) {
+        if (a.arc != b.arc) return false;
+        if (!a.arc) return std::abs(a.t_out.x * b.t_in.y - a.t_out.y * b.t_in.x) < 1e-9 && a.t_out.x * b.t_in.x + a.t_out.y * b.t_in.y > 0;
+        return len(sub(a.centre, b.centre)) < 1e-6 && std::abs(a.radius - b.radius) < 1e-6 && a.direction == b.direction;
+    };
+    double done = 0.0;
+    Vec2 from = p.start;
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+        const ProfileSegment& s = p.segments[k];
+        TabRun r;
+        r.from = done;
+        r.length = tab_segment_length(p, k, from);
+        r.arc = s.centre.has_value();
+        r.t_in = tab_tangent(s, from, from);
+        r.t_out = tab_tangent(s, from, s.end);
+        if (r.arc) {
+            r.centre = *s.centre;
+            r.radius = len(sub(from, *s.centre));
+            r.direction = s.direction;
+        }
+        if (!runs.empty() && joins(runs.back(), r)) {
+            runs.back().length += r.length;
+            runs.back().t_out = r.t_out;
+        } else {
+            runs.push_back(r);
+        }
+        done += r.length;
+        from = s.end;
+    }
+    if (runs.size() > 1 && joins(runs.back(), runs.front())) {
+        runs.front().from -= runs.back().length;
+        runs.front().length += runs.back().length;
+        runs.front().t_in = runs.back().t_in;
+        runs.pop_back();
+    }
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        TabRun& r = runs[i];
+        TabRun& next = runs[(i + 1) % runs.size()];
+        const double turn = std::atan2(r.t_out.x * next.t_in.y - r.t_out.y * next.t_in.x, r.t_out.x * next.t_in.x + r.t_out.y * next.t_in.y);
+        // A corner turning towards the tool shortens its path on both sides by d tan(turn / 2).
+        if (std::abs(turn) > 1e-9 && (turn > 0) == tool_left) {
+            const double cut = std::abs(turn) < 179 * deg ? d * std::tan(std::abs(turn) / 2) : 1e9;
+            r.corner_out = cut;
+            next.corner_in = cut;
+        }
+        if (r.arc) {
+            const bool centre_on_tool_side = (r.direction == ArcDirection::ccw) == tool_left;
+            r.scale = std::max(0.0, (r.radius + (centre_on_tool_side ? -d : d)) / r.radius);
+        }
+    }
+    return runs;
+}
+
+// What the tool needs around one tab: `half` mm each side of its centre along its path (half
+// the tab's width, the tool's radius and the flank), `foot` the tab's width on the part at its
+// foot (with its flanks).
+struct TabReach {
+    double half = 0.0;
+    double foot = 0.0;
+};
+TabReach tab_reach(const Tabs& tabs, double tool_radius) {
+    const double flank = tabs.ramp_angle < 90 ? tabs.height / std::tan(tabs.ramp_angle * deg) : 0.0;
+    return {tabs.width / 2 + tool_radius + flank, tabs.width + 2 * flank};
+}
+
+// Where on run `r` a tab's centre may go without its tool path reaching a corner (or past the
+// profile's start): one or two stretches [lo, hi] of the profile's length.
+std::vector<std::pair<double, double>> tab_room(const TabRun& r, double half) {
+    if (r.scale <= 0) return {};
+    const double h = half / r.scale;
+    const double lo = r.from + h + r.corner_in, hi = r.from + r.length - h - r.corner_out;
+    std::vector<std::pair<double, double>> out;
+    auto keep = [&](double a, double b) {
+        if (b >= a - 1e-9) out.push_back({a, std::max(a, b)});
+    };
+    if (r.from < 0) {  // the profile starts on this run: the tool goes down there
+        keep(lo, std::min(hi, -h));
+        keep(std::max(lo, h), hi);
+    } else {
+        keep(lo, hi);
+    }
+    return out;
+}
+
+// Tabs spread by length: `count` of them over the runs' room, one a straight run on those with
+// the most room first, then each next one on the run (straight or arc) whose room per tab stays
+// largest (ties: the earlier run), evenly within each stretch. `centres` empty when they do not fit; `capacity`:
+// how many would.
+struct TabSpread {
+    std::vector<double> centres;
+    int capacity = 0;
+};
+TabSpread spread_tabs(const std::vector<TabRun>& runs, int count, double half, double total) {
+    struct Stretch {
+        std::size_t run;
+        double lo, hi, pitch;
+        int tabs = 0;
+        int capacity() const { return std::max(1, static_cast<int>(std::floor((hi - lo) / pitch + 1e-9))); }
+        bool more() const { return tabs < capacity(); }
+    };
+    std::vector<Stretch> stretches;
+    std::vector<double> room(runs.size(), -1.0);  // a run's room (-1: none)
+    TabSpread out;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+        for (const auto& [lo, hi] : tab_room(runs[i], half)) {
+            stretches.push_back({i, lo, hi, 2 * half / runs[i].scale});
+            room[i] = std::max(room[i], 0.0) + (hi - lo);
+            out.capacity += stretches.back().capacity();
+        }
+    if (out.capacity < count) return out;
+    // One a run first on the straight runs (the sides; arcs too when there is no straight run).
+    std::vector<std::size_t> usable, sides;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+        if (room[i] >= 0) usable.push_back(i);
+    for (std::size_t i : usable)
+        if (!runs[i].arc) sides.push_back(i);
+    if (sides.empty()) sides = usable;
+    std::stable_sort(sides.begin(), sides.end(), [&](std::size_t a, std::size_t b) { return room[a] > room[b]; });
+    // A run's next tab goes to its stretch with the most room per tab that takes one more.
+    auto more = [&](std::size_t i) { return std::any_of(stretches.begin(), stretches.end(), [&](const Stretch& s) { return s.run == i && s.more(); }); };
+    auto add_to = [&](std::size_t i) {
+        Stretch* best = nullptr;
+        for (Stretch& s : stretches)
+            if (s.run == i && s.more() && (!best || (s.hi - s.lo) / (s.tabs + 1) > (best->hi - best->lo) / (best->tabs + 1) + 1e-12)) best = &s;
+        ++best->tabs;
+    };
+    std::vector<int> per_run(runs.size(), 0);
+    int placed = 0;
+    for (std::size_t k = 0; k < sides.size() && placed < count; ++k, ++placed) {
+        add_to(sides[k]);
+        ++per_run[sides[k]];
+    }
+    for (; placed < count; ++placed) {
+        std::optional<std::size_t> pick;
+        for (std::size_t i : usable)
+            if (more(i) && (!pick || room[i] / (per_run[i] + 1) > room[*pick] / (per_run[*pick] + 1) + 1e-12)) pick = i;
+        add_to(*pick);  // the capacity holds count: some run takes more
+        ++per_run[*pick];
+    }
+    for (const Stretch& s : stretches)
+        for (int j = 0; j < s.tabs; ++j) {
+            const double c = s.lo + (s.hi - s.lo) * (j + 0.5) / s.tabs;
+            out.centres.push_back(c < 0 ? c + total : c);
+        }
+    std::sort(out.centres.begin(), out.centres.end());
+    return out;
+}
+
+// The run that holds a tab at `at` mm along a profile `total` long (its centre on it, its foot
+// on it if any run holds it so), and `at` in that run's terms.
+std::pair<const TabRun*, double> tab_run_at(const std::vector<TabRun>& runs, double at, double foot, double total) {
+    std::pair<const TabRun*, double> on{nullptr, at};
+    for (const TabRun& r : runs)
+        for (double x : {at, at - total}) {
+            if (x < r.from - 1e-9 || x > r.from + r.length + 1e-9) continue;
+            const bool fits = x - foot / 2 >= r.from - 1e-9 && x + foot / 2 <= r.from + r.length + 1e-9;
+            if (fits) return {&r, x};
+            if (!on.first) on = {&r, x};
+        }
+    return on;
+}
+
+// The tabs' centres along the profile as drawn (see Tabs): spread, or the job's positions
+// checked against the runs they sit on, the profile's start and each other.
+void plan_tabs(Tabs& tabs, Fields& t, const JobInput& in, const ContourOp& op, const std::vector<std::string>& at_paths,
+               const char* count_key) {
+    const double total = profile_length(op.profile);
+    bool tool_left = true;
+    switch (op.side) {
+        case ContourSide::left: tool_left = true; break;
+        case ContourSide::right: tool_left = false; break;
+        case ContourSide::inside: tool_left = side_for(orientation(op.profile), Region::inside) == OffsetSide::left; break;
+        case ContourSide::outside: tool_left = side_for(orientation(op.profile), Region::outside) == OffsetSide::left; break;
+        case ContourSide::on: break;
+    }
+    const double d = op.side == ContourSide::on ? 0.0 : op.tool_radius + op.stock_to_leave + (op.finishing ? op.finishing->radial_stock : 0.0);
+    const std::vector<TabRun> runs = tab_runs(op.profile, tool_left, d);
+    const TabReach reach = tab_reach(tabs, op.tool_radius);
+    const std::string lift = fmt::format("the tool lifts over {} along its path for each", in.show(2 * reach.half));
+    if (tabs.at.empty()) {
+        TabSpread spread = spread_tabs(runs, tabs.count, reach.half, total);
+        if (!spread.centres.empty()) {
+            tabs.centres = std::move(spread.centres);
+            return;
+        }
+        double longest = 0.0;
+        for (const TabRun& r : runs) longest = std::max(longest, r.length);
+        if (spread.capacity == 0)
+            t.fail("width", fmt::format("a tab {} wide does not fit on any straight run or arc of this profile: {}, and stays {} clear of "
+                                        "every corner and of the profile's start; the longest run is {} long",
+                                        in.show(reach.foot), lift, in.show(reach.half), in.show(longest)));
+        t.fail(count_key, fmt::format("{} tabs {} wide do not fit on this profile: {}, and stays {} clear of every corner and of the "
+                                      "profile's start; its straight runs and arcs hold {}",
+                                      tabs.count, in.show(reach.foot), lift, in.show(reach.half), spread.capacity));
+    }
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t k = 0; k < tabs.at.size(); ++k) {
+        const double at = tabs.at[k];
+        const auto [run, x] = tab_run_at(runs, at, reach.foot, total);
+        const std::string& where = at_paths[k];
+        if (!run) json::fail(in.source(), where, fmt::format("{} is not on the profile, which is {} long", in.show(at), in.show(total)));
+        const std::string what = run->arc ? "arc" : "straight run";
+        if (x - reach.foot / 2 < run->from - 1e-9 || x + reach.foot / 2 > run->from + run->length + 1e-9)
+            json::fail(in.source(), where,
+                       fmt::format("a tab {} wide at its foot at {} along the profile does not fit on the {} it sits on, which is {} "
+                                   "long (from {} to {} along the profile)",
+                                   in.show(reach.foot), in.show(at), what, in.show(run->length),
+                                   in.show(run->from < 0 ? run->from + total : run->from), in.show(std::fmod(run->from + run->length + total, total))));
+        if (run->scale <= 0)
+            json::fail(in.source(), where, fmt::format("the tab at {} sits on an arc of radius {} that the tool's path passes by", in.show(at),
+                                                      in.show(run->radius)));
+        const double h = reach.half / run->scale;
+        if (std::min(at, total - at) < h - 1e-9)
+            json::fail(in.source(), where,
+                       fmt::format("the tab at {} is closer than {} to the profile's start, where the tool goes down and the passes "
+                                   "join ({}): they would cut it; move it, or start the profile elsewhere",
+                                   in.show(at), in.show(h), lift));
+        order.push_back({at, k});
+    }
+    std::sort(order.begin(), order.end());
+    for (std::size_t i = 0; order.size() > 1 && i < order.size(); ++i) {
+        const auto [a, ka] = order[i];
+        const auto [b, kb] = order[(i + 1) % order.size()];
+        const double apart = i + 1 < order.size() ? b - a : b + total - a;
+        const double need = reach.half / tab_run_at(runs, a, reach.foot, total).first->scale +
+                            reach.half / tab_run_at(runs, b, reach.foot, total).first->scale;
+        if (apart < need - 1e-9)
+            json::fail(in.source(), at_paths[std::max(ka, kb)],
+                       fmt::format("this tab and the one at {} overlap: their centres are {} apart along the profile and {}",
+                                   at_paths[std::min(ka, kb)], in.show(apart), lift));
+    }
+    for (const auto& [a, k] : order) tabs.centres.push_back(a);
+}
 
 // The elements of a profile as JSON (lines and arcs).
 void read_elements(Fields& f, const JobInput& in, const std::string& base, Profile& p) {
@@ -355,9 +663,9 @@ std::vector<ObjectSpec> ContourOp::objects() {
         {.name = "contourLead", .description = "a lead-in or lead-out: a tangent arc or a straight line",
          .keys = {std::begin(lead_keys), std::end(lead_keys)}},
         {.name = "contourRamp", .description = "how the tool goes down to a pass", .keys = {std::begin(ramp_keys), std::end(ramp_keys)}},
-        {.name = "contourTabs", .description = "tabs: count or spacing, width and height",
+        {.name = "contourTabs", .description = "tabs: count, spacing or places, width, height and flanks",
          .keys = {std::begin(tab_keys), std::end(tab_keys)},
-         .groups = {{.keys = {"count", "spacing"}, .min = 1, .max = 1, .description = "exactly one of count or spacing"}}},
+         .groups = {{.keys = {"count", "spacing", "at"}, .min = 1, .max = 1, .description = "exactly one of count, spacing or at"}}},
     };
 }
 
@@ -451,7 +759,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
         Fields t(*value, f.path_of("tabs"), in.source());
         JobInput::known_keys(t, tab_keys);
         if (!closed) t.fail("", "tabs hold the part of a closed profile; this profile is open");
-        if (int(t.has("count")) + int(t.has("spacing")) != 1) t.fail("", "tabs need exactly one of count or spacing");
+        if (int(t.has("count")) + int(t.has("spacing")) + int(t.has("at")) != 1) t.fail("", "tabs need exactly one of count, spacing or at");
         Tabs tabs;
         tabs.width = in.length(t, "width");
         tabs.height = in.length(t, "height");
@@ -459,28 +767,47 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
         if (!(tabs.height > 0)) t.fail("height", "height must be > 0");
         if (tabs.height >= total_depth)
             t.fail("height", fmt::format("a tab {} high does not fit in a cut {} deep", in.show(tabs.height), in.show(total_depth)));
-        double shortest = profile_length(op.profile);
-        Vec2 from = op.profile.start;
-        for (const ProfileSegment& seg : op.profile.segments) {
-            if (!seg.centre) shortest = std::min(shortest, len(sub(seg.end, from)));
-            from = seg.end;
-        }
-        if (tabs.width >= shortest)
-            t.fail("width", fmt::format("a tab {} wide does not fit on the profile's shortest side ({} long)", in.show(tabs.width),
-                                        in.show(shortest)));
+        tabs.ramp_angle = t.optional_number("rampAngle").value_or(90.0);
+        if (!(tabs.ramp_angle > 0 && tabs.ramp_angle <= 90)) t.fail("rampAngle", "rampAngle must be more than 0 and at most 90 degrees");
+        const double length = profile_length(op.profile);
+        std::vector<std::string> at_paths;
+        const char* count_key = "count";
         if (t.has("count")) {
             tabs.count = t.integer("count");
             if (tabs.count < 1 || tabs.count > 1000) t.fail("count", "count must be from 1 to 1000");
-        } else {
+        } else if (t.has("spacing")) {
+            count_key = "spacing";
             const double spacing = in.length(t, "spacing");
             if (!(spacing > 0)) t.fail("spacing", "spacing must be > 0");
-            const double n = std::floor(profile_length(op.profile) / spacing);
+            const double n = std::floor(length / spacing);
             if (n > 1000) t.fail("spacing", "spacing makes more than 1000 tabs");
             tabs.count = std::max(1, static_cast<int>(n));
+        } else {
+            const Json& places = in.array(t, "at");
+            if (places.empty()) t.fail("at", "at needs at least one place");
+            if (places.size() > 1000) t.fail("at", "at names more than 1000 tabs");
+            for (std::size_t k = 0; k < places.size(); ++k) {
+                const std::string where = t.path_of("at") + "/" + std::to_string(k);
+                at_paths.push_back(where);
+                if (places[k].is_array()) {
+                    const Vec2 x = in.point(places[k], where);
+                    const TabNearest near = tab_nearest(op.profile, x);
+                    if (near.distance > tool.diameter)
+                        json::fail(in.source(), where, fmt::format("this point is {} from the profile, more than the tool's diameter ({})",
+                                                                   in.show(near.distance), in.show(tool.diameter)));
+                    tabs.at.push_back(near.along);
+                } else {
+                    if (!places[k].is_number())
+                        json::fail(in.source(), where, "expected a distance along the profile or a point [x, y], got " + JobInput::describe(places[k]));
+                    const double at = in.coordinate(places[k], where);
+                    if (!(at >= 0 && at <= length))
+                        json::fail(in.source(), where, fmt::format("{} is not on the profile: it is {} long", in.show(at), in.show(length)));
+                    tabs.at.push_back(at);
+                }
+            }
+            tabs.count = static_cast<int>(tabs.at.size());
         }
-        if (tabs.count * (tabs.width + tool.diameter) >= profile_length(op.profile))
-            t.fail("", fmt::format("{} tabs {} wide (the tool lifts over {} each) do not fit on a profile {} long", tabs.count,
-                                   in.show(tabs.width), in.show(tabs.width + tool.diameter), in.show(profile_length(op.profile))));
+        plan_tabs(tabs, t, in, op, at_paths, count_key);
         op.tabs = tabs;
     }
     op.feeds.cutting = in.length(f, "feed");
@@ -696,52 +1023,102 @@ private:
             follow(p, z, z, feed, m);
             return;
         }
-        const double total = profile_length(p);
-        double from = 0.0;
-        for (const auto& [a, b] : tab_intervals(p)) {
-            follow(sub_profile(p, from, a), z, z, feed, m);
-            feed_to({at_.x, at_.y, tab_top}, feed, m);
-            follow(sub_profile(p, a, b), tab_top, tab_top, feed, m);
-            feed_to({at_.x, at_.y, z}, op_.feeds.plunge, Movement::plunge);
-            from = b;
-        }
-        follow(sub_profile(p, from, total), z, z, feed, m);
+        follow_over_tabs(p, 0.0, profile_length(p), z, z, feed, m);
     }
 
-    // Where along `p` the tool rises over a tab: evenly spaced, each the tab's width plus the
-    // tool's diameter long (so that the tab is `width` wide on the part), moved off arcs too
-    // short to hold it onto the next straight side.
-    std::vector<std::pair<double, double>> tab_intervals(const Profile& p) const {
-        std::vector<std::pair<double, double>> out;
+    // A tab on the path being cut: the tool stays at the tab's top from `a` to `b` mm along it
+    // (the tab's width plus the tool's diameter, so that `width` is what remains on the part).
+    struct TabSpan {
+        double a = 0.0, b = 0.0;
+    };
+
+    // Where along `p` the tool rises over the tabs: each tab's centre (planned on the profile
+    // as drawn) is the nearest point of `p` to it. Worked out once for each path.
+    const std::vector<TabSpan>& tab_intervals(const Profile& p) {
+        if (tab_path_ == &p) return tab_spans_;
+        tab_path_ = &p;
+        tab_spans_.clear();
+        const double half = op_.tabs->width / 2 + op_.tool_radius;
+        for (double c : op_.tabs->centres) {
+            const double along = tab_nearest(p, point_at(op_.profile, c).point).along;
+            tab_spans_.push_back({along - half, along + half});
+        }
+        std::sort(tab_spans_.begin(), tab_spans_.end(), [](const TabSpan& x, const TabSpan& y) { return x.a < y.a; });
+        return tab_spans_;
+    }
+
+    // From `x0` to `x1` mm along `p` (backwards when x1 < x0), the tool at `x0`, Z going
+    // linearly from `z0` to `z1` but never below a tab: up to its top where it begins (at `feed`,
+    // or along its flank at the ramp angle), over it, and down after it (at plungeFeed, or along
+    // the flank).
+    void follow_over_tabs(const Profile& p, double x0, double x1, double z0, double z1, double feed, Movement m) {
         const double total = profile_length(p);
-        const double half = (op_.tabs->width + 2 * op_.tool_radius) / 2;
-        // The lines long enough for a tab, as [start, end] lengths along p.
-        std::vector<std::pair<double, double>> arcs_too_short, lines;
-        double done = 0.0;
-        Vec2 from = p.start;
-        for (const ProfileSegment& s : p.segments) {
-            Profile one;
-            one.start = from;
-            one.segments.push_back(s);
-            const double l = profile_length(one);
-            if (s.centre && l < 2 * half) arcs_too_short.push_back({done, done + l});
-            if (!s.centre && l >= 2 * half) lines.push_back({done, done + l});
-            done += l;
-            from = s.end;
-        }
-        for (int k = 0; k < op_.tabs->count; ++k) {
-            double c = total * (k + 0.5) / op_.tabs->count;
-            const bool on_short_arc = std::any_of(arcs_too_short.begin(), arcs_too_short.end(),
-                                                  [&](const auto& a) { return c + half > a.first && c - half < a.second; });
-            if (on_short_arc) {
-                auto next = std::find_if(lines.begin(), lines.end(), [&](const auto& l) { return l.second - half >= c; });
-                if (next == lines.end()) next = lines.begin();
-                if (next != lines.end()) c = std::clamp(c, next->first + half, next->second - half);
+        const double top = z_.bottom_z + op_.tabs->height;
+        const bool ramped = op_.tabs->ramp_angle < 90;
+        const double slope = ramped ? std::tan(op_.tabs->ramp_angle * deg) : 0.0;  // dz per mm on a flank
+        const double flank = ramped ? op_.tabs->height / slope : 0.0;
+        const double lo = std::min(x0, x1), hi = std::max(x0, x1);
+        if (hi - lo <= 1e-12) return;
+        const double grade = (z1 - z0) / (x1 - x0);
+        auto base = [&](double x) { return z0 + grade * (x - x0); };
+        // The tabs near [lo, hi], shifted by the path's length on a closed path.
+        std::vector<TabSpan> near;
+        const std::vector<double> shifts = is_closed(p) ? std::vector<double>{-total, 0.0, total} : std::vector<double>{0.0};
+        for (const TabSpan& s : tab_intervals(p))
+            for (double shift : shifts)
+                if (s.b + shift + flank >= lo && s.a + shift - flank <= hi) near.push_back({s.a + shift, s.b + shift});
+        // The floor the tabs set at x, on the piece of their outline that holds `probe`.
+        auto floor_at = [&](double x, double probe) {
+            double z = -1e300;
+            for (const TabSpan& s : near) {
+                if (probe < s.a - flank || probe > s.b + flank) continue;
+                z = std::max(z, probe < s.a ? top - (s.a - x) * slope : probe > s.b ? top - (x - s.b) * slope : top);
             }
-            const double a = std::max(c - half, out.empty() ? 0.0 : out.back().second), b = std::min(c + half, total);
-            if (b > a) out.push_back({a, b});
+            return z;
+        };
+        // Every place where the Z the tool follows may bend or jump.
+        std::vector<double> at{lo, hi};
+        auto station = [&](double x) {
+            if (x > lo && x < hi) at.push_back(x);
+        };
+        for (const TabSpan& s : near) {
+            for (double x : {s.a - flank, s.a, s.b, s.b + flank}) station(x);
+            if (grade != 0) station(x0 + (top - z0) / grade);
+            if (ramped) {
+                if (slope != grade) station((z0 - grade * x0 - top + s.a * slope) / (slope - grade));
+                if (-slope != grade) station((z0 - grade * x0 - top - s.b * slope) / (-slope - grade));
+            }
         }
-        return out;
+        std::sort(at.begin(), at.end());
+        if (x1 < x0) std::reverse(at.begin(), at.end());
+        // Pieces on which the Z is linear, joined where one goes on as the other.
+        struct Piece {
+            double u, v, zu, zv;
+        };
+        std::vector<Piece> pieces;
+        for (std::size_t k = 0; k + 1 < at.size(); ++k) {
+            const double u = at[k], v = at[k + 1];
+            if (std::abs(v - u) <= 1e-9) continue;
+            const double probe = (u + v) / 2;
+            const Piece q{u, v, std::max(base(u), floor_at(u, probe)), std::max(base(v), floor_at(v, probe))};
+            if (!pieces.empty()) {
+                Piece& last = pieces.back();
+                const bool same_line = std::abs(last.zv - q.zu) <= 1e-9 &&
+                                       std::abs((last.zv - last.zu) / (last.v - last.u) - (q.zv - q.zu) / (q.v - q.u)) <= 1e-9;
+                if (same_line) {
+                    last.v = q.v;
+                    last.zv = q.zv;
+                    continue;
+                }
+            }
+            pieces.push_back(q);
+        }
+        for (const Piece& q : pieces) {
+            if (q.zu > at_.z + 1e-9) feed_to({at_.x, at_.y, q.zu}, feed, m);
+            else if (q.zu < at_.z - 1e-9) feed_to({at_.x, at_.y, q.zu}, op_.feeds.plunge, Movement::plunge);
+            const Profile piece = q.u < q.v ? sub_profile(p, q.u, q.v) : reversed(sub_profile(p, q.v, q.u));
+            follow(piece, q.zu, q.zv, feed, m);
+        }
     }
 
     // Down from the tool's Z to `z` at its XY: straight at plunge feed, or a helix turning
@@ -767,9 +1144,15 @@ private:
             const double total = profile_length(p);
             double l = (z_prev - z) / std::tan(op_.ramp.angle * deg);
             l = std::min(l, total);
-            const Profile down = sub_profile(p, 0.0, l);
-            follow(down, z_prev, z, op_.feeds.ramp, Movement::ramp);
-            follow(reversed(down), z, z, op_.feeds.ramp, Movement::ramp);
+            if (op_.tabs) {
+                // Down and back rise over the tabs as the passes do.
+                follow_over_tabs(p, 0.0, l, z_prev, z, op_.feeds.ramp, Movement::ramp);
+                follow_over_tabs(p, l, 0.0, z, z, op_.feeds.ramp, Movement::ramp);
+            } else {
+                const Profile down = sub_profile(p, 0.0, l);
+                follow(down, z_prev, z, op_.feeds.ramp, Movement::ramp);
+                follow(reversed(down), z, z, op_.feeds.ramp, Movement::ramp);
+            }
         } else {
             feed_to({at_.x, at_.y, z}, op_.feeds.plunge, Movement::plunge);
         }
@@ -831,6 +1214,8 @@ private:
     Vec3 at_;
     bool known_ = false;
     bool first_ = true;
+    const Profile* tab_path_ = nullptr;  // the path tab_spans_ are on
+    std::vector<TabSpan> tab_spans_;
 };
 
 void guard_against_part(const ContourOp& op, Fields& f, const JobInput& in, const Tool& tool) {

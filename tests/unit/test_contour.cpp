@@ -252,8 +252,8 @@ TEST_CASE("contour: bad input is an error naming the JSON path, exit 1 and no ou
         {open_inside, "fanuc", "/operations/0/side", "side inside needs a closed profile"},
         {small, "fanuc", "/operations/0/path", "does not fit inside the profile"},
         {rectangle_job(R"("stepDown": 0)"), "fanuc", "/operations/0/stepDown", "stepDown must be > 0"},
-        {rectangle_job(R"("tabs": {"count": 2, "width": 70, "height": 1})"), "fanuc", "/operations/0/tabs/width",
-         "does not fit on the profile's shortest side"},
+        {rectangle_job(R"("tabs": {"count": 2, "width": 95, "height": 1})"), "fanuc", "/operations/0/tabs/width",
+         "does not fit on any straight run or arc of this profile"},
         {sample_text("plate-outline-control"), "grbl", "/operations/0/compensation", "has no cutter radius compensation"},
         {rectangle_job(R"("path": [{"line": [100, 0]}, {"line": [100, 0]}, {"line": [0, 0]}])"), "fanuc", "", ""},
     };

@@ -59,12 +59,22 @@ struct Ramp {
     double radius = 0.0;
 };
 
-// Tabs on a closed through-cut: `count` evenly spaced (or one every `spacing` mm), each
-// `width` mm wide on the part and `height` mm above the bottom of the cut.
+// Tabs on a closed through-cut, each `width` mm wide on the part (the tool stays up over its
+// width plus the tool's diameter along the path) and `height` mm above the bottom of the cut,
+// with flanks at `ramp_angle` degrees (90: straight up and down; less: a trapezoid, `width` at
+// its top, the tool climbing and descending along the path at that angle).
+// Where: `count` tabs spread by length over the profile's straight runs (consecutive collinear
+// lines, across a closed profile's start too) and arcs long enough, none within the tool radius
+// plus half a tab (and its flank) of a corner or of the profile's start; or the explicit
+// positions `at`, mm along the profile as drawn from its start (a job's points near the profile
+// are read as the distance of their nearest point). Reading plans `centres` from either.
 struct Tabs {
     int count = 0;
+    std::vector<double> at;
     double width = 0.0;
     double height = 0.0;
+    double ramp_angle = 90.0;
+    std::vector<double> centres;  // planned on reading: mm along the profile as drawn, ascending
 };
 
 // The finishing pass: after roughing that leaves `radial_stock` on the wall and
