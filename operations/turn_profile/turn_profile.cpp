@@ -21,8 +21,9 @@ using Fields = json::Fields;
 constexpr double arc_radius_tolerance = 0.001;
 // Arcs are sampled within this for the material checks, mm.
 constexpr double sampling_tolerance = 0.001;
-// A move counts as in the material when it runs at least this far inside it, mm: a move along
-// a finished surface (or an arc's chord) is not.
+// A move counts as in the material when it runs inside it (by more than profile_same_point
+// across) for more than this along Z, mm: a move along a kept surface, or past the corner where
+// a profile leaves its start, is not.
 constexpr double material_margin = 0.002;
 // An arc may dip this far below the spindle axis (rounding), mm.
 constexpr double axis_tolerance = 1e-6;
@@ -295,7 +296,7 @@ struct Hit {
 // above (what a profile passes above is gone).
 std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, double radius, double lo, double hi,
                              bool downwards) {
-    const double level = radius + material_margin;
+    const double level = radius + profile_same_point;
     // +1/-1 at each end of an interval, for the material and for the air.
     struct Edge {
         double u;
@@ -329,10 +330,11 @@ std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, dou
         air += edges[i].air;
         if (i + 1 == edges.size() || edges[i + 1].u == edges[i].u) continue;
         const double a = std::max(edges[i].u, lo), b = std::min(edges[i + 1].u, hi);
-        if (material <= 0 || air > 0 || b - a <= profile_same_point) continue;
+        if (material <= 0 || air > 0 || b - a <= 0) continue;
         if (!bad.empty() && bad.back().hi >= a) bad.back().hi = b;
         else bad.push_back({a, b});
     }
+    std::erase_if(bad, [](const Span& s) { return s.hi - s.lo <= material_margin; });
     if (bad.empty()) return std::nullopt;
     const Span s = downwards ? bad.back() : bad.front();
     const double mid = (s.lo + s.hi) / 2;

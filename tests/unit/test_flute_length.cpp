@@ -52,8 +52,8 @@ TEST_CASE("fluteLength: a contour deeper than the flutes is refused at endDepth"
     // As deep as the flutes: cut.
     CHECK_NOTHROW(read_job(contour(12), "f.json"));
     // An absolute endDepth below a raised reference plane counts from the plane.
-    const InputError abs = refusal(replaced(contour(-8), R"("endDepth": -8)",
-                                                      R"("referencePlane": 5, "endDepth": -8, "endDepthIsAbsolute": true)"));
+    const InputError abs = refusal(replaced(contour(-8), R"("retractPlane": 5, "endDepth": -8)",
+                                R"("retractPlane": 10, "referencePlane": 5, "endDepth": -8, "endDepthIsAbsolute": true)"));
     CHECK(std::string(abs.detail()).find("the contour is 13.000 mm deep") == 0);
 }
 

@@ -195,10 +195,10 @@ TEST_CASE("turn-profile: the approach along Z stays out of the material this and
     check_refused(profiles_job({shaft_path + R"(, "retractX": 44)", R"("start": [34, -30], "retractX": 44, "path": [{"line": [34, -35]}])"}),
                   "/operations/1/start",
                   {"the approach feeds along Z at X 34.000 mm from the clearance (Z 20.000 mm) down to the start (Z -30.000 mm)",
-                   "through the material that the profile of /operations/0 keeps: X up to 40.000 mm between Z -30.000 mm and Z -24."});
+                   "through the material that the profile of /operations/0 keeps: X up to 40.000 mm between Z -30.000 mm and Z -23.9"});
     // A profile that grows towards +Z keeps material over its own start.
     check_refused(profiles_job({R"("start": [20, -10], "retractX": 44, "path": [{"line": [30, 0]}])"}), "/operations/0/start",
-                  {"through the material that this profile keeps: X up to 30.000 mm between Z -9.99"});
+                  {"through the material that this profile keeps: X up to 30.000 mm between Z -10.000 mm and Z 0.000 mm"});
     // Passes at smaller and smaller diameters from the face: each approach comes down in the
     // air in front of the face, and each return clears what the passes left: the diameter 38
     // of the first pass is gone where the second one cut to 36.
