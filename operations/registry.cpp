@@ -67,6 +67,12 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     const nlohmann::json& operations = in.array(top, "operations");
     for (std::size_t i = 0; i < operations.size(); ++i)
         job.operations.push_back(read_operation(operations[i], "/operations/" + std::to_string(i), in));
+    // The turned profiles know of each other: each one comes and goes outside the material that
+    // it and those before it keep.
+    std::vector<const TurnProfileOp*> turned;
+    for (const Operation& op : job.operations)
+        if (const auto* t = std::get_if<TurnProfileOp>(&op)) turned.push_back(t);
+    check_turned_material(turned, in);
     // Every operation is read and its size claimed: only now do patterns make their holes.
     for (Operation& op : job.operations)
         visit_exhaustive(

@@ -684,6 +684,9 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     op.tool_radius = tool.diameter / 2;
     op.spindle = tool.direction;
     op.heights = read_heights(f, in, "pass");
+    if (const Planes z = resolve_planes(op.heights); tool.flute_length && z.reference_z - z.bottom_z > *tool.flute_length)
+        f.fail("endDepth", fmt::format("the contour is {} deep below the reference plane, but tool {} has a fluteLength of {}",
+                                       in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));
     op.profile = read_profile(f, in);
     const bool closed = is_closed(op.profile);
 

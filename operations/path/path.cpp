@@ -75,7 +75,8 @@ constexpr KeySpec helix_keys[] = {
     {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false}, .description = "Z travel per turn, down"},
 };
 
-PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth) {
+// Reads an arc from `current`; `lowest` becomes the lowest Z it reaches if that is below it.
+PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth, double& lowest) {
     JobInput::known_keys(a, arc_keys);
     PathArc arc;
     arc.plane = a.choice("plane", plane_names, Plane::xy);
@@ -105,12 +106,19 @@ PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double dept
     // The highest point of the arc: an arc in XZ or YZ may rise above its ends.
     const ArcGeometry g = resolve_arc(current, ArcSpec{arc.end, arc.centre, arc.direction, arc.plane, 0});
     double top = std::max(current.z, arc.end.z);
+    lowest = std::min(lowest, arc.end.z);
     if (arc.plane != Plane::xy) {
+        // Whether the sweep passes the direction `angle` (radians in (u, v)) from the centre.
+        auto passes = [&](double angle) {
+            double delta = arc.direction == ArcDirection::ccw ? angle - g.start_angle : g.start_angle - angle;
+            delta = std::fmod(delta, 2 * std::numbers::pi);
+            if (delta < 0) delta += 2 * std::numbers::pi;
+            return delta <= g.sweep;
+        };
         const double up = arc.plane == Plane::xz ? 0.0 : std::numbers::pi / 2;  // angle of +Z in (u, v)
-        double delta = arc.direction == ArcDirection::ccw ? up - g.start_angle : g.start_angle - up;
-        delta = std::fmod(delta, 2 * std::numbers::pi);
-        if (delta < 0) delta += 2 * std::numbers::pi;
-        if (delta <= g.sweep) top = std::max(top, (arc.plane == Plane::xz ? c.u : c.v) + r_start);
+        const double centre_z = arc.plane == Plane::xz ? c.u : c.v;
+        if (passes(up)) top = std::max(top, centre_z + r_start);
+        if (passes(up + std::numbers::pi)) lowest = std::min(lowest, centre_z - r_start);
     }
     if (top >= in.header().clearance)
         a.fail("", fmt::format("the arc reaches Z {}, at or above the clearance (Z {})", in.show(top), in.show(in.header().clearance)));
@@ -199,6 +207,16 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
         return fmt::format("{} is at or above the clearance (Z {}, clearance at Z {})", what, in.show(z),
                            in.show(in.header().clearance));
     };
+    // The lowest Z the path reaches. camgen does not know a path's stock top: the depth the
+    // flutes must reach is taken from the path's start (at z) down.
+    double lowest = op.z;
+    // Whether the path has gone deeper than the tool's flutes; the refusal at element `where`.
+    auto too_deep = [&] { return tool.flute_length && op.z - lowest > *tool.flute_length; };
+    auto refuse_depth = [&](const std::string& where) {
+        json::fail(in.source(), where,
+                   fmt::format("the path goes {} deep below its start (z, Z {}), but tool {} has a fluteLength of {}",
+                               in.show(op.z - lowest), in.show(op.z), tool.number, in.show(*tool.flute_length)));
+    };
     if (const json::PackedArray* packed = in.packed(f.required("path"))) {
         // Lines read straight into numbers ({"line": [x, y(, z)]} each, see PackedArray).
         in.claim_path_elements(static_cast<double>(packed->size()), f, "path");
@@ -210,6 +228,8 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
             if (packed->has_z(k)) end.z = in.packed_coordinate(packed->z(k), [&] { return line_path() + "/2"; });
             if (end.z >= in.header().clearance) json::fail(in.source(), line_path(), above_clearance(end.z, "the line's end"));
             op.elements.emplace_back(PathLine{end});
+            lowest = std::min(lowest, end.z);
+            if (too_deep()) refuse_depth(line_path());
         }
         return op;
     }
@@ -231,9 +251,10 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
             below_clearance(e, "line", end.z, "the line's end");
             op.elements.emplace_back(PathLine{end});
             current = end;
+            lowest = std::min(lowest, end.z);
         } else if (e.has("arc")) {
             Fields a(e.required("arc"), e.path_of("arc"), in.source());
-            PathArc arc = read_arc(a, in, current, op.z);
+            PathArc arc = read_arc(a, in, current, op.z, lowest);
             op.elements.emplace_back(arc);
             current = arc.end;
         } else {
@@ -241,7 +262,9 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
             PathHelix helix = read_helix(h, in, current);
             op.elements.emplace_back(helix);
             current.z = helix.end_z;
+            lowest = std::min(lowest, helix.end_z);
         }
+        if (too_deep()) refuse_depth(path);
     }
     return op;
 }

@@ -1,11 +1,14 @@
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <numbers>
 
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/geometry/arc.hpp"
 
 namespace camgen {
 
@@ -16,6 +19,14 @@ using Fields = json::Fields;
 
 // Arc ends may be this much farther from the centre than the start, mm.
 constexpr double arc_radius_tolerance = 0.001;
+// Arcs are sampled within this for the material checks, mm.
+constexpr double sampling_tolerance = 0.001;
+// A move counts as in the material when it runs inside it (by more than profile_same_point
+// across) for more than this along Z, mm: a move along a kept surface, or past the corner where
+// a profile leaves its start, is not.
+constexpr double material_margin = 0.002;
+// An arc may dip this far below the spindle axis (rounding), mm.
+constexpr double axis_tolerance = 1e-6;
 
 constexpr KeySpec turn_profile_keys[] = {
     {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
@@ -60,6 +71,46 @@ Vec2 profile_point(const JobInput& in, const Json& value, const std::string& pat
     return {p.y, given == XValues::diameter ? p.x / 2.0 : p.x};
 }
 
+// A radius as the job gives X (a diameter or a radius), for messages.
+double x_as_given(double radius, XValues given) { return given == XValues::diameter ? 2.0 * radius : radius; }
+
+// The box a segment from `from` covers in (u, v) = (Z, radius): an arc's, with the points of
+// its sweep that lie beyond its ends.
+struct Extent {
+    double u_min, u_max, v_min, v_max;
+};
+Extent extent_of(Vec2 from, const ProfileSegment& s) {
+    Extent e{std::min(from.x, s.end.x), std::max(from.x, s.end.x), std::min(from.y, s.end.y), std::max(from.y, s.end.y)};
+    if (!s.centre) return e;
+    const Vec2 c = *s.centre;
+    const ArcGeometry g =
+        resolve_arc({from.x, from.y, 0.0}, ArcSpec{{s.end.x, s.end.y, 0.0}, {c.x, c.y, 0.0}, s.direction, Plane::xy, 0});
+    // Whether the sweep passes the direction `angle` (radians in (u, v)) from the centre.
+    auto passes = [&](double angle) {
+        double d = s.direction == ArcDirection::ccw ? angle - g.start_angle : g.start_angle - angle;
+        d = std::fmod(d, 2 * std::numbers::pi);
+        if (d < 0) d += 2 * std::numbers::pi;
+        return d <= g.sweep;
+    };
+    if (passes(0.0)) e.u_max = c.x + g.radius;
+    if (passes(std::numbers::pi)) e.u_min = c.x - g.radius;
+    if (passes(std::numbers::pi / 2)) e.v_max = c.y + g.radius;
+    if (passes(-std::numbers::pi / 2)) e.v_min = c.y - g.radius;
+    return e;
+}
+
+// The first element of a profile that is not simple: the one that crosses or touches the
+// elements before it (found by halving: a chain that crosses itself goes on crossing).
+std::size_t first_crossing(const Profile& profile) {
+    std::size_t simple = 1, crossing = profile.segments.size();
+    while (crossing - simple > 1) {
+        const std::size_t mid = simple + (crossing - simple) / 2;
+        Profile prefix{profile.plane, profile.start, {profile.segments.begin(), profile.segments.begin() + static_cast<std::ptrdiff_t>(mid)}};
+        (is_simple(prefix) ? simple : crossing) = mid;
+    }
+    return crossing - 1;
+}
+
 }  // namespace
 
 std::vector<ObjectSpec> TurnProfileOp::objects() {
@@ -83,12 +134,19 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     op.tool = tool.number;
     op.comment = f.optional_string("comment").value_or("");
     const XValues xv = f.choice("xValues", x_values, XValues::diameter);
+    op.given_x = xv;
     op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
     op.feed = in.length(f, "feed");
     if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
     if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
     op.profile.plane = ProfilePlane::xz;
     op.profile.start = profile_point(in, f.required("start"), f.path_of("start"), xv);
+    const double clearance = in.header().clearance;
+    if (op.profile.start.x >= clearance)
+        json::fail(in.source(), f.path_of("start") + "/1",
+                   fmt::format("the start is at Z {}, at or above the clearance (Z {}): the tool feeds down to it along "
+                               "Z from the clearance",
+                               in.show(op.profile.start.x), in.show(clearance)));
     const double retract = in.length(f, "retractX");
     if (retract < 0) f.fail("retractX", "retractX is negative: X is measured from the spindle axis");
     op.retract_x = xv == XValues::diameter ? retract / 2.0 : retract;
@@ -119,12 +177,30 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
                                              in.show(r0), in.show(r1)));
             if (r0 < arc_radius_tolerance) a.fail("centre", "the centre is on the arc's start: an arc needs a radius");
         }
+        const Extent box = extent_of(at, s);
+        const std::string key = e.has("line") ? "line" : "arc";
+        if (box.v_min < -axis_tolerance)
+            e.fail(key, fmt::format("the arc sweeps through the spindle axis: it reaches X {} ({}) at Z {}, and X is never "
+                                    "below 0 (its ends and centre are above the axis, the arc between them is not)",
+                                    in.show(x_as_given(box.v_min, xv)), name_of(x_values, xv), in.show(s.centre->x)));
+        if (box.u_max >= clearance)
+            e.fail(key, fmt::format("the {} reaches Z {}, at or above the clearance (Z {}): the tool comes to the profile "
+                                    "at the clearance, which must be above all of it",
+                                    key, in.show(box.u_max), in.show(clearance)));
         op.profile.segments.push_back(s);
         at = s.end;
     }
     if (auto short_one = first_short_segment(op.profile))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(*short_one),
                    "this element ends where it starts: it has no length");
+    if (!is_simple(op.profile))
+        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(first_crossing(op.profile)),
+                   "this element crosses or touches the profile before it: the tool tip would cut into the surface it "
+                   "has just finished");
+    if (tool.flute_length)
+        op.notes.push_back(fmt::format("tool {} has a fluteLength of {}: a turn-profile does not check it (camgen does not "
+                                       "know the stock, so not the depth of cut)",
+                                       tool.number, in.show(*tool.flute_length)));
     return op;
 }
 
@@ -150,5 +226,157 @@ void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
 }
 
 std::string default_name(const TurnProfileOp& op) { return op.comment.empty() ? "turn profile" : op.comment; }
+
+namespace {
+
+// An interval along Z, mm.
+struct Span {
+    double lo, hi;
+};
+
+// The material a turn-profile keeps, in (u, v) = (Z, radius): the profile's sampling closed
+// through the spindle axis (from its end down to the axis, along it, up to its start).
+struct Kept {
+    std::vector<Vec2> ring;
+    double u_min = 0.0, u_max = 0.0, v_max = 0.0;
+    const TurnProfileOp* op = nullptr;
+};
+
+Kept kept_by(const TurnProfileOp& op) {
+    Kept k;
+    k.op = &op;
+    k.ring = sample_profile(op.profile, sampling_tolerance);
+    const Vec2 start = op.profile.start, end = op.profile.segments.back().end;
+    k.ring.push_back({end.x, 0.0});
+    k.ring.push_back({start.x, 0.0});
+    k.u_min = k.u_max = start.x;
+    for (const Vec2& p : k.ring) {
+        k.u_min = std::min(k.u_min, p.x);
+        k.u_max = std::max(k.u_max, p.x);
+        k.v_max = std::max(k.v_max, p.y);
+    }
+    return k;
+}
+
+// Where the line at radius `level` (> 0) runs inside the kept material: Z intervals, in order.
+std::vector<Span> inside_at(const Kept& k, double level) {
+    if (level >= k.v_max) return {};
+    std::vector<double> crossings;
+    for (std::size_t i = 0; i < k.ring.size(); ++i) {
+        const Vec2 a = k.ring[i], b = k.ring[(i + 1) % k.ring.size()];
+        if ((a.y > level) != (b.y > level)) crossings.push_back(a.x + (level - a.y) * (b.x - a.x) / (b.y - a.y));
+    }
+    std::sort(crossings.begin(), crossings.end());
+    std::vector<Span> out;
+    for (std::size_t i = 0; i + 1 < crossings.size(); i += 2) out.push_back({crossings[i], crossings[i + 1]});
+    return out;
+}
+
+// The largest radius of the kept material between Z `lo` and `hi`.
+double largest_radius(const Kept& k, double lo, double hi) {
+    double top = 0.0;
+    for (std::size_t i = 0; i < k.ring.size(); ++i) {
+        const Vec2 a = k.ring[i], b = k.ring[(i + 1) % k.ring.size()];
+        if (a.x >= lo && a.x <= hi) top = std::max(top, a.y);
+        // Where the edge crosses either end of the span.
+        for (double u : {lo, hi})
+            if ((a.x - u) * (b.x - u) < 0) top = std::max(top, a.y + (u - a.x) * (b.y - a.y) / (b.x - a.x));
+    }
+    return top;
+}
+
+// Material that a move along Z at radius `radius`, between Z `lo` and `hi`, runs through.
+struct Hit {
+    Span span;          // where along Z
+    const Kept* kept;   // the first operation that keeps it
+};
+
+// The first stretch (from `hi` down when `downwards`, else from `lo` up) of the move along Z at
+// `radius` that runs inside what `kept` keeps and that none of the first `cut` of them passed
+// above (what a profile passes above is gone).
+std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, double radius, double lo, double hi,
+                             bool downwards) {
+    const double level = radius + profile_same_point;
+    // +1/-1 at each end of an interval, for the material and for the air.
+    struct Edge {
+        double u;
+        int material, air;
+    };
+    std::vector<Edge> edges;
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+        const Kept& k = kept[i];
+        if (k.u_max <= lo || k.u_min >= hi) continue;
+        const std::vector<Span> inside = inside_at(k, level);
+        for (const Span& s : inside) {
+            edges.push_back({s.lo, 1, 0});
+            edges.push_back({s.hi, -1, 0});
+        }
+        if (i >= cut) continue;
+        // Air: the profile's stretch of Z where the line is not inside.
+        double from = k.u_min;
+        for (const Span& s : inside) {
+            edges.push_back({from, 0, 1});
+            edges.push_back({s.lo, 0, -1});
+            from = s.hi;
+        }
+        edges.push_back({from, 0, 1});
+        edges.push_back({k.u_max, 0, -1});
+    }
+    std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u < b.u; });
+    std::vector<Span> bad;
+    int material = 0, air = 0;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        material += edges[i].material;
+        air += edges[i].air;
+        if (i + 1 == edges.size() || edges[i + 1].u == edges[i].u) continue;
+        const double a = std::max(edges[i].u, lo), b = std::min(edges[i + 1].u, hi);
+        if (material <= 0 || air > 0 || b - a <= 0) continue;
+        if (!bad.empty() && bad.back().hi >= a) bad.back().hi = b;
+        else bad.push_back({a, b});
+    }
+    std::erase_if(bad, [](const Span& s) { return s.hi - s.lo <= material_margin; });
+    if (bad.empty()) return std::nullopt;
+    const Span s = downwards ? bad.back() : bad.front();
+    const double mid = (s.lo + s.hi) / 2;
+    for (const Kept& k : kept)
+        for (const Span& in : inside_at(k, level))
+            if (in.lo <= mid && mid <= in.hi) return Hit{s, &k};
+    return std::nullopt;  // not reached: every stretch lies inside one of them
+}
+
+// "this profile" or "the profile of /operations/N".
+std::string whose(const Kept& k, const TurnProfileOp& op) {
+    return k.op == &op ? "this profile" : "the profile of " + k.op->path;
+}
+
+}  // namespace
+
+void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const JobInput& in) {
+    const double clearance = in.header().clearance;
+    std::vector<Kept> kept;
+    kept.reserve(ops.size());
+    for (const TurnProfileOp* op : ops) {
+        kept.push_back(kept_by(*op));
+        const XValues xv = op->given_x;
+        auto x = [&](double radius) { return in.show(x_as_given(radius, xv)); };
+        const Vec2 start = op->profile.start, end = op->profile.segments.back().end;
+        // The approach: before this profile cuts, the material above it is still there.
+        if (auto hit = first_hit(kept, kept.size() - 1, start.y, start.x, clearance, true))
+            json::fail(in.source(), op->path + "/start",
+                             fmt::format("the approach feeds along Z at X {} from the clearance (Z {}) down to the start "
+                                         "(Z {}) through the material that {} keeps: X up to {} between Z {} and Z {}",
+                                         x(start.y), in.show(clearance), in.show(start.x), whose(*hit->kept, *op),
+                                         x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
+                                         in.show(hit->span.hi)));
+        if (auto hit = first_hit(kept, kept.size(), op->retract_x, end.x, clearance, false))
+            json::fail(in.source(), op->path + "/retractX",
+                             fmt::format("retractX {} is inside the part: the return along Z from the profile's end (Z {}) "
+                                         "to the clearance (Z {}) runs through the material that {} keeps, up to X {} "
+                                         "between Z {} and Z {}; retractX must be beyond it",
+                                         x(op->retract_x), in.show(end.x), in.show(clearance), whose(*hit->kept, *op),
+                                         x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
+                                         in.show(hit->span.hi)));
+    }
+}
 
 }  // namespace camgen

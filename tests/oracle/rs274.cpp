@@ -152,6 +152,11 @@ std::vector<Step> parse_canon(const std::string& canon) {
 }
 
 std::vector<Step> run_rs274(const std::string& rs274, const std::string& program, const std::map<int, double>& tool_diameters) {
+    return parse_canon(run_rs274_canon(rs274, program, tool_diameters));
+}
+
+std::string run_rs274_canon(const std::string& rs274, const std::string& program,
+                            const std::map<int, double>& tool_diameters) {
     namespace fs = std::filesystem;
     fs::path dir = fs::temp_directory_path() / fmt::format("camgen-oracle-{}", ::getpid());
     fs::create_directories(dir);
@@ -188,7 +193,7 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
     if (status != 0 || canon.find("PROGRAM_END()") == std::string::npos)
         throw std::runtime_error(fmt::format("rs274 rejected the program (status {}): {}\n--- program ---\n{}", status,
                                              message, program));
-    return parse_canon(canon);
+    return canon;
 }
 
 }  // namespace camgen::oracle

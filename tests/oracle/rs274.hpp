@@ -38,6 +38,11 @@ std::optional<std::string> find_rs274();
 std::vector<Step> run_rs274(const std::string& rs274, const std::string& program,
                             const std::map<int, double>& tool_diameters = {});
 
+// The same run, giving rs274's canonical calls as it printed them (for what parse_canon leaves
+// out, such as arcs in XZ).
+std::string run_rs274_canon(const std::string& rs274, const std::string& program,
+                            const std::map<int, double>& tool_diameters = {});
+
 // Normalises rs274's canonical output (exposed for tests of the parser itself).
 std::vector<Step> parse_canon(const std::string& canon);
 

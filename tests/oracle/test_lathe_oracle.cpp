@@ -173,3 +173,194 @@ TEST_CASE("linuxcnc-lathe: tapping on the axis is G33.1 under G17, a rigid tap t
         }
     CHECK(taps == 1);
 }
+
+// Issue 24: turn-profiles that read_job refuses. Each is built as a struct (as a library user
+// can, and as read_job let through before), posted for linuxcnc-lathe and run through rs274 to
+// show what the control would cut; then the same job as JSON is refused at its JSON path.
+namespace {
+
+// A profile point from a diameter and a Z: (u, v) = (Z, radius).
+Vec2 dz(double diameter, double z) { return {z, diameter / 2}; }
+
+ProfileSegment line_to(double diameter, double z) { return ProfileSegment{dz(diameter, z), std::nullopt, ArcDirection::ccw}; }
+
+TurnProfileOp turned(std::size_t index, Vec2 start, std::vector<ProfileSegment> segments, double retract_diameter) {
+    TurnProfileOp op;
+    op.path = "/operations/" + std::to_string(index);
+    op.tool = 1;
+    op.feed = 100;
+    op.profile.plane = ProfilePlane::xz;
+    op.profile.start = start;
+    op.profile.segments = std::move(segments);
+    op.retract_x = retract_diameter / 2;
+    return op;
+}
+
+// The linuxcnc-lathe program of turn-profiles on a 0.8 mm turning tool.
+std::string post_turned(const std::vector<TurnProfileOp>& ops, double clearance) {
+    Job job;
+    job.name = "oracle";
+    job.clearance = clearance;
+    Tool tool;
+    tool.number = 1;
+    tool.type = ToolType::turning_tool;
+    tool.diameter = 0.8;
+    tool.rpm = 1000;
+    job.tools[1] = tool;
+    for (const TurnProfileOp& op : ops) job.operations.push_back(op);
+    const Machine m = load_machine("linuxcnc-lathe");
+    std::ostringstream out;
+    auto p = make_post(m, out, PostOptions{});
+    p->open();
+    expand_job(job, *p);
+    p->close();
+    return out.str();
+}
+
+// The same job as JSON, X as diameters: `ops` are the operations' keys after type, tool, feed.
+std::string turned_json(const std::vector<std::string>& ops, double clearance) {
+    std::string list;
+    for (const std::string& op : ops)
+        list += (list.empty() ? "" : ", ") + std::string(R"({"type": "turn-profile", "tool": 1, "feed": 100, )") + op + "}";
+    return fmt::format(R"({{"clearance": {}, "tools": [{{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}}],
+  "operations": [{}]}})",
+                       clearance, list);
+}
+
+// The error read_job gives for `text` ("" when none).
+std::string refusal(const std::string& text) {
+    try {
+        (void)read_job(text, "oracle.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The lowest X (radius) the control reaches along the arcs in XZ of rs274's canonical output,
+// sampled every 0.1 degree from where the previous move ended. Under G18 ARC_FEED gives
+// (Z end, X end, Z centre, X centre, rotation), rotation > 0 counter-clockwise in (Z, X).
+double lowest_arc_x(const std::string& canon) {
+    double lowest = 1e9;
+    Vec3 at{0, 0, 0};
+    std::istringstream lines(canon);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t open = line.find('('), close = line.rfind(')');
+        if (open == std::string::npos || close == std::string::npos) continue;
+        std::vector<double> a;
+        std::istringstream args(line.substr(open + 1, close - open - 1));
+        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
+        if (line.find("STRAIGHT_") != std::string::npos && a.size() >= 3) at = {a[0], a[1], a[2]};
+        if (line.find("ARC_FEED") == std::string::npos || a.size() < 5) continue;
+        const double zc = a[2], xc = a[3], r = std::hypot(at.z - zc, at.x - xc);
+        const double from = std::atan2(at.x - xc, at.z - zc), to = std::atan2(a[1] - xc, a[0] - zc);
+        double sweep = a[4] > 0 ? to - from : from - to;
+        while (sweep <= 1e-9) sweep += 2 * M_PI;
+        for (int k = 0; k <= static_cast<int>(sweep / (M_PI / 1800)); ++k) {
+            const double angle = from + (a[4] > 0 ? 1 : -1) * k * (M_PI / 1800);
+            lowest = std::min(lowest, xc + r * std::sin(angle));
+        }
+        at = {a[1], 0, a[0]};
+    }
+    return lowest;
+}
+
+// Whether the segments (Z, X) p1-p2 and q1-q2 cross.
+bool cross(Vec2 p1, Vec2 p2, Vec2 q1, Vec2 q2) {
+    auto side = [](Vec2 a, Vec2 b, Vec2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); };
+    return side(p1, p2, q1) * side(p1, p2, q2) < 0 && side(q1, q2, p1) * side(q1, q2, p2) < 0;
+}
+
+// The shaft of samples/shaft.json (diameters 28 to 40 from Z0 to Z-40) as segments.
+std::vector<ProfileSegment> shaft() {
+    return {line_to(28, 0), line_to(30, -1), line_to(30, -20), ProfileSegment{dz(40, -25), dz(40, -20), ArcDirection::cw},
+            line_to(40, -40)};
+}
+const char* shaft_json = R"("start": [24, 0], "path": [{"line": [28, 0]}, {"line": [30, -1]}, {"line": [30, -20]},
+  {"arc": {"end": [40, -25], "centre": [40, -20], "direction": "cw"}}, {"line": [40, -40]}])";
+
+}  // namespace
+
+TEST_CASE("linuxcnc-lathe (issue 24): an arc whose sweep passes X -8.4 runs in rs274; read_job refuses it") {
+    // Ends (diameter 12.4 at Z-5, 2 at Z0.2) and centre (2, Z-5) above the axis; counter-clockwise
+    // three quarters of a turn of radius 5.2 through radius -4.2.
+    const std::string text =
+        post_turned({turned(0, dz(12.4, -5), {ProfileSegment{dz(2, 0.2), dz(2, -5), ArcDirection::ccw}}, 20)}, 5);
+    INFO(text);
+    REQUIRE(text.find("G3 X2 Z0.2 I-5.2 K0") != std::string::npos);
+    std::string canon;
+    REQUIRE_NOTHROW(canon = oracle::run_rs274_canon(rs274(), text));
+    // The control cuts through the spindle axis, to a diameter of -8.4.
+    CHECK(lowest_arc_x(canon) == doctest::Approx(-4.2).epsilon(1e-4));
+    CHECK(refusal(turned_json({R"("start": [12.4, -5], "retractX": 20, "path": [{"arc": {"end": [2, 0.2], "centre": [2, -5], "direction": "ccw"}}])"}, 5))
+              .find("/operations/0/path/0/arc: the arc sweeps through the spindle axis: it reaches X -8.400 mm (diameter) "
+                    "at Z -5.000 mm") != std::string::npos);
+}
+
+TEST_CASE("linuxcnc-lathe (issue 24): a profile whose segments cross runs in rs274; read_job refuses it") {
+    const std::string text = post_turned({turned(0, dz(40, 0), {line_to(20, -10), line_to(40, -10), line_to(20, 0)}, 44)}, 20);
+    std::vector<OStep> steps;
+    REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
+    std::vector<Vec2> feeds;  // (Z, X) of the feed moves' ends, from the start
+    for (const OStep& s : steps)
+        if (s.kind == OStep::Kind::feed) feeds.push_back({s.to.z, s.to.x});
+    REQUIRE(feeds.size() >= 4);
+    // The third element crosses the first: the tip cuts back through what it has just finished.
+    CHECK(cross(feeds[0], feeds[1], feeds[2], feeds[3]));
+    CHECK(refusal(turned_json({R"("start": [40, 0], "retractX": 44, "path": [{"line": [20, -10]}, {"line": [40, -10]}, {"line": [20, 0]}])"}, 20))
+              .find("/operations/0/path/2: this element crosses or touches the profile before it") != std::string::npos);
+}
+
+TEST_CASE("linuxcnc-lathe (issue 24): a retractX inside the part rapids through it in rs274; read_job refuses it") {
+    const std::string text = post_turned({turned(0, dz(24, 0), shaft(), 10)}, 20);
+    std::vector<OStep> steps;
+    REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
+    // The feed out ends at radius 5, Z-40; the next move is a rapid along Z at radius 5 to the
+    // clearance: through the diameters 28 to 40 between Z-40 and Z0.
+    bool through = false;
+    for (std::size_t i = 1; i < steps.size(); ++i)
+        if (steps[i].kind == OStep::Kind::traverse && steps[i - 1].kind == OStep::Kind::feed &&
+            std::abs(steps[i - 1].to.x - 5) < 1e-4 && std::abs(steps[i - 1].to.z + 40) < 1e-4 &&
+            std::abs(steps[i].to.x - 5) < 1e-4 && std::abs(steps[i].to.z - 20) < 1e-4)
+            through = true;
+    CHECK(through);
+    CHECK(refusal(turned_json({std::string(shaft_json) + R"(, "retractX": 10)"}, 20))
+              .find("/operations/0/retractX: retractX 10.000 mm is inside the part") != std::string::npos);
+}
+
+TEST_CASE("linuxcnc-lathe (issue 24): a profile above the clearance: rs274 rapids into the part and feeds up; read_job refuses it") {
+    // The part's face at Z30, the clearance at Z10.
+    const std::string text = post_turned({turned(0, dz(40, 30), {line_to(40, 0)}, 44)}, 10);
+    std::vector<OStep> steps;
+    REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
+    bool feeds_up = false;
+    for (std::size_t i = 1; i < steps.size(); ++i)
+        if (steps[i - 1].kind == OStep::Kind::traverse && std::abs(steps[i - 1].to.x - 20) < 1e-4 &&
+            std::abs(steps[i - 1].to.z - 10) < 1e-4 && steps[i].kind == OStep::Kind::feed &&
+            std::abs(steps[i].to.z - 30) < 1e-4)
+            feeds_up = true;
+    CHECK(feeds_up);
+    CHECK(refusal(turned_json({R"("start": [40, 30], "retractX": 44, "path": [{"line": [40, 0]}])"}, 10))
+              .find("/operations/0/start/1: the start is at Z 30.000 mm, at or above the clearance (Z 10.000 mm)") !=
+          std::string::npos);
+}
+
+TEST_CASE("linuxcnc-lathe (issue 24): a second profile's approach feeds through the first one's diameter in rs274; read_job refuses it") {
+    // After the shaft, a groove at diameter 34 from Z-30: its approach feeds along Z at radius
+    // 17 from the clearance through the diameter 40 left from the fillet (Z-24) on.
+    const std::string text =
+        post_turned({turned(0, dz(24, 0), shaft(), 44), turned(1, dz(34, -30), {line_to(34, -35)}, 44)}, 20);
+    std::vector<OStep> steps;
+    REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
+    bool through = false;
+    for (std::size_t i = 1; i < steps.size(); ++i)
+        if (steps[i - 1].kind == OStep::Kind::traverse && std::abs(steps[i - 1].to.x - 17) < 1e-4 &&
+            std::abs(steps[i - 1].to.z - 20) < 1e-4 && steps[i].kind == OStep::Kind::feed &&
+            std::abs(steps[i].to.x - 17) < 1e-4 && std::abs(steps[i].to.z + 30) < 1e-4)
+            through = true;
+    CHECK(through);
+    CHECK(refusal(turned_json({std::string(shaft_json) + R"(, "retractX": 44)",
+                               R"("start": [34, -30], "retractX": 44, "path": [{"line": [34, -35]}])"},
+                              20))
+              .find("/operations/1/start: the approach feeds along Z at X 34.000 mm") != std::string::npos);
+}
