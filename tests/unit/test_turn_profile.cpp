@@ -5,6 +5,7 @@
 
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
+#include "reader_support.hpp"
 
 using namespace camgen;
 
@@ -108,4 +109,28 @@ TEST_CASE("turn-profile: bad input at its JSON path") {
     check(job("diameter", "[40, 0]", R"({"line": [30, -2], "arc": {"end": [20, -10], "centre": [20, 0], "direction": "cw"}})"),
           "/operations/0/path/0", "exactly one of line, arc");
     check(job("diameter", "[40, 0]", R"({"line": [30, -2]})", "-1"), "/operations/0/retractX", "negative");
+}
+
+TEST_CASE("turn-profile: an arc under minRadius is one straight move on every lathe, and verify accepts it") {
+    // A half circle of radius r in XZ between two lines (radii as given): under the lathes'
+    // minRadius (0.002), or under their minLength (0.01 mm: pi r < 0.01 up to r = 0.00318), the
+    // post writes it as one straight move, above both as G2; verify --job accepts each, and
+    // refuses the program of the same profile 0.05 mm further along Z.
+    auto profile = [](double r, double at_z) {
+        return fmt::format(R"({{"clearance": 5, "tools": [{{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}}],
+  "operations": [{{"type": "turn-profile", "tool": 1, "xValues": "radius", "feed": 100, "start": [20, 0], "retractX": 22,
+    "path": [{{"line": [20, {}]}}, {{"arc": {{"end": [20, {}], "centre": [20, {}], "direction": "cw"}}}}, {{"line": [15, -10]}}]}}]}})",
+                           at_z, at_z - 2 * r, at_z - r);
+    };
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        for (const double r : {0.001, 0.0019, 0.0021, 0.004}) {
+            CAPTURE(machine);
+            CAPTURE(r);
+            const std::string job = profile(r, -5);
+            const std::string program = test::post_job(job, machine).text;
+            CHECK((program.find("G2 X") != std::string::npos) == (r > 0.0032));
+            CHECK(test::round_trip(job, program, machine) == "");
+            CHECK(test::round_trip(job, test::post_job(profile(r, -5.05), machine).text, machine).find("line ") == 0);
+        }
+    }
 }
