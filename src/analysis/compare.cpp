@@ -16,6 +16,7 @@
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/nc/format.hpp"
+#include "camgen/post/arc_output.hpp"
 #include "camgen/reader/reader.hpp"
 
 namespace camgen {
@@ -84,9 +85,22 @@ struct Item {
 // and a speed written again unchanged says nothing. Rapids of `nowhere` mm or less are dropped.
 class ItemBuilder {
 public:
-    ItemBuilder(double nowhere, std::function<void(Item&&)> out) : nowhere_(nowhere), out_(std::move(out)) {}
+    // `one_line`: the machine's arc rules for the job's side (nullptr: arcs stay arcs).
+    ItemBuilder(double nowhere, const ArcSettings* one_line, std::function<void(Item&&)> out)
+        : nowhere_(nowhere), one_line_(one_line), out_(std::move(out)) {}
 
-    void step(const Step& s) {
+    void step(const Step& step) {
+        // An arc the post writes as one straight move from its start to its end (a bore a hair
+        // wider than its tool: a helix of radius 0.001 mm, one plunge) is that move here. Its
+        // points are within the arc's diameter of the move's at the same fraction (both lie in
+        // the circle, at the same height), and within its length.
+        std::optional<Step> as_line;
+        if (one_line_ && step.kind == StepKind::feed && step.arc && written_as_one_line(*step.arc, *one_line_)) {
+            as_line = step;
+            as_line->arc.reset();
+            as_line->uncertainty += std::min(2.0 * step.arc->radius, step.arc->radius * step.arc->sweep);
+        }
+        const Step& s = as_line ? *as_line : step;
         switch (s.kind) {
             case StepKind::tool_change:
                 flush_spindle();
@@ -172,6 +186,7 @@ private:
     }
 
     double nowhere_;
+    const ArcSettings* one_line_;
     std::function<void(Item&&)> out_;
     std::optional<Step> pending_;  // a spindle step not yet in effect
     SpindleState state_ = SpindleState::off;
@@ -289,6 +304,32 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
         if (d <= tol) return {std::max(t, t_min), d};
         if (d < best.d) best = {std::max(t, t_min), d};
     }
+    if (helical && g.radius < 2.0 * tol) {
+        // A helix no wider than the tolerance: a point near its axis (a chord across it, from
+        // rounded ends) has an angle that says nothing, and its nearest point may be half a
+        // turn from the one at its angle. Look along the turn at the point's height, and
+        // refine the nearest of those samples.
+        const double t_z = std::clamp((q.w - a3.w) / (b3.w - a3.w), 0.0, 1.0);
+        const double half = std::numbers::pi / g.sweep;
+        const double lo = std::max(t_min - slack, t_z - half), hi = std::min(1.0, t_z + half);
+        if (lo <= hi) {
+            constexpr int n = 32;
+            double t_best = lo, d_best = dist(p, s.at(lo));
+            for (int i = 1; i <= n; ++i) {
+                const double t = lo + (hi - lo) * i / n, d = dist(p, s.at(t));
+                if (d < d_best) t_best = t, d_best = d;
+            }
+            double a = std::max(lo, t_best - (hi - lo) / n), b = std::min(hi, t_best + (hi - lo) / n);
+            for (int k = 0; k < 40 && b - a > 1e-12; ++k) {
+                const double m1 = a + (b - a) / 3.0, m2 = b - (b - a) / 3.0;
+                if (dist(p, s.at(m1)) <= dist(p, s.at(m2))) b = m2;
+                else a = m1;
+            }
+            if (const double d = dist(p, s.at((a + b) / 2.0)); d < d_best) t_best = (a + b) / 2.0, d_best = d;
+            if (d_best <= tol) return {std::max(t_best, t_min), d_best};
+            if (d_best < best.d) best = {std::max(t_best, t_min), d_best};
+        }
+    }
     return best;
 }
 
@@ -342,7 +383,10 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             // speed: the speed written to the resolution of S moves its feed by up to pitch x
             // that resolution (a fuzz finding: 0.2296875 mm/rev at 802.3125 rpm, S802).
             double feed_limit = tol.feed + std::max(s.step->pitch, seg.pitch) * tol.rpm + eps;
-            if (s.check_feed && !from.rapid && std::abs(s.step->feed - seg.feed) > feed_limit) {
+            // A move no longer than the position tolerance may round to nothing and not be
+            // written at all, its feed with it (a bore's way back to a centre 0.0001 mm away).
+            const bool feed_matters = s.check_feed && !from.rapid && s.step->length() > tol.position + eps;
+            if (feed_matters && std::abs(s.step->feed - seg.feed) > feed_limit) {
                 // A point within the tolerance of a corner lies on both moves that meet there (a
                 // tiny arc written as one short line after a plunge): look on along the moves it
                 // is near for one at its feed before calling it a mismatch.
@@ -429,8 +473,9 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
 // One side of a comparison: its items not compared yet.
 class Side : public TraceSink {
 public:
-    Side(double nowhere, std::function<void()> changed)
-        : builder_(nowhere, [this](Item&& i) { add(std::move(i)); }), changed_(std::move(changed)) {}
+    // `one_line`: see ItemBuilder (the job's side only).
+    Side(double nowhere, const ArcSettings* one_line, std::function<void()> changed)
+        : builder_(nowhere, one_line, [this](Item&& i) { add(std::move(i)); }), changed_(std::move(changed)) {}
     void step(const Step& s) override {
         if (!stopped_) builder_.step(s);
     }
@@ -491,14 +536,15 @@ CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution&
     t.feed = res.feed;
     t.dwell = res.dwell;
     t.rpm = res.rpm;
+    t.arcs = machine.arcs;
     return t;
 }
 
 class TraceComparer::Impl {
 public:
     Impl(const CompareTolerance& tol, std::function<bool()> more_actual)
-        : tol_(tol), more_actual_(std::move(more_actual)), job_(tol.path, [this] { advance(); }),
-          prog_(tol.path, [this] { advance(); }) {}
+        : tol_(tol), more_actual_(std::move(more_actual)), job_(tol.path, &tol_.arcs, [this] { advance(); }),
+          prog_(tol.path, nullptr, [this] { advance(); }) {}
 
     // Compares what both sides have, asking for more of the actual side while the expected one
     // waits for it.

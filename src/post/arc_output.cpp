@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace camgen {
@@ -22,23 +23,50 @@ double effective_chord_tolerance(const ArcSettings& settings, std::optional<doub
     return std::min(*operation_tolerance, settings.chord_tolerance);
 }
 
-int segment_count(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance) {
-    constexpr int most = 10'000'000;
-    int n = std::max(segments_for_tolerance(arc.radius, arc.sweep, chord_tolerance), settings.min_segments);
-    if (!settings.max_segment_length || chord_length(arc, n) <= *settings.max_segment_length) return n;
+namespace {
+// Chords an arc of `radius` (mm) and `sweep` (radians) needs so that none strays more than
+// `tolerance` (mm) from it: segments_for_tolerance without its cap, which would write a long
+// helix off its circle without a word (0.49 mm off at 100 times the tolerance).
+double chords_for_tolerance(double radius, double sweep, double tolerance) {
+    if (radius <= 0.0 || sweep <= 0.0) return 1.0;
+    const double max_step = tolerance >= radius ? std::numbers::pi : 2.0 * std::acos(1.0 - tolerance / radius);
+    if (!(max_step > 0.0)) return std::numeric_limits<double>::infinity();
+    return std::max(1.0, std::ceil(sweep / max_step - 1e-9));
+}
+
+std::int64_t as_count(double n) {
+    return n >= 9e18 ? std::numeric_limits<std::int64_t>::max() : static_cast<std::int64_t>(n);
+}
+}  // namespace
+
+std::int64_t segment_count(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance) {
+    constexpr std::int64_t most = max_arc_chords;
+    const std::int64_t n = std::max(as_count(chords_for_tolerance(arc.radius, arc.sweep, chord_tolerance)),
+                                    static_cast<std::int64_t>(settings.min_segments));
+    if (n > most) return n;
+    if (!settings.max_segment_length || chord_length(arc, static_cast<int>(n)) <= *settings.max_segment_length) return n;
+    const double max_len = *settings.max_segment_length;
+    // Beyond the limit a chord is the arc's length over the count, to a part in 10^14: the
+    // count that length needs.
+    if (chord_length(arc, static_cast<int>(most)) > max_len)
+        return std::max(most + 1, as_count(std::ceil(arc_length(arc) / max_len)));
     // The chord shrinks as n grows (each step is at most 180 degrees here): find the least n
     // whose chord fits, doubling first and then halving the interval.
-    const double max_len = *settings.max_segment_length;
-    int lo = n, hi = n;
-    while (chord_length(arc, hi) > max_len && hi < most) {
+    std::int64_t lo = n, hi = n;
+    while (chord_length(arc, static_cast<int>(hi)) > max_len) {
         lo = hi;
-        hi = hi > most / 2 ? most : hi * 2;
+        hi = std::min(hi * 2, most);
     }
     while (hi - lo > 1) {
-        int mid = lo + (hi - lo) / 2;
-        (chord_length(arc, mid) > max_len ? lo : hi) = mid;
+        std::int64_t mid = lo + (hi - lo) / 2;
+        (chord_length(arc, static_cast<int>(mid)) > max_len ? lo : hi) = mid;
     }
     return hi;
+}
+
+bool written_as_one_line(const ArcGeometry& arc, const ArcSettings& settings) {
+    return (settings.min_radius && arc.radius < *settings.min_radius) ||
+           (settings.min_length && arc_length(arc) < *settings.min_length);
 }
 
 ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance) {
@@ -46,10 +74,11 @@ ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double cho
     const bool helical = std::abs(b.w - a.w) > 1e-9;
     const double length = arc_length(arc);
     auto mm = [](double v) { return std::to_string(v); };
-    if (settings.min_radius && arc.radius < *settings.min_radius)
-        return {ArcTreatment::one_line, 1, "radius " + mm(arc.radius) + " mm is below minRadius"};
-    if (settings.min_length && length < *settings.min_length)
+    if (written_as_one_line(arc, settings)) {
+        if (settings.min_radius && arc.radius < *settings.min_radius)
+            return {ArcTreatment::one_line, 1, "radius " + mm(arc.radius) + " mm is below minRadius"};
         return {ArcTreatment::one_line, 1, "length " + mm(length) + " mm is below minLength"};
+    }
     auto lines = [&](std::string why) {
         return ArcPlan{ArcTreatment::lines, segment_count(arc, settings, chord_tolerance), std::move(why)};
     };

@@ -566,7 +566,7 @@ void Post::handle_arc(const Arc& arc) {
     const ArcPlan plan = plan_arc(geo, s, tolerance);
     switch (plan.treatment) {
         case ArcTreatment::one_line: on_linear(arc.to, arc.feed); break;
-        case ArcTreatment::lines: write_lines(geo, plan.count, arc.feed); break;
+        case ArcTreatment::lines: write_lines(geo, plan.count, arc.feed, tolerance, plan.reason); break;
         case ArcTreatment::arcs:
             for (const ArcGeometry& piece : split_arc(geo, plan.count)) write_arc_block(piece, arc.feed, tolerance, 0);
             break;
@@ -574,8 +574,32 @@ void Post::handle_arc(const Arc& arc) {
     pos_ = arc.to;
 }
 
-void Post::write_lines(const ArcGeometry& arc, int segments, double feed) {
-    for (const Vec3& p : linearize_arc(arc, segments)) {
+void Post::write_lines(const ArcGeometry& arc, std::int64_t segments, double feed, double chord_tolerance,
+                       std::string_view why) {
+    if (segments > max_arc_chords) {
+        // More chords than the limit would leave the tolerance (a cap on the count writes them
+        // long) or write a program nobody can run: refused before the arc is written.
+        ArcSettings by_tolerance = machine_.arcs;
+        by_tolerance.max_segment_length.reset();
+        const bool tolerance_binds = segment_count(arc, by_tolerance, chord_tolerance) > max_arc_chords;
+        const double turns = arc.sweep / (2 * std::numbers::pi);
+        const PlanePoint a = to_plane(arc.start, arc.plane), b = to_plane(arc.end, arc.plane);
+        const std::string what = std::abs(b.w - a.w) > 1e-9
+                                     ? fmt::format("a helix of {:.6g} turns of radius {:.6g} mm", turns, arc.radius)
+                                     : fmt::format("an arc of {:.6g} degrees and radius {:.6g} mm", arc.sweep * 180 / std::numbers::pi,
+                                                   arc.radius);
+        const std::string keep = tolerance_binds
+                                     ? fmt::format("within the chord tolerance of {:g} mm", chord_tolerance)
+                                     : fmt::format("each chord within maxSegmentLength {:g} mm", *machine_.arcs.max_segment_length);
+        fail("", fmt::format("{}, which machine {} writes as straight moves ({}), needs {} of them to keep {}; at most {} "
+                             "are written for one arc (fewer turns or a larger pitch, a larger tolerance up to the machine's "
+                             "chordTolerance {:g} mm, or a machine that writes it as arcs)",
+                             what, machine_.name, why, segments, keep, max_arc_chords, machine_.arcs.chord_tolerance));
+    }
+    // One point at a time: a long helix broken into millions of chords is never held whole.
+    const int n = static_cast<int>(std::max<std::int64_t>(segments, 1));
+    for (int k = 1; k <= n; ++k) {
+        const Vec3 p = k < n ? point_on_arc(arc, double(k) / n) : arc.end;  // the last ends exactly at the end
         on_linear(p, feed);
         pos_ = p;
     }
@@ -616,7 +640,8 @@ void Post::write_arc_block(const ArcGeometry& piece, double feed, double chord_t
             if (depth < 4) {
                 for (const ArcGeometry& half : split_arc(piece, 2)) write_arc_block(half, feed, chord_tolerance, depth + 1);
             } else {
-                write_lines(piece, segment_count(piece, machine_.arcs, chord_tolerance), feed);
+                write_lines(piece, segment_count(piece, machine_.arcs, chord_tolerance), feed, chord_tolerance,
+                            "its rounded words leave the circle");
             }
             break;
     }

@@ -412,6 +412,67 @@ TEST_CASE("rule: maxSegmentLength raises the count until every chord fits") {
     CHECK(plan_arc(g, s, 0.005).count == 25);
 }
 
+TEST_CASE("rule: an arc that needs more chords than the limit says how many; up to the limit it is broken") {
+    // Issue 24, item 11: the count was capped at 10,000,000, so a longer helix was written in
+    // chords too long for the tolerance (0.49 mm off its circle) without a word.
+    ArcSettings s = bare();
+    s.helical = false;
+    // Radius 0.004 below the tolerance 0.005: two chords a turn (each half a turn). 5,000,000
+    // turns is the limit exactly; a quarter turn more needs one chord more.
+    const ArcGeometry at_limit = arc_from({0.004, 0, 0}, {0.004, 0, -5}, {0, 0, 0}, ArcDirection::ccw, Plane::xy, 4'999'999);
+    CHECK(segment_count(at_limit, s, 0.005) == max_arc_chords);
+    CHECK(plan_arc(at_limit, s, 0.005).count == 10'000'000);
+    const double quarter = 2 * pi * 5'000'000.25;
+    const ArcGeometry over = resolve_arc({0.004, 0, 0}, Arc{{0.004 * std::cos(quarter), 0.004 * std::sin(quarter), -5}, {0, 0, 0},
+                                                            ArcDirection::ccw, Plane::xy, 100.0, 5'000'000});
+    CHECK(segment_count(over, s, 0.005) == 10'000'001);
+    // Radius 50, 7000 turns at tolerance 0.0001: a chord may turn 2 acos(1 - 0.0001/50) =
+    // 0.00400000067 rad; 7000 x 2 pi / that = 10,995,572.46 -> 10,995,573 chords, not 10,000,000.
+    const ArcGeometry wide = arc_from({50, 0, 0}, {50, 0, -7}, {0, 0, 0}, ArcDirection::ccw, Plane::xy, 6999);
+    const ArcPlan p = plan_arc(wide, s, 0.0001);
+    CHECK(p.treatment == ArcTreatment::lines);
+    CHECK(p.count == 10'995'573);
+    // maxSegmentLength beyond the limit: radius 10, 1000 turns flat = 62,831.85 mm in chords of
+    // at most 0.005 mm: 12,566,371 (the tolerance alone: 1000 x 2 pi / (2 acos(1 - 0.005/10)) =
+    // 99,341.4 -> 99,342).
+    s.planes = {};
+    s.max_segment_length = 0.005;
+    const ArcGeometry flat = arc_from({10, 0, 0}, {10, 0, 0}, {0, 0, 0}, ArcDirection::ccw, Plane::xy, 999);
+    CHECK(segment_count(flat, s, 0.005) == 12'566'371);
+    s.max_segment_length.reset();
+    CHECK(segment_count(flat, s, 0.005) == 99'342);
+}
+
+TEST_CASE("rule: an arc the post would break into more chords than the limit is an error naming the operation") {
+    // A 300 mm bore with a 200 mm tool: one helix of radius 50, 7000 turns (7 mm at 0.001 mm a
+    // turn), which wabeco (no helices) breaks into chords of the operation's 0.0001 mm: 10,995,573
+    // (above). Refused before it is written, the numbers in the message; standard output and the
+    // -o file stay empty.
+    const std::string job = R"({"name": "t", "units": "mm", "clearance": 10,
+      "tools": [{"number": 1, "type": "end-mill", "diameter": 200, "rpm": 1000}],
+      "operations": [{"type": "bore-mill", "tool": 1, "diameter": 300, "retractPlane": 5, "safeDistance": 1,
+        "feed": 500, "endDepth": 7, "pitch": 0.001, "tolerance": 0.0001, "holes": [[0, 0]]}]})";
+    std::string message;
+    try {
+        (void)post_job(job, "wabeco");
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    CHECK(message ==
+          "/operations/0: a helix of 7000 turns of radius 50 mm, which machine wabeco writes as straight moves (helix not "
+          "supported), needs 10995573 of them to keep within the chord tolerance of 0.0001 mm; at most 10000000 are written "
+          "for one arc (fewer turns or a larger pitch, a larger tolerance up to the machine's chordTolerance 0.005 mm, or a "
+          "machine that writes it as arcs)");
+    const std::string file = file_with("chord-limit", job);
+    const std::string out = (scratch("chord-limit-out") / "t.knc").string();
+    const Run r = run({file, "--machine", "wabeco", "-o", out});
+    CHECK(r.code != 0);
+    CHECK(r.err.find("needs 10995573 of them") != std::string::npos);
+    CHECK(!std::filesystem::exists(out));
+    // The same bore on a machine that writes helices: 7000 helical turns, no chords.
+    CHECK(post_job(job, "grbl").text.find("G3") != std::string::npos);
+}
+
 TEST_CASE("rule: segments are equal and the last ends exactly at the arc's end") {
     ArcGeometry g = arc_from({10, 0, 0}, {10 * std::cos(1.75), 10 * std::sin(1.75), -3.1}, {0, 0, 0}, ArcDirection::ccw);
     auto points = linearize_arc(g, 25);

@@ -516,3 +516,85 @@ TEST_CASE("verify follows a helix of a tiny radius whose centre was rounded, and
     const std::string wrong = test::replace_once(grbl, "X93.027 Y32.575 Z-3 I-0.013", "X93.027 Y32.575 Z-3.2 I-0.013");
     CHECK(test::round_trip(job, wrong, "grbl").find("line 13: the job's ccw arc") == 0);
 }
+
+namespace {
+const std::vector<std::string> mills = {"fanuc", "grbl", "linuxcnc", "sinumerik", "heidenhain", "kosy", "wabeco"};
+}  // namespace
+
+TEST_CASE("verify accepts a bore a hair wider than its tool, written as one plunge under minRadius, on every mill") {
+    // Issue 24, item 12: a 10.002 mm bore with a 10 mm tool is a helix of radius 0.001 mm, and
+    // under minRadius (0.002 mm) the post writes it as one straight plunge and the bottom circle
+    // as nothing, as the README's arc rules say; verify compared them with the job's helix and
+    // circle and refused camgen's own program. Radii around the rule and the resolution
+    // (0.001 mm; linuxcnc 0.0001), on a centre on the grid and one off it, at a fine pitch and
+    // a coarse one, with a ramp, a cutting and a plunge feed of their own.
+    for (const std::string& machine : mills) {
+        for (const double bore : {10.0002, 10.001, 10.002, 10.0021, 10.0039, 10.0041, 10.0045, 10.006}) {
+            for (const std::string hole : {"[20, 30]", "[20.0004, 30.0007]"}) {
+                for (const double pitch : {0.1, 1.5}) {
+                    CAPTURE(machine);
+                    CAPTURE(bore);
+                    CAPTURE(hole);
+                    CAPTURE(pitch);
+                    const std::string job = bore_job(bore, 10, fmt::format(R"("rampFeed": 400, "plungeFeed": 300, "endDepth": 6,
+                        "pitch": {}, "holes": [{}])", pitch, hole));
+                    const std::string program = test::post_job(job, machine).text;
+                    CHECK(test::round_trip(job, program, machine) == "");
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("verify at the minRadius boundary: just below it one plunge, at and just above it arcs, both accepted") {
+    // The machine's minRadius set to the helix's radius exactly and one step either side of it:
+    // the post and verify ask the same rule (written_as_one_line), so the program and the job
+    // agree on which side of it the arc is.
+    const std::string job_text = bore_job(10.004, 10, R"("rampFeed": 400, "plungeFeed": 300, "endDepth": 6, "pitch": 1.5,
+        "holes": [[20.0004, 30.0007]])");
+    const Job job = read_job(job_text, "job.json");
+    // The radius as the post resolves it: the ring's (bore - tool) / 2 added to the hole's X,
+    // less the hole's X.
+    const double r = std::abs((20.0004 + (10.004 - 10.0) / 2.0) - 20.0004);
+    for (const std::string& machine : mills) {
+        struct Case {
+            double min_radius;
+            bool plunge;
+        };
+        for (const Case c : {Case{std::nextafter(r, 1.0), true}, Case{r, false}, Case{std::nextafter(r, 0.0), false}}) {
+            CAPTURE(machine);
+            CAPTURE(c.min_radius - r);
+            Machine m = load_machine(machine);
+            m.arcs.min_radius = c.min_radius;
+            const std::string program = test::post_program(job, m);
+            // One plunge: no arc block and no chord between Z0 and the bottom.
+            const bool helix_written = program.find("Z-1.5") != std::string::npos || program.find("Z-0.75") != std::string::npos;
+            CHECK(helix_written != c.plunge);
+            CHECK(test::round_trip_machine(job, program, m) == "");
+        }
+    }
+}
+
+TEST_CASE("verify still refuses a program that differs from a bore written as one plunge") {
+    // The job's helix under minRadius is compared as the plunge the post writes, allowed no
+    // farther off than the helix strays from it: the program of a bore 0.02 mm beside it, one
+    // 0.5 mm shallower, one with the ramp at another feed, or the real helix of a wider bore, is
+    // a mismatch (and the other way round).
+    auto bore = [](double diameter, const std::string& hole, double depth, double ramp_feed) {
+        return bore_job(diameter, 10, fmt::format(R"("rampFeed": {}, "plungeFeed": 300, "endDepth": {}, "pitch": 1.5,
+            "holes": [{}])", ramp_feed, depth, hole));
+    };
+    const std::string job = bore(10.002, "[20, 30]", 6, 400);
+    for (const std::string& machine : mills) {
+        CAPTURE(machine);
+        const std::string program = test::post_job(job, machine).text;
+        REQUIRE(test::round_trip(job, program, machine) == "");
+        for (const std::string& other : {bore(10.002, "[20.02, 30]", 6, 400), bore(10.002, "[20, 30]", 5.5, 400),
+                                         bore(10.002, "[20, 30]", 6, 300), bore(10.1, "[20, 30]", 6, 400)}) {
+            CAPTURE(other);
+            const std::string different = test::post_job(other, machine).text;
+            CHECK(test::round_trip(job, different, machine).find("line ") == 0);
+            CHECK(test::round_trip(other, program, machine).find("line ") == 0);
+        }
+    }
+}

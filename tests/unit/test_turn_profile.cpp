@@ -5,6 +5,7 @@
 
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
+#include "reader_support.hpp"
 
 using namespace camgen;
 
@@ -214,4 +215,27 @@ TEST_CASE("turn-profile: the approach along Z stays out of the material this and
     CHECK_NOTHROW(read_job(profiles_job({R"("start": [38, 0], "retractX": 42, "path": [{"line": [38, -40]}])",
                                          R"("start": [38, -20], "retractX": 39, "path": [{"line": [36, -20]}, {"line": [36, -40]}])"}),
                            "p.json"));
+
+TEST_CASE("turn-profile: an arc under minRadius is one straight move on every lathe, and verify accepts it") {
+    // A half circle of radius r in XZ between two lines (radii as given): under the lathes'
+    // minRadius (0.002), or under their minLength (0.01 mm: pi r < 0.01 up to r = 0.00318), the
+    // post writes it as one straight move, above both as G2; verify --job accepts each, and
+    // refuses the program of the same profile 0.05 mm further along Z.
+    auto profile = [](double r, double at_z) {
+        return fmt::format(R"({{"clearance": 5, "tools": [{{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}}],
+  "operations": [{{"type": "turn-profile", "tool": 1, "xValues": "radius", "feed": 100, "start": [20, 0], "retractX": 22,
+    "path": [{{"line": [20, {}]}}, {{"arc": {{"end": [20, {}], "centre": [20, {}], "direction": "cw"}}}}, {{"line": [15, -10]}}]}}]}})",
+                           at_z, at_z - 2 * r, at_z - r);
+    };
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        for (const double r : {0.001, 0.0019, 0.0021, 0.004}) {
+            CAPTURE(machine);
+            CAPTURE(r);
+            const std::string job = profile(r, -5);
+            const std::string program = test::post_job(job, machine).text;
+            CHECK((program.find("G2 X") != std::string::npos) == (r > 0.0032));
+            CHECK(test::round_trip(job, program, machine) == "");
+            CHECK(test::round_trip(job, test::post_job(profile(r, -5.05), machine).text, machine).find("line ") == 0);
+        }
+    }
 }

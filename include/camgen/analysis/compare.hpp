@@ -18,6 +18,10 @@ struct CompareTolerance {
     double feed = 0.5;        // mm/min
     double dwell = 0.0005;    // s
     double rpm = 0.5;         // rev/min
+    // The machine's arc rules (compare_tolerance copies them; none by default): a job's arc
+    // that the post writes as one straight move (written_as_one_line: below minRadius or
+    // minLength) is compared as that move, allowed to lie as far off as the arc strays from it.
+    ArcSettings arcs;
 };
 
 // Tolerances for comparing a job with a program for `machine`: `position` mm for end points

@@ -1,6 +1,7 @@
 #pragma once
 // Arc output policy shared by every post (the arc-breaking rules of the machine file, and
 // arc blocks whose rounded words keep the control on the circle).
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -16,9 +17,19 @@ namespace camgen {
 // operation's tolerance when it has one, capped by the machine's (mm).
 double effective_chord_tolerance(const ArcSettings& settings, std::optional<double> operation_tolerance);
 
+// The most straight segments one broken arc is written as. An arc that needs more to keep its
+// chord tolerance (or max_segment_length) is refused: the post names the operation.
+inline constexpr std::int64_t max_arc_chords = 10'000'000;
+
 // How many equal straight segments replace an arc: enough for the chord tolerance, at least
-// min_segments, and more while a segment would be longer than max_segment_length.
-int segment_count(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance);
+// min_segments, and more while a segment would be longer than max_segment_length. Not capped:
+// above max_arc_chords it is what the arc would need (for the message), not a count to write.
+std::int64_t segment_count(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance);
+
+// Whether the rules write `arc` as one straight move from its start to its end: a radius below
+// min_radius, or a length (a helix counts its depth) below min_length. plan_arc and verify
+// (compare.hpp: the job's arc is compared as that move) both ask this.
+bool written_as_one_line(const ArcGeometry& arc, const ArcSettings& settings);
 
 // What the post does with one arc.
 enum class ArcTreatment {
@@ -28,7 +39,7 @@ enum class ArcTreatment {
 };
 struct ArcPlan {
     ArcTreatment treatment = ArcTreatment::arcs;
-    int count = 1;
+    std::int64_t count = 1;    // for lines: may exceed max_arc_chords (see segment_count)
     std::string reason;        // why it is not written as arcs ("" for arcs)
 };
 

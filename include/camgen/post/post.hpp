@@ -9,6 +9,7 @@
 #include <set>
 #include <ostream>
 #include <string>
+#include <string_view>
 
 #include "camgen/post/arc_output.hpp"
 #include "camgen/post/longhand.hpp"
@@ -214,8 +215,10 @@ private:
     std::string op_name_;                      // the current operation's name, for notes
 
     void handle_arc(const Arc& arc);
-    // Straight moves along `arc` in `segments` equal chords, ending exactly at its end.
-    void write_lines(const ArcGeometry& arc, int segments, double feed);
+    // Straight moves along `arc` in `segments` equal chords, ending exactly at its end; above
+    // max_arc_chords an error naming the operation, the count, the limit and `chord_tolerance`
+    // (mm). `why`: why the arc is not written as arcs.
+    void write_lines(const ArcGeometry& arc, std::int64_t segments, double feed, double chord_tolerance, std::string_view why);
     // Writes one arc block whose rounded words keep the control on the circle, or breaks it.
     void write_arc_block(const ArcGeometry& piece, double feed, double chord_tolerance, int depth);
     // Where the control stands at the start of an arc block (see arc_actual_end_).
