@@ -68,11 +68,12 @@ std::string plate_job() { return std::string(CAMGEN_SOURCE_DIR) + "/samples/plat
 
 }  // namespace
 
-TEST_CASE("a user machine that extends linuxcnc with block numbers and a decimal comma changes exactly those words") {
+TEST_CASE("a user machine that extends wabeco with block numbers and a decimal comma changes exactly those words") {
+    // (An ISO machine refuses the comma: its controls read a decimal point only, test_machine_checks.)
     UserConfig user("seq-comma");
-    user.write("shopmill.json", R"({"extends": "linuxcnc", "description": "our mill",
+    user.write("shopmill.json", R"({"extends": "wabeco", "description": "our mill",
         "globals": {"decimalMark": ",", "showSequenceNumbers": true, "sequenceNumberStart": 10, "sequenceNumberIncrement": 10}})");
-    const std::vector<std::string> base = lines_of(post("linuxcnc", plate_job()));
+    const std::vector<std::string> base = lines_of(post("wabeco", plate_job()));
     const std::vector<std::string> mine = lines_of(post("shopmill", plate_job()));
     REQUIRE(base.size() == mine.size());
     int numbered = 0, with_comma = 0, with_point = 0;
@@ -93,7 +94,7 @@ TEST_CASE("a user machine that extends linuxcnc with block numbers and a decimal
         CHECK(restored == base[i]);
     }
     CHECK(numbered > static_cast<int>(base.size()) / 2);
-    // Every decimal point of linuxcnc's blocks became a comma, and no other word changed.
+    // Every decimal point of wabeco's blocks became a comma, and no other word changed.
     CHECK(with_comma == with_point);
     CHECK(with_comma >= 2);
 }
