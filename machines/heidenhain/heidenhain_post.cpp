@@ -204,6 +204,10 @@ std::optional<MachineProblem> check_heidenhain_machine(const Machine& machine) {
                               "reads the number as the block's): keep showSequenceNumbers true, "
                               "sequenceNumberStart 0, sequenceNumberIncrement 1 and sequenceNumberPrefix \"\""};
     }
+    if (machine.block.separator.empty())
+        return MachineProblem{{"/globals/variableDelimeter"},
+                              "Heidenhain's blocks are words apart (0 BEGIN PGM, L X+10 R0 FMAX): without a separator "
+                              "they run together; give variableDelimeter a space"};
     if (!machine.frame.start_block.empty())
         return MachineProblem{{"/frame/startBlock"},
                               "a Heidenhain conversational program has no safe-start block of G words: camgen would "

@@ -142,9 +142,9 @@ std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
     if (auto p = decimal_point_only_problem(machine, "Fanuc and LinuxCNC read \"1,5\" as 1 and a stray comma "
                                                      "(rs274 refuses the block)"))
         return p;
+    const auto& b = machine.frame.start_block;
     if (auto p = diameter_mode_problem(machine, "G7", true, "LinuxCNC's lathe diameter mode")) return p;
     if (auto p = diameter_mode_problem(machine, "G8", false, "LinuxCNC's lathe radius mode")) return p;
-    const auto& b = machine.frame.start_block;
     if (machine.x_diameter && machine.i_diameter && std::find(b.begin(), b.end(), "G7") != b.end())
         return MachineProblem{{"/globals/iDiameterProg"},
                               "LinuxCNC's G7 reads X as a diameter but I and K as radii: iDiameterProg true would "
@@ -154,6 +154,23 @@ std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
     static constexpr std::string_view start_words[] = {"G17", "G18", "G19", "G40", "G49", "G80",
                                                        "G90", "G94", "G98", "G99", "G7",  "G8"};
     if (auto p = start_block_problem(machine, unit_words, start_words)) return p;
+    // Fanuc T (feed modes G98/G99, G code system A): G90 and G94 are turning and facing cycles.
+    bool fanuc_t = false;
+    for (const auto& [mode, code] : machine.frame.feed_modes) fanuc_t = fanuc_t || code == "G98" || code == "G99";
+    for (size_t i = 0; fanuc_t && i < b.size(); ++i)
+        if (b[i] == "G90" || b[i] == "G94")
+            return MachineProblem{{fmt::format("/frame/startBlock/{}", i), "/frame/feedModes"},
+                                  fmt::format("with feed modes G98/G99 (Fanuc T, G code system A) {} is a turning "
+                                              "cycle, not a mode: take it out of the start block",
+                                              b[i])};
+    // GRBL's tool change is a comment and M0: the reader needs the whole "Insert tool" comment.
+    const auto change = machine.dialect_settings.find("toolChange");
+    if (change != machine.dialect_settings.end() && *change == "pause" && machine.block.comment_max_length > 0 &&
+        machine.block.comment_max_length < static_cast<int>(nc::default_comment_limit))
+        return MachineProblem{{"/commentMaxLength", "/settings/toolChange"},
+                              fmt::format("a tool change that pauses (M0) tells the operator the tool in a comment: "
+                                          "a limit below {} characters would cut it off; leave commentMaxLength out",
+                                          nc::default_comment_limit)};
     if (machine.arcs.format == ArcFormat::ijk_absolute)
         return MachineProblem{{"/arcs/format"},
                               "Fanuc, GRBL and LinuxCNC read I, J and K relative to the arc's start (LinuxCNC's "

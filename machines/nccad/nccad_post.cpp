@@ -123,6 +123,13 @@ std::optional<MachineProblem> check_nccad_machine(const Machine& machine) {
                                           "speed to set by hand: a limit below {} characters would cut the speed off; "
                                           "leave commentMaxLength out",
                                           nc::default_comment_limit)};
+    if (machine.arcs.format == ArcFormat::ijk_relative && !machine.arcs.force_xy)
+        return MachineProblem{{"/arcs/forceXY", "/arcs/format"},
+                              "nccad's G02/G03 X Y I J needs both X and Y on every arc block: keep forceXY true"};
+    if (const auto rpm = machine.formats.find("rpm"); rpm != machine.formats.end() && rpm->second.scale != 1.0)
+        return MachineProblem{{"/formats/rpm/scale"},
+                              "nccad's M01 message tells the operator the spindle speed to set by hand, in rpm: "
+                              "leave scale out of the rpm format"};
     static constexpr std::string_view no_unit_words[] = {"G70", "G71"};
     static constexpr std::string_view start_words[] = {"G90"};
     if (auto p = start_block_problem(machine, no_unit_words, start_words)) return p;

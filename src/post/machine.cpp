@@ -611,15 +611,14 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
         }
         af.finish(arcs_keys);
     }
-    // A refused combination of settings: named at the first of its paths this file gives.
+    // A refused combination of settings: named at its first path, on the line of that setting or
+    // of its nearest parent the file gives (load_machine names the file of an extends chain that
+    // gives one of the paths).
     auto refuse = [&](const MachineProblem& problem) {
-        std::string path = problem.paths.front();
-        for (const std::string& p : problem.paths)
-            if (root.contains(nlohmann::json::json_pointer(p))) {
-                path = p;
-                break;
-            }
-        throw MachineSettingsError(problem, path, source.lines.line_of(path), source.name);
+        const std::string& path = problem.paths.front();
+        std::string given = path;
+        while (!given.empty() && !root.contains(nlohmann::json::json_pointer(given))) given.resize(given.rfind('/'));
+        throw MachineSettingsError(problem, path, source.lines.line_of(given), source.name);
     };
     if (m.arcs.format == ArcFormat::nccad_angle) {
         // G02 D<angle> I J has no end point and no K: it cannot say "helix" or "other plane".

@@ -85,6 +85,17 @@ std::optional<MachineProblem> format_problem(const Machine& m) {
             nc::FormatSpec parent_spec;
             parent_spec.decimals = 3;
             if (it != m.formats.end()) parent_spec = it->second;
+            if (spec.force_decimal != parent_spec.force_decimal) {
+                std::vector<std::string> p = paths("forceDecimal");
+                p.push_back(format_path(parent) + "/forceDecimal");
+                return MachineProblem{p, fmt::format("{} words {} where the {} format's {}: the reader takes a "
+                                                     "number without a point as the control does only where the "
+                                                     "machine never writes one; give {} the same forceDecimal",
+                                                     upper(family), spec.force_decimal ? "force a decimal point"
+                                                                                       : "leave out trailing zeros",
+                                                     family == "i" ? "ijk" : "xyz",
+                                                     parent_spec.force_decimal ? "do not" : "do", family)};
+            }
             if (spec.decimals != parent_spec.decimals) {
                 std::vector<std::string> p = paths("decimals");
                 p.push_back(format_path(parent) + "/decimals");
@@ -96,6 +107,11 @@ std::optional<MachineProblem> format_problem(const Machine& m) {
                                    family == "i" ? "ijk" : "xyz", upper(family), family, parent_spec.decimals)};
             }
         }
+        if (family == "feedPerRev" && spec.decimals < 3)
+            return MachineProblem{paths("decimals"),
+                                  fmt::format("feeds per revolution are hundredths of a millimetre: {} decimals would "
+                                              "write 0.05 mm/rev as {}; give feedPerRev at least 3 decimals",
+                                              spec.decimals, nc::Format(spec).format(0.05))};
         if (family != "code") continue;
         if (std::abs(spec.scale - 1.0) > 1e-12)
             return MachineProblem{paths("scale"),

@@ -87,10 +87,13 @@ TEST_CASE("a user machine that extends wabeco with block numbers and a decimal c
             line = line.substr(number.size());
             ++numbered;
         }
-        if (line.find(',') != std::string::npos && line.find('(') == std::string::npos) ++with_comma;
-        if (base[i].find('.') != std::string::npos && base[i].find('(') == std::string::npos) ++with_point;
+        // Comments and M01 messages (the operator's text) keep their own commas and points, and
+        // so does the spindle's output word M10 O6.1 (a port and its bit, not a number).
+        const bool text = line.find(';') != std::string::npos || line.starts_with("M01") || line.find(" O6.") != std::string::npos;
+        if (line.find(',') != std::string::npos && !text) ++with_comma;
+        if (base[i].find('.') != std::string::npos && !text) ++with_point;
         std::string restored = line;
-        if (restored.find('(') == std::string::npos) std::replace(restored.begin(), restored.end(), ',', '.');
+        if (!text) std::replace(restored.begin(), restored.end(), ',', '.');
         CHECK(restored == base[i]);
     }
     CHECK(numbered > static_cast<int>(base.size()) / 2);
