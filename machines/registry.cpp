@@ -29,14 +29,14 @@ std::unique_ptr<Post> post_of(const Machine& machine, std::ostream& out, PostOpt
     return std::make_unique<P>(machine, out, std::move(options));
 }
 
-// Name, post, reader: one line per dialect.
+// Name, post, reader, machine check: one line per dialect.
 constexpr Dialect registry[] = {
-    {"iso", post_of<IsoPost>, reader::make_iso_reader},
-    {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_reader},
-    {"nccad", post_of<NccadPost>, reader::make_nccad_reader},
-    {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader},
-    {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader},
-    {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader},
+    {"iso", post_of<IsoPost>, reader::make_iso_reader, check_iso_machine},
+    {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_reader, check_iso_machine},
+    {"nccad", post_of<NccadPost>, reader::make_nccad_reader, check_nccad_machine},
+    {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader, check_sinumerik_machine},
+    {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader, check_sinumerik_machine},
+    {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader, check_heidenhain_machine},
 };
 
 }  // namespace

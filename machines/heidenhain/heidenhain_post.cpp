@@ -9,6 +9,7 @@
 
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/longhand.hpp"
+#include "camgen/post/machine_checks.hpp"
 #include "machines/heidenhain/heidenhain_words.hpp"
 
 namespace camgen {
@@ -189,5 +190,29 @@ void HeidenhainPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpe
 }
 
 void HeidenhainPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+std::optional<MachineProblem> check_heidenhain_machine(const Machine& machine) {
+    // A TNC numbers its blocks 0, 1, 2, ... and its reader checks each number.
+    const nc::BlockStyle& b = machine.block;
+    if (!b.sequence_numbers || b.sequence_start != 0 || b.sequence_increment != 1 || !b.sequence_prefix.empty()) {
+        const char* key = !b.sequence_numbers        ? "showSequenceNumbers"
+                          : b.sequence_start != 0     ? "sequenceNumberStart"
+                          : b.sequence_increment != 1 ? "sequenceNumberIncrement"
+                                                      : "sequenceNumberPrefix";
+        return MachineProblem{{fmt::format("/globals/{}", key)},
+                              "a Heidenhain program numbers every block 0, 1, 2, ... without a letter (the TNC "
+                              "reads the number as the block's): keep showSequenceNumbers true, "
+                              "sequenceNumberStart 0, sequenceNumberIncrement 1 and sequenceNumberPrefix \"\""};
+    }
+    if (machine.block.separator.empty())
+        return MachineProblem{{"/globals/variableDelimeter"},
+                              "Heidenhain's blocks are words apart (0 BEGIN PGM, L X+10 R0 FMAX): without a separator "
+                              "they run together; give variableDelimeter a space"};
+    if (!machine.frame.start_block.empty())
+        return MachineProblem{{"/frame/startBlock"},
+                              "a Heidenhain conversational program has no safe-start block of G words: camgen would "
+                              "not write it; leave startBlock empty"};
+    return xy_arcs_only_problem(machine, "CC X Y, then C X Y DR+/DR-");
+}
 
 }  // namespace camgen

@@ -49,4 +49,7 @@ struct TncParameter {
 // ("CYCL DEF 203 UNIVERSAL DRILLING") and Q parameters in order.
 std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCycle& cycle, const Machine& machine);
 
+// The machine-file settings the Heidenhain dialect would write as wrong motion (Dialect::check_machine).
+std::optional<MachineProblem> check_heidenhain_machine(const Machine& machine);
+
 }  // namespace camgen

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
+#include "camgen/post/machine_checks.hpp"
 
 namespace camgen {
 
@@ -135,6 +136,55 @@ void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& s
     if (spec.style != CannedStyle::rigid_g33_1) writer().add(g(80)).end();
     if (tapping_direction(c)) on_spindle(Spindle{c.spindle_direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw,
                                                  c.spindle_rpm});
+}
+
+std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
+    if (auto p = decimal_point_only_problem(machine, "Fanuc and LinuxCNC read \"1,5\" as 1 and a stray comma "
+                                                     "(rs274 refuses the block)"))
+        return p;
+    const auto& b = machine.frame.start_block;
+    if (auto p = diameter_mode_problem(machine, "G7", true, "LinuxCNC's lathe diameter mode")) return p;
+    if (auto p = diameter_mode_problem(machine, "G8", false, "LinuxCNC's lathe radius mode")) return p;
+    if (machine.x_diameter && machine.i_diameter && std::find(b.begin(), b.end(), "G7") != b.end())
+        return MachineProblem{{"/globals/iDiameterProg"},
+                              "LinuxCNC's G7 reads X as a diameter but I and K as radii: iDiameterProg true would "
+                              "write I at twice the arc centre's distance; set iDiameterProg to false"};
+    static constexpr std::string_view unit_words[] = {"G20", "G21", "G70", "G71"};
+    // G98/G99: the return level on a mill, the feed mode on Fanuc T (frame.feedModes).
+    static constexpr std::string_view start_words[] = {"G17", "G18", "G19", "G40", "G49", "G80",
+                                                       "G90", "G94", "G98", "G99", "G7",  "G8"};
+    if (auto p = start_block_problem(machine, unit_words, start_words)) return p;
+    // Fanuc T (feed modes G98/G99, G code system A): G90 and G94 are turning and facing cycles.
+    bool fanuc_t = false;
+    for (const auto& [mode, code] : machine.frame.feed_modes) fanuc_t = fanuc_t || code == "G98" || code == "G99";
+    for (size_t i = 0; fanuc_t && i < b.size(); ++i)
+        if (b[i] == "G90" || b[i] == "G94")
+            return MachineProblem{{fmt::format("/frame/startBlock/{}", i), "/frame/feedModes"},
+                                  fmt::format("with feed modes G98/G99 (Fanuc T, G code system A) {} is a turning "
+                                              "cycle, not a mode: take it out of the start block",
+                                              b[i])};
+    // GRBL's tool change is a comment and M0: the reader needs the whole "Insert tool" comment.
+    const auto change = machine.dialect_settings.find("toolChange");
+    if (change != machine.dialect_settings.end() && *change == "pause" && machine.block.comment_max_length > 0 &&
+        machine.block.comment_max_length < static_cast<int>(nc::default_comment_limit))
+        return MachineProblem{{"/commentMaxLength", "/settings/toolChange"},
+                              fmt::format("a tool change that pauses (M0) tells the operator the tool in a comment: "
+                                          "a limit below {} characters would cut it off; leave commentMaxLength out",
+                                          nc::default_comment_limit)};
+    if (machine.arcs.format == ArcFormat::ijk_absolute)
+        return MachineProblem{{"/arcs/format"},
+                              "Fanuc, GRBL and LinuxCNC read I, J and K relative to the arc's start (LinuxCNC's "
+                              "absolute mode G90.1 is not written): ijk-absolute would put every centre elsewhere; use "
+                              "ijk-relative or radius"};
+    // The O line carries the program name in parentheses, whatever the comment style.
+    const auto number = machine.dialect_settings.find("programNumber");
+    const bool o_line = number == machine.dialect_settings.end() || !number->is_number() || number->get<double>() != 0;
+    if (o_line && machine.block.comment_style == nc::CommentStyle::semicolon)
+        return MachineProblem{{"/comments", "/settings/programNumber"},
+                              "a program number writes the program's name as \"O1000 (name)\", and Fanuc reads "
+                              "comments in parentheses only: use \"comments\": \"parentheses\" (or programNumber 0, "
+                              "as LinuxCNC)"};
+    return single_arc_plane_problem(machine, Plane::xy);
 }
 
 }  // namespace camgen

@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+
 #include "camgen/post/post.hpp"
 #include "machines/iso/iso_words.hpp"
 
@@ -41,5 +43,8 @@ private:
     // operation's (G74 and left-hand rigid tapping need M4).
     static std::optional<SpindleState> tapping_direction(const DrillCycle& cycle);
 };
+
+// The machine-file settings the ISO dialect would write as wrong motion (Dialect::check_machine).
+std::optional<MachineProblem> check_iso_machine(const Machine& machine);
 
 }  // namespace camgen

@@ -9,6 +9,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
+#include "camgen/post/machine_checks.hpp"
 
 namespace camgen {
 
@@ -108,5 +109,31 @@ void NccadPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec&,
 }
 
 void NccadPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+std::optional<MachineProblem> check_nccad_machine(const Machine& machine) {
+    if (machine.arcs.format != ArcFormat::ijk_relative && machine.arcs.format != ArcFormat::nccad_angle)
+        return MachineProblem{{"/arcs/format"},
+                              "nccad writes arcs as G02/G03 X Y I J with I and J relative to the start, or as "
+                              "G02 D I J (nccad-angle): it has no R and no absolute centre; use ijk-relative or "
+                              "nccad-angle"};
+    if (machine.block.comment_max_length > 0 &&
+        machine.block.comment_max_length < static_cast<int>(nc::default_comment_limit))
+        return MachineProblem{{"/commentMaxLength"},
+                              fmt::format("nccad's M01 messages tell the operator the tool to insert and the spindle "
+                                          "speed to set by hand: a limit below {} characters would cut the speed off; "
+                                          "leave commentMaxLength out",
+                                          nc::default_comment_limit)};
+    if (machine.arcs.format == ArcFormat::ijk_relative && !machine.arcs.force_xy)
+        return MachineProblem{{"/arcs/forceXY", "/arcs/format"},
+                              "nccad's G02/G03 X Y I J needs both X and Y on every arc block: keep forceXY true"};
+    if (const auto rpm = machine.formats.find("rpm"); rpm != machine.formats.end() && rpm->second.scale != 1.0)
+        return MachineProblem{{"/formats/rpm/scale"},
+                              "nccad's M01 message tells the operator the spindle speed to set by hand, in rpm: "
+                              "leave scale out of the rpm format"};
+    static constexpr std::string_view no_unit_words[] = {"G70", "G71"};
+    static constexpr std::string_view start_words[] = {"G90"};
+    if (auto p = start_block_problem(machine, no_unit_words, start_words)) return p;
+    return xy_arcs_only_problem(machine, "G02/G03 X Y I J");
+}
 
 }  // namespace camgen

@@ -35,4 +35,7 @@ private:
     std::optional<ToolChange> pending_tool_;
 };
 
+// The machine-file settings the nccad dialect would write as wrong motion (Dialect::check_machine).
+std::optional<MachineProblem> check_nccad_machine(const Machine& machine);
+
 }  // namespace camgen

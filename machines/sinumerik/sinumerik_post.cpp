@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/json_util.hpp"
+#include "camgen/post/machine_checks.hpp"
 #include "machines/sinumerik/sinumerik_words.hpp"
 
 namespace camgen {
@@ -181,5 +182,22 @@ void SinumerikPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpec
 }
 
 void SinumerikPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { writer().add("MCALL").end(); }
+
+std::optional<MachineProblem> check_sinumerik_machine(const Machine& machine) {
+    if (auto p = decimal_point_only_problem(machine, "',' separates the parameters of a cycle call, so "
+                                                     "CYCLE82(5,000, 0,000, ...) would split every number in two"))
+        return p;
+    if (auto p = diameter_mode_problem(machine, "DIAMON", true, "Sinumerik's diameter programming")) return p;
+    if (auto p = diameter_mode_problem(machine, "DIAM90", true, "Sinumerik's diameter programming for G90")) return p;
+    if (auto p = diameter_mode_problem(machine, "DIAMOF", false, "Sinumerik's radius programming")) return p;
+    static constexpr std::string_view unit_words[] = {"G70", "G71", "G700", "G710"};
+    static constexpr std::string_view start_words[] = {"G17", "G18", "G19", "G40", "G90", "G94", "DIAMON"};
+    if (auto p = start_block_problem(machine, unit_words, start_words)) return p;
+    if (machine.block.separator.empty())
+        return MachineProblem{{"/globals/variableDelimeter"},
+                              "Sinumerik's commands are words of letters (DIAMON, MCALL, CYCLE83(...)): without a "
+                              "separator they run into the next word; give variableDelimeter a space"};
+    return single_arc_plane_problem(machine, Plane::xy);
+}
 
 }  // namespace camgen

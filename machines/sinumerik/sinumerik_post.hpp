@@ -32,4 +32,7 @@ protected:
 // "CYCLE83(10.000, 0.000, 2.000, -20.000, , -3.000, , 0.500, , 1.000, 1, 1, , 1.000, , , 1.000)".
 std::string sinumerik_cycle_call(const DrillCycle& cycle, const Machine& machine);
 
+// The machine-file settings the Sinumerik dialect would write as wrong motion (Dialect::check_machine).
+std::optional<MachineProblem> check_sinumerik_machine(const Machine& machine);
+
 }  // namespace camgen

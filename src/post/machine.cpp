@@ -180,9 +180,10 @@ constexpr KeySpec globals_keys[] = {
 constexpr KeySpec format_keys[] = {
     {.key = "xyz", .type = JsonType::object, .ref = "format", .description = "coordinates"},
     {.key = "ijk", .type = JsonType::object, .ref = "format", .description = "arc centres"},
-    {.key = "x", .type = JsonType::object, .ref = "format", .description = "X words, where they differ from xyz (a lathe's X)"},
-    {.key = "z", .type = JsonType::object, .ref = "format", .description = "Z words, where they differ from xyz"},
-    {.key = "i", .type = JsonType::object, .ref = "format", .description = "I words, where they differ from ijk"},
+    {.key = "x", .type = JsonType::object, .ref = "format",
+     .description = "X words, where they differ from xyz (a lathe's X; what it leaves out is xyz's)"},
+    {.key = "z", .type = JsonType::object, .ref = "format", .description = "Z words, where they differ from xyz (what it leaves out is xyz's)"},
+    {.key = "i", .type = JsonType::object, .ref = "format", .description = "I words, where they differ from ijk (what it leaves out is ijk's)"},
     {.key = "feed", .type = JsonType::object, .ref = "format", .description = "feeds"},
     {.key = "rpm", .type = JsonType::object, .ref = "format", .description = "spindle speeds"},
     {.key = "dwell", .type = JsonType::object, .ref = "format", .description = "dwell times"},
@@ -537,7 +538,14 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
         for (const auto& format_key : format_keys) {
             const std::string key(format_key.key);
             if (const auto* spec = ff.member(key)) {
-                nc::FormatSpec base = pre.empty() ? default_format(key) : m.formats.count(key) ? m.formats[key] : default_format(key);
+                // An axis format (x, z, i) starts from its family's (xyz, ijk): "x": {"zeropad": true}
+                // changes only that, not X's decimals.
+                const bool axis = key == "x" || key == "z" || key == "i";
+                const std::string family = key == "i" ? "ijk" : "xyz";
+                nc::FormatSpec base = default_format(key);
+                if (!pre.empty() && m.formats.count(key)) base = m.formats[key];
+                else if (axis && m.formats.count(pre + family)) base = m.formats[pre + family];
+                else if (axis && m.formats.count(family)) base = m.formats[family];
                 m.formats[pre + key] = read_format(json::Fields(*spec, ff.path_of(key), source), base, source);
             }
         }
@@ -603,13 +611,23 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
         }
         af.finish(arcs_keys);
     }
+    // A refused combination of settings: named at its first path, on the line of that setting or
+    // of its nearest parent the file gives (load_machine names the file of an extends chain that
+    // gives one of the paths).
+    auto refuse = [&](const MachineProblem& problem) {
+        const std::string& path = problem.paths.front();
+        std::string given = path;
+        while (!given.empty() && !root.contains(nlohmann::json::json_pointer(given))) given.resize(given.rfind('/'));
+        throw MachineSettingsError(problem, path, source.lines.line_of(given), source.name);
+    };
     if (m.arcs.format == ArcFormat::nccad_angle) {
         // G02 D<angle> I J has no end point and no K: it cannot say "helix" or "other plane".
         if (m.arcs.max_sweep > 180.0)
-            json::fail(source, "/arcs/maxSweep", "the nccad angle form takes at most 180 degrees per block");
-        if (m.arcs.helical) json::fail(source, "/arcs/helical", "the nccad angle form cannot write a helix; set \"helical\": false");
+            refuse({{"/arcs/maxSweep", "/arcs/format"}, "the nccad angle form takes at most 180 degrees per block"});
+        if (m.arcs.helical)
+            refuse({{"/arcs/helical", "/arcs/format"}, "the nccad angle form cannot write a helix; set \"helical\": false"});
         if (m.arcs.planes != std::vector<Plane>{Plane::xy})
-            json::fail(source, "/arcs/planes", "the nccad angle form writes XY arcs only; set \"planes\": [\"xy\"]");
+            refuse({{"/arcs/planes", "/arcs/format"}, "the nccad angle form writes XY arcs only; set \"planes\": [\"xy\"]"});
     }
     if (const auto* n = f.member("notes")) {
         if (!n->is_array()) f.fail("notes", "expected an array of strings");
@@ -716,6 +734,7 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
         m.dialect_settings = *s;
     }
     f.finish(machine_keys);
+    if (auto problem = machine_problem(m)) refuse(*problem);
     return m;
 }
 

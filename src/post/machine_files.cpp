@@ -181,6 +181,18 @@ nlohmann::json merge_chain(const std::vector<Layer>& chain) {
 // The file of the chain that gives the value at `pointer` (or its nearest parent): the
 // first that has it, the machine's own file first.
 InputError located_in_chain(const InputError& e, const std::vector<Layer>& chain) {
+    // A refused combination of settings is named where the file nearest the machine's own
+    // gives one of them: the setting its author changed.
+    if (const auto* settings = dynamic_cast<const MachineSettingsError*>(&e))
+        for (const Layer& l : chain)
+            for (const std::string& p : settings->paths) {
+                bool has = false;
+                try {
+                    has = l.doc.contains(nlohmann::json::json_pointer(p));
+                } catch (const nlohmann::json::exception&) {
+                }
+                if (has) return InputError(p, e.detail(), l.lines.line_of(p), l.source);
+            }
     std::string pointer = e.path();
     while (true) {
         for (const Layer& l : chain) {

@@ -202,7 +202,7 @@ TEST_CASE("an unreadable job or unwritable output exits 3") {
     CHECK(m.err == "camgen: cannot read machine file " + folder + ": Is a directory\n");
 }
 
-TEST_CASE("--machine takes the path of a machine file: a decimal comma and no sequence numbers") {
+TEST_CASE("--machine takes the path of a machine file: no sequence numbers; a decimal comma is refused on ISO") {
     fs::path dir = test::scratch("cli-machine-path");
     std::string text = test::read_file(CAMGEN_SOURCE_DIR "/machines/fanuc.json");
     auto replace = [&](const std::string& from, const std::string& to) {
@@ -214,8 +214,14 @@ TEST_CASE("--machine takes the path of a machine file: a decimal comma and no se
     replace("\"showSequenceNumbers\": true", "\"showSequenceNumbers\": false");
     write(dir / "myfanuc.json", text);
     Run r = run({sample, "--machine", (dir / "myfanuc.json").string()});
+    CHECK(r.code == 1);
+    CHECK(r.err.find((dir / "myfanuc.json").string() + ":8: /globals/decimalMark: the iso dialect's controls read a decimal "
+                     "point only") != std::string::npos);
+    replace("\"decimalMark\": \",\"", "\"decimalMark\": \".\"");
+    write(dir / "myfanuc.json", text);
+    r = run({sample, "--machine", (dir / "myfanuc.json").string()});
     CHECK(r.code == 0);
-    CHECK(r.out.find("G99 G81 X10,000 Y10,000 Z-1,500 R2,000 F80\n") != std::string::npos);
+    CHECK(r.out.find("G99 G81 X10.000 Y10.000 Z-1.500 R2.000 F80\n") != std::string::npos);
     CHECK(r.out.find("\nN") == std::string::npos);
 }
 

@@ -102,13 +102,12 @@ TEST_CASE("lathe: X has its own format, doubled under xDiameterProg; Z keeps xyz
     CHECK(m.format("x").format(12.5) == "25");
     CHECK(m.format("z").format(12.5) == "12.5");
     CHECK(m.format("i").format(12.5) == "12.5");
-    // A format of X's own: 2 decimals, still a diameter.
+    // A format of X's own (padded; its decimals are xyz's, test_machine_checks), still a diameter.
     const Machine own = parse_machine(
-        lathe_text(true, true, "", R"("xyz": {"decimals": 3}, "x": {"decimals": 2, "forceDecimal": true})"), "own",
-        "own.json");
-    CHECK(own.format("x").format(1.2345) == "2.47");
+        lathe_text(true, true, "", R"("xyz": {"decimals": 2}, "x": {"width": 3, "zeropad": true})"), "own", "own.json");
+    CHECK(own.format("x").format(1.2345) == "002.47");
     CHECK(own.format("i").format(1.25) == "2.5");
-    CHECK(own.format("xyz").format(1.2345) == "1.235");
+    CHECK(own.format("xyz").format(1.2345) == "1.23");
 }
 
 TEST_CASE("lathe: xDiameterProg and iDiameterProg are refused on a mill, naming the key") {

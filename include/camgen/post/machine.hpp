@@ -130,6 +130,21 @@ struct Machine {
     LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
 };
 
+// Settings of a machine file that its dialect would write as wrong motion, or that camgen
+// could not read back: the JSON paths of the settings involved (changing any one of them
+// helps; the first is named unless a file of an "extends" chain gives a later one) and why,
+// in a machinist's words.
+struct MachineProblem {
+    std::vector<std::string> paths;
+    std::string detail;
+};
+
+// The first problem of a machine's settings, if any: every dialect's (formats that pad with
+// spaces or rescale G and M codes, code decimals that lose G33.1), then its dialect's (decimal
+// mark, the start block's modes against xDiameterProg, arc planes against its arc forms).
+// parse_machine and load_machine refuse a machine that has one.
+std::optional<MachineProblem> machine_problem(const Machine& machine);
+
 // A machine file compiled into the program.
 struct EmbeddedMachine {
     const char* name;
