@@ -215,6 +215,7 @@ TEST_CASE("turn-profile: the approach along Z stays out of the material this and
     CHECK_NOTHROW(read_job(profiles_job({R"("start": [38, 0], "retractX": 42, "path": [{"line": [38, -40]}])",
                                          R"("start": [38, -20], "retractX": 39, "path": [{"line": [36, -20]}, {"line": [36, -40]}])"}),
                            "p.json"));
+}
 
 TEST_CASE("turn-profile: an arc under minRadius is one straight move on every lathe, and verify accepts it") {
     // A half circle of radius r in XZ between two lines (radii as given): under the lathes'
