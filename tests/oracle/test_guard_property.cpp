@@ -136,12 +136,25 @@ struct Worst {
     Vec3 material_at;
 };
 
+// `p` inside the polygon (ray casting).
+bool in_polygon(const std::vector<Vec2>& poly, Vec2 p) {
+    bool in = false;
+    for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+        if ((poly[i].y > p.y) != (poly[j].y > p.y) && p.x < (poly[j].x - poly[i].x) * (p.y - poly[i].y) / (poly[j].y - poly[i].y) + poly[i].x)
+            in = !in;
+    return in;
+}
+
 Worst worst_of(const std::vector<CentreMove>& moves, const Profile& part, std::optional<bool> material_inside, double top) {
     Worst w;
+    // The side of a move is asked once, at its first point below the top: a move that stays more
+    // than 0.01 mm from the profile cannot change sides (one that crosses it comes closer).
+    const std::vector<Vec2> polygon = sample_profile(part, 0.0005);
     for (const CentreMove& m : moves) {
+        bool side_asked = false;
         const double length = m.centre ? std::hypot(m.from.x - m.centre->x, m.from.y - m.centre->y) * 2 * M_PI * (1 + m.turns)
                                        : std::hypot(m.to.x - m.from.x, m.to.y - m.from.y);
-        const int n = std::max(1, std::min(2000, static_cast<int>(length / 0.05)));
+        const int n = std::max(1, std::min(2000, static_cast<int>(length / 0.1)));
         double sweep = 0, r = 0, a0 = 0;
         if (m.centre) {
             sweep = arc_sweep({m.from.x, m.from.y}, *m.centre, m.direction, m.turns, {m.to.x, m.to.y});
@@ -156,9 +169,12 @@ Worst worst_of(const std::vector<CentreMove>& moves, const Profile& part, std::o
             if (p.z >= top - 1e-6) continue;
             const double d = distance_to(part, {p.x, p.y});
             if (d < w.closest) w.closest = d, w.where = p;
-            if (material_inside && d > 0.01 && !w.in_material && contains(part, {p.x, p.y}) == *material_inside) {
-                w.in_material = true;
-                w.material_at = p;
+            if (material_inside && d > 0.01 && !side_asked && !w.in_material) {
+                side_asked = true;
+                if (in_polygon(polygon, {p.x, p.y}) == *material_inside) {
+                    w.in_material = true;
+                    w.material_at = p;
+                }
             }
         }
     }

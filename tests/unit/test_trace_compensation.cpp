@@ -9,6 +9,7 @@
 #include <regex>
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 #include <fmt/format.h>
 
 #include "camgen/analysis/backplot.hpp"
@@ -34,9 +35,16 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 // The pocket wall sample with control compensation (it is computer-compensated as committed).
+// pocket-wall with control compensation, started in the middle of its bottom side: under
+// G41/G42 the entry runs along the tangent before the start, which at the sample's own start
+// (where the R8 corner meets the side) would cut into the corner (the part guard refuses that).
 std::string pocket_wall_control() {
-    return replaced(test::read_file(samples + "pocket-wall.json"), R"("side": "inside")",
-                    R"("side": "inside", "compensation": "control")");
+    nlohmann::json job = nlohmann::json::parse(test::read_file(samples + "pocket-wall.json"));
+    auto& op = job["operations"][0];
+    op["compensation"] = "control";
+    op["start"] = {100, 40};
+    op["path"].push_back({{"line", {100, 40}}});
+    return job.dump(2);
 }
 
 // The feed moves of each run between rapids after its first arc (the lead-in) and before its
