@@ -702,6 +702,12 @@ void Post::emit(const Event& event) {
                            fail("/compensation", fmt::format("machine {} has no cutter radius compensation (G41/G42): use "
                                                              "compensation computer",
                                                              machine_.name));
+                       if (c.side != CompensationSide::off &&
+                           std::find(machine_.arcs.planes.begin(), machine_.arcs.planes.end(), Plane::xy) == machine_.arcs.planes.end())
+                           fail("/compensation", fmt::format("machine {} writes arcs in XY as straight moves (its arcs.planes has no "
+                                                             "\"xy\"): with the control compensating, every chord is a corner the "
+                                                             "control offsets on its own; use compensation computer",
+                                                             machine_.name));
                        on_compensation(c);
                    },
                    [&](const DrillCycle& c) { handle_drill_cycle(c); },

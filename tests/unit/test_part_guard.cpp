@@ -5,6 +5,7 @@
 // (CutterCompensation, proven against rs274 in tests/oracle); distances here are measured on a
 // fine sampling of the profile (Boost.Geometry-free, independent of the guard's exact ones).
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <doctest/doctest.h>
@@ -261,4 +262,19 @@ TEST_CASE("guard: ProfileClearance distances are exact for lines and arcs") {
     CHECK_FALSE(cc.inside({0, -10.1}));
     CHECK(cc.nearest(Vec2{0, 12}).distance == doctest::Approx(2));
     CHECK(cc.nearest(PathPiece{{-5, 12}, {{5, 12}}}).distance == doctest::Approx(2));
+}
+
+TEST_CASE("guard: a machine that writes XY arcs as chords does not get control compensation (every chord a corner to offset)") {
+    const auto dir = scratch("guard-chords");
+    const std::string machine = (dir / "chords.json").string();
+    std::ofstream(machine) << R"({"extends": "linuxcnc", "arcs": {"planes": ["xz", "yz"]}})";
+    const std::string out = (dir / "out.ngc").string();
+    const Run r = run({std::string(CAMGEN_SOURCE_DIR) + "/samples/plate-outline-control.json", "--machine", machine, "-o", out});
+    CHECK(r.code == 1);
+    CHECK(r.err.find("/operations/0/compensation: machine") != std::string::npos);
+    CHECK(r.err.find("writes arcs in XY as straight moves") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+    // Computer compensation on the same machine posts.
+    const Run ok = run({std::string(CAMGEN_SOURCE_DIR) + "/samples/plate-outline.json", "--machine", machine, "-o", out});
+    CHECK(ok.code == 0);
 }
