@@ -39,16 +39,19 @@ std::string movement_words(Movement m, bool rapid) {
 
 PartGuard::PartGuard(const GuardedPart& part)
     : part_(part),
-      clearance_(*part.profile, part.tool_radius * 2 + 1.0),
-      comp_([this](const CompMove& m) { check(m); }) {}
+      clearance_(*part.profile, part.tool_radius + 1.0),
+      comp_([this](const CompMove& m) { check(m); }),
+      reach_(part.tool_radius + 1.0) {}
 
 void PartGuard::keep(double wall_stock, double floor_z) {
     comp_.flush();
     wall_ = wall_stock;
     floor_ = floor_z;
     // The clearance answers exactly up to its reach: the stock must fit in it.
-    if (part_.tool_radius + wall_ >= part_.tool_radius * 2 + 1.0)
-        clearance_ = ProfileClearance(*part_.profile, part_.tool_radius + wall_ + 1.0);
+    if (wall_ >= reach_ - part_.tool_radius - 0.5) {
+        reach_ = part_.tool_radius + wall_ + 1.0;
+        clearance_ = ProfileClearance(*part_.profile, reach_);
+    }
 }
 
 void PartGuard::emit(const Event& event) {

@@ -12,6 +12,8 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr double two_pi = 2 * pi;
+// Ends of an arc at most this far apart: a full circle, mm.
+constexpr double full_circle_ends = 1e-12;
 
 Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 Vec2 add(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
@@ -32,17 +34,41 @@ struct ArcData {
     double sweep = 0;
 };
 
+ArcData compute_arc(const PathPiece& p);
+
+// The arc of a piece, remembering the last one asked (a move is asked against many segments).
 ArcData arc_of(const PathPiece& p) {
+    thread_local PathPiece last_piece;
+    thread_local ArcData last;
+    thread_local bool valid = false;
+    if (valid && last_piece.start == p.start && last_piece.segment == p.segment) return last;
+    last = compute_arc(p);
+    last_piece = p;
+    valid = true;
+    return last;
+}
+
+ArcData compute_arc(const PathPiece& p) {
     ArcData a;
     a.c = *p.segment.centre;
     a.r = len(sub(p.start, a.c));
     a.a0 = std::atan2(p.start.y - a.c.y, p.start.x - a.c.x);
     const double a1 = std::atan2(p.segment.end.y - a.c.y, p.segment.end.x - a.c.x);
-    double s = wrap(a1 - a.a0);
-    if (len(sub(p.segment.end, p.start)) < profile_same_point) s = two_pi;
-    a.sweep = p.segment.direction == ArcDirection::ccw ? s : -(s == two_pi ? two_pi : wrap(a.a0 - a1));
-    if (p.segment.direction == ArcDirection::cw && len(sub(p.segment.end, p.start)) < profile_same_point) a.sweep = -two_pi;
+    // Ends that coincide make a full circle (a helix's turn); see as_piece for ends a hair apart.
+    const bool full = len(sub(p.segment.end, p.start)) <= full_circle_ends;
+    a.sweep = p.segment.direction == ArcDirection::ccw ? (full ? two_pi : wrap(a1 - a.a0)) : -(full ? two_pi : wrap(a.a0 - a1));
     return a;
+}
+
+// An arc whose ends are closer than profile_same_point but not the same point (a convex corner
+// of an offset that turns by almost nothing) is taken as the straight line between its ends: its
+// turning is below what the numbers can tell, and read as a full circle it would sweep the whole
+// circle round the corner.
+PathPiece as_piece(const PathPiece& p) {
+    if (!p.segment.centre) return p;
+    const double d = len(sub(p.segment.end, p.start));
+    if (d > full_circle_ends && d < profile_same_point) return {p.start, {p.segment.end, std::nullopt, p.segment.direction}};
+    return p;
 }
 
 bool in_sweep(const ArcData& a, double angle) {
@@ -96,12 +122,14 @@ int line_circle(Vec2 s, Vec2 e, const ArcData& a, std::array<Vec2, 2>& out) {
 
 }  // namespace
 
-Approach point_piece_distance(Vec2 p, const PathPiece& piece) {
+Approach point_piece_distance(Vec2 p, const PathPiece& given) {
+    const PathPiece piece = as_piece(given);
     if (!piece.segment.centre) return point_line(p, piece.start, piece.segment.end);
     return point_arc(p, arc_of(piece), piece.start, piece.segment.end);
 }
 
-Approach piece_distance(const PathPiece& a, const PathPiece& b) {
+Approach piece_distance(const PathPiece& given_a, const PathPiece& given_b) {
+    const PathPiece a = as_piece(given_a), b = as_piece(given_b);
     const Vec2 as = a.start, ae = a.segment.end, bs = b.start, be = b.segment.end;
     Approach best{std::numeric_limits<double>::infinity(), as};
     // Ends of a against b, ends of b against a.
@@ -180,13 +208,13 @@ ProfileClearance::ProfileClearance(const Profile& profile, double reach) : reach
     auto grow = [&](Vec2 p) {
         x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
     };
-    std::vector<std::array<double, 4>> boxes;
+    std::vector<std::array<double, 4>>& boxes = boxes_;
     boxes.reserve(profile.segments.size());
     for (const ProfileSegment& s : profile.segments) {
-        PathPiece p{from, s};
+        const PathPiece p = as_piece(PathPiece{from, s});
         double bx0 = std::min(from.x, s.end.x), by0 = std::min(from.y, s.end.y), bx1 = std::max(from.x, s.end.x),
                by1 = std::max(from.y, s.end.y);
-        if (s.centre) {
+        if (p.segment.centre) {
             const ArcData a = arc_of(p);
             for (double ang : {0.0, pi / 2, pi, 3 * pi / 2})
                 if (in_sweep(a, ang)) {
@@ -227,7 +255,8 @@ std::vector<std::size_t> ProfileClearance::cells_of(double x0, double y0, double
     return out;
 }
 
-Approach ProfileClearance::nearest(const PathPiece& move) const {
+Approach ProfileClearance::nearest(const PathPiece& given) const {
+    const PathPiece move = as_piece(given);
     double bx0 = std::min(move.start.x, move.segment.end.x), by0 = std::min(move.start.y, move.segment.end.y),
            bx1 = std::max(move.start.x, move.segment.end.x), by1 = std::max(move.start.y, move.segment.end.y);
     if (move.segment.centre) {
@@ -253,6 +282,10 @@ Approach ProfileClearance::nearest(const PathPiece& move) const {
             for (std::size_t k : grid_[j * nx_ + i]) {
                 if (seen_[k] == stamp_) continue;
                 seen_[k] = stamp_;
+                // A segment whose box is no nearer than the best so far cannot be nearer.
+                const auto& b = boxes_[k];
+                const double gx = std::max({0.0, b[0] - bx1, bx0 - b[2]}), gy = std::max({0.0, b[1] - by1, by0 - b[3]});
+                if (std::hypot(gx, gy) >= best.distance) continue;
                 const Approach a = point ? Approach{point_piece_distance(move.start, pieces_[k]).distance, move.start}
                                          : piece_distance(move, pieces_[k]);
                 keep(best, a);

@@ -278,3 +278,18 @@ TEST_CASE("guard: a machine that writes XY arcs as chords does not get control c
     const Run ok = run({std::string(CAMGEN_SOURCE_DIR) + "/samples/plate-outline.json", "--machine", machine, "-o", out});
     CHECK(ok.code == 0);
 }
+
+TEST_CASE("guard: an offset's corner arc whose ends are a hair apart is not a full circle (a false gouge found on a 100,000-segment outline)") {
+    Profile line;
+    line.start = {0, 0};
+    line.segments = {{{10, 0}}};
+    const ProfileClearance c(line, 5);
+    // A convex corner arc of radius 3 about (5, 3), turning by almost nothing at its bottom.
+    const PathPiece corner{{5, 0}, {{5 + 1e-8, 0}, Vec2{5, 3}, ArcDirection::ccw}};
+    CHECK(c.nearest(corner).distance < 1e-6);  // it touches the line at (5, 0) only
+    const PathPiece above{{5, 3}, {{5 + 1e-8, 3}, Vec2{5, 6}, ArcDirection::ccw}};
+    CHECK(c.nearest(above).distance == doctest::Approx(3));  // not the circle through (5, 9) and (5, 3) only: its points stay at y = 3
+    // A full circle (ends the same) sweeps the whole circle: down to y = 0 from a centre at y = 4.
+    const PathPiece full{{5, 7}, {{5, 7}, Vec2{5, 4}, ArcDirection::ccw}};
+    CHECK(c.nearest(full).distance == doctest::Approx(1));
+}

@@ -4,6 +4,7 @@
 // near it, and which side of a closed profile a point is on (by counting crossings, lines and
 // arcs exact). The part-aware safety check of the milling operations asks these questions of
 // every move it adds. Machine-free. Lengths mm.
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -43,6 +44,7 @@ public:
 private:
     std::vector<std::size_t> cells_of(double x0, double y0, double x1, double y1) const;
     std::vector<PathPiece> pieces_;
+    std::vector<std::array<double, 4>> boxes_;  // each piece's bounding box: x0, y0, x1, y1
     double reach_;
     double x0_ = 0, y0_ = 0, cell_ = 1;
     std::size_t nx_ = 1, ny_ = 1;

@@ -50,6 +50,7 @@ private:
     ProfileClearance clearance_;
     CutterCompensation comp_;
     double wall_ = 0.0, floor_ = -1e300;
+    double reach_ = 0.0;   // what the clearance answers exactly, mm
     Vec3 at_;
     bool known_ = false;
     bool side_known_ = false;   // the last checked position was on the air side, no gap since
