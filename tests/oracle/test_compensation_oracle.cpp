@@ -51,12 +51,12 @@ Programmed random_program(std::mt19937& rng, double tool_r, bool left, bool& has
     const double ea = u(rng) * 2 * M_PI, el = tool_r * (1.2 + 3 * u(rng)) + 1;
     const Vec2 start{r3(first.x + el * std::cos(ea)), r3(first.y + el * std::sin(ea))};
     s << fmt::format("G0 X{:.3f} Y{:.3f} Z5\nG1 Z-1 F100\n", start.x, start.y);
-    p.moves.push_back({0, CompMove{CompMove::Kind::rapid, {start.x, start.y, 5}}});
-    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {start.x, start.y, -1}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::rapid, {start.x, start.y, 5}, {}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {start.x, start.y, -1}, {}}});
     s << (left ? "G41\n" : "G42\n");
     p.moves.push_back({left ? 1 : 2, {}});
     s << fmt::format("G1 X{:.3f} Y{:.3f}\n", first.x, first.y);
-    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {first.x, first.y, -1}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {first.x, first.y, -1}, {}}});
     Vec2 at = first;
     for (int k = 1; k <= n; ++k) {
         const Vec2 to = v[k % n];
@@ -78,7 +78,7 @@ Programmed random_program(std::mt19937& rng, double tool_r, bool left, bool& has
             at = e;
         } else {
             s << fmt::format("G1 X{:.3f} Y{:.3f}\n", to.x, to.y);
-            p.moves.push_back({0, CompMove{CompMove::Kind::feed, {to.x, to.y, -1}}});
+            p.moves.push_back({0, CompMove{CompMove::Kind::feed, {to.x, to.y, -1}, {}}});
             at = to;
         }
     }
@@ -86,12 +86,12 @@ Programmed random_program(std::mt19937& rng, double tool_r, bool left, bool& has
     const double xa = u(rng) * 2 * M_PI, xl = tool_r * (1.2 + 3 * u(rng)) + 1;
     const Vec2 out{r3(at.x + xl * std::cos(xa)), r3(at.y + xl * std::sin(xa))};
     s << fmt::format("G1 X{:.3f} Y{:.3f}\nG40\n", out.x, out.y);
-    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {out.x, out.y, -1}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {out.x, out.y, -1}, {}}});
     p.moves.push_back({3, {}});
     const Vec2 away{r3(out.x + 2 * std::cos(xa)), r3(out.y + 2 * std::sin(xa))};
     s << fmt::format("G1 X{:.3f} Y{:.3f}\nG0 Z5\nM5\nM2\n", away.x, away.y);
-    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {away.x, away.y, -1}}});
-    p.moves.push_back({0, CompMove{CompMove::Kind::rapid, {away.x, away.y, 5}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::feed, {away.x, away.y, -1}, {}}});
+    p.moves.push_back({0, CompMove{CompMove::Kind::rapid, {away.x, away.y, 5}, {}}});
     p.text = s.str();
     return p;
 }

@@ -236,7 +236,7 @@ TEST_CASE("guard: a square line lead under control compensation leaves no stock 
 TEST_CASE("guard: ProfileClearance distances are exact for lines and arcs") {
     Profile square;
     square.start = {0, 0};
-    square.segments = {{{10, 0}}, {{10, 10}}, {{0, 10}}, {{0, 0}}};
+    square.segments = {{{10, 0}, std::nullopt}, {{10, 10}, std::nullopt}, {{0, 10}, std::nullopt}, {{0, 0}, std::nullopt}};
     const ProfileClearance c(square, 5);
     CHECK(c.nearest(Vec2{5, -3}).distance == doctest::Approx(3));
     CHECK(c.nearest(Vec2{13, 14}).distance >= 5);  // beyond the reach
@@ -249,7 +249,7 @@ TEST_CASE("guard: ProfileClearance distances are exact for lines and arcs") {
     PathPiece upper{{3, -4}, {{7, -4}, Vec2{5, -4}, ArcDirection::cw}};  // the upper half, 2 mm from y = 0
     CHECK(c.nearest(upper).distance == doctest::Approx(2));
     // A line crossing the profile: 0.
-    CHECK(c.nearest(PathPiece{{-1, 5}, {{1, 5}}}).distance == doctest::Approx(0));
+    CHECK(c.nearest(PathPiece{{-1, 5}, {{1, 5}, std::nullopt}}).distance == doctest::Approx(0));
     // A circle profile: inside test through its arcs.
     Profile circle;
     circle.start = {10, 0};
@@ -261,7 +261,7 @@ TEST_CASE("guard: ProfileClearance distances are exact for lines and arcs") {
     CHECK_FALSE(cc.inside({10.1, 0}));
     CHECK_FALSE(cc.inside({0, -10.1}));
     CHECK(cc.nearest(Vec2{0, 12}).distance == doctest::Approx(2));
-    CHECK(cc.nearest(PathPiece{{-5, 12}, {{5, 12}}}).distance == doctest::Approx(2));
+    CHECK(cc.nearest(PathPiece{{-5, 12}, {{5, 12}, std::nullopt}}).distance == doctest::Approx(2));
 }
 
 TEST_CASE("guard: a machine that writes XY arcs as chords does not get control compensation (every chord a corner to offset)") {
@@ -282,7 +282,7 @@ TEST_CASE("guard: a machine that writes XY arcs as chords does not get control c
 TEST_CASE("guard: an offset's corner arc whose ends are a hair apart is not a full circle (a false gouge found on a 100,000-segment outline)") {
     Profile line;
     line.start = {0, 0};
-    line.segments = {{{10, 0}}};
+    line.segments = {{{10, 0}, std::nullopt}};
     const ProfileClearance c(line, 5);
     // A convex corner arc of radius 3 about (5, 3), turning by almost nothing at its bottom.
     const PathPiece corner{{5, 0}, {{5 + 1e-8, 0}, Vec2{5, 3}, ArcDirection::ccw}};
