@@ -56,11 +56,10 @@ void PartGuard::keep(double wall_stock, double floor_z) {
 
 void PartGuard::emit(const Event& event) {
     if (violation_) return;
-    auto refused = [&](const std::optional<CompError>& e, Movement m, bool rapid) {
+    // The refused move's movement and kind travel in its tag.
+    auto refused = [&](const std::optional<CompError>& e) {
         if (!e || violation_) return;
         violation_ = Violation{movement_of(e->source), rapid_of(e->source), at_, "", e->message};
-        (void)m;
-        (void)rapid;
     };
     visit_exhaustive(overloaded{
                          [&](const Rapid& r) {
@@ -68,26 +67,25 @@ void PartGuard::emit(const Event& event) {
                              m.kind = CompMove::Kind::rapid;
                              m.end = r.to;
                              m.source = tag(Movement::cutting, true);
-                             refused(comp_.move(m), Movement::cutting, true);
+                             refused(comp_.move(m));
                          },
                          [&](const Linear& l) {
                              CompMove m;
                              m.end = l.to;
                              m.source = tag(l.movement, false);
-                             refused(comp_.move(m), l.movement, false);
+                             refused(comp_.move(m));
                          },
                          [&](const Arc& a) {
                              CompMove m{CompMove::Kind::arc, a.to, {a.centre.x, a.centre.y}, a.direction, a.turns};
                              m.source = tag(a.movement, false);
-                             refused(comp_.move(m), a.movement, false);
+                             refused(comp_.move(m));
                          },
                          [&](const Compensation& c) {
                              if (c.side == CompensationSide::off)
-                                 refused(comp_.off(tag(Movement::lead_out, false)), Movement::lead_out, false);
+                                 refused(comp_.off(tag(Movement::lead_out, false)));
                              else
                                  refused(comp_.on(c.side == CompensationSide::left ? CompSide::left : CompSide::right, c.radius,
-                                                  tag(Movement::lead_in, false)),
-                                         Movement::lead_in, false);
+                                                  tag(Movement::lead_in, false)));
                          },
                          [&](const OperationStart&) {}, [&](const OperationEnd&) {}, [&](const Comment&) {},
                          [&](const ToolChange&) { comp_.flush(); }, [&](const Spindle&) {}, [&](const Coolant&) {},
