@@ -10,14 +10,14 @@ include(CMakePackageConfigHelpers)
 file(RELATIVE_PATH CAMGEN_MACHINES_FROM_BIN ${CMAKE_INSTALL_FULL_BINDIR} ${CMAKE_INSTALL_FULL_DATADIR}/camgen/machines)
 target_compile_definitions(camgen_core PRIVATE CAMGEN_MACHINES_FROM_BIN="${CAMGEN_MACHINES_FROM_BIN}")
 
-# The man page, written by the built camgen from its own option table (camgen --man).
-add_custom_command(
-  OUTPUT ${CMAKE_BINARY_DIR}/camgen.1
+# The man page, written by the built camgen from its own option table (camgen --man), each
+# time camgen is linked: `cmake --build build --target camgen` makes everything the install
+# needs, and the install does not build the tests first (CMAKE_SKIP_INSTALL_ALL_DEPENDENCY).
+add_custom_command(TARGET camgen POST_BUILD
   COMMAND ${CMAKE_COMMAND} -DCAMGEN=$<TARGET_FILE:camgen> -DOUT=${CMAKE_BINARY_DIR}/camgen.1
           -P ${CMAKE_SOURCE_DIR}/cmake/write_man.cmake
-  DEPENDS camgen ${CMAKE_SOURCE_DIR}/cmake/write_man.cmake
   COMMENT "Writing the man page camgen.1" VERBATIM)
-add_custom_target(camgen_man ALL DEPENDS ${CMAKE_BINARY_DIR}/camgen.1)
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 
 set(CAMGEN_BASH_COMPLETION_DIR ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
     CACHE STRING "Where the bash completion goes (bash-completion's completionsdir)")

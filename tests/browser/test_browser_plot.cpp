@@ -166,7 +166,7 @@ TEST_CASE("browser: every block of a lathe program, the half-section's marker at
 
 int main(int argc, char** argv) {
     if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
-        std::cout << "SKIPPED: chromium is not installed (scripts/install-deps installs Debian's chromium), so the HTML "
+        std::cout << "SKIPPED: chromium is not installed (scripts/install-deps --tests installs Debian's chromium), so the HTML "
                      "backplot was not tried in a browser\n";
         return 77;
     }

@@ -3,7 +3,7 @@
 # lines, zsh's turns `camgen --help` into _arguments specs and offers the machines of
 # `camgen --list-machines`. Usage: completion.sh CAMGEN SOURCE_DIR [BASH_COMPLETION_FILE]
 # (the file defaults to SOURCE_DIR/completions/camgen.bash; scripts/test-install passes the
-# installed one). Fails, and says why, when zsh is missing (scripts/install-deps installs it).
+# installed one). Fails, and says why, when zsh is missing (scripts/install-deps --tests installs it).
 set -euo pipefail
 camgen=$(realpath "$1")
 source_dir=$(cd "$2" && pwd)
@@ -51,7 +51,7 @@ for option in $("$camgen" --help | sed -n 's/^ \{1,\}\(-[^ ]*\).*/\1/p' | tr ','
 done
 
 if ! command -v zsh >/dev/null; then
-  fail "zsh is not installed (scripts/install-deps installs it)"
+  fail "zsh is not installed (scripts/install-deps --tests installs it)"
 else
   # zsh's completion system stubbed: what _camgen hands to _arguments and _describe.
   zsh_out=$(CAMGEN_MACHINES=$scratch/machines zsh -f -c '

@@ -33,7 +33,7 @@ std::string rs274_path() {
     auto p = oracle::find_rs274();
     if (!p)
         FAIL("rs274 (LinuxCNC's standalone interpreter) was not found: install linuxcnc-uspace "
-             "(scripts/install-deps) or set CAMGEN_RS274 to its path");
+             "(scripts/install-deps --tests) or set CAMGEN_RS274 to its path");
     return *p;
 }
 

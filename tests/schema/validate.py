@@ -27,7 +27,7 @@ try:
     import jsonschema
     from jsonschema import Draft202012Validator
 except ImportError:
-    print("python3-jsonschema is missing: install it (scripts/install-deps, or apt-get install python3-jsonschema)")
+    print("python3-jsonschema is missing: install it (scripts/install-deps --tests, or apt-get install python3-jsonschema)")
     sys.exit(1)
 
 GOOD_JOB = {

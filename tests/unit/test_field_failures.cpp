@@ -435,7 +435,7 @@ TEST_CASE("field failure: a decimal comma from the process locale") {
         const std::string plain = post_program(read_job(job, "job.json"), m);
         const std::locale previous;
         const std::string saved = std::setlocale(LC_ALL, nullptr);
-        REQUIRE_NOTHROW(std::locale::global(std::locale("de_DE.UTF-8")));  // scripts/install-deps makes it
+        REQUIRE_NOTHROW(std::locale::global(std::locale("de_DE.UTF-8")));  // scripts/install-deps --tests makes it
         std::setlocale(LC_ALL, "de_DE.UTF-8");
         const std::string german = post_program(read_job(job, "job.json"), m);
         std::locale::global(previous);

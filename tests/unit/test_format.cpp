@@ -97,7 +97,7 @@ TEST_CASE("the process locale does not change the output") {
     std::locale previous;
     const char* c_previous = std::setlocale(LC_ALL, nullptr);
     std::string saved = c_previous ? c_previous : "C";
-    // scripts/install-deps generates de_DE.UTF-8; without it this test cannot show anything.
+    // scripts/install-deps --tests generates de_DE.UTF-8; without it this test cannot show anything.
     REQUIRE_NOTHROW(std::locale::global(std::locale("de_DE.UTF-8")));
     std::setlocale(LC_ALL, "de_DE.UTF-8");
     CHECK(fmt3().format(12.53) == "12.53");
