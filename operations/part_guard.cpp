@@ -121,7 +121,7 @@ void PartGuard::check(const CompMove& m) {
     }
     PathPiece piece{{from.x, from.y}, {{m.end.x, m.end.y}, std::nullopt, m.direction}};
     if (m.kind == CompMove::Kind::arc) piece.segment.centre = m.centre;
-    const Approach near = clearance_.nearest(piece);
+    const ClosestApproach near = clearance_.nearest(piece);
     const double need = part_.tool_radius + wall_;
     // Z where the closest point is: along the move (the end's Z for a point).
     const double len = std::hypot(m.end.x - from.x, m.end.y - from.y);

@@ -24,15 +24,6 @@ namespace {
 
 using heidenhain::Q;
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-    return s;
-}
-
 std::vector<std::string_view> tokens_of(std::string_view s) {
     std::vector<std::string_view> out;
     size_t i = 0;

@@ -13,7 +13,7 @@ namespace camgen {
 
 namespace {
 // Whether the canned cycle carries `field`.
-bool contains(const std::vector<DrillField>& fields, DrillField field) {
+bool carries(const std::vector<DrillField>& fields, DrillField field) {
     return std::find(fields.begin(), fields.end(), field) != fields.end();
 }
 }  // namespace
@@ -127,7 +127,7 @@ void IsoPost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& sp
     // G82, G86 and G89 need their P (LinuxCNC: "Dwell time p word missing"), P0 when no dwell.
     const bool dwell_cycle = c.kind == CycleKind::dwell || c.kind == CycleKind::bore_stop || c.kind == CycleKind::bore_dwell;
     const double dwell = p.get(DrillField::bottom_dwell).value_or(0.0);
-    if (dwell > 0 || (dwell_cycle && contains(spec.fields, DrillField::bottom_dwell)))
+    if (dwell > 0 || (dwell_cycle && carries(spec.fields, DrillField::bottom_dwell)))
         writer().add(dwell_format().word("P", dwell));
     writer().add(feed_word(c.feed)).end();
 }

@@ -18,14 +18,6 @@ namespace camgen::reader {
 
 namespace {
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-    return s;
-}
-
 // The parameters of a standard cycle call, by position (nullopt: left empty, the default).
 struct CycleCall {
     std::string name;  // "CYCLE83"

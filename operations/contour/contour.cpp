@@ -1,4 +1,6 @@
 #include "camgen/operations/contour/contour.hpp"
+#include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,10 +20,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-constexpr double pi = std::numbers::pi;
-constexpr double deg = pi / 180.0;
-// Arc end points may be this far off the circle through the start point, mm.
-constexpr double arc_radius_tolerance = 0.001;
 // A segment shorter than this is refused: no control writes it as a move of its own, mm.
 constexpr double min_segment = 0.001;
 // Sanity bound on depth passes, so that a tiny step cannot make a program without end.
@@ -56,12 +54,12 @@ constexpr KeySpec contour_keys[] = {
 };
 
 // The keys of a profile element: exactly one of them.
-constexpr KeySpec element_keys[] = {
+constexpr KeySpec contour_element_keys[] = {
     {.key = "line", .type = JsonType::point, .quantity = Quantity::length, .description = "a straight line to [x, y]"},
     {.key = "arc", .type = JsonType::object, .ref = "contourArc", .description = "an arc about an absolute centre"},
 };
 
-constexpr KeySpec arc_keys[] = {
+constexpr KeySpec contour_arc_keys[] = {
     {.key = "end", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "end point [x, y]"},
     {.key = "centre", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "absolute centre [x, y]"},
     {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>, .description = "seen from +Z: cw (G2) or ccw (G3)"},
@@ -107,26 +105,20 @@ constexpr KeySpec tab_keys[] = {
     {.key = "rampAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{90, true}, .default_json = "90", .description = "degrees of a tab's flanks above horizontal: below 90 a trapezoid, the tool climbing and descending along the path"},
 };
 
-Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-Vec2 add(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-Vec2 scale(Vec2 a, double k) { return {a.x * k, a.y * k}; }
-double len(Vec2 a) { return std::hypot(a.x, a.y); }
-Vec2 left_normal(Vec2 t) { return {-t.y, t.x}; }
-Vec2 rotate(Vec2 v, double a) { return {v.x * std::cos(a) - v.y * std::sin(a), v.x * std::sin(a) + v.y * std::cos(a)}; }
 
 // ---- Where the tabs go: planned on reading, on the profile as drawn.
 
 // The length of segment k of `p`, which starts at `from` (an arc: its sweep times the start's radius).
 double tab_segment_length(const Profile& p, std::size_t k, Vec2 from) {
     const ProfileSegment& s = p.segments[k];
-    return s.centre ? segment_sweep(p, k) * len(sub(from, *s.centre)) : len(sub(s.end, from));
+    return s.centre ? segment_sweep(p, k) * norm(from - *s.centre) : norm(s.end - from);
 }
 
 // The unit tangent of travel of segment `s` at its point `at`.
 Vec2 tab_tangent(const ProfileSegment& s, Vec2 from, Vec2 at) {
-    if (!s.centre) return scale(sub(s.end, from), 1.0 / len(sub(s.end, from)));
-    const Vec2 radial = scale(sub(at, *s.centre), 1.0 / len(sub(at, *s.centre)));
-    return s.direction == ArcDirection::ccw ? left_normal(radial) : scale(left_normal(radial), -1);
+    if (!s.centre) return (s.end - from) * (1.0 / norm(s.end - from));
+    const Vec2 radial = (at - *s.centre) * (1.0 / norm(at - *s.centre));
+    return s.direction == ArcDirection::ccw ? left_of(radial) : (left_of(radial) * -1);
 }
 
 // The point of `p` nearest to `x`: how far along `p` it is, and how far from `x`.
@@ -135,7 +127,7 @@ struct TabNearest {
     double distance = 0.0;
 };
 TabNearest tab_nearest(const Profile& p, Vec2 x) {
-    TabNearest best{0.0, len(sub(x, p.start))};
+    TabNearest best{0.0, norm(x - p.start)};
     double done = 0.0;
     Vec2 from = p.start;
     for (std::size_t k = 0; k < p.segments.size(); ++k) {
@@ -145,19 +137,19 @@ TabNearest tab_nearest(const Profile& p, Vec2 x) {
             if (d < best.distance) best = {along, d};
         };
         if (l > 0 && !s.centre) {
-            const Vec2 d = sub(s.end, from);
-            const double t = std::clamp((sub(x, from).x * d.x + sub(x, from).y * d.y) / (l * l), 0.0, 1.0);
-            consider(done + t * l, len(sub(x, add(from, scale(d, t)))));
+            const Vec2 d = s.end - from;
+            const double t = std::clamp(((x - from).x * d.x + (x - from).y * d.y) / (l * l), 0.0, 1.0);
+            consider(done + t * l, norm((x - (from + (d * t)))));
         } else if (l > 0) {
             const Vec2 c = *s.centre;
-            const double r = len(sub(from, c));
+            const double r = norm(from - c);
             const double sweep = l / r;
             const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
             double delta = sign * (std::atan2(x.y - c.y, x.x - c.x) - std::atan2(from.y - c.y, from.x - c.x));
             delta = std::fmod(std::fmod(delta, 2 * pi) + 2 * pi, 2 * pi);
-            if (delta <= sweep) consider(done + delta * r, std::abs(len(sub(x, c)) - r));
-            consider(done, len(sub(x, from)));
-            consider(done + l, len(sub(x, s.end)));
+            if (delta <= sweep) consider(done + delta * r, std::abs(norm(x - c) - r));
+            consider(done, norm(x - from));
+            consider(done + l, norm(x - s.end));
         }
         done += l;
         from = s.end;
@@ -189,7 +181,7 @@ std::vector<TabRun> tab_runs(const Profile& p, bool tool_left, double d) {
     auto joins = [](const TabRun& a, const TabRun& b) {
         if (a.arc != b.arc) return false;
         if (!a.arc) return std::abs(a.t_out.x * b.t_in.y - a.t_out.y * b.t_in.x) < 1e-9 && a.t_out.x * b.t_in.x + a.t_out.y * b.t_in.y > 0;
-        return len(sub(a.centre, b.centre)) < 1e-6 && std::abs(a.radius - b.radius) < 1e-6 && a.direction == b.direction;
+        return norm(a.centre - b.centre) < 1e-6 && std::abs(a.radius - b.radius) < 1e-6 && a.direction == b.direction;
     };
     double done = 0.0;
     Vec2 from = p.start;
@@ -203,7 +195,7 @@ std::vector<TabRun> tab_runs(const Profile& p, bool tool_left, double d) {
         r.t_out = tab_tangent(s, from, s.end);
         if (r.arc) {
             r.centre = *s.centre;
-            r.radius = len(sub(from, *s.centre));
+            r.radius = norm(from - *s.centre);
             r.direction = s.direction;
         }
         if (!runs.empty() && joins(runs.back(), r)) {
@@ -227,7 +219,7 @@ std::vector<TabRun> tab_runs(const Profile& p, bool tool_left, double d) {
         const double turn = std::atan2(r.t_out.x * next.t_in.y - r.t_out.y * next.t_in.x, r.t_out.x * next.t_in.x + r.t_out.y * next.t_in.y);
         // A corner turning towards the tool shortens its path on both sides by d tan(turn / 2).
         if (std::abs(turn) > 1e-9 && (turn > 0) == tool_left) {
-            const double cut = std::abs(turn) < 179 * deg ? d * std::tan(std::abs(turn) / 2) : 1e9;
+            const double cut = std::abs(turn) < 179 * rad_per_deg ? d * std::tan(std::abs(turn) / 2) : 1e9;
             r.corner_out = cut;
             next.corner_in = cut;
         }
@@ -247,7 +239,7 @@ struct TabReach {
     double foot = 0.0;
 };
 TabReach tab_reach(const Tabs& tabs, double tool_radius) {
-    const double flank = tabs.ramp_angle < 90 ? tabs.height / std::tan(tabs.ramp_angle * deg) : 0.0;
+    const double flank = tabs.ramp_angle < 90 ? tabs.height / std::tan(tabs.ramp_angle * rad_per_deg) : 0.0;
     return {tabs.width / 2 + tool_radius + flank, tabs.width + 2 * flank};
 }
 
@@ -429,18 +421,18 @@ void read_elements(Fields& f, const JobInput& in, const std::string& base, Profi
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
         Fields e(elements[k], path, in.source());
-        JobInput::known_keys(e, element_keys);
+        JobInput::known_keys(e, contour_element_keys);
         if (int(e.has("line")) + int(e.has("arc")) != 1) e.fail("", "a contour element needs exactly one of \"line\" or \"arc\"");
         ProfileSegment s;
         if (e.has("line")) {
             s.end = in.point(e, "line");
         } else {
             Fields a(e.required("arc"), e.path_of("arc"), in.source());
-            JobInput::known_keys(a, arc_keys);
+            JobInput::known_keys(a, contour_arc_keys);
             s.end = in.point(a, "end");
             s.centre = in.point(a, "centre");
             s.direction = a.choice("direction", arc_directions);
-            const double r0 = len(sub(at, *s.centre)), r1 = len(sub(s.end, *s.centre));
+            const double r0 = norm(at - *s.centre), r1 = norm(s.end - *s.centre);
             if (std::abs(r0 - r1) > arc_radius_tolerance)
                 a.fail("", fmt::format("start is {:.3f} mm from the centre but end is {:.3f} mm", r0, r1));
             if (r0 < min_segment) a.fail("centre", "the centre is the arc's start: an arc needs a radius");
@@ -517,7 +509,7 @@ void check_offset(const Profile& path, const Profile& walk, double distance, con
     for (std::size_t k = 0; k < path.segments.size(); ++k) {
         const ProfileSegment& s = path.segments[k];
         bool bad = false;
-        if (s.centre) bad = std::abs(len(sub(from, *s.centre)) - len(sub(s.end, *s.centre))) > slack;
+        if (s.centre) bad = std::abs(norm(from - *s.centre) - norm(s.end - *s.centre)) > slack;
         if (!bad && sample) {
             Profile one;
             one.start = from;
@@ -655,9 +647,9 @@ std::vector<ObjectSpec> ContourOp::objects() {
     return {
         {.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys},
         {.name = "contourElement", .description = "one element of a profile: exactly one of line or arc",
-         .keys = {std::begin(element_keys), std::end(element_keys)},
+         .keys = {std::begin(contour_element_keys), std::end(contour_element_keys)},
          .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line or arc"}}},
-        {.name = "contourArc", .description = "an arc in XY about an absolute centre", .keys = {std::begin(arc_keys), std::end(arc_keys)}},
+        {.name = "contourArc", .description = "an arc in XY about an absolute centre", .keys = {std::begin(contour_arc_keys), std::end(contour_arc_keys)}},
         {.name = "contourFinishing", .description = "stock the roughing passes leave for the finishing pass",
          .keys = {std::begin(finishing_keys), std::end(finishing_keys)}},
         {.name = "contourLead", .description = "a lead-in or lead-out: a tangent arc or a straight line",
@@ -870,7 +862,7 @@ private:
     // entry move at least the tool radius long; a tenth more keeps it so after rounding.
     double switch_length() const { return std::max(op_.tool_radius * 1.1, op_.tool_radius + 0.1); }
 
-    Vec2 side_normal(Vec2 t) const { return op_.tool_left ? left_normal(t) : scale(left_normal(t), -1); }
+    Vec2 side_normal(Vec2 t) const { return op_.tool_left ? left_of(t) : (left_of(t) * -1); }
 
     // A straight lead under control compensation: the control sets the tool a radius square to
     // the move that switches compensation on (LinuxCNC) or to the next one (Fanuc), so that move
@@ -883,10 +875,10 @@ private:
         const ProfilePoint s = point_at(p, 0.0);
         Lead lead = op_.lead_in;
         if (lead.kind == Lead::Kind::none) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 90};
-        const double a = lead.angle * deg;
-        const Vec2 q = sub(s.point, scale(s.tangent, switch_length()));
+        const double a = lead.angle * rad_per_deg;
+        const Vec2 q = s.point - (s.tangent * switch_length());
         Profile out;
-        out.start = add(sub(q, scale(s.tangent, lead.length * std::cos(a))), scale(side_normal(s.tangent), lead.length * std::sin(a)));
+        out.start = (q - (s.tangent * (lead.length * std::cos(a)))) + (side_normal(s.tangent) * (lead.length * std::sin(a)));
         out.segments.push_back({q, std::nullopt, ArcDirection::ccw});
         out.segments.push_back({s.point, std::nullopt, ArcDirection::ccw});
         return out;
@@ -895,7 +887,7 @@ private:
     Profile control_line_lead_out(const Profile& p) const {
         Lead lead = op_.lead_out;
         if (lead.kind == Lead::Kind::none) lead = Lead{Lead::Kind::line, 0, 90, switch_length(), 90};
-        const double a = lead.angle * deg;
+        const double a = lead.angle * rad_per_deg;
         const double total = profile_length(p);
         Profile out;
         out.start = point_at(p, total).point;
@@ -906,10 +898,10 @@ private:
             e = point_at(over, profile_length(over));
         } else {
             e = point_at(p, total);
-            e.point = add(e.point, scale(e.tangent, switch_length()));
+            e.point = e.point + (e.tangent * switch_length());
             out.segments.push_back({e.point, std::nullopt, ArcDirection::ccw});
         }
-        const Vec2 away = add(add(e.point, scale(e.tangent, lead.length * std::cos(a))), scale(side_normal(e.tangent), lead.length * std::sin(a)));
+        const Vec2 away = (e.point + (e.tangent * (lead.length * std::cos(a)))) + (side_normal(e.tangent) * (lead.length * std::sin(a)));
         out.segments.push_back({away, std::nullopt, ArcDirection::ccw});
         return out;
     }
@@ -924,22 +916,22 @@ private:
         Vec2 tangent_at_start = s.tangent;  // of travel where the lead begins
         if (lead.kind == Lead::Kind::arc) {
             const double rho = std::max(lead.radius, control_compensates() ? op_.tool_radius * 1.5 : 0.0);
-            const Vec2 c = add(s.point, scale(side_normal(s.tangent), rho));
-            const double turn = (op_.tool_left ? -1 : 1) * lead.sweep * deg;
-            out.start = add(c, rotate(sub(s.point, c), turn));
+            const Vec2 c = s.point + (side_normal(s.tangent) * rho);
+            const double turn = (op_.tool_left ? -1 : 1) * lead.sweep * rad_per_deg;
+            out.start = c + rotated((s.point - c), turn);
             out.segments.push_back({s.point, c, op_.tool_left ? ArcDirection::ccw : ArcDirection::cw});
-            const Vec2 radial = scale(sub(out.start, c), 1.0 / rho);
-            tangent_at_start = op_.tool_left ? left_normal(radial) : scale(left_normal(radial), -1);
+            const Vec2 radial = (out.start - c) * (1.0 / rho);
+            tangent_at_start = op_.tool_left ? left_of(radial) : (left_of(radial) * -1);
         } else if (lead.kind == Lead::Kind::line) {
-            const double a = lead.angle * deg;
-            out.start = add(sub(s.point, scale(s.tangent, lead.length * std::cos(a))), scale(side_normal(s.tangent), lead.length * std::sin(a)));
+            const double a = lead.angle * rad_per_deg;
+            out.start = (s.point - (s.tangent * (lead.length * std::cos(a)))) + (side_normal(s.tangent) * (lead.length * std::sin(a)));
             out.segments.push_back({s.point, std::nullopt, ArcDirection::ccw});
-            tangent_at_start = scale(sub(s.point, out.start), 1.0 / lead.length);
+            tangent_at_start = (s.point - out.start) * (1.0 / lead.length);
         }
         if (control_compensates() && lead.kind == Lead::Kind::arc) {
             // The compensation comes on along a straight line before the arc.
             Profile entry;
-            entry.start = sub(out.start, scale(tangent_at_start, switch_length()));
+            entry.start = out.start - (tangent_at_start * switch_length());
             entry.segments.push_back({out.start, std::nullopt, ArcDirection::ccw});
             entry.segments.insert(entry.segments.end(), out.segments.begin(), out.segments.end());
             return entry;
@@ -957,21 +949,21 @@ private:
         Vec2 tangent_at_end = e.tangent;
         if (lead.kind == Lead::Kind::arc) {
             const double rho = std::max(lead.radius, control_compensates() ? op_.tool_radius * 1.5 : 0.0);
-            const Vec2 c = add(e.point, scale(side_normal(e.tangent), rho));
-            const double turn = (op_.tool_left ? 1 : -1) * lead.sweep * deg;
-            const Vec2 end = add(c, rotate(sub(e.point, c), turn));
+            const Vec2 c = e.point + (side_normal(e.tangent) * rho);
+            const double turn = (op_.tool_left ? 1 : -1) * lead.sweep * rad_per_deg;
+            const Vec2 end = c + rotated((e.point - c), turn);
             out.segments.push_back({end, c, op_.tool_left ? ArcDirection::ccw : ArcDirection::cw});
-            const Vec2 radial = scale(sub(end, c), 1.0 / rho);
-            tangent_at_end = op_.tool_left ? left_normal(radial) : scale(left_normal(radial), -1);
+            const Vec2 radial = (end - c) * (1.0 / rho);
+            tangent_at_end = op_.tool_left ? left_of(radial) : (left_of(radial) * -1);
         } else if (lead.kind == Lead::Kind::line) {
-            const double a = lead.angle * deg;
-            const Vec2 end = add(add(e.point, scale(e.tangent, lead.length * std::cos(a))), scale(side_normal(e.tangent), lead.length * std::sin(a)));
+            const double a = lead.angle * rad_per_deg;
+            const Vec2 end = (e.point + (e.tangent * (lead.length * std::cos(a)))) + (side_normal(e.tangent) * (lead.length * std::sin(a)));
             out.segments.push_back({end, std::nullopt, ArcDirection::ccw});
-            tangent_at_end = scale(sub(end, e.point), 1.0 / lead.length);
+            tangent_at_end = (end - e.point) * (1.0 / lead.length);
         }
         if (control_compensates() && lead.kind == Lead::Kind::arc) {
             const Vec2 from = out.segments.back().end;
-            out.segments.push_back({add(from, scale(tangent_at_end, switch_length())), std::nullopt, ArcDirection::ccw});
+            out.segments.push_back({(from + (tangent_at_end * switch_length())), std::nullopt, ArcDirection::ccw});
         }
         return out;
     }
@@ -1058,7 +1050,7 @@ private:
         const double total = profile_length(p);
         const double top = z_.bottom_z + op_.tabs->height;
         const bool ramped = op_.tabs->ramp_angle < 90;
-        const double slope = ramped ? std::tan(op_.tabs->ramp_angle * deg) : 0.0;  // dz per mm on a flank
+        const double slope = ramped ? std::tan(op_.tabs->ramp_angle * rad_per_deg) : 0.0;  // dz per mm on a flank
         const double flank = ramped ? op_.tabs->height / slope : 0.0;
         const double lo = std::min(x0, x1), hi = std::max(x0, x1);
         if (hi - lo <= 1e-12) return;
@@ -1129,7 +1121,7 @@ private:
     void go_down(double z, Vec2 away) {
         if (op_.ramp.kind == Ramp::Kind::helix) {
             const double rho = op_.ramp.radius;
-            const double per_turn = 2 * pi * rho * std::tan(op_.ramp.angle * deg);
+            const double per_turn = 2 * pi * rho * std::tan(op_.ramp.angle * rad_per_deg);
             const int turns = std::max(1, static_cast<int>(std::ceil((at_.z - z) / per_turn - 1e-9)));
             const Vec3 centre{at_.x + away.x * rho, at_.y + away.y * rho, at_.z};
             sink_.emit(Arc{{at_.x, at_.y, z}, centre, op_.tool_left ? ArcDirection::ccw : ArcDirection::cw, Plane::xy,
@@ -1145,7 +1137,7 @@ private:
     void pass_from_start(const Profile& p, double z_prev, double z, double feed, Movement m) {
         if (op_.ramp.kind == Ramp::Kind::along && z_prev > z) {
             const double total = profile_length(p);
-            double l = (z_prev - z) / std::tan(op_.ramp.angle * deg);
+            double l = (z_prev - z) / std::tan(op_.ramp.angle * rad_per_deg);
             l = std::min(l, total);
             if (op_.tabs) {
                 // Down and back rise over the tabs as the passes do.

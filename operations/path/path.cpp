@@ -1,4 +1,5 @@
 #include "camgen/operations/path/path.hpp"
+#include "camgen/geometry/arc.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,8 +18,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-// Arc end points may be this far off the circle through the start point, mm.
-constexpr double arc_radius_tolerance = 0.001;
 constexpr double min_arc_radius = 0.0005;
 
 // The keys of a path operation.
@@ -43,7 +42,7 @@ constexpr KeySpec path_keys[] = {
 };
 
 // The keys of a path element: exactly one of them.
-constexpr KeySpec element_keys[] = {
+constexpr KeySpec path_element_keys[] = {
     {.key = "line", .type = JsonType::point3, .quantity = Quantity::length,
      .description = "a straight move to [x, y] or [x, y, z]"},
     {.key = "arc", .type = JsonType::object, .ref = "pathArc", .description = "an arc about an absolute centre"},
@@ -52,7 +51,7 @@ constexpr KeySpec element_keys[] = {
 };
 
 // The keys of an arc.
-constexpr KeySpec arc_keys[] = {
+constexpr KeySpec path_arc_keys[] = {
     {.key = "end", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
      .description = "end point [x, y] or [x, y, z]"},
     {.key = "centre", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
@@ -77,7 +76,7 @@ constexpr KeySpec helix_keys[] = {
 
 // Reads an arc from `current`; `lowest` becomes the lowest Z it reaches if that is below it.
 PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth, double& lowest) {
-    JobInput::known_keys(a, arc_keys);
+    JobInput::known_keys(a, path_arc_keys);
     PathArc arc;
     arc.plane = a.choice("plane", plane_names, Plane::xy);
     const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
@@ -169,11 +168,11 @@ std::vector<ObjectSpec> PathOp::objects() {
         {.name = "path", .description = "feed the tool centre along a path of lines, arcs in any plane and helices, at absolute Z",
          .keys = {std::begin(path_keys), std::end(path_keys)}},
         {.name = "pathElement", .description = "one element of a path: exactly one of line, arc or helix",
-         .keys = {std::begin(element_keys), std::end(element_keys)},
+         .keys = {std::begin(path_element_keys), std::end(path_element_keys)},
          .groups = {{.keys = {"line", "arc", "helix"}, .min = 1, .max = 1,
                      .description = "exactly one of line, arc or helix"}}},
         {.name = "pathArc", .description = "an arc in a plane about an absolute centre",
-         .keys = {std::begin(arc_keys), std::end(arc_keys)}},
+         .keys = {std::begin(path_arc_keys), std::end(path_arc_keys)}},
         {.name = "pathHelix", .description = "whole turns of a helix: exactly two of z, turns and pitch",
          .keys = {std::begin(helix_keys), std::end(helix_keys)},
          .groups = {{.keys = {"z", "turns", "pitch"}, .min = 2, .max = 2,
@@ -243,7 +242,7 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
     for (std::size_t k = 0; k < elements.size(); ++k) {
         const std::string path = base + "/" + std::to_string(k);
         Fields e(elements[k], path, in.source());
-        JobInput::known_keys(e, element_keys);
+        JobInput::known_keys(e, path_element_keys);
         const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
         if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
         if (e.has("line")) {

@@ -17,8 +17,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-// Arc ends may be this much farther from the centre than the start, mm.
-constexpr double arc_radius_tolerance = 0.001;
 // Arcs are sampled within this for the material checks, mm.
 constexpr double sampling_tolerance = 0.001;
 // A move counts as in the material when it runs inside it (by more than profile_same_point
@@ -48,12 +46,12 @@ constexpr KeySpec turn_profile_keys[] = {
      .description = "X (as xValues) the tool feeds out to from the profile's end, before it rapids back to the clearance"},
 };
 
-constexpr KeySpec element_keys[] = {
+constexpr KeySpec turn_element_keys[] = {
     {.key = "line", .type = JsonType::point, .quantity = Quantity::length, .description = "a straight cut to [x, z]"},
     {.key = "arc", .type = JsonType::object, .ref = "turnProfileArc", .description = "an arc about an absolute centre"},
 };
 
-constexpr KeySpec arc_keys[] = {
+constexpr KeySpec turn_arc_keys[] = {
     {.key = "end", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "end point [x, z]"},
     {.key = "centre", .type = JsonType::point, .quantity = Quantity::length, .required = true,
      .description = "absolute centre [x, z], as far from the end as from the start"},
@@ -119,10 +117,10 @@ std::vector<ObjectSpec> TurnProfileOp::objects() {
          .description = "a lathe finishing pass of the tool tip along a profile of lines and arcs in XZ",
          .keys = {std::begin(turn_profile_keys), std::end(turn_profile_keys)}},
         {.name = "turnProfileElement", .description = "one element of a lathe profile: exactly one of line, arc",
-         .keys = {std::begin(element_keys), std::end(element_keys)},
+         .keys = {std::begin(turn_element_keys), std::end(turn_element_keys)},
          .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line, arc"}}},
         {.name = "turnProfileArc", .description = "an arc in XZ about an absolute centre",
-         .keys = {std::begin(arc_keys), std::end(arc_keys)}},
+         .keys = {std::begin(turn_arc_keys), std::end(turn_arc_keys)}},
     };
 }
 
@@ -158,14 +156,14 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string path = f.path_of("path") + "/" + std::to_string(i);
         Fields e(list[i], path, in.source());
-        JobInput::known_keys(e, element_keys);
+        JobInput::known_keys(e, turn_element_keys);
         ProfileSegment s;
         if (e.has("line") == e.has("arc")) e.fail("", "a profile element is exactly one of line, arc");
         if (e.has("line")) {
             s.end = profile_point(in, e.required("line"), e.path_of("line"), xv);
         } else {
             Fields a(e.required("arc"), e.path_of("arc"), in.source());
-            JobInput::known_keys(a, arc_keys);
+            JobInput::known_keys(a, turn_arc_keys);
             s.end = profile_point(in, a.required("end"), a.path_of("end"), xv);
             s.centre = profile_point(in, a.required("centre"), a.path_of("centre"), xv);
             s.direction = a.choice("direction", arc_directions);
@@ -236,14 +234,14 @@ struct Span {
 
 // The material a turn-profile keeps, in (u, v) = (Z, radius): the profile's sampling closed
 // through the spindle axis (from its end down to the axis, along it, up to its start).
-struct Kept {
+struct KeptMaterial {
     std::vector<Vec2> ring;
     double u_min = 0.0, u_max = 0.0, v_max = 0.0;
     const TurnProfileOp* op = nullptr;
 };
 
-Kept kept_by(const TurnProfileOp& op) {
-    Kept k;
+KeptMaterial kept_by(const TurnProfileOp& op) {
+    KeptMaterial k;
     k.op = &op;
     k.ring = sample_profile(op.profile, sampling_tolerance);
     const Vec2 start = op.profile.start, end = op.profile.segments.back().end;
@@ -259,7 +257,7 @@ Kept kept_by(const TurnProfileOp& op) {
 }
 
 // Where the line at radius `level` (> 0) runs inside the kept material: Z intervals, in order.
-std::vector<Span> inside_at(const Kept& k, double level) {
+std::vector<Span> inside_at(const KeptMaterial& k, double level) {
     if (level >= k.v_max) return {};
     std::vector<double> crossings;
     for (std::size_t i = 0; i < k.ring.size(); ++i) {
@@ -273,7 +271,7 @@ std::vector<Span> inside_at(const Kept& k, double level) {
 }
 
 // The largest radius of the kept material between Z `lo` and `hi`.
-double largest_radius(const Kept& k, double lo, double hi) {
+double largest_radius(const KeptMaterial& k, double lo, double hi) {
     double top = 0.0;
     for (std::size_t i = 0; i < k.ring.size(); ++i) {
         const Vec2 a = k.ring[i], b = k.ring[(i + 1) % k.ring.size()];
@@ -286,15 +284,15 @@ double largest_radius(const Kept& k, double lo, double hi) {
 }
 
 // Material that a move along Z at radius `radius`, between Z `lo` and `hi`, runs through.
-struct Hit {
+struct MaterialHit {
     Span span;          // where along Z
-    const Kept* kept;   // the first operation that keeps it
+    const KeptMaterial* kept;   // the first operation that keeps it
 };
 
 // The first stretch (from `hi` down when `downwards`, else from `lo` up) of the move along Z at
 // `radius` that runs inside what `kept` keeps and that none of the first `cut` of them passed
 // above (what a profile passes above is gone).
-std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, double radius, double lo, double hi,
+std::optional<MaterialHit> first_hit(const std::vector<KeptMaterial>& kept, std::size_t cut, double radius, double lo, double hi,
                              bool downwards) {
     const double level = radius + profile_same_point;
     // +1/-1 at each end of an interval, for the material and for the air.
@@ -304,7 +302,7 @@ std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, dou
     };
     std::vector<Edge> edges;
     for (std::size_t i = 0; i < kept.size(); ++i) {
-        const Kept& k = kept[i];
+        const KeptMaterial& k = kept[i];
         if (k.u_max <= lo || k.u_min >= hi) continue;
         const std::vector<Span> inside = inside_at(k, level);
         for (const Span& s : inside) {
@@ -338,14 +336,14 @@ std::optional<Hit> first_hit(const std::vector<Kept>& kept, std::size_t cut, dou
     if (bad.empty()) return std::nullopt;
     const Span s = downwards ? bad.back() : bad.front();
     const double mid = (s.lo + s.hi) / 2;
-    for (const Kept& k : kept)
+    for (const KeptMaterial& k : kept)
         for (const Span& in : inside_at(k, level))
-            if (in.lo <= mid && mid <= in.hi) return Hit{s, &k};
+            if (in.lo <= mid && mid <= in.hi) return MaterialHit{s, &k};
     return std::nullopt;  // not reached: every stretch lies inside one of them
 }
 
 // "this profile" or "the profile of /operations/N".
-std::string whose(const Kept& k, const TurnProfileOp& op) {
+std::string whose(const KeptMaterial& k, const TurnProfileOp& op) {
     return k.op == &op ? "this profile" : "the profile of " + k.op->path;
 }
 
@@ -353,7 +351,7 @@ std::string whose(const Kept& k, const TurnProfileOp& op) {
 
 void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const JobInput& in) {
     const double clearance = in.header().clearance;
-    std::vector<Kept> kept;
+    std::vector<KeptMaterial> kept;
     kept.reserve(ops.size());
     for (const TurnProfileOp* op : ops) {
         kept.push_back(kept_by(*op));

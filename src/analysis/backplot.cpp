@@ -1,4 +1,5 @@
 #include "camgen/analysis/backplot.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,6 @@ namespace camgen {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
 constexpr const char* palette[] = {"#1f5fbf", "#d62728", "#2a9d3a", "#8e44ad", "#e67e22", "#8c564b", "#d63384", "#17a2b8"};
 constexpr const char* font = "font-family=\"DejaVu Sans, Arial, Helvetica, sans-serif\"";
 

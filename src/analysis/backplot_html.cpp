@@ -1,6 +1,7 @@
 // The interactive backplot page: the SVG drawing of backplot.cpp with its layers marked, the
 // per-block data of the read-back trace, and a small script that steps through it.
 #include "camgen/analysis/backplot_html.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include "camgen/common/error.hpp"
 
@@ -85,7 +86,6 @@ bool is_move(const Step& s) { return s.kind == StepKind::rapid || s.kind == Step
 Vec2 drawn(const Vec3& p, MachineKind kind) { return kind == MachineKind::lathe ? Vec2{p.z, p.x} : Vec2{p.x, p.y}; }
 double depth(const Vec3& p, MachineKind kind) { return kind == MachineKind::lathe ? p.y : p.z; }
 
-double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // The ends of the straight moves of a run from `start`, as a cone of directions: a line from
 // the start to a point inside the cone passes within `tolerance` of every end added so far

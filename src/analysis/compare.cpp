@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "camgen/geometry/vec.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/nc/format.hpp"
@@ -23,17 +24,16 @@ namespace camgen {
 
 namespace {
 
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double eps = 1e-9;
+constexpr double tiny = 1e-9;
 
-std::string num(double v) {
+std::string num3(double v) {
     nc::FormatSpec spec;
     spec.decimals = 3;
     spec.force_decimal = true;
     return nc::Format(spec).format(v);
 }
 
-std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num(p.x), num(p.y), num(p.z)); }
+std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num3(p.x), num3(p.y), num3(p.z)); }
 
 double dist(const Vec3& a, const Vec3& b) { return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z)); }
 
@@ -123,7 +123,7 @@ public:
                     it.path.start = s.from_known ? s.from : s.to;
                     made(std::move(it));
                 }
-                if (s.from_known && (s.arc || dist(s.from, s.to) > eps)) open_->path.segs.emplace_back(s);
+                if (s.from_known && (s.arc || dist(s.from, s.to) > tiny)) open_->path.segs.emplace_back(s);
                 break;
             }
         }
@@ -348,8 +348,8 @@ std::string describe_step(const Step& s) {
         case StepKind::tool_change: return fmt::format("a change to tool {}", s.tool);
         case StepKind::spindle:
             return s.spindle == SpindleState::off ? std::string("spindle off")
-                                                  : fmt::format("spindle {} at {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw", num(s.rpm));
-        case StepKind::dwell: return fmt::format("a dwell of {} s", num(s.seconds));
+                                                  : fmt::format("spindle {} at {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw", num3(s.rpm));
+        case StepKind::dwell: return fmt::format("a dwell of {} s", num3(s.seconds));
         default: return s.kind == StepKind::rapid ? "a rapid move" : "a feed move";
     }
 }
@@ -373,7 +373,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             const Seg& seg = onto.segs[j];
             // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
             // chords or have a rounded centre.
-            double limit = (s.vertex && !seg.arc ? tol.position : tol.path) + extra + seg.uncertainty + eps;
+            double limit = (s.vertex && !seg.arc ? tol.position : tol.path) + extra + seg.uncertainty + tiny;
             Hit h = locate(seg, s.p, j == k ? t : 0.0, limit);
             if (h.d > limit) {
                 if (wrong_feed) break;  // the run of segments the point is near has ended
@@ -382,10 +382,10 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             // A move that follows the spindle (a tap, a per-revolution feed) feeds at pitch x
             // speed: the speed written to the resolution of S moves its feed by up to pitch x
             // that resolution (a fuzz finding: 0.2296875 mm/rev at 802.3125 rpm, S802).
-            double feed_limit = tol.feed + std::max(s.step->pitch, seg.pitch) * tol.rpm + eps;
+            double feed_limit = tol.feed + std::max(s.step->pitch, seg.pitch) * tol.rpm + tiny;
             // A move no longer than the position tolerance may round to nothing and not be
             // written at all, its feed with it (a bore's way back to a centre 0.0001 mm away).
-            const bool feed_matters = s.check_feed && !from.rapid && s.step->length() > tol.position + eps;
+            const bool feed_matters = s.check_feed && !from.rapid && s.step->length() > tol.position + tiny;
             if (feed_matters && std::abs(s.step->feed - seg.feed) > feed_limit) {
                 // A point within the tolerance of a corner lies on both moves that meet there (a
                 // tiny arc written as one short line after a plunge): look on along the moves it
@@ -394,7 +394,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                     const Seg& job = from_is_job ? *s.step : seg;
                     const Seg& prog = from_is_job ? seg : *s.step;
                     wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
-                                                                 num(prog.feed), num(job.feed), point(s.p))};
+                                                                 num3(prog.feed), num3(job.feed), point(s.p))};
                 }
                 continue;
             }
@@ -403,7 +403,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
             found = true;
         }
         if (!found && wrong_feed) return wrong_feed;
-        if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + eps;
+        if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + tiny;
         if (found) return std::nullopt;
         // Where the other path goes on from the last point both share: inside the segment
         // matched last, or after it.
@@ -429,13 +429,13 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
                                       const CompareTolerance& tol) {
     double prog_start_extra = prog.segs.empty() ? 0.0 : prog.segs.front().uncertainty;
     double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().uncertainty;
-    if (dist(job.start, prog.start) > tol.position + eps + prog_start_extra) {
+    if (dist(job.start, prog.start) > tol.position + tiny + prog_start_extra) {
         return Mismatch{prog.first_line(), fmt::format("the program's {} path starts at {}, the job's at {}", describe_path(prog),
                                                        point(prog.start), point(job.start))};
     }
     if (auto m = follow(job, prog, prog_next, true, tol)) return m;
     if (auto m = follow(prog, job, job_next, false, tol)) return m;
-    if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + eps) {
+    if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + tiny) {
         int line = prog.segs.empty() ? 0 : prog.segs.back().line;
         return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end()),
                                           point(job.end()))};
@@ -455,11 +455,11 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
                 return Mismatch{b.line(), fmt::format("the program changes to tool {}, the job to tool {}", b.step.tool, a.step.tool)};
             break;
         case Item::Kind::spindle:
-            if (a.step.spindle != b.step.spindle || std::abs(a.step.rpm - b.step.rpm) > tol.rpm + eps)
+            if (a.step.spindle != b.step.spindle || std::abs(a.step.rpm - b.step.rpm) > tol.rpm + tiny)
                 return Mismatch{b.line(), fmt::format("the program sets {}, the job {}", describe_step(b.step), describe_step(a.step))};
             break;
         case Item::Kind::dwell:
-            if (std::abs(a.step.seconds - b.step.seconds) > tol.dwell + eps)
+            if (std::abs(a.step.seconds - b.step.seconds) > tol.dwell + tiny)
                 return Mismatch{b.line(), fmt::format("the program has {}, the job {}", describe_step(b.step), describe_step(a.step))};
             break;
         case Item::Kind::path:

@@ -1,4 +1,5 @@
 #include "camgen/analysis/stats.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@ namespace camgen {
 
 namespace {
 
-constexpr double two_pi = 2.0 * std::numbers::pi;
 
 std::string num(double v, int decimals = 3) {
     nc::FormatSpec spec;

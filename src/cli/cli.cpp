@@ -109,7 +109,7 @@ std::string read_text(const std::string& file, std::istream& in) {
     return std::move(ss).str();
 }
 
-std::string stem_of(const std::string& file) {
+std::string job_stem(const std::string& file) {
     if (file == "-") return "job";
     std::string s = file.substr(file.find_last_of('/') + 1);
     if (auto dot = s.find_last_of('.'); dot != std::string::npos && dot > 0) s.resize(dot);
@@ -666,7 +666,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
         Job job;
         try {
             job = read_job(text, o.job == "-" ? "<stdin>" : o.job, o.limits);
-            if (job.name.empty()) job.name = stem_of(o.job);
+            if (job.name.empty()) job.name = job_stem(o.job);
             // Every output is written completely (the program, the plot) before any is committed:
             // a failure on the way leaves every file as it was. Reading back needs the text, so
             // then the program is posted into a buffer first.

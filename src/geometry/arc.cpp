@@ -1,4 +1,5 @@
 #include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 namespace camgen {
 
 namespace {
-constexpr double two_pi = 2.0 * std::numbers::pi;
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "camgen/geometry/clearance.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,17 +11,9 @@ namespace camgen {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double two_pi = 2 * pi;
 // Ends of an arc at most this far apart: a full circle, mm.
 constexpr double full_circle_ends = 1e-12;
 
-Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-Vec2 add(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-Vec2 mul(Vec2 a, double k) { return {a.x * k, a.y * k}; }
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-double len(Vec2 a) { return std::hypot(a.x, a.y); }
 double wrap(double a) {
     a = std::fmod(a, two_pi);
     return a < 0 ? a + two_pi : a;
@@ -51,11 +44,11 @@ ArcData arc_of(const PathPiece& p) {
 ArcData compute_arc(const PathPiece& p) {
     ArcData a;
     a.c = *p.segment.centre;
-    a.r = len(sub(p.start, a.c));
+    a.r = norm(p.start - a.c);
     a.a0 = std::atan2(p.start.y - a.c.y, p.start.x - a.c.x);
     const double a1 = std::atan2(p.segment.end.y - a.c.y, p.segment.end.x - a.c.x);
     // Ends that coincide make a full circle (a helix's turn); see as_piece for ends a hair apart.
-    const bool full = len(sub(p.segment.end, p.start)) <= full_circle_ends;
+    const bool full = norm(p.segment.end - p.start) <= full_circle_ends;
     a.sweep = p.segment.direction == ArcDirection::ccw ? (full ? two_pi : wrap(a1 - a.a0)) : -(full ? two_pi : wrap(a.a0 - a1));
     return a;
 }
@@ -66,7 +59,7 @@ ArcData compute_arc(const PathPiece& p) {
 // circle round the corner.
 PathPiece as_piece(const PathPiece& p) {
     if (!p.segment.centre) return p;
-    const double d = len(sub(p.segment.end, p.start));
+    const double d = norm(p.segment.end - p.start);
     if (d > full_circle_ends && d < profile_same_point) return {p.start, {p.segment.end, std::nullopt, p.segment.direction}};
     return p;
 }
@@ -78,33 +71,33 @@ bool in_sweep(const ArcData& a, double angle) {
 
 Vec2 on_circle(const ArcData& a, double angle) { return {a.c.x + a.r * std::cos(angle), a.c.y + a.r * std::sin(angle)}; }
 
-Approach point_line(Vec2 p, Vec2 s, Vec2 e) {
-    const Vec2 d = sub(e, s);
+ClosestApproach point_line(Vec2 p, Vec2 s, Vec2 e) {
+    const Vec2 d = e - s;
     const double l2 = dot(d, d);
-    double t = l2 > 0 ? dot(sub(p, s), d) / l2 : 0.0;
+    double t = l2 > 0 ? dot((p - s), d) / l2 : 0.0;
     t = std::clamp(t, 0.0, 1.0);
-    const Vec2 q = add(s, mul(d, t));
-    return {len(sub(p, q)), q};
+    const Vec2 q = s + (d * t);
+    return {norm(p - q), q};
 }
 
-Approach point_arc(Vec2 p, const ArcData& a, Vec2 s, Vec2 e) {
-    const Vec2 v = sub(p, a.c);
-    const double d = len(v);
+ClosestApproach point_arc(Vec2 p, const ArcData& a, Vec2 s, Vec2 e) {
+    const Vec2 v = p - a.c;
+    const double d = norm(v);
     if (d < 1e-12) return {a.r, s};
     const double ang = std::atan2(v.y, v.x);
-    if (in_sweep(a, ang)) return {std::abs(d - a.r), add(a.c, mul(v, a.r / d))};
-    const double ds = len(sub(p, s)), de = len(sub(p, e));
-    return ds <= de ? Approach{ds, s} : Approach{de, e};
+    if (in_sweep(a, ang)) return {std::abs(d - a.r), (a.c + (v * (a.r / d)))};
+    const double ds = norm(p - s), de = norm(p - e);
+    return ds <= de ? ClosestApproach{ds, s} : ClosestApproach{de, e};
 }
 
 // Keeps the smaller of two approaches.
-void keep(Approach& best, Approach c) {
+void keep(ClosestApproach& best, ClosestApproach c) {
     if (c.distance < best.distance) best = c;
 }
 
 // Points where the line s-e (t in [0, 1]) meets the circle of `a` within its sweep.
 int line_circle(Vec2 s, Vec2 e, const ArcData& a, std::array<Vec2, 2>& out) {
-    const Vec2 d = sub(e, s), f = sub(s, a.c);
+    const Vec2 d = (e - s), f = s - a.c;
     const double A = dot(d, d), B = 2 * dot(f, d), C = dot(f, f) - a.r * a.r;
     if (A <= 0) return 0;
     const double disc = B * B - 4 * A * C;
@@ -113,7 +106,7 @@ int line_circle(Vec2 s, Vec2 e, const ArcData& a, std::array<Vec2, 2>& out) {
     int n = 0;
     for (double t : {(-B - sq) / (2 * A), (-B + sq) / (2 * A)}) {
         if (t < 0 || t > 1) continue;
-        const Vec2 q = add(s, mul(d, t));
+        const Vec2 q = s + (d * t);
         if (in_sweep(a, std::atan2(q.y - a.c.y, q.x - a.c.x))) out[n++] = q;
         if (sq == 0) break;
     }
@@ -122,32 +115,32 @@ int line_circle(Vec2 s, Vec2 e, const ArcData& a, std::array<Vec2, 2>& out) {
 
 }  // namespace
 
-Approach point_piece_distance(Vec2 p, const PathPiece& given) {
+ClosestApproach point_piece_distance(Vec2 p, const PathPiece& given) {
     const PathPiece piece = as_piece(given);
     if (!piece.segment.centre) return point_line(p, piece.start, piece.segment.end);
     return point_arc(p, arc_of(piece), piece.start, piece.segment.end);
 }
 
-Approach piece_distance(const PathPiece& given_a, const PathPiece& given_b) {
+ClosestApproach piece_distance(const PathPiece& given_a, const PathPiece& given_b) {
     const PathPiece a = as_piece(given_a), b = as_piece(given_b);
     const Vec2 as = a.start, ae = a.segment.end, bs = b.start, be = b.segment.end;
-    Approach best{std::numeric_limits<double>::infinity(), as};
+    ClosestApproach best{std::numeric_limits<double>::infinity(), as};
     // Ends of a against b, ends of b against a.
     keep(best, {point_piece_distance(as, b).distance, as});
     keep(best, {point_piece_distance(ae, b).distance, ae});
     {
-        const Approach x = point_piece_distance(bs, a);
+        const ClosestApproach x = point_piece_distance(bs, a);
         keep(best, {x.distance, x.at});
-        const Approach y = point_piece_distance(be, a);
+        const ClosestApproach y = point_piece_distance(be, a);
         keep(best, {y.distance, y.at});
     }
     const bool a_arc = a.segment.centre.has_value(), b_arc = b.segment.centre.has_value();
     if (!a_arc && !b_arc) {
-        const Vec2 r = sub(ae, as), s = sub(be, bs);
+        const Vec2 r = (ae - as), s = be - bs;
         const double den = cross(r, s);
         if (den != 0) {
-            const double t = cross(sub(bs, as), s) / den, u = cross(sub(bs, as), r) / den;
-            if (t >= 0 && t <= 1 && u >= 0 && u <= 1) keep(best, {0.0, add(as, mul(r, t))});
+            const double t = cross((bs - as), s) / den, u = cross((bs - as), r) / den;
+            if (t >= 0 && t <= 1 && u >= 0 && u <= 1) keep(best, {0.0, (as + (r * t))});
         }
         return best;
     }
@@ -159,30 +152,30 @@ Approach piece_distance(const PathPiece& given_a, const PathPiece& given_b) {
         const int n = line_circle(line.start, line.segment.end, c, hits);
         if (n > 0) return {0.0, hits[0]};
         // The arc's points square to the line from its centre.
-        const Approach foot = point_line(c.c, line.start, line.segment.end);
-        const Vec2 v = sub(foot.at, c.c);
+        const ClosestApproach foot = point_line(c.c, line.start, line.segment.end);
+        const Vec2 v = foot.at - c.c;
         if (foot.distance > 1e-12) {
             for (double sign : {1.0, -1.0}) {
                 const double ang = std::atan2(sign * v.y, sign * v.x);
                 if (!in_sweep(c, ang)) continue;
                 const Vec2 q = on_circle(c, ang);
-                const Approach onto_line = point_line(q, line.start, line.segment.end);
+                const ClosestApproach onto_line = point_line(q, line.start, line.segment.end);
                 keep(best, {onto_line.distance, a_arc ? q : onto_line.at});
             }
         }
         return best;
     }
     const ArcData ca = arc_of(a), cb = arc_of(b);
-    const Vec2 cc = sub(cb.c, ca.c);
-    const double dcc = len(cc);
+    const Vec2 cc = cb.c - ca.c;
+    const double dcc = norm(cc);
     if (dcc > 1e-12) {
         // Circle-circle crossings within both sweeps.
         if (dcc <= ca.r + cb.r && dcc >= std::abs(ca.r - cb.r)) {
             const double x = (dcc * dcc + ca.r * ca.r - cb.r * cb.r) / (2 * dcc);
             const double h = std::sqrt(std::max(0.0, ca.r * ca.r - x * x));
-            const Vec2 u = mul(cc, 1 / dcc), n{-u.y, u.x};
+            const Vec2 u = (cc * (1 / dcc)), n{-u.y, u.x};
             for (double sign : {1.0, -1.0}) {
-                const Vec2 q = add(add(ca.c, mul(u, x)), mul(n, sign * h));
+                const Vec2 q = (ca.c + (u * x)) + (n * (sign * h));
                 if (in_sweep(ca, std::atan2(q.y - ca.c.y, q.x - ca.c.x)) && in_sweep(cb, std::atan2(q.y - cb.c.y, q.x - cb.c.x)))
                     return {0.0, q};
             }
@@ -194,7 +187,7 @@ Approach piece_distance(const PathPiece& given_a, const PathPiece& given_b) {
             const Vec2 qa = on_circle(ca, pa);
             for (double pb : {base, base + pi}) {
                 if (!in_sweep(cb, pb)) continue;
-                keep(best, {len(sub(qa, on_circle(cb, pb))), qa});
+                keep(best, {norm(qa - on_circle(cb, pb)), qa});
             }
         }
     }
@@ -255,7 +248,7 @@ std::vector<std::size_t> ProfileClearance::cells_of(double x0, double y0, double
     return out;
 }
 
-Approach ProfileClearance::nearest(const PathPiece& given) const {
+ClosestApproach ProfileClearance::nearest(const PathPiece& given) const {
     const PathPiece move = as_piece(given);
     double bx0 = std::min(move.start.x, move.segment.end.x), by0 = std::min(move.start.y, move.segment.end.y),
            bx1 = std::max(move.start.x, move.segment.end.x), by1 = std::max(move.start.y, move.segment.end.y);
@@ -267,8 +260,8 @@ Approach ProfileClearance::nearest(const PathPiece& given) const {
                 bx0 = std::min(bx0, q.x), by0 = std::min(by0, q.y), bx1 = std::max(bx1, q.x), by1 = std::max(by1, q.y);
             }
     }
-    Approach best{reach_, move.start};
-    const bool point = len(sub(move.segment.end, move.start)) == 0 && !move.segment.centre;
+    ClosestApproach best{reach_, move.start};
+    const bool point = norm(move.segment.end - move.start) == 0 && !move.segment.centre;
     ++stamp_;
     if (stamp_ == 0) {
         std::fill(seen_.begin(), seen_.end(), 0u);
@@ -286,14 +279,14 @@ Approach ProfileClearance::nearest(const PathPiece& given) const {
                 const auto& b = boxes_[k];
                 const double gx = std::max({0.0, b[0] - bx1, bx0 - b[2]}), gy = std::max({0.0, b[1] - by1, by0 - b[3]});
                 if (std::hypot(gx, gy) >= best.distance) continue;
-                const Approach a = point ? Approach{point_piece_distance(move.start, pieces_[k]).distance, move.start}
+                const ClosestApproach a = point ? ClosestApproach{point_piece_distance(move.start, pieces_[k]).distance, move.start}
                                          : piece_distance(move, pieces_[k]);
                 keep(best, a);
             }
     return best;
 }
 
-Approach ProfileClearance::nearest(Vec2 point) const { return nearest(PathPiece{point, {point, std::nullopt, ArcDirection::ccw}}); }
+ClosestApproach ProfileClearance::nearest(Vec2 point) const { return nearest(PathPiece{point, {point, std::nullopt, ArcDirection::ccw}}); }
 
 bool ProfileClearance::inside(Vec2 p) const {
     bool in = false;

@@ -1,4 +1,5 @@
 #include "camgen/geometry/compensation.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -7,7 +8,6 @@ namespace camgen {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
 constexpr double half_pi = pi / 2;
 // The angle within which two directions count as one (LinuxCNC's TOLERANCE_CONCAVE_CORNER), rad.
 constexpr double corner_tolerance = 0.05;
@@ -16,9 +16,7 @@ constexpr double arc_growth_tolerance = 0.0254;
 
 Vec2 xy(Vec3 p) { return {p.x, p.y}; }
 Vec2 polar(double r, double a) { return {r * std::cos(a), r * std::sin(a)}; }
-Vec2 plus(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
 double angle_of(Vec2 from, Vec2 to) { return std::atan2(to.y - from.y, to.x - from.x); }
-double dist(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 // LinuxCNC's turn: +1 counter-clockwise, -1 clockwise, more for extra turns.
 int turn_of(ArcDirection d, int turns) { return d == ArcDirection::ccw ? 1 + turns : -1 - turns; }
 bool tool_inside_arc(CompSide side, int turn) {
@@ -81,8 +79,8 @@ void CutterCompensation::enqueue(const CompMove& m, Vec2 direction, double origi
 std::optional<CompError> CutterCompensation::move_endpoint_and_flush(Vec2 to, std::size_t source) {
     for (Queued& q : queue_) {
         if (q.move.kind == CompMove::Kind::arc) {
-            const double r1 = dist(xy(q.move.end), q.move.centre);
-            const double r2 = dist(to, q.move.centre);
+            const double r1 = distance(xy(q.move.end), q.move.centre);
+            const double r2 = distance(to, q.move.centre);
             const double sweep = arc_sweep(endpoint_, q.move.centre, q.move.direction, q.move.turns, to);
             if (std::abs(r1 - r2) > 0.01)
                 return CompError{"cutter compensation made an arc whose ends are not on one circle", source};
@@ -128,16 +126,16 @@ std::optional<CompError> CutterCompensation::move(const CompMove& p) {
 
 std::optional<CompError> CutterCompensation::entry(const CompMove& p) {
     if (p.kind == CompMove::Kind::arc) {
-        if (dist(xy(tool_), xy(p.end)) <= radius_)
+        if (distance(xy(tool_), xy(p.end)) <= radius_)
             return CompError{"Radius of cutter compensation entry arc is not greater than the tool radius", p.source};
         return CompError{"an arc as the first move after G41/G42: camgen does not model this entry (write a straight entry move)",
                          p.source};
     }
     const Vec2 c = xy(tool_), e = xy(p.end);
-    if (dist(c, e) <= radius_)
+    if (distance(c, e) <= radius_)
         return CompError{"Length of cutter compensation entry move is not greater than the tool radius", p.source};
     const double alpha = angle_of(c, e) + (side_ == CompSide::left ? half_pi : -half_pi);
-    const Vec2 end = plus(e, polar(radius_, alpha));
+    const Vec2 end = e + polar(radius_, alpha);
     endpoint_ = c;
     endpoint_valid_ = true;
     CompMove m = p;
@@ -172,8 +170,8 @@ std::optional<CompError> CutterCompensation::straight(const CompMove& p) {
         beta = alpha - theta - half_pi;
         gamma = -half_pi;
     }
-    const Vec2 end = plus(pe, polar(r, alpha + gamma));
-    Vec2 mid = plus(op, polar(r, alpha + gamma));
+    const Vec2 end = pe + polar(r, alpha + gamma);
+    Vec2 mid = op + polar(r, alpha + gamma);
     const bool front_arc = !queue_.empty() && queue_.front().move.kind == CompMove::Kind::arc;
     bool concave = false;
     if (beta < -corner_tolerance || beta > pi + corner_tolerance) {
@@ -203,10 +201,10 @@ std::optional<CompError> CutterCompensation::straight(const CompMove& p) {
             const double halfcorner = (beta + pi) / 2;
             if (halfcorner == 0.0) return CompError{"Zero degree inside corner is invalid for cutter compensation", p.source};
             const double retreat = r / std::tan(halfcorner);
-            mid = plus(c, polar(retreat, theta + gamma));
+            mid = c + polar(retreat, theta + gamma);
         } else {  // arc to line
             const Queued& prev = queue_.front();
-            const double oldrad = dist(prev.move.centre, xy(prev.move.end));
+            const double oldrad = distance(prev.move.centre, xy(prev.move.end));
             const int prev_turn = turn_of(prev.move.direction, prev.move.turns);
             const double base = angle_of(op, pe);
             const double th = prev_turn > 0 ? base + half_pi : base - half_pi;
@@ -222,7 +220,7 @@ std::optional<CompError> CutterCompensation::straight(const CompMove& p) {
                 angle = prev_turn > 0 ? -std::acos(l) + th + pi : std::acos(l) + th + pi;
             else
                 angle = prev_turn > 0 ? std::acos(l) + th + pi : -std::acos(l) + th + pi;
-            mid = plus(prev.move.centre, polar(oldrad, angle));
+            mid = prev.move.centre + polar(oldrad, angle);
         }
         if (auto e = move_endpoint_and_flush(mid, p.source)) return e;
     } else {  // straight on
@@ -242,7 +240,7 @@ std::optional<CompError> CutterCompensation::arc(const CompMove& p) {
     const Vec2 c = xy(tool_), op = xy(programmed_), pe = xy(p.end), centre = p.centre;
     const double r = radius_;
     const int turn = turn_of(p.direction, p.turns);
-    const double arc_radius = dist(centre, pe);
+    const double arc_radius = distance(centre, pe);
     double theta = angle_of(op, c);
     theta = side_ == CompSide::left ? theta - half_pi : theta + half_pi;
     double delta = angle_of(op, centre);
@@ -258,7 +256,7 @@ std::optional<CompError> CutterCompensation::arc(const CompMove& p) {
         gamma = angle_of(centre, pe);
         delta += pi;
     }
-    const Vec2 new_end = plus(pe, polar(r, gamma));
+    const Vec2 new_end = pe + polar(r, gamma);
     const double sweep = arc_sweep(op, centre, p.direction, p.turns, pe);
     const bool front_arc = !queue_.empty() && queue_.front().move.kind == CompMove::Kind::arc;
     CompMove m = p;
@@ -276,12 +274,12 @@ std::optional<CompError> CutterCompensation::arc(const CompMove& p) {
                 angle = turn > 0 ? theta + std::asin(l) : theta - std::asin(l);
             else
                 angle = turn > 0 ? theta + pi - std::asin(l) : theta + pi + std::asin(l);
-            mid = plus(centre, polar(from_centre, angle));
+            mid = centre + polar(from_centre, angle);
         } else {  // arc to arc
             const Queued& prev = queue_.front();
-            const double oldrad = dist(prev.move.centre, xy(prev.move.end));
+            const double oldrad = distance(prev.move.centre, xy(prev.move.end));
             const double newrad = inside ? arc_radius - r : arc_radius + r;
-            const double arc_cc = dist(prev.move.centre, centre);
+            const double arc_cc = distance(prev.move.centre, centre);
             if (oldrad == 0 || arc_cc == 0) return CompError{"Arc to arc motion is invalid because the arcs have the same center", p.source};
             const double a = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad) / (2 * oldrad * arc_cc);
             if (a > 1.0 || a < -1.0)
@@ -294,12 +292,12 @@ std::optional<CompError> CutterCompensation::arc(const CompMove& p) {
                 dir = turn > 0 ? cc_dir + pullback : cc_dir - pullback;
             else
                 dir = turn > 0 ? cc_dir - pullback : cc_dir + pullback;
-            mid = plus(prev.move.centre, polar(oldrad, dir));
+            mid = prev.move.centre + polar(oldrad, dir);
         }
         if (auto e = move_endpoint_and_flush(mid, p.source)) return e;
         enqueue(m, {0, 0}, sweep);
     } else if (beta > corner_tolerance) {  // convex: around the corner, then the arc
-        const Vec2 mid = plus(op, polar(r, delta));
+        const Vec2 mid = op + polar(r, delta);
         dequeue();
         CompMove corner;
         corner.kind = CompMove::Kind::arc;

@@ -1,4 +1,5 @@
 #include "camgen/geometry/offset.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -21,25 +22,14 @@ namespace camgen {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double two_pi = 2.0 * pi;
 // Pieces and split points closer than this are the same, mm.
 constexpr double same_length = 1e-9;
 // Pieces shorter than this are left out of an output profile (their neighbours join), mm.
 constexpr double min_piece = 1e-7;
-// Kept pieces whose ends are this close are chained, mm.
+// KeptPiece pieces whose ends are this close are chained, mm.
 constexpr double chain_gap = 1e-6;
 
-Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-Vec2 operator*(Vec2 a, double k) { return {a.x * k, a.y * k}; }
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-double norm(Vec2 a) { return std::hypot(a.x, a.y); }
-double distance(Vec2 a, Vec2 b) { return norm(a - b); }
-Vec2 unit_at(double angle) { return {std::cos(angle), std::sin(angle)}; }
 // `a` turned a quarter counter-clockwise: the left normal of a direction.
-Vec2 left_of(Vec2 a) { return {-a.y, a.x}; }
 
 // A line or an arc, walked from t = 0 to t = 1. An arc has a centre, a radius, a start angle
 // and a signed sweep (counter-clockwise positive).
@@ -73,12 +63,11 @@ Curve part(const Curve& k, double t0, double t1) {
     return line_curve(k.at(t0), k.at(t1));
 }
 
-Vec2 start_of(const Profile& p, std::size_t index) { return index == 0 ? p.start : p.segments[index - 1].end; }
 
 // Segment `index` of the profile as a curve (an arc's radius from its start, as resolve_arc).
 Curve curve_of(const Profile& p, std::size_t index) {
     const ProfileSegment& s = p.segments[index];
-    const Vec2 from = start_of(p, index);
+    const Vec2 from = segment_start(p, index);
     if (!s.centre) return line_curve(from, s.end);
     const ArcGeometry g = resolve_arc({from.x, from.y, 0.0},
                                       ArcSpec{{s.end.x, s.end.y, 0.0}, {s.centre->x, s.centre->y, 0.0}, s.direction, Plane::xy, 0});
@@ -153,12 +142,12 @@ bool within(const Curve& k, double t) {
 
 // An axis-aligned box around a curve, mm: pairs of curves whose boxes are apart cannot meet,
 // and a curve whose box is farther from a point than another curve is not the nearest.
-struct Box {
+struct Rect {
     double x0, y0, x1, y1;
 };
 
-Box box_of(const Curve& k) {
-    Box b{std::min(k.a.x, k.b.x), std::min(k.a.y, k.b.y), std::max(k.a.x, k.b.x), std::max(k.a.y, k.b.y)};
+Rect box_of(const Curve& k) {
+    Rect b{std::min(k.a.x, k.b.x), std::min(k.a.y, k.b.y), std::max(k.a.x, k.b.x), std::max(k.a.y, k.b.y)};
     if (!k.arc) return b;
     for (int quarter = 0; quarter < 4; ++quarter) {  // the extreme points the arc passes
         const Vec2 p = k.c + unit_at(quarter * pi / 2) * k.r;
@@ -169,12 +158,12 @@ Box box_of(const Curve& k) {
     return b;
 }
 
-bool apart(const Box& a, const Box& b) {
+bool apart(const Rect& a, const Rect& b) {
     constexpr double slack = 1e-6;
     return a.x1 + slack < b.x0 || b.x1 + slack < a.x0 || a.y1 + slack < b.y0 || b.y1 + slack < a.y0;
 }
 
-double box_distance(const Box& b, Vec2 p) {
+double box_distance(const Rect& b, Vec2 p) {
     return std::hypot(std::max({b.x0 - p.x, 0.0, p.x - b.x1}), std::max({b.y0 - p.y, 0.0, p.y - b.y1}));
 }
 
@@ -182,10 +171,10 @@ double box_distance(const Box& b, Vec2 p) {
 // found without looking at all of them (a profile of a thousand short segments).
 class BoxGrid {
 public:
-    explicit BoxGrid(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
+    explicit BoxGrid(std::vector<Rect> boxes) : boxes_(std::move(boxes)) {
         if (boxes_.empty()) return;
         extent_ = boxes_.front();
-        for (const Box& b : boxes_)
+        for (const Rect& b : boxes_)
             extent_ = {std::min(extent_.x0, b.x0), std::min(extent_.y0, b.y0), std::max(extent_.x1, b.x1), std::max(extent_.y1, b.y1)};
         const double w = extent_.x1 - extent_.x0, h = extent_.y1 - extent_.y0;
         cell_ = std::max({std::sqrt(w * h / static_cast<double>(boxes_.size())), w / 512, h / 512, 1e-3});
@@ -196,7 +185,7 @@ public:
     }
 
     // The indices of the boxes not apart from `query`, ascending.
-    std::vector<std::size_t> near(const Box& query) const {
+    std::vector<std::size_t> near(const Rect& query) const {
         std::vector<std::size_t> out;
         if (boxes_.empty() || apart(query, extent_)) return out;
         visit(query, [&](std::size_t cell) { out.insert(out.end(), cells_[cell].begin(), cells_[cell].end()); });
@@ -209,7 +198,7 @@ public:
 private:
     // Calls f with the index of every cell that box b meets.
     template <class F>
-    void visit(const Box& b, F f) const {
+    void visit(const Rect& b, F f) const {
         auto index = [&](double v, double origin, int n) { return std::clamp(static_cast<int>((v - origin) / cell_), 0, n - 1); };
         const int i0 = index(b.x0 - 1e-6, extent_.x0, nx_), i1 = index(b.x1 + 1e-6, extent_.x0, nx_);
         const int j0 = index(b.y0 - 1e-6, extent_.y0, ny_), j1 = index(b.y1 + 1e-6, extent_.y0, ny_);
@@ -217,8 +206,8 @@ private:
             for (int j = j0; j <= j1; ++j) f(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i));
     }
 
-    std::vector<Box> boxes_;
-    Box extent_{};
+    std::vector<Rect> boxes_;
+    Rect extent_{};
     double cell_ = 1.0;
     int nx_ = 0, ny_ = 0;
     std::vector<std::vector<std::size_t>> cells_;
@@ -252,7 +241,7 @@ double distance_to_curve(const Curve& k, Vec2 p) {
 struct Element {
     Curve curve;
     std::size_t segment = 0;
-    Box box;
+    Rect box;
 };
 std::vector<Element> elements_of(const Profile& p) {
     std::vector<Element> out;
@@ -300,20 +289,20 @@ struct RawPiece {
 };
 
 // A kept part of raw piece `raw` between t0 and t1.
-struct Kept {
+struct KeptPiece {
     std::size_t raw = 0;
     double t0 = 0.0, t1 = 1.0;
     Curve curve;
 };
 
-std::string mm(double v) {
+std::string mm_text(double v) {
     char buf[32];
     const auto r = std::to_chars(buf, buf + sizeof buf, std::round(v * 1000.0) / 1000.0);
     return std::string(buf, r.ptr);
 }
 
 // The kept pieces chained end to start, preferring the raw successor, into paths.
-std::vector<std::vector<std::size_t>> chain(const std::vector<Kept>& kept) {
+std::vector<std::vector<std::size_t>> chain(const std::vector<KeptPiece>& kept) {
     std::vector<bool> used(kept.size(), false);
     std::vector<std::vector<std::size_t>> chains;
     for (std::size_t first = 0; first < kept.size(); ++first) {
@@ -357,7 +346,7 @@ std::vector<std::vector<std::size_t>> chain(const std::vector<Kept>& kept) {
     return chains;
 }
 
-struct Path {
+struct OffsetPath {
     Profile profile;
     std::vector<std::optional<std::size_t>> source;
     double length = 0.0;
@@ -365,11 +354,11 @@ struct Path {
 
 // A chain as a profile: contiguous parts of one raw piece merged back, tiny parts dropped, a
 // closed chain's end put exactly on its start.
-Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, const std::vector<RawPiece>& raw,
+OffsetPath path_of(const std::vector<std::size_t>& c, const std::vector<KeptPiece>& kept, const std::vector<RawPiece>& raw,
              const std::vector<Element>& elements, ProfilePlane plane, bool closed) {
-    std::vector<Kept> merged;
+    std::vector<KeptPiece> merged;
     for (std::size_t i : c) {
-        const Kept& k = kept[i];
+        const KeptPiece& k = kept[i];
         if (!merged.empty() && merged.back().raw == k.raw && std::abs(merged.back().t1 - k.t0) < 1e-12) {
             merged.back().t1 = k.t1;
             merged.back().curve = part(raw[k.raw].curve, merged.back().t0, k.t1);
@@ -377,8 +366,8 @@ Path path_of(const std::vector<std::size_t>& c, const std::vector<Kept>& kept, c
             merged.push_back(k);
         }
     }
-    Path path{Profile{plane, merged.front().curve.a, {}}, {}, 0.0};
-    for (const Kept& k : merged) {
+    OffsetPath path{Profile{plane, merged.front().curve.a, {}}, {}, 0.0};
+    for (const KeptPiece& k : merged) {
         if (k.curve.length() < min_piece) continue;
         ProfileSegment s{k.curve.b, std::nullopt, ArcDirection::ccw};
         if (k.curve.arc) {
@@ -420,8 +409,8 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         if (auto o = offset_curve(k, d, s)) raw.push_back({*o, i});
         if (k.arc && k.r < d - same_length && (k.sweep > 0) == (s > 0))
             result.notes.push_back({OffsetNoteKind::arc_too_tight, elements[i].segment,
-                                    "segment " + std::to_string(elements[i].segment) + ": a concave arc of radius " + mm(k.r) +
-                                        " mm is tighter than the offset " + mm(d) + " mm; the tool cannot reach into it"});
+                                    "segment " + std::to_string(elements[i].segment) + ": a concave arc of radius " + mm_text(k.r) +
+                                        " mm is tighter than the offset " + mm_text(d) + " mm; the tool cannot reach into it"});
         if (i + 1 < elements.size() || closed)
             if (auto c = corner_curve(k, elements[(i + 1) % elements.size()].curve, d, s)) raw.push_back({*c, std::nullopt});
     }
@@ -435,15 +424,15 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
     }
     if (!elements.empty() && !closed) cutters.push_back(arc_curve(elements.back().curve.b, d, 0.0, two_pi));
     // Raw pieces and cutters in one grid: indices below raw.size() are raw pieces.
-    std::vector<Box> boxes;
+    std::vector<Rect> boxes;
     for (const RawPiece& r : raw) boxes.push_back(box_of(r.curve));
     for (const Curve& c : cutters) boxes.push_back(box_of(c));
     const BoxGrid curves(boxes);
-    std::vector<Box> element_boxes;
+    std::vector<Rect> element_boxes;
     for (const Element& e : elements) element_boxes.push_back(e.box);
     const BoxGrid element_grid(element_boxes);
 
-    std::vector<Kept> kept;
+    std::vector<KeptPiece> kept;
     // Per input segment: an arc off its circle is two elements, and kept when either is.
     std::vector<bool> segment_kept(profile.segments.size(), false);
     for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -503,7 +492,7 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
                                         ": its offset vanishes, the tool cannot follow it (cut away by its neighbours)"});
     }
 
-    std::vector<Path> paths;
+    std::vector<OffsetPath> paths;
     for (const auto& c : chain(kept)) {
         double length = 0.0;
         for (std::size_t i : c) length += kept[i].curve.length();
@@ -511,7 +500,7 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         // Only a chain that comes round to its start has its end put on it: moving the end of
         // a chain that does not would bend its last arc off its circle.
         const bool comes_round = closed && distance(kept[c.back()].curve.b, kept[c.front()].curve.a) <= chain_gap;
-        Path p = path_of(c, kept, raw, elements, profile.plane, comes_round);
+        OffsetPath p = path_of(c, kept, raw, elements, profile.plane, comes_round);
         // A closed path enclosing nothing is a slit where the tool exactly fits between two
         // sides: the region beyond the distance is empty there.
         const bool slit = comes_round && enclosed_area(p.profile) < chain_gap * p.length;
@@ -521,17 +510,17 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         // What vanished on the way is no news then.
         result.notes.clear();
         result.notes.push_back({OffsetNoteKind::consumed, std::nullopt,
-                                "nothing remains of the profile offset by " + mm(d) + " mm: it is smaller than the tool"});
+                                "nothing remains of the profile offset by " + mm_text(d) + " mm: it is smaller than the tool"});
         return result;
     }
-    const auto longest = std::max_element(paths.begin(), paths.end(), [](const Path& a, const Path& b) { return a.length < b.length; });
+    const auto longest = std::max_element(paths.begin(), paths.end(), [](const OffsetPath& a, const OffsetPath& b) { return a.length < b.length; });
     result.profile = longest->profile;
     result.source = longest->source;
     for (auto it = paths.begin(); it != paths.end(); ++it)
         if (it != longest) result.others.push_back(it->profile);
     if (!result.others.empty())
         result.notes.push_back({OffsetNoteKind::split, std::nullopt,
-                                "the offset by " + mm(d) + " mm falls apart into " + std::to_string(paths.size()) +
+                                "the offset by " + mm_text(d) + " mm falls apart into " + std::to_string(paths.size()) +
                                     " paths: the profile has a neck narrower than the tool"});
     return result;
 }

@@ -1,4 +1,5 @@
 #include "camgen/geometry/profile.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -27,7 +28,6 @@ using BgPoint = bg::model::d2::point_xy<double>;
 using BgRing = bg::model::polygon<BgPoint, false, true>;  // counter-clockwise, closed
 using BgLine = bg::model::linestring<BgPoint>;
 
-double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // The segment as an arc of the arc geometry (in its own (u, v) taken as XY).
 ArcGeometry arc_of(Vec2 from, const ProfileSegment& s) {
@@ -36,7 +36,6 @@ ArcGeometry arc_of(Vec2 from, const ProfileSegment& s) {
 }
 
 // Where segment `index` starts.
-Vec2 start_of(const Profile& p, std::size_t index) { return index == 0 ? p.start : p.segments[index - 1].end; }
 
 // Calls `add` with each point of sample_profile in order, without a vector of them: a profile
 // of a million segments is sampled into the shape that checks it, not twice.
@@ -46,7 +45,7 @@ void for_each_sample(const Profile& profile, double tolerance, Add&& add) {
     for (std::size_t i = 0; i < profile.segments.size(); ++i) {
         const ProfileSegment& s = profile.segments[i];
         if (s.centre) {
-            const ArcGeometry arc = arc_of(start_of(profile, i), s);
+            const ArcGeometry arc = arc_of(segment_start(profile, i), s);
             for (const Vec3& p : linearize_arc(arc, segments_for_tolerance(arc.radius, arc.sweep, tolerance)))
                 add(Vec2{p.x, p.y});
         } else {
@@ -71,13 +70,13 @@ bool is_closed(const Profile& profile) {
 
 double segment_sweep(const Profile& profile, std::size_t index) {
     const ProfileSegment& s = profile.segments.at(index);
-    return s.centre ? arc_of(start_of(profile, index), s).sweep : 0.0;
+    return s.centre ? arc_of(segment_start(profile, index), s).sweep : 0.0;
 }
 
 std::optional<std::size_t> first_short_segment(const Profile& profile, double min_length) {
     for (std::size_t i = 0; i < profile.segments.size(); ++i) {
         const ProfileSegment& s = profile.segments[i];
-        const Vec2 from = start_of(profile, i);
+        const Vec2 from = segment_start(profile, i);
         const double length = s.centre ? arc_length(arc_of(from, s)) : distance(from, s.end);
         if (length < min_length) return i;
     }
@@ -88,7 +87,7 @@ double profile_length(const Profile& profile) {
     double total = 0.0;
     for (std::size_t i = 0; i < profile.segments.size(); ++i) {
         const ProfileSegment& s = profile.segments[i];
-        const Vec2 from = start_of(profile, i);
+        const Vec2 from = segment_start(profile, i);
         total += s.centre ? arc_length(arc_of(from, s)) : distance(from, s.end);
     }
     return total;
@@ -149,7 +148,7 @@ Profile reversed(const Profile& profile) {
     Profile out{profile.plane, profile.segments.empty() ? profile.start : profile.segments.back().end, {}};
     for (std::size_t i = profile.segments.size(); i-- > 0;) {
         const ProfileSegment& s = profile.segments[i];
-        ProfileSegment r{start_of(profile, i), s.centre, s.direction == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw};
+        ProfileSegment r{segment_start(profile, i), s.centre, s.direction == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw};
         out.segments.push_back(r);
     }
     return out;

@@ -11,7 +11,6 @@ namespace camgen {
 
 namespace {
 
-constexpr double mm_per_inch = 25.4;
 
 // The top-level keys of a job.
 constexpr KeySpec job_keys[] = {

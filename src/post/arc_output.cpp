@@ -1,6 +1,7 @@
 // Arc output policy shared by every post: the arc-breaking rules (which arcs become lines or
 // one straight move, how many pieces) and fitting an arc block to its rounded words.
 #include "camgen/post/arc_output.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +11,6 @@
 namespace camgen {
 
 namespace {
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double deg = 180.0 / std::numbers::pi;
 using P2 = PlaneVec;
 // The smallest value step of a format, in the unscaled input unit (0.001 mm for 3 decimals).
 double grid_step(const nc::Format& f) { return std::pow(10.0, -f.spec().decimals) / f.spec().scale; }
@@ -90,7 +89,7 @@ ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double cho
     double max_sweep = std::clamp(settings.max_sweep, 1.0, 360.0);
     // A radius word cannot say "full circle", and near 360 degrees it says "which one?".
     if (settings.format == ArcFormat::radius) max_sweep = std::min(max_sweep, 180.0);
-    int pieces = static_cast<int>(std::ceil(arc.sweep / (max_sweep / deg) - 1e-9));
+    int pieces = static_cast<int>(std::ceil(arc.sweep / (max_sweep / deg_per_rad) - 1e-9));
     return {ArcTreatment::arcs, std::max(pieces, 1), ""};
 }
 
@@ -148,7 +147,7 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
     auto accept = [&](P2 c, double radius, double sweep, P2 end, double score) {
         // A half circle whose centre word rounds off the chord reads wider than 180 degrees
         // (180.029 on kosy: a fuzz finding); the reader allows the same slack as here.
-        const double widest = (std::min(f.max_sweep, 360.0) + 1e-3) / deg + grid_step(f.xyz) / radius;
+        const double widest = (std::min(f.max_sweep, 360.0) + 1e-3) / deg_per_rad + grid_step(f.xyz) / radius;
         if (!full && sweep > widest) return;
         if (score >= best) return;
         best = score;
@@ -210,14 +209,14 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
             const double step = grid_step(f.ijk), d_step = grid_step(f.angle);
             auto candidate = [&](double d, P2 w) {
                 if (f.angle.is_zero(d) || d > 180.0 || f.ijk.is_zero(norm(w))) return;
-                double sweep = d / deg;
+                double sweep = d / deg_per_rad;
                 P2 c = S + w;
                 P2 end = c + rotate(S - c, sign * sweep);
                 double end_error = norm(end - E), m_error = mid_error(c, sweep);
                 if (end_error > tol || m_error > mid_tol) return;
                 accept(c, norm(w), sweep, end, end_error + m_error);
             };
-            const double d0 = f.angle.rounded(piece.sweep * deg);
+            const double d0 = f.angle.rounded(piece.sweep * deg_per_rad);
             if (f.angle.is_zero(d0)) {
                 fit.result = ArcFitResult::degenerate;
                 return fit;
@@ -227,7 +226,7 @@ ArcFit fit_arc_block(const ArcGeometry& piece, const Vec3& control_start, const 
             for (int k = -1; k <= 1; ++k) {
                 double d = f.angle.rounded(d0 + k * d_step);
                 // The centre of the arc from S to E that sweeps exactly D.
-                P2 c_d = mid_chord + left * (sign * chord / (2.0 * std::tan(d / deg / 2.0)));
+                P2 c_d = mid_chord + left * (sign * chord / (2.0 * std::tan(d / deg_per_rad / 2.0)));
                 for (int i = -1; i <= 1; ++i)
                     for (int j = -1; j <= 1; ++j)
                         candidate(d, {f.ijk.rounded(c_d.u - S.u + i * step), f.ijk.rounded(c_d.v - S.v + j * step)});

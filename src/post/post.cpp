@@ -1,4 +1,5 @@
 #include "camgen/post/post.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,6 @@
 namespace camgen {
 
 namespace {
-constexpr double deg = 180.0 / std::numbers::pi;
 
 bool contains(const std::vector<DrillField>& v, DrillField f) {
     return std::find(v.begin(), v.end(), f) != v.end();
@@ -289,7 +289,7 @@ void Post::on_circular(const ArcGeometry& arc, double feed) {
     if (s.format == ArcFormat::nccad_angle) {
         // nccad: G02 D<sweep> I J, no end point: the control computes it. Remember the end.
         nc::Word i("I", ijk_fmt_, true), j("J", ijk_fmt_, true);
-        out_.add(motion).add(angle_fmt_.word("D", arc.sweep * deg))
+        out_.add(motion).add(angle_fmt_.word("D", arc.sweep * deg_per_rad))
             .add(i.format(arc.centre.x - arc.start.x))
             .add(j.format(arc.centre.y - arc.start.y))
             .add(fs)

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "camgen/geometry/vec.hpp"
 #include "camgen/common/error.hpp"
 #include "camgen/post/longhand.hpp"
 
@@ -14,17 +15,7 @@ namespace camgen::reader {
 
 namespace {
 
-constexpr double deg = 180.0 / std::numbers::pi;
-
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
 bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-    return s;
-}
 
 const char* plane_name(Plane p) { return p == Plane::xy ? "XY" : p == Plane::xz ? "XZ" : "YZ"; }
 
@@ -551,11 +542,11 @@ void NcReader::arc(const ArcWords& a) {
         double r = std::hypot(ps.u - pc.u, ps.v - pc.v);
         if (r == 0.0) fail("a D-form arc of radius 0 (I0 J0)");
         double a0 = std::atan2(ps.v - pc.v, ps.u - pc.u);
-        double a1 = a0 + (ccw ? 1.0 : -1.0) * d / deg;
+        double a1 = a0 + (ccw ? 1.0 : -1.0) * d / deg_per_rad;
         pe = d >= 360.0 ? ps : PlanePoint{pc.u + r * std::cos(a1), pc.v + r * std::sin(a1), ps.w};
         // The control turns the rounded start about the rounded centre by the rounded angle:
         // the end may be off by twice the centre's rounding plus the angle's, beyond the start's.
-        xy_uncertainty_ += 2.0 * std::numbers::sqrt2 * res.offset + r * res.angle / deg;
+        xy_uncertainty_ += 2.0 * std::numbers::sqrt2 * res.offset + r * res.angle / deg_per_rad;
     } else if (a.r) {
         if (*cu || *cv) fail("an arc with both R and a centre (I/J/K)");
         double du = pe.u - ps.u, dv = pe.v - ps.v, chord = std::hypot(du, dv);
@@ -593,11 +584,11 @@ void NcReader::arc(const ArcWords& a) {
     end = from_plane(pe, a.plane);
     Arc ev{end, from_plane(pc, a.plane), a.direction, a.plane, *feed_, a.turns};
     ArcGeometry geo = resolve_arc(start, ev);
-    double sweep = (geo.sweep - 2.0 * std::numbers::pi * a.turns) * deg;
+    double sweep = (geo.sweep - 2.0 * std::numbers::pi * a.turns) * deg_per_rad;
     // The words are rounded: a piece the post cut at exactly the limit may read up to about
     // two half-steps of the grid over the radius wider (a full circle in two halves of a
     // 10.5 mm radius read as 180.005 degrees on kosy: a fuzz finding).
-    const double rounding = geo.radius > 0 ? 2 * resolution().position / geo.radius * deg : 0.0;
+    const double rounding = geo.radius > 0 ? 2 * resolution().position / geo.radius * deg_per_rad : 0.0;
     if (sweep > s.max_sweep + 1e-3 + rounding)
         fail(fmt::format("an arc of {:.3f} degrees in one block: machine {} takes at most {} degrees per block", sweep,
                          machine_.name, s.max_sweep));

@@ -22,6 +22,15 @@
 
 namespace camgen::reader {
 
+inline bool is_blank(char c) { return c == ' ' || c == '\t'; }
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+// `s` without the blanks (spaces, tabs) at either end.
+inline std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
 // One word of a block: a letter (or a named address such as Sinumerik's CR=) and the number
 // after it, as written.
 struct Word {

@@ -14,7 +14,6 @@ namespace camgen {
 
 namespace {
 
-constexpr double mm_per_inch = 25.4;
 // The letters of LinuxCNC's tool table: tool, pocket, the offsets of each axis, diameter, and a
 // lathe tool's front and back angles and orientation.
 constexpr std::string_view table_letters = "TPXYZABCUVWDIJQ";

@@ -14,7 +14,7 @@ sweep); start-block words (each one taken out, a mode word added). For each vari
     cannot post (a job refused on it, exit 1, naming the sample, nothing written) is counted,
     not failed.
 
-Variants and variant x sample pairs are sampled: --variants of each machine's ~250 (default 50,
+Variants and variant x sample pairs are sampled: --variants of each machine's ~250 (default 50, or CAMGEN_VARIANTS,
 0: all) are read, and each accepted one posts --samples of its machine's samples (default 1),
 drawn with the seed. KNOWN_GAPS lists the variants left out, and why. The seed is printed;
 --seed (or CAMGEN_VARIANT_SEED) repeats a run, --samples 0 posts every sample of every variant.
@@ -154,7 +154,7 @@ def main():
     ap.add_argument("camgen")
     ap.add_argument("source")
     ap.add_argument("--seed", type=int, default=int(os.environ.get("CAMGEN_VARIANT_SEED", "24")))
-    ap.add_argument("--variants", type=int, default=50,
+    ap.add_argument("--variants", type=int, default=int(os.environ.get("CAMGEN_VARIANTS", "50")),
                     help="variants per machine, drawn with the seed from the ~250 of each (0: all; 50 keeps ctest "
                          "near a minute on 2 cores)")
     ap.add_argument("--samples", type=int, default=1, help="samples posted per accepted variant (0: all)")

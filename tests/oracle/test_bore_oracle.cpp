@@ -18,6 +18,9 @@
 #include "camgen/operations/registry.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_bore_oracle {
+
 using namespace camgen;
 using OStep = camgen::oracle::Step;
 
@@ -104,3 +107,5 @@ TEST_CASE("bore milling: conventional with a counter-clockwise spindle, relative
     // 5 helix turns (4.2 / 1 rounded up), the bottom circle and the finishing circle per hole.
     CHECK(check_job(job) == 4 * 7);
 }
+
+}  // namespace test_bore_oracle

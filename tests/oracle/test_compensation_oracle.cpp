@@ -17,8 +17,12 @@
 #include "camgen_motion.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_compensation_oracle {
+
 using namespace camgen;
 using namespace camgen::oracle;
+using camgen::oracle::Step;  // not camgen::Step (analysis/trace.hpp), which a unity build may see too
 
 namespace {
 
@@ -264,3 +268,5 @@ TEST_CASE("compensation: camgen's read-back of a G41/G42 program traces what rs2
     CHECK(accepted > count / 4);
     CHECK(refused > 0);
 }
+
+}  // namespace test_compensation_oracle

@@ -15,8 +15,12 @@
 #include "camgen_motion.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_contour_oracle {
+
 using namespace camgen;
 using namespace camgen::oracle;
+using camgen::oracle::Step;  // not camgen::Step (analysis/trace.hpp), which a unity build may see too
 
 namespace {
 
@@ -126,3 +130,5 @@ TEST_CASE("contour: rs274's own compensation of camgen's G41/G42 program cuts ca
     }
     CHECK(samples >= 1);
 }
+
+}  // namespace test_contour_oracle

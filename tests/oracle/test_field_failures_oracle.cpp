@@ -8,6 +8,9 @@
 #include "../unit/support.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_field_failures_oracle {
+
 using namespace camgen;
 
 TEST_CASE("field failure: G98 treated as G99 (rs274)") {
@@ -41,3 +44,5 @@ TEST_CASE("field failure: G98 treated as G99 (rs274)") {
         }
     }
 }
+
+}  // namespace test_field_failures_oracle

@@ -12,6 +12,9 @@
 #include "../unit/support.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_frame_oracle {
+
 using namespace camgen;
 
 namespace {
@@ -74,3 +77,5 @@ TEST_CASE("a linuxcnc machine with the safe retract G53 G0 Z0 runs every sample 
         CHECK_NOTHROW((void)oracle::run_rs274(*rs274, program, test::tool_diameters(job)));
     }
 }
+
+}  // namespace test_frame_oracle

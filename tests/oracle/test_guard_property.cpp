@@ -20,8 +20,12 @@
 #include "../unit/support.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_guard_property {
+
 using namespace camgen;
 using namespace camgen::oracle;
+using camgen::oracle::Step;  // not camgen::Step (analysis/trace.hpp), which a unity build may see too
 
 namespace {
 
@@ -308,3 +312,5 @@ TEST_CASE("guard property: random contour jobs are refused or cut clear of the p
     CHECK(control > 0);
     CHECK(by_rs274 > 0);
 }
+
+}  // namespace test_guard_property

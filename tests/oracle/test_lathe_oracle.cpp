@@ -18,6 +18,9 @@
 #include "camgen/operations/registry.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_lathe_oracle {
+
 using namespace camgen;
 using OStep = camgen::oracle::Step;
 
@@ -364,3 +367,5 @@ TEST_CASE("linuxcnc-lathe (issue 24): a second profile's approach feeds through 
                               20))
               .find("/operations/1/start: the approach feeds along Z at X 34.000 mm") != std::string::npos);
 }
+
+}  // namespace test_lathe_oracle

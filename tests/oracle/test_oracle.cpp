@@ -24,6 +24,9 @@
 #include "camgen_motion.hpp"
 #include "rs274.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_oracle {
+
 using namespace camgen;
 using OStep = camgen::oracle::Step;
 
@@ -349,3 +352,5 @@ TEST_CASE("field failure: a canned-cycle word the control requires left out (G86
     }
     CHECK(compared == 2 * (1 + 2 + 2 + 2 + 1 + 3 + 2));
 }
+
+}  // namespace test_oracle

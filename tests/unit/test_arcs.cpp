@@ -12,6 +12,9 @@
 #include "camgen/post/arc_output.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_arcs {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -834,3 +837,5 @@ TEST_CASE("a half circle whose centre word rounds off the chord is refitted, not
         CHECK_MESSAGE(verify.code == 0, verify.err);
     }
 }
+
+}  // namespace test_arcs

@@ -16,6 +16,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_backplot_html {
+
 using namespace camgen;
 
 namespace {
@@ -246,3 +249,5 @@ TEST_CASE("html plot: above the hole limit further holes are plain circles, one 
     CHECK(plain.page.find(">1</tspan>") != std::string::npos);
     CHECK(plain.page.find(">2</tspan>") != std::string::npos);
 }
+
+}  // namespace test_backplot_html

@@ -14,6 +14,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_bore_mill {
+
 namespace fs = std::filesystem;
 using namespace camgen;
 
@@ -598,3 +601,5 @@ TEST_CASE("verify still refuses a program that differs from a bore written as on
         }
     }
 }
+
+}  // namespace test_bore_mill

@@ -8,6 +8,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_capabilities {
+
 using namespace camgen;
 using test::post_job;
 using test::Run;
@@ -117,3 +120,4 @@ TEST_CASE("--stats and verify count the holes written canned and longhand") {
           std::string::npos);
 }
 
+}  // namespace test_capabilities

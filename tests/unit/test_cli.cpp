@@ -8,6 +8,9 @@
 #include "camgen/cli/cli.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_cli {
+
 namespace fs = std::filesystem;
 using namespace camgen;
 using test::Run;
@@ -268,3 +271,5 @@ TEST_CASE("a machine file whose units are not among its acceptedUnits is refused
     CHECK(r.err.find("/units") != std::string::npos);
     CHECK(r.err.find("acceptedUnits") != std::string::npos);
 }
+
+}  // namespace test_cli

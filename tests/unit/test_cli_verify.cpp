@@ -12,6 +12,9 @@
 #include "camgen/analysis/stats.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_cli_verify {
+
 namespace fs = std::filesystem;
 using namespace camgen;
 using test::Run;
@@ -244,3 +247,5 @@ TEST_CASE("the backplots committed under samples/ are up to date") {
     }
     CHECK(plots >= 5);
 }
+
+}  // namespace test_cli_verify

@@ -14,6 +14,9 @@
 #include "camgen/geometry/offset.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_contour {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -449,3 +452,5 @@ TEST_CASE("contour: the finishing step finishes the wall in several depths") {
     CHECK_THROWS_WITH_AS(read_job(rectangle_job(R"("finishing": {"stepDown": 0})"), "r.json"),
                          doctest::Contains("/operations/0/finishing/stepDown: stepDown must be > 0"), InputError);
 }
+
+}  // namespace test_contour

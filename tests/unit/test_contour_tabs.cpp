@@ -14,6 +14,9 @@
 #include "camgen/geometry/offset.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_contour_tabs {
+
 using namespace camgen;
 
 namespace {
@@ -368,3 +371,5 @@ TEST_CASE("tabs: refusals name the JSON path: a tab off its run, over the start,
                               "t.json"));
     }
 }
+
+}  // namespace test_contour_tabs

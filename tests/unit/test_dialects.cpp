@@ -11,6 +11,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_dialects {
+
 using namespace camgen;
 using test::post_events;
 
@@ -73,3 +76,5 @@ TEST_CASE("Sinumerik writes CR= for the radius and states the end point even whe
                                           Arc{{0, 10, 5}, {0, 5, 5}, ArcDirection::ccw, Plane::xy, 300, 0}});
     CHECK(t.find("G17 G3 X0.000 Y10.000 CR=5.000 F300\n") != std::string::npos);
 }
+
+}  // namespace test_dialects

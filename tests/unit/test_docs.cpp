@@ -13,6 +13,9 @@
 #include "camgen/vocabulary/vocabulary.hpp"
 #include "camgen/operations/registry.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_docs {
+
 using namespace camgen;
 
 namespace {
@@ -94,3 +97,5 @@ TEST_CASE("docs: the contour, path and bore-mill key tables are the operations' 
     CHECK(bore.find("| `direction` | `\"climb\"`, `\"conventional\"` | `\"climb\"` |") != std::string::npos);
     CHECK_FALSE(keys_markdown("no such object"));
 }
+
+}  // namespace test_docs

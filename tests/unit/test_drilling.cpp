@@ -13,6 +13,9 @@
 #include "camgen/post/longhand.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_drilling {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -356,3 +359,5 @@ TEST_CASE("README's cycle table equals the machines' drilling tables and --descr
         }
     }
 }
+
+}  // namespace test_drilling

@@ -19,7 +19,7 @@
 
 namespace camgen::test {
 
-namespace {
+namespace test_error_messages {  // named: a unity build compiles several test files as one
 
 using Ordered = nlohmann::ordered_json;
 
@@ -106,7 +106,9 @@ std::string outcome(const Case& c, const std::string& machine) {
     return std::to_string(r.code) + " " + flat;
 }
 
-}  // namespace
+}  // namespace test_error_messages
+
+using namespace test_error_messages;
 
 TEST_CASE("error messages of broken samples stay exactly as they were") {
     // The samples, and jobs in tests/errors made of what the samples lack: contours and paths

@@ -32,6 +32,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_field_failures {
+
 using namespace camgen;
 using namespace camgen::test;
 namespace fs = std::filesystem;
@@ -725,3 +728,5 @@ TEST_CASE("field failure: output renamed over a FIFO or device used for DNC") {
     });
     CHECK(ran == all_machines);
 }
+
+}  // namespace test_field_failures

@@ -8,6 +8,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_flute_length {
+
 using namespace camgen;
 
 namespace {
@@ -106,3 +109,5 @@ TEST_CASE("fluteLength: a turn-profile says in a note that it does not check it"
     for (const Event& e : expand_job(read_job(replaced(job, R"(, "fluteLength": 4)", ""), "f.json")))
         if (const auto* s = std::get_if<OperationStart>(&e)) CHECK(s->notes.empty());
 }
+
+}  // namespace test_flute_length

@@ -12,6 +12,9 @@
 #include "camgen/nc/block_writer.hpp"
 #include "camgen/nc/format.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_format {
+
 using camgen::nc::Format;
 using camgen::nc::FormatSpec;
 using camgen::nc::Word;
@@ -326,3 +329,5 @@ TEST_CASE("property: every field of a format decorates the same rounded number")
     // Nearly every case is in its range: the comparison is not vacuous.
     CHECK(written_backwards > 40000);
 }
+
+}  // namespace test_format

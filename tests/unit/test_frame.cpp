@@ -7,6 +7,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_frame {
+
 using namespace camgen;
 
 namespace {
@@ -137,3 +140,5 @@ TEST_CASE("a machine's safe retract G53 G0 Z0: first where the height is unknown
     }
     CHECK(bad.find("G53 only as G53 G0 Z0") != std::string::npos);
 }
+
+}  // namespace test_frame

@@ -9,7 +9,7 @@
 #include "tests/unit/support.hpp"
 
 namespace camgen {
-namespace {
+namespace test_install {  // named: a unity build compiles several test files as one
 
 TEST_CASE("install: from the build folder, the built-in machines are the compiled-in copies") {
     // camgen_tests has no ../share/camgen/machines beside it.
@@ -28,5 +28,5 @@ TEST_CASE("install: from the build folder, the built-in machines are the compile
     CHECK(load_machine("fanuc").source == "machines/fanuc.json");
 }
 
-}  // namespace
+}  // namespace test_install
 }  // namespace camgen

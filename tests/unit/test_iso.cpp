@@ -4,6 +4,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_iso {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -109,3 +112,5 @@ TEST_CASE("a spindle speed above the machine's maxRpm is an error naming the ope
         }
     }
 }
+
+}  // namespace test_iso

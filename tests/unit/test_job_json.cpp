@@ -12,6 +12,9 @@
 #include "camgen/operations/registry.hpp"
 #include "camgen/operations/registry.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_job_json {
+
 using namespace camgen;
 
 namespace {
@@ -921,3 +924,5 @@ TEST_CASE("contour: errors of 3D elements name their JSON path") {
     check_error(contour_job(R"(      "z": -1, "feed": 400, "tolerance": 0.00001, "start": [0, 0], "path": [{"line": [1, 0]}])"),
                 "/operations/0/tolerance", 10, "tolerance must be at least 0.0001 mm");
 }
+
+}  // namespace test_job_json

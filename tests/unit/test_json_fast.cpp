@@ -11,6 +11,9 @@
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_json_fast {
+
 namespace cj = camgen::json;
 namespace fs = std::filesystem;
 
@@ -240,3 +243,5 @@ TEST_CASE("the fast JSON reader leaves \\u escapes, byte-order marks, duplicate 
     CHECK(same_reading("{\"a\": \"\xed\xa0\x80\"}") == false);
     CHECK(same_reading("{\"a\": \"\x01\"}") == false);
 }
+
+}  // namespace test_json_fast

@@ -6,6 +6,9 @@
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_json_util {
+
 using camgen::InputError;
 namespace cj = camgen::json;
 
@@ -370,3 +373,5 @@ TEST_CASE("parse_document finds a duplicate key inside a packed element, with it
     CHECK(e.line() == 2);
     CHECK(std::string(e.what()) == "in.json:2: /path/1/line: duplicate key");
 }
+
+}  // namespace test_json_util

@@ -14,6 +14,9 @@
 #include "lathe_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_lathe_machine {
+
 using namespace camgen;
 using camgen::test::Run;
 using camgen::test::run;
@@ -163,3 +166,5 @@ TEST_CASE("lathe: read back, a feed along Z turns the work; only a drill on the 
         CHECK(length(Movement::ramp) == 0.0);
     }
 }
+
+}  // namespace test_lathe_machine

@@ -10,6 +10,9 @@
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_lathe_posts {
+
 using namespace camgen;
 
 namespace {
@@ -170,3 +173,5 @@ TEST_CASE("fanuc-lathe with G83 X0 Z R Q F instead of G74 (the machine-file alte
     const Trace actual = trace_program(read_program(text, m, "t.nc"), m);
     CHECK_FALSE(compare_traces(expected, actual, compare_tolerance(m, read_resolution(m))));
 }
+
+}  // namespace test_lathe_posts

@@ -12,6 +12,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_machine_checks {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -184,3 +187,5 @@ TEST_CASE("found by the variants of tests/machines: coordinate scales, axis deci
     check_refused(post_with("width-inch", "{\"extends\": \"linuxcnc\",\n \"formats\": {\"xyz\": {\"width\": 3}}}", "plate"), 2,
                   "/formats/xyz/width", "pads the number with spaces");
 }
+
+}  // namespace test_machine_checks

@@ -8,6 +8,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_machine_file {
+
 using namespace camgen;
 
 namespace {
@@ -157,3 +160,5 @@ TEST_CASE("machine file: text written into programs has no control bytes, line b
     check_refused("fanuc", R"("linebreak": "\n")", R"("linebreak": "\r")", "/globals/linebreak", "");
     check_accepted("fanuc", R"("endCode": "M30")", R"("endCode": "M2")");
 }
+
+}  // namespace test_machine_file

@@ -13,6 +13,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_machine_files {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -229,3 +232,5 @@ TEST_CASE("--describe-machine M --json prints the complete machine file, which r
     CHECK(nlohmann::json::parse(builtin.out) == nlohmann::json::parse(read_file(std::string(CAMGEN_SOURCE_DIR) + "/machines/fanuc.json")));
     CHECK(run({"--json"}).code == exit_usage);
 }
+
+}  // namespace test_machine_files

@@ -10,7 +10,7 @@
 #include "tests/unit/support.hpp"
 
 namespace camgen {
-namespace {
+namespace test_man {  // named: a unity build compiles several test files as one
 
 using test::lines_of;
 using test::run;
@@ -98,5 +98,5 @@ TEST_CASE("man: option text that roff would read as requests or escapes is writt
     }
 }
 
-}  // namespace
+}  // namespace test_man
 }  // namespace camgen

@@ -7,6 +7,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_nccad {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -139,3 +142,5 @@ TEST_CASE("wabeco snippet has no program frame") {
     CHECK(p.text.find("G77") == std::string::npos);
     CHECK(p.text.find("G99") == std::string::npos);
 }
+
+}  // namespace test_nccad

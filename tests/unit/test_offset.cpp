@@ -13,6 +13,9 @@
 
 #include "camgen/geometry/offset.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_offset {
+
 using namespace camgen;
 
 namespace {
@@ -631,3 +634,5 @@ TEST_CASE("offset: rounded rectangles and slots with joints nudged off tangent b
         }
     CHECK(arcs_off > 40);  // the family has what it is for: arcs whose ends are off their circles
 }
+
+}  // namespace test_offset

@@ -20,6 +20,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_output {
+
 using namespace camgen;
 namespace fs = std::filesystem;
 
@@ -264,3 +267,5 @@ TEST_CASE("a program posted straight into its temporary file: a refusal after te
     CHECK(program == test::run({(dir / "good.json").string(), "--machine", "wabeco"}).out);  // held whole, then written
     CHECK(temporaries_in(dir) == 0);
 }
+
+}  // namespace test_output

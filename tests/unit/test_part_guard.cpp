@@ -16,6 +16,9 @@
 #include "camgen/geometry/offset.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_part_guard {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -293,3 +296,5 @@ TEST_CASE("guard: an offset's corner arc whose ends are a hair apart is not a fu
     const PathPiece full{{5, 7}, {{5, 7}, Vec2{5, 4}, ArcDirection::ccw}};
     CHECK(c.nearest(full).distance == doctest::Approx(1));
 }
+
+}  // namespace test_part_guard

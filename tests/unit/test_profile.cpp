@@ -7,6 +7,9 @@
 
 #include "camgen/geometry/profile.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_profile {
+
 using namespace camgen;
 
 namespace {
@@ -157,3 +160,5 @@ TEST_CASE("profile: rigid transforms keep arcs as arcs; a mirror turns their dir
         CHECK(b_pts[i].y == doctest::Approx(a_pts[i].y));
     }
 }
+
+}  // namespace test_profile

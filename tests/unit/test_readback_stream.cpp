@@ -17,6 +17,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_readback_stream {
+
 using namespace camgen;
 
 namespace {
@@ -202,3 +205,5 @@ TEST_CASE("stream verify: a program from standard input is read twice for --job 
     CHECK(f.substr(f.find("<g stroke")) == s.substr(s.find("<g stroke")));
     std::filesystem::remove_all(dir);
 }
+
+}  // namespace test_readback_stream

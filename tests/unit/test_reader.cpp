@@ -13,6 +13,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_reader {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -426,3 +429,5 @@ TEST_CASE("every canned cycle of fanuc reads back as the motion of the job's lon
     // A dwell of 0.6 s where the job asks 0.5 s is caught.
     CHECK(round_trip(job, replace_once(program, "P500", "P600"), "fanuc").find("dwell") != std::string::npos);
 }
+
+}  // namespace test_reader

@@ -17,6 +17,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_reader_dialects {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -363,3 +366,5 @@ TEST_CASE("inch programs: cycle parameters in inches; Sinumerik FRF stays a fact
     CHECK(tnc.find("Q206=+3.94 ;") != std::string::npos);
     CHECK(tnc.find("Q208=+99999 ;") != std::string::npos);
 }
+
+}  // namespace test_reader_dialects

@@ -18,6 +18,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_reader_roundtrip {
+
 namespace fs = std::filesystem;
 using namespace camgen;
 
@@ -104,3 +107,5 @@ TEST_CASE("the reader tells an XY-first approach from a Z-first one") {
     CHECK(first_approach("G0 X1 Y2 Z10\nM2\n") == Approach::xy_first);
     CHECK(first_approach("T1 M6\nG0 G43 Z10 H1\nX1 Y2\nM2\n") == Approach::z_first);
 }
+
+}  // namespace test_reader_roundtrip

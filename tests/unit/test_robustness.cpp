@@ -13,6 +13,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_robustness {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -192,3 +195,5 @@ TEST_CASE("readers: huge codes and numbers are errors naming the line, never und
         CHECK_THROWS_AS(read_program(c.program, m, "p"), InputError);
     }
 }
+
+}  // namespace test_robustness

@@ -25,6 +25,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_roundtrip_bounds {
+
 using namespace camgen;
 
 namespace {
@@ -233,3 +236,5 @@ TEST_CASE("sinumerik CYCLE83: the first depth is taken from the written planes, 
         CHECK_MESSAGE(verify.code == 0, verify.err);
     }
 }
+
+}  // namespace test_roundtrip_bounds

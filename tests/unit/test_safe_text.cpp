@@ -7,6 +7,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_safe_text {
+
 using namespace camgen;
 
 TEST_CASE("safe text: comments are cut at the machine's commentMaxLength, else at the default limit") {
@@ -18,3 +21,5 @@ TEST_CASE("safe text: comments are cut at the machine's commentMaxLength, else a
     CHECK(text.find("(" + std::string(nc::default_comment_limit, 'x') + ")") != std::string::npos);
     CHECK(text.find(std::string(nc::default_comment_limit + 1, 'x')) == std::string::npos);
 }
+
+}  // namespace test_safe_text

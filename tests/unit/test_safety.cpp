@@ -7,6 +7,9 @@
 #include "camgen/post/safety.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_safety {
+
 using namespace camgen;
 using test::post_job;
 using test::Run;
@@ -284,3 +287,5 @@ TEST_CASE("safety: each hole of a cycle is checked, though holes of one shape ar
     back.push_back(Rapid{{2502.5, 0, -9}});
     CHECK_THROWS_WITH_AS(check_safety(back, limits), doctest::Contains("a rapid down to Z -9.000 at X2502.500"), InputError);
 }
+
+}  // namespace test_safety

@@ -10,6 +10,9 @@
 #include "camgen/operations/registry.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_schema {
+
 using namespace camgen;
 using test::Run;
 using test::run;
@@ -105,3 +108,5 @@ TEST_CASE("a job may name its schema in \"$schema\"; camgen ignores it") {
     CHECK_THROWS_WITH_AS(read_job(bad, "test.json"), "test.json:2: /$schema: expected a string, got a number (42)",
                          InputError);
 }
+
+}  // namespace test_schema

@@ -9,6 +9,9 @@
 #include "reader_support.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_sense {
+
 using namespace camgen;
 
 namespace {
@@ -156,3 +159,5 @@ TEST_CASE("sense: pecks are canned only when the control, from the rounded plane
     const std::string even = job_with(R"("tool": 1, "cycle": "chip-break", "endDepth": 3, "firstDepth": 2.5, "plungingFeedrate": 90)");
     CHECK(has(test::post_job(even, "fanuc").text, "G73"));
 }
+
+}  // namespace test_sense

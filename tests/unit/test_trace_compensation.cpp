@@ -20,6 +20,9 @@
 #include "camgen/reader/tool_table.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_trace_compensation {
+
 namespace fs = std::filesystem;
 using namespace camgen;
 using test::run;
@@ -346,3 +349,5 @@ TEST_CASE("tool table: LinuxCNC's format, diameters by tool number in mm; a bad 
     CHECK(missing.code == 3);
     CHECK(run({"verify", program, "--machine", "linuxcnc", "--tool-table", bad, "--tool-table-units", "cm"}).code == 2);
 }
+
+}  // namespace test_trace_compensation

@@ -7,6 +7,9 @@
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_turn_drill {
+
 using namespace camgen;
 using test::z_moves;
 
@@ -238,3 +241,5 @@ TEST_CASE("a per-revolution feed at a spindle speed S rounds reads back within f
         CHECK_MESSAGE(verify.code == 0, verify.err);
     }
 }
+
+}  // namespace test_turn_drill

@@ -7,6 +7,9 @@
 #include "lathe_support.hpp"
 #include "reader_support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_turn_profile {
+
 using namespace camgen;
 
 namespace {
@@ -240,3 +243,5 @@ TEST_CASE("turn-profile: an arc under minRadius is one straight move on every la
         }
     }
 }
+
+}  // namespace test_turn_profile

@@ -8,6 +8,10 @@
 
 namespace camgen {
 
+// How far an arc's end may lie off the circle through its start (the radii differ by at most
+// this), mm: the tolerance of every arc a job gives.
+inline constexpr double arc_radius_tolerance = 0.001;
+
 // The coordinates of a point in an arc plane: (u, v) the in-plane axes, w the normal axis.
 // XY: (x, y, z); XZ: (z, x, y) so that cw/ccw follow G18's convention seen from +Y;
 // YZ: (y, z, x).

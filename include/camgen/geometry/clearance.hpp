@@ -20,15 +20,15 @@ struct PathPiece {
 };
 
 // The closest approach of two pieces: the distance and the point on the first piece where it is.
-struct Approach {
+struct ClosestApproach {
     double distance = 0.0;
     Vec2 at;
 };
 
 // The shortest distance between a point and a piece.
-Approach point_piece_distance(Vec2 p, const PathPiece& piece);
+ClosestApproach point_piece_distance(Vec2 p, const PathPiece& piece);
 // The shortest distance between two pieces (0 where they touch or cross); `at` lies on `a`.
-Approach piece_distance(const PathPiece& a, const PathPiece& b);
+ClosestApproach piece_distance(const PathPiece& a, const PathPiece& b);
 
 class ProfileClearance {
 public:
@@ -36,8 +36,8 @@ public:
     ProfileClearance(const Profile& profile, double reach);
 
     // The closest approach of a move (a point: a segment with no length) to the profile.
-    Approach nearest(const PathPiece& move) const;
-    Approach nearest(Vec2 point) const;
+    ClosestApproach nearest(const PathPiece& move) const;
+    ClosestApproach nearest(Vec2 point) const;
     // `p` inside the closed profile (on it counts as neither: call with a point off it).
     bool inside(Vec2 p) const;
 

@@ -3,6 +3,9 @@
 
 namespace camgen {
 
+// Millimetres in an inch (exact).
+inline constexpr double mm_per_inch = 25.4;
+
 // A point or vector in the XY plane, mm.
 struct Vec2 {
     double x = 0.0;

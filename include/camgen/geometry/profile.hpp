@@ -46,6 +46,10 @@ std::optional<std::size_t> first_short_segment(const Profile& profile, double mi
 
 // The sweep of segment `index` in radians (0 for a line; a full circle is 2 pi).
 double segment_sweep(const Profile& profile, std::size_t index);
+// Where segment `index` starts: the profile's start, or the end of the segment before it.
+inline Vec2 segment_start(const Profile& profile, std::size_t index) {
+    return index == 0 ? profile.start : profile.segments[index - 1].end;
+}
 
 // Length along the profile, mm.
 double profile_length(const Profile& profile);
