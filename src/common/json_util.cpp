@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "src/common/fast_json_reader.hpp"
 
 namespace camgen::json {
@@ -370,9 +371,14 @@ enum NumberKind : std::uint8_t { float_number, integer_number, unsigned_number }
 // - packs the arrays PackedArray describes as they are read, without a value per number: an
 //   element that does not fit unpacks the array (its elements so far and the one begun) into
 //   the document, which then reads on as usual.
+// A packed array's numbers are reserved at once for as many elements as there are `[` left in
+// the text (each element has one, and every `[` outside a string starts an array): exact for
+// a job whose one large array is its last, and never short, so that a million holes are not
+// copied from one doubled buffer into the next.
 class DocumentBuilder {
 public:
-    DocumentBuilder(Document& doc, bool pack) : doc_(doc), pack_(pack) {}
+    DocumentBuilder(Document& doc, bool pack, std::string_view text)
+        : doc_(doc), pack_(pack), opens_left_(pack ? static_cast<std::size_t>(std::count(text.begin(), text.end(), '[')) : 0) {}
     bool duplicate() const { return duplicate_; }
 
     bool null() { return plain([&] { add(nullptr); }); }
@@ -423,6 +429,7 @@ public:
         return true;
     }
     bool start_array(std::size_t) {
+        if (opens_left_ > 0) --opens_left_;
         if ((stage_ == Stage::element && packed_.form == PackedArray::Form::points) || stage_ == Stage::line) {
             stage_ = Stage::numbers;
             count_ = 0;
@@ -435,6 +442,8 @@ public:
             stage_ = Stage::element;
             packed_ = PackedArray{};
             packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
+            reserve_large(packed_.xyz, 2 * opens_left_);
+            reserve_large(packed_.kinds, opens_left_);
         }
         return true;
     }
@@ -451,9 +460,13 @@ public:
         if (stage_ == Stage::element) {
             stage_ = Stage::none;
             if (packed_.size() > 0) {
-                // Held until the job is read: no room to grow into (up to half of it).
-                packed_.xyz.shrink_to_fit();
-                packed_.kinds.shrink_to_fit();
+                // Held until the job is read: the room reserved for the arrays after this one
+                // (the `[` left were theirs) goes, a copy of this one's numbers. The last large
+                // array of a job keeps its buffer, which it fills.
+                if (packed_.kinds.capacity() - packed_.size() > packed_.size() / 4) {
+                    packed_.xyz.shrink_to_fit();
+                    packed_.kinds.shrink_to_fit();
+                }
                 const auto index = static_cast<std::uint32_t>(doc_.packed.size());
                 *stack_.back() = Json::binary({static_cast<std::uint8_t>(index), static_cast<std::uint8_t>(index >> 8),
                                                static_cast<std::uint8_t>(index >> 16), static_cast<std::uint8_t>(index >> 24)},
@@ -552,6 +565,7 @@ private:
     bool duplicate_ = false;
     Next next_packs_ = Next::none;
     Stage stage_ = Stage::none;
+    std::size_t opens_left_;  // the `[` in the text after the last array begun
     PackedArray packed_;
     double numbers_[3] = {};
     NumberKind kinds_[3] = {};
@@ -562,7 +576,7 @@ private:
 // nlohmann's reading decides, and names the error).
 std::optional<Document> read_fast(std::string_view text, int max_nesting, bool pack) {
     Document doc;
-    DocumentBuilder builder(doc, pack);
+    DocumentBuilder builder(doc, pack, text);
     if (!detail::FastJsonReader(text, builder, max_nesting).run() || builder.duplicate()) return std::nullopt;
     return doc;
 }
@@ -575,7 +589,7 @@ void parse_into(Document& doc, std::string_view text, const std::string& source_
                                          column, max_nesting),
                          line, source_name);
     }
-    DocumentBuilder builder(doc, pack);
+    DocumentBuilder builder(doc, pack, text);
     try {
         Json::sax_parse(text, &builder, Json::input_format_t::json, true, false);
     } catch (const nlohmann::json::parse_error& e) {
@@ -666,7 +680,7 @@ void PackedArray::add(const double* numbers, const std::uint8_t* number_kinds, i
     if (count == 3 && stride == 2) {
         // The first element with a z: every element gets a place for one.
         std::vector<double> wide;
-        wide.reserve(xyz.capacity() / 2 * 3);
+        reserve_large(wide, xyz.capacity() / 2 * 3);
         for (std::size_t i = 0; i < size(); ++i)
             wide.insert(wide.end(), {xyz[2 * i], xyz[2 * i + 1], std::numeric_limits<double>::quiet_NaN()});
         xyz = std::move(wide);
