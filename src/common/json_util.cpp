@@ -359,6 +359,13 @@ namespace {
 
 using Json = nlohmann::json;
 
+// The `[` in `text` (a loop the compiler turns into vector instructions: 2 ms for 16.7 MB).
+std::size_t opens_in(std::string_view text) {
+    std::size_t n = 0;
+    for (const char c : text) n += c == '[' ? 1 : 0;
+    return n;
+}
+
 // Placeholder of a packed array in the document: a binary value (which JSON text never
 // makes) of this subtype, holding the array's index.
 constexpr std::uint8_t packed_subtype = 0x63;
@@ -377,8 +384,7 @@ enum NumberKind : std::uint8_t { float_number, integer_number, unsigned_number }
 // copied from one doubled buffer into the next.
 class DocumentBuilder {
 public:
-    DocumentBuilder(Document& doc, bool pack, std::string_view text)
-        : doc_(doc), pack_(pack), opens_left_(pack ? static_cast<std::size_t>(std::count(text.begin(), text.end(), '[')) : 0) {}
+    DocumentBuilder(Document& doc, bool pack, std::string_view text) : doc_(doc), pack_(pack), opens_left_(opens_in(text)) {}
     bool duplicate() const { return duplicate_; }
 
     bool null() { return plain([&] { add(nullptr); }); }
@@ -429,7 +435,7 @@ public:
         return true;
     }
     bool start_array(std::size_t) {
-        if (opens_left_ > 0) --opens_left_;
+        --opens_left_;  // every array starts at a `[` of the text, which counted them all
         if ((stage_ == Stage::element && packed_.form == PackedArray::Form::points) || stage_ == Stage::line) {
             stage_ = Stage::numbers;
             count_ = 0;
@@ -438,13 +444,7 @@ public:
         unpack();
         const Next next = !stack_.empty() && stack_.back()->is_object() ? next_packs_ : Next::none;
         open(Json::value_t::array);
-        if (next != Next::none) {
-            stage_ = Stage::element;
-            packed_ = PackedArray{};
-            packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
-            reserve_large(packed_.xyz, 2 * opens_left_);
-            reserve_large(packed_.kinds, opens_left_);
-        }
+        if (next != Next::none) begin_packed(next);
         return true;
     }
     bool end_array() {
@@ -492,6 +492,15 @@ private:
     // element's numbers (before the object closes).
     enum class Stage { none, element, object, line, numbers, closing };
     enum class Next { none, points, lines };
+
+    // A packed array begins, with room for as many elements as `[` are left.
+    void begin_packed(Next next) {
+        stage_ = Stage::element;
+        packed_ = PackedArray{};
+        packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
+        reserve_large(packed_.xyz, 2 * opens_left_);
+        reserve_large(packed_.kinds, opens_left_);
+    }
 
     // An event that no packed array takes: unpack, then do it.
     template <class Do>
