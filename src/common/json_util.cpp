@@ -359,10 +359,19 @@ namespace {
 
 using Json = nlohmann::json;
 
-// The `[` in `text` (a loop the compiler turns into vector instructions: 2 ms for 16.7 MB).
+// The `[` in `text`. Counted in blocks of 240 bytes into one byte, which cannot overflow: the
+// compiler adds 16 bytes at a time in byte lanes (0.25 instructions a byte; counting into a
+// size_t widens each lane, 2.4 a byte).
 std::size_t opens_in(std::string_view text) {
+    constexpr std::size_t block = 240;
     std::size_t n = 0;
-    for (const char c : text) n += c == '[' ? 1 : 0;
+    std::size_t i = 0;
+    for (; i + block <= text.size(); i += block) {
+        unsigned char in_block = 0;
+        for (std::size_t j = i; j < i + block; ++j) in_block = static_cast<unsigned char>(in_block + (text[j] == '[' ? 1 : 0));
+        n += in_block;
+    }
+    for (; i < text.size(); ++i) n += text[i] == '[' ? 1 : 0;
     return n;
 }
 
