@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "camgen/geometry/transform.hpp"
 
 namespace camgen {
@@ -79,7 +80,7 @@ void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patt
 // the range of a length is checked, and a hole's path is made only for its message.
 void read_packed_holes(const json::PackedArray& packed, Fields& f, const JobInput& in, std::vector<Vec2>& holes) {
     in.claim_holes(static_cast<double>(packed.size()), f, "holes");
-    holes.reserve(holes.size() + packed.size());
+    reserve_large(holes, holes.size() + packed.size());
     const std::string base = f.path_of("holes");
     for (std::size_t i = 0; i < packed.size(); ++i) {
         auto path = [&](int k) { return [&, k] { return fmt::format("{}/{}/{}", base, i, k); }; };
@@ -142,6 +143,7 @@ void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patt
         const double sy = in.length(g, "spacingY");
         const Eigen::Isometry2d to_job = placement(origin, g.optional_number("rotation").value_or(0.0));
         patterns.push_back([=](std::vector<Vec2>& out) {
+            reserve_large(out, out.size() + static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
             for (int j = 0; j < ny; ++j)
                 for (int i = 0; i < nx; ++i) out.push_back(apply(to_job, {i * sx, j * sy}));
         });
@@ -159,6 +161,7 @@ void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patt
         in.claim_holes(count, b, "count");
         const double start = b.optional_number("startAngle").value_or(0.0);
         patterns.push_back([=](std::vector<Vec2>& out) {
+            reserve_large(out, out.size() + static_cast<std::size_t>(count));
             for (int i = 0; i < count; ++i) {
                 const Vec2 u = unit_direction(start + 360.0 * i / count);
                 out.push_back({centre.x + radius * u.x, centre.y + radius * u.y});
@@ -176,6 +179,7 @@ void read_patterns(Fields& f, const JobInput& in, std::vector<HolePattern>& patt
         if (count > max_pattern_holes) l.fail("count", "count is too large");
         in.claim_holes(count, l, "count");
         patterns.push_back([=](std::vector<Vec2>& out) {
+            reserve_large(out, out.size() + static_cast<std::size_t>(count));
             if (count == 1) {
                 out.push_back(a);
                 return;
@@ -208,8 +212,9 @@ std::vector<Vec2> nearest_neighbour(const std::vector<Vec2>& holes) {
     auto cy = [&](Vec2 p) { return std::min(ny - 1, static_cast<int>((p.y - miny) / cell)); };
     std::vector<std::vector<size_t>> grid(static_cast<size_t>(nx) * ny);
     for (size_t i = 1; i < n; ++i) grid[static_cast<size_t>(cy(holes[i])) * nx + cx(holes[i])].push_back(i);
-    std::vector<Vec2> order{holes[0]};
-    order.reserve(n);
+    std::vector<Vec2> order;
+    reserve_large(order, n);
+    order.push_back(holes[0]);
     Vec2 at = holes[0];
     for (size_t left = n - 1; left > 0; --left) {
         const int px = cx(at), py = cy(at);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "camgen/events/visit.hpp"
 #include "camgen/operations/part_guard.hpp"
 
@@ -444,7 +445,7 @@ void read_elements(Fields& f, const JobInput& in, const std::string& base, Profi
 
 // The lines of a profile read straight into numbers ({"line": [x, y]} each, see PackedArray).
 void read_packed_lines(const json::PackedArray& packed, const std::string& base, const JobInput& in, Profile& p) {
-    p.segments.reserve(packed.size());
+    reserve_large(p.segments, packed.size());
     for (std::size_t k = 0; k < packed.size(); ++k) {
         auto line_path = [&] { return fmt::format("{}/{}/line", base, k); };
         if (packed.has_z(k)) json::fail(in.source(), line_path(), "expected a point [x, y], got an array");

@@ -21,6 +21,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/common/json_util.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
@@ -85,9 +86,9 @@ std::unique_ptr<std::ifstream> open_to_read(const std::string& file) {
     return f;
 }
 
-// Reads the whole text ("-" = standard input). A regular file is read straight into one string
-// of its size: a large job is not held twice on the way; a pipe, FIFO or device as a stream
-// (it cannot seek).
+// Reads the whole text ("-" = standard input). A regular file is read into one string reserved
+// at its size (a large job is not held twice on the way, nor zero-filled before it is read),
+// in blocks to the end (it may change while read); a pipe, FIFO or device as a stream.
 std::string read_text(const std::string& file, std::istream& in) {
     std::ostringstream ss;
     if (file == "-") {
@@ -98,11 +99,15 @@ std::string read_text(const std::string& file, std::istream& in) {
     std::ifstream& f = *stream;
     std::error_code ec;
     const std::uintmax_t size = is_regular(file) ? std::filesystem::file_size(file, ec) : 0;
-    if (!ec && size > 0) {
-        std::string text(static_cast<std::size_t>(size), '\0');
-        if (f.read(text.data(), static_cast<std::streamsize>(size)) && f.peek() == std::char_traits<char>::eof()) return text;
-        f.clear();
-        f.seekg(0);  // it changed while read: read it as a stream
+    if (!ec && size > 0 && size < std::string().max_size()) {
+        std::string text;
+        text.reserve(static_cast<std::size_t>(size));
+        advise_huge_pages(text.data(), text.capacity());
+        constexpr std::size_t block = std::size_t{1} << 16;
+        const auto chunk = std::make_unique_for_overwrite<char[]>(block);
+        while (f.read(chunk.get(), block) || f.gcount() > 0) text.append(chunk.get(), static_cast<std::size_t>(f.gcount()));
+        if (f.bad()) throw IoError(fmt::format("cannot read {}", file));
+        return text;
     }
     ss << f.rdbuf();
     if (f.bad()) throw IoError(fmt::format("cannot read {}", file));
@@ -172,11 +177,22 @@ protected:
 private:
     static constexpr std::size_t block_size = std::size_t{1} << 20;
     void next_block() {
-        blocks_.push_back(std::make_unique<char[]>(block_size));
+        blocks_.push_back(std::make_unique_for_overwrite<char[]>(block_size));
         setp(blocks_.back().get(), blocks_.back().get() + block_size);
     }
     std::vector<std::unique_ptr<char[]>> blocks_;
 };
+
+// The holes the job's drill and bore-mill operations make, each a hole the safety check logs,
+// and a few for the plunges of other operations.
+std::size_t drilled_holes(const Job& job) {
+    std::size_t holes = 64;
+    for (const Operation& op : job.operations) {
+        if (const auto* drill = std::get_if<DrillOp>(&op)) holes += drill->holes.size();
+        if (const auto* bore = std::get_if<BoreMillOp>(&op)) holes += bore->holes.size();
+    }
+    return holes;
+}
 
 // Posts the job into `out`. Unless `out` discards what it got when the run fails (a temporary
 // file), the program is held until it is complete, so that a failure writes nothing.
@@ -201,10 +217,12 @@ void write_program(const Job& job, const Options& o, const Machine* loaded, std:
     SafetyLimits limits{job.clearance, {}, machine.longhand()};
     for (const auto& [number, tool] : job.tools)
         if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
-    BlockBuffer blocks;
-    std::ostream buffer(&blocks);
-    std::unique_ptr<Post> post = make_post(machine, out_discards_failures ? out : buffer, po);
+    std::optional<BlockBuffer> blocks;
+    std::optional<std::ostream> buffer;
+    if (!out_discards_failures) buffer.emplace(&blocks.emplace());
+    std::unique_ptr<Post> post = make_post(machine, out_discards_failures ? out : *buffer, po);
     SafetyCheck check(limits);
+    check.reserve_holes(drilled_holes(job));
     // Passes each event through the check, then to the post.
     struct Checked : EventSink {
         SafetyCheck& check;
@@ -219,7 +237,7 @@ void write_program(const Job& job, const Options& o, const Machine* loaded, std:
     expand_job(job, checked);
     check.finish();
     post->close();
-    if (!out_discards_failures) blocks.write_to(out);
+    if (blocks) blocks->write_to(out);
     out.flush();
     if (!out) throw IoError("cannot write the program", errno);
 }

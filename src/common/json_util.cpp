@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "src/common/fast_json_reader.hpp"
 
 namespace camgen::json {
@@ -358,6 +359,22 @@ namespace {
 
 using Json = nlohmann::json;
 
+// The `[` in `text`. Counted in blocks of 240 bytes into one byte, which cannot overflow: the
+// compiler adds 16 bytes at a time in byte lanes (0.25 instructions a byte; counting into a
+// size_t widens each lane, 2.4 a byte).
+std::size_t opens_in(std::string_view text) {
+    constexpr std::size_t block = 240;
+    std::size_t n = 0;
+    std::size_t i = 0;
+    for (; i + block <= text.size(); i += block) {
+        unsigned char in_block = 0;
+        for (std::size_t j = i; j < i + block; ++j) in_block = static_cast<unsigned char>(in_block + (text[j] == '[' ? 1 : 0));
+        n += in_block;
+    }
+    for (; i < text.size(); ++i) n += text[i] == '[' ? 1 : 0;
+    return n;
+}
+
 // Placeholder of a packed array in the document: a binary value (which JSON text never
 // makes) of this subtype, holding the array's index.
 constexpr std::uint8_t packed_subtype = 0x63;
@@ -370,9 +387,13 @@ enum NumberKind : std::uint8_t { float_number, integer_number, unsigned_number }
 // - packs the arrays PackedArray describes as they are read, without a value per number: an
 //   element that does not fit unpacks the array (its elements so far and the one begun) into
 //   the document, which then reads on as usual.
+// A packed array's numbers are reserved at once for as many elements as there are `[` left in
+// the text (each element has one, and every `[` outside a string starts an array): exact for
+// a job whose one large array is its last, and never short, so that a million holes are not
+// copied from one doubled buffer into the next.
 class DocumentBuilder {
 public:
-    DocumentBuilder(Document& doc, bool pack) : doc_(doc), pack_(pack) {}
+    DocumentBuilder(Document& doc, bool pack, std::string_view text) : doc_(doc), pack_(pack), opens_left_(opens_in(text)) {}
     bool duplicate() const { return duplicate_; }
 
     bool null() { return plain([&] { add(nullptr); }); }
@@ -423,6 +444,7 @@ public:
         return true;
     }
     bool start_array(std::size_t) {
+        --opens_left_;  // every array starts at a `[` of the text, which counted them all
         if ((stage_ == Stage::element && packed_.form == PackedArray::Form::points) || stage_ == Stage::line) {
             stage_ = Stage::numbers;
             count_ = 0;
@@ -431,11 +453,7 @@ public:
         unpack();
         const Next next = !stack_.empty() && stack_.back()->is_object() ? next_packs_ : Next::none;
         open(Json::value_t::array);
-        if (next != Next::none) {
-            stage_ = Stage::element;
-            packed_ = PackedArray{};
-            packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
-        }
+        if (next != Next::none) begin_packed(next);
         return true;
     }
     bool end_array() {
@@ -451,9 +469,13 @@ public:
         if (stage_ == Stage::element) {
             stage_ = Stage::none;
             if (packed_.size() > 0) {
-                // Held until the job is read: no room to grow into (up to half of it).
-                packed_.xyz.shrink_to_fit();
-                packed_.kinds.shrink_to_fit();
+                // Held until the job is read: the room reserved for the arrays after this one
+                // (the `[` left were theirs) goes, a copy of this one's numbers. The last large
+                // array of a job keeps its buffer, which it fills.
+                if (packed_.kinds.capacity() - packed_.size() > packed_.size() / 4) {
+                    packed_.xyz.shrink_to_fit();
+                    packed_.kinds.shrink_to_fit();
+                }
                 const auto index = static_cast<std::uint32_t>(doc_.packed.size());
                 *stack_.back() = Json::binary({static_cast<std::uint8_t>(index), static_cast<std::uint8_t>(index >> 8),
                                                static_cast<std::uint8_t>(index >> 16), static_cast<std::uint8_t>(index >> 24)},
@@ -479,6 +501,15 @@ private:
     // element's numbers (before the object closes).
     enum class Stage { none, element, object, line, numbers, closing };
     enum class Next { none, points, lines };
+
+    // A packed array begins, with room for as many elements as `[` are left.
+    void begin_packed(Next next) {
+        stage_ = Stage::element;
+        packed_ = PackedArray{};
+        packed_.form = next == Next::points ? PackedArray::Form::points : PackedArray::Form::lines;
+        reserve_large(packed_.xyz, 2 * opens_left_);
+        reserve_large(packed_.kinds, opens_left_);
+    }
 
     // An event that no packed array takes: unpack, then do it.
     template <class Do>
@@ -552,6 +583,7 @@ private:
     bool duplicate_ = false;
     Next next_packs_ = Next::none;
     Stage stage_ = Stage::none;
+    std::size_t opens_left_;  // the `[` in the text after the last array begun
     PackedArray packed_;
     double numbers_[3] = {};
     NumberKind kinds_[3] = {};
@@ -562,7 +594,7 @@ private:
 // nlohmann's reading decides, and names the error).
 std::optional<Document> read_fast(std::string_view text, int max_nesting, bool pack) {
     Document doc;
-    DocumentBuilder builder(doc, pack);
+    DocumentBuilder builder(doc, pack, text);
     if (!detail::FastJsonReader(text, builder, max_nesting).run() || builder.duplicate()) return std::nullopt;
     return doc;
 }
@@ -575,7 +607,7 @@ void parse_into(Document& doc, std::string_view text, const std::string& source_
                                          column, max_nesting),
                          line, source_name);
     }
-    DocumentBuilder builder(doc, pack);
+    DocumentBuilder builder(doc, pack, text);
     try {
         Json::sax_parse(text, &builder, Json::input_format_t::json, true, false);
     } catch (const nlohmann::json::parse_error& e) {
@@ -666,7 +698,7 @@ void PackedArray::add(const double* numbers, const std::uint8_t* number_kinds, i
     if (count == 3 && stride == 2) {
         // The first element with a z: every element gets a place for one.
         std::vector<double> wide;
-        wide.reserve(xyz.capacity() / 2 * 3);
+        reserve_large(wide, xyz.capacity() / 2 * 3);
         for (std::size_t i = 0; i < size(); ++i)
             wide.insert(wide.end(), {xyz[2 * i], xyz[2 * i + 1], std::numeric_limits<double>::quiet_NaN()});
         xyz = std::move(wide);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/large_buffer.hpp"
 #include "camgen/events/visit.hpp"
 
 namespace camgen {
@@ -21,6 +22,8 @@ std::string z_of(double z) { return fmt::format("{:.3f}", z); }
 DrilledHoles::Entry DrilledHoles::entry_of(Vec2 at, double z) {
     return {std::llround(at.x * 1e6), std::llround(at.y * 1e6), z};
 }
+
+void DrilledHoles::reserve(std::size_t holes) { reserve_large(log_, log_.size() + holes); }
 
 void DrilledHoles::drill(Vec2 at, double z) {
     const Entry hole = entry_of(at, z);
