@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -45,6 +47,44 @@ Operation read_operation(const nlohmann::json& value, const std::string& path, c
     return read_as(type, f, in);
 }
 
+// The errors of one job as read_job finds them, in three groups: the header's (at most one),
+// the tools' and the operations', each group in file order. Only the first InputErrors::shown
+// of a group are kept (no later one can be among the first shown of the job), the rest counted.
+class JobErrors {
+public:
+    enum Group { header, tools, operations, groups };
+
+    void add(Group group, const InputError& e) {
+        if (kept_[group].size() < InputErrors::shown) kept_[group].push_back(e);
+        else ++not_kept_;
+    }
+    // An error that follows from a tool's (FollowOnError): left out, as the tool's is reported.
+    void follow_on(const FollowOnError& e) {
+        if (!follow_on_) follow_on_ = e;
+    }
+    // Throws the errors found so far, if any: one as it is, several as InputErrors, in file order.
+    void throw_if_any() const {
+        std::vector<InputError> all;
+        for (const auto& group : kept_) all.insert(all.end(), group.begin(), group.end());
+        if (all.empty()) {
+            // Never the case (a follow-on error comes after the tool's own), but an operation
+            // must not go missing silently.
+            if (follow_on_) throw *follow_on_;
+            return;
+        }
+        // By line (an error without one last); on one line the header's, the tools', the operations'.
+        auto line = [](const InputError& e) { return e.line() > 0 ? e.line() : std::numeric_limits<int>::max(); };
+        std::stable_sort(all.begin(), all.end(), [&](const InputError& a, const InputError& b) { return line(a) < line(b); });
+        if (all.size() == 1 && not_kept_ == 0) throw all.front();
+        throw InputErrors(std::move(all), not_kept_);
+    }
+
+private:
+    std::vector<InputError> kept_[groups];
+    std::size_t not_kept_ = 0;
+    std::optional<FollowOnError> follow_on_;
+};
+
 // The job's name when the file gives none: the file's stem.
 std::string job_name(const std::string& source_name) {
     if (source_name.empty() || source_name.front() == '<') return "job";
@@ -61,12 +101,38 @@ std::vector<std::string> operation_type_names() {
 }
 
 Job read_job(std::string_view text, const std::string& source_name, JobLimits limits) {
+    // A syntax error ends reading here: the one error.
     JobInput in(text, source_name, limits);
-    json::Fields top = in.read_header();
+    // The header, the tools and each operation are read on after an error of another, and their
+    // errors reported together; within one of them the first error is the only one.
+    JobErrors errors;
+    std::optional<json::Fields> top;
+    try {
+        top.emplace(in.read_header());
+    } catch (const InputError& e) {
+        errors.add(JobErrors::header, e);
+        // A wrong unit or clearance would make errors of every length measured by it.
+        if (!in.units_and_clearance()) errors.throw_if_any();
+        top.emplace(in.root(), "", in.source());
+    }
+    in.read_tools(*top, [&](const InputError& e) { errors.add(JobErrors::tools, e); });
     Job job;
-    const nlohmann::json& operations = in.array(top, "operations");
-    for (std::size_t i = 0; i < operations.size(); ++i)
-        job.operations.push_back(read_operation(operations[i], "/operations/" + std::to_string(i), in));
+    const nlohmann::json* operations = nullptr;
+    try {
+        operations = &in.array(*top, "operations");
+    } catch (const InputError& e) {
+        errors.add(JobErrors::operations, e);
+    }
+    for (std::size_t i = 0; operations && i < operations->size(); ++i) {
+        try {
+            job.operations.push_back(read_operation((*operations)[i], "/operations/" + std::to_string(i), in));
+        } catch (const FollowOnError& e) {
+            errors.follow_on(e);
+        } catch (const InputError& e) {
+            errors.add(JobErrors::operations, e);
+        }
+    }
+    errors.throw_if_any();
     // The turned profiles know of each other: each one comes and goes outside the material that
     // it and those before it keep.
     std::vector<const TurnProfileOp*> turned;

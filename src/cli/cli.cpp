@@ -463,6 +463,8 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
         try {
             job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
             check_machine_kind(*job, machine.kind, machine.name);
+        } catch (const InputErrors&) {
+            throw;  // each located already
         } catch (const InputError& e) {
             throw locate(e, v.job, job_text);
         }
@@ -715,12 +717,19 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             if (file) file->commit();
             else finish_stream(out, "standard output");
             if (plot) plot->commit();
+        } catch (const InputErrors&) {
+            throw;  // each located already
         } catch (const InputError& e) {
             throw locate(e, o.job, text);
         }
         return exit_ok;
     } catch (const InputError& e) {
-        err << "camgen: " << e.what() << '\n';
+        // Several errors (InputErrors) are a line each, and each line gets the prefix.
+        std::string_view text = e.what();
+        if (dynamic_cast<const InputErrors*>(&e))
+            for (std::size_t end; (end = text.find('\n')) != std::string_view::npos; text.remove_prefix(end + 1))
+                err << "camgen: " << text.substr(0, end) << '\n';
+        err << "camgen: " << text << '\n';
         return exit_invalid_input;
     } catch (const UsageError& e) {
         err << "camgen: " << e.what() << '\n';

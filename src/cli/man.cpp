@@ -122,7 +122,7 @@ the same built-in files as built into the program, used when there is no install
 .PP
 The JSON Schemas of job and machine files are installed in \fI../share/camgen/schema\fR (and printed by \fBcamgen schema job\fR and \fBcamgen schema machine\fR).
 .SH EXIT STATUS
-0 done, 1 invalid job or machine file (the message names the JSON path and line), 2 usage (unknown option or machine), 3 a file could not be read or written.
+0 done, 1 invalid job or machine file (the message names the JSON path and line; a job's independent errors come together, a line each, up to 20), 2 usage (unknown option or machine), 3 a file could not be read or written.
 .SH SEE ALSO
 The README and docs/ of camgen's sources: the job format, the machine files, the library.
 )";

@@ -1,5 +1,6 @@
 #include "camgen/common/error.hpp"
 
+#include <stdexcept>
 #include <utility>
 
 namespace camgen {
@@ -10,6 +11,13 @@ InputError::InputError(std::string path, std::string detail, int line, std::stri
       detail_(std::move(detail)),
       line_(line),
       source_(std::move(source)) {}
+
+InputError::InputError(const InputError& first, const std::string& message)
+    : std::runtime_error(message),
+      path_(first.path_),
+      detail_(first.detail_),
+      line_(first.line_),
+      source_(first.source_) {}
 
 InputError InputError::located(std::string source, int line) const {
     return InputError(path_, detail_, line, std::move(source));
@@ -30,6 +38,32 @@ std::string InputError::compose(const std::string& source, int line, const std::
         if (!text.empty()) text += ": ";
         text += *part;
     }
+    return text;
+}
+
+namespace {
+// The first error, for the base class; the list must not be empty.
+const InputError& first_of(const std::vector<InputError>& errors) {
+    if (errors.empty()) throw std::logic_error("InputErrors of no error");
+    return errors.front();
+}
+}  // namespace
+
+InputErrors::InputErrors(std::vector<InputError> errors, std::size_t not_kept)
+    : InputError(first_of(errors), list(errors, errors.size() + not_kept)), count_(errors.size() + not_kept) {
+    if (errors.size() > shown) errors.erase(errors.begin() + static_cast<std::ptrdiff_t>(shown), errors.end());
+    errors_ = std::move(errors);
+}
+
+// The first `shown` errors' messages, one a line, and how many more there are.
+std::string InputErrors::list(const std::vector<InputError>& errors, std::size_t count) {
+    std::string text;
+    std::size_t listed = 0;
+    for (; listed < errors.size() && listed < shown; ++listed) {
+        if (listed > 0) text += '\n';
+        text += errors[listed].what();
+    }
+    if (count > listed) text += "\nand " + std::to_string(count - listed) + " more error" + (count - listed == 1 ? "" : "s");
     return text;
 }
 

@@ -306,7 +306,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 int LineMap::line_of(std::string_view pointer) const {
     // Kept in document order: building stays O(n); lookups (only made for error messages)
-    // are a linear search.
+    // are a linear search, until a job with many errors has made enough of them to pay for
+    // sorting an index (a thousand broken operations would otherwise take a thousand scans).
     if (!scanned_) {
         scanned_ = true;
         if (!text_.empty())
@@ -314,9 +315,23 @@ int LineMap::line_of(std::string_view pointer) const {
                 [this](std::string_view p, int line) { entries_.emplace_back(p, line); },
                 [](std::string_view, int) {}, false);
     }
-    for (const auto& [p, line] : entries_)
-        if (p == pointer) return line;
-    return 0;
+    constexpr std::size_t linear_lookups = 16;
+    if (++lookups_ <= linear_lookups || entries_.size() < 64) {
+        for (const auto& [p, line] : entries_)
+            if (p == pointer) return line;
+        return 0;
+    }
+    if (by_pointer_.size() != entries_.size()) {
+        by_pointer_.resize(entries_.size());
+        for (std::size_t i = 0; i < by_pointer_.size(); ++i) by_pointer_[i] = i;
+        // Stable: of equal pointers the first in the document is found, as by the linear search.
+        std::stable_sort(by_pointer_.begin(), by_pointer_.end(),
+                         [this](std::size_t a, std::size_t b) { return entries_[a].first < entries_[b].first; });
+    }
+    auto it = std::lower_bound(by_pointer_.begin(), by_pointer_.end(), pointer,
+                               [this](std::size_t i, std::string_view p) { return entries_[i].first < p; });
+    if (it == by_pointer_.end() || entries_[*it].first != pointer) return 0;
+    return entries_[*it].second;
 }
 
 namespace {

@@ -1,7 +1,9 @@
 #include "camgen/job/job_input.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -117,13 +119,61 @@ JobInput::Fields JobInput::read_header() {
         header_.program_number = static_cast<int>(*n);
     }
 
-    const Json& tools = array(top, "tools");
-    if (tools.empty()) top.fail("tools", "a job needs at least one tool");
-    for (std::size_t i = 0; i < tools.size(); ++i) {
-        Tool tool = read_tool(tools[i], "/tools/" + std::to_string(i));
-        header_.tools.emplace(tool.number, std::move(tool));
-    }
     return top;
+}
+
+bool JobInput::units_and_clearance() {
+    try {
+        Fields top(doc_.root, "", source_);
+        header_.units = top.choice("units", unit_names, Units::mm);
+        scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
+        header_.clearance = length(top, "clearance");
+        return true;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
+namespace {
+// The integer member `key` of an object, if it is one.
+std::optional<std::int64_t> integer_member(const nlohmann::json& value, const char* key) {
+    if (!value.is_object() || !value.contains(key)) return std::nullopt;
+    const nlohmann::json& member = value.at(key);
+    if (member.is_number_unsigned() &&
+        member.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        return std::nullopt;
+    if (!member.is_number_integer()) return std::nullopt;
+    return member.get<std::int64_t>();
+}
+}  // namespace
+
+void JobInput::read_tools(Fields& top, const std::function<void(const InputError&)>& report) {
+    const Json* tools = nullptr;
+    try {
+        tools = &array(top, "tools");
+        if (tools->empty()) top.fail("tools", "a job needs at least one tool");
+    } catch (const InputError& e) {
+        unnumbered_tool_failed_ = true;
+        report(e);
+        return;
+    }
+    for (std::size_t i = 0; i < tools->size(); ++i) {
+        const Json& value = (*tools)[i];
+        const std::string path = "/tools/" + std::to_string(i);
+        try {
+            Tool tool = read_tool(value, path);
+            header_.tools.emplace(tool.number, std::move(tool));
+        } catch (const InputError& e) {
+            // An operation naming the number the tool says it has may have meant this tool.
+            // When the number itself is the error (missing, not an integer, below 1, already
+            // used), the tool may have been meant to have another: then any number the table
+            // lacks may have meant it.
+            const std::optional<std::int64_t> said = integer_member(value, "number");
+            if (said) failed_tools_.insert(*said);
+            if (!said || e.path() == path + "/number") unnumbered_tool_failed_ = true;
+            report(e);
+        }
+    }
 }
 
 Tool JobInput::read_tool(const Json& value, const std::string& path) {
@@ -158,6 +208,11 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
 const Tool& JobInput::tool(Fields& f) const {
     const int number = f.integer("tool");
     auto it = header_.tools.find(number);
+    if (failed_tools_.contains(number) || (it == header_.tools.end() && unnumbered_tool_failed_)) {
+        const std::string path = f.path_of("tool");
+        throw FollowOnError(path, fmt::format("tool {} is not in /tools: it failed to read", number),
+                            source_.lines.line_of(path), source_.name);
+    }
     if (it == header_.tools.end()) f.fail("tool", fmt::format("tool {} is not in /tools", number));
     return it->second;
 }

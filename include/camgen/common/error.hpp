@@ -1,7 +1,9 @@
 #pragma once
 // The error types camgen throws; main maps them to exit codes.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace camgen {
 
@@ -17,6 +19,10 @@ public:
     // A copy with the source file name and line filled in (used by the readers that know them).
     InputError located(std::string source, int line) const;
 
+protected:
+    // An error whose what() is `message` rather than its parts (InputErrors).
+    InputError(const InputError& first, const std::string& message);
+
 private:
     static std::string compose(const std::string& source, int line, const std::string& path,
                                const std::string& detail);
@@ -24,6 +30,28 @@ private:
     std::string detail_;
     int line_ = 0;
     std::string source_;
+};
+
+// The independent errors of one job (of its header, of different tools, of different
+// operations), in file order, at least one. It is an InputError: path(), detail(), line() and
+// source() are the first error's, and what() lists the first `shown` errors, one a line
+// ("job.json:12: /operations/2/depth: ..."), then "and N more errors" for the rest. located()
+// gives the first error alone. Exit code 1.
+class InputErrors : public InputError {
+public:
+    static constexpr std::size_t shown = 20;
+    // Keeps the first `shown` of `errors` (in file order, not empty); `not_kept` more were
+    // found and only counted.
+    explicit InputErrors(std::vector<InputError> errors, std::size_t not_kept = 0);
+    // The errors kept, the first `shown` at most.
+    const std::vector<InputError>& errors() const { return errors_; }
+    // Every error found, those not kept too.
+    std::size_t count() const { return count_; }
+
+private:
+    static std::string list(const std::vector<InputError>& errors, std::size_t count);
+    std::vector<InputError> errors_;
+    std::size_t count_ = 0;
 };
 
 // A file could not be read or written. Exit code 3. `error_number` is the system's errno for

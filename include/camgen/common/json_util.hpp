@@ -44,6 +44,10 @@ private:
     std::string_view text_;
     mutable bool scanned_ = false;
     mutable std::vector<std::pair<std::string, int>> entries_;  // in document order
+    // After a few lookups (a job with many errors), entries_'s indices sorted by pointer, so
+    // that each further lookup is a binary search.
+    mutable std::size_t lookups_ = 0;
+    mutable std::vector<std::size_t> by_pointer_;
 };
 
 // Where an input came from: its name for messages and its line map.

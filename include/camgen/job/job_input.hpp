@@ -3,7 +3,10 @@
 // accessors every operation's reader uses (lengths in the file's units, points, arrays), each
 // error naming the JSON path and line.
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -11,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/common/key_spec.hpp"
 #include "camgen/job/job.hpp"
@@ -29,6 +33,14 @@ struct JobLimits {
     int nesting = 64;
 };
 
+// An error that follows from one already reported: an operation names a tool that failed to
+// read (or, when a tool's number could not be read, a tool the table lacks). read_job leaves it
+// out of the job's errors, which hold the tool's own.
+class FollowOnError : public InputError {
+public:
+    using InputError::InputError;
+};
+
 class JobInput {
 public:
     using Json = nlohmann::json;
@@ -44,9 +56,19 @@ public:
     void claim_path_elements(double count, Fields& f, std::string_view key) const;
     const JobLimits& limits() const { return limits_; }
 
-    // Reads the header and the tool table (the top-level keys besides "operations"; "$schema"
-    // is accepted and ignored). Returns the top-level object's fields for the caller to read on.
+    // Reads the header: the top-level keys besides "tools" and "operations" ("$schema" is
+    // accepted and ignored), throwing at its first error. Returns the top-level object's fields
+    // for the caller to read on.
     Fields read_header();
+    // After read_header failed: whether "units" and "clearance", which every length after them
+    // is measured in or against, read without an error all the same (then the tools and the
+    // operations can be read on, and their errors are not the header's).
+    bool units_and_clearance();
+    // Reads the tool table. A tool's first error goes to `report`, the tool is left out and
+    // reading goes on with the next; so does an error of the table itself (not an array,
+    // empty). An operation naming a tool that failed (or any missing tool, when a failed
+    // tool's number is unknown) then gets a FollowOnError from tool().
+    void read_tools(Fields& top, const std::function<void(const InputError&)>& report);
     const JobHeader& header() const { return header_; }
     JobHeader take_header() { return std::move(header_); }
     const json::Source& source() const { return source_; }
@@ -81,7 +103,8 @@ public:
     const Json& array(Fields& f, std::string_view key) const;
     // A length in mm as the file writes it, for messages ("12.000 mm", "0.5000 in").
     std::string show(double mm) const;
-    // The tool `number` of the tool table; an error at f's "tool" key when it is not there.
+    // The tool `number` of the tool table; an error at f's "tool" key when it is not there (a
+    // FollowOnError when it is a tool that failed to read).
     const Tool& tool(Fields& f) const;
 
     // What a JSON value is, for messages ("a string \"x\"", "an array").
@@ -104,6 +127,9 @@ private:
     mutable double elements_claimed_ = 0;
     double scale_ = 1.0;
     JobHeader header_;
+    // The numbers of the tools that failed to read, and whether one failed whose number is not known.
+    std::set<std::int64_t> failed_tools_;
+    bool unnumbered_tool_failed_ = false;
 };
 
 }  // namespace camgen
