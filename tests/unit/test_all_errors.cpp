@@ -14,7 +14,7 @@
 
 namespace camgen::test {
 
-namespace {
+namespace test_all_errors {  // named: a unity build compiles several test files as one
 
 // A drill operation on one line, with `extra` keys.
 std::string drill_op(const std::string& tool, const std::string& extra = "") {
@@ -55,7 +55,9 @@ std::vector<InputError> errors_of(const std::string& text, std::size_t* count = 
     return {};
 }
 
-}  // namespace
+}  // namespace test_all_errors
+
+using namespace test_all_errors;
 
 TEST_CASE("every error at once: three operations and a tool, in file order, with lines and paths") {
     std::size_t count = 0;

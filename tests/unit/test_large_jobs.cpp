@@ -20,6 +20,9 @@
 #include "camgen/post/safety.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_large_jobs {
+
 using namespace camgen;
 using test::Run;
 using test::run;
@@ -184,3 +187,5 @@ TEST_CASE("the safety check's hole log answers the same whatever room it was giv
                              InputError);
     }
 }
+
+}  // namespace test_large_jobs
