@@ -144,7 +144,7 @@ private:
 
 // The rules of a job's or a tool table's text (JSON, NUL bytes counted, not kept).
 InputRules json_input() { return InputRules{.json = true}; }
-// The rules of a program kept in memory: each line within max_program_line.
+// The rules of a program kept in memory, or of a tool table: each line within max_program_line.
 InputRules program_input() { return InputRules{.max_line = max_program_line}; }
 
 // Reads a job's text into a Job; a file that is not JSON (a drawing, an NC program, a binary
@@ -505,7 +505,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     if (!v.job.empty()) job_input = inputs.read(v.job, "the job", json_input());
     const std::string& job_text = job_input.text;
     std::string tool_table;
-    if (!v.tool_table.empty()) tool_table = inputs.read(v.tool_table, "the tool table", InputRules{}).text;
+    if (!v.tool_table.empty()) tool_table = inputs.read(v.tool_table, "the tool table", program_input()).text;
     inputs.check_outputs({{"--plot", v.plot}});
     // The job first: its tools give the radii of the program's G41/G42.
     std::optional<Job> job;

@@ -221,6 +221,8 @@ TEST_CASE("inputs without an end end quickly with exit 3 and the limit: /dev/zer
          "camgen: cannot read /dev/zero: line 1 is longer than 1 MiB, the limit for a line of a program\n"},
         {{"verify", "/dev/zero", "--machine", "fanuc", "--plot", (dir / "p.svg").string()},
          "camgen: cannot read /dev/zero: line 1 is longer than 1 MiB, the limit for a line of a program\n"},
+        {{"verify", source_dir + "/tests/golden/fanuc/plate.nc", "--machine", "fanuc", "--tool-table", "/dev/zero"},
+         "camgen: cannot read /dev/zero: line 1 is longer than 1 MiB, the limit for a line of a program\n"},
         {{"verify", source_dir + "/tests/golden/fanuc/plate.nc", "--machine", "fanuc", "--job", "/dev/zero"},
          "camgen: cannot read /dev/zero: it goes on longer than 1 GiB, the limit for an input (CAMGEN_MAX_INPUT_SIZE "
          "changes it)\n"},
