@@ -110,7 +110,15 @@ public:
     }
     // Refuses (UsageError, before anything is written) an output that is one of the inputs, or
     // two outputs that are one file: `outputs` are (option, file) pairs, "-" and "" left out.
-    void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) const {
+    // Standard output (`out`, where it is the process's) is an output too: `>> job.json`.
+    void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, const std::ostream& out) const {
+        if (&out == &std::cout)
+            if (const std::optional<FileId> id = standard_output_id())
+                for (const auto& [what, input] : files_)
+                    if (input == *id)
+                        throw UsageError(fmt::format("standard output is {} (the same file): camgen never writes over its "
+                                                     "input; send the output elsewhere",
+                                                     what));
         for (std::size_t i = 0; i < outputs.size(); ++i) {
             const auto& [option, file] = outputs[i];
             if (file.empty() || file == "-") continue;
@@ -506,7 +514,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     const std::string& job_text = job_input.text;
     std::string tool_table;
     if (!v.tool_table.empty()) tool_table = inputs.read(v.tool_table, "the tool table", program_input()).text;
-    inputs.check_outputs({{"--plot", v.plot}});
+    inputs.check_outputs({{"--plot", v.plot}}, out);
     // The job first: its tools give the radii of the program's G41/G42.
     std::optional<Job> job;
     if (!v.job.empty()) {
@@ -737,7 +745,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
         const InputText input = inputs.read(o.job, "the job", json_input());
         const std::string& text = input.text;
         // Before anything is written: no output replaces an input, and the outputs are two files.
-        inputs.check_outputs({{"-o", o.output}, {"--plot", o.plot}});
+        inputs.check_outputs({{"-o", o.output}, {"--plot", o.plot}}, out);
         Job job;
         try {
             job = parse_job(input, o.job, o.limits, o.machine);

@@ -173,6 +173,12 @@ std::optional<FileId> standard_input_id() {
     return id_of(st);
 }
 
+std::optional<FileId> standard_output_id() {
+    struct stat st {};
+    if (::fstat(1, &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+    return id_of(st);
+}
+
 InputText read_input(const std::string& file, const InputRules& rules, std::istream& standard_input) {
     const std::uint64_t limit = max_input_size();
     const std::string name = file == "-" ? "<stdin>" : file;  // for messages

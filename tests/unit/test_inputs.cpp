@@ -53,9 +53,10 @@ struct BinaryRun {
 };
 
 // Runs the camgen binary with `env` set (NAME=VALUE), standard input from `stdin_file` ("" :
-// /dev/null), standard output to /dev/null; killed after `timeout` seconds.
+// /dev/null), standard output appended to `stdout_file` ("" : /dev/null); killed after
+// `timeout` seconds.
 BinaryRun run_binary(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
-                     const std::string& stdin_file = "", double timeout = 60.0) {
+                     const std::string& stdin_file = "", double timeout = 60.0, const std::string& stdout_file = "") {
     const fs::path err_file = test::scratch("inputs-binary-err") / "err.txt";
     const auto start = std::chrono::steady_clock::now();
     const pid_t pid = ::fork();
@@ -66,7 +67,7 @@ BinaryRun run_binary(const std::vector<std::string>& args, const std::vector<std
         for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
         const int in = ::open(stdin_file.empty() ? "/dev/null" : stdin_file.c_str(), O_RDONLY);
-        const int out = ::open("/dev/null", O_WRONLY);
+        const int out = ::open(stdout_file.empty() ? "/dev/null" : stdout_file.c_str(), O_WRONLY | O_APPEND);
         const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         ::dup2(in, 0);
         ::dup2(out, 1);
@@ -193,8 +194,22 @@ TEST_CASE("the binary: -o onto the job given as standard input, or through a sym
     CHECK(link.code == 2);
     const BinaryRun verify = run_binary({"verify", job.string(), "--machine", "fanuc", "--plot", (dir / "link.json").string()});
     CHECK(verify.code == 2);
+    // Standard output appended to the job (`>> job.json`), or to verify's program.
+    const BinaryRun appended = run_binary({job.string(), "--machine", "fanuc"}, {}, "", 60.0, job.string());
+    CHECK(appended.code == 2);
+    CHECK(appended.err == "camgen: standard output is the job " + job.string() +
+                              " (the same file): camgen never writes over its input; send the output elsewhere\n");
+    const fs::path program = dir / "p.nc";
+    write(program, test::read_file(source_dir + "/tests/golden/fanuc/plate.nc"));
+    const BinaryRun report = run_binary({"verify", program.string(), "--machine", "fanuc"}, {}, "", 60.0, program.string());
+    CHECK(report.code == 2);
+    CHECK(test::read_file(program.string()) == test::read_file(source_dir + "/tests/golden/fanuc/plate.nc"));
     CHECK(test::read_file(job.string()) == before);
     CHECK(fs::is_symlink(dir / "link.json"));
+    // Standard output into another file is fine.
+    write(dir / "out.nc", "");
+    CHECK(run_binary({job.string(), "--machine", "fanuc"}, {}, "", 60.0, (dir / "out.nc").string()).code == 0);
+    CHECK(test::read_file((dir / "out.nc").string()).rfind("%\nO1000", 0) == 0);
 }
 
 // ---- bounded reads ----

@@ -39,6 +39,8 @@ std::optional<FileId> regular_file_id(const std::string& path);
 
 // The identity of the process's standard input where it is a regular file (`camgen - < job.json`).
 std::optional<FileId> standard_input_id();
+// The same of standard output (`camgen job.json >> job.json`).
+std::optional<FileId> standard_output_id();
 
 // How an input is read.
 struct InputRules {
