@@ -14,6 +14,8 @@
 #include <algorithm>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/file_kind.hpp"
+#include "camgen/common/input_file.hpp"
 #include "camgen/events/visit.hpp"
 
 namespace camgen {
@@ -167,21 +169,16 @@ void check_machine_kind(const Job& job, MachineKind kind, const std::string& mac
 }
 
 Job read_job_file(const std::string& filename) {
-    std::string text;
-    if (filename == "-") {
-        std::ostringstream buffer;
-        buffer << std::cin.rdbuf();
-        if (std::cin.bad()) throw IoError("cannot read <stdin>: " + std::string(std::strerror(errno)));
-        return read_job(buffer.str(), "<stdin>");
+    // Within the limit of an input; a file that is not JSON is named as such.
+    const InputText input = read_input(filename, InputRules{.json = true}, std::cin);
+    const std::string source = filename == "-" ? "<stdin>" : filename;
+    try {
+        return read_job(input.text, source);
+    } catch (const InputError& e) {
+        if (e.path().empty())
+            if (auto what = not_json(input.text, input.cut, source, "job")) throw InputError("", *what, 0, source);
+        throw;
     }
-    std::error_code ec;
-    if (std::filesystem::is_directory(filename, ec))
-        throw IoError("cannot read " + filename + ": " + std::strerror(EISDIR));
-    std::ifstream in(filename, std::ios::binary);
-    if (!in) throw IoError("cannot read " + filename + ": " + std::strerror(errno));
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) throw IoError("cannot read " + filename + ": " + std::strerror(errno));
-    return read_job(text, filename);
 }
 
 void expand_job(const Job& job, EventSink& sink) {

@@ -9,6 +9,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
+#include "camgen/common/number_text.hpp"
 
 namespace camgen {
 
@@ -78,9 +79,9 @@ std::optional<std::string> IsoLathePost::canned_limit(const DrillCycle& c, const
         return v && std::abs(*v - fixed) > 1e-9;
     };
     if (c.kind == CycleKind::deep && differs(DrillField::peck_clearance))
-        return fmt::format("its peck clearance is the control's, {} mm", fixed);
+        return fmt::format("its peck clearance is the control's, {} mm", number_text(fixed));
     if (c.kind == CycleKind::chip_break && spec.style != CannedStyle::fanuc_g74 && differs(DrillField::pecking_retract))
-        return fmt::format("its back-off is the control's, {} mm", fixed);
+        return fmt::format("its back-off is the control's, {} mm", number_text(fixed));
     return std::nullopt;
 }
 

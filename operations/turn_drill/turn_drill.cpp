@@ -153,6 +153,12 @@ TurnDrillOp TurnDrillOp::read(Fields& f, const JobInput& in) {
         f.fail("retractDistance", fmt::format("retractDistance (Z {}) is not above startDepth, the face of the material "
                                               "(Z {}): the drill would rapid away through the material",
                                               in.show(c.retract_z), in.show(c.reference_z)));
+    // Checked here, not by the safety check after expansion, so that the message names the
+    // turn-drill's own key (a drill's is retractPlane).
+    if (c.retract_z > in.header().clearance + 1e-6)
+        f.fail("retractDistance", fmt::format("the clearance (Z {}) is below retractDistance (Z {}): moves at the clearance "
+                                              "would run below this operation's retract plane",
+                                              in.show(in.header().clearance), in.show(c.retract_z)));
 
     c.values = read_turn_fields(f, in);
     op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);

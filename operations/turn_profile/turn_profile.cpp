@@ -65,7 +65,7 @@ Vec2 profile_point(const JobInput& in, const Json& value, const std::string& pat
     if (p.x < 0)
         json::fail(in.source(), path + "/0",
                    fmt::format("X {} is negative: a {} is measured from the spindle axis and is never below 0",
-                               p.x, name_of(x_values, given)));
+                               in.show(p.x), name_of(x_values, given)));
     return {p.y, given == XValues::diameter ? p.x / 2.0 : p.x};
 }
 

@@ -19,10 +19,12 @@
 #include "camgen/analysis/backplot.hpp"
 #include "camgen/analysis/backplot_html.hpp"
 #include "camgen/common/error.hpp"
+#include "camgen/common/file_kind.hpp"
+#include "camgen/common/input_file.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/common/json_util.hpp"
-#include "camgen/common/large_buffer.hpp"
 #include "camgen/post/machine.hpp"
+#include "camgen/post/machine_sources.hpp"
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/operations/registry.hpp"
@@ -86,32 +88,84 @@ std::unique_ptr<std::ifstream> open_to_read(const std::string& file) {
     return f;
 }
 
-// Reads the whole text ("-" = standard input). A regular file is read into one string reserved
-// at its size (a large job is not held twice on the way, nor zero-filled before it is read),
-// in blocks to the end (it may change while read); a pipe, FIFO or device as a stream.
-std::string read_text(const std::string& file, std::istream& in) {
-    std::ostringstream ss;
-    if (file == "-") {
-        ss << in.rdbuf();
-        return std::move(ss).str();
+// The regular files read so far (the job, the machine's files, the program, the tool table),
+// each with what it is: no output may replace one of them.
+class Inputs {
+public:
+    explicit Inputs(std::istream& in) : in_(in) {}
+    // Reads an input within the limits (read_input), noting it where it is a regular file.
+    InputText read(const std::string& file, const std::string& role, const InputRules& rules) {
+        InputText input = read_input(file, rules, in_);
+        note(file, role, input.id);
+        return input;
     }
-    const std::unique_ptr<std::ifstream> stream = open_to_read(file);
-    std::ifstream& f = *stream;
-    std::error_code ec;
-    const std::uintmax_t size = is_regular(file) ? std::filesystem::file_size(file, ec) : 0;
-    if (!ec && size > 0 && size < std::string().max_size()) {
-        std::string text;
-        text.reserve(static_cast<std::size_t>(size));
-        advise_huge_pages(text.data(), text.capacity());
-        constexpr std::size_t block = std::size_t{1} << 16;
-        const auto chunk = std::make_unique_for_overwrite<char[]>(block);
-        while (f.read(chunk.get(), block) || f.gcount() > 0) text.append(chunk.get(), static_cast<std::size_t>(f.gcount()));
-        if (f.bad()) throw IoError(fmt::format("cannot read {}", file));
-        return text;
+    // Notes a file read in another way ("-": standard input, a regular file when it is one).
+    void note(const std::string& file, const std::string& role, std::optional<FileId> id = std::nullopt) {
+        if (file == "-") id = &in_ == &std::cin ? standard_input_id() : std::nullopt;
+        else if (!id) id = regular_file_id(file);
+        if (id) files_.push_back({role + " " + (file == "-" ? std::string("(standard input)") : file), *id});
     }
-    ss << f.rdbuf();
-    if (f.bad()) throw IoError(fmt::format("cannot read {}", file));
-    return std::move(ss).str();
+    void note(const std::vector<MachineSource>& sources) {
+        for (const MachineSource& m : sources) files_.push_back({"the machine file " + m.file, m.id});
+    }
+    // Refuses (UsageError, before anything is written) an output that is one of the inputs, or
+    // two outputs that are one file: `outputs` are (option, file) pairs, "-" and "" left out.
+    // Standard output (`out`, where it is the process's) is an output too: `>> job.json`.
+    void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, const std::ostream& out) const {
+        if (&out == &std::cout)
+            if (const std::optional<FileId> id = standard_output_id())
+                for (const auto& [what, input] : files_)
+                    if (input == *id)
+                        throw UsageError(fmt::format("standard output is {} (the same file): camgen never writes over its "
+                                                     "input; send the output elsewhere",
+                                                     what));
+        for (std::size_t i = 0; i < outputs.size(); ++i) {
+            const auto& [option, file] = outputs[i];
+            if (file.empty() || file == "-") continue;
+            const std::optional<FileId> id = regular_file_id(file);
+            if (id)
+                for (const auto& [what, input] : files_)
+                    if (input == *id)
+                        throw UsageError(fmt::format("{} {} would replace {} (the same file): camgen never writes over "
+                                                     "its input; give another output file",
+                                                     option, file, what));
+            for (std::size_t j = 0; j < i; ++j) {
+                const auto& [other_option, other] = outputs[j];
+                if (other.empty() || other == "-") continue;
+                if (id ? id == regular_file_id(other) : same_new_file(file, other))
+                    throw UsageError(fmt::format("{} {} and {} {} are the same file: give each output its own",
+                                                 other_option, other, option, file));
+            }
+        }
+    }
+
+private:
+    // Two names of a file that does not exist yet, or is not a regular file.
+    static bool same_new_file(const std::string& a, const std::string& b) {
+        std::error_code ec1, ec2;
+        const auto ca = std::filesystem::weakly_canonical(a, ec1), cb = std::filesystem::weakly_canonical(b, ec2);
+        return !ec1 && !ec2 && ca == cb && !std::filesystem::exists(ca, ec1);
+    }
+    std::istream& in_;
+    std::vector<std::pair<std::string, FileId>> files_;
+};
+
+// The rules of a job's or a tool table's text (JSON, NUL bytes counted, not kept).
+InputRules json_input() { return InputRules{.json = true}; }
+// The rules of a program kept in memory, or of a tool table: each line within max_program_line.
+InputRules program_input() { return InputRules{.max_line = max_program_line}; }
+
+// Reads a job's text into a Job; a file that is not JSON (a drawing, an NC program, a binary
+// file, nothing) is named as such after the JSON parse failed.
+Job parse_job(const InputText& input, const std::string& file, const JobLimits& limits, const std::string& machine) {
+    const std::string source = file == "-" ? "<stdin>" : file;
+    try {
+        return read_job(input.text, source, limits);
+    } catch (const InputError& e) {
+        if (e.path().empty())
+            if (auto what = not_json(input.text, input.cut, source, "job", machine)) throw InputError("", *what, 0, source);
+        throw;
+    }
 }
 
 std::string job_stem(const std::string& file) {
@@ -363,8 +417,16 @@ class ProgramInput {
 public:
     ProgramInput(const std::string& file, std::istream& in, bool several_passes) : file_(file), in_(in) {
         if (several_passes && (file == "-" || !is_regular(file))) {
-            text_ = read_text(file, in);
+            text_ = read_input(file, program_input(), in).text;
             kept_.emplace(*text_);
+        } else if (file != "-") {
+            // A regular file is read as a stream in each pass; its size is known before.
+            std::error_code ec;
+            const std::uintmax_t size = is_regular(file) ? std::filesystem::file_size(file, ec) : 0;
+            if (!ec && size > max_input_size())
+                throw IoError(fmt::format("cannot read {}: it is {}, larger than {}, the limit for an input "
+                                          "(CAMGEN_MAX_INPUT_SIZE changes it)",
+                                          file, size_text(size), size_text(max_input_size())));
         }
     }
     ProgramInput(const ProgramInput&) = delete;  // kept_ views text_
@@ -433,11 +495,11 @@ std::map<int, double> job_compensation_radii(const Job& job) {
     return radii;
 }
 
-// Where a program's G41/G42 radii come from: verify --tool-table, else the job's.
-TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, std::istream& in) {
+// Where a program's G41/G42 radii come from: verify --tool-table (its text), else the job's.
+TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, const std::string& tool_table) {
     TraceOptions options;
     if (!v.tool_table.empty()) {
-        const std::string text = read_text(v.tool_table, in);
+        const std::string& text = tool_table;
         for (const auto& [number, diameter] :
              read_tool_table(text, v.tool_table == "-" ? "<stdin>" : v.tool_table,
                              v.tool_table_units == "inch" ? Units::inch : Units::mm))
@@ -449,19 +511,28 @@ TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, std::
 }
 
 int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
-    Machine machine = load_machine(v.machine);
+    Inputs inputs(in);
+    std::vector<MachineSource> machine_files;
+    Machine machine = load_machine(v.machine, machine_files);
+    inputs.note(machine_files);
     apply_units(machine, v.units);
     if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
     if (v.tool_table == "-" && (v.program == "-" || v.job == "-"))
         throw UsageError("only one of the program, the job and the tool table can come from standard input");
     std::string source = v.program == "-" ? "<stdin>" : v.program;
+    // Every input is read (the program is named) before the plot may be written.
+    inputs.note(v.program, "the program");
+    InputText job_input;
+    if (!v.job.empty()) job_input = inputs.read(v.job, "the job", json_input());
+    const std::string& job_text = job_input.text;
+    std::string tool_table;
+    if (!v.tool_table.empty()) tool_table = inputs.read(v.tool_table, "the tool table", program_input()).text;
+    inputs.check_outputs({{"--plot", v.plot}}, out);
     // The job first: its tools give the radii of the program's G41/G42.
-    std::string job_text;
     std::optional<Job> job;
     if (!v.job.empty()) {
-        job_text = read_text(v.job, in);
         try {
-            job = read_job(job_text, v.job == "-" ? "<stdin>" : v.job);
+            job = parse_job(job_input, v.job, JobLimits{}, v.machine);
             check_machine_kind(*job, machine.kind, machine.name);
         } catch (const InputErrors&) {
             throw;  // each located already
@@ -469,7 +540,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
             throw locate(e, v.job, job_text);
         }
     }
-    const TraceOptions options = program_trace_options(v, job ? &*job : nullptr, in);
+    const TraceOptions options = program_trace_options(v, job ? &*job : nullptr, tool_table);
     // The program is read as a stream, never whole, in passes (ReadBack; compare_with_job; the
     // HTML page's copy of the text).
     ProgramInput program(v.program, in, !v.job.empty() || !v.plot.empty());
@@ -560,7 +631,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_option("job", o.job, "The job file (JSON); - reads standard input");
     app.add_option("-m,--machine", o.machine, "Machine name (see --list-machines) or path to a machine JSON file");
     app.add_option("-o,--output", o.output,
-                   "Output file, written atomically (default -: standard output); wabeco/kosy programs end in .knc");
+                   "Output file, written atomically (default -: standard output), never one of the inputs; "
+                   "wabeco/kosy programs end in .knc");
     app.add_flag("--snippet", o.snippet, "Clipboard export: no program start or end blocks");
     app.add_flag("--events", o.events, "Print the machine-independent events, one JSON object per line");
     app.add_option("--units", o.units, "Output units, overriding the machine file")->check(CLI::IsMember({"mm", "inch"}));
@@ -672,9 +744,12 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             err << "camgen: --plot and --stats read the program back: a --snippet is not a whole program\n";
             return exit_usage;
         }
+        Inputs inputs(in);
         std::optional<Machine> machine;
         if (!o.machine.empty() && !o.events) {
-            machine = load_machine(o.machine);  // unknown machine: usage error first
+            std::vector<MachineSource> machine_files;
+            machine = load_machine(o.machine, machine_files);  // unknown machine: usage error first
+            inputs.note(machine_files);
             if ((!o.plot.empty() || o.stats) && !has_reader(machine->dialect)) {
                 err << fmt::format("camgen: --plot and --stats read the program back, and camgen cannot read the {} "
                                    "dialect of machine {} yet\n",
@@ -682,10 +757,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                 return exit_usage;
             }
         }
-        std::string text = read_text(o.job, in);
+        const InputText input = inputs.read(o.job, "the job", json_input());
+        const std::string& text = input.text;
+        // Before anything is written: no output replaces an input, and the outputs are two files.
+        inputs.check_outputs({{"-o", o.output}, {"--plot", o.plot}}, out);
         Job job;
         try {
-            job = read_job(text, o.job == "-" ? "<stdin>" : o.job, o.limits);
+            job = parse_job(input, o.job, o.limits, o.machine);
             if (job.name.empty()) job.name = job_stem(o.job);
             // Every output is written completely (the program, the plot) before any is committed:
             // a failure on the way leaves every file as it was. Reading back needs the text, so

@@ -121,8 +121,15 @@ compiled in
 the same built-in files as built into the program, used when there is no installed folder (a run from the build folder, a program linked with the camgen library)
 .PP
 The JSON Schemas of job and machine files are installed in \fI../share/camgen/schema\fR (and printed by \fBcamgen schema job\fR and \fBcamgen schema machine\fR).
+.SH ENVIRONMENT
+.TP
+\fBCAMGEN_MAX_INPUT_SIZE\fR
+the largest input camgen reads (job, machine file, program, tool table): bytes, or a number with K, M or G for KiB, MiB or GiB; default 1G. A larger input, or a program line longer than 1 MiB, ends with exit status 3.
+.TP
+\fBCAMGEN_MACHINES\fR, \fBXDG_CONFIG_HOME\fR
+where the user's machine files are (see FILES).
 .SH EXIT STATUS
-0 done, 1 invalid job or machine file (the message names the JSON path and line; a job's independent errors come together, a line each, up to 20), 2 usage (unknown option or machine), 3 a file could not be read or written.
+0 done, 1 invalid job or machine file (the message names the JSON path and line; a job's independent errors come together, a line each, up to 20), 2 usage (unknown option or machine; an output that would replace an input), 3 a file could not be read or written.
 .SH SEE ALSO
 The README and docs/ of camgen's sources: the job format, the machine files, the library.
 )";

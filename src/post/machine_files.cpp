@@ -11,8 +11,11 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/file_kind.hpp"
+#include "camgen/common/input_file.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/machine.hpp"
+#include "camgen/post/machine_sources.hpp"
 #include "src/post/machine_files.hpp"
 
 #ifndef CAMGEN_MACHINES_FROM_BIN
@@ -38,21 +41,21 @@ std::string stem_of(const std::string& path) {
     return stem;
 }
 
-std::string read_file(const std::string& path) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw IoError(fmt::format("cannot read machine file {}: {}", path, std::strerror(EISDIR)));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(fmt::format("cannot read machine file {}", path));
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw IoError(fmt::format("cannot read machine file {}", path));
-    return ss.str();
+// A machine file's text, within the limit of an input. The file an "extends" names
+// (`named_by`: the file that extends it) must be a regular file: a FIFO would wait for a writer
+// and a device may never end, so either is refused by its type before it is opened.
+InputText read_file(const std::string& path, const std::string& named_by) {
+    InputRules rules{.what = "machine file", .named_by = named_by.empty() ? "" : "the extends of " + named_by,
+                     .regular_only = !named_by.empty(), .json = true};
+    std::istringstream no_input;
+    return read_input(path, rules, no_input);
 }
 
 // One file of an "extends" chain, as read.
 struct Layer {
     std::string source;  // for messages: the path, or machines/NAME.json for a built-in
     std::string identity;  // the same file however it was named
+    std::optional<FileId> id;  // a regular file's device and inode
     nlohmann::json doc;
     json::LineMap lines;
 };
@@ -65,13 +68,23 @@ std::string identity_of(const MachineEntry& e) {
     return ec || canonical.empty() ? e.path : canonical;
 }
 
-Layer read_layer(const MachineEntry& e) {
+// Reads one file of the chain (`named_by`: the file whose extends names it, "" for the first).
+Layer read_layer(const MachineEntry& e, const std::string& named_by) {
     Layer l;
-    const std::string text = e.text ? std::string(e.text) : read_file(e.path);
+    InputText input;
+    if (e.text) input.text = e.text;
+    else input = read_file(e.path, named_by);
     l.source = e.text ? "machines/" + e.name + ".json" : e.path;
     l.identity = identity_of(e);
-    l.doc = json::parse(text, l.source);
-    l.lines = json::LineMap(text);
+    l.id = input.id;
+    try {
+        l.doc = json::parse(input.text, l.source);
+    } catch (const InputError&) {
+        // A drawing, a program, a binary file: said as such, not as a JSON syntax error.
+        if (auto what = not_json(input.text, input.cut, l.source, "machine file")) throw InputError("", *what, 0, l.source);
+        throw;
+    }
+    l.lines = json::LineMap(input.text);
     return l;
 }
 
@@ -124,8 +137,10 @@ std::vector<Layer> read_chain(const std::string& name_or_path) {
         unknown_machine(name_or_path, catalogue);
     }
     std::vector<Layer> chain;
+    std::string named_by;  // the file whose extends names the next one
     while (true) {
-        chain.push_back(read_layer(entry));
+        chain.push_back(read_layer(entry, named_by));
+        named_by = chain.back().source;
         const Layer& layer = chain.back();
         json::Source source{layer.source, layer.lines};
         if (!layer.doc.is_object()) json::fail(source, "", "a machine file is a JSON object");
@@ -265,7 +280,14 @@ std::vector<MachineEntry> machine_catalogue() {
 nlohmann::json resolve_machine_json(const std::string& name_or_path) { return merge_chain(read_chain(name_or_path)); }
 
 Machine load_machine(const std::string& name_or_path) {
+    std::vector<MachineSource> sources;
+    return load_machine(name_or_path, sources);
+}
+
+Machine load_machine(const std::string& name_or_path, std::vector<MachineSource>& sources) {
     const std::vector<Layer> chain = read_chain(name_or_path);
+    for (const Layer& l : chain)
+        if (l.id) sources.push_back({l.source, *l.id});
     const std::string name = is_path(name_or_path) ? stem_of(name_or_path) : name_or_path;
     if (chain.size() == 1) return parse_machine_json(chain.front().doc, name, {chain.front().source, chain.front().lines});
     try {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 #include "camgen/events/visit.hpp"
 #include "camgen/post/longhand.hpp"
 
@@ -18,6 +19,21 @@ namespace {
 bool contains(const std::vector<DrillField>& v, DrillField f) {
     return std::find(v.begin(), v.end(), f) != v.end();
 }
+
+// The key a message names for a value of a drilling cycle, as the operation that made it
+// spells it: a lathe's cycles come from turn-drill operations, which name the fields by
+// CNC-Calc's TurnDrillingFields (firstPeckDepth, lowerDwell, ...), the planes retractDistance
+// and startDepth, and tap by giving a pitch (no "cycle" key); a mill's from drill operations.
+std::string cycle_key(std::string_view key, MachineKind kind) {
+    if (kind != MachineKind::lathe) return std::string(key);
+    if (key == "retractPlane") return "retractDistance";
+    if (key == "referencePlane") return "startDepth";
+    if (key == "cycle") return "pitch";
+    if (const auto field = drill_field_named(key))
+        if (const TurnDrillFieldInfo* t = turn_field_of(*field)) return std::string(t->key);
+    return std::string(key);
+}
+std::string cycle_key(DrillField f, MachineKind kind) { return cycle_key(key_of(f), kind); }
 }  // namespace
 
 Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
@@ -95,27 +111,38 @@ std::string_view Post::feed_word(double mm_per_min) {
         if (!(spindle_rpm_ > 0)) fail("", "a feed per revolution while the spindle stands still");
         const double per_rev = f / spindle_rpm_;
         if (feed_rev_fmt_.is_zero(per_rev))
-            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", per_rev, machine_.name));
+            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", number_text(per_rev), machine_.name));
         return feed_rev_.format(per_rev);
     }
     if (feed_fmt_.is_zero(f))
-        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", f, machine_.name));
+        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", number_text(f), machine_.name));
     return feed_.format(f);
 }
 
 double Post::clamped_feed(double mm_per_min) {
     const MachineLimits& lim = machine_.limits;
     double f = mm_per_min;
-    if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", f));
-    // One warning per operation and feed.
+    if (!(f > 0.0) || !std::isfinite(f)) fail("", fmt::format("feed {} mm/min is not a usable feed", number_text(f)));
+    // One warning per operation and feed. An operation that feeds per revolution is told in
+    // its own unit, mm/rev, beside the mm/min the machine's limits are in.
     auto first = [&] { return warned_feeds_.insert({op_path_, f}).second; };
+    const bool per_rev = feed_mode_ == FeedMode::per_revolution && spindle_rpm_ > 0;
+    auto feed = [&](double mm_per_min) {
+        return per_rev ? fmt::format("{} mm/rev ({} mm/min at {} rpm)", number_text(mm_per_min / spindle_rpm_),
+                                     number_text(mm_per_min), number_text(spindle_rpm_))
+                       : fmt::format("{} mm/min", number_text(mm_per_min));
+    };
+    auto limit = [&](double mm_per_min) {
+        return per_rev ? fmt::format("{} mm/min ({} mm/rev)", number_text(mm_per_min), number_text(mm_per_min / spindle_rpm_))
+                       : fmt::format("{} mm/min", number_text(mm_per_min));
+    };
     if (f > lim.max_feed) {
-        if (first()) warn(fmt::format("{}: feed {} mm/min is above the limit of machine {}; clamped to {} mm/min",
-                         op_path_, f, machine_.name, lim.max_feed));
+        if (first()) warn(fmt::format("{}: feed {} is above the limit of machine {}; clamped to {}", op_path_, feed(f),
+                                      machine_.name, limit(lim.max_feed)));
         f = lim.max_feed;
     } else if (f < lim.min_feed) {
-        if (first()) warn(fmt::format("{}: feed {} mm/min is below the minimum of machine {}; raised to {} mm/min",
-                         op_path_, f, machine_.name, lim.min_feed));
+        if (first()) warn(fmt::format("{}: feed {} is below the minimum of machine {}; raised to {}", op_path_, feed(f),
+                                      machine_.name, limit(lim.min_feed)));
         f = lim.min_feed;
     }
     return f;
@@ -251,10 +278,10 @@ std::string Post::speed_word(double rpm) const {
 
 std::string Post::speed_text(double rpm) const {
     if (machine_.limits.max_rpm > 0 && rpm > machine_.limits.max_rpm)
-        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", rpm, machine_.name,
-                             machine_.limits.max_rpm));
+        fail("", fmt::format("spindle speed {} rpm is above the limit of machine {} ({} rpm)", number_text(rpm),
+                             machine_.name, number_text(machine_.limits.max_rpm)));
     if (rpm_fmt_.is_zero(rpm))
-        fail("", fmt::format("spindle speed {} rpm would be written as S0 on machine {}", rpm, machine_.name));
+        fail("", fmt::format("spindle speed {} rpm would be written as S0 on machine {}", number_text(rpm), machine_.name));
     return rpm_fmt_.format(rpm);
 }
 
@@ -346,7 +373,7 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
     fit.spec = machine_.canned_cycle(cycle.kind);
     if (!fit.spec) return fit;
     for (DrillField f : drill_fields_used(cycle))
-        if (!contains(fit.spec->fields, f)) fit.missing.emplace_back(std::string(key_of(f)));
+        if (!contains(fit.spec->fields, f)) fit.missing.emplace_back(cycle_key(f, machine_.kind));
     if (fit.missing.empty()) fit.limit = canned_limit(cycle, *fit.spec);
     if (fit.missing.empty() && !fit.limit && is_pecking(cycle.kind)) {
         // The control counts its pecks from the rounded depths and planes: when they come to
@@ -370,9 +397,10 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
 
 void Post::check_tapping(const DrillCycle& cycle) const {
     if (auto why = tapping_impossible(cycle))
-        throw InputError(cycle.path + "/cycle", fmt::format("machine {} cannot tap: {}", machine_.name, *why));
+        throw InputError(cycle.path + "/" + cycle_key("cycle", machine_.kind),
+                         fmt::format("machine {} cannot tap: {}", machine_.name, *why));
     if (machine_.tapping == TappingMode::none)
-        throw InputError(cycle.path + "/cycle",
+        throw InputError(cycle.path + "/" + cycle_key("cycle", machine_.kind),
                          fmt::format("machine {} cannot synchronise the spindle to the feed; tapping needs a floating tap "
                                      "holder: set tapping to floating in a copy of the machine file",
                                      machine_.name));
@@ -422,7 +450,7 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
                                      machine_.name, kind));
     if (!fit.missing.empty()) {
         std::vector<std::string> offered;
-        for (DrillField f : fit.spec->fields) offered.emplace_back(std::string(key_of(f)));
+        for (DrillField f : fit.spec->fields) offered.emplace_back(cycle_key(f, machine_.kind));
         throw InputError(cycle.path + "/output",
                          fmt::format("machine {}'s {} cannot carry {}; it carries: {}", machine_.name, fit.spec->name,
                                      fmt::join(fit.missing, ", "),
@@ -435,9 +463,8 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
 DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
     DrillCycle c = cycle;
     const DrillValues& v = cycle.values;
-    auto refuse = [&](DrillField field, const std::string& detail) {
-        throw InputError(cycle.path + "/" + std::string(key_of(field)), detail);
-    };
+    auto key = [&](DrillField field) { return cycle_key(field, machine_.kind); };
+    auto refuse = [&](DrillField field, const std::string& detail) { throw InputError(cycle.path + "/" + key(field), detail); };
     const std::string& m = machine_.name;
     // A hole whose bottom is not below where its feed starts, or whose depth is written as 0
     // (its depth, or its two Zs, rounding alike): no hole, and on heidenhain a CYCL DEF 200
@@ -448,37 +475,48 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
         throw InputError(cycle.path + "/endDepth",
                          fmt::format("the hole's bottom (Z {}) is not below where its feed starts (Z {}): nothing would be "
                                      "drilled",
-                                     c.bottom_z, feed_start));
+                                     number_text(c.bottom_z), number_text(feed_start)));
     if (xyz_fmt_.is_zero(depth) || !(xyz_fmt_.rounded(c.bottom_z) < xyz_fmt_.rounded(feed_start)))
         throw InputError(cycle.path + "/endDepth",
                          fmt::format("the hole is {} mm deep (Z {} to {}), below the resolution of machine {}: it would be "
                                      "written 0 deep and not drilled",
-                                     depth, feed_start, c.bottom_z, m));
+                                     number_text(depth), number_text(feed_start), number_text(c.bottom_z), m));
     // Speeds that would be written as S0 (or SST=0).
     for (DrillField f : {DrillField::tapping_speed, DrillField::retract_speed})
         if (auto rpm = v.get(f); rpm && rpm_fmt_.is_zero(*rpm))
-            refuse(f, fmt::format("{} {} rpm would be written as 0 on machine {}", key_of(f), *rpm, m));
+            refuse(f, fmt::format("{} {} rpm would be written as 0 on machine {}", key(f), number_text(*rpm), m));
     // A back-off the control reads as 0 would not break the chip.
     if (auto mm = v.get(DrillField::pecking_retract); mm && xyz_fmt_.is_zero(*mm))
         refuse(DrillField::pecking_retract,
-               fmt::format("peckingRetract {} mm is below the resolution of machine {}: it would be written as 0", *mm, m));
+               fmt::format("{} {} mm is below the resolution of machine {}: it would be written as 0",
+                           key(DrillField::pecking_retract), number_text(*mm), m));
     // A peck shorter than one unit of the last decimal (or written as 0): successive depths
     // round onto each other, so pecks (and their dwells) would be written on the spot.
     const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
     for (DrillField f : {DrillField::first_depth, DrillField::subsequent_depth, DrillField::minimum_depth})
         if (auto mm = v.get(f); mm && *mm < unit)
             refuse(f, fmt::format("{} {} mm is below the resolution of machine {} ({} mm): its pecks cannot be written",
-                                  key_of(f), *mm, m, unit));
+                                  key(f), number_text(*mm), m, number_text(unit)));
     if (v.degression_type() == DegressionType::value && xyz_fmt_.is_zero(v.value_or(DrillField::degression, 0.0)))
         refuse(DrillField::degression, fmt::format("degression {} mm is below the resolution of machine {}: it would be "
-                                                   "written as 0", v.value_or(DrillField::degression, 0.0), m));
+                                                   "written as 0", number_text(v.value_or(DrillField::degression, 0.0)), m));
     // A dwell that was asked for but would be written as none.
     for (DrillField f : {DrillField::top_dwell, DrillField::bottom_dwell})
         if (v.used(f) && dwell_fmt_.is_zero(*v.get(f)))
-            refuse(f, fmt::format("{} {} s is below the resolution of machine {}: it would be written as no dwell", key_of(f),
-                                  *v.get(f), m));
-    // The same pecks canned and longhand: more than any control takes is refused either way.
-    if (is_pecking(c.kind)) (void)peck_depths(c);
+            refuse(f, fmt::format("{} {} s is below the resolution of machine {}: it would be written as no dwell", key(f),
+                                  number_text(*v.get(f)), m));
+    // The same pecks canned and longhand: more than any control takes is refused either way
+    // (at the operation's own key).
+    if (is_pecking(c.kind)) {
+        try {
+            (void)peck_depths(c);
+        } catch (const InputError& e) {
+            const std::string& p = e.path();
+            if (p.rfind(cycle.path + "/", 0) != 0) throw;
+            throw InputError(cycle.path + "/" + cycle_key(std::string_view(p).substr(cycle.path.size() + 1), machine_.kind),
+                             e.detail(), e.line(), e.source());
+        }
+    }
     if (is_tapping(c.kind)) {
         const double pitch = v.value_or(DrillField::pitch, 0.0);
         const double in = v.value_or(DrillField::tapping_speed, c.spindle_rpm);
@@ -488,17 +526,18 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
             refuse(v.has(DrillField::tapping_speed) ? DrillField::tapping_speed : DrillField::pitch,
                    fmt::format("the tap's feed {} mm/min (pitch {} mm x {} rpm) is above the limit of machine {} ({} "
                                "mm/min); a tapping feed is never clamped, it must match the pitch: tap at {} rpm or less",
-                               pitch * fastest, pitch, fastest, m, machine_.limits.max_feed,
-                               std::floor(machine_.limits.max_feed / pitch)));
+                               number_text(pitch * fastest), number_text(pitch), number_text(fastest), m,
+                               number_text(machine_.limits.max_feed), number_text(std::floor(machine_.limits.max_feed / pitch))));
         const double slowest = std::min(in, out);
         if (pitch * slowest < machine_.limits.min_feed)
             refuse(DrillField::pitch,
                    fmt::format("the tap's feed {} mm/min (pitch {} mm x {} rpm) is below the minimum of machine {} ({} "
                                "mm/min); a tapping feed is never clamped, it must match the pitch",
-                               pitch * slowest, pitch, slowest, m, machine_.limits.min_feed));
+                               number_text(pitch * slowest), number_text(pitch), number_text(slowest), m,
+                               number_text(machine_.limits.min_feed)));
         if (machine_.limits.max_rpm > 0 && fastest > machine_.limits.max_rpm)
             refuse(DrillField::tapping_speed, fmt::format("tapping at {} rpm is above the limit of machine {} ({} rpm)",
-                                                          fastest, m, machine_.limits.max_rpm));
+                                                          number_text(fastest), m, number_text(machine_.limits.max_rpm)));
         return c;
     }
     // Feeds the machine cannot run are clamped once, here, so that every dialect's canned
@@ -556,10 +595,10 @@ void Post::handle_arc(const Arc& arc) {
         const double per_turn = travel * 2 * std::numbers::pi / geo.sweep;
         const double unit = std::pow(10.0, -xyz_fmt_.spec().decimals) / xyz_fmt_.spec().scale;
         if (travel > 0 && per_turn < unit * (1 - 1e-6))  // a pitch of one unit passes
-            fail("", fmt::format("a helix of {} turns moves {:.6g} mm along its axis a turn, below the resolution of machine {} ({} "
+            fail("", fmt::format("a helix of {} turns moves {} mm along its axis a turn, below the resolution of machine {} ({} "
                                  "mm): turns would be written at one height, the tool circling in place (bore-mill and a "
                                  "path's helix: a larger pitch; a contour's helix ramp: a larger angle or radius)",
-                                 arc.turns + 1, per_turn, machine_.name, unit));
+                                 arc.turns + 1, number_text(per_turn, 6), machine_.name, number_text(unit, 6)));
     }
     const ArcSettings& s = machine_.arcs;
     const double tolerance = effective_chord_tolerance(s, op_tolerance_);
@@ -585,16 +624,18 @@ void Post::write_lines(const ArcGeometry& arc, std::int64_t segments, double fee
         const double turns = arc.sweep / (2 * std::numbers::pi);
         const PlanePoint a = to_plane(arc.start, arc.plane), b = to_plane(arc.end, arc.plane);
         const std::string what = std::abs(b.w - a.w) > 1e-9
-                                     ? fmt::format("a helix of {:.6g} turns of radius {:.6g} mm", turns, arc.radius)
-                                     : fmt::format("an arc of {:.6g} degrees and radius {:.6g} mm", arc.sweep * 180 / std::numbers::pi,
-                                                   arc.radius);
+                                     ? fmt::format("a helix of {} turns of radius {} mm", number_text(turns), number_text(arc.radius))
+                                     : fmt::format("an arc of {} degrees and radius {} mm",
+                                                   number_text(arc.sweep * 180 / std::numbers::pi), number_text(arc.radius));
         const std::string keep = tolerance_binds
-                                     ? fmt::format("within the chord tolerance of {:g} mm", chord_tolerance)
-                                     : fmt::format("each chord within maxSegmentLength {:g} mm", *machine_.arcs.max_segment_length);
+                                     ? fmt::format("within the chord tolerance of {} mm", number_text(chord_tolerance, 6))
+                                     : fmt::format("each chord within maxSegmentLength {} mm",
+                                                   number_text(*machine_.arcs.max_segment_length, 6));
         fail("", fmt::format("{}, which machine {} writes as straight moves ({}), needs {} of them to keep {}; at most {} "
                              "are written for one arc (fewer turns or a larger pitch, a larger tolerance up to the machine's "
-                             "chordTolerance {:g} mm, or a machine that writes it as arcs)",
-                             what, machine_.name, why, segments, keep, max_arc_chords, machine_.arcs.chord_tolerance));
+                             "chordTolerance {} mm, or a machine that writes it as arcs)",
+                             what, machine_.name, why, segments, keep, max_arc_chords,
+                             number_text(machine_.arcs.chord_tolerance, 6)));
     }
     // One point at a time: a long helix broken into millions of chords is never held whole.
     const int n = static_cast<int>(std::max<std::int64_t>(segments, 1));

@@ -9,6 +9,7 @@
 
 #include "camgen/geometry/vec.hpp"
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 #include "camgen/post/longhand.hpp"
 
 namespace camgen::reader {
@@ -95,7 +96,8 @@ double NcReader::length(const Word& w) const {
     if (s.force_decimal && s.decimals > 0 && !w.has_point)
         fail(fmt::format("{} has no decimal point: machine {} always writes one, and a Fanuc-style control "
                          "reads {} as {} {}", w.text, machine_.name, w.text,
-                         w.value * std::pow(10.0, -s.decimals), machine_.units == Units::inch ? "inch" : "mm"));
+                         number_text(w.value * std::pow(10.0, -s.decimals), std::max(s.decimals, 4)),
+                         machine_.units == Units::inch ? "inch" : "mm"));
     return w.value / s.scale;
 }
 
@@ -554,7 +556,8 @@ void NcReader::arc(const ArcWords& a) {
         double r = std::abs(*a.r);
         double slack = machine_.tolerance + 2.0 * res.position;
         if (chord / 2.0 > r + slack)
-            fail(fmt::format("R{}: the radius is smaller than half the distance to the end ({})", *a.r, chord / 2.0));
+            fail(fmt::format("R{}: the radius is smaller than half the distance to the end ({})", number_text(*a.r, 6),
+                             number_text(chord / 2.0)));
         double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4.0));
         // Sweeps up to 180 degrees (R > 0): counter-clockwise arcs have their centre on the
         // left of the chord, clockwise ones on the right; R < 0 means the other side.

@@ -45,7 +45,7 @@ std::vector<ReadEvent> read_program(std::string_view text, const Machine& machin
 }
 
 ProgramReader::ProgramReader(std::istream& in, const Machine& machine, const std::string& source, ReadEventSink& sink)
-    : in_(in), sink_(sink), reader_(reader::make_reader(machine, source)) {
+    : in_(in), sink_(sink), reader_(reader::make_reader(machine, source)), bounds_(source.empty() ? "the program" : source) {
     reader_->start(sink);
 }
 
@@ -54,18 +54,24 @@ ProgramReader::~ProgramReader() = default;
 bool ProgramReader::advance() {
     if (done_) return false;
     // Blocks of 64 KiB: a line longer than what is left of one moves to the front and the
-    // block grows until the line ends.
+    // block grows until the line ends, up to the limit of a line (max_program_line); the bytes
+    // are counted against the limit of an input.
     constexpr std::size_t block = std::size_t{1} << 16;
     std::size_t nl = buffer_.find('\n', next_);
     while (nl == std::string::npos && in_) {
         buffer_.erase(0, next_);
         next_ = 0;
+        bounds_.line(buffer_.size(), line_ + 1);
         const std::size_t kept = buffer_.size();
         buffer_.resize(kept + block);
         in_.read(buffer_.data() + kept, static_cast<std::streamsize>(block));
-        buffer_.resize(kept + static_cast<std::size_t>(in_.gcount()));
+        const std::size_t got = static_cast<std::size_t>(in_.gcount());
+        buffer_.resize(kept + got);
+        bounds_.add(got);
         nl = buffer_.find('\n', kept);
     }
+    bounds_.line((nl == std::string::npos ? buffer_.size() : nl) - next_, line_ + 1);
+    ++line_;
     if (nl == std::string::npos) {
         if (in_.bad()) throw IoError("cannot read the program");
         if (next_ < buffer_.size()) {  // a last line without its line break

@@ -476,7 +476,7 @@ TEST_CASE("a helix that moves less than the machine's resolution a turn is refus
     for (const std::string machine : {"grbl", "fanuc", "sinumerik", "kosy", "wabeco", "heidenhain"}) {
         CAPTURE(machine);
         CHECK(refusal(bore, machine) ==
-              "/operations/0: a helix of 28160 turns moves 0.000426136 mm along its axis a turn, below the resolution of "
+              "/operations/0: a helix of 28160 turns moves 0.000426 mm along its axis a turn, below the resolution of "
               "machine " + machine + " (0.001 mm): turns would be written at one height, the tool circling in place (bore-mill "
               "and a path's helix: a larger pitch; a contour's helix ramp: a larger angle or radius)");
         // One unit a turn is a helix (3 mm at 0.001: 3,000 turns).

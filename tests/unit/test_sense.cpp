@@ -51,7 +51,7 @@ TEST_CASE("sense: speeds, pecks and dwells that a machine would write as 0 are r
               "/operations/0/firstDepth: firstDepth 0.0001 mm is below the resolution of machine fanuc"));
     CHECK(has(refusal(job_with(R"("tool": 1, "cycle": "dwell", "endDepth": 5, "bottomDwell": 1e-9, "plungingFeedrate": 100)"),
                       "linuxcnc"),
-              "/operations/0/bottomDwell: bottomDwell 1e-09 s is below the resolution of machine linuxcnc"));
+              "/operations/0/bottomDwell: bottomDwell 0.000000001 s is below the resolution of machine linuxcnc"));
 }
 
 TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused on every machine (fuzz finding 11)") {
@@ -66,7 +66,7 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
             CAPTURE(machine);
             CAPTURE(cycle);
             CHECK(has(refusal(mill(cycle, "3.2398696036443e-09"), machine),
-                      "/operations/0/endDepth: the hole is 3.2398696036443e-09 mm deep (Z 0 to -3.2398696036443e-09), below "
+                      "/operations/0/endDepth: the hole is 0.0000000032 mm deep (Z 0 to -0.0000000032), below "
                       "the resolution of machine " + machine + ": it would be written 0 deep and not drilled"));
             CHECK(refusal(mill(cycle, "0.001"), machine) == "");  // one unit of the last decimal is a hole
         }
@@ -87,7 +87,7 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
         else
             CHECK(has(refusal(flat, machine), "/operations/0/endDepth: the hole is 0.0008 mm deep (Z 0.0004 to -0.0004), below "
                                               "the resolution of machine " + machine));
-        CHECK(has(refusal(finer, machine), "/operations/0/endDepth: the hole is 8e-05 mm deep (Z 4e-05 to -4e-05), below "
+        CHECK(has(refusal(finer, machine), "/operations/0/endDepth: the hole is 0.00008 mm deep (Z 0.00004 to -0.00004), below "
                                            "the resolution of machine " + machine));
         CHECK(has(refusal(above, machine),
                   "/operations/0/endDepth: the hole's bottom (Z 1) is not below where its feed starts (Z 0): nothing would "
@@ -102,7 +102,7 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
         for (const std::string peck : {"", R"(, "firstPeckDepth": 1)"}) {
             CAPTURE(machine);
             CAPTURE(peck);
-            CHECK(has(refusal(lathe("-1e-9", peck), machine), "/operations/0/endDepth: the hole is 1e-09 mm deep"));
+            CHECK(has(refusal(lathe("-1e-9", peck), machine), "/operations/0/endDepth: the hole is 0.000000001 mm deep"));
             CHECK(refusal(lathe("-0.001", peck), machine) == "");
         }
     // Both Zs rounding alike on a lathe: a face at Z0.00004 and a bottom at Z-0.00004 (every
@@ -115,7 +115,7 @@ TEST_CASE("sense: a hole written 0 deep, or not below its feed start, is refused
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
         CAPTURE(machine);
         CHECK(has(refusal(lathe_from("0.00004", "-0.00004"), machine),
-                  "/operations/0/endDepth: the hole is 8e-05 mm deep (Z 4e-05 to -4e-05), below the resolution of machine " +
+                  "/operations/0/endDepth: the hole is 0.00008 mm deep (Z 0.00004 to -0.00004), below the resolution of machine " +
                       machine));
         if (machine == "linuxcnc-lathe")
             CHECK(refusal(lathe_from("0.0004", "-0.0004"), machine) == "");

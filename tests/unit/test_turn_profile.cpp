@@ -105,7 +105,7 @@ TEST_CASE("turn-profile: bad input at its JSON path") {
         CHECK(std::string(e.detail()).find(detail) != std::string::npos);
     };
     check(job("diameter", "[40, 0]", R"({"line": [30, -2]}, {"line": [-4, -5]})"), "/operations/0/path/1/line/0",
-          "X -4 is negative: a diameter is measured from the spindle axis");
+          "X -4.000 mm is negative: a diameter is measured from the spindle axis");
     check(job("diameter", "[-2, 0]", R"({"line": [30, -2]})"), "/operations/0/start/0", "is negative");
     check(job("diameter", "[40, 0]", R"({"arc": {"end": [20, -10], "centre": [24, 0], "direction": "cw"}})"),
           "/operations/0/path/0/arc/centre", "it is not the centre of an arc through both");

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "camgen/common/input_file.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/post/machine.hpp"
 
@@ -61,7 +62,8 @@ class NcReader;
 
 // Reads a program from a stream a line at a time (in blocks of the stream, never the whole
 // text), handing each event to the sink as its line is read. The same checks and messages as
-// read_program; advance() throws them.
+// read_program; advance() throws them, and IoError for a line longer than max_program_line or
+// more bytes than max_input_size() (a stream without an end: /dev/zero).
 class ProgramReader {
 public:
     ProgramReader(std::istream& in, const Machine& machine, const std::string& source, ReadEventSink& sink);
@@ -83,6 +85,8 @@ private:
     std::string buffer_;  // a block of the stream; lines are cut from it
     std::size_t next_ = 0;  // where the next line starts in buffer_
     bool done_ = false;
+    InputBounds bounds_;    // the bytes read and the length of a line, within their limits
+    long line_ = 0;         // lines handed on
 };
 
 // Reads a program as read_program does, handing each event to `sink` as it is read.
