@@ -18,7 +18,7 @@ namespace {
 // lathe tool's front and back angles and orientation.
 constexpr std::string_view table_letters = "TPXYZABCUVWDIJQ";
 
-bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool table_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 }  // namespace
 
@@ -39,12 +39,12 @@ std::map<int, double> read_tool_table(std::string_view text, const std::string& 
         std::string seen;
         std::size_t i = 0;
         while (i < l.size()) {
-            if (blank(l[i])) {
+            if (table_blank(l[i])) {
                 ++i;
                 continue;
             }
             std::size_t end = i;
-            while (end < l.size() && !blank(l[end])) ++end;
+            while (end < l.size() && !table_blank(l[end])) ++end;
             const std::string_view word = l.substr(i, end - i);
             i = end;
             const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));

@@ -23,7 +23,7 @@ constexpr std::string_view draft = "https://json-schema.org/draft/2020-12/schema
 constexpr std::string_view id_base = "https://camgen.example/schema/";
 
 // Which file a schema is for: job lengths and feeds follow the job's units, a machine's are mm.
-enum class FileKind { job, machine };
+enum class SchemaKind { job, machine };
 
 // A bound as JSON: whole numbers as integers (0, not 0.0).
 OJson number_json(double v) {
@@ -32,10 +32,10 @@ OJson number_json(double v) {
 }
 
 // "mm", "mm/min; in/min when units is inch", ... ("" for quantities without a unit).
-std::string unit_note(Quantity q, FileKind file) {
+std::string unit_note(Quantity q, SchemaKind file) {
     const std::string_view unit = unit_of(q);
     if (unit.empty()) return "";
-    if (file == FileKind::job && scales_with_units(q))
+    if (file == SchemaKind::job && scales_with_units(q))
         return fmt::format("{}; {} when units is inch", unit, q == Quantity::feed ? "in/min" : "in");
     return std::string(unit);
 }
@@ -76,7 +76,7 @@ OJson enum_of(Choices choices) {
 }
 
 // The schema of one key's value.
-OJson value_schema(const KeySpec& k, FileKind file) {
+OJson value_schema(const KeySpec& k, SchemaKind file) {
     OJson s;
     switch (k.type) {
         case JsonType::point:
@@ -149,7 +149,7 @@ OJson rule_schema(const ObjectSpec& spec, const KeyRule& r) {
 }
 
 // The schema of an object: its keys (and no others), the required ones, its groups and rules.
-OJson object_schema(const ObjectSpec& spec, FileKind file) {
+OJson object_schema(const ObjectSpec& spec, SchemaKind file) {
     OJson s;
     s["type"] = "object";
     s["description"] = spec.description;
@@ -176,7 +176,7 @@ OJson object_schema(const ObjectSpec& spec, FileKind file) {
 
 // A whole schema: the header, the first object at the top level and the others in $defs.
 OJson file_schema(std::string_view name, std::string_view title, const std::vector<ObjectSpec>& objects,
-                  const OJson& extra_defs, FileKind file) {
+                  const OJson& extra_defs, SchemaKind file) {
     OJson s;
     s["$schema"] = draft;
     s["$id"] = fmt::format("{}{}.schema.json", id_base, name);
@@ -202,7 +202,7 @@ OJson operation_defs() {
                 if (objects.empty() || objects.front().name != Op::type)
                     throw std::logic_error("an operation's first object must be named by its type");
                 for (const auto& spec : objects) {
-                    OJson o = object_schema(spec, FileKind::job);
+                    OJson o = object_schema(spec, SchemaKind::job);
                     if (spec.name == Op::type)
                         o["properties"]["type"] = OJson{{"const", Op::type}, {"description", "the kind of operation"}};
                     defs[std::string(spec.name)] = o;
@@ -289,11 +289,11 @@ std::optional<std::string> keys_markdown(std::string_view name) {
 }
 
 OJson job_schema() {
-    return file_schema("job", "camgen job", JobInput::objects(), operation_defs(), FileKind::job);
+    return file_schema("job", "camgen job", JobInput::objects(), operation_defs(), SchemaKind::job);
 }
 
 OJson machine_schema() {
-    return file_schema("machine", "camgen machine", machine_objects(), OJson::object(), FileKind::machine);
+    return file_schema("machine", "camgen machine", machine_objects(), OJson::object(), SchemaKind::machine);
 }
 
 std::vector<std::string> schema_names() { return {"job", "machine"}; }

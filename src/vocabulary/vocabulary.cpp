@@ -60,7 +60,7 @@ std::vector<std::string> drill_field_keys() {
 namespace {
 
 // A number as the docs write it: "0", "1", "0.5".
-std::string number_text(double v) {
+std::string bound_text(double v) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", v);
     return buffer;
@@ -97,8 +97,8 @@ std::string quantity_text(Quantity quantity, std::optional<Bound> min, std::opti
     static constexpr const char* names[] = {"length", "feed", "time", "speed", "factor", "angle", "count", "choice"};
     std::string s = names[static_cast<int>(quantity)];
     if (!unit_of(quantity).empty()) s += " (" + std::string(unit_of(quantity)) + ")";
-    if (min) s += (min->inclusive ? " >= " : " > ") + number_text(min->value);
-    if (max) s += std::string(min ? "," : "") + (max->inclusive ? " <= " : " < ") + number_text(max->value);
+    if (min) s += (min->inclusive ? " >= " : " > ") + bound_text(min->value);
+    if (max) s += std::string(min ? "," : "") + (max->inclusive ? " <= " : " < ") + bound_text(max->value);
     return s;
 }
 

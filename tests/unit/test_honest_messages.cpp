@@ -22,6 +22,9 @@
 #include "camgen/operations/registry.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_honest_messages {
+
 using namespace camgen;
 namespace fs = std::filesystem;
 
@@ -136,3 +139,5 @@ TEST_CASE("tests/errors/messages.txt: every message about an operation names a k
     }
     CHECK(checked > 1000);
 }
+
+}  // namespace test_honest_messages

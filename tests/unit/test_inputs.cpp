@@ -26,6 +26,9 @@
 #include "camgen/common/input_file.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_inputs {
+
 using namespace camgen;
 namespace fs = std::filesystem;
 
@@ -465,3 +468,5 @@ TEST_CASE("a job with a JSON mistake keeps its JSON message; a valid job is neve
     CHECK(a.code == 1);
     CHECK_FALSE(contains(a.err, "not a job"));
 }
+
+}  // namespace test_inputs
