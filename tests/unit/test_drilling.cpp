@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "camgen/cli/cli.hpp"
+#include "camgen/post/capabilities.hpp"
 #include "camgen/post/longhand.hpp"
 #include "support.hpp"
 
@@ -322,9 +323,12 @@ std::string cycle_table(MachineKind kind) {
             continue;
         s += fmt::format("| `{}` |", std::string(name_of(cycle_kinds, k)));
         for (const Machine& m : machines) {
-            const DrillingCycleSpec* c = m.canned_cycle(k);
-            if (is_tapping(k) && m.tapping == TappingMode::none) s += " refused |";
-            else s += c ? fmt::format(" `{}` |", c->name) : std::string(" longhand |");
+            // What the post makes of the kind (the capability its refusals and --describe-machine use).
+            const MachineCapabilities can = machine_capabilities(m);
+            const auto c = std::find_if(can.cycles.begin(), can.cycles.end(), [&](const CycleCapability& x) { return x.kind == k; });
+            REQUIRE(c != can.cycles.end());
+            if (c->refused) s += " refused |";
+            else s += c->canned ? fmt::format(" `{}` |", c->canned->name) : std::string(" longhand |");
         }
         s += "\n";
     }
@@ -348,11 +352,11 @@ TEST_CASE("README's cycle table equals the machines' drilling tables and --descr
         const std::string& name = listed.first;
         const Machine m = load_machine(name);
         const std::string d = describe_machine(m);
-        for (CycleKind k : {CycleKind::drill, CycleKind::deep, CycleKind::tap, CycleKind::bore_dwell}) {
-            const DrillingCycleSpec* c = m.canned_cycle(k);
-            std::string label = fmt::format("{:<24}", std::string(name_of(cycle_kinds, k)));
-            INFO(name << " " << std::string(name_of(cycle_kinds, k)));
-            CHECK(has(d, "  " + label + (c ? "canned " + c->name + ";" : std::string("longhand"))));
+        for (const CycleCapability& c : machine_capabilities(m).cycles) {
+            std::string label = fmt::format("{:<24}", std::string(name_of(cycle_kinds, c.kind)));
+            INFO(name << " " << std::string(name_of(cycle_kinds, c.kind)));
+            CHECK(has(d, "  " + label +
+                             (c.refused ? "refused: " : c.canned ? "canned " + c.canned->name + ";" : std::string("longhand"))));
         }
     }
 }
