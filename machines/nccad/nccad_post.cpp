@@ -3,6 +3,7 @@
 // M30 P<n> dwell in 1/18 s, G81 .. B + G79 drilling, G77 home, G99 end of program.
 #include "machines/nccad/nccad_post.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -46,15 +47,25 @@ void NccadPost::on_tool_change(const ToolChange& tool) {
     pending_tool_ = tool;
 }
 
-std::optional<std::string> NccadPost::tapping_impossible(const DrillCycle& cycle) const {
-    if (cycle.kind == CycleKind::tap_left)
+std::optional<std::string> NccadPost::control_compensation_refusal() const {
+    if (auto why = Post::control_compensation_refusal()) return why;
+    return fmt::format("machine {} has no cutter radius compensation (nccad has no G41/G42): use compensation computer",
+                       machine().name);
+}
+
+std::optional<std::string> NccadPost::ccw_spindle_refusal() const {
+    return fmt::format("machine {} cannot run the spindle counter-clockwise", machine().name);
+}
+
+std::optional<std::string> NccadPost::tapping_impossible(CycleKind kind) const {
+    if (kind == CycleKind::tap_left)
         return "its spindle cannot run counter-clockwise, and a left-hand tap cuts only counter-clockwise";
     return "its spindle cannot run counter-clockwise, so a right-hand tap cannot be backed out of the hole";
 }
 
 void NccadPost::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::ccw)
-        fail("", fmt::format("machine {} cannot run the spindle counter-clockwise (tool {})", machine().name, current_tool()));
+        if (auto why = ccw_spindle_refusal()) fail("", fmt::format("{} (tool {})", *why, current_tool()));
     if (s.state == SpindleState::off) {
         if (pending_tool_) flush_tool_message(std::nullopt);
         writer().add(m(10)).add("O6.0").end();
@@ -90,10 +101,8 @@ void NccadPost::on_dwell(double seconds) {
     writer().add(m(30)).add(fmt::format("P{}", n)).end();
 }
 
-void NccadPost::on_compensation(const Compensation& compensation) {
-    if (compensation.side != CompensationSide::off)
-        fail("/compensation", fmt::format("machine {} has no cutter radius compensation", machine().name));
-}
+// Control compensation never comes on (control_compensation_refusal), so there is no G40 to write.
+void NccadPost::on_compensation(const Compensation&) {}
 
 void NccadPost::on_drilling_header(const DrillCycle&, const DrillingCycleSpec&) {}
 
@@ -130,6 +139,20 @@ std::optional<MachineProblem> check_nccad_machine(const Machine& machine) {
         return MachineProblem{{"/formats/rpm/scale"},
                               "nccad's M01 message tells the operator the spindle speed to set by hand, in rpm: "
                               "leave scale out of the rpm format"};
+    // on_drilling_point writes every canned cycle as G81 X Y Z B F (G79 at the next holes): a
+    // plain drill fed from B. A cycle of another kind, or one carrying more, would be written
+    // as that plain drill (and described as what it is not).
+    for (std::size_t i = 0; i < machine.drilling.size(); ++i) {
+        const DrillingCycleSpec& c = machine.drilling[i];
+        const bool g81 = c.kind == CycleKind::drill && c.name == "G81" && c.style == CannedStyle::standard &&
+                         std::all_of(c.fields.begin(), c.fields.end(),
+                                     [](DrillField f) { return f == DrillField::plunging_feedrate; });
+        if (c.canned && !g81)
+            return MachineProblem{{fmt::format("/drilling/cycles/{}", i)},
+                                  "nccad's one canned cycle is G81 X Y Z B F, a plain drill: {\"name\": \"G81\", "
+                                  "\"kind\": \"drill\", \"fields\": [\"plungingFeedrate\"]}; camgen writes every other "
+                                  "cycle longhand: remove this one"};
+    }
     static constexpr std::string_view no_unit_words[] = {"G70", "G71"};
     static constexpr std::string_view start_words[] = {"G90"};
     if (auto p = start_block_problem(machine, no_unit_words, start_words)) return p;

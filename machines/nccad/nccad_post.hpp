@@ -10,6 +10,10 @@ namespace camgen {
 class NccadPost : public Post {
 public:
     NccadPost(const Machine& machine, std::ostream& out, PostOptions options);
+    // nccad has no G41/G42, whatever the machine file's cutterCompensation says.
+    std::optional<std::string> control_compensation_refusal() const override;
+    // nccad's spindle runs clockwise only (M10 O6.1).
+    std::optional<std::string> ccw_spindle_refusal() const override;
 
 protected:
     void on_open() override;
@@ -22,7 +26,7 @@ protected:
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     // nccad's spindle runs clockwise only: a right-hand tap cannot come out, a left-hand one cannot cut.
-    std::optional<std::string> tapping_impossible(const DrillCycle& cycle) const override;
+    std::optional<std::string> tapping_impossible(CycleKind kind) const override;
 
 private:
     void flush_tool_message(std::optional<double> rpm);

@@ -28,7 +28,7 @@ constexpr KeySpec path_keys[] = {
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
      .description = "written as a comment before the operation"},
     {.key = "z", .quantity = Quantity::length, .required = true,
-     .description = "absolute Z where the path starts, below clearance; points given as [x, y] are at this Z"},
+     .description = "absolute Z where the path starts, below clearance"},
     {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false}, .description = "cutting feed"},
     {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
      .description = "feed down to z (default: feed)"},
@@ -44,7 +44,7 @@ constexpr KeySpec path_keys[] = {
 // The keys of a path element: exactly one of them.
 constexpr KeySpec path_element_keys[] = {
     {.key = "line", .type = JsonType::point3, .quantity = Quantity::length,
-     .description = "a straight move to [x, y] or [x, y, z]"},
+     .description = "a straight move to [x, y] (at the current Z: where the element before ended) or [x, y, z]"},
     {.key = "arc", .type = JsonType::object, .ref = "pathArc", .description = "an arc about an absolute centre"},
     {.key = "helix", .type = JsonType::object, .ref = "pathHelix",
      .description = "whole turns about a vertical axis, back to the same X and Y at another Z"},
@@ -53,7 +53,7 @@ constexpr KeySpec path_element_keys[] = {
 // The keys of an arc.
 constexpr KeySpec path_arc_keys[] = {
     {.key = "end", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
-     .description = "end point [x, y] or [x, y, z]"},
+     .description = "end point [x, y] (at the current Z) or [x, y, z]"},
     {.key = "centre", .type = JsonType::point3, .quantity = Quantity::length, .required = true,
      .description = "absolute centre [x, y] (xy only) or [x, y, z]; along the plane's normal axis it is the start's"},
     {.key = "direction", .type = JsonType::string, .required = true, .choices = &choices_of<arc_directions>,
@@ -74,14 +74,15 @@ constexpr KeySpec helix_keys[] = {
     {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false}, .description = "Z travel per turn, down"},
 };
 
-// Reads an arc from `current`; `lowest` becomes the lowest Z it reaches if that is below it.
-PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double depth, double& lowest) {
+// Reads an arc from `current` (an end [x, y] is at its Z); `lowest` becomes the lowest Z it
+// reaches if that is below it.
+PathArc read_arc(Fields& a, const JobInput& in, const Vec3& current, double& lowest) {
     JobInput::known_keys(a, path_arc_keys);
     PathArc arc;
     arc.plane = a.choice("plane", plane_names, Plane::xy);
     const char* plane_name = arc.plane == Plane::xy ? "xy" : arc.plane == Plane::xz ? "xz" : "yz";
     const char* normal_axis = arc.plane == Plane::xy ? "z" : arc.plane == Plane::xz ? "y" : "x";
-    arc.end = in.point3(a, "end", depth);
+    arc.end = in.point3(a, "end", current.z);
     const Json& centre = a.required("centre");
     if (arc.plane != Plane::xy && !(centre.is_array() && centre.size() == 3))
         a.fail("centre", fmt::format("an {} arc needs its centre as [x, y, z], got {}", plane_name, JobInput::describe(centre)));
@@ -220,13 +221,16 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
         // Lines read straight into numbers ({"line": [x, y(, z)]} each, see PackedArray).
         in.claim_path_elements(static_cast<double>(packed->size()), f, "path");
         op.elements.reserve(packed->size());
+        // A line [x, y] stays at the Z where it starts (the end of the line before it).
+        double current_z = op.z;
         for (std::size_t k = 0; k < packed->size(); ++k) {
             auto line_path = [&] { return fmt::format("{}/{}/line", base, k); };
             Vec3 end{in.packed_coordinate(packed->x(k), [&] { return line_path() + "/0"; }),
-                     in.packed_coordinate(packed->y(k), [&] { return line_path() + "/1"; }), op.z};
+                     in.packed_coordinate(packed->y(k), [&] { return line_path() + "/1"; }), current_z};
             if (packed->has_z(k)) end.z = in.packed_coordinate(packed->z(k), [&] { return line_path() + "/2"; });
             if (end.z >= in.header().clearance) json::fail(in.source(), line_path(), above_clearance(end.z, "the line's end"));
             op.elements.emplace_back(PathLine{end});
+            current_z = end.z;
             lowest = std::min(lowest, end.z);
             if (too_deep()) refuse_depth(line_path());
         }
@@ -246,14 +250,17 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
         const int given = int(e.has("line")) + int(e.has("arc")) + int(e.has("helix"));
         if (given != 1) e.fail("", "a path element needs exactly one of \"line\", \"arc\" or \"helix\"");
         if (e.has("line")) {
-            const Vec3 end = in.point3(e, "line", op.z);
+            // [x, y] keeps the current Z, as a G1 X Y block does: after an element that
+            // changed Z, going back to the operation's z would feed diagonally through what
+            // was just cut.
+            const Vec3 end = in.point3(e, "line", current.z);
             below_clearance(e, "line", end.z, "the line's end");
             op.elements.emplace_back(PathLine{end});
             current = end;
             lowest = std::min(lowest, end.z);
         } else if (e.has("arc")) {
             Fields a(e.required("arc"), e.path_of("arc"), in.source());
-            PathArc arc = read_arc(a, in, current, op.z, lowest);
+            PathArc arc = read_arc(a, in, current, lowest);
             op.elements.emplace_back(arc);
             current = arc.end;
         } else {

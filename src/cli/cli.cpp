@@ -30,6 +30,7 @@
 #include "camgen/operations/registry.hpp"
 #include "camgen/cli/output.hpp"
 #include "camgen/post/post.hpp"
+#include "camgen/post/capabilities.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
@@ -639,10 +640,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_flag("--list-machines", o.list_machines,
                  "List the machines: the user's (CAMGEN_MACHINES folders, then $XDG_CONFIG_HOME/camgen/machines) "
                  "and the built-in ones, each with its source");
-    app.add_option("--describe-machine", o.describe, "Print a machine's settings and drilling cycle table");
+    app.add_option("--describe-machine", o.describe,
+                   "Print a machine's settings, drilling cycle table and capabilities (what its post makes and refuses)");
     app.add_flag("--json", o.describe_json,
-                 "With --describe-machine: print the machine's complete file (its extends applied) as JSON, to start "
-                 "a machine file from");
+                 "With --describe-machine: print JSON: \"machine\", the complete machine file (its extends applied; "
+                 "a start for your own), and \"capabilities\"");
     app.add_option("--plot", o.plot,
                    "Also write a backplot of the program as read back: F.svg a drawing (XY view, a lathe's XZ "
                    "half-section), F.html an interactive page (block slider, layers, statistics)");
@@ -722,7 +724,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             return exit_ok;
         }
         if (!o.describe.empty()) {
-            if (o.describe_json) out << resolve_machine_json(o.describe).dump(2) << '\n';
+            if (o.describe_json) {
+                nlohmann::json described = nlohmann::json::object();
+                described["machine"] = resolve_machine_json(o.describe);
+                const Machine machine = load_machine(o.describe);
+                described["capabilities"] = capabilities_json(machine_capabilities(machine));
+                out << described.dump(2) << '\n';
+            }
             else out << describe_machine(load_machine(o.describe));
             finish_stream(out, "standard output");
             return exit_ok;

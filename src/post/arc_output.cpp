@@ -68,6 +68,12 @@ bool written_as_one_line(const ArcGeometry& arc, const ArcSettings& settings) {
            (settings.min_length && arc_length(arc) < *settings.min_length);
 }
 
+bool writes_arcs_in(const ArcSettings& settings, Plane plane) {
+    return std::find(settings.planes.begin(), settings.planes.end(), plane) != settings.planes.end();
+}
+
+bool writes_helices(const ArcSettings& settings) { return settings.helical; }
+
 ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double chord_tolerance) {
     PlanePoint a = to_plane(arc.start, arc.plane), b = to_plane(arc.end, arc.plane);
     const bool helical = std::abs(b.w - a.w) > 1e-9;
@@ -81,9 +87,8 @@ ArcPlan plan_arc(const ArcGeometry& arc, const ArcSettings& settings, double cho
     auto lines = [&](std::string why) {
         return ArcPlan{ArcTreatment::lines, segment_count(arc, settings, chord_tolerance), std::move(why)};
     };
-    if (std::find(settings.planes.begin(), settings.planes.end(), arc.plane) == settings.planes.end())
-        return lines("plane not supported");
-    if (helical && !settings.helical) return lines("helix not supported");
+    if (!writes_arcs_in(settings, arc.plane)) return lines("plane not supported");
+    if (helical && !writes_helices(settings)) return lines("helix not supported");
     if (settings.max_radius && arc.radius > *settings.max_radius)
         return lines("radius " + mm(arc.radius) + " mm is above maxRadius");
     double max_sweep = std::clamp(settings.max_sweep, 1.0, 360.0);

@@ -11,6 +11,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
+#include "camgen/post/capabilities.hpp"
 #include "src/post/machine_files.hpp"
 
 namespace camgen {
@@ -765,7 +766,6 @@ std::string describe_machine(const Machine& m) {
     line("decimalMark", std::string(1, m.decimal_mark));
     line("linebreak", m.block.line_break == "\n" ? "\\n" : "\\r\\n");
     line("variableDelimeter", "\"" + m.block.separator + "\"");
-    line("cutterCompensation", m.cutter_compensation ? "yes" : "no");
     line("showSequenceNumbers", m.block.sequence_numbers ? fmt::format("yes, from {} step {}", m.block.sequence_start, m.block.sequence_increment) : "no");
     line("modalMotion", m.modal_motion ? "yes" : "no, G code on every motion block");
     line("comments", m.block.comment_style == nc::CommentStyle::parentheses ? "(text)" : "; text");
@@ -810,22 +810,20 @@ std::string describe_machine(const Machine& m) {
     line("feedModes", feed.empty() ? std::string("per minute only") : fmt::format("{}", fmt::join(feed, ", ")));
     line("safeRetract", m.frame.safe_retract.empty() ? std::string("the job's clearance")
                                                      : fmt::format("{}", fmt::join(m.frame.safe_retract, " ")));
+    // What the post makes of these settings: the same functions its refusals call.
+    const MachineCapabilities can = machine_capabilities(m);
     const bool lathe = m.kind == MachineKind::lathe;
     s += lathe ? "drilling cycles (TurnDrillingFields; the feed-start plane always)\n" : "drilling cycles (MillDrillingFields)\n";
-    for (const auto& named : cycle_kinds) {
-        const CycleKind k = named.value;
-        const DrillingCycleSpec* c = m.canned_cycle(k);
-        if (!c) {
-            line(named.name, "longhand");
-            continue;
-        }
-        std::vector<std::string> f;
-        for (DrillField d : c->fields) {
-            if (!lathe) f.emplace_back(key_of(d));
-            else if (const TurnDrillFieldInfo* t = turn_field_of(d)) f.emplace_back(t->key);
-        }
-        line(named.name, fmt::format("canned {}; fields: {}", c->name, f.empty() ? "-" : fmt::format("{}", fmt::join(f, ", "))));
-    }
+    for (const CycleCapability& c : can.cycles) line(name_of(cycle_kinds, c.kind), cycle_capability_text(c, m.kind));
+    s += "capabilities (what a job may ask; a refusal is the post's own message)\n";
+    auto verdict = [](const Capability& c, const std::string& yes) { return c.refused ? "refused: " + *c.refused : yes; };
+    if (can.control_compensation)
+        line("control compensation", verdict(*can.control_compensation, "yes: G41/G42 for \"compensation\": \"control\""));
+    for (const auto& [plane, as_arcs] : can.arcs)
+        line(fmt::format("arcs in {}", name_of(plane_names, plane)), as_arcs ? "arc blocks" : "straight moves");
+    if (can.helices) line("helices", *can.helices ? "helical arc blocks" : "straight moves");
+    line("spindle ccw", verdict(can.ccw_spindle, "yes"));
+    line("programNumber", verdict(can.program_number, "yes"));
     return s;
 }
 

@@ -78,8 +78,8 @@ void Post::open() {
                                      w.size() > 12 ? fmt::format("{} .. {}", w.front(), w.back())
                                                    : fmt::format("{}", fmt::join(w, ", "))));
     }
-    if (options_.program_number && !takes_program_number())
-        throw InputError("/programNumber", fmt::format("machine {} takes no program number", machine_.name));
+    if (options_.program_number)
+        if (auto why = program_number_refusal()) throw InputError("/programNumber", *why);
     if (!options_.snippet) on_open();
 }
 
@@ -349,8 +349,52 @@ void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) 
 }
 void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
 std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
-std::optional<std::string> Post::tapping_impossible(const DrillCycle&) const { return std::nullopt; }
+std::optional<std::string> Post::tapping_impossible(CycleKind) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
+
+std::optional<std::string> Post::program_number_refusal() const {
+    if (takes_program_number()) return std::nullopt;
+    return fmt::format("machine {} takes no program number", machine_.name);
+}
+
+std::optional<std::string> Post::control_compensation_refusal() const {
+    if (!machine_.cutter_compensation)
+        return fmt::format("machine {} has no cutter radius compensation (G41/G42): use compensation computer", machine_.name);
+    if (!writes_arcs_in(machine_.arcs, Plane::xy))
+        return fmt::format("machine {} writes arcs in XY as straight moves (its arcs.planes has no \"xy\"): with the "
+                           "control compensating, every chord is a corner the control offsets on its own; use "
+                           "compensation computer",
+                           machine_.name);
+    return std::nullopt;
+}
+
+CycleCapability Post::cycle_capability(CycleKind kind) const {
+    CycleCapability c;
+    c.kind = kind;
+    if (const DrillingCycleSpec* spec = machine_.canned_cycle(kind)) c.canned = *spec;
+    if (!is_tapping(kind)) return c;
+    auto refuse = [&](std::string why, const char* key) {
+        c.canned.reset();
+        c.longhand = false;
+        c.refused = std::move(why);
+        c.refused_key = key;
+        return c;
+    };
+    if (auto why = tapping_impossible(kind)) return refuse(fmt::format("machine {} cannot tap: {}", machine_.name, *why), "cycle");
+    if (machine_.tapping == TappingMode::none)
+        return refuse(fmt::format("machine {} cannot synchronise the spindle to the feed; tapping needs a floating tap "
+                                  "holder: set tapping to floating in a copy of the machine file",
+                                  machine_.name),
+                      "cycle");
+    if (machine_.tapping == TappingMode::rigid) {
+        if (!c.canned)
+            return refuse(longhand_tap_refusal(fmt::format("has no canned cycle for \"{}\"", name_of(cycle_kinds, kind)),
+                                               "tap on another machine"),
+                          "output");
+        c.longhand = false;
+    }
+    return c;
+}
 
 bool starts_in_xy(const Machine& machine) {
     const auto& b = machine.frame.start_block;
@@ -395,29 +439,21 @@ Post::CannedFit Post::canned_fit(const DrillCycle& cycle) const {
     return fit;
 }
 
-void Post::check_tapping(const DrillCycle& cycle) const {
-    if (auto why = tapping_impossible(cycle))
-        throw InputError(cycle.path + "/" + cycle_key("cycle", machine_.kind),
-                         fmt::format("machine {} cannot tap: {}", machine_.name, *why));
-    if (machine_.tapping == TappingMode::none)
-        throw InputError(cycle.path + "/" + cycle_key("cycle", machine_.kind),
-                         fmt::format("machine {} cannot synchronise the spindle to the feed; tapping needs a floating tap "
-                                     "holder: set tapping to floating in a copy of the machine file",
-                                     machine_.name));
+std::string Post::longhand_tap_refusal(const std::string& why, const std::string& remedy) const {
+    return fmt::format("machine {} taps rigidly and {}; a longhand tap (feed moves with a spindle reversal) is "
+                       "not synchronised to the spindle and breaks a tap in a rigid holder: {}, or if the tap "
+                       "sits in a floating holder, set tapping to floating in a copy of the machine file",
+                       machine_.name, why, remedy);
 }
 
 void Post::refuse_longhand_tap(const DrillCycle& cycle, const std::string& why, const std::string& remedy) const {
-    throw InputError(cycle.path + "/output",
-                     fmt::format("machine {} taps rigidly and {}; a longhand tap (feed moves with a spindle reversal) is "
-                                 "not synchronised to the spindle and breaks a tap in a rigid holder: {}, or if the tap "
-                                 "sits in a floating holder, set tapping to floating in a copy of the machine file",
-                                 machine_.name, why, remedy));
+    throw InputError(cycle.path + "/output", longhand_tap_refusal(why, remedy));
 }
 
 const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
-    const bool tap = is_tapping(cycle.kind);
-    if (tap) check_tapping(cycle);
-    const bool rigid = tap && machine_.tapping == TappingMode::rigid;
+    // A kind the machine cannot make at all was refused by handle_drill_cycle.
+    const CycleCapability capability = cycle_capability(cycle.kind);
+    const bool rigid = !capability.longhand;
     const std::string kind(name_of(cycle_kinds, cycle.kind));
     if (cycle.output == CycleOutput::longhand) {
         if (rigid) refuse_longhand_tap(cycle, "the job asks for output \"longhand\"", "use \"auto\" or \"canned\"");
@@ -432,8 +468,6 @@ const DrillingCycleSpec* Post::choose_canned(const DrillCycle& cycle) {
     else if (fit.spec)
         reason = fmt::format("{} cannot carry this cycle: {}", fit.spec->name, *fit.limit);
     if (cycle.output == CycleOutput::automatic) {
-        if (rigid && !fit.spec)
-            refuse_longhand_tap(cycle, fmt::format("has no canned cycle for \"{}\"", kind), "tap on another machine");
         if (rigid)
             refuse_longhand_tap(cycle, "its " + reason,
                                 fit.missing.empty() ? std::string("change the cycle")
@@ -550,6 +584,9 @@ DrillCycle Post::checked_cycle(const DrillCycle& cycle) {
 
 void Post::handle_drill_cycle(const DrillCycle& event) {
     if (!pos_known_) throw std::logic_error("drilling cycle from an unknown position");
+    // A cycle the machine cannot make at all is refused as such, before its values are checked.
+    if (const CycleCapability capability = cycle_capability(event.kind); capability.refused)
+        throw InputError(event.path + "/" + cycle_key(capability.refused_key, machine_.kind), *capability.refused);
     const DrillCycle cycle = checked_cycle(event);
     cycle_ = cycle;
     cycle_spec_ = choose_canned(cycle);
@@ -739,16 +776,8 @@ void Post::emit(const Event& event) {
                    [&](const Arc& a) { handle_arc(a); },
                    [&](const Dwell& d) { on_dwell(d.seconds); },
                    [&](const Compensation& c) {
-                       if (c.side != CompensationSide::off && !machine_.cutter_compensation)
-                           fail("/compensation", fmt::format("machine {} has no cutter radius compensation (G41/G42): use "
-                                                             "compensation computer",
-                                                             machine_.name));
-                       if (c.side != CompensationSide::off &&
-                           std::find(machine_.arcs.planes.begin(), machine_.arcs.planes.end(), Plane::xy) == machine_.arcs.planes.end())
-                           fail("/compensation", fmt::format("machine {} writes arcs in XY as straight moves (its arcs.planes has no "
-                                                             "\"xy\"): with the control compensating, every chord is a corner the "
-                                                             "control offsets on its own; use compensation computer",
-                                                             machine_.name));
+                       if (c.side != CompensationSide::off)
+                           if (auto why = control_compensation_refusal()) fail("/compensation", *why);
                        on_compensation(c);
                    },
                    [&](const DrillCycle& c) { handle_drill_cycle(c); },

@@ -69,7 +69,7 @@ else
   for want in '(-m --machine)--machine=[Machine name (see --list-machines) or path to a machine JSON file]:machine:_camgen_machines' \
               '(--units)--units=[Output units, overriding the machine file]:units:(mm inch)' \
               '(--job)--job=[The job the program should carry out]:job:_files -g "*.json(-.)"' \
-              'fanuc:Generic Fanuc-style ISO mill (0i/18i): G81-G89 canned cycles, P in ms' \
+              'fanuc:Generic Fanuc-style ISO mill (0i/18i): G81-G86/G89, G73, G74 canned cycles, P in ms' \
               'fanuc-shop:our Fanuc with sequence numbers' '1: :_camgen_first' '1:NC program:_files'; do
     # A machine's line goes on with where it comes from ("  [built-in]").
     awk -v want="$want" 'index($0, want) == 1 { found = 1 } END { exit !found }' <<<"$zsh_out" ||

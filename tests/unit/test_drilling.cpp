@@ -1,6 +1,6 @@
 // Drilling on every machine: the key numbers of one hole of each cycle kind in
 // samples/drilling.json and samples/tapping.json (worked out by hand), canned/longhand
-// choice and its errors, peck depths, hole order, and the README's cycle table.
+// choice and its errors, peck depths, hole order, and the cycle table of docs/reference.md.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "camgen/cli/cli.hpp"
+#include "camgen/post/capabilities.hpp"
 #include "camgen/post/longhand.hpp"
 #include "support.hpp"
 
@@ -308,7 +309,7 @@ TEST_CASE("order shortest stays fast for large jobs (nearest neighbour on a grid
 
 namespace {
 
-// The README's table of cycle kinds x machines of one kind, generated from the machine files.
+// docs/reference.md's table of cycle kinds x machines of one kind, generated from the machine files.
 std::string cycle_table(MachineKind kind) {
     std::vector<Machine> machines;
     for (const auto& [name, description] : list_machines())
@@ -325,9 +326,12 @@ std::string cycle_table(MachineKind kind) {
             continue;
         s += fmt::format("| `{}` |", std::string(name_of(cycle_kinds, k)));
         for (const Machine& m : machines) {
-            const DrillingCycleSpec* c = m.canned_cycle(k);
-            if (is_tapping(k) && m.tapping == TappingMode::none) s += " refused |";
-            else s += c ? fmt::format(" `{}` |", c->name) : std::string(" longhand |");
+            // What the post makes of the kind (the capability its refusals and --describe-machine use).
+            const MachineCapabilities can = machine_capabilities(m);
+            const auto c = std::find_if(can.cycles.begin(), can.cycles.end(), [&](const CycleCapability& x) { return x.kind == k; });
+            REQUIRE(c != can.cycles.end());
+            if (c->refused) s += " refused |";
+            else s += c->canned ? fmt::format(" `{}` |", c->canned->name) : std::string(" longhand |");
         }
         s += "\n";
     }
@@ -341,21 +345,21 @@ std::string cycle_table(MachineKind kind) {
 
 }  // namespace
 
-TEST_CASE("README's cycle table equals the machines' drilling tables and --describe-machine") {
+TEST_CASE("docs/reference.md's cycle table equals the machines' drilling tables and --describe-machine") {
     for (MachineKind kind : {MachineKind::mill, MachineKind::lathe}) {
         const std::string table = cycle_table(kind);
-        INFO("README.md must contain this table (under Machines):\n" << table);
-        CHECK(has(read_file(CAMGEN_SOURCE_DIR "/README.md"), table));
+        INFO("docs/reference.md must contain this table (under Machines):\n" << table);
+        CHECK(has(read_file(CAMGEN_SOURCE_DIR "/docs/reference.md"), table));
     }
     for (const auto& listed : list_machines()) {
         const std::string& name = listed.first;
         const Machine m = load_machine(name);
         const std::string d = describe_machine(m);
-        for (CycleKind k : {CycleKind::drill, CycleKind::deep, CycleKind::tap, CycleKind::bore_dwell}) {
-            const DrillingCycleSpec* c = m.canned_cycle(k);
-            std::string label = fmt::format("{:<24}", std::string(name_of(cycle_kinds, k)));
-            INFO(name << " " << std::string(name_of(cycle_kinds, k)));
-            CHECK(has(d, "  " + label + (c ? "canned " + c->name + ";" : std::string("longhand"))));
+        for (const CycleCapability& c : machine_capabilities(m).cycles) {
+            std::string label = fmt::format("{:<24}", std::string(name_of(cycle_kinds, c.kind)));
+            INFO(name << " " << std::string(name_of(cycle_kinds, c.kind)));
+            CHECK(has(d, "  " + label +
+                             (c.refused ? "refused: " : c.canned ? "canned " + c.canned->name + ";" : std::string("longhand"))));
         }
     }
 }

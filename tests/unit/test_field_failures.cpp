@@ -2,7 +2,7 @@
 // "field failure: <mode>" (`camgen_tests -tc='field failure*'`), each run on every built-in
 // machine where the mode applies and asserting on the program camgen really writes, read back
 // through the machine's own reader. Each test also checks the list of machines it ran on, so
-// the table in README.md ("Failure modes seen in the field") cannot silently go stale.
+// the table in docs/development.md ("Failure modes seen in the field") cannot silently go stale.
 // The LinuxCNC oracle half (rs274) is in tests/oracle/ (test_field_failures_oracle.cpp, and
 // test_oracle.cpp for G86/G89 without P), named the same way; quadratic output on large jobs
 // is measured by bench/, not timed here.

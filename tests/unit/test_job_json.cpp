@@ -861,8 +861,8 @@ TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
     CHECK(h2.turns == 2);
     CHECK(h2.end_z == -10.5);
     CHECK(h2.direction == ArcDirection::cw);
-    // [x, y] is at the operation's depth again.
-    CHECK(std::get<PathLine>(c.elements[6]).end == Vec3{0, 0, -1});
+    // [x, y] keeps the current Z (the helix's end), as G1 X Y does: no diagonal back to z.
+    CHECK(std::get<PathLine>(c.elements[6]).end == Vec3{0, 0, -10.5});
 
     // The helix as an event: one Arc, end above/below the start, extra turns counted.
     struct Recorder : EventSink {

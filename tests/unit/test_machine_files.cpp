@@ -219,17 +219,22 @@ TEST_CASE("--describe-machine M --json prints the complete machine file, which r
     user.write("shop.json", R"({"extends": "wabeco", "description": "shop wabeco", "limits": {"maxFeed": 900}})");
     const Run r = run({"--describe-machine", "shop", "--json"});
     REQUIRE_MESSAGE(r.code == 0, r.err);
-    const nlohmann::json doc = nlohmann::json::parse(r.out);
+    // The file is the "machine" member; beside it the capabilities (test_describe_truth.cpp).
+    const nlohmann::json described = nlohmann::json::parse(r.out);
+    REQUIRE(described.size() == 2);
+    REQUIRE(described.contains("capabilities"));
+    const nlohmann::json doc = described["machine"];
     CHECK_FALSE(doc.contains("extends"));
     CHECK(doc["limits"]["maxFeed"] == 900);
     CHECK(doc["dialect"] == "nccad");
     const std::string resolved = (scratch("machines-describe-out") / "resolved.json").string();
-    std::ofstream(resolved) << r.out;
+    std::ofstream(resolved) << doc.dump(2);
     CHECK(post(resolved, plate_job()) == post("shop", plate_job()));
     // A built-in prints as its own file says.
     const Run builtin = run({"--describe-machine", "fanuc", "--json"});
     REQUIRE(builtin.code == 0);
-    CHECK(nlohmann::json::parse(builtin.out) == nlohmann::json::parse(read_file(std::string(CAMGEN_SOURCE_DIR) + "/machines/fanuc.json")));
+    CHECK(nlohmann::json::parse(builtin.out)["machine"] ==
+          nlohmann::json::parse(read_file(std::string(CAMGEN_SOURCE_DIR) + "/machines/fanuc.json")));
     CHECK(run({"--json"}).code == exit_usage);
 }
 

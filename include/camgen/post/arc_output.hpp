@@ -31,6 +31,15 @@ std::int64_t segment_count(const ArcGeometry& arc, const ArcSettings& settings, 
 // (compare.hpp: the job's arc is compared as that move) both ask this.
 bool written_as_one_line(const ArcGeometry& arc, const ArcSettings& settings);
 
+// Whether the machine writes arcs in `plane` as arc blocks (else as straight moves): its
+// arcs.planes. plan_arc, the post's refusal of control compensation and --describe-machine
+// (machine_capabilities) all ask this.
+bool writes_arcs_in(const ArcSettings& settings, Plane plane);
+// Whether the machine writes a helix (an arc whose end differs along the plane's normal) as
+// helical arc blocks, else as straight moves: its arcs.helical. Asked by plan_arc and
+// --describe-machine.
+bool writes_helices(const ArcSettings& settings);
+
 // What the post does with one arc.
 enum class ArcTreatment {
     arcs,      // arc blocks: `count` pieces of equal sweep

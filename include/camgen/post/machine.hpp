@@ -196,7 +196,7 @@ Machine load_machine(const std::string& name_or_path);
 // Names and one-line descriptions of the compiled-in machines, sorted by name.
 std::vector<std::pair<std::string, std::string>> list_machines();
 
-// A human-readable description of the machine: globals, limits and its drilling table.
+// A human-readable description of the machine: globals, limits, its drilling table and capabilities.
 std::string describe_machine(const Machine& machine);
 
 }  // namespace camgen

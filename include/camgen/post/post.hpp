@@ -29,6 +29,16 @@ struct PostOptions {
     std::optional<int> program_number; // the job's program number, overriding the machine's
 };
 
+// How a machine makes drilling cycles of one kind (Post::cycle_capability).
+struct CycleCapability {
+    CycleKind kind = CycleKind::drill;
+    std::optional<DrillingCycleSpec> canned;    // its canned cycle, written where it carries the job's values
+    bool longhand = true;                       // written longhand where it does not (or the job asks);
+                                                // false for a rigid tap, which longhand moves would break
+    std::optional<std::string> refused;         // why no cycle of this kind is made at all: the message
+    std::string refused_key;                    // the operation's key the refusal names ("cycle", "output")
+};
+
 class Post : public EventSink {
 public:
     Post(const Machine& machine, std::ostream& out, PostOptions options);
@@ -43,6 +53,21 @@ public:
     int canned_holes() const { return canned_holes_; }
     // How many holes were written longhand so far.
     int longhand_holes() const { return longhand_holes_; }
+
+    // ---- capabilities: what a job can ask of this machine. Each is one function that the
+    // post's refusal calls and that --describe-machine prints (machine_capabilities in
+    // capabilities.hpp), so that the description and the posts cannot disagree. ----
+    // Why the control cannot offset the cutter by its radius (G41/G42 for a contour's
+    // "compensation": "control"), as the message says it; nullopt where it can.
+    virtual std::optional<std::string> control_compensation_refusal() const;
+    // How drilling cycles of `kind` are made: canned, longhand, or refused and why.
+    CycleCapability cycle_capability(CycleKind kind) const;
+    // Why the spindle cannot run counter-clockwise (a tool's "direction": "ccw"), as the
+    // message says it; nullopt where it can.
+    virtual std::optional<std::string> ccw_spindle_refusal() const { return std::nullopt; }
+    // Why a job's programNumber is refused (the dialect writes none: takes_program_number), as
+    // the message says it; nullopt where it is written.
+    std::optional<std::string> program_number_refusal() const;
 
 protected:
     // ---- CNC-Calc calls: a dialect overrides what differs ----
@@ -80,9 +105,10 @@ protected:
     // uses (a value the control cannot express, e.g. a degression factor where it takes only
     // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
     virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
-    // Why this machine cannot tap `cycle` at all, whatever its tapping mode says (nccad: the
-    // spindle cannot reverse), or nullopt. Said after "machine M cannot tap: ".
-    virtual std::optional<std::string> tapping_impossible(const DrillCycle& cycle) const;
+    // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
+    // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
+    // tap: ". Asked through cycle_capability.
+    virtual std::optional<std::string> tapping_impossible(CycleKind kind) const;
 
     // ---- word hooks: how a dialect spells a word of a block the base writes ----
     // The words that switch cutter radius compensation: G40, or G41/G42 D<register> (the
@@ -243,10 +269,10 @@ private:
     // The canned cycle to write `cycle` with, or nullptr for longhand; refuses taps the
     // machine cannot make safely and notes an "auto" cycle that goes longhand.
     const DrillingCycleSpec* choose_canned(const DrillCycle& cycle);
-    // Throws when the machine cannot tap `cycle` (dialect reason, tapping none).
-    void check_tapping(const DrillCycle& cycle) const;
-    // Throws: a longhand tap on a machine that taps rigidly; `why` says why it would be
-    // longhand, `remedy` what the job can change.
+    // The message that refuses a longhand tap on a machine that taps rigidly; `why` says why it
+    // would be longhand, `remedy` what the job can change.
+    std::string longhand_tap_refusal(const std::string& why, const std::string& remedy) const;
+    // Throws longhand_tap_refusal at the cycle's "output".
     [[noreturn]] void refuse_longhand_tap(const DrillCycle& cycle, const std::string& why, const std::string& remedy) const;
     void replay(const LonghandMove& event);
 

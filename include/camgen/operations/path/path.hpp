@@ -15,7 +15,7 @@
 
 namespace camgen {
 
-// A straight line to an end point (a job's [x, y] is at the operation's depth).
+// A straight line to an end point (a job's [x, y] is at the Z where the line starts).
 struct PathLine {
     Vec3 end;
 };
@@ -57,7 +57,7 @@ struct PathOp {
     int tool = 0;
     Vec2 start;
     std::vector<PathElement> elements;
-    double z = 0.0;                      // absolute Z of the start (and of [x, y] points): the job's "z"
+    double z = 0.0;                      // absolute Z of the start: the job's "z" ([x, y] points keep the current Z)
     double feed = 0.0;                   // mm/min
     std::optional<double> plunge_feed;   // mm/min; absent: feed
     std::optional<double> tolerance;     // mm, for arcs that become lines (capped by the machine's)
