@@ -18,6 +18,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_describe_truth {
+
 using namespace camgen;
 using test::Run;
 using test::run;
@@ -321,3 +324,5 @@ TEST_CASE("describe: an nccad machine file cannot claim a canned cycle nccad doe
   {"name": "G81", "kind": "drill", "fields": ["plungingFeedrate"]}]}})";
     CHECK(run({"--describe-machine", machine}).code == 0);
 }
+
+}  // namespace test_describe_truth

@@ -14,6 +14,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_path_z {
+
 using namespace camgen;
 using test::Run;
 using test::run;
@@ -98,3 +101,5 @@ TEST_CASE("path: the job's motion has [x, y] at the current Z (events), also for
     CHECK(a.end.z == -2.0);
     CHECK(a.centre.z == -2.0);
 }
+
+}  // namespace test_path_z
