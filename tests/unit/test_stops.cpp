@@ -285,6 +285,17 @@ TEST_CASE("stop: verify lists the stops with their lines and messages") {
     const std::filesystem::path page = program.parent_path() / "p.html";
     REQUIRE(run({"verify", program.string(), "--machine", "linuxcnc", "--plot", page.string()}).code == 0);
     CHECK(read_file(page.string()).find("stops          1\n               line 15: Check the hole\n") != std::string::npos);
+    // The SVG's legend counts them.
+    const std::filesystem::path svg = program.parent_path() / "p.svg";
+    REQUIRE(run({"verify", program.string(), "--machine", "linuxcnc", "--plot", svg.string()}).code == 0);
+    const std::string drawing = read_file(svg.string());
+    const auto row = drawing.find(">stops</text>");
+    REQUIRE(row != std::string::npos);
+    CHECK(drawing.find(">1</text>", row) != std::string::npos);
+    const std::string plain = file_with("plain", job_with(drill_at("[[10, 10]]")));
+    REQUIRE(run({plain, "--machine", "linuxcnc", "-o", program.string()}).code == 0);
+    REQUIRE(run({"verify", program.string(), "--machine", "linuxcnc", "--plot", svg.string()}).code == 0);
+    CHECK(read_file(svg.string()).find(">stops</text>") == std::string::npos);
 }
 
 TEST_CASE("stop: the message and the keys are checked when the job is read") {
