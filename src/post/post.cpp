@@ -179,9 +179,8 @@ std::string Post::inline_comment(std::string_view text) const {
 }
 
 namespace {
-// The comments around a custom block in the program its check reads back.
-constexpr std::string_view custom_begins = "camgen: a custom block begins";
-constexpr std::string_view custom_ends = "camgen: a custom block ends";
+// How many lines `text` has (it ends with a line break).
+int lines_in(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 // What an event of a custom block would do, for the message that refuses it.
 std::string what_it_does(const Event& e) {
@@ -269,12 +268,16 @@ std::vector<Event> Post::custom_block_events(const Machine& machine, const PostO
     if (point.tool > 0) probe->emit(ToolChange{point.tool, 0.0, ""});
     if (point.spindle.state != SpindleState::off) probe->emit(point.spindle);
     if (point.position) probe->emit(Rapid{*point.position});
-    probe->emit(Comment{std::string(custom_begins)});
+    // The block's lines are those the probe writes for it (each one line).
+    probe->out_.flush();
+    const int first = lines_in(program.str()) + 1;
     probe->emit(CustomBlock{{text}, block.path});
-    probe->emit(Comment{std::string(custom_ends)});
+    probe->out_.flush();
+    if (lines_in(program.str()) - first + 1 != static_cast<int>(lines.size()))
+        throw std::logic_error("a custom block's lines are not one line each in the program");
     probe->emit(OperationEnd{});
     probe->close();
-    const LinesReadBack back = read_lines_back(machine, program.str(), custom_begins, custom_ends);
+    const LinesReadBack back = read_lines_back(machine, program.str(), first, static_cast<int>(lines.size()));
     auto line_of = [&](int k) {
         return k >= 0 && k < static_cast<int>(lines.size()) ? fmt::format("line {} \"{}\"", k + 1, lines[static_cast<std::size_t>(k)])
                                                             : std::string("the line after its last");

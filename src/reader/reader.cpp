@@ -93,53 +93,42 @@ ReadResolution ProgramReader::coarsest_resolution() const { return reader_->coar
 
 ReadResolution read_resolution(const Machine& machine) { return reader::make_reader(machine, {})->resolution(); }
 
-LinesReadBack read_lines_back(const Machine& machine, std::string_view program, std::string_view begin,
-                              std::string_view end) {
+LinesReadBack read_lines_back(const Machine& machine, std::string_view program, int first, int count) {
     auto reader = reader::make_reader(machine, "custom block");
     LinesReadBack out;
-    enum class Phase { before, inside, after } phase = Phase::before;
-    int first = 0;  // the program line of the block's first line
+    int number = 0;  // the line being read
     struct Sink : ReadEventSink {
         std::function<void(const ReadEvent&)> f;
         void read_event(const ReadEvent& e) override { f(e); }
     } sink;
     sink.f = [&](const ReadEvent& e) {
-        const auto* c = std::get_if<Comment>(&e.event);
-        if (phase == Phase::before && c && c->text == begin) {
-            out.state_before = reader->modal_state();
-            first = e.line + 1;
-            phase = Phase::inside;
-        } else if (phase == Phase::inside && c && c->text == end) {
-            out.state_after = reader->modal_state();
-            phase = Phase::after;
-        } else if (phase == Phase::inside) {
-            out.events.emplace_back(e.line - first, e.event);
-        }
+        if (number >= first) out.events.emplace_back(number - first, e.event);
     };
     reader->start(sink);
-    int number = 0;
-    for (std::size_t at = 0; at < program.size() && phase != Phase::after;) {
+    const int last = first + count - 1;
+    for (std::size_t at = 0; at < program.size() && number < last;) {
         std::size_t nl = program.find('\n', at);
         if (nl == std::string_view::npos) nl = program.size();
         const std::string_view line = program.substr(at, nl - at);
         at = nl + 1;
         ++number;
+        if (number == first) out.state_before = reader->modal_state();
         std::string_view trimmed = line;
         while (!trimmed.empty() && (trimmed.front() == ' ' || trimmed.front() == '\t')) trimmed.remove_prefix(1);
         while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == '\t' || trimmed.back() == '\r'))
             trimmed.remove_suffix(1);
-        if (phase == Phase::inside && !trimmed.empty() && reader->is_frame_line(trimmed)) out.frame_lines.push_back(number - first);
+        if (number >= first && !trimmed.empty() && reader->is_frame_line(trimmed)) out.frame_lines.push_back(number - first);
         try {
             reader->read_line(line);
         } catch (const InputError& e) {
-            // A line of the block may fail only at the line after it (a tool change it
-            // announces that does not come): that is the block's error too.
-            if (phase == Phase::before) throw std::logic_error("the program around a custom block cannot be read back: " + std::string(e.what()));
-            out.error = std::make_pair(e.line() - first, e.detail());
+            if (number < first)
+                throw std::logic_error("the program around a custom block cannot be read back: " + std::string(e.what()));
+            out.error = std::make_pair(number - first, e.detail());
             return out;
         }
     }
-    if (phase != Phase::after) throw std::logic_error("the markers around a custom block were not read back");
+    if (number < last) throw std::logic_error("the program with a custom block ends before it");
+    out.state_after = reader->modal_state();
     return out;
 }
 

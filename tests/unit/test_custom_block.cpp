@@ -148,7 +148,7 @@ TEST_CASE("custom: a block that changes the state the program goes on with is re
         {"linuxcnc", R"("M2")", "changes the program end from not read to read"},
         {"fanuc", R"("M30")", "changes the program end from not read to read"},
         {"fanuc", R"("O1234")", "changes the program numbers from 1 to 2"},
-        {"grbl", R"~("(Insert tool 2: a drill)")~", "the line after its last"},
+        {"grbl", R"~("(Insert tool 2: a drill)")~", "changes the tool change announced from none to Insert tool 2"},
         {"sinumerik", R"~(["F100", "MCALL CYCLE81(5, 0, 2, -5)"])~", "changes the modal cycle call from none to CYCLE81"},
         {"sinumerik", R"("G70")", "changes the units from mm to inch"},
         {"heidenhain", R"("CYCL DEF 9.0 DWELL TIME")", "changes the cycle definition from none to CYCL DEF 9.0 (without its 9.1)"},
@@ -215,4 +215,21 @@ TEST_CASE("custom: the check reads the lines where they stand, with the spindle 
 "operations": [{"type": "custom", "text": {"heidenhain": "TOOL CALL Z S500"}},
   {"type": "drill", "tool": 1, "retractPlane": 5, "endDepth": 5, "plungingFeedrate": 100, "holes": [[30, 10]]}]})";
     CHECK(refusal(first, "heidenhain").find("changes the spindle speed from 0 rpm to 500 rpm") != std::string::npos);
+}
+
+TEST_CASE("custom: the read-back finds the block's lines whatever the machine's comment length (found by machines/variants)") {
+    // With commentMaxLength 12 comments are cut short: the check must not rely on comments to
+    // find the block in the program it reads back.
+    const std::string machine = file_with("short-comments", R"({"extends": "linuxcnc", "commentMaxLength": 12})");
+    const std::string job = file_with("short", custom_job(R"~({"iso": ["(a long comment here)", "G4 P1"]})~"));
+    const std::filesystem::path out = scratch("short-comments-out") / "p.ngc";
+    Run r = run({job, "--machine", machine, "-o", out.string()});
+    CHECK_MESSAGE(r.code == 0, r.err);
+    CHECK(read_file(out.string()).find("(a long comment here)\nG4 P1\n") != std::string::npos);
+    Run v = run({"verify", out.string(), "--machine", machine, "--job", job});
+    CHECK_MESSAGE(v.code == 0, std::string(v.out + v.err));
+    // A refusal still names the line.
+    Run bad = run({file_with("short-bad", custom_job(R"~({"iso": ["(ok)", "G0 X1"]})~")), "--machine", machine});
+    CHECK(bad.code == 1);
+    CHECK(bad.err.find("custom line 2 \"G0 X1\" would move the tool (a rapid)") != std::string::npos);
 }
