@@ -10,6 +10,9 @@
 
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_custom_block {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -233,3 +236,5 @@ TEST_CASE("custom: the read-back finds the block's lines whatever the machine's 
     CHECK(bad.code == 1);
     CHECK(bad.err.find("custom line 2 \"G0 X1\" would move the tool (a rapid)") != std::string::npos);
 }
+
+}  // namespace test_custom_block

@@ -16,6 +16,9 @@
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
 
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_stops {
+
 using namespace camgen;
 using namespace camgen::test;
 
@@ -504,3 +507,5 @@ TEST_CASE("unsupported: the key takes refuse or stop") {
                          doctest::Contains("/operations/0/unsupported"), InputError);
     CHECK_NOTHROW(read_job(tap_job("[[1, 1]]", R"(, "unsupported": "refuse")"), "t.json"));
 }
+
+}  // namespace test_stops
