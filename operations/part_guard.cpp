@@ -90,6 +90,7 @@ void PartGuard::emit(const Event& event) {
                          [&](const OperationStart&) {}, [&](const OperationEnd&) {}, [&](const Comment&) {},
                          [&](const ToolChange&) { comp_.flush(); }, [&](const Spindle&) {}, [&](const Coolant&) {},
                          [&](const Dwell&) {}, [&](const DrillCycle&) { comp_.flush(); }, [&](const DrillPoint&) {}, [&](const DrillEnd&) {},
+                         [&](const Stop&) { comp_.flush(); }, [&](const CustomBlock&) {},
                      },
                      event);
 }

@@ -157,7 +157,9 @@ void check_machine_kind(const Job& job, MachineKind kind, const std::string& mac
     for (const Operation& op : job.operations)
         visit_exhaustive(
             [&]<OperationType Op>(const Op& o) {
-                constexpr MachineKind made_for = machine_kind_of<Op>();
+                constexpr std::optional<MachineKind> kind_of_op = machine_kind_of<Op>();
+                if constexpr (!kind_of_op) return;
+                constexpr MachineKind made_for = kind_of_op.value_or(MachineKind::mill);
                 if (made_for == kind) return;
                 throw InputError(o.path + "/type",
                                  fmt::format("operation \"{}\" ({}) is made for a {}, and machine {} is a {}: post the "
@@ -184,6 +186,7 @@ Job read_job_file(const std::string& filename) {
 void expand_job(const Job& job, EventSink& sink) {
     int current = 0;
     double rpm = 0.0;
+    FeedMode feed_mode = FeedMode::per_minute;  // of the operation before
     SpindleState state = SpindleState::off;
     CoolantMode coolant = CoolantMode::off;
     // Coolant stops before the spindle does.
@@ -195,6 +198,15 @@ void expand_job(const Job& job, EventSink& sink) {
     for (const Operation& op : job.operations) {
         visit_exhaustive(
             [&]<OperationType Op>(const Op& o) {
+                if constexpr (!uses_tool<Op>()) {
+                    // The tool in the spindle stays, and the spindle and coolant as they are.
+                    static const Tool no_tool{};
+                    // The feed mode stays the one of the operation before (no G94/G95 for nothing).
+                    sink.emit(OperationStart{default_name(o), o.path, std::nullopt, {}, std::nullopt, feed_mode});
+                    expand(o, Context{job, current ? job.tools.at(current) : no_tool}, sink);
+                    sink.emit(OperationEnd{});
+                    return;
+                }
                 const Tool& tool = job.tools.at(o.tool);
                 // The spindle stops as the last act of the previous tool.
                 if (tool.number != current) coolant_off();
@@ -211,7 +223,7 @@ void expand_job(const Job& job, EventSink& sink) {
                     const Planes z = resolve_planes(o.heights);
                     planes = OperationPlanes{z.retract_z, z.reference_z, z.safe_z};
                 }
-                FeedMode feed_mode = FeedMode::per_minute;
+                feed_mode = FeedMode::per_minute;
                 if constexpr (requires { o.feed_mode; }) feed_mode = o.feed_mode;
                 sink.emit(OperationStart{default_name(o), o.path, tolerance, notes, planes, feed_mode});
                 SpindleState want = tool.direction == SpindleDirection::cw ? SpindleState::cw : SpindleState::ccw;

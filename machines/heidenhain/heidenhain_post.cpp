@@ -130,6 +130,13 @@ void HeidenhainPost::on_spindle(const Spindle& s) {
     writer().add(s.state == SpindleState::cw ? "M3" : "M4").end();
 }
 
+void HeidenhainPost::on_stop(const Stop& stop) {
+    if (pending_tool_) flush_tool_call(std::nullopt);
+    writer().add(stop.kind == StopKind::optional ? "M1" : "STOP")
+        .add(stop.message.empty() ? "" : "; " + writer().clean_comment(stop.message))
+        .end();
+}
+
 void HeidenhainPost::on_dwell(double seconds) {
     writer().add("CYCL DEF 9.0 DWELL TIME").end();
     writer().add("CYCL DEF 9.1 DWELL " + dwell_format().format(seconds)).end();

@@ -21,6 +21,8 @@ protected:
     void on_tool_change(const ToolChange& tool) override;
     void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
+    // STOP (or M1 for an optional stop) with the message as the block's comment.
+    void on_stop(const Stop& stop) override;
     void on_rapid(const Vec3& to) override;
     void rapid_z_from_unknown(double z) override;
     std::string compensation_words(const Compensation& compensation) const override;

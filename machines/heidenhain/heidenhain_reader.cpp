@@ -2,7 +2,8 @@
 // from "0 BEGIN PGM name MM" to "END PGM name MM", "; comments", TOOL CALL n Z S.. (and
 // TOOL CALL Z S.. for a new speed), M3/M4/M5, L X.. Y.. Z.. R0 FMAX (rapid) and L .. F..
 // (feed; F is modal, FMAX holds for its block only), R0/RL/RR, arcs CC X Y + C X Y DR+/DR-,
-// dwell cycle 9 (CYCL DEF 9.0 / 9.1), and the drilling cycles 200, 203 and 207 with their Q
+// dwell cycle 9 (CYCL DEF 9.0 / 9.1), STOP, M0 and M1 (optional) with the message as the
+// block's comment, and the drilling cycles 200, 203 and 207 with their Q
 // parameters (continuation lines ending in "~"), each hole called by L X Y R0 FMAX M99. A
 // cycle call is read back into the DrillCycle whose longhand moves camgen means by it: the
 // inverse of heidenhain_cycle (README "Drilling: canned or longhand").
@@ -60,6 +61,7 @@ protected:
     void line(std::string_view text) override;
     void block(const Block&) override {}  // every line is read by line()
     void finish() override;
+    std::vector<std::pair<std::string, std::string>> modal_state() const override;
 
 private:
     // A word such as X+10.5 or F300, read as the machine's formats write it.
@@ -77,6 +79,7 @@ private:
     // The DrillCycle a call (M99) of the defined cycle means with the spindle in this state.
     DrillCycle cycle_with(SpindleState spindle, double rpm) const;
 
+    std::string comment_;          // the comment of the block being read
     int next_block_ = 0;
     std::string program_;          // the name after BEGIN PGM
     bool begun_ = false, stopped_ = false, ended_ = false;
@@ -121,6 +124,17 @@ void HeidenhainReader::line(std::string_view raw) {
     content(trim(text.substr(digits)));
 }
 
+std::vector<std::pair<std::string, std::string>> HeidenhainReader::modal_state() const {
+    std::vector<std::pair<std::string, std::string>> s = NcReader::modal_state();
+    s.emplace_back("cycle definition", defining_ ? fmt::format("CYCL DEF {} (not finished)", defining_->number)
+                                       : dwell_def_line_ ? std::string("CYCL DEF 9.0 (without its 9.1)")
+                                       : cycle_ ? fmt::format("CYCL DEF {}", cycle_->number)
+                                                : std::string("none"));
+    s.emplace_back("radius compensation", comp_ == CompensationSide::off ? "R0" : comp_ == CompensationSide::left ? "RL" : "RR");
+    s.emplace_back("program end", ended_ ? "END PGM read" : stopped_ ? "M30 read" : "not read");
+    return s;
+}
+
 void HeidenhainReader::content(std::string_view text) {
     if (text.empty()) fail("an empty block");
     std::string_view comment;
@@ -134,6 +148,7 @@ void HeidenhainReader::content(std::string_view text) {
     if (ended_) fail("a block after END PGM");
     std::vector<std::string_view> t = tokens_of(text);
     if (t.empty()) return;  // a comment block
+    comment_ = std::string(comment);
     if (!begun_ && !(t.size() >= 2 && t[0] == "BEGIN" && t[1] == "PGM")) fail("the program must begin with BEGIN PGM");
     if (stopped_ && !(t.size() >= 2 && t[0] == "END" && t[1] == "PGM")) fail("a block after the end of the program (M30)");
     if (dwell_def_line_ && !(t.size() >= 3 && t[0] == "CYCL" && t[1] == "DEF" && t[2] == "9.1"))
@@ -147,6 +162,10 @@ void HeidenhainReader::content(std::string_view text) {
     else if (t[0] == "L") move(t, false);
     else if (t[0] == "CC") circle_centre(t);
     else if (t[0] == "C") move(t, true);
+    else if (t[0] == "STOP") {
+        if (t.size() != 1) fail("STOP: camgen writes it alone, its message as the block's comment");
+        stop(StopKind::mandatory, comment_);
+    }
     else if (t[0][0] == 'M') m_block(t);
     else fail(fmt::format("unknown block \"{}\"", text));
 }
@@ -213,6 +232,8 @@ void HeidenhainReader::m_block(const std::vector<std::string_view>& t) {
         case code(5): switch_spindle(m, "(TOOL CALL .. S)"); break;
         case code(2):
         case code(30): stopped_ = true; break;
+        case code(0): stop(StopKind::mandatory, comment_); break;
+        case code(1): stop(StopKind::optional, comment_); break;
         default:
             if (const auto mode = coolant_of(m)) {
                 emit(Coolant{*mode, ""});

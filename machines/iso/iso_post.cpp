@@ -26,6 +26,7 @@ IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
     percent_ = f.boolean("percentLines", true);
     length_offset_ = f.boolean("toolLengthOffset", true);
     tool_change_ = iso::tool_change_setting(f);
+    stop_style_ = iso::stop_style_setting(f);
     end_code_ = f.optional_string("endCode").value_or("M30");
     f.finish();
 }
@@ -66,6 +67,17 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
             break;
     }
     length_offset_pending_ = length_offset_;
+}
+
+void IsoPost::on_stop(const Stop& stop) {
+    const bool optional = stop.kind == StopKind::optional;
+    if (optional && !stop_style_.optional_stop)
+        note(fmt::format("{}: machine {} ignores M1 (it has no optional stop): the optional stop is written as M0, "
+                         "which always stops",
+                         operation_path(), machine().name));
+    std::string text = stop.message;
+    if (stop_style_.msg && !text.empty()) text = fmt::format("{} {}", iso::msg_prefix, text);
+    writer().add(m(optional && stop_style_.optional_stop ? 1 : 0)).add(text.empty() ? "" : inline_comment(text)).end();
 }
 
 void IsoPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("P", seconds)).end(); }

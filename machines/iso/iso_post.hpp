@@ -20,6 +20,9 @@ protected:
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_dwell(double seconds) override;
+    // M0, or M1 where the control has an optional stop, with the message as a comment (or
+    // LinuxCNC's MSG comment) in the block.
+    void on_stop(const Stop& stop) override;
     // A job's program number replaces the O-number where the machine writes one.
     bool takes_program_number() const override { return program_number_ > 0; }
     void rapid_z_from_unknown(double z) override;
@@ -35,6 +38,7 @@ protected:
     bool percent_ = true;
     bool length_offset_ = true;
     iso::ToolChangeStyle tool_change_ = iso::ToolChangeStyle::m6;
+    iso::StopStyle stop_style_;
     std::string end_code_ = "M30";
     bool length_offset_pending_ = false;
 

@@ -1,7 +1,8 @@
 // Reading the ISO (Fanuc-style) dialect: %, O-number, N sequence numbers, modal G groups
 // (motion, plane, units, distance, feed mode, compensation, length offset, return level),
 // tool changes as the machine's toolChange setting writes them (T.. M6, or GRBL's
-// "(Insert tool n: ...)" comment and M0), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
+// "(Insert tool n: ...)" comment and M0), stops M0/M1 with the message in the block's comment
+// (or LinuxCNC's "(MSG, text)"), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
 // (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
 // G98/G99 (G98: back to the Z before the first cycle block, G99: to R), LinuxCNC G33.1 rigid
 // tapping, M2/M30.
@@ -37,6 +38,13 @@ iso::ToolChangeStyle tool_change_style(const Machine& m) {
     return iso::tool_change_setting(f);
 }
 
+// How the machine's post writes stops (the settings "stopMessage" and "optionalStop").
+iso::StopStyle stop_style(const Machine& m) {
+    json::Source source{m.source, json::LineMap{}};
+    json::Fields f(m.dialect_settings, "/settings", source);
+    return iso::stop_style_setting(f);
+}
+
 // Whether a lathe calls its tools as a turret does (iso-lathe setting "toolCall": T0101).
 bool turret_calls(const Machine& m) {
     if (m.kind != MachineKind::lathe) return false;
@@ -62,7 +70,9 @@ struct InsertTool {
 class IsoReader : public NcReader {
 public:
     IsoReader(const Machine& machine, std::string source)
-        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)), turret_(turret_calls(machine)) {}
+        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)), stop_style_(stop_style(machine)),
+          turret_(turret_calls(machine)) {}
+    std::vector<std::pair<std::string, std::string>> modal_state() const override;
 
 protected:
     bool frame_line(std::string_view line) override { return line == "%"; }
@@ -80,6 +90,7 @@ private:
     std::optional<InsertTool> insert_tool(const std::string& comment) const;
 
     iso::ToolChangeStyle tool_change_;
+    iso::StopStyle stop_style_;
     bool turret_ = false;                 // T0101 calls tool 1 (a lathe's turret)
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
     std::optional<InsertTool> pending_insert_;
@@ -89,8 +100,21 @@ private:
     std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
     std::optional<double> initial_z_;  // Z when the current run of cycle blocks began
     std::optional<int> selected_tool_;
+    std::string length_offset_ = "none";  // "G43 H1", "G49": the tool length offset selected last
+    int program_numbers_ = 0;             // O lines read
     bool ended_ = false;
 };
+
+std::vector<std::pair<std::string, std::string>> IsoReader::modal_state() const {
+    std::vector<std::pair<std::string, std::string>> s = NcReader::modal_state();
+    s.emplace_back("plane", plane_ == Plane::xy ? "G17" : plane_ == Plane::xz ? "G18" : "G19");
+    s.emplace_back("tool length offset", length_offset_);
+    s.emplace_back("canned cycle return level", g98_ ? "G98" : "G99");
+    s.emplace_back("program numbers", std::to_string(program_numbers_));
+    s.emplace_back("tool change announced", pending_insert_ ? fmt::format("Insert tool {}", pending_insert_->number) : "none");
+    s.emplace_back("program end", ended_ ? "read" : "not read");
+    return s;
+}
 
 const DrillingCycleSpec* IsoReader::canned_spec(int g) const {
     for (const DrillingCycleSpec& spec : machine_.drilling) {
@@ -153,6 +177,7 @@ void IsoReader::block(const Block& b) {
     if (b.words.front().letter == 'O') {
         if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
         (void)integer_of(b.words.front());
+        ++program_numbers_;
         return;
     }
     std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
@@ -260,14 +285,12 @@ void IsoReader::block(const Block& b) {
     if (m.tool_change && tool_change_ == iso::ToolChangeStyle::pause)
         fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
                          "and pauses with M0", machine_.name));
-    if (m.stop && m.stop->value == code(0) && tool_change_ == iso::ToolChangeStyle::pause) {
+    bool tool_pause = false;
+    if (m.stop && m.stop->value == code(0) && tool_change_ == iso::ToolChangeStyle::pause && pending_insert_) {
         // GRBL: the spindle is off; the operator changes the tool the comment names.
-        if (!pending_insert_)
-            fail(fmt::format("M0 without the comment (Insert tool <n>: ...) on the line before it: machine {} "
-                             "pauses only to change tools",
-                             machine_.name));
         change_tool(pending_insert_->number, pending_insert_->description);
         pending_insert_.reset();
+        tool_pause = true;
     }
     if (m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool number T");
@@ -293,8 +316,13 @@ void IsoReader::block(const Block& b) {
             emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right, integer_of(*d)});
         }
     }
-    if (length_offset && length_offset->value == code(43) && !w.take('H'))
-        fail(fmt::format("{} without its offset number H", length_offset->word->text));
+    if (length_offset && length_offset->value == code(43)) {
+        const Word* h = w.take('H');
+        if (!h) fail(fmt::format("{} without its offset number H", length_offset->word->text));
+        length_offset_ = fmt::format("G43 H{}", integer_of(*h));
+    } else if (length_offset) {
+        length_offset_ = "G49";
+    }
     if (return_level) g98_ = return_level->value == code(98);
     if (motion) {
         if (motion->value == code(80)) {
@@ -327,6 +355,20 @@ void IsoReader::block(const Block& b) {
         motion_block(motion_, w);
     }
     w.require_all_used();
+    if (m.stop && (m.stop->value == code(0) || m.stop->value == code(1)) && !tool_pause) {
+        // A stop for the operator, its message the block's comment.
+        if (m.stop->value == code(1) && !stop_style_.optional_stop)
+            fail(fmt::format("M1: machine {} ignores M1 (it has no optional stop switch), so the program would not stop "
+                             "there; camgen writes M0",
+                             machine_.name));
+        std::string message;
+        for (const std::string& c : b.comments) message += (message.empty() ? "" : " ") + c;
+        if (message.rfind(iso::msg_prefix, 0) == 0) {
+            message.erase(0, iso::msg_prefix.size());
+            message.erase(0, message.find_first_not_of(' ') == std::string::npos ? message.size() : message.find_first_not_of(' '));
+        }
+        stop(m.stop->value == code(1) ? StopKind::optional : StopKind::mandatory, std::move(message));
+    }
     if (m.stop && (m.stop->value == code(2) || m.stop->value == code(30))) {
         drill_end();
         ended_ = true;

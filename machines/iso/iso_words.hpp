@@ -59,4 +59,24 @@ inline ToolChangeStyle tool_change_setting(json::Fields& f) {
         ToolChangeStyle::m6);
 }
 
+// How an ISO control shows a stop's message, and whether it stops at M1: the settings
+// "stopMessage" ("comment": the message as a comment in the M0/M1 block, as Fanuc shows the
+// block; "msg": LinuxCNC's "(MSG, text)", which it shows in a window) and "optionalStop"
+// (false: the control ignores M1, as GRBL does, so an optional stop is written as M0).
+struct StopStyle {
+    bool msg = false;
+    bool optional_stop = true;
+};
+
+// The stop settings from the dialect settings `f`. Throws InputError for another value.
+inline StopStyle stop_style_setting(json::Fields& f) {
+    StopStyle s;
+    s.msg = f.choice<bool>("stopMessage", {{"comment", false}, {"msg", true}}, false);
+    s.optional_stop = f.boolean("optionalStop", true);
+    return s;
+}
+
+// The prefix of LinuxCNC's message comment "(MSG, text)".
+inline constexpr std::string_view msg_prefix = "MSG,";
+
 }  // namespace camgen::iso

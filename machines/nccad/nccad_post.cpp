@@ -94,6 +94,19 @@ void NccadPost::flush_tool_message(std::optional<double> rpm) {
     pending_tool_.reset();
 }
 
+void NccadPost::on_stop(const Stop& stop) {
+    if (pending_tool_) flush_tool_message(std::nullopt);
+    if (stop.kind == StopKind::optional)
+        note(fmt::format("{}: machine {} has no optional stop: the optional stop is written as M01 <message>, which "
+                         "always waits",
+                         operation_path(), machine().name));
+    std::string msg = writer().clean_comment(stop.message);
+    // ';' starts a comment in nccad: it must not appear in the message.
+    for (char& c : msg)
+        if (c == ';') c = ',';
+    writer().add(m(1)).add(msg).end();
+}
+
 void NccadPost::on_dwell(double seconds) {
     // M30 P<n>: n in 1/18 s, rounded up so the dwell is never shorter than asked.
     long n = static_cast<long>(std::ceil(seconds * 18.0 - 1e-9));
@@ -153,6 +166,12 @@ std::optional<MachineProblem> check_nccad_machine(const Machine& machine) {
                                   "\"kind\": \"drill\", \"fields\": [\"plungingFeedrate\"]}; camgen writes every other "
                                   "cycle longhand: remove this one"};
     }
+    // Every tap is refused on nccad (tapping_impossible): a machine file that says otherwise
+    // would tell --describe-machine and the stops that replace taps (impossible_cycle) a lie.
+    if (machine.tapping != TappingMode::none)
+        return MachineProblem{{"/drilling/tapping"},
+                              "nccad's spindle runs clockwise only: a right-hand tap cannot be backed out of the hole "
+                              "and a left-hand one cannot cut; set tapping to none"};
     static constexpr std::string_view no_unit_words[] = {"G70", "G71"};
     static constexpr std::string_view start_words[] = {"G90"};
     if (auto p = start_block_problem(machine, no_unit_words, start_words)) return p;

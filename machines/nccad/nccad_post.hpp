@@ -21,6 +21,9 @@ protected:
     void on_tool_change(const ToolChange& tool) override;
     void on_spindle(const Spindle& spindle) override;
     void on_dwell(double seconds) override;
+    // M01 <message>: nccad shows the message and waits (it has no optional stop: an optional
+    // stop waits as well, with a note).
+    void on_stop(const Stop& stop) override;
     void on_compensation(const Compensation& compensation) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;

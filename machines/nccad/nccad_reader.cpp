@@ -1,7 +1,8 @@
 // Reading the nccad dialect (MAX computer nccad: Wabeco, KOSY): "_" lines,
 // G90, "; comments", G00/G01, arcs as G02/G03 D<sweep> I J (the control computes the end) or
 // in the classic form G02 X Y I J (both X and Y required), G81 X Y Z B F + G79 X Y drilling,
-// M10 O6.1 / O6.0 spindle, M01 <message> (tool changes and spindle speeds), M30 P<n> dwell in
+// M10 O6.1 / O6.0 spindle, M01 <message> (tool changes, spindle speeds and stops for the
+// operator), M30 P<n> dwell in
 // 1/18 s, G76 reference run, G77 home, G99 end of program.
 #include <cmath>
 
@@ -35,6 +36,11 @@ protected:
     bool message_code(const Word& w) const override { return w.letter == 'M' && code(w.value) == code(1); }
     bool dotted_word(char letter) const override { return letter == 'O'; }
     void block(const Block& b) override;
+    std::vector<std::pair<std::string, std::string>> modal_state() const override {
+        std::vector<std::pair<std::string, std::string>> s = NcReader::modal_state();
+        s.emplace_back("program end", ended_ ? "read" : "not read");
+        return s;
+    }
     void finish() override {
         if (!ended_) fail("the program does not end with G99: it may have been cut short");
         NcReader::finish();
@@ -50,7 +56,7 @@ private:
 
 void NccadReader::message(const std::string& text) {
     // camgen's wabeco post: "Insert tool <n>[ <description>][, spindle <rpm> rpm]" and
-    // "Set spindle speed to <rpm> rpm". Any other message is a pause for the operator.
+    // "Set spindle speed to <rpm> rpm". Any other message is a stop for the operator.
     auto speed = [&](std::string_view s) {
         auto v = parse_number(s);
         if (!v || *v < 0) fail(fmt::format("M01 {}: \"{}\" is not a spindle speed", text, s));
@@ -78,7 +84,8 @@ void NccadReader::message(const std::string& text) {
         speed(m.substr(21, m.size() - 21 - 4));
         return;
     }
-    emit(Comment{text});
+    stop(StopKind::mandatory, text);
+    motion_ = -1;
 }
 
 void NccadReader::spindle_output(const Word& o) {

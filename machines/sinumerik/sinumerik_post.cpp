@@ -138,6 +138,18 @@ void SinumerikPost::on_tool_change(const ToolChange& tool) {
     writer().add(m(6)).end();
 }
 
+void SinumerikPost::on_stop(const Stop& stop) {
+    std::string msg = writer().clean_comment(stop.message);
+    // A string's quotes end it: the message keeps single ones; ';' starts a comment.
+    for (char& c : msg) {
+        if (c == '"') c = '\'';
+        if (c == ';') c = ',';
+    }
+    if (!msg.empty()) writer().add(fmt::format("MSG(\"{}\")", msg)).end();
+    writer().add(m(stop.kind == StopKind::optional ? 1 : 0)).end();
+    if (!msg.empty()) writer().add("MSG()").end();
+}
+
 // G4 F: dwell in seconds (G4 S would be spindle revolutions).
 void SinumerikPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("F", seconds)).end(); }
 

@@ -18,6 +18,8 @@ protected:
     void on_close() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_dwell(double seconds) override;
+    // MSG("message"), M0 or M1, MSG(): the control shows the message while it stands.
+    void on_stop(const Stop& stop) override;
     std::string compensation_words(const Compensation& compensation) const override;
     std::string radius_word(double radius) const override;
     bool force_arc_end() const override;

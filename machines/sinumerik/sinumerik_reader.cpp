@@ -1,6 +1,7 @@
 // Reading the Sinumerik 840D dialect: N sequence numbers, "; comments",
 // G17/G18/G19, G70/G71, G90, G94, G0-G3 with I/J/K (relative to the start) or CR=, G4 F<s> dwell,
-// G40/G41/G42, T.. D1 and M6, S.. M3/M4/M5, M30/M2, and the drilling cycles as the post writes
+// G40/G41/G42, T.. D1 and M6, S.. M3/M4/M5, M30/M2, stops M0/M1 with the message MSG("...")
+// shows (MSG() clears it), and the drilling cycles as the post writes
 // them: MCALL CYCLE81..CYCLE89(...), then one G0 X Y block per hole (each calls the cycle at
 // its position, from the Z the tool stands at), then MCALL alone. Each cycle call is read back
 // into the DrillCycle whose longhand moves camgen means by it: the inverse of
@@ -36,8 +37,12 @@ protected:
     void line(std::string_view text) override;
     void block(const Block& b) override;
     void finish() override;
+    std::vector<std::pair<std::string, std::string>> modal_state() const override;
 
 private:
+    // MSG("text") shows a message, MSG() clears it (`call`: from "MSG").
+    void message(std::string_view call);
+    std::string message_;  // the message shown
     void modal_call(std::string_view call);
     // The DrillCycle a call of the active modal cycle means, with the feed and spindle now in
     // effect (CYCLE81/82/83/86/89 drill at the active F).
@@ -50,12 +55,44 @@ private:
     bool ended_ = false;
 };
 
+std::vector<std::pair<std::string, std::string>> SinumerikReader::modal_state() const {
+    std::vector<std::pair<std::string, std::string>> s = NcReader::modal_state();
+    s.emplace_back("plane", plane_ == Plane::xy ? "G17" : plane_ == Plane::xz ? "G18" : "G19");
+    s.emplace_back("modal cycle call", mcall_ ? mcall_->name : "none");
+    s.emplace_back("program end", ended_ ? "read" : "not read");
+    return s;
+}
+
+void SinumerikReader::message(std::string_view call) {
+    if (ended_) fail("a block after the end of the program");
+    // MSG ( [ "text" ] ) [; comment]: the string first, since it may hold ';'.
+    std::string_view rest = trim(call.substr(3));
+    if (rest.empty() || rest.front() != '(') fail(fmt::format("{}: expected MSG(\"text\") or MSG()", call));
+    rest = trim(rest.substr(1));
+    std::optional<std::string> text;
+    if (!rest.empty() && rest.front() == '"') {
+        const size_t close = rest.find('"', 1);
+        if (close == std::string_view::npos) fail(fmt::format("{}: the message's string does not end", call));
+        text = std::string(rest.substr(1, close - 1));
+        rest = trim(rest.substr(close + 1));
+    }
+    if (rest.empty() || rest.front() != ')') fail(fmt::format("{}: the message is one string in double quotes", call));
+    rest = trim(rest.substr(1));
+    if (!rest.empty() && rest.front() != ';') fail(fmt::format("{}: nothing may follow MSG(...) but a comment", call));
+    message_ = text.value_or("");
+}
+
 void SinumerikReader::line(std::string_view text) {
     // "N80 MCALL CYCLE81(...)" is no block of address words: read it here.
     std::string_view rest = trim(text);
     if (!rest.empty() && rest.front() == 'N') {
         size_t digits = rest.find_first_not_of("0123456789", 1);
         if (digits != 1 && digits != std::string_view::npos && is_blank(rest[digits])) rest = trim(rest.substr(digits));
+    }
+    if (rest.rfind("MSG", 0) == 0 && rest.size() > 3 && (rest[3] == '(' || is_blank(rest[3]))) {
+        (void)split_line(text.substr(0, text.find("MSG")));  // checks the sequence number
+        message(rest);
+        return;
     }
     if (rest.rfind("MCALL", 0) == 0 && (rest.size() == 5 || is_blank(rest[5]) || rest[5] == ';')) {
         (void)split_line(text.substr(0, text.find("MCALL")));  // checks the sequence number
@@ -402,6 +439,10 @@ void SinumerikReader::block(const Block& b) {
         }
     }
     w.require_all_used();
+    if (m.stop && (m.stop->value == code(0) || m.stop->value == code(1))) {
+        if (mcall_) fail(fmt::format("a stop while the modal call {} of line {} is active", mcall_->name, mcall_->line));
+        stop(m.stop->value == code(1) ? StopKind::optional : StopKind::mandatory, message_);
+    }
     if (m.stop && (m.stop->value == code(2) || m.stop->value == code(30))) {
         if (mcall_) fail(fmt::format("the program ends with the modal call {} of line {} still active (MCALL ends it)",
                                      mcall_->name, mcall_->line));

@@ -28,6 +28,10 @@ constexpr KeySpec drill_keys[] = {
      .description = "add the tool's tip length (from diameter and tipAngle) to the depth"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
      .description = "canned cycle or plain moves: auto, canned or longhand"},
+    {.key = "unsupported", .type = JsonType::string, .default_json = "\"refuse\"", .choices = &choices_of<unsupported_cycles>,
+     .description = "where the machine cannot make the cycle at all (a tap on a machine that cannot tap): refuse the job, "
+                    "or stop the program at the clearance after the operation with a message that lists the holes, for "
+                    "the operator to make them by hand"},
 };
 
 // A drilling field of the vocabulary's table as a key of the drill operation.
@@ -190,6 +194,7 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
                                        "has none",
                                        tool.number, tool.path));
     p.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
+    p.unsupported = f.choice("unsupported", unsupported_cycles, UnsupportedCycle::refuse);
     static_cast<HoleSet&>(op) = read_hole_set(f, in, type);
     return op;
 }
@@ -207,6 +212,7 @@ DrillCycle resolve_cycle(const DrillOp& op, const Tool& tool) {
     DrillCycle c;
     c.kind = p.kind;
     c.output = p.output;
+    c.unsupported = p.unsupported;
     c.path = op.path;
     c.values = p.values;
     c.retract_z = z.retract_z;

@@ -39,6 +39,10 @@ constexpr KeySpec turn_drill_keys[] = {
                     "program feeds the same way (G94/G95, Fanuc T G98/G99)"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
      .description = "canned cycle or plain moves: auto, canned or longhand"},
+    {.key = "unsupported", .type = JsonType::string, .default_json = "\"refuse\"", .choices = &choices_of<unsupported_cycles>,
+     .description = "where the machine cannot make the cycle at all (a tap on a machine that cannot tap): refuse the job, "
+                    "or stop the program at the clearance after the operation with a message that lists the holes, for "
+                    "the operator to make them by hand"},
 };
 
 // A TurnDrillingFields row as a key of the operation: the quantity and bound of its field.
@@ -168,6 +172,7 @@ TurnDrillOp TurnDrillOp::read(Fields& f, const JobInput& in) {
     c.kind = kind_of(f, c.values, tool);
     c.bottom_z = end - tip_length(f, in, tool);
     c.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
+    c.unsupported = f.choice("unsupported", unsupported_cycles, UnsupportedCycle::refuse);
     c.spindle_rpm = tool.rpm;
     c.spindle_direction = tool.direction;
     c.feed = is_tapping(c.kind) ? c.values.value_or(DrillField::pitch, 0.0) * tool.rpm

@@ -366,6 +366,10 @@ public:
         note(fmt::format("feed {}, dwell {}", format_duration(stats.feed_time), format_duration(stats.dwell_time)));
         note(fmt::format("rapid {} at {} mm/min", format_duration(stats.rapid_time), n(stats.rapid_rate, 0)));
         if (stats.clamped_feeds) note(fmt::format("{} feed moves clamped to the machine's limits", stats.clamped_feeds));
+        // Stops do not move: the legend counts them (verify and the HTML page list them).
+        if (stats.stops > 0)
+            row("stops", stats.optional_stops ? fmt::format("{} ({} optional)", stats.stops, stats.optional_stops)
+                                              : std::to_string(stats.stops));
         ly += 8;
         if (left_out > 0) {
             text(lx, fmt::format("{} hole numbers left out where they would overlap.", left_out), 11, "normal", "#777");

@@ -1,5 +1,5 @@
 // Comparing two traces as positions visited (motion.hpp). Each trace becomes a list of items:
-// tool changes, spindle states, dwells, and paths (maximal runs of rapid or of feed moves).
+// tool changes, spindle states, dwells, stops, and paths (maximal runs of rapid or of feed moves).
 // Two paths match when every block end and every sampled arc point of each lies on the other,
 // in order (so a circle the wrong way round fails although every point is on the circle),
 // both end at the same point, and the feed agrees where they overlap.
@@ -72,8 +72,8 @@ struct Path {
 };
 
 struct Item {
-    enum class Kind { path, tool, spindle, dwell } kind = Kind::path;
-    Step step;  // tool, spindle, dwell
+    enum class Kind { path, tool, spindle, dwell, stop } kind = Kind::path;
+    Step step;  // tool, spindle, dwell, stop
     Path path;
     int line() const { return kind == Kind::path ? path.first_line() : step.line; }
 };
@@ -110,6 +110,10 @@ public:
             case StepKind::dwell:
                 flush_spindle();
                 made({Item::Kind::dwell, s, {}});
+                break;
+            case StepKind::stop:
+                flush_spindle();
+                made({Item::Kind::stop, s, {}});
                 break;
             case StepKind::rapid:
             case StepKind::feed: {
@@ -350,6 +354,7 @@ std::string describe_step(const Step& s) {
             return s.spindle == SpindleState::off ? std::string("spindle off")
                                                   : fmt::format("spindle {} at {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw", num3(s.rpm));
         case StepKind::dwell: return fmt::format("a dwell of {} s", num3(s.seconds));
+        case StepKind::stop: return s.stop == StopKind::optional ? "an optional stop" : "a stop";
         default: return s.kind == StepKind::rapid ? "a rapid move" : "a feed move";
     }
 }
@@ -461,6 +466,12 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
         case Item::Kind::dwell:
             if (std::abs(a.step.seconds - b.step.seconds) > tol.dwell + tiny)
                 return Mismatch{b.line(), fmt::format("the program has {}, the job {}", describe_step(b.step), describe_step(a.step))};
+            break;
+        case Item::Kind::stop:
+            // A stop that always waits does where the job's waits only at the operator's switch (a
+            // control without an optional stop), not the other way round.
+            if (a.step.stop == StopKind::mandatory && b.step.stop == StopKind::optional)
+                return Mismatch{b.line(), "the program has an optional stop where the job stops always"};
             break;
         case Item::Kind::path:
             if (a.path.rapid != b.path.rapid)

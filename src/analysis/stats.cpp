@@ -103,6 +103,10 @@ void StatsAccumulator::step(const Step& s) {
     switch (s.kind) {
         case StepKind::tool_change: (void)tool_stats(s.tool); break;
         case StepKind::spindle: break;
+        case StepKind::stop:
+            ++st.stops;
+            if (s.stop == StopKind::optional) ++st.optional_stops;
+            break;
         case StepKind::dwell: {
             st.dwell_time += s.seconds;
             tool_stats(s.tool).time += s.seconds;
@@ -149,6 +153,7 @@ void StatsAccumulator::finish(const TraceSummary& summary) {
     ProgramStats& st = stats_;
     st.canned_holes = std::min(summary.canned_holes, st.holes);
     st.longhand_holes = st.holes - st.canned_holes;
+    st.stop_notes = summary.stops;
     // Descriptions as the trace knows them at its end (a later change may name a tool).
     for (ToolStats& t : st.tools)
         for (const ToolInfo& i : summary.tools)
@@ -161,7 +166,7 @@ ProgramStats compute_stats(const Trace& trace, const Machine& machine) {
     StatsAccumulator stats(machine);
     for (const Step& s : trace.steps) stats.step(s);
     for (const Hole& h : trace.holes) stats.hole(h);
-    stats.finish({trace.canned_holes, trace.tools});
+    stats.finish({trace.canned_holes, trace.tools, trace.notes, trace.stops, trace.stop_count});
     return stats.stats();
 }
 
@@ -184,6 +189,18 @@ std::string format_stats(const ProgramStats& st) {
                              st.clamped_feeds ? fmt::format("; {} feed move{} clamped to the machine's limits",
                                                             st.clamped_feeds, st.clamped_feeds == 1 ? "" : "s")
                                               : std::string()));
+    if (st.stops > 0) {
+        line("stops", st.optional_stops ? fmt::format("{} ({} optional)", st.stops, st.optional_stops) : std::to_string(st.stops));
+        constexpr std::size_t listed = 20;
+        for (std::size_t i = 0; i < st.stop_notes.size() && i < listed; ++i) {
+            const StopNote& n = st.stop_notes[i];
+            line("", fmt::format("{}{}{}", n.line ? fmt::format("line {}: ", n.line) : std::string(),
+                                 n.kind == StopKind::optional ? "optional: " : "",
+                                 n.message.empty() ? std::string("(no message)") : n.message));
+        }
+        if (st.stops > static_cast<int>(std::min(listed, st.stop_notes.size())))
+            line("", fmt::format("and {} more", st.stops - static_cast<int>(std::min(listed, st.stop_notes.size()))));
+    }
     std::vector<std::string> kinds;
     for (const auto& m : movements) {
         const auto k = static_cast<std::size_t>(m.value);

@@ -11,6 +11,7 @@
 #include "camgen/events/visit.hpp"
 #include "camgen/geometry/compensation.hpp"
 #include "camgen/post/longhand.hpp"
+#include "camgen/post/post.hpp"
 #include "camgen/analysis/trace.hpp"
 
 namespace camgen {
@@ -156,6 +157,16 @@ public:
                            pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
+                       [&](const Stop& st) {
+                           Step s = base(StepKind::stop);
+                           s.stop = st.kind;
+                           emit_in_order(s);
+                           // The operator may move the axes: the next move is from where they are.
+                           known_ = false;
+                           if (summary_.stops.size() < max_stop_notes) summary_.stops.push_back({line_, st.kind, st.message});
+                           ++summary_.stop_count;
+                       },
+                       [&](const CustomBlock&) {},  // comments and dwells only, which the program reads back as such
                    },
                    e.event);
     }
@@ -378,15 +389,27 @@ private:
 };
 
 TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)
-    : impl_(std::make_unique<Impl>(machine, sink, std::move(options))) {}
+    : machine_(machine),
+      impl_(std::make_unique<Impl>(machine, sink, std::move(options))),
+      stops_(std::make_unique<OperatorStops>(machine, job_events_)) {}
 
 TraceBuilder::~TraceBuilder() = default;
 
 void TraceBuilder::read_event(const ReadEvent& event) { impl_->add(event, false); }
 
-void TraceBuilder::add_job_event(const Event& e) {
+void TraceBuilder::add_job_event(const Event& e) { stops_->emit(e); }
+
+void TraceBuilder::add_stopped_event(const Event& e) {
+    if (const auto* c = std::get_if<CustomBlock>(&e)) {
+        // What the program's reader reads of the block's lines: its comments and dwells (the
+        // post checked the rest where it wrote them, in a program it knew the frame of).
+        const CustomText& text = Post::custom_text(machine_, *c);
+        for (const Event& x : Post::custom_block_events(machine_, {}, *c, text, {}, Post::StateCheck::unchecked))
+            add_stopped_event(x);
+        return;
+    }
     ReadEvent r{e};
-    if (std::holds_alternative<ToolChange>(e)) known_ = false;
+    if (std::holds_alternative<ToolChange>(e) || std::holds_alternative<Stop>(e)) known_ = false;
     if (std::holds_alternative<Rapid>(e)) {
         r.from_unknown = !known_;
         known_ = true;
@@ -414,6 +437,8 @@ void TraceCollector::finish(const TraceSummary& summary) {
     trace_.canned_holes = summary.canned_holes;
     trace_.tools = summary.tools;
     trace_.notes = summary.notes;
+    trace_.stops = summary.stops;
+    trace_.stop_count = summary.stop_count;
 }
 
 void FeedClamp::step(const Step& step) {

@@ -62,6 +62,7 @@ std::string event_to_json(const Event& event) {
                             {"retractZ", e.retract_z}, {"referenceZ", e.reference_z},     {"safeZ", e.safe_z},
                             {"bottomZ", e.bottom_z},   {"feed", e.feed},                  {"rpm", e.spindle_rpm}};
                        if (e.spindle_direction == SpindleDirection::ccw) j["direction"] = "ccw";
+                       if (e.unsupported != UnsupportedCycle::refuse) j["unsupported"] = name_of(unsupported_cycles, e.unsupported);
                        for (const auto& d : drill_fields) {
                            const std::optional<double> v = e.values.get(d.field);
                            if (!v) continue;
@@ -74,6 +75,16 @@ std::string event_to_json(const Event& event) {
                    [&](const DrillPoint& e) { j = {{"event", "drill-point"}, {"at", {e.at.x, e.at.y}}}; },
                    [&](const DrillEnd&) { j = {{"event", "drill-end"}}; },
                    [&](const Comment& e) { j = {{"event", "comment"}, {"text", e.text}}; },
+                   [&](const Stop& e) {
+                       j = {{"event", "stop"}, {"optional", e.kind == StopKind::optional}, {"message", e.message}};
+                       if (e.spin_up > 0) j["spinUp"] = e.spin_up;
+                   },
+                   [&](const CustomBlock& e) {
+                       j = {{"event", "custom"}, {"path", e.path}};
+                       nlohmann::ordered_json texts = nlohmann::ordered_json::object();
+                       for (const CustomText& t : e.texts) texts[t.name] = t.lines;
+                       j["text"] = texts;
+                   },
                },
                event);
     return j.dump();

@@ -9,6 +9,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "camgen/post/post.hpp"
 
@@ -27,6 +29,26 @@ struct Dialect {
     std::unique_ptr<reader::NcReader> (*make_reader)(const Machine& machine, std::string source);
     std::optional<MachineProblem> (*check_machine)(const Machine& machine) = nullptr;
 };
+
+// What a machine's reader made of some lines of a program (a custom block): the events of each
+// line, the lines it takes as the program's frame, and its state before and after them. Line
+// numbers count from 0 at the first of them.
+struct LinesReadBack {
+    std::vector<std::pair<int, Event>> events;  // (line, event)
+    std::vector<int> frame_lines;               // "%", "_": not blocks
+    // What the reader keeps without an event (units, work offset, spindle speed, a modal
+    // cycle call, the program's end, ...), by name, before and after the lines.
+    std::vector<std::pair<std::string, std::string>> state_before, state_after;
+    // The first line the reader could not read and why.
+    std::optional<std::pair<int, std::string>> error;
+};
+
+// Reads `program` (for `machine`) with the machine's reader up to the `count` lines from line
+// `first` (1-based), which are the ones it reports on. Defined with the readers
+// (src/reader/reader.cpp): the post calls it to read back a custom block before it writes it,
+// without including a reader. Throws std::logic_error when a line before them cannot be read
+// or the program is shorter.
+LinesReadBack read_lines_back(const Machine& machine, std::string_view program, int first, int count);
 
 // Every dialect, in the order of the registry table.
 std::span<const Dialect> dialects();

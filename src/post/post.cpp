@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/number_text.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/common/json_util.hpp"
 #include "camgen/post/longhand.hpp"
+#include "src/post/dialect_registry.hpp"
 
 namespace camgen {
 
@@ -57,7 +60,8 @@ Post::Post(const Machine& machine, std::ostream& out, PostOptions options)
       feed_("F", feed_fmt_),
       motion_("G", code_fmt_),
       plane_("G", code_fmt_),
-      feed_rev_("F", feed_rev_fmt_) {
+      feed_rev_("F", feed_rev_fmt_),
+      stops_(machine_, handler_) {
     if (!machine.accepts(machine.units))
         throw InputError("/units", fmt::format("machine {} has no {} mode (its control accepts: {})", machine.name,
                                                name_of(unit_names, machine.units), machine.accepted_unit_names()),
@@ -195,6 +199,144 @@ void Post::on_operation_start(const OperationStart& op) {
 }
 
 void Post::on_comment(const std::string& text) { out_.comment(text); }
+
+std::string Post::inline_comment(std::string_view text) const {
+    const std::string c = out_.clean_comment(text);
+    return out_.style().comment_style == nc::CommentStyle::parentheses ? "(" + c + ")" : "; " + c;
+}
+
+namespace {
+// How many lines `text` has (it ends with a line break).
+int lines_in(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+// What an event of a custom block would do, for the message that refuses it.
+std::string what_it_does(const Event& e) {
+    return visit_exhaustive(overloaded{
+                                [](const OperationStart&) { return std::string("start an operation"); },
+                                [](const OperationEnd&) { return std::string("end an operation"); },
+                                [](const ToolChange& t) { return fmt::format("change to tool {}", t.number); },
+                                [](const Spindle& s) {
+                                    return std::string(s.state == SpindleState::off ? "stop the spindle" : "start the spindle");
+                                },
+                                [](const Coolant&) { return std::string("switch the coolant"); },
+                                [](const Rapid&) { return std::string("move the tool (a rapid)"); },
+                                [](const Linear&) { return std::string("move the tool (a feed move)"); },
+                                [](const Arc&) { return std::string("move the tool (an arc)"); },
+                                [](const Dwell&) { return std::string("dwell"); },
+                                [](const Compensation&) { return std::string("switch cutter radius compensation"); },
+                                [](const DrillCycle&) { return std::string("drill (a drilling cycle)"); },
+                                [](const DrillPoint&) { return std::string("drill a hole"); },
+                                [](const DrillEnd&) { return std::string("end a drilling cycle"); },
+                                [](const Comment&) { return std::string("comment"); },
+                                [](const Stop&) {
+                                    return std::string("stop the program with the spindle as it is (a stop operation "
+                                                       "stops the spindle and the coolant first)");
+                                },
+                                [](const CustomBlock&) { return std::string("custom"); },
+                            },
+                            e);
+}
+}  // namespace
+
+const CustomText& Post::custom_text(const Machine& machine, const CustomBlock& block) {
+    for (const std::string& name : {machine.name, machine.dialect})
+        for (const CustomText& t : block.texts)
+            if (t.name == name) return t;
+    std::vector<std::string> names;
+    std::string hint;
+    for (const CustomText& t : block.texts) {
+        names.push_back(t.name);
+        if (auto near = json::did_you_mean(t.name, {machine.name, machine.dialect}); near && hint.empty())
+            hint = fmt::format(" (did you mean \"{}\" for \"{}\"?)", *near, t.name);
+    }
+    throw InputError(block.path, fmt::format("the custom block has no text for machine {} or its dialect {} (it has text "
+                                             "for: {}){}; give one, or \"\" to write nothing there",
+                                             machine.name, machine.dialect, fmt::join(names, ", "), hint));
+}
+
+void Post::handle_custom(const CustomBlock& block) {
+    const CustomText& text = custom_text(machine_, block);
+    if (text.lines.empty()) return;
+    if (!unchecked_custom_) {
+        ProgramPoint point{op_path_, feed_mode_, tool_, spindle_, std::nullopt};
+        if (pos_known_) point.position = pos_;
+        (void)custom_block_events(machine_, options_, block, text, point);
+    }
+    write_custom_lines(text.lines);
+}
+
+void Post::write_custom_lines(const std::vector<std::string>& lines) {
+    for (const std::string& line : lines) out_.add(line).end();
+    // The check proved the control's state unchanged; the modal words this post keeps are
+    // written again all the same (a custom G1 or F would otherwise stand for the post's).
+    reset_modal_axes();
+    forget_feed();
+    feed_rev_.reset();
+    plane_.reset();
+    arc_actual_end_.reset();
+}
+
+std::vector<Event> Post::custom_block_events(const Machine& machine, const PostOptions& options, const CustomBlock& block,
+                                             const CustomText& text, const ProgramPoint& point, StateCheck state) {
+    const std::vector<std::string>& lines = text.lines;
+    if (lines.empty()) return {};
+    const std::string path = block.path + "/" + json::pointer_escape(text.name);
+    // A program like this one up to here (its frame, feed mode, tool, spindle and position),
+    // with the lines between two comments, read back with the machine's reader.
+    std::ostringstream program;
+    PostOptions o;
+    o.program_name = options.program_name;
+    o.work_offset = options.work_offset;
+    o.program_number = options.program_number;
+    std::unique_ptr<Post> probe = make_post(machine, program, o);
+    probe->unchecked_custom_ = true;
+    probe->open();
+    probe->emit(OperationStart{"", point.operation_path, std::nullopt, {}, std::nullopt, point.feed_mode});
+    if (point.tool > 0) probe->emit(ToolChange{point.tool, 0.0, ""});
+    if (point.spindle.state != SpindleState::off) probe->emit(point.spindle);
+    if (point.position) probe->emit(Rapid{*point.position});
+    // The block's lines are those the probe writes for it (each one line).
+    probe->out_.flush();
+    const int first = lines_in(program.str()) + 1;
+    probe->emit(CustomBlock{{text}, block.path});
+    probe->out_.flush();
+    if (lines_in(program.str()) - first + 1 != static_cast<int>(lines.size()))
+        throw std::logic_error("a custom block's lines are not one line each in the program");
+    probe->emit(OperationEnd{});
+    probe->close();
+    const LinesReadBack back = read_lines_back(machine, program.str(), first, static_cast<int>(lines.size()));
+    auto line_of = [&](int k) {
+        return k >= 0 && k < static_cast<int>(lines.size()) ? fmt::format("line {} \"{}\"", k + 1, lines[static_cast<std::size_t>(k)])
+                                                            : std::string("the line after its last");
+    };
+    const std::string reader = fmt::format("machine {}'s reader", machine.name);
+    if (back.error)
+        throw InputError(path, fmt::format("{} cannot read custom {}: {}; camgen writes only what it can read back "
+                                           "(camgen verify)",
+                                           reader, line_of(back.error->first), back.error->second));
+    if (!back.frame_lines.empty())
+        throw InputError(path, fmt::format("custom {} is a line of the program's frame for {}, not a block",
+                                           line_of(back.frame_lines.front()), reader));
+    std::vector<Event> events;
+    for (const auto& [k, e] : back.events) {
+        if (!std::holds_alternative<Comment>(e) && !std::holds_alternative<Dwell>(e))
+            throw InputError(path, fmt::format("custom {} would {}: a custom block may only comment and dwell, so that the "
+                                               "tool, the spindle and the program stay where camgen has them",
+                                               line_of(k), what_it_does(e)));
+        events.push_back(e);
+    }
+    for (std::size_t i = 0; state == StateCheck::checked && i < back.state_before.size() && i < back.state_after.size(); ++i)
+        if (back.state_before[i] != back.state_after[i])
+            throw InputError(path, fmt::format("the custom block changes the {} from {} to {} (as {} reads it): a custom "
+                                               "block must leave the control's state as it found it",
+                                               back.state_before[i].first, back.state_before[i].second,
+                                               back.state_after[i].second, reader));
+    return events;
+}
+
+void Post::on_stop(const Stop& stop) {
+    out_.add(m(stop.kind == StopKind::optional ? 1 : 0)).add(stop.message.empty() ? "" : inline_comment(stop.message)).end();
+}
 
 void Post::on_coolant(const Coolant& coolant) {
     const std::optional<std::string> code = machine_.coolant_code(coolant.mode);
@@ -748,6 +890,10 @@ void Post::replay(const LonghandMove& event) {
 
 void Post::emit(const Event& event) {
     if (!opened_) open();
+    stops_.emit(event);
+}
+
+void Post::handle(const Event& event) {
     visit_exhaustive(overloaded{
                    [&](const OperationStart& op) {
                        op_path_ = op.path;
@@ -766,6 +912,7 @@ void Post::emit(const Event& event) {
                    },
                    [&](const Spindle& s) {
                        spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                       spindle_ = s;
                        on_spindle(s);
                    },
                    [&](const Coolant& c) { on_coolant(c); },
@@ -784,6 +931,14 @@ void Post::emit(const Event& event) {
                    [&](const DrillPoint& p) { handle_drill_point(p.at); },
                    [&](const DrillEnd&) { handle_drill_end(); },
                    [&](const Comment& c) { on_comment(c.text); },
+                   [&](const Stop& s) {
+                       on_stop(s);
+                       // The operator may have moved the axes: the next rapid goes Z first.
+                       pos_known_ = false;
+                       reset_modal_axes();
+                       arc_actual_end_.reset();
+                   },
+                   [&](const CustomBlock& c) { handle_custom(c); },
                },
                event);
 }

@@ -250,6 +250,15 @@ void SafetyCheck::emit(const Event& event) {
             [&](const DrillEnd&) { cycle_.reset(); },
             [&](const Comment&) {},
             [&](const Coolant&) {},
+            [&](const Stop&) {
+                // The operator works at the machine: the tool waits at the clearance.
+                if (pos_ && pos_->z < limits_.clearance - eps)
+                    fail("", fmt::format("the program would stop with the tool at Z {}, below the clearance (Z {})",
+                                         z_of(pos_->z), z_of(limits_.clearance)));
+                // The operator may move the axes.
+                pos_.reset();
+            },
+            [&](const CustomBlock&) {},
         },
         event);
 }

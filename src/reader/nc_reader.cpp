@@ -182,6 +182,7 @@ void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
         word += fmt::format(" P{}", integer_of(*p));
         if (!machine_.has_work_offset(word)) fail(fmt::format("{}: machine {} has no work offset {}", word, machine_.name, word));
     }
+    work_offset_ = word;
 }
 
 std::optional<FeedMode> NcReader::feed_mode_of(const Word& g) const {
@@ -242,6 +243,29 @@ bool NcReader::shared_m_code(Code c, MCodes& m, std::string_view group_name) con
 std::string NcReader::commented_description(int tool) const {
     std::string prefix = fmt::format("T{} ", tool);
     return last_comment_.rfind(prefix, 0) == 0 ? last_comment_.substr(prefix.size()) : std::string();
+}
+
+void NcReader::stop(StopKind kind, std::string message) {
+    drill_end();
+    emit(Stop{kind, std::move(message)});
+    forget_position();
+}
+
+std::vector<std::pair<std::string, std::string>> NcReader::modal_state() const {
+    auto number = [](double v) { return fmt::format("{}", v); };
+    const char* axes = "XYZ";
+    std::string known;
+    for (int i = 0; i < 3; ++i)
+        if (known_[static_cast<std::size_t>(i)]) known += axes[i];
+    return {{"units", std::string(name_of(unit_names, machine_.units))},
+            {"feed mode", std::string(name_of(feed_modes, feed_mode_))},
+            {"work offset", work_offset_.empty() ? "none" : work_offset_},
+            {"spindle speed", number(rpm_) + " rpm"},
+            {"spindle", spindle_ == SpindleState::off ? "off" : spindle_ == SpindleState::cw ? "clockwise" : "counter-clockwise"},
+            {"tool", std::to_string(tool_)},
+            {"axes whose position is known", known.empty() ? "none" : known},
+            {"safe height", at_top_ ? "at the machine's safe height" : "-"},
+            {"drilling cycle", cycle_ ? std::string(name_of(cycle_kinds, cycle_->kind)) : "none"}};
 }
 
 void NcReader::change_tool(int tool, const std::string& description) {

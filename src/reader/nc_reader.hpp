@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "camgen/geometry/arc.hpp"
@@ -78,6 +79,13 @@ public:
     ReadResolution coarsest_resolution() const { return coarsest_; }
     // The end of the text: close what is open (a dialect checks the program's end here).
     virtual void finish();
+    // What the reader keeps that a block changes without an event, by name ("units": "mm"):
+    // units, feed mode, work offset, spindle speed, tool, what it knows of the position, a
+    // drilling cycle in progress, and the dialect's own (plane, tool length offset, a modal
+    // cycle call, the program's end, ...). A custom block must leave it as it found it.
+    virtual std::vector<std::pair<std::string, std::string>> modal_state() const;
+    // Whether the dialect takes this line (trimmed) as part of the program's frame ("%", "_").
+    bool is_frame_line(std::string_view line) { return frame_line(line); }
 
 protected:
     // ---- dialect hooks ----
@@ -238,6 +246,9 @@ protected:
     // The description in the comment camgen's posts write before changing to this tool
     // ("T1 10 mm drill" -> "10 mm drill"); empty when the last comment is not one.
     std::string commented_description(int tool) const;
+    // A program stop for the operator (M0, M1, nccad's M01 message, STOP): ends the drilling
+    // cycle, emits Stop and forgets the position (the operator may move the axes).
+    void stop(StopKind kind, std::string message);
     // A tool change (M6, TOOL CALL, an operator's pause): ends the drilling cycle, emits
     // ToolChange with the diameter the description starts with, and forgets the position.
     void change_tool(int tool, const std::string& description);
@@ -282,6 +293,7 @@ private:
     std::optional<DrillCycle> cycle_;
     FeedMode feed_mode_ = FeedMode::per_minute;
     std::optional<double> feed_per_rev_;  // mm/rev, the F word per revolution
+    std::string work_offset_;             // the work offset selected last ("G54"; "": none)
     nc::Format feed_rev_fmt_;
     ReadEventSink* sink_ = nullptr;  // where events go (set by start)
     ReadResolution coarsest_;

@@ -1,5 +1,6 @@
 // Reading programs through the dialect registry (machines/registry.cpp), which names each
 // dialect's reader beside its post.
+#include <functional>
 #include <istream>
 
 #include <fmt/format.h>
@@ -97,6 +98,45 @@ void ProgramReader::read_all() {
 ReadResolution ProgramReader::coarsest_resolution() const { return reader_->coarsest_resolution(); }
 
 ReadResolution read_resolution(const Machine& machine) { return reader::make_reader(machine, {})->resolution(); }
+
+LinesReadBack read_lines_back(const Machine& machine, std::string_view program, int first, int count) {
+    auto reader = reader::make_reader(machine, "custom block");
+    LinesReadBack out;
+    int number = 0;  // the line being read
+    struct Sink : ReadEventSink {
+        std::function<void(const ReadEvent&)> f;
+        void read_event(const ReadEvent& e) override { f(e); }
+    } sink;
+    sink.f = [&](const ReadEvent& e) {
+        if (number >= first) out.events.emplace_back(number - first, e.event);
+    };
+    reader->start(sink);
+    const int last = first + count - 1;
+    for (std::size_t at = 0; at < program.size() && number < last;) {
+        std::size_t nl = program.find('\n', at);
+        if (nl == std::string_view::npos) nl = program.size();
+        const std::string_view line = program.substr(at, nl - at);
+        at = nl + 1;
+        ++number;
+        if (number == first) out.state_before = reader->modal_state();
+        std::string_view trimmed = line;
+        while (!trimmed.empty() && (trimmed.front() == ' ' || trimmed.front() == '\t')) trimmed.remove_prefix(1);
+        while (!trimmed.empty() && (trimmed.back() == ' ' || trimmed.back() == '\t' || trimmed.back() == '\r'))
+            trimmed.remove_suffix(1);
+        if (number >= first && !trimmed.empty() && reader->is_frame_line(trimmed)) out.frame_lines.push_back(number - first);
+        try {
+            reader->read_line(line);
+        } catch (const InputError& e) {
+            if (number < first)
+                throw std::logic_error("the program around a custom block cannot be read back: " + std::string(e.what()));
+            out.error = std::make_pair(number - first, e.detail());
+            return out;
+        }
+    }
+    if (number < last) throw std::logic_error("the program with a custom block ends before it");
+    out.state_after = reader->modal_state();
+    return out;
+}
 
 bool has_reader(const std::string& dialect) {
     const Dialect* d = find_dialect(dialect);

@@ -23,7 +23,8 @@ int visit_extended(const with_alternative<Event, NewEvent>::type& e) {
                                 [](const Arc&) { return 0; },            [](const Dwell&) { return 0; },
                                 [](const Compensation&) { return 0; },   [](const DrillCycle&) { return 0; },
                                 [](const DrillPoint&) { return 0; },     [](const DrillEnd&) { return 0; },
-                                [](const Comment&) { return 0; },
+                                [](const Comment&) { return 0; },       [](const Stop&) { return 0; },
+                                [](const CustomBlock&) { return 0; },
                             },
                             e);
 }

@@ -74,12 +74,14 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     check_section("cycle kinds", table);
 }
 
-TEST_CASE("docs: the contour, path and bore-mill key tables are the operations' key tables") {
+TEST_CASE("docs: the contour, path, bore-mill, stop and custom key tables are the operations' key tables") {
     std::vector<ObjectSpec> objects = ContourOp::objects();
     const std::vector<ObjectSpec> path = PathOp::objects();
     objects.insert(objects.end(), path.begin(), path.end());
     // bore-mill's own object (its hole sources are drilling's, documented there).
     objects.push_back(BoreMillOp::objects().front());
+    objects.push_back(StopOp::objects().front());
+    objects.push_back(CustomOp::objects().front());
     for (const ObjectSpec& spec : objects) {
         const std::optional<std::string> table = keys_markdown(spec.name);
         REQUIRE(table);

@@ -149,6 +149,13 @@ TEST_CASE("a machine file without extends is refused at its own line, and --desc
     CHECK(r.err.find(fmt::format("{}:{}: /globals/xDiameterProg: ", file.string(), line)) != std::string::npos);
 }
 
+TEST_CASE("an nccad machine that says it taps is refused: its spindle cannot reverse") {
+    const Refused r = post_with("wabeco-taps", "{\"extends\": \"wabeco\",\n  \"drilling\": {\"tapping\": \"floating\"}}\n",
+                                "drilling");
+    check_refused(r, 2, "/drilling/tapping", "nccad's spindle runs clockwise only");
+    CHECK(r.err.find("set tapping to none") != std::string::npos);
+}
+
 TEST_CASE("every built-in machine passes its checks") {
     for (const auto& [name, description] : list_machines()) {
         CAPTURE(name);

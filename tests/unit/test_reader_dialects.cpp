@@ -183,7 +183,12 @@ TEST_CASE("grbl: a tool change is the comment (Insert tool n: ...) and M0 on the
     // Without a description.
     CHECK(error_of("G17 G21 G90 G94\n(Insert tool 5)\nM0\nM2\n", "grbl") == "");
     std::string head = "G17 G21 G90 G94\n";
-    CHECK(error_of(head + "M0\n", "grbl").starts_with("prog.nc:2: M0 without the comment (Insert tool <n>: ...)"));
+    // M0 without the comment is a stop for the operator (its message the block's comment); M1
+    // is no stop on GRBL, which ignores it.
+    CHECK(error_of(head + "M0 (look)\nM2\n", "grbl") == "");
+    // Its comment is the stop's message (a Comment event first, as every comment).
+    CHECK(read_program(head + "M0 (look)\nM2\n", m).at(1).event == Event{Stop{StopKind::mandatory, "look"}});
+    CHECK(error_of(head + "M1\n", "grbl").starts_with("prog.nc:2: M1: machine grbl ignores M1 (it has no optional stop switch)"));
     CHECK(error_of(head + "(Insert tool 5: drill)\nS1000 M3\nM0\n", "grbl")
               .starts_with("prog.nc:3: the tool change announced on line 2 (Insert tool 5) is not made"));
     CHECK(error_of(head + "(Insert tool 5: drill)\n", "grbl").starts_with("prog.nc:2: the tool change announced on line 2"));

@@ -52,6 +52,9 @@ struct ProgramStats {
     // Feed length (mm) and time (s) by movement kind, in the order of the vocabulary's table.
     std::array<double, std::size(movements)> movement_length{};
     std::array<double, std::size(movements)> movement_time{};
+    int stops = 0;                  // stops for the operator (M0, M1, ...)
+    int optional_stops = 0;         // of which optional (M1)
+    std::vector<StopNote> stop_notes;  // the first of them, with their lines and messages
     Box box;
     std::vector<ToolStats> tools;   // in order of first use
     double total_time() const { return feed_time + rapid_time + dwell_time; }

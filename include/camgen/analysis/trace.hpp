@@ -13,11 +13,12 @@
 #include "camgen/geometry/arc.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/post/machine.hpp"
+#include "camgen/post/stops.hpp"
 #include "camgen/reader/reader.hpp"
 
 namespace camgen {
 
-enum class StepKind { rapid, feed, dwell, tool_change, spindle };
+enum class StepKind { rapid, feed, dwell, tool_change, spindle, stop };
 
 // One step of motion or machine state.
 struct Step {
@@ -35,6 +36,7 @@ struct Step {
     int tool = 0;                    // the tool in the spindle (tool_change: the new one)
     SpindleState spindle = SpindleState::off;  // spindle
     double rpm = 0.0;                // spindle
+    StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
     int line = 0;                    // program line (0: from a job)
     double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
 };
@@ -47,6 +49,16 @@ struct Hole {
     int tool = 0;
     int line = 0;  // the line of the deepest feed move
 };
+
+// A stop for the operator: its line and message (stats list them).
+struct StopNote {
+    int line = 0;  // 0: from a job
+    StopKind kind = StopKind::mandatory;
+    std::string message;
+};
+
+// The most stops a trace keeps the message of (more are counted).
+inline constexpr std::size_t max_stop_notes = 100;
 
 // A tool as far as the program or job says (diameter 0: unknown).
 struct ToolInfo {
@@ -62,6 +74,8 @@ struct Trace {
     int canned_holes = 0;         // holes drilled by a canned cycle (the others are longhand)
     std::vector<ToolInfo> tools;  // in order of first use
     std::vector<std::string> notes;  // what the trace took as given (see TraceSummary::notes)
+    std::vector<StopNote> stops;     // the first max_stop_notes stops
+    int stop_count = 0;              // every stop
 };
 
 // What a trace says beyond its steps and holes, known at its end.
@@ -70,6 +84,8 @@ struct TraceSummary {
     std::vector<ToolInfo> tools;  // in order of first use
     std::vector<std::string> notes;  // what the steps took as given where the program did not say (a
                                      // G41/G42 whose radius is unknown: its moves as programmed)
+    std::vector<StopNote> stops;     // the first max_stop_notes stops, with their messages
+    int stop_count = 0;              // every stop
 };
 
 // How a program's steps are made. A program says G41/G42 and an offset register (D; none: the
@@ -140,16 +156,28 @@ public:
     TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options = {});
     ~TraceBuilder() override;
     void read_event(const ReadEvent& event) override;
+    // One event of a job (expand_job): its stops as the posts make them (OperatorStops).
     void add_job_event(const Event& event);
     // The end of the events: the last hole, then sink.finish.
     void finish() override;
+    // A job's events after OperatorStops (what the posts write), to add_job_event.
+    struct JobEvents : EventSink {
+        TraceBuilder& trace;
+        explicit JobEvents(TraceBuilder& t) : trace(t) {}
+        void emit(const Event& e) override { trace.add_stopped_event(e); }
+    };
     // The notes so far (TraceSummary::notes), for a caller whose sinks do not keep them.
     const std::vector<std::string>& notes() const;
 
 private:
+    // One event of a job after OperatorStops.
+    void add_stopped_event(const Event& event);
+    const Machine& machine_;
     class Impl;
     std::unique_ptr<Impl> impl_;
-    bool known_ = false;  // job events: the position is known (a rapid since the last tool change)
+    JobEvents job_events_{*this};
+    std::unique_ptr<OperatorStops> stops_;  // a job's events go through it (add_job_event)
+    bool known_ = false;  // job events: the position is known (a rapid since the last tool change or stop)
 };
 
 // Passes a trace on with every feed clamped to the machine's limits, as every post writes it

@@ -133,6 +133,9 @@ struct DrillCycle {
     double spindle_rpm = 0.0;          // the spindle speed the operation runs at
     SpindleDirection spindle_direction = SpindleDirection::cw;  // the operation's spindle direction
     DrillValues values;                // the optional fields set, resolved (mm, mm/min, s, rpm)
+    // Where the machine cannot make the cycle at all: refused, or a stop for the operator that
+    // lists its holes (OperatorStops, camgen/post/stops.hpp).
+    UnsupportedCycle unsupported = UnsupportedCycle::refuse;
     friend bool operator==(const DrillCycle&, const DrillCycle&) = default;
 };
 
@@ -153,8 +156,43 @@ struct Comment {
     friend bool operator==(const Comment&, const Comment&) = default;
 };
 
+// How a program stop waits for the operator: always (M0), or only where the operator's
+// optional-stop switch is on (M1).
+enum class StopKind { mandatory, optional };
+
+// The longest message of a stop (characters): every control shows it on one line.
+inline constexpr std::size_t max_stop_message = 100;
+
+// The program stops and shows `message` to the operator until the operator starts it again.
+// A job's stop comes where the tool is at the clearance; the posts stop the spindle and the
+// coolant before it and restart them after it (OperatorStops), and take the position as
+// unknown after it (the operator may have moved the axes).
+struct Stop {
+    StopKind kind = StopKind::mandatory;
+    std::string message;
+    double spin_up = 0.0;  // s the program waits after it restarts the spindle (a job's stop; 0 read back)
+    friend bool operator==(const Stop&, const Stop&) = default;
+};
+
+// The lines of a custom block for one machine (by its name) or one dialect.
+struct CustomText {
+    std::string name;
+    std::vector<std::string> lines;
+    friend bool operator==(const CustomText&, const CustomText&) = default;
+};
+
+// Lines written into the program as they are: those given for the machine's name, else for
+// its dialect. The post reads them back with the machine's reader first and refuses what the
+// reader cannot read and what would change the motion or the machine's state (docs/job-format.md,
+// "custom").
+struct CustomBlock {
+    std::vector<CustomText> texts;
+    std::string path;  // JSON path of the operation's "text", for messages
+    friend bool operator==(const CustomBlock&, const CustomBlock&) = default;
+};
+
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
-                           Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment>;
+                           Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock>;
 
 // Receives events one at a time (a post, a recorder, the event printer).
 class EventSink {

@@ -4,6 +4,7 @@
 // the Operation variant: a new type is one folder plus one entry there. Reading, expansion and
 // naming iterate the variant, and a visitor that misses a type does not compile.
 #include <concepts>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -13,8 +14,10 @@
 #include "camgen/job/job.hpp"
 #include "camgen/operations/bore_mill/bore_mill.hpp"
 #include "camgen/operations/contour/contour.hpp"
+#include "camgen/operations/custom/custom.hpp"
 #include "camgen/operations/drill/drill.hpp"
 #include "camgen/operations/path/path.hpp"
+#include "camgen/operations/stop/stop.hpp"
 #include "camgen/operations/turn_drill/turn_drill.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
@@ -34,15 +37,25 @@ concept OperationType = requires(const Op& op, json::Fields& f, const JobInput& 
     expand(op, ctx, sink);
 };
 
-// The kind of machine an operation type is made for: its `machine_kind`, else a mill.
+// The kind of machine an operation type is made for: its `machine_kind`, else a mill; none
+// where it says `any_machine_kind` (a stop).
 template <class Op>
-constexpr MachineKind machine_kind_of() {
-    if constexpr (requires { Op::machine_kind; }) return Op::machine_kind;
+constexpr std::optional<MachineKind> machine_kind_of() {
+    if constexpr (requires { Op::any_machine_kind; }) return std::nullopt;
+    else if constexpr (requires { Op::machine_kind; }) return Op::machine_kind;
     else return MachineKind::mill;
 }
 
+// Whether an operation type cuts with a tool of its own (false: it says `uses_tool = false`; the
+// tool in the spindle stays and the spindle keeps its state).
+template <class Op>
+constexpr bool uses_tool() {
+    if constexpr (requires { Op::uses_tool; }) return Op::uses_tool;
+    else return true;
+}
+
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

@@ -15,6 +15,7 @@
 #include "camgen/post/longhand.hpp"
 #include "camgen/events/events.hpp"
 #include "camgen/post/machine.hpp"
+#include "camgen/post/stops.hpp"
 #include "camgen/nc/block_writer.hpp"
 #include "camgen/nc/format.hpp"
 
@@ -39,13 +40,39 @@ struct CycleCapability {
     std::string refused_key;                    // the operation's key the refusal names ("cycle", "output")
 };
 
+// Where in a program a custom block is written: what a post has written before it (the
+// read-back of the block starts a program so).
+struct ProgramPoint {
+    std::string operation_path;
+    FeedMode feed_mode = FeedMode::per_minute;
+    int tool = 0;                      // 0: none yet
+    Spindle spindle;
+    std::optional<Vec3> position;      // where the tool is, if known
+};
+
 class Post : public EventSink {
 public:
+    // The lines of a custom block for `machine`: those given for its name, else for its
+    // dialect. Throws InputError at the block's path when it gives neither.
+    static const CustomText& custom_text(const Machine& machine, const CustomBlock& block);
+    // What `text`'s lines do, read back by the machine's reader in a program that `options`
+    // frames and that stands at `point` (comments and dwells), once the lines are found safe to
+    // write there: an InputError at the block's path names the line the reader cannot read, a
+    // line that would move the tool, change the tool, switch the spindle or the coolant, stop
+    // the program or end it, and a change of the reader's state (camgen/reader: units, work
+    // offset, spindle speed, a modal cycle call, ...; not where `state` is `unchecked`: a
+    // comparison takes the block's comments and dwells from a job the post has checked).
+    enum class StateCheck { checked, unchecked };
+    static std::vector<Event> custom_block_events(const Machine& machine, const PostOptions& options,
+                                                  const CustomBlock& block, const CustomText& text,
+                                                  const ProgramPoint& point, StateCheck state = StateCheck::checked);
+
     Post(const Machine& machine, std::ostream& out, PostOptions options);
     ~Post() override;
 
     // Writes the program start (nothing for a snippet).
     void open();
+    // Writes one event of a job; its stops as OperatorStops makes them (camgen/post/stops.hpp).
     void emit(const Event& event) override;
     // Writes the program end (nothing for a snippet) and flushes. Throws IoError.
     void close();
@@ -85,6 +112,9 @@ protected:
     // Whether the dialect writes a program number (a job's programNumber is refused otherwise).
     virtual bool takes_program_number() const { return false; }
     virtual void on_comment(const std::string& text);
+    // A stop for the operator (the spindle and coolant are off already): M0 or M1 with the
+    // message as a comment in its block (inline_comment).
+    virtual void on_stop(const Stop& stop);
     // A rapid to `to`; the base writes G0 with the modal axis words that changed.
     virtual void on_rapid(const Vec3& to);
     // A feed move; the base writes the block linear_layout() describes: pending compensation,
@@ -134,6 +164,9 @@ protected:
     virtual void rapid_z_from_unknown(double z);
 
     // ---- shared helpers ----
+    // A comment written inside a block, after its words: "(text)" or "; text" by the machine's
+    // comment style, the text made safe (clean_comment).
+    std::string inline_comment(std::string_view text) const;
     // The safe-start block: the machine's frame startBlock words, `unit_word` (may be empty)
     // and the job's work offset, in one block (nothing when all are empty).
     void write_start_block(const std::string& unit_word);
@@ -181,6 +214,8 @@ protected:
     const nc::Format& rpm_format() const { return rpm_fmt_; }
     // The machine's format for dwell times.
     const nc::Format& dwell_format() const { return dwell_fmt_; }
+    // The JSON path of the operation being written ("/operations/2"), for messages.
+    const std::string& operation_path() const { return op_path_; }
     // The tool the last tool change selected (0: none yet).
     int current_tool() const { return tool_; }
     // Where the tool stands (absolute mm) as far as the events have moved it.
@@ -230,6 +265,7 @@ private:
     nc::Word feed_rev_;                        // F per revolution
     FeedMode feed_mode_ = FeedMode::per_minute;  // how F is written now (the start block: per minute)
     double spindle_rpm_ = 0.0;                 // the spindle speed now, for feeds per revolution
+    Spindle spindle_;                          // the spindle as the job's events left it
     // Switches the feed mode to the operation's: the machine's code in a block of its own.
     void select_feed_mode(FeedMode mode);
     Vec3 pos_;
@@ -240,6 +276,23 @@ private:
     std::string op_path_;
     std::string op_name_;                      // the current operation's name, for notes
 
+    // One event after OperatorStops.
+    void handle(const Event& event);
+    // Passes the events OperatorStops makes on to handle().
+    struct Handler : EventSink {
+        Post& post;
+        explicit Handler(Post& p) : post(p) {}
+        void emit(const Event& event) override { post.handle(event); }
+    };
+    Handler handler_{*this};
+    OperatorStops stops_;
+    // Writes a custom block's lines for this machine, once its reader has read them back in a
+    // program like this one (check_custom) and found nothing but comments and dwells that
+    // leave its state as it was; refuses them otherwise.
+    void handle_custom(const CustomBlock& block);
+    // Writes the lines as they are (the probe program of check_custom writes them unchecked).
+    void write_custom_lines(const std::vector<std::string>& lines);
+    bool unchecked_custom_ = false;
     void handle_arc(const Arc& arc);
     // Straight moves along `arc` in `segments` equal chords, ending exactly at its end; above
     // max_arc_chords an error naming the operation, the count, the limit and `chord_tolerance`

@@ -184,6 +184,15 @@ inline constexpr Named<CycleOutput> cycle_outputs[] = {
     {CycleOutput::longhand, "longhand", "plain rapids, feeds and dwells"},
 };
 
+// What becomes of a drilling cycle the machine cannot make at all (a tap where it cannot tap):
+// refused, or left to the operator at a stop that lists its holes.
+enum class UnsupportedCycle { refuse, stop };
+inline constexpr Named<UnsupportedCycle> unsupported_cycles[] = {
+    {UnsupportedCycle::refuse, "refuse", "the job is refused, nothing is written"},
+    {UnsupportedCycle::stop, "stop",
+     "a stop with a message for the operator that lists the holes and what to do at them, instead of the cycle"},
+};
+
 // The kind of a feed move, as CNC-Calc's getFeedrate(movement) tells them apart: each has its
 // own feed in a job, and statistics and the backplot show them apart.
 enum class Movement { cutting, plunge, ramp, lead_in, lead_out, finishing };

@@ -21,6 +21,7 @@ struct DrillParams : Heights {
     DrillValues values;                          // the optional fields the job set
     bool drill_tip = false;                      // add the tool's tip length to the depth
     CycleOutput output = CycleOutput::automatic;
+    UnsupportedCycle unsupported = UnsupportedCycle::refuse;  // where the machine cannot make the cycle
     friend bool operator==(const DrillParams&, const DrillParams&) = default;
 };
 
