@@ -41,7 +41,9 @@ PartGuard::PartGuard(const GuardedPart& part)
     : part_(part),
       clearance_(*part.profile, part.tool_radius + 1.0),
       comp_([this](const CompMove& m) { check(m); }),
-      reach_(part.tool_radius + 1.0) {}
+      reach_(part.tool_radius + 1.0) {
+    for (const Profile* island : part_.islands) island_clearances_.emplace_back(*island, reach_);
+}
 
 void PartGuard::keep(double wall_stock, double floor_z) {
     comp_.flush();
@@ -51,6 +53,8 @@ void PartGuard::keep(double wall_stock, double floor_z) {
     if (wall_ >= reach_ - part_.tool_radius - 0.5) {
         reach_ = part_.tool_radius + wall_ + 1.0;
         clearance_ = ProfileClearance(*part_.profile, reach_);
+        island_clearances_.clear();
+        for (const Profile* island : part_.islands) island_clearances_.emplace_back(*island, reach_);
     }
 }
 
@@ -118,11 +122,14 @@ void PartGuard::check(const CompMove& m) {
     }
     if (low >= part_.top_z - tol) {
         side_known_ = false;
+        island_side_known_ = false;
         return;
     }
     PathPiece piece{{from.x, from.y}, {{m.end.x, m.end.y}, std::nullopt, m.direction}};
     if (m.kind == CompMove::Kind::arc) piece.segment.centre = m.centre;
-    const ClosestApproach near = clearance_.nearest(piece);
+    ClosestApproach near = clearance_.nearest(piece);
+    for (const ProfileClearance& island : island_clearances_)
+        if (const ClosestApproach c = island.nearest(piece); c.distance < near.distance) near = c;
     const double need = part_.tool_radius + wall_;
     // Z where the closest point is: along the move (the end's Z for a point).
     const double len = std::hypot(m.end.x - from.x, m.end.y - from.y);
@@ -144,6 +151,16 @@ void PartGuard::check(const CompMove& m) {
             return;
         }
         side_known_ = true;
+    }
+    if (!island_clearances_.empty() && !island_side_known_) {
+        const Vec2 p{from.x, from.y};
+        for (const ProfileClearance& island : island_clearances_)
+            if (island.inside(p)) {
+                fail(from, fmt::format("puts the tool centre at ({}, {}, {}), inside an island: in the material", show(from.x),
+                                       show(from.y), show(std::min(from.z, m.end.z))));
+                return;
+            }
+        island_side_known_ = true;
     }
 }
 

@@ -50,6 +50,9 @@ constexpr KeySpec tool_keys[] = {
      .description = "included point angle (needed by drillTip)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
+    {.key = "centreCutting", .type = JsonType::boolean,
+     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills and boring bars, true for the rest); "
+                    "a pocket plunges only with such a tool"},
     {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
@@ -197,6 +200,8 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
                                        *tool.tip_angle));
     tool.flute_length = optional_length(f, "fluteLength");
     if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
+    tool.centre_cutting = f.has("centreCutting") ? f.boolean("centreCutting", false)
+                                                  : tool.type != ToolType::end_mill && tool.type != ToolType::boring_bar;
     tool.rpm = f.number("rpm");
     if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
     tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);

@@ -18,6 +18,7 @@ struct Tool {
     double diameter = 0.0;                 // mm
     std::optional<double> tip_angle;       // degrees, included angle of the point
     std::optional<double> flute_length;    // mm, how deep it can cut (job key fluteLength)
+    bool centre_cutting = true;            // cuts at its centre: may plunge into material
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;
     std::string comment;

@@ -9,6 +9,7 @@
 // program the control would refuse is one too. Lengths mm.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "camgen/events/events.hpp"
 #include "camgen/geometry/clearance.hpp"
@@ -22,6 +23,8 @@ struct GuardedPart {
     std::optional<bool> material_inside;    // closed profiles: the material is inside (an outline)
                                             // or outside (a pocket); open ones: unset (the band
                                             // beside the profile is checked, not a side)
+    std::vector<const Profile*> islands;    // closed profiles whose material is inside (a pocket's
+                                            // islands), kept as the profile is
     double tool_radius = 0.0;
     double top_z = 0.0;                     // the stock top: above it nothing is checked
     double tolerance = 0.003;               // 0.002 mm plus the output resolution
@@ -48,12 +51,14 @@ private:
     void check(const CompMove& tool_move);
     GuardedPart part_;
     ProfileClearance clearance_;
+    std::vector<ProfileClearance> island_clearances_;
     CutterCompensation comp_;
     double wall_ = 0.0, floor_ = -1e300;
     double reach_ = 0.0;   // what the clearance answers exactly, mm
     Vec3 at_;
     bool known_ = false;
-    bool side_known_ = false;   // the last checked position was on the air side, no gap since
+    bool side_known_ = false;          // the last checked position was on the air side, no gap since
+    bool island_side_known_ = false;   // the same for the islands
     std::optional<Violation> violation_;
 };
 
