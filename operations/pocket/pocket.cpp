@@ -97,6 +97,28 @@ Profile started_at(const Profile& p, std::size_t k) {
     return out;
 }
 
+// A closed profile started in the middle of its longest line (a lead there joins a straight
+// wall), or as it is when it has no line.
+Profile started_mid_line(const Profile& p) {
+    std::optional<std::size_t> longest;
+    double best = 0.0;
+    for (std::size_t k = 0; k < p.segments.size(); ++k)
+        if (!p.segments[k].centre && distance(segment_start(p, k), p.segments[k].end) > best) {
+            best = distance(segment_start(p, k), p.segments[k].end);
+            longest = k;
+        }
+    if (!longest) return p;
+    const Vec2 a = segment_start(p, *longest), b = p.segments[*longest].end;
+    const Vec2 mid = (a + b) * 0.5;
+    Profile out;
+    out.plane = p.plane;
+    out.start = mid;
+    out.segments.push_back({b, std::nullopt, ArcDirection::ccw});
+    for (std::size_t i = 1; i < p.segments.size(); ++i) out.segments.push_back(p.segments[(*longest + i) % p.segments.size()]);
+    out.segments.push_back({mid, std::nullopt, ArcDirection::ccw});
+    return out;
+}
+
 // The left normal of travel at the start of a path.
 Vec2 start_left(const Profile& p) { return left_of(point_at(p, 0.0).tangent); }
 
@@ -682,7 +704,7 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
         if (op.finishing) {
             RegionOffset walls = shrunk(op.region, op.tool_radius + op.stock_to_leave);
             for (const PlaneRegion& r : walls.regions)
-                for (Profile& l : walked_loops(r, op.tool_left)) op.finish_loops.push_back(std::move(l));
+                for (Profile& l : walked_loops(r, op.tool_left)) op.finish_loops.push_back(started_mid_line(l));
         }
     } catch (const PlanError& e) {
         f.fail(f.has(e.key) ? e.key : "", e.what());
