@@ -385,6 +385,18 @@ TEST_CASE("pocket: the corners the tool cannot reach are a note with their size"
     CHECK(notes.find("/operations/0/path/3 (90, 60): 90 degrees, 1.243 mm deep") != std::string::npos);
 }
 
+TEST_CASE("pocket: an island whose last arc ends a micron off its circle (coordinates to 6 decimals) is not taken for touching itself") {
+    // bench/gen_pocket.py --scale 10 wrote this island; region_problem said it touched itself at
+    // its start, where the arc's short radial line to the given end lies.
+    Json op = rect_pocket(200, 150);
+    op["islands"] = Json::parse(R"([{"start": [40.918578, 60.794788], "path": [{"line": [87.23804, 60.794788]},
+        {"arc": {"end": [97.282224, 70.838972], "centre": [87.23804, 70.838972], "direction": "ccw"}},
+        {"line": [97.282224, 87.274911]}, {"arc": {"end": [87.23804, 97.319095], "centre": [87.23804, 87.274911], "direction": "ccw"}},
+        {"line": [40.918578, 97.319095]}, {"arc": {"end": [30.874393, 87.274911], "centre": [40.918578, 87.274911], "direction": "ccw"}},
+        {"line": [30.874393, 70.838972]}, {"arc": {"end": [40.918578, 60.794788], "centre": [40.918578, 70.838972], "direction": "ccw"}}]}])");
+    CHECK(error_of(pocket_job(op)) == "");
+}
+
 TEST_CASE("pocket: bad input names its key") {
     Json op = rect_pocket(40, 30);
     op["stepOverPercent"] = 60;
