@@ -16,7 +16,9 @@
 #include "camgen/operations/contour/contour.hpp"
 #include "camgen/operations/custom/custom.hpp"
 #include "camgen/operations/drill/drill.hpp"
+#include "camgen/operations/face/face.hpp"
 #include "camgen/operations/path/path.hpp"
+#include "camgen/operations/pocket/pocket.hpp"
 #include "camgen/operations/stop/stop.hpp"
 #include "camgen/operations/turn_drill/turn_drill.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
@@ -55,7 +57,7 @@ constexpr bool uses_tool() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {
