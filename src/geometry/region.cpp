@@ -191,7 +191,12 @@ public:
         y0_ = std::numeric_limits<double>::infinity();
         double y1 = -y0_;
         for (const YPiece& p : pieces_) y0_ = std::min({y0_, p.s.y, p.e.y}), y1 = std::max({y1, p.s.y, p.e.y});
-        bands_.resize(std::max<std::size_t>(1, pieces_.size() / 4));
+        // About four pieces a band, but no more bands than keep the entries (a piece in each
+        // band it spans) below eight a piece.
+        double spans = 0.0;
+        for (const YPiece& p : pieces_) spans += std::abs(p.e.y - p.s.y) / std::max(y1 - y0_, 1e-9);
+        const double most = 7.0 * static_cast<double>(pieces_.size()) / std::max(spans, 1e-9);
+        bands_.resize(static_cast<std::size_t>(std::clamp(std::min(most, static_cast<double>(pieces_.size() / 4)), 1.0, 1e6)));
         height_ = std::max((y1 - y0_) / static_cast<double>(bands_.size()), 1e-9);
         for (std::size_t i = 0; i < pieces_.size(); ++i) {
             const YPiece& p = pieces_[i];

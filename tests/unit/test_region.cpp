@@ -366,6 +366,13 @@ TEST_CASE("region: a plate with R5 corners, a circle and a rounded island, offse
         for (std::size_t k : {1u, 3u, 5u, 7u}) CHECK(has_note(o, OffsetNoteKind::arc_too_tight, std::nullopt, k));
         CHECK(o.notes.back().kind == OffsetNoteKind::split);
         CHECK(o.notes.back().message.find("5 regions") != std::string::npos);
+        // The same input, the same output: order, start points, segments.
+        const RegionOffset again = offset_region(r, 12);
+        REQUIRE(again.regions.size() == o.regions.size());
+        for (std::size_t i = 0; i < o.regions.size(); ++i) {
+            CHECK(again.regions[i].outer.start == o.regions[i].outer.start);
+            CHECK(again.regions[i].outer.segments == o.regions[i].outer.segments);
+        }
     }
     SUBCASE("shrunk by 20: consumed, one note") {
         const RegionOffset o = offset_region(r, 20);
