@@ -15,6 +15,7 @@
 
 #include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/region.hpp"
+#include "camgen/geometry/vec.hpp"
 #include "support.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
