@@ -65,12 +65,12 @@ double parameter_of(const Curve& k, Vec2 p) {
     return (t - 1.0 > -before) ? before : t;
 }
 
-std::vector<Vec2> support_crossings(const Curve& x, const Curve& y) {
+TwoPoints support_crossings(const Curve& x, const Curve& y) {
     if (!x.arc && !y.arc) {
         const Vec2 dx = x.b - x.a, dy = y.b - y.a;
         const double den = cross(dx, dy);
         if (std::abs(den) <= 1e-12 * norm(dx) * norm(dy)) return {};
-        return {x.a + dx * (cross(y.a - x.a, dy) / den)};
+        return {{x.a + dx * (cross(y.a - x.a, dy) / den), {}}, 1};
     }
     if (x.arc != y.arc) {
         const Curve& line = x.arc ? y : x;
@@ -80,7 +80,7 @@ std::vector<Vec2> support_crossings(const Curve& x, const Curve& y) {
         double disc = qb * qb - 4.0 * qa * qc;
         if (disc < -1e-12 * qb * qb - 1e-18) return {};
         disc = std::sqrt(std::max(0.0, disc));
-        return {line.a + d * ((-qb - disc) / (2.0 * qa)), line.a + d * ((-qb + disc) / (2.0 * qa))};
+        return {{line.a + d * ((-qb - disc) / (2.0 * qa)), line.a + d * ((-qb + disc) / (2.0 * qa))}, 2};
     }
     const Vec2 between = y.c - x.c;
     const double dd = norm(between);
@@ -90,7 +90,7 @@ std::vector<Vec2> support_crossings(const Curve& x, const Curve& y) {
     if (h2 < -1e-9 * x.r * x.r) return {};
     const double h = std::sqrt(std::max(0.0, h2));
     const Vec2 u = between * (1.0 / dd), foot = x.c + u * along;
-    return {foot + left_of(u) * h, foot - left_of(u) * h};
+    return {{foot + left_of(u) * h, foot - left_of(u) * h}, 2};
 }
 
 bool within(const Curve& k, double t) {
@@ -129,16 +129,27 @@ BoxGrid::BoxGrid(std::vector<Rect> boxes) : boxes_(std::move(boxes)) {
     nx_ = static_cast<int>(w / cell_) + 1;
     ny_ = static_cast<int>(h / cell_) + 1;
     cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+    seen_.assign(boxes_.size(), 0u);
     for (std::size_t i = 0; i < boxes_.size(); ++i) visit(boxes_[i], [&](std::size_t cell) { cells_[cell].push_back(i); });
 }
 
 std::vector<std::size_t> BoxGrid::near(const Rect& query) const {
     std::vector<std::size_t> out;
     if (boxes_.empty() || apart(query, extent_)) return out;
-    visit(query, [&](std::size_t cell) { out.insert(out.end(), cells_[cell].begin(), cells_[cell].end()); });
+    // Each box once (a box spans several cells): a stamp per query rather than sorting the
+    // duplicates away.
+    if (++stamp_ == 0) {
+        std::fill(seen_.begin(), seen_.end(), 0u);
+        stamp_ = 1;
+    }
+    visit(query, [&](std::size_t cell) {
+        for (std::size_t i : cells_[cell]) {
+            if (seen_[i] == stamp_) continue;
+            seen_[i] = stamp_;
+            if (!apart(boxes_[i], query)) out.push_back(i);
+        }
+    });
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    std::erase_if(out, [&](std::size_t i) { return apart(boxes_[i], query); });
     return out;
 }
 
@@ -158,11 +169,11 @@ bool opposed_lines(const Curve& x, const Curve& y) {
     return dot(dx, dy) < 0 && std::abs(cross(dx, y.a - x.a)) / lx <= min_piece && std::abs(cross(dx, y.b - x.a)) / lx <= min_piece;
 }
 
-std::vector<double> crossings(const Curve& x, const Curve& y) {
-    std::vector<double> out;
+TwoParameters crossings(const Curve& x, const Curve& y) {
+    TwoParameters out;
     for (Vec2 p : support_crossings(x, y)) {
         const double tx = parameter_of(x, p), ty = parameter_of(y, p);
-        if (within(x, tx) && within(y, ty)) out.push_back(tx);
+        if (within(x, tx) && within(y, ty)) out.t[out.n++] = tx;
     }
     return out;
 }
@@ -182,9 +193,15 @@ std::vector<Element> elements_of(const Profile& p, std::size_t loop) {
 }
 
 bool closer_than(const std::vector<Element>& elements, const BoxGrid& grid, Vec2 p, double limit) {
-    for (std::size_t i : grid.near({p.x - limit, p.y - limit, p.x + limit, p.y + limit}))
-        if (box_distance(elements[i].box, p) < limit && distance_to_curve(elements[i].curve, p) < limit) return true;
-    return false;
+    auto any_within = [&](double reach) {
+        for (std::size_t i : grid.near({p.x - reach, p.y - reach, p.x + reach, p.y + reach}))
+            if (box_distance(elements[i].box, p) < limit && distance_to_curve(elements[i].curve, p) < limit) return true;
+        return false;
+    };
+    // The elements nearest p first (where a piece is closer, it mostly is to something near):
+    // a large distance's box holds most of the elements.
+    const double first = std::min(limit, grid.cell_size());
+    return (first < limit && any_within(first)) || any_within(limit);
 }
 
 std::optional<Curve> offset_curve(const Curve& k, double d, double s) {

@@ -53,12 +53,25 @@ std::vector<Curve> curves_of(const Profile& p, std::size_t index);
 // The parameter of a point on k's support (the line or the whole circle): outside [0, 1] when
 // it is beyond the ends. An arc's angle is taken on the side of [0, 1] it is closer to.
 double parameter_of(const Curve& k, Vec2 p);
+// At most two points (no allocation: pairs of curves are met by the thousand).
+struct TwoPoints {
+    Vec2 p[2];
+    int n = 0;
+    const Vec2* begin() const { return p; }
+    const Vec2* end() const { return p + n; }
+};
 // Where the supports of x and y meet (the lines, the whole circles).
-std::vector<Vec2> support_crossings(const Curve& x, const Curve& y);
+TwoPoints support_crossings(const Curve& x, const Curve& y);
 // True when t lies on k within a length tolerance.
 bool within(const Curve& k, double t);
-// The parameters on x where it meets y.
-std::vector<double> crossings(const Curve& x, const Curve& y);
+// The parameters on x where it meets y (at most two).
+struct TwoParameters {
+    double t[2];
+    int n = 0;
+    const double* begin() const { return t; }
+    const double* end() const { return t + n; }
+};
+TwoParameters crossings(const Curve& x, const Curve& y);
 // True when the lines x and y lie on one line (within min_piece), walked opposite ways.
 bool opposed_lines(const Curve& x, const Curve& y);
 // The shortest distance from p to k.
@@ -80,6 +93,8 @@ public:
     explicit BoxGrid(std::vector<Rect> boxes);
     // The indices of the boxes not apart from `query`, ascending.
     std::vector<std::size_t> near(const Rect& query) const;
+    // The side of a cell, mm.
+    double cell_size() const { return cell_; }
 
 private:
     // Calls f with the index of every cell that box b meets.
@@ -91,6 +106,9 @@ private:
     double cell_ = 1.0;
     int nx_ = 0, ny_ = 0;
     std::vector<std::vector<std::size_t>> cells_;
+    // Which boxes one query has met already (a stamp per query; a grid serves one thread).
+    mutable std::vector<unsigned> seen_;
+    mutable unsigned stamp_ = 0;
 };
 
 // A profile's segments as curves, with their indices (and the loop they belong to, for an

@@ -23,7 +23,8 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
         for (std::size_t i = 0; i < profile.segments.size(); ++i) same.source.push_back(i);
         return same;
     }
-    using namespace curves;
+    using curves::chain, curves::chain_gap, curves::Curve, curves::Element, curves::elements_of, curves::KeptPiece, curves::LoopSpan,
+        curves::min_piece, curves::mm_text, curves::OffsetPath, curves::OffsetPieces, curves::path_of, curves::RawPiece, curves::same_length;
     const double s = side == OffsetSide::left ? 1.0 : -1.0;
     const bool closed = is_closed(profile);
     const std::vector<Element> elements = elements_of(profile);
@@ -92,7 +93,7 @@ OffsetResult offset_profile(const Profile& profile, double d, OffsetSide side) {
 }
 
 ProfilePoint point_at(const Profile& profile, double length) {
-    using namespace curves;
+    using curves::Curve, curves::curve_of;
     ProfilePoint out{profile.start, {1.0, 0.0}, 0};
     double walked = 0.0;
     for (std::size_t i = 0; i < profile.segments.size(); ++i) {
@@ -108,7 +109,7 @@ ProfilePoint point_at(const Profile& profile, double length) {
 }
 
 Profile sub_profile(const Profile& profile, double from, double to) {
-    using namespace curves;
+    using curves::Curve, curves::curve_of, curves::same_length;
     if (from > to && is_closed(profile)) {
         Profile head = sub_profile(profile, from, profile_length(profile));
         const Profile tail = sub_profile(profile, 0.0, to);
@@ -132,7 +133,7 @@ Profile sub_profile(const Profile& profile, double from, double to) {
 }
 
 double distance_to(const Profile& profile, Vec2 p) {
-    using namespace curves;
+    using curves::Curve, curves::curves_of, curves::distance_to_curve;
     if (profile.segments.empty()) return distance(profile.start, p);
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < profile.segments.size(); ++i)
