@@ -19,6 +19,12 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
+constexpr KeySpec head_key_table[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true}, .description = "a tool number from tools (its diameter is the cutter's)"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "written as a comment before the operation"},
+};
+
 // The keys of a profile's start and path; "start" and "path" are renamed by profile_keys.
 constexpr KeySpec profile_key_table[] = {
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "where the profile starts [x, y]"},
@@ -689,6 +695,28 @@ std::optional<double> read_step_down(Fields& f, const JobInput& in, double total
         f.fail("stepDown", fmt::format("stepDown {} makes more than {} passes", in.show(*step_down), max_depth_passes));
     return step_down;
 }
+
+double read_step_over(Fields& f, const JobInput& in, double tool_diameter, double default_percent, std::string& key) {
+    if (f.has("stepOver") && f.has("stepOverPercent")) f.fail("stepOverPercent", "give stepOver or stepOverPercent, not both");
+    double step = 0.0;
+    if (f.has("stepOver")) {
+        key = "stepOver";
+        step = in.length(f, "stepOver");
+        if (!(step > 0)) f.fail("stepOver", "stepOver must be > 0");
+    } else {
+        key = "stepOverPercent";
+        const double percent = f.optional_number("stepOverPercent").value_or(default_percent);
+        if (!(percent > 0 && percent <= 100)) f.fail("stepOverPercent", "stepOverPercent must be more than 0 and at most 100");
+        step = tool_diameter * percent / 100;
+    }
+    if (step > tool_diameter * (1 + 1e-9))
+        f.fail(key, fmt::format("rows {} apart leave material between them: the step must be at most the tool diameter ({})", in.show(step),
+                                in.show(tool_diameter)));
+    if (step < tool_diameter * 0.01) f.fail(key, fmt::format("a step of {} is less than 1 % of the tool diameter", in.show(step)));
+    return step;
+}
+
+std::vector<KeySpec> operation_head_keys() { return {std::begin(head_key_table), std::end(head_key_table)}; }
 
 std::optional<double> read_tolerance(Fields& f, const JobInput& in) {
     const std::optional<double> tolerance = in.optional_length(f, "tolerance");

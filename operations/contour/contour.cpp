@@ -17,12 +17,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-constexpr KeySpec contour_head_keys[] = {
-    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
-    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true}, .description = "a tool number from tools (its diameter is the cutter's)"},
-    {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "written as a comment before the operation"},
-};
-
 constexpr KeySpec contour_side_keys[] = {
     {.key = "side", .type = JsonType::string, .default_json = "\"outside\"", .choices = &choices_of<contour_sides>, .description = "where the tool cuts: left, right, on, inside or outside (the last two: closed profiles)"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"climb\"", .choices = &choices_of<cut_directions>, .description = "climb or conventional: the profile is walked the way round that gives it"},
@@ -119,7 +113,7 @@ void guard_against_part(const ContourOp& op, Fields& f, const JobInput& in, cons
 }  // namespace
 
 std::vector<ObjectSpec> ContourOp::objects() {
-    std::vector<KeySpec> keys(std::begin(contour_head_keys), std::end(contour_head_keys));
+    std::vector<KeySpec> keys = operation_head_keys();
     auto add = [&](const std::vector<KeySpec>& more) { keys.insert(keys.end(), more.begin(), more.end()); };
     add(height_keys(true));
     add(profile_keys("contour"));

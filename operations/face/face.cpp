@@ -17,12 +17,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-constexpr KeySpec face_head_keys[] = {
-    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
-    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true}, .description = "a tool number from tools (its diameter is the cutter's)"},
-    {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "written as a comment before the operation"},
-};
-
 constexpr KeySpec face_area_keys[] = {
     {.key = "rectangle", .type = JsonType::object, .ref = "faceRectangle", .description = "the area: a rectangle by two opposite corners"},
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "or a closed profile: where it starts [x, y]"},
@@ -93,7 +87,7 @@ void plan_face_rows(FaceOp& op, const JobInput& in, Fields& f) {
 }  // namespace
 
 std::vector<ObjectSpec> FaceOp::objects() {
-    std::vector<KeySpec> keys(std::begin(face_head_keys), std::end(face_head_keys));
+    std::vector<KeySpec> keys = operation_head_keys();
     auto add = [&](const std::vector<KeySpec>& more) { keys.insert(keys.end(), more.begin(), more.end()); };
     add(height_keys(true));
     add({std::begin(face_area_keys), std::end(face_area_keys)});
@@ -149,21 +143,8 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     op.rows = f.choice("rows", row_directions, RowDirection::both_ways);
     op.angle = f.optional_number("angle").value_or(0.0);
     if (!std::isfinite(op.angle) || std::abs(op.angle) > 360) f.fail("angle", "angle must be from -360 to 360 degrees");
-    if (f.has("stepOver") && f.has("stepOverPercent")) f.fail("stepOverPercent", "give stepOver or stepOverPercent, not both");
-    if (f.has("stepOver")) {
-        op.step_over = in.length(f, "stepOver");
-        if (!(op.step_over > 0)) f.fail("stepOver", "stepOver must be > 0");
-    } else {
-        const double percent = f.optional_number("stepOverPercent").value_or(70.0);
-        if (!(percent > 0 && percent <= 100)) f.fail("stepOverPercent", "stepOverPercent must be more than 0 and at most 100");
-        op.step_over = tool.diameter * percent / 100;
-    }
-    const char* over_key = f.has("stepOverPercent") ? "stepOverPercent" : "stepOver";
-    if (op.step_over > tool.diameter * (1 + 1e-9))
-        f.fail(over_key, fmt::format("rows {} apart leave material between them: the step must be at most the tool diameter ({})",
-                                     in.show(op.step_over), in.show(tool.diameter)));
-    if (op.step_over < tool.diameter * 0.01)
-        f.fail(over_key, fmt::format("a step of {} is less than 1 % of the tool diameter", in.show(op.step_over)));
+    std::string over_key;
+    op.step_over = read_step_over(f, in, tool.diameter, 70.0, over_key);
     op.step_down = read_step_down(f, in, total_depth);
     op.equal_steps = f.boolean("equalSteps", true);
     op.finishing_stock = in.optional_length(f, "finishingStock").value_or(0.0);

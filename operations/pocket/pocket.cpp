@@ -30,12 +30,6 @@ namespace {
 using Json = nlohmann::json;
 using Fields = json::Fields;
 
-constexpr KeySpec pocket_head_keys[] = {
-    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
-    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true}, .description = "a tool number from tools (its diameter is the cutter's)"},
-    {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "written as a comment before the operation"},
-};
-
 constexpr KeySpec pocket_keys[] = {
     {.key = "islands", .type = JsonType::array, .ref = "pocketIsland", .description = "closed profiles inside the outline that stay standing"},
     {.key = "strategy", .type = JsonType::string, .default_json = "\"offset\"", .choices = &choices_of<pocket_strategies>, .description = "offset (rings) or zigzag (rows and a cleanup ring)"},
@@ -96,6 +90,28 @@ Profile started_at(const Profile& p, std::size_t k) {
     out.start = segment_start(p, k);
     for (std::size_t i = 0; i < p.segments.size(); ++i) out.segments.push_back(p.segments[(k + i) % p.segments.size()]);
     out.segments.back().end = out.start;
+    return out;
+}
+
+// A closed profile started in the middle of its longest line (a lead there joins a straight
+// wall), or as it is when it has no line.
+Profile started_mid_line(const Profile& p) {
+    std::optional<std::size_t> longest;
+    double best = 0.0;
+    for (std::size_t k = 0; k < p.segments.size(); ++k)
+        if (!p.segments[k].centre && distance(segment_start(p, k), p.segments[k].end) > best) {
+            best = distance(segment_start(p, k), p.segments[k].end);
+            longest = k;
+        }
+    if (!longest) return p;
+    const Vec2 a = segment_start(p, *longest), b = p.segments[*longest].end;
+    const Vec2 mid = (a + b) * 0.5;
+    Profile out;
+    out.plane = p.plane;
+    out.start = mid;
+    out.segments.push_back({b, std::nullopt, ArcDirection::ccw});
+    for (std::size_t i = 1; i < p.segments.size(); ++i) out.segments.push_back(p.segments[(*longest + i) % p.segments.size()]);
+    out.segments.push_back({mid, std::nullopt, ArcDirection::ccw});
     return out;
 }
 
@@ -773,7 +789,7 @@ constexpr KeySpec island_keys[] = {
 }  // namespace
 
 std::vector<ObjectSpec> PocketOp::objects() {
-    std::vector<KeySpec> keys(std::begin(pocket_head_keys), std::end(pocket_head_keys));
+    std::vector<KeySpec> keys = operation_head_keys();
     auto add = [&](const std::vector<KeySpec>& more) { keys.insert(keys.end(), more.begin(), more.end()); };
     add(height_keys(true));
     add(profile_keys("pocket"));
@@ -834,25 +850,12 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
     }
     op.direction = f.choice("direction", cut_directions, CutDirection::climb);
     op.tool_left = tool_left_of_travel(op.direction, op.spindle);
-    if (f.has("stepOver") && f.has("stepOverPercent")) f.fail("stepOverPercent", "give stepOver or stepOverPercent, not both");
-    if (f.has("stepOver")) {
-        op.step_over = in.length(f, "stepOver");
-        if (!(op.step_over > 0)) f.fail("stepOver", "stepOver must be > 0");
-    } else {
-        const double percent = f.optional_number("stepOverPercent").value_or(40.0);
-        if (!(percent > 0 && percent <= 100)) f.fail("stepOverPercent", "stepOverPercent must be more than 0 and at most 100");
-        op.step_over = tool.diameter * percent / 100;
-    }
-    const char* over_key = f.has("stepOverPercent") ? "stepOverPercent" : "stepOver";
+    std::string over_key;
+    op.step_over = read_step_over(f, in, tool.diameter, 40.0, over_key);
     if (op.strategy == PocketStrategy::offset && op.step_over > op.tool_radius * (1 + 1e-9))
         f.fail(over_key, fmt::format("offset rings {} apart leave material between them at the corners: the step must be at most "
                                      "the tool radius ({}, 50 %); use a smaller step, or strategy zigzag (rows up to the diameter apart)",
                                      in.show(op.step_over), in.show(op.tool_radius)));
-    if (op.step_over > tool.diameter * (1 + 1e-9))
-        f.fail(over_key, fmt::format("rows {} apart leave material between them: the step must be at most the tool diameter ({})",
-                                     in.show(op.step_over), in.show(tool.diameter)));
-    if (op.step_over < tool.diameter * 0.01)
-        f.fail(over_key, fmt::format("a step of {} is less than 1 % of the tool diameter", in.show(op.step_over)));
     op.stock_to_leave = in.optional_length(f, "stockToLeave").value_or(0.0);
     if (!(op.stock_to_leave >= 0)) f.fail("stockToLeave", "stockToLeave must be >= 0");
     op.step_down = read_step_down(f, in, total_depth);
@@ -887,7 +890,8 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
         if (op.finishing) {
             RegionOffset walls = shrunk(op.region, op.tool_radius + op.stock_to_leave);
             for (const PlaneRegion& r : walls.regions)
-                for (Profile& l : walked_loops(r, op.tool_left)) op.finish_loops.push_back(fit_leads(op, in, planner, std::move(l)));
+                for (Profile& l : walked_loops(r, op.tool_left))
+                    op.finish_loops.push_back(fit_leads(op, in, planner, started_mid_line(l)));
             note_leads(op, planner.notes);
         }
     } catch (const PlanError& e) {

@@ -428,6 +428,12 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
             boxes.push_back({b.x0 - region_touch, b.y0 - region_touch, b.x1 + region_touch, b.y1 + region_touch});
         }
     const curves::BoxGrid grid(boxes);
+    // Per loop, the length along it to the start of each curve (and its total last).
+    std::vector<std::vector<double>> lengths(loops.size());
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+        lengths[l].push_back(0.0);
+        for (const Curve& k : curves[l]) lengths[l].push_back(lengths[l].back() + k.length());
+    }
     // The problems found, the first (by the later loop, then the earlier) reported.
     struct Found {
         std::size_t later, earlier;
@@ -465,6 +471,14 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
                     }
                     continue;
                 }
+            }
+            if (a.loop == b.loop) {
+                // Curves that meet through others shorter than region_touch in all (the short radial
+                // line of an arc whose given end is a micron off its circle) are neighbours too.
+                const std::vector<double>& along = lengths[a.loop];
+                const double total = along.back();
+                const double between = along[b.index] - along[a.index + 1];
+                if (std::min(between, total - (along[b.index + 1] - along[a.index])) <= region_touch) continue;
             }
             const ClosestApproach gap = piece_distance(piece_of(ka), piece_of(kb));
             if (gap.distance > region_touch) continue;

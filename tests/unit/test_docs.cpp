@@ -74,7 +74,7 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     check_section("cycle kinds", table);
 }
 
-TEST_CASE("docs: the contour, path, bore-mill, stop and custom key tables are the operations' key tables") {
+TEST_CASE("docs: the contour, path, bore-mill, stop, custom, pocket and face key tables are the operations' key tables") {
     std::vector<ObjectSpec> objects = ContourOp::objects();
     const std::vector<ObjectSpec> path = PathOp::objects();
     objects.insert(objects.end(), path.begin(), path.end());
@@ -82,6 +82,11 @@ TEST_CASE("docs: the contour, path, bore-mill, stop and custom key tables are th
     objects.push_back(BoreMillOp::objects().front());
     objects.push_back(StopOp::objects().front());
     objects.push_back(CustomOp::objects().front());
+    // pocket's and face's own objects (their leads, ramps and finishing are contour's).
+    for (const ObjectSpec& o : PocketOp::objects())
+        if (o.name == "pocket" || o.name == "pocketIsland") objects.push_back(o);
+    for (const ObjectSpec& o : FaceOp::objects())
+        if (o.name == "face" || o.name == "faceRectangle") objects.push_back(o);
     for (const ObjectSpec& spec : objects) {
         const std::optional<std::string> table = keys_markdown(spec.name);
         REQUIRE(table);

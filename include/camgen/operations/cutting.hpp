@@ -133,6 +133,13 @@ std::optional<Finishing> read_finishing(json::Fields& f, const JobInput& in, dou
 CutFeeds read_cut_feeds(json::Fields& f, const JobInput& in);
 // "stepDown" (absent: one pass), checked against the depth's pass count.
 std::optional<double> read_step_down(json::Fields& f, const JobInput& in, double total_depth);
+// The step between rings or rows: "stepOver" (a length) or "stepOverPercent" (of the tool's
+// diameter, `default_percent` when neither is given), checked: more than 0, at least 1 % of
+// the diameter and at most the diameter (rows further apart leave material between them).
+// `key` is set to the key that gave it, for later messages.
+double read_step_over(json::Fields& f, const JobInput& in, double tool_diameter, double default_percent, std::string& key);
+// The keys every operation with a tool starts with: type, tool, comment.
+std::vector<KeySpec> operation_head_keys();
 // The machine's chord tolerance cap for arcs made lines ("tolerance"), if given.
 std::optional<double> read_tolerance(json::Fields& f, const JobInput& in);
 
