@@ -60,6 +60,8 @@ constexpr double min_helix_share = 0.25;
 constexpr std::size_t max_pocket_paths = 200000;
 // A link at depth is at most this many tool diameters long.
 constexpr double max_link_diameters = 2.0;
+// The directions tried for a straight ramp line from a step's start.
+constexpr int line_directions = 24;
 
 // The pocket's loops (outline and islands) as clearances, to measure how far a tool-centre
 // move stays from the walls.
@@ -116,6 +118,66 @@ Profile started_mid_line(const Profile& p) {
 // The left normal of travel at the start of a path.
 Vec2 start_left(const Profile& p) { return left_of(point_at(p, 0.0).tangent); }
 
+// The ends of the segments of a region's loops.
+std::vector<Vec2> region_vertices(const PlaneRegion& r) {
+    std::vector<Vec2> out;
+    for (const Profile* l : {&r.outer})
+        for (const ProfileSegment& s : l->segments) out.push_back(s.end);
+    for (const Profile& l : r.islands)
+        for (const ProfileSegment& s : l.segments) out.push_back(s.end);
+    return out;
+}
+
+// Where `p` lies along `loop` (mm from its start) and how far from it.
+std::pair<double, double> position_on(const Profile& loop, Vec2 p) {
+    double walked = 0.0, best = 1e300, at = 0.0;
+    for (std::size_t k = 0; k < loop.segments.size(); ++k) {
+        const Vec2 a = segment_start(loop, k);
+        const ProfileSegment& s = loop.segments[k];
+        Profile one;
+        one.start = a;
+        one.segments = {s};
+        const double l = profile_length(one);
+        double t = 0.0;  // mm along the segment
+        if (!s.centre) {
+            const Vec2 d = s.end - a;
+            t = l > 0 ? std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0) * l : 0.0;
+        } else {
+            const Vec2 c = *s.centre;
+            const double rho = distance(a, c);
+            double turn = std::atan2(cross(a - c, p - c), dot(a - c, p - c));  // from a to p, counter-clockwise
+            if (s.direction == ArcDirection::cw) turn = -turn;
+            if (turn < 0) turn += two_pi;
+            t = std::min(turn * rho, l);
+        }
+        const double d = distance(point_at(one, t).point, p);
+        if (d < best) {
+            best = d;
+            at = walked + t;
+        }
+        walked += l;
+    }
+    return {at, best};
+}
+
+// A piece of the area's edge from `p` (on it), some tool radii long, for a ramp back and forth:
+// nullopt when `p` is on no loop of it or the loop is shorter than 1.5 tool radii.
+std::optional<Profile> edge_track(const PlaneRegion& area, Vec2 p, double tool_radius) {
+    std::vector<const Profile*> loops{&area.outer};
+    for (const Profile& i : area.islands) loops.push_back(&i);
+    for (const Profile* l : loops) {
+        const auto [at, off] = position_on(*l, p);
+        if (off > 1e-6) continue;
+        const double total = profile_length(*l);
+        if (total < 1.5 * tool_radius) return std::nullopt;
+        const double length = std::min(4 * tool_radius, 0.9 * total);
+        Profile t = sub_profile(*l, at, std::fmod(at + length, total));
+        t.start = p;
+        return t;
+    }
+    return std::nullopt;
+}
+
 // Everything the planning needs.
 struct PocketPlanner {
     const PocketOp& op;
@@ -125,6 +187,7 @@ struct PocketPlanner {
     Walls walls;
     std::vector<std::string> notes;
     std::vector<PocketStep> steps;
+    const PlaneRegion* area = nullptr;  // the area being cleared (its edge at the walls' distance)
     Vec2 at{};                   // where the tool is after the last step
     bool have_at = false;
 
@@ -150,11 +213,40 @@ struct PocketPlanner {
             }
         }
         if (op.ramp.kind != Ramp::Kind::plunge) {
+            // Along the path when the tool centre moves far enough on it to leave the floor under
+            // its middle cut by its edge: a row the tool radius long, a ring as long as the
+            // smallest helix (not a speck of a ring, which would take hundreds of laps on a spot).
             const double length = profile_length(p);
-            if (closed || length >= op.tool_radius) {
+            if (length >= (closed ? two_pi * op.tool_radius * min_helix_share : op.tool_radius)) {
                 e.kind = PocketEntry::Kind::along;
                 return e;
             }
+            // A path too short to ramp on: back and forth on a straight line from its start into
+            // the pocket, at least the tool radius long (so that the tool's centre, which may not
+            // cut, passes over floor its edge cut), the longer the fewer legs; in evenly spread
+            // directions and towards the area's vertices (along a sliver). Else along the edge
+            // of the area (a curved sliver's), which the start lies on.
+            std::vector<Vec2> directions;
+            for (int k = 0; k < line_directions; ++k) directions.push_back(rotated(into, two_pi * k / line_directions));
+            if (area)
+                for (Vec2 v : region_vertices(*area))
+                    if (distance(v, s) >= op.tool_radius) directions.push_back((v - s) * (1.0 / distance(v, s)));
+            for (double length_share : {4.0, 2.0, 1.0})
+                for (Vec2 d : directions) {
+                    const Vec2 end = s + d * (op.tool_radius * length_share);
+                    if (inside(s, end)) {
+                        e.kind = PocketEntry::Kind::track;
+                        e.track.start = s;
+                        e.track.segments = {{end, std::nullopt, ArcDirection::ccw}};
+                        return e;
+                    }
+                }
+            if (area)
+                if (std::optional<Profile> t = edge_track(*area, s, op.tool_radius)) {
+                    e.kind = PocketEntry::Kind::track;
+                    e.track = std::move(*t);
+                    return e;
+                }
         }
         if (op.centre_cutting) {
             e.kind = PocketEntry::Kind::plunge;
@@ -165,7 +257,7 @@ struct PocketPlanner {
                             in.show(s.x), in.show(s.y),
                             op.ramp.kind == Ramp::Kind::plunge ? "the ramp is a plunge"
                                                                : fmt::format("there is no room for a helix of radius {} or more, nor "
-                                                                             "a path long enough to ramp along",
+                                                                             "a path, line or edge as long as the tool radius to ramp along",
                                                                              in.show(op.tool_radius * min_helix_share)),
                             op.tool);
         return e;
@@ -303,6 +395,7 @@ void plan_offset(PocketPlanner& planner, const PocketOp& op, double d0) {
     const bool area_left = walls_right == op.tool_left;
     const double interior = area_left ? 1.0 : -1.0;
     auto cut_node = [&](std::size_t id) {
+        planner.area = &forest.nodes[id].region;
         for (Profile& l : walked_loops(forest.nodes[id].region, area_left)) planner.add(std::move(l), true, std::nullopt, interior);
     };
     // Depth first: inside-out leaves first (post-order), outside-in the root first (pre-order).
@@ -321,6 +414,7 @@ void plan_zigzag(PocketPlanner& planner, const PocketOp& op, double d0) {
         throw PlanError("path", fmt::format("the tool (radius {}) with the stock left does not fit in the pocket", planner.in.show(op.tool_radius)));
     const Vec2 along = unit_at(op.angle * rad_per_deg);
     for (const PlaneRegion& r : area.regions) {
+        planner.area = &r;
         std::vector<HatchRow> rows = hatch_region(r, op.angle, op.step_over);
         // Each row's pieces not cut yet, walked from `a` to `b` along the row direction.
         std::vector<std::vector<std::pair<Vec2, Vec2>>> left;
@@ -456,6 +550,100 @@ CutSettings pocket_settings(const PocketOp& op, const JobHeader& job) {
     return s;
 }
 
+// A closed profile started in the middle of its segment `k` (same path, same direction).
+Profile started_mid(const Profile& p, std::size_t k) {
+    Profile one;
+    one.start = segment_start(p, k);
+    one.segments = {p.segments[k]};
+    const Vec2 mid = point_at(one, profile_length(one) / 2).point;
+    const ProfileSegment& s = p.segments[k];
+    Profile out;
+    out.plane = p.plane;
+    out.start = mid;
+    out.segments.push_back(s);
+    for (std::size_t i = 1; i < p.segments.size(); ++i) out.segments.push_back(p.segments[(k + i) % p.segments.size()]);
+    out.segments.push_back({mid, s.centre, s.direction});
+    return out;
+}
+
+// The finishing pass along `loop` (a tool-centre loop of the walls' offset, from its given
+// start) with leads that have room: the tool goes down where the lead-in starts, in the pocket
+// the roughing cleared (at least the radius, the stock and the radial stock from every wall
+// and island), and no point of either lead comes nearer the walls than the loop itself (the
+// radius and the stock). Tried in order: the job's leads at the loop's start, in the middle of
+// each segment (the longest first) and at each vertex; then the leads at half and a quarter
+// of their size; then all of it again with the tool going down anywhere the loop keeps (a line
+// lead along the loop's own tangent starts there, beside the radial stock); then no leads (the
+// tool goes down on the loop). The first that fits is taken.
+PocketFinish fit_leads(const PocketOp& op, const JobInput& in, const PocketPlanner& planner, Profile loop) {
+    const double radial = op.finishing ? op.finishing->radial_stock : 0.0;
+    const double keep = op.tool_radius + op.stock_to_leave - 1e-6;
+    CutSettings probe = pocket_settings(op, in.header());
+    EventRecorder nowhere;
+    const Cutter cutter(probe, nowhere);
+    auto clear = [&](const Profile& lead, double need) {
+        Vec2 at = lead.start;
+        if (planner.walls.distance(at) < need) return false;
+        for (const ProfileSegment& s : lead.segments) {
+            if (planner.walls.distance(PathPiece{at, s}) < need) return false;
+            at = s.end;
+        }
+        return true;
+    };
+    std::vector<Profile> starts{loop};
+    std::vector<std::size_t> order(loop.segments.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::vector<double> lengths;
+    for (std::size_t k = 0; k < loop.segments.size(); ++k) {
+        Profile one;
+        one.start = segment_start(loop, k);
+        one.segments = {loop.segments[k]};
+        lengths.push_back(profile_length(one));
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lengths[a] > lengths[b]; });
+    for (std::size_t k : order)
+        if (lengths[k] > 0.01) starts.push_back(started_mid(loop, k));
+    for (std::size_t k = 1; k < loop.segments.size(); ++k) starts.push_back(started_at(loop, k));
+    auto scaled = [](Lead l, double f) {
+        l.radius *= f;
+        l.length *= f;
+        return l;
+    };
+    // First where the tool goes down in cleared pocket, else (a lead along the loop's own line,
+    // say) beside the radial stock.
+    for (double down : {keep + radial, keep})
+        for (double f : {1.0, 0.5, 0.25}) {
+            probe.lead_in = scaled(op.lead_in, f);
+            probe.lead_out = scaled(op.lead_out, f);
+            for (const Profile& p : starts) {
+                const Profile lead_in = cutter.lead_in(p), lead_out = cutter.lead_out(p);
+                if (planner.walls.distance(lead_in.start) >= down && clear(lead_in, keep) && clear(lead_out, keep))
+                    return {p, probe.lead_in, probe.lead_out};
+            }
+        }
+    return {std::move(loop), Lead{}, Lead{}};
+}
+
+// A note for the finishing loops that got shorter leads than the job's, or none.
+void note_leads(const PocketOp& op, std::vector<std::string>& notes) {
+    const bool asked = op.lead_in.kind != Lead::Kind::none || op.lead_out.kind != Lead::Kind::none;
+    std::size_t shorter = 0, none = 0;
+    for (const PocketFinish& f : op.finish_loops) {
+        const bool without = f.lead_in.kind == Lead::Kind::none && f.lead_out.kind == Lead::Kind::none;
+        if (asked && without) ++none;
+        else if (f.lead_in.radius < op.lead_in.radius - 1e-12 || f.lead_in.length < op.lead_in.length - 1e-12 ||
+                 f.lead_out.radius < op.lead_out.radius - 1e-12 || f.lead_out.length < op.lead_out.length - 1e-12)
+            ++shorter;
+    }
+    if (shorter > 0)
+        notes.push_back(fmt::format("{} finishing pass{} along the walls and islands enter{} or leave{} with leads shorter than the job's: "
+                                    "no room for them",
+                                    shorter, shorter == 1 ? "" : "es", shorter == 1 ? "s" : "", shorter == 1 ? "s" : ""));
+    if (none > 0)
+        notes.push_back(fmt::format("{} finishing pass{} along the walls and islands {} without leads: no room for them", none,
+                                    none == 1 ? "" : "es", none == 1 ? "goes" : "go"));
+}
+
 // One depth level: every step at `z`, the floor at `z_prev` cleared above it.
 void cut_level(Cutter& cutter, const CutSettings& s, const PocketOp& op, double z_prev, double z, Movement m, double feed) {
     for (const PocketStep& step : op.steps) {
@@ -495,6 +683,20 @@ void cut_level(Cutter& cutter, const CutSettings& s, const PocketOp& op, double 
                             cutter.follow(k % 2 ? back : step.path, top - drop * k / legs, top - drop * (k + 1) / legs, op.feeds.ramp,
                                           Movement::ramp);
                     }
+                    break;
+                }
+                case PocketEntry::Kind::track: {
+                    // Back and forth on the track from the start, an even number of legs.
+                    const double drop = cutter.at().z - z;
+                    if (drop <= 0) break;
+                    const double need = drop / std::tan(op.ramp.angle * rad_per_deg);
+                    int legs = std::max(2, static_cast<int>(std::ceil(need / profile_length(step.entry.track) - 1e-9)));
+                    if (legs % 2) ++legs;
+                    const Profile back = reversed(step.entry.track);
+                    const double top = cutter.at().z;
+                    for (int k = 0; k < legs; ++k)
+                        cutter.follow(k % 2 ? back : step.entry.track, top - drop * k / legs, top - drop * (k + 1) / legs, op.feeds.ramp,
+                                      Movement::ramp);
                     break;
                 }
                 case PocketEntry::Kind::plunge:
@@ -537,7 +739,10 @@ void cut_pocket(const PocketOp& op, const JobHeader& job, EventSink& sink, PartG
     const std::vector<double> depths = pass_depths(z.reference_z, z.bottom_z, op.finishing->step_down, op.equal_steps);
     for (std::size_t k = 0; k < op.finish_loops.size(); ++k) {
         if (k == 0) finisher.continue_from(cutter.at());
-        finisher.cut_run(op.finish_loops[k], true, depths, Movement::finishing, op.feeds.finishing, k + 1 == op.finish_loops.size());
+        // The finisher reads its settings by reference: each loop's own leads.
+        walls.lead_in = op.finish_loops[k].lead_in;
+        walls.lead_out = op.finish_loops[k].lead_out;
+        finisher.cut_run(op.finish_loops[k].path, true, depths, Movement::finishing, op.feeds.finishing, k + 1 == op.finish_loops.size());
     }
 }
 
@@ -685,7 +890,9 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
         if (op.finishing) {
             RegionOffset walls = shrunk(op.region, op.tool_radius + op.stock_to_leave);
             for (const PlaneRegion& r : walls.regions)
-                for (Profile& l : walked_loops(r, op.tool_left)) op.finish_loops.push_back(started_mid_line(l));
+                for (Profile& l : walked_loops(r, op.tool_left))
+                    op.finish_loops.push_back(fit_leads(op, in, planner, started_mid_line(l)));
+            note_leads(op, planner.notes);
         }
     } catch (const PlanError& e) {
         f.fail(f.has(e.key) ? e.key : "", e.what());
@@ -693,15 +900,20 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
     op.steps = std::move(planner.steps);
     op.notes = std::move(planner.notes);
     note_corners(op, in, op.tool_radius + op.stock_to_leave, op.notes);
-    std::size_t smaller = 0, along = 0;
+    std::size_t smaller = 0, along = 0, line = 0;
     for (const PocketStep& s : op.steps) {
         if (s.stay_down) continue;
         if (s.entry.kind == PocketEntry::Kind::helix && s.entry.radius < op.ramp.radius - 1e-9 && op.ramp.kind == Ramp::Kind::helix) ++smaller;
         if (s.entry.kind == PocketEntry::Kind::along && op.ramp.kind == Ramp::Kind::helix) ++along;
+        if (s.entry.kind == PocketEntry::Kind::track) ++line;
     }
     if (smaller > 0)
         op.notes.push_back(fmt::format("{} entr{} with a smaller helix than the ramp's: no room for it there", smaller, smaller == 1 ? "y" : "ies"));
     if (along > 0) op.notes.push_back(fmt::format("{} entr{} ramp along the path: no room for a helix there", along, along == 1 ? "y" : "ies"));
+    if (line > 0)
+        op.notes.push_back(fmt::format("{} entr{} ramp back and forth on a straight line or along the edge of the area: no room for "
+                                       "a helix there, and the path is too short to ramp along",
+                                       line, line == 1 ? "y" : "ies"));
     guard_pocket(op, f, in);
     return op;
 }

@@ -39,12 +39,23 @@ inline constexpr Named<RowDirection> row_directions[] = {
 
 // How the tool gets down to the start of a step that is not reached at depth: a helix of
 // `radius` about `centre`, a ramp along the step's own path at the ramp angle (laps of a ring,
-// or back and forth on a row), a plunge (a centre-cutting tool), or a drop onto floor cleared
-// at this depth already (any tool).
+// or back and forth on a row), a ramp back and forth on `track` (a path too short to ramp on,
+// with no room for a helix: a straight line from its start into the pocket, or a piece of the
+// edge of the area being cleared, from its start), a plunge (a centre-cutting tool), or a drop
+// onto floor cleared at this depth already (any tool).
 struct PocketEntry {
-    enum class Kind { helix, along, plunge, drop } kind = Kind::helix;
+    enum class Kind { helix, along, track, plunge, drop } kind = Kind::helix;
     double radius = 0.0;
     Vec2 centre;
+    Profile track;  // from the step's start
+};
+
+// The finishing pass along one wall or island: the tool-centre loop, started where its leads
+// have room in the cleared pocket, and the leads it gets there (those of the job, or shorter
+// ones, or none, where nothing longer has room anywhere on the loop).
+struct PocketFinish {
+    Profile path;
+    Lead lead_in, lead_out;
 };
 
 // One path of a depth level: a ring or a row of the tool centre, and how the tool gets to its
@@ -89,7 +100,7 @@ struct PocketOp {
     // Planned on reading:
     bool tool_left = true;                  // the tool left of its travel
     std::vector<PocketStep> steps;          // one depth level's paths, in order
-    std::vector<Profile> finish_loops;      // the finishing pass's paths (walls, islands)
+    std::vector<PocketFinish> finish_loops;  // the finishing pass's paths (walls, islands)
     std::vector<std::string> notes;         // what camgen decided that the job did not ask for
 };
 
