@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the unit tests: run the pipeline in-process, split NC text into words.
+#include <unistd.h>
+
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -91,8 +93,11 @@ inline Run run(std::vector<std::string> args, const std::string& stdin_text = ""
 }
 
 // An empty scratch folder for one test, under the system's temporary folder.
+// The process id is in its name: two test runs at once (a build tree and a fresh clone) must not
+// share, and clear, each other's folders.
 inline std::filesystem::path scratch(const std::string& name) {
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / ("camgen-test-" + name);
+    std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("camgen-test-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
