@@ -12,10 +12,12 @@
 // A region offset is the profile offset's algorithm (src/geometry/curve.hpp) over all its
 // loops at once, each walked with the region on its left: the raw offsets of every loop to the
 // left (shrinking) or right (growing), split at their crossings with one another and with what
-// is at the distance from any loop, kept where no closer than the distance to any loop, chained
-// into closed loops. A loop of the result turning counter-clockwise bounds a region from
-// outside, one turning clockwise a hole; each hole belongs to the smallest loop around it (the
-// nesting, by an exact inside test: a ray's crossings with lines and arcs, counted half-open).
+// is at the distance from any loop, kept where no closer than the distance to any loop (and,
+// a safety net, on the region's side by an inside test), chained into closed loops (a chain that
+// a crumb of pieces at a joint leads past its start gives the loop it holds; a spike a hair long
+// is cut off). A loop of the result turning counter-clockwise bounds a region from outside, one
+// turning clockwise a hole; each hole belongs to the smallest loop around it (the nesting, by an
+// exact inside test: a ray's crossings with lines and arcs, counted half-open).
 
 namespace camgen::region_impl {
 
@@ -26,8 +28,9 @@ using curves::LoopSpan;
 using curves::mm_text;
 using curves::Rect;
 
-// A crossing nearer than this to the joint of two neighbouring segments is the joint, mm.
-constexpr double joint_slack = 1e-4;
+// Segments with less than this between them along their loop meet at a joint (they may come
+// closer than region_touch there, and do not touch for that), mm.
+constexpr double joint_slack = 2.5 * arc_radius_tolerance;
 
 // The name of loop `loop` of a region (0 the outline, 1 + i island i) in a message.
 std::string loop_name(std::size_t loop) { return loop == 0 ? "the outline" : "island " + std::to_string(loop - 1); }
@@ -164,24 +167,59 @@ PathPiece piece_of(const Curve& k) {
 
 std::string point_text(Vec2 p) { return "(" + mm_text(p.x) + ", " + mm_text(p.y) + ")"; }
 
-// One loop normalised: walked with the region on its left, and whether that reversed it (its
-// segment j is then the input's segment count - 1 - j).
-struct NormalLoop {
-    Profile profile;
-    bool reversed = false;
+// One loop walked with the region on its left (an outline counter-clockwise, an island
+// clockwise).
+Profile normal_loop(const Profile& p, bool outer) { return (signed_area(closed_curves(p)) >= 0.0) == outer ? p : reversed(p); }
+
+// The curve walked the other way.
+Curve reversed_curve(const Curve& k) {
+    Curve r = k;
+    std::swap(r.a, r.b);
+    if (k.arc) {
+        r.a0 = k.a0 + k.sweep;
+        r.sweep = -k.sweep;
+    }
+    return r;
+}
+
+// The even-odd inside test of inside_pieces over many pieces, for many points: the pieces
+// bucketed in horizontal bands, so that a point looks at those of its band only.
+class InsideTest {
+public:
+    explicit InsideTest(std::vector<YPiece> pieces) : pieces_(std::move(pieces)) {
+        if (pieces_.empty()) return;
+        y0_ = std::numeric_limits<double>::infinity();
+        double y1 = -y0_;
+        for (const YPiece& p : pieces_) y0_ = std::min({y0_, p.s.y, p.e.y}), y1 = std::max({y1, p.s.y, p.e.y});
+        // About four pieces a band, but no more bands than keep the entries (a piece in each
+        // band it spans) below eight a piece.
+        double spans = 0.0;
+        for (const YPiece& p : pieces_) spans += std::abs(p.e.y - p.s.y) / std::max(y1 - y0_, 1e-9);
+        const double most = 7.0 * static_cast<double>(pieces_.size()) / std::max(spans, 1e-9);
+        bands_.resize(static_cast<std::size_t>(std::clamp(std::min(most, static_cast<double>(pieces_.size() / 4)), 1.0, 1e6)));
+        height_ = std::max((y1 - y0_) / static_cast<double>(bands_.size()), 1e-9);
+        for (std::size_t i = 0; i < pieces_.size(); ++i) {
+            const YPiece& p = pieces_[i];
+            for (std::size_t b = band(std::min(p.s.y, p.e.y)); b <= band(std::max(p.s.y, p.e.y)); ++b) bands_[b].push_back(i);
+        }
+    }
+    bool operator()(Vec2 p) const {
+        if (pieces_.empty()) return false;
+        bool in = false;
+        for (std::size_t i : bands_[band(p.y)])
+            if (crosses_row(pieces_[i], p.y) && x_at(pieces_[i], p.y) > p.x) in = !in;
+        return in;
+    }
+
+private:
+    std::size_t band(double y) const {
+        const double b = std::floor((y - y0_) / height_);
+        return static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(bands_.size() - 1)));
+    }
+    std::vector<YPiece> pieces_;
+    std::vector<std::vector<std::size_t>> bands_;
+    double y0_ = 0.0, height_ = 1.0;
 };
-
-NormalLoop normal_loop(const Profile& p, bool outer) {
-    if ((signed_area(closed_curves(p)) >= 0.0) == outer) return {p, false};
-    return {reversed(p), true};
-}
-
-// The region's loops normalised: the outline first, then the islands in order.
-std::vector<NormalLoop> normal_loops(const PlaneRegion& region) {
-    std::vector<NormalLoop> out{normal_loop(region.outer, true)};
-    for (const Profile& island : region.islands) out.push_back(normal_loop(island, false));
-    return out;
-}
 
 // An offset region loop with what the nesting asks of it.
 struct OutLoop {
@@ -204,9 +242,53 @@ bool continues(const KeptPiece& prev, const KeptPiece& next, const std::vector<c
     return std::abs(prev.t1 - next.t0) < 1e-12 || (full_circle(raw[prev.raw].curve) && prev.t1 == 1.0 && next.t0 == 0.0);
 }
 
+// Spikes no longer than this are cut off a loop, mm.
+constexpr double spike_length = 1e-5;
+
+// `k` with its start (or end) moved to p, a point on or within a hair of its support (an arc
+// keeps its centre and radius, its sweep following).
+Curve moved_end(const Curve& k, Vec2 p, bool start) {
+    Curve m = k;
+    if (k.arc) {
+        double delta = std::atan2(p.y - k.c.y, p.x - k.c.x) - (start ? k.a0 : k.a0 + k.sweep);
+        delta = std::remainder(delta, two_pi);
+        if (start) {
+            m.a0 = k.a0 + delta;
+            m.sweep = k.sweep - delta;
+        } else {
+            m.sweep = k.sweep + delta;
+        }
+    }
+    (start ? m.a : m.b) = p;
+    return m;
+}
+
+// Cuts off a closed loop's spikes: where the loop turns straight back at a joint and one of
+// the two curves there is shorter than spike_length, it lies along the other (crumbs of pieces
+// at the distance about a joint a drawing leaves a little off); it goes, and the other stops
+// where it began.
+void remove_spikes(std::vector<Curve>& cs) {
+    for (bool changed = true; changed && cs.size() > 2;) {
+        changed = false;
+        for (std::size_t i = 0; i < cs.size() && !changed; ++i) {
+            const std::size_t j = (i + 1) % cs.size();
+            if (dot(cs[i].tangent(1.0), cs[j].tangent(0.0)) > -0.99) continue;
+            if (cs[i].length() <= cs[j].length() && cs[i].length() <= spike_length) {
+                cs[j] = moved_end(cs[j], cs[i].a, true);
+                cs.erase(cs.begin() + static_cast<std::ptrdiff_t>(i));
+                changed = true;
+            } else if (cs[j].length() < cs[i].length() && cs[j].length() <= spike_length) {
+                cs[i] = moved_end(cs[i], cs[j].b, false);
+                cs.erase(cs.begin() + static_cast<std::ptrdiff_t>(j));
+                changed = true;
+            }
+        }
+    }
+}
+
 // A closed chain as a loop: started where two raw pieces meet (not in the middle of one), the
 // parts of one raw piece merged back into one segment (across a full circle's start too), tiny
-// parts dropped, the end put exactly on the start.
+// parts dropped, spikes cut off, the end put exactly on the start.
 Profile loop_of(std::vector<std::size_t> c, const std::vector<KeptPiece>& kept, const std::vector<curves::RawPiece>& raw) {
     for (std::size_t p = 0; p < c.size(); ++p)
         if (!continues(kept[c[(p + c.size() - 1) % c.size()]], kept[c[p]], raw)) {
@@ -228,13 +310,16 @@ Profile loop_of(std::vector<std::size_t> c, const std::vector<KeptPiece>& kept, 
             span.push_back(k.t1 - k.t0);
         }
     }
-    Profile out{ProfilePlane::xy, merged.front().curve.a, {}};
-    for (const KeptPiece& k : merged) {
-        if (k.curve.length() < curves::min_piece) continue;
-        ProfileSegment s{k.curve.b, std::nullopt, ArcDirection::ccw};
-        if (k.curve.arc) {
-            s.centre = k.curve.c;
-            s.direction = k.curve.sweep > 0 ? ArcDirection::ccw : ArcDirection::cw;
+    std::vector<Curve> cs;
+    for (const KeptPiece& k : merged)
+        if (k.curve.length() >= curves::min_piece) cs.push_back(k.curve);
+    remove_spikes(cs);
+    Profile out{ProfilePlane::xy, cs.empty() ? Vec2{} : cs.front().a, {}};
+    for (const Curve& k : cs) {
+        ProfileSegment s{k.b, std::nullopt, ArcDirection::ccw};
+        if (k.arc) {
+            s.centre = k.c;
+            s.direction = k.sweep > 0 ? ArcDirection::ccw : ArcDirection::cw;
         }
         out.segments.push_back(s);
     }
@@ -245,24 +330,26 @@ Profile loop_of(std::vector<std::size_t> c, const std::vector<KeptPiece>& kept, 
 RegionOffset offset_loops(const PlaneRegion& input, double d, bool grow) {
     if (!(d > 0.0)) return {{normalised(input)}, {}};
     const double s = grow ? -1.0 : 1.0;
-    const std::vector<NormalLoop> normal = normal_loops(input);
-    std::vector<const Profile*> loops;
-    for (const NormalLoop& n : normal) loops.push_back(&n.profile);
-    // The input's index of segment j of normalised loop l.
-    auto given_segment = [&](std::size_t l, std::size_t j) { return normal[l].reversed ? loops[l]->segments.size() - 1 - j : j; };
-    auto segment_name = [&](std::size_t l, std::size_t j) { return loop_name(l) + " segment " + std::to_string(given_segment(l, j)); };
-
+    // Each loop's elements as drawn (segment indices the input's), walked backwards where the
+    // loop turns the wrong way: the same curves, not profile.hpp's reversed (which takes an arc's
+    // radius from its other end).
+    const std::vector<const Profile*> loops = loops_of(input);
+    auto segment_name = [&](std::size_t l, std::size_t j) { return loop_name(l) + " segment " + std::to_string(j); };
     std::vector<Element> elements;
     std::vector<LoopSpan> spans;
     for (std::size_t l = 0; l < loops.size(); ++l) {
-        const std::vector<Element> e = curves::elements_of(*loops[l], l);
+        std::vector<Element> e = curves::elements_of(*loops[l], l);
+        if ((signed_area(closed_curves(*loops[l])) >= 0.0) != (l == 0)) {
+            std::reverse(e.begin(), e.end());
+            for (Element& x : e) x.curve = reversed_curve(x.curve);
+        }
         spans.push_back({elements.size(), elements.size() + e.size(), true});
         elements.insert(elements.end(), e.begin(), e.end());
     }
     RegionOffset result;
     auto note = [&](OffsetNoteKind kind, std::size_t l, std::optional<std::size_t> j, std::string message) {
         result.notes.push_back({kind, l == 0 ? std::nullopt : std::optional<std::size_t>(l - 1),
-                                j ? std::optional<std::size_t>(given_segment(l, *j)) : std::nullopt, std::move(message)});
+                                j, std::move(message)});
     };
     const std::string by = mm_text(d) + " mm";
     for (const Element& e : elements) {
@@ -274,7 +361,17 @@ RegionOffset offset_loops(const PlaneRegion& input, double d, bool grow) {
     }
 
     const curves::OffsetPieces pieces = curves::offset_pieces(elements, spans, d, s);
-    const std::vector<KeptPiece>& kept = pieces.kept;
+    // The containment test: a kept piece lies inside the region when it shrinks, outside when it
+    // grows. (Where the loops are simple it always does: a safety net.)
+    std::vector<Curve> all_curves;
+    for (const Profile* p : loops) {
+        const std::vector<Curve> c = closed_curves(*p);
+        all_curves.insert(all_curves.end(), c.begin(), c.end());
+    }
+    const InsideTest inside(y_pieces(all_curves));
+    std::vector<KeptPiece> kept;
+    for (const KeptPiece& k : pieces.kept)
+        if (inside(k.curve.at(0.5)) != grow) kept.push_back(k);
     std::vector<std::vector<bool>> segment_kept(loops.size());
     std::vector<bool> loop_kept(loops.size(), false);
     for (std::size_t l = 0; l < loops.size(); ++l) segment_kept[l].assign(loops[l]->segments.size(), false);
@@ -288,13 +385,38 @@ RegionOffset offset_loops(const PlaneRegion& input, double d, bool grow) {
         loop_kept[elements[*e].loop] = true;
     }
 
-    // The closed loops of the result.
+    // The closed loops of the result. A chain that does not come round to its start (where
+    // pieces meet within the chaining gap a crumb of pieces at the distance may lead it past its
+    // start: a joint a drawing leaves a little off) gives the longest loop it holds, and its
+    // other pieces are chained again.
+    std::vector<std::vector<std::size_t>> loops_found;
+    std::vector<std::vector<std::size_t>> pending = curves::chain(kept);
+    while (!pending.empty()) {
+        std::vector<std::size_t> c = std::move(pending.back());
+        pending.pop_back();
+        auto meets = [&](std::size_t j, std::size_t i) { return distance(kept[c[j]].curve.b, kept[c[i]].curve.a) <= curves::chain_gap; };
+        if (meets(c.size() - 1, 0)) {
+            loops_found.push_back(std::move(c));
+            continue;
+        }
+        std::optional<std::pair<std::size_t, std::size_t>> best;
+        for (std::size_t i = 0; i < c.size(); ++i)
+            for (std::size_t j = c.size(); j-- > i;)
+                if (meets(j, i) && (!best || j - i > best->second - best->first)) {
+                    best = std::pair(i, j);
+                    break;
+                }
+        if (!best) continue;  // no loop in it
+        loops_found.emplace_back(c.begin() + static_cast<std::ptrdiff_t>(best->first), c.begin() + static_cast<std::ptrdiff_t>(best->second) + 1);
+        std::vector<std::size_t> rest(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(best->first));
+        rest.insert(rest.end(), c.begin() + static_cast<std::ptrdiff_t>(best->second) + 1, c.end());
+        if (!rest.empty()) pending.push_back(std::move(rest));
+    }
     std::vector<OutLoop> out;
-    for (const auto& c : curves::chain(kept)) {
+    for (const auto& c : loops_found) {
         double length = 0.0;
         for (std::size_t i : c) length += kept[i].curve.length();
         if (length < curves::chain_gap) continue;  // a crumb where pieces cross
-        if (distance(kept[c.back()].curve.b, kept[c.front()].curve.a) > curves::chain_gap) continue;  // not a loop
         Profile profile = loop_of(c, kept, pieces.raw);
         if (profile.segments.empty()) continue;
         OutLoop loop{std::move(profile), {}, {}, 0.0, {}, {}, {}};
@@ -363,7 +485,7 @@ RegionOffset offset_loops(const PlaneRegion& input, double d, bool grow) {
             if (!segment_raw[l][j]) continue;
             const std::optional<std::size_t> isl = l == 0 ? std::nullopt : std::optional<std::size_t>(l - 1);
             const bool noted = std::any_of(result.notes.begin(), result.notes.end(), [&](const RegionNote& n) {
-                return n.island == isl && n.segment == std::optional<std::size_t>(given_segment(l, j));
+                return n.island == isl && n.segment == std::optional<std::size_t>(j);
             });
             if (!noted)
                 note(OffsetNoteKind::element_removed, l, j,
@@ -392,6 +514,7 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
     auto finite = [](Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
     // Each loop on its own: in XY, finite, closed, of some length, arcs' ends on their circles.
     std::vector<std::vector<Curve>> curves(loops.size());
+    std::vector<std::vector<std::size_t>> segment_of(loops.size());  // each curve's segment
     for (std::size_t l = 0; l < loops.size(); ++l) {
         const Profile& p = *loops[l];
         const std::string name = loop_name(l);
@@ -412,7 +535,13 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
                 return problem(l, name + " segment " + std::to_string(j) + ": the arc's end is " + mm_text(off) +
                                       " mm off the circle through its start about its centre");
         }
-        curves[l] = closed_curves(p);
+        // One curve a segment, an arc to the angle of its given end.
+        for (std::size_t j = 0; j < p.segments.size(); ++j) {
+            const Curve k = curves::curve_of(p, j);
+            if (k.length() <= curves::same_length) continue;
+            curves[l].push_back(k);
+            segment_of[l].push_back(j);
+        }
         if (curves[l].empty()) return problem(l, name + " has no length");
     }
     // Every curve of every loop in one grid; pairs of curves closer than region_touch.
@@ -428,11 +557,11 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
             boxes.push_back({b.x0 - region_touch, b.y0 - region_touch, b.x1 + region_touch, b.y1 + region_touch});
         }
     const curves::BoxGrid grid(boxes);
-    // Per loop, the length along it to the start of each curve (and its total last).
-    std::vector<std::vector<double>> lengths(loops.size());
+    // Per loop, the length along it to the start of each curve (and to its end, last).
+    std::vector<std::vector<double>> along(loops.size());
     for (std::size_t l = 0; l < loops.size(); ++l) {
-        lengths[l].push_back(0.0);
-        for (const Curve& k : curves[l]) lengths[l].push_back(lengths[l].back() + k.length());
+        along[l].push_back(0.0);
+        for (const Curve& k : curves[l]) along[l].push_back(along[l].back() + k.length());
     }
     // The problems found, the first (by the later loop, then the earlier) reported.
     struct Found {
@@ -450,35 +579,40 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
             const Curve& ka = curves[a.loop][a.index];
             const Curve& kb = curves[b.loop][b.index];
             if (a.loop == b.loop) {
-                const std::size_t n = curves[a.loop].size();
-                const bool a_then_b = b.index == a.index + 1, b_then_a = a.index == 0 && b.index == n - 1;
+                // Neighbours, or segments with less than joint_slack between them (a drawing's
+                // tiny segments), meet at their joint (both joints for a loop of two): anywhere
+                // else, or turning straight back there, the loop is not simple.
+                const std::vector<double>& at = along[a.loop];
+                const double between = at[b.index] - at[a.index + 1], around = at.back() - at[b.index + 1] + at[a.index];
+                const bool a_then_b = between <= joint_slack, b_then_a = around <= joint_slack;
                 if (a_then_b || b_then_a) {
-                    // Neighbours meet at their joint (both joints for a loop of two): anywhere
-                    // else, or turning straight back there, the loop is not simple.
                     std::vector<Vec2> joints;
                     auto joint = [&](const Curve& in, const Curve& next) {
                         joints.push_back(in.b);
+                        joints.push_back(next.a);
                         const Vec2 t1 = in.tangent(1.0), t2 = next.tangent(0.0);
                         if (dot(t1, t2) < 0 && std::abs(cross(t1, t2)) < 1e-9)
                             consider(a.loop, a.loop, loop_name(a.loop) + " turns back on itself at " + point_text(in.b));
                     };
                     if (a_then_b) joint(ka, kb);
                     if (b_then_a) joint(kb, ka);
+                    // A crossing but at the joint, where the two do cross (not merely graze in a
+                    // tangent joint's rounding): a segment that runs back over the one before
+                    // it, if only by a hair (a sharp corner whose joint is a little off).
                     for (double t : curves::crossings(ka, kb)) {
                         const Vec2 q = ka.at(std::clamp(t, 0.0, 1.0));
-                        if (std::all_of(joints.begin(), joints.end(), [&](Vec2 j) { return distance(q, j) > joint_slack; }))
-                            consider(a.loop, a.loop, loop_name(a.loop) + " crosses itself at " + point_text(q));
+                        const Vec2 ta = ka.tangent(std::clamp(t, 0.0, 1.0)), tb = kb.tangent(std::clamp(curves::parameter_of(kb, q), 0.0, 1.0));
+                        const bool crosses = std::abs(cross(ta, tb)) > 1e-6 || dot(ta, tb) < 0;
+                        if (crosses && std::all_of(joints.begin(), joints.end(), [&](Vec2 j) { return distance(q, j) > 1e-9; })) {
+                            const std::size_t first = a_then_b ? a.index : b.index, second = a_then_b ? b.index : a.index;
+                            consider(a.loop, a.loop,
+                                     loop_name(a.loop) + " crosses itself at " + point_text(q) + ", where segment " + std::to_string(segment_of[a.loop][first]) +
+                                         " meets segment " + std::to_string(segment_of[a.loop][second]) +
+                                         ": they cross by a hair at their joint (an arc's end a little off its circle at a sharp corner)");
+                        }
                     }
                     continue;
                 }
-            }
-            if (a.loop == b.loop) {
-                // Curves that meet through others shorter than region_touch in all (the short radial
-                // line of an arc whose given end is a micron off its circle) are neighbours too.
-                const std::vector<double>& along = lengths[a.loop];
-                const double total = along.back();
-                const double between = along[b.index] - along[a.index + 1];
-                if (std::min(between, total - (along[b.index + 1] - along[a.index])) <= region_touch) continue;
             }
             const ClosestApproach gap = piece_distance(piece_of(ka), piece_of(kb));
             if (gap.distance > region_touch) continue;
@@ -490,7 +624,7 @@ std::optional<RegionProblem> first_problem(const PlaneRegion& region) {
     std::vector<std::vector<YPiece>> pieces(loops.size());
     std::vector<Rect> loop_boxes(loops.size());
     for (std::size_t l = 0; l < loops.size(); ++l) {
-        pieces[l] = y_pieces(curves[l]);
+        pieces[l] = y_pieces(closed_curves(*loops[l]));
         loop_boxes[l] = box_of_curves(curves[l]);
     }
     for (std::size_t l = 1; l < loops.size(); ++l) {
@@ -546,9 +680,8 @@ Curve in_frame(const Curve& k, Vec2 u, double angle) {
 namespace camgen {
 
 PlaneRegion normalised(const PlaneRegion& region) {
-    std::vector<region_impl::NormalLoop> loops = region_impl::normal_loops(region);
-    PlaneRegion out{std::move(loops.front().profile), {}};
-    for (std::size_t i = 1; i < loops.size(); ++i) out.islands.push_back(std::move(loops[i].profile));
+    PlaneRegion out{region_impl::normal_loop(region.outer, true), {}};
+    for (const Profile& island : region.islands) out.islands.push_back(region_impl::normal_loop(island, false));
     return out;
 }
 

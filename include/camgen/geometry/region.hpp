@@ -34,8 +34,11 @@ struct RegionProblem {
 inline constexpr double region_touch = 1e-6;
 
 // The first thing wrong with `region` as the input of the functions below, or nullopt: every
-// loop in XY, of finite coordinates, closed (within profile_same_point), of some length, simple
-// (no part of it crosses, touches or turns back on another, exact for lines and arcs), every
+// loop in XY, of finite coordinates, closed (within profile_same_point), of some length, its
+// arcs' ends within arc_radius_tolerance of their circles, simple (no part of it crosses,
+// touches (within region_touch) or turns back on another, exact for lines and arcs; segments
+// meet only at their joints, and a sharp corner whose arc ends a hair inside its circle, so
+// that the next segment crosses back over it, is refused as crossing itself there), every
 // island strictly inside the outline, and the islands apart from each other: neither crossing
 // nor touching (within region_touch) nor one inside another. The outline is checked first,
 // then the islands in order. Cost: about linear in the number of segments (a grid of boxes).
