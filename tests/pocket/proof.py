@@ -59,6 +59,7 @@ UNCOVERED = 0.01  # mm^2 per mm of wall: what may stay uncovered (the proof's bo
 GOUGE_DISTANCE = 0.002  # mm
 GOUGE_AREA = 0.001  # mm^2 per mm of wall: a band 0.001 mm wide
 LEVEL = 1e-4  # mm: two Z this close are one level
+LEVEL_MOVE = 0.05  # mm: the shortest horizontal move that makes a level (a ramp of 1 degree drops 0.0009 mm on it)
 # Every CROSS_CHECK-th record's swept area at the end depth is also made segment by segment (slow)
 # and must agree with the fast one within CROSS_TOLERANCE mm^2 per mm of wall.
 CROSS_CHECK = 20
@@ -161,10 +162,12 @@ def swept_by_segments(moves, r):
 
 
 def levels_of(moves, top):
-    """The Z of the horizontal feed moves below the top, each once, top down."""
+    """The Z of the horizontal feed moves below the top, each once, top down (moves of at least
+    LEVEL_MOVE: a ramp's step over a crumb of a path, 0.001 mm long, is level once rounded)."""
     zs = []
     for m in moves:
-        if m.kind != "t" and abs(m.z0 - m.z1) < LEVEL and m.z0 < top - LEVEL:
+        length = sum(math.dist(a, b) for a, b in zip(m.pts, m.pts[1:]))
+        if m.kind != "t" and abs(m.z0 - m.z1) < LEVEL and m.z0 < top - LEVEL and length >= LEVEL_MOVE:
             if not any(abs(m.z0 - z) < LEVEL for z in zs):
                 zs.append(m.z0)
     return sorted(zs, reverse=True)
