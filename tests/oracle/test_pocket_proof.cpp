@@ -633,6 +633,7 @@ void run_batch(const std::string& rs274, const Batch& b, std::ofstream* dump, Pr
                                  {"moves", moves}};
             *dump << record.dump() << "\n";
         }
+        dump->flush();  // the geometry half reads the file as it grows
     }
     ++t.programs;
     t.operations += static_cast<int>(b.jobs.size());
