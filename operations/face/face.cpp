@@ -137,6 +137,9 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
             f.fail("path", fmt::format("the area must be closed, but it ends at ({}, {}), not at its start ({}, {})",
                                        in.show(op.area.segments.back().end.x), in.show(op.area.segments.back().end.y),
                                        in.show(op.area.start.x), in.show(op.area.start.y)));
+        // What the region geometry cannot grow (an arc's end a hair off its circle at a sharp
+        // corner, crossing back): said as it is, not as an empty area later.
+        if (const std::optional<RegionProblem> problem = region_problem(PlaneRegion{op.area, {}})) f.fail("path", problem->message);
     }
     op.overhang = in.optional_length(f, "overhang").value_or(2.0);
     if (!(op.overhang >= 0)) f.fail("overhang", "overhang must be >= 0");

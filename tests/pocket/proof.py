@@ -3,8 +3,9 @@
 the tool path LinuxCNC's interpreter makes of camgen's programs, with shapely (GEOS), nothing of
 camgen's geometry.
 
-Usage: proof.py CAMGEN_ORACLE WORK_DIR
-       proof.py --moves MOVES_FILE  (the geometry of a file the oracle wrote before)
+Usage: proof.py CAMGEN_ORACLE WORK_DIR   (the oracle's output in WORK_DIR/oracle.txt, its moves in
+                                         WORK_DIR/moves.jsonl, measured as it writes them)
+       proof.py --moves MOVES_FILE      (the geometry of a file the oracle wrote before)
 
 It runs `CAMGEN_ORACLE -tc='pocket proof*'` (tests/oracle/test_pocket_proof.cpp: the pocket and
 face samples and seeded random jobs, each refused with an error naming its operation or posted
@@ -59,6 +60,7 @@ UNCOVERED = 0.01  # mm^2 per mm of wall: what may stay uncovered (the proof's bo
 GOUGE_DISTANCE = 0.002  # mm
 GOUGE_AREA = 0.001  # mm^2 per mm of wall: a band 0.001 mm wide
 LEVEL = 1e-4  # mm: two Z this close are one level
+LEVEL_MOVE = 0.05  # mm: the shortest horizontal move that makes a level (a ramp of 1 degree drops 0.0009 mm on it)
 # Every CROSS_CHECK-th record's swept area at the end depth is also made segment by segment (slow)
 # and must agree with the fast one within CROSS_TOLERANCE mm^2 per mm of wall.
 CROSS_CHECK = 20
@@ -161,10 +163,12 @@ def swept_by_segments(moves, r):
 
 
 def levels_of(moves, top):
-    """The Z of the horizontal feed moves below the top, each once, top down."""
+    """The Z of the horizontal feed moves below the top, each once, top down (moves of at least
+    LEVEL_MOVE: a ramp's step over a crumb of a path, 0.001 mm long, is level once rounded)."""
     zs = []
     for m in moves:
-        if m.kind != "t" and abs(m.z0 - m.z1) < LEVEL and m.z0 < top - LEVEL:
+        length = sum(math.dist(a, b) for a, b in zip(m.pts, m.pts[1:]))
+        if m.kind != "t" and abs(m.z0 - m.z1) < LEVEL and m.z0 < top - LEVEL and length >= LEVEL_MOVE:
             if not any(abs(m.z0 - z) < LEVEL for z in zs):
                 zs.append(m.z0)
     return sorted(zs, reverse=True)
@@ -309,7 +313,7 @@ def check(numbered_line):
     number, line = numbered_line
     record = json.loads(line)
     if record["kind"] == "refused":
-        return record["kind"], record["name"], [], {}, None
+        return number, record["kind"], record["name"], [], {}, None
     moves = moves_of(record)
     try:
         if record["kind"] == "pocket":
@@ -318,7 +322,28 @@ def check(numbered_line):
             problems, figures = check_face(record, moves)
     except Exception as e:  # a failure of the check itself is a failure too, with the job
         problems, figures = [f"the check failed: {type(e).__name__}: {e}"], {}
-    return record["kind"], record["name"], problems, figures, json.dumps(record["job"]) if problems else None
+    return number, record["kind"], record["name"], problems, figures, json.dumps(record["job"]) if problems else None
+
+
+def follow(path, process, ended):
+    """The lines of the file the running oracle writes, as it writes them, to its end (the
+    time of which goes to ended["at"])."""
+    while not os.path.exists(path):
+        if process.poll() is not None:
+            ended["at"] = time.monotonic()
+            return
+        time.sleep(0.05)
+    with open(path) as f:
+        pending = ""
+        while True:
+            done = process.poll() is not None  # asked before reading: all it wrote is there then
+            pending += f.read()
+            *lines, pending = pending.split("\n")
+            yield from (line + "\n" for line in lines)
+            if done:
+                ended["at"] = time.monotonic()
+                return
+            time.sleep(0.05)
 
 
 def main():
@@ -326,28 +351,36 @@ def main():
         print(__doc__)
         return 2
     began = time.monotonic()
+    oracle_failed, oracle_seconds = False, 0.0
     if sys.argv[1] == "--moves":
         # The geometry alone, of a file the oracle wrote before.
-        moves_file, oracle_failed = sys.argv[2], False
+        with open(sys.argv[2]) as f:
+            lines = f.readlines()
+        with Pool(2) as pool:
+            results = pool.map(check, list(enumerate(lines)), chunksize=4)
     else:
+        # The oracle on one core, the geometry of what it has written so far on the other.
         oracle, work = sys.argv[1], sys.argv[2]
         os.makedirs(work, exist_ok=True)
         moves_file = os.path.join(work, "moves.jsonl")
+        if os.path.exists(moves_file):
+            os.remove(moves_file)
         env = dict(os.environ, CAMGEN_POCKET_PROOF=moves_file)
-        run = subprocess.run([oracle, "-tc=pocket proof*"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        print(run.stdout)
-        oracle_failed = run.returncode != 0
-    oracle_seconds = time.monotonic() - began
-    if oracle_failed:
-        # The geometry is checked all the same: its failures may tell more.
-        print(f"FAILED: {oracle} -tc='pocket proof*' exit {run.returncode}")
-    if not os.path.exists(moves_file):
-        return 1
-    with open(moves_file) as f:
-        lines = f.readlines()
-    began = time.monotonic()
-    with Pool(2) as pool:
-        results = pool.map(check, list(enumerate(lines)), chunksize=4)
+        with open(os.path.join(work, "oracle.txt"), "w+") as out:
+            process = subprocess.Popen([oracle, "-tc=pocket proof*"], env=env, stdout=out, stderr=subprocess.STDOUT, text=True)
+            ended = {}
+            with Pool(2) as pool:
+                results = list(pool.imap_unordered(check, enumerate(follow(moves_file, process, ended)), chunksize=2))
+            process.wait()
+            oracle_seconds = ended.get("at", time.monotonic()) - began
+            out.seek(0)
+            print(out.read())
+        if process.returncode != 0:
+            oracle_failed = True
+            # The geometry is checked all the same: its failures may tell more.
+            print(f"FAILED: {oracle} -tc='pocket proof*' exit {process.returncode}")
+    results.sort(key=lambda r: r[0])
+    results = [r[1:] for r in results]
     geometry_seconds = time.monotonic() - began
     counts = {"pocket": 0, "face": 0, "refused": 0}
     failed = 0
@@ -383,7 +416,7 @@ def main():
     print(f"  swept area by moves and by segments: {len(crosses)} pockets compared, largest difference "
           f"{max(crosses, default=0.0):.7f} mm^2 per mm of wall (at most {CROSS_TOLERANCE})")
     print(f"  bounds: uncovered <= {UNCOVERED} mm^2/mm, gouge area <= {GOUGE_AREA} mm^2/mm, clearance >= -{GOUGE_DISTANCE} mm")
-    print(f"  time: oracle (posting, rs274, read-back) {oracle_seconds:.1f} s, geometry {geometry_seconds:.1f} s")
+    print(f"  time: oracle (posting, rs274, read-back) {oracle_seconds:.1f} s, the geometry alongside and after it: {geometry_seconds:.1f} s in all")
     if counts["pocket"] < 2 or counts["face"] < 2:
         print("FAILED: too few operations checked")
         return 1
