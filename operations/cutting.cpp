@@ -25,6 +25,11 @@ constexpr KeySpec head_key_table[] = {
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "written as a comment before the operation"},
 };
 
+constexpr KeySpec tolerance_key_table[] = {
+    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true}, .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
+                    "chordTolerance, which also caps it)"},
+};
+
 // The keys of a profile's start and path; "start" and "path" are renamed by profile_keys.
 constexpr KeySpec profile_key_table[] = {
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "where the profile starts [x, y]"},
@@ -715,6 +720,8 @@ double read_step_over(Fields& f, const JobInput& in, double tool_diameter, doubl
     if (step < tool_diameter * 0.01) f.fail(key, fmt::format("a step of {} is less than 1 % of the tool diameter", in.show(step)));
     return step;
 }
+
+std::vector<KeySpec> tolerance_keys() { return {std::begin(tolerance_key_table), std::end(tolerance_key_table)}; }
 
 std::vector<KeySpec> operation_head_keys() { return {std::begin(head_key_table), std::end(head_key_table)}; }
 

@@ -32,11 +32,6 @@ constexpr KeySpec contour_entry_keys[] = {
     {.key = "tabs", .type = JsonType::object, .ref = "contourTabs", .description = "tabs that hold the part of a closed through-cut"},
 };
 
-constexpr KeySpec contour_tolerance_key[] = {
-    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true}, .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
-                    "chordTolerance, which also caps it)"},
-};
-
 // The contour's settings for the cutter.
 CutSettings contour_settings(const ContourOp& op, const JobHeader& job) {
     CutSettings s;
@@ -121,7 +116,7 @@ std::vector<ObjectSpec> ContourOp::objects() {
     add(depth_pass_keys());
     add({std::begin(contour_entry_keys), std::end(contour_entry_keys)});
     add(cut_feed_keys());
-    add({std::begin(contour_tolerance_key), std::end(contour_tolerance_key)});
+    add(tolerance_keys());
     std::vector<ObjectSpec> out{{.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys}};
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
     return out;

@@ -49,11 +49,6 @@ constexpr KeySpec pocket_entry_keys[] = {
     {.key = "ramp", .type = JsonType::object, .ref = "contourRamp", .description = "how the tool enters the material (default: a helix of the tool's radius at 5 degrees; see the fallbacks)"},
 };
 
-constexpr KeySpec pocket_tolerance_key[] = {
-    {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true}, .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
-                    "chordTolerance, which also caps it)"},
-};
-
 // The smallest helix camgen makes before it falls back to a ramp: a quarter of the tool radius.
 constexpr double min_helix_share = 0.25;
 // Rings or rows beyond this many per level are refused: the pocket is far larger than the tool.
@@ -797,7 +792,7 @@ std::vector<ObjectSpec> PocketOp::objects() {
     add(depth_pass_keys());
     add({std::begin(pocket_entry_keys), std::end(pocket_entry_keys)});
     add(cut_feed_keys());
-    add({std::begin(pocket_tolerance_key), std::end(pocket_tolerance_key)});
+    add(tolerance_keys());
     std::vector<ObjectSpec> out{
         {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys},
         {.name = "pocketIsland", .description = "an island: a closed profile of lines and arcs", .keys = {std::begin(island_keys), std::end(island_keys)}},

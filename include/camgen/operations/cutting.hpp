@@ -138,6 +138,8 @@ std::optional<double> read_step_down(json::Fields& f, const JobInput& in, double
 // the diameter and at most the diameter (rows further apart leave material between them).
 // `key` is set to the key that gave it, for later messages.
 double read_step_over(json::Fields& f, const JobInput& in, double tool_diameter, double default_percent, std::string& key);
+// The key "tolerance" (the chord tolerance of arcs a machine writes as lines).
+std::vector<KeySpec> tolerance_keys();
 // The keys every operation with a tool starts with: type, tool, comment.
 std::vector<KeySpec> operation_head_keys();
 // The machine's chord tolerance cap for arcs made lines ("tolerance"), if given.
