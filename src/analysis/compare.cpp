@@ -370,11 +370,23 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                                const CompareTolerance& tol) {
     size_t k = 0;
     double t = 0.0;
+    std::optional<Vec3> last;  // the sample found last
     return each_sample(from, [&](const Sample& s) -> std::optional<Mismatch> {
         double extra = s.step ? s.step->uncertainty : 0.0;
         bool found = false;
         std::optional<Mismatch> wrong_feed;
+        // The point is looked for no further along `onto` than twice the way from the last one
+        // (and a millimetre): a point of the first pass not found where it should be is not
+        // found again on a later pass through the same place (a plunge at the pass's start),
+        // which named a line of that pass as the difference.
+        // Where on `onto` the last point lay is known within that move's uncertainty (a point
+        // within 1.4 mm of an arc written with whole-millimetre I and J "lies" at its end).
+        const double known = k < onto.segs.size() ? onto.segs[k].uncertainty : 0.0;
+        const double reach = last ? 2.0 * dist(*last, s.p) + 1.0 + 10.0 * (tol.path + extra + known) : 1e300;
+        double skipped = 0.0;  // the length of `onto`'s moves passed over whole
         for (size_t j = k; j < onto.segs.size() && !found; ++j) {
+            if (j > k + 1) skipped += onto.segs[j - 1].length();
+            if (skipped > reach) break;
             const Seg& seg = onto.segs[j];
             // Block ends on straight moves must meet exactly; on or near arcs, the arc may be
             // chords or have a rounded centre.
@@ -409,7 +421,10 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
         }
         if (!found && wrong_feed) return wrong_feed;
         if (onto.segs.empty()) found = dist(s.p, onto.start) <= tol.position + extra + tiny;
-        if (found) return std::nullopt;
+        if (found) {
+            last = s.p;
+            return std::nullopt;
+        }
         // Where the other path goes on from the last point both share: inside the segment
         // matched last, or after it.
         bool inside = k < onto.segs.size() && t < 1.0 - 1e-9;

@@ -2,6 +2,7 @@
 // found in the motion itself so that canned and longhand drilling count alike.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <deque>
 #include <set>
 
@@ -10,6 +11,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/events/visit.hpp"
 #include "camgen/geometry/compensation.hpp"
+#include "camgen/post/arc_output.hpp"
 #include "camgen/post/longhand.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/analysis/trace.hpp"
@@ -67,7 +69,7 @@ private:
 class TraceBuilder::Impl {
 public:
     Impl(const Machine& machine, TraceSink& sink, TraceOptions options)
-        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), sink_(sink),
+        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), arcs_(machine.arcs), sink_(sink),
           trace_options_(std::move(options)) {}
 
     // `job`: an event of a job (its Compensation carries the radius), not of a program.
@@ -75,7 +77,10 @@ public:
         line_ = e.line;
         uncertainty_ = e.uncertainty;
         visit_exhaustive(overloaded{
-                       [&](const OperationStart& o) { operation_path_ = o.path; },
+                       [&](const OperationStart& o) {
+                           operation_path_ = o.path;
+                           op_tolerance_ = o.tolerance;
+                       },
                        [&](const OperationEnd&) {},
                        [&](const Comment&) {},
                        // No motion of its own: the moves after it are offset as the control
@@ -117,6 +122,7 @@ public:
                            Programmed p = programmed(StepKind::feed, a.feed, a.movement, e.per_revolution, false);
                            p.centre_z = a.centre.z;
                            if (comp_ && a.plane == Plane::xy) {
+                               if (job && as_written_lines(a, p)) return;
                                CompMove m;
                                m.kind = CompMove::Kind::arc;
                                m.end = a.to;
@@ -307,6 +313,24 @@ private:
         if (noted_.insert(key).second) notes_.push_back(std::move(text));
     }
 
+    // A job's arc under compensation that the machine writes as straight moves (arcs.maxRadius,
+    // a plane without arcs, ...): the control offsets those moves, not the arc, and they meet
+    // the moves around them otherwise (the end of chords offset square to the last chord lies
+    // up to radius x its half angle along the path from the arc's: a G40 move from there runs
+    // 0.05 mm beside the one from the arc's end). So the job's arc goes through the control as
+    // the chords the post writes (post.cpp write_lines: the same plan, the same points).
+    bool as_written_lines(const Arc& a, const Programmed& p) {
+        const std::optional<Vec3> start = comp_->programmed_position();
+        if (!start) return false;
+        const ArcGeometry geo = resolve_arc(*start, a);
+        const ArcPlan plan = plan_arc(geo, arcs_, effective_chord_tolerance(arcs_, op_tolerance_));
+        if (plan.treatment == ArcTreatment::arcs || plan.count > max_arc_chords) return false;
+        const std::int64_t n = plan.treatment == ArcTreatment::one_line ? 1 : std::max<std::int64_t>(plan.count, 1);
+        for (std::int64_t k = 1; k <= n; ++k)
+            comp_move(comp_straight(CompMove::Kind::feed, k < n ? point_on_arc(geo, double(k) / double(n)) : a.to), p);
+        return true;
+    }
+
     static CompMove comp_straight(CompMove::Kind kind, const Vec3& to) {
         CompMove m;
         m.kind = kind;
@@ -316,6 +340,10 @@ private:
 
     void comp_move(CompMove m, Programmed p) {
         m.source = p.source = next_source_++;
+        if (const double unit = 2.0 * trace_options_.rounding; unit > 0) {
+            m.end.x = std::round(m.end.x / unit) * unit;
+            m.end.y = std::round(m.end.y / unit) * unit;
+        }
         programmed_.push_back(p);
         if (auto err = comp_->move(m)) refuse(*err);
         // The move after G40 was the last the control offsets: the rest is as programmed.
@@ -367,6 +395,8 @@ private:
 
     LonghandOptions options_;
     bool lathe_;  // Z is the spindle axis
+    ArcSettings arcs_;  // the machine's: which of a job's arcs it writes as straight moves
+    std::optional<double> op_tolerance_;  // the operation's chord tolerance (OperationStart)
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     TraceSink& sink_;
     TraceOptions trace_options_;

@@ -452,13 +452,13 @@ private:
 // program is read as far as the comparison needs it.
 std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::string& source, const Job& job,
                                          const Machine& machine, const CompareTolerance& tolerance,
-                                         const TraceOptions& options) {
+                                         const TraceOptions& options, double rounding) {
     std::unique_ptr<ProgramReader> reader;
     TraceComparer comparer(tolerance, [&] { return reader->advance(); });
     TraceBuilder program_trace(machine, comparer.actual(), options);
     reader = std::make_unique<ProgramReader>(program.open(), machine, source, program_trace);
     FeedClamp clamp(machine, comparer.expected());
-    TraceBuilder job_trace(machine, clamp);
+    TraceBuilder job_trace(machine, clamp, TraceOptions{.compensation_radii = {}, .rounding = rounding});
     // The job's events one at a time; once the first difference is known the rest says nothing.
     struct Expected : EventSink {
         TraceComparer& comparer;
@@ -574,7 +574,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     }
     try {
         CompareTolerance tolerance = compare_tolerance(machine, back->resolution());
-        if (auto m = compare_with_job(program, source, *job, machine, tolerance, options)) {
+        if (auto m = compare_with_job(program, source, *job, machine, tolerance, options, back->resolution().position)) {
             out << fmt::format("MISMATCH {}{}: {}\n", source, m->line > 0 ? fmt::format(":{}", m->line) : "", m->message);
             finish_stream(out, "standard output");
             return exit_invalid_input;

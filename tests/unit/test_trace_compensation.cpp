@@ -155,6 +155,51 @@ TEST_CASE("compensation read back: verify --job matches camgen's control-compens
         }
 }
 
+// Arcs written as chords (arcs.maxRadius) under G41/G42: the control offsets the chords, whose
+// offsets meet the next move up to radius x half a chord's angle from where the arc's would
+// (the G40 move after a lead-out of chords ran 0.05 mm beside the job's), and a short chord's
+// rounded ends turn its offset (0.002 mm on a 0.47 mm chord written to 0.001 mm). The job's arcs
+// go through the control as the chords the post writes; a chord moved into the part is still
+// found.
+TEST_CASE("compensation read back: arcs written as chords under G41/G42 match the job, a chord moved into the part does not") {
+    const fs::path dir = test::scratch("comp-chords");
+    const std::string job_text = test::read_file(samples + "plate-outline-control.json");
+    nlohmann::json no_lead_in = nlohmann::json::parse(job_text);
+    no_lead_in["operations"][0].erase("leadIn");
+    no_lead_in["operations"][0].erase("finishing");
+    const std::vector<std::pair<std::string, std::string>> jobs = {{"plate-outline-control.json", job_text},
+                                                                   {"no-lead-in.json", no_lead_in.dump(2)}};
+    for (const char* base : {"linuxcnc", "fanuc", "sinumerik", "heidenhain"}) {
+        const std::string machine =
+            write(dir, std::string(base) + "-chords.json", fmt::format(R"({{"extends": "{}", "arcs": {{"maxRadius": 4}}}})", base));
+        for (const auto& [name, text] : jobs) {
+            CAPTURE(base);
+            CAPTURE(name);
+            const std::string job = write(dir, name, text);
+            const test::Run posted = run({job, "--machine", machine, "-q"});
+            REQUIRE(posted.code == 0);
+            // Chords, not arcs: the corner of R10 (R10.3 with the finishing stock) in straight moves.
+            CHECK(posted.out.find(base == std::string("heidenhain") ? "\nCC " : "\nG2") == std::string::npos);
+            const std::string program = write(dir, std::string("p.") + base, posted.out);
+            const test::Run r = run({"verify", program, "--machine", machine, "--job", job});
+            CHECK_MESSAGE(r.code == 0, r.out);
+            CHECK(r.out.find("matches job") != std::string::npos);
+        }
+    }
+    // A chord's end 0.05 mm into the part (the first corner, LinuxCNC): a MISMATCH at its line.
+    const std::string machine = (dir / "linuxcnc-chords.json").string();
+    const std::string job = (dir / "plate-outline-control.json").string();
+    const std::string text = run({job, "--machine", machine, "-q"}).out;
+    const std::vector<std::string> lines = test::lines_of(text);
+    const auto corner = std::find(lines.begin(), lines.end(), "X8.7585 Y-0.2249");
+    REQUIRE(corner != lines.end());
+    const int corner_line = static_cast<int>(corner - lines.begin()) + 1;
+    const test::Run r = run({"verify", write(dir, "edited.ngc", replaced(text, "\nX8.7585 Y-0.2249\n", "\nX8.7585 Y-0.1749\n")),
+                             "--machine", machine, "--job", job});
+    CHECK(r.code == 1);
+    CHECK_MESSAGE(r.out.find(fmt::format(":{}: ", corner_line)) != std::string::npos, r.out);
+}
+
 TEST_CASE("compensation read back: a hand-edited program whose offset path gouges is a MISMATCH at the edited line") {
     const fs::path dir = test::scratch("comp-gouge");
     const std::string job = samples + "plate-outline-control.json";

@@ -93,8 +93,16 @@ struct TraceSummary {
 // mm, as the control holds it (LinuxCNC: the tool of that number in its tool table); a register
 // missing here takes the diameter the program gives its tool (a ToolChange), else its moves are
 // taken as programmed, with a note. A job's events carry their radius and need none of this.
+//
+// `rounding`: for a job's events, half the unit a program writes coordinates in (0: exact).
+// Under compensation the control offsets the moves as written: a short move's direction, and so
+// its offset, turns with its ends' rounding by radius x rounding / length (a 0.47 mm chord
+// written to 0.001 mm and offset by 5 mm lands 0.002 mm from the exact chord's offset). So
+// the job's programmed XY ends under compensation are rounded to that unit, as the post writes
+// them, before they are offset.
 struct TraceOptions {
     std::map<int, double> compensation_radii;
+    double rounding = 0.0;  // mm
 };
 
 // The control refuses the program: cutter compensation it cannot apply without gouging, a

@@ -52,6 +52,8 @@ public:
     // Where the tool is (compensation off): the start of the next move.
     void set_position(Vec3 p);
     std::optional<Vec3> position() const { return known_ ? std::optional<Vec3>(tool_) : std::nullopt; }
+    // The programmed point the next move starts from (under compensation: not the tool's).
+    std::optional<Vec3> programmed_position() const { return known_ ? std::optional<Vec3>(programmed_) : std::nullopt; }
 
     // G41 (left) / G42 (right) with the radius the control offsets by (0: nothing is offset).
     std::optional<CompError> on(CompSide side, double radius, std::size_t source);
