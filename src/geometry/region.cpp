@@ -759,3 +759,46 @@ std::vector<HatchRow> hatch_region(const PlaneRegion& region, double angle_deg, 
 }
 
 }  // namespace camgen
+
+namespace camgen {
+
+struct RegionRows::Impl {
+    std::vector<region_impl::YPiece> pieces;  // sorted by their lowest y
+    std::array<double, 4> box{0.0, 0.0, 0.0, 0.0};
+};
+
+RegionRows::RegionRows(const PlaneRegion& region) : impl_(std::make_unique<Impl>()) {
+    using region_impl::YPiece;
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    for (const Profile* p : region_impl::loops_of(region))
+        for (const curves::Curve& k : region_impl::closed_curves(*p)) {
+            const curves::Rect b = curves::box_of(k);
+            x0 = std::min(x0, b.x0), y0 = std::min(y0, b.y0), x1 = std::max(x1, b.x1), y1 = std::max(y1, b.y1);
+            region_impl::add_y_pieces(k, impl_->pieces);
+        }
+    if (impl_->pieces.empty()) return;
+    impl_->box = {x0, y0, x1, y1};
+    auto low = [](const YPiece& p) { return std::min(p.s.y, p.e.y); };
+    std::sort(impl_->pieces.begin(), impl_->pieces.end(), [&](const YPiece& a, const YPiece& b) { return low(a) < low(b); });
+}
+
+RegionRows::~RegionRows() = default;
+RegionRows::RegionRows(RegionRows&&) noexcept = default;
+RegionRows& RegionRows::operator=(RegionRows&&) noexcept = default;
+
+std::vector<std::pair<double, double>> RegionRows::spans(double y) const {
+    std::vector<double> xs;
+    for (const region_impl::YPiece& p : impl_->pieces) {
+        if (std::min(p.s.y, p.e.y) > y) break;  // sorted by their lowest y: none after reaches down to y
+        if (region_impl::crosses_row(p, y)) xs.push_back(region_impl::x_at(p, y));
+    }
+    std::sort(xs.begin(), xs.end());
+    std::vector<std::pair<double, double>> out;
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+        if (xs[i + 1] > xs[i]) out.emplace_back(xs[i], xs[i + 1]);
+    return out;
+}
+
+std::array<double, 4> RegionRows::bounds() const { return impl_->box; }
+
+}  // namespace camgen

@@ -5,6 +5,8 @@
 // clearing or a facing follows. Exact for arcs throughout: lines stay lines, arcs stay arcs about
 // their centres, crossings of lines and circles solved, never sampled. Machine-free. Lengths mm.
 #include <cstddef>
+#include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -131,5 +133,25 @@ struct HatchRow {
 // shorter than 1e-6 mm are dropped and gaps shorter than that closed. max_spacing <= 0 or an
 // empty region: no rows. Cost: linear in the number of segments plus the crossings.
 std::vector<HatchRow> hatch_region(const PlaneRegion& region, double angle_deg, double max_spacing);
+
+// A region's rows on a grid: where the horizontal line y = const is inside it, as [x0, x1]
+// spans in ascending x, exact at line and arc crossings (counted half-open, as hatch_region), for
+// filling a raster (the design a simulated part is checked against). Built once per region;
+// each row costs the loops' pieces that reach its height.
+class RegionRows {
+public:
+    explicit RegionRows(const PlaneRegion& region);
+    ~RegionRows();
+    RegionRows(RegionRows&&) noexcept;
+    RegionRows& operator=(RegionRows&&) noexcept;
+    // The spans at height y.
+    std::vector<std::pair<double, double>> spans(double y) const;
+    // The region's extent: {x0, y0, x1, y1}.
+    std::array<double, 4> bounds() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace camgen

@@ -1,0 +1,276 @@
+// What a job designs (design.hpp): each operation's cuts and keeps as regions with heights.
+#include "camgen/operations/design.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "camgen/common/number_text.hpp"
+#include "camgen/events/visit.hpp"
+#include "camgen/geometry/offset.hpp"
+#include "camgen/geometry/vec.hpp"
+#include "camgen/operations/registry.hpp"
+
+namespace camgen {
+
+namespace {
+
+// A circle as a closed profile (two half arcs), counter-clockwise.
+Profile design_circle(Vec2 centre, double radius) {
+    Profile p;
+    p.start = {centre.x + radius, centre.y};
+    p.segments.push_back({{centre.x - radius, centre.y}, centre, ArcDirection::ccw});
+    p.segments.push_back({{centre.x + radius, centre.y}, centre, ArcDirection::ccw});
+    return p;
+}
+
+// The largest region of an offset (the one a band is made of), or none.
+std::optional<PlaneRegion> design_largest(const RegionOffset& o) {
+    std::optional<PlaneRegion> best;
+    double area = -1.0;
+    for (const PlaneRegion& r : o.regions)
+        if (const double a = region_area(r); a > area) area = a, best = r;
+    return best;
+}
+
+// The region grown by d (d = 0: as it is).
+std::optional<PlaneRegion> design_grown(const PlaneRegion& r, double d) {
+    if (d <= 0.0) return normalised(r);
+    return design_largest(grow_region(r, d));
+}
+
+// The points of `outer` within `width` of its boundary, inside it: outer less its shrinking.
+PlaneRegion design_band_inside(const PlaneRegion& outer, double width) {
+    PlaneRegion band = normalised(outer);
+    for (const PlaneRegion& inner : offset_region(outer, width).regions) band.islands.push_back(reversed(inner.outer));
+    return normalised(band);
+}
+
+// The points outside `inner` within `width` of it: its growth less itself.
+std::optional<PlaneRegion> design_band_outside(const PlaneRegion& inner, double width) {
+    std::optional<PlaneRegion> grown = design_grown(inner, width);
+    if (!grown) return std::nullopt;
+    PlaneRegion band = *grown;
+    band.islands = {reversed(normalised(inner).outer)};
+    return normalised(band);
+}
+
+// A stretch of a band beside a closed profile: between lengths from and to along it, from
+// offset o0 to o1 on the side `sign` (+1: left of the profile's travel), as a polygon.
+PlaneRegion design_stretch(const Profile& p, double from, double to, double o0, double o1, double sign) {
+    const Profile piece = sub_profile(p, from, to);
+    const std::vector<Vec2> pts = sample_profile(piece, 0.01);
+    PlaneRegion r;
+    if (pts.size() < 2) return r;
+    auto normal_at = [&](std::size_t i) {
+        const Vec2 a = pts[i == 0 ? 0 : i - 1], b = pts[i + 1 < pts.size() ? i + 1 : i];
+        const Vec2 d = b - a;
+        const double n = norm(d);
+        return n > 0 ? Vec2{-d.y / n * sign, d.x / n * sign} : Vec2{0.0, 0.0};
+    };
+    std::vector<Vec2> loop;
+    for (std::size_t i = 0; i < pts.size(); ++i) loop.push_back(pts[i] + normal_at(i) * o0);
+    for (std::size_t i = pts.size(); i-- > 0;) loop.push_back(pts[i] + normal_at(i) * o1);
+    r.outer.start = loop.front();
+    for (std::size_t i = 1; i < loop.size(); ++i) r.outer.segments.push_back({loop[i], std::nullopt, ArcDirection::ccw});
+    r.outer.segments.push_back({loop.front(), std::nullopt, ArcDirection::ccw});
+    return normalised(r);
+}
+
+std::string design_point(Vec2 p) { return fmt::format("({}, {})", number_text(p.x), number_text(p.y)); }
+
+class Designer {
+public:
+    Designer(const Job& job, double keep_band) : job_(job), keep_band_(keep_band) {}
+
+    PartDesign run() {
+        for (const Operation& op : job_.operations)
+            visit_exhaustive(overloaded{
+                                 [&](const DrillOp& o) { drill(o); },
+                                 [&](const BoreMillOp& o) { bore(o); },
+                                 [&](const ContourOp& o) { contour(o); },
+                                 [&](const PocketOp& o) { pocket(o); },
+                                 [&](const FaceOp& o) { face(o); },
+                                 [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
+                                 [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
+                                 [&](const StopOp&) {},
+                                 [&](const TurnDrillOp& o) { skip(o.path, "a lathe's part is not checked yet"); },
+                                 [&](const TurnProfileOp& o) { skip(o.path, "a lathe's part is not checked yet"); },
+                             },
+                             op);
+        return std::move(design_);
+    }
+
+private:
+    double band_for(double diameter) const { return keep_band_ > 0.0 ? keep_band_ : std::max(diameter, 3.0); }
+
+    void skip(const std::string& path, const std::string& why) { design_.unchecked.push_back(path + ": " + why); }
+
+    const Tool* tool_of(int number) const {
+        const auto it = job_.tools.find(number);
+        return it == job_.tools.end() ? nullptr : &it->second;
+    }
+
+    void holes(const std::string& path, const std::vector<Vec2>& centres, double radius, double top, DesignFloor floor) {
+        const double band = band_for(2.0 * radius);
+        for (std::size_t i = 0; i < centres.size(); ++i) {
+            const Vec2 c = centres[i];
+            DesignCut cut;
+            cut.path = path;
+            cut.what = fmt::format("hole {} at {}", i, design_point(c));
+            cut.region.outer = design_circle(c, radius);
+            cut.floor = floor;
+            if (cut.floor.apex) cut.floor.apex = c;
+            cut.top_z = top;
+            design_.cuts.push_back(std::move(cut));
+            DesignKeep keep;
+            keep.path = path;
+            keep.what = fmt::format("the part around hole {} at {}", i, design_point(c));
+            keep.region.outer = design_circle(c, radius + band);
+            keep.region.islands = {reversed(design_circle(c, radius))};
+            keep.top_z = top;
+            design_.keeps.push_back(std::move(keep));
+        }
+    }
+
+    void drill(const DrillOp& op) {
+        const Tool* tool = tool_of(op.tool);
+        if (!tool) return skip(op.path, "its tool is not in the job");
+        const DrillCycle c = resolve_cycle(op, *tool);
+        DesignFloor floor{c.bottom_z, std::nullopt, 0.0};
+        if (tool->tip_angle && *tool->tip_angle > 0.0 && *tool->tip_angle < 180.0) {
+            floor.apex = Vec2{0.0, 0.0};  // placed at each hole
+            floor.slope = 1.0 / std::tan(*tool->tip_angle / 2.0 * rad_per_deg);
+        }
+        holes(op.path, op.holes, tool->diameter / 2.0, c.reference_z, floor);
+    }
+
+    void bore(const BoreMillOp& op) {
+        const Planes z = resolve_planes(op.heights);
+        holes(op.path, op.holes, op.diameter / 2.0, z.reference_z, DesignFloor{z.bottom_z, std::nullopt, 0.0});
+    }
+
+    void contour(const ContourOp& op) {
+        const bool outside = op.side == ContourSide::outside, inside = op.side == ContourSide::inside;
+        if (!(outside || inside) || !is_closed(op.profile))
+            return skip(op.path, "only a contour inside or outside a closed profile has a designed part");
+        const Planes z = resolve_planes(op.heights);
+        const double d = 2.0 * op.tool_radius, s = op.stock_to_leave;
+        PlaneRegion shape;
+        shape.outer = op.profile;
+        shape = normalised(shape);
+        // The part's wall: the profile with the stock the contour leaves on it.
+        std::optional<PlaneRegion> wall;
+        if (outside) wall = design_grown(shape, s);
+        else wall = s > 0.0 ? design_largest(offset_region(shape, s)) : std::optional<PlaneRegion>(shape);
+        if (!wall) return skip(op.path, "its wall with the stock to leave is empty");
+        std::optional<PlaneRegion> band = outside ? design_band_outside(*wall, d) : std::optional<PlaneRegion>(design_band_inside(*wall, d));
+        if (!band) return skip(op.path, "its band is empty");
+        DesignCut cut;
+        cut.path = op.path;
+        cut.what = "the band beside the contour's wall";
+        cut.region = *band;
+        cut.floor.z = z.bottom_z;
+        cut.top_z = z.reference_z;
+        design_.cuts.push_back(cut);
+        DesignKeep keep;
+        keep.path = op.path;
+        keep.top_z = z.reference_z;
+        if (outside) {
+            keep.what = "the part inside the contour";
+            keep.region = *wall;
+        } else {
+            std::optional<PlaneRegion> around = design_band_outside(*wall, band_for(d));
+            if (!around) return;
+            keep.what = "the part around the contour";
+            keep.region = *around;
+        }
+        design_.keeps.push_back(std::move(keep));
+        if (!op.tabs) return;
+        // The band's side of the profile as drawn: +1 left of its travel.
+        const ProfilePoint first = point_at(op.profile, std::min(1.0, profile_length(op.profile) / 2.0));
+        const Vec2 probe = first.point + Vec2{-first.tangent.y, first.tangent.x} * 1e-3;
+        const bool left_inside = contains(op.profile, probe);
+        const double sign = (outside != left_inside) ? 1.0 : -1.0;
+        const double length = profile_length(op.profile);
+        for (std::size_t i = 0; i < op.tabs->centres.size(); ++i) {
+            const double c = op.tabs->centres[i], w = op.tabs->width;
+            DesignCut tab;
+            tab.path = op.path;
+            tab.what = fmt::format("tab {}", i);
+            tab.region = design_stretch(op.profile, std::max(0.0, c - w / 2.0), std::min(length, c + w / 2.0), s, s + d, sign);
+            tab.floor.z = std::min(z.reference_z, z.bottom_z + op.tabs->height);
+            tab.top_z = z.reference_z;
+            tab.overrides = true;
+            design_.cuts.push_back(tab);
+            // Where the tool climbs onto it and comes down again: a diameter each side, and the
+            // run of a sloped flank.
+            const double run = op.tabs->ramp_angle < 90.0 ? op.tabs->height / std::tan(op.tabs->ramp_angle * rad_per_deg) : 0.0;
+            DesignCut shoulder = tab;
+            shoulder.what = fmt::format("the ends of tab {}", i);
+            shoulder.region = design_stretch(op.profile, std::max(0.0, c - w / 2.0 - d - run), std::min(length, c + w / 2.0 + d + run),
+                                             s, s + d, sign);
+            shoulder.floor.z = z.bottom_z;
+            shoulder.overrides = false;
+            shoulder.may_leave = true;
+            design_.cuts.push_back(std::move(shoulder));
+        }
+    }
+
+    void pocket(const PocketOp& op) {
+        const Planes z = resolve_planes(op.heights);
+        const double s = op.stock_to_leave, d = 2.0 * op.tool_radius;
+        std::optional<PlaneRegion> inner = s > 0.0 ? design_largest(offset_region(op.region, s)) : std::optional<PlaneRegion>(normalised(op.region));
+        if (!inner) return skip(op.path, "its region with the stock to leave is empty");
+        DesignCut cut;
+        cut.path = op.path;
+        cut.what = "the pocket";
+        cut.region = *inner;
+        cut.floor.z = z.bottom_z;
+        cut.top_z = z.reference_z;
+        design_.cuts.push_back(std::move(cut));
+        PlaneRegion outline;
+        outline.outer = op.region.outer;
+        if (std::optional<PlaneRegion> around = design_band_outside(outline, band_for(d))) {
+            DesignKeep keep;
+            keep.path = op.path;
+            keep.what = "the part around the pocket";
+            keep.region = *around;
+            keep.top_z = z.reference_z;
+            design_.keeps.push_back(std::move(keep));
+        }
+        for (std::size_t i = 0; i < op.region.islands.size(); ++i) {
+            PlaneRegion island;
+            island.outer = op.region.islands[i];
+            DesignKeep keep;
+            keep.path = op.path;
+            keep.what = fmt::format("island {}", i);
+            keep.region = normalised(island);
+            keep.top_z = z.reference_z;
+            design_.keeps.push_back(std::move(keep));
+        }
+    }
+
+    void face(const FaceOp& op) {
+        const Planes z = resolve_planes(op.heights);
+        DesignCut cut;
+        cut.path = op.path;
+        cut.what = "the faced area";
+        cut.region.outer = op.area;
+        cut.region = normalised(cut.region);
+        cut.floor.z = z.bottom_z;
+        cut.top_z = z.reference_z;
+        design_.cuts.push_back(std::move(cut));
+    }
+
+    const Job& job_;
+    double keep_band_;
+    PartDesign design_;
+};
+
+}  // namespace
+
+PartDesign part_design(const Job& job, double keep_band) { return Designer(job, keep_band).run(); }
+
+}  // namespace camgen
