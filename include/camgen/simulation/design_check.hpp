@@ -1,0 +1,47 @@
+#pragma once
+// A simulated part against the job's design (operations/design.hpp): where the program removed
+// material the design keeps (a gouge: an error) and where it left material a cut should have
+// removed beyond its allowance (a warning). The simulated part is a height field sampled at
+// cell centres; a cell is judged only where its centre lies farther than `margin` inside a
+// region (a cell across a wall could go either way), so the check is exact at the centres it
+// judges and says nothing within the margin of a wall.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "camgen/geometry/vec.hpp"
+#include "camgen/operations/design.hpp"
+
+namespace camgen {
+
+// The simulated part as the check reads it: cells of `cell` mm from (x0, y0), their centres at
+// x0 + (i + 0.5) cell; `height(i, j)` the material's top there (NaN: no stock), `line(i, j)` the
+// program line of the move that last lowered it (0: none).
+struct HeightGridView {
+    double x0 = 0.0, y0 = 0.0, cell = 1.0;
+    std::size_t nx = 0, ny = 0;
+    std::function<double(std::size_t, std::size_t)> height;
+    std::function<int(std::size_t, std::size_t)> line;
+};
+
+struct DesignFinding {
+    enum class Kind { gouge, left };
+    Kind kind = Kind::gouge;
+    std::string path;     // the operation whose design it breaks
+    std::string what;     // its cut or keep ("the pocket", "island 0", "tab 2")
+    Vec2 at;              // the worst cell's centre
+    double height = 0.0;  // the simulated top there
+    double designed = 0.0;  // the designed height there (gouge) or the floor plus its allowance (left)
+    double amount = 0.0;  // mm below (gouge) or above (left)
+    std::size_t cells = 0;  // cells of this finding
+    int line = 0;         // the program line that cut the worst cell (gouge)
+    std::string message() const;
+};
+
+// Every finding, the worst cell of each cut or keep, gouges first, in the design's order.
+// `tolerance`: mm a height may differ from the design (chords, rounding); `margin`: mm a judged
+// centre keeps from a region's edge (at least half a cell's diagonal plus the tolerance).
+std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& grid, double tolerance, double margin);
+
+}  // namespace camgen
