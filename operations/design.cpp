@@ -40,13 +40,6 @@ std::optional<PlaneRegion> design_grown(const PlaneRegion& r, double d) {
     return design_largest(grow_region(r, d));
 }
 
-// The points of `outer` within `width` of its boundary, inside it: outer less its shrinking.
-PlaneRegion design_band_inside(const PlaneRegion& outer, double width) {
-    PlaneRegion band = normalised(outer);
-    for (const PlaneRegion& inner : offset_region(outer, width).regions) band.islands.push_back(reversed(inner.outer));
-    return normalised(band);
-}
-
 // The points outside `inner` within `width` of it: its growth less itself.
 std::optional<PlaneRegion> design_band_outside(const PlaneRegion& inner, double width) {
     std::optional<PlaneRegion> grown = design_grown(inner, width);
@@ -54,6 +47,23 @@ std::optional<PlaneRegion> design_band_outside(const PlaneRegion& inner, double 
     PlaneRegion band = *grown;
     band.islands = {reversed(normalised(inner).outer)};
     return normalised(band);
+}
+
+// What a tool of radius r reaches of a region from inside it: the region shrunk by r and grown
+// back (a sharp concave corner keeps a fillet of r). Empty where the tool does not fit.
+std::vector<PlaneRegion> design_opening(const PlaneRegion& region, double r) {
+    std::vector<PlaneRegion> out;
+    for (const PlaneRegion& centre : offset_region(region, r).regions)
+        for (PlaneRegion& g : grow_region(centre, r).regions) out.push_back(std::move(g));
+    return out;
+}
+
+// The region with what a tool of radius r cannot reach from outside it filled: grown by r and
+// shrunk back (a sharp concave corner of a part's outline is rounded by r).
+std::optional<PlaneRegion> design_closing(const PlaneRegion& region, double r) {
+    const std::optional<PlaneRegion> grown = design_grown(region, r);
+    if (!grown) return std::nullopt;
+    return design_largest(offset_region(*grown, r));
 }
 
 // A stretch of a band beside a closed profile: between lengths from and to along it, from
@@ -165,15 +175,35 @@ private:
         if (outside) wall = design_grown(shape, s);
         else wall = s > 0.0 ? design_largest(offset_region(shape, s)) : std::optional<PlaneRegion>(shape);
         if (!wall) return skip(op.path, "its wall with the stock to leave is empty");
-        std::optional<PlaneRegion> band = outside ? design_band_outside(*wall, d) : std::optional<PlaneRegion>(design_band_inside(*wall, d));
-        if (!band) return skip(op.path, "its band is empty");
-        DesignCut cut;
-        cut.path = op.path;
-        cut.what = "the band beside the contour's wall";
-        cut.region = *band;
-        cut.floor.z = z.bottom_z;
-        cut.top_z = z.reference_z;
-        design_.cuts.push_back(cut);
+        // The band the tool sweeps: one diameter beside the wall, less what it cannot reach (an
+        // outline's sharp concave corner keeps a fillet of the radius, as does a sharp corner of a
+        // pocket wall).
+        std::vector<PlaneRegion> bands;
+        if (outside) {
+            const std::optional<PlaneRegion> grown = design_grown(*wall, d), closed = design_closing(*wall, op.tool_radius);
+            if (grown && closed) {
+                PlaneRegion band = *grown;
+                band.islands = {reversed(closed->outer)};
+                bands.push_back(normalised(band));
+            }
+        } else {
+            const std::vector<PlaneRegion> inner = offset_region(*wall, d).regions;
+            for (PlaneRegion open : design_opening(*wall, op.tool_radius)) {
+                for (const PlaneRegion& i : inner)
+                    if (region_contains(open, i.outer.start)) open.islands.push_back(reversed(i.outer));
+                bands.push_back(normalised(open));
+            }
+        }
+        if (bands.empty()) return skip(op.path, "its band is empty");
+        for (const PlaneRegion& band : bands) {
+            DesignCut cut;
+            cut.path = op.path;
+            cut.what = "the band beside the contour's wall";
+            cut.region = band;
+            cut.floor.z = z.bottom_z;
+            cut.top_z = z.reference_z;
+            design_.cuts.push_back(std::move(cut));
+        }
         DesignKeep keep;
         keep.path = op.path;
         keep.top_z = z.reference_z;
@@ -221,15 +251,21 @@ private:
     void pocket(const PocketOp& op) {
         const Planes z = resolve_planes(op.heights);
         const double s = op.stock_to_leave, d = 2.0 * op.tool_radius;
-        std::optional<PlaneRegion> inner = s > 0.0 ? design_largest(offset_region(op.region, s)) : std::optional<PlaneRegion>(normalised(op.region));
-        if (!inner) return skip(op.path, "its region with the stock to leave is empty");
-        DesignCut cut;
-        cut.path = op.path;
-        cut.what = "the pocket";
-        cut.region = *inner;
-        cut.floor.z = z.bottom_z;
-        cut.top_z = z.reference_z;
-        design_.cuts.push_back(std::move(cut));
+        std::vector<PlaneRegion> walls = s > 0.0 ? offset_region(op.region, s).regions : std::vector<PlaneRegion>{normalised(op.region)};
+        // What the tool reaches of it (a sharp corner keeps a fillet of the tool's radius).
+        std::size_t made = 0;
+        for (const PlaneRegion& w : walls)
+            for (PlaneRegion& open : design_opening(w, op.tool_radius)) {
+                DesignCut cut;
+                cut.path = op.path;
+                cut.what = "the pocket";
+                cut.region = std::move(open);
+                cut.floor.z = z.bottom_z;
+                cut.top_z = z.reference_z;
+                design_.cuts.push_back(std::move(cut));
+                ++made;
+            }
+        if (made == 0) return skip(op.path, "its tool fits nowhere in its region");
         PlaneRegion outline;
         outline.outer = op.region.outer;
         if (std::optional<PlaneRegion> around = design_band_outside(outline, band_for(d))) {
