@@ -24,6 +24,7 @@ LAYERS = [
     ("include/camgen/reader/", "reader"), ("src/reader/", "reader"), ("camgen/reader/", "reader"),
     ("machines/", "dialect"),
     ("include/camgen/analysis/", "analysis"), ("src/analysis/", "analysis"), ("camgen/analysis/", "analysis"),
+    ("include/camgen/simulation/", "simulation"), ("src/simulation/", "simulation"), ("camgen/simulation/", "simulation"),
     ("include/camgen/schema/", "schema"), ("src/schema/", "schema"), ("camgen/schema/", "schema"),
     ("include/camgen/cli/", "cli"), ("src/cli/", "cli"), ("camgen/cli/", "cli"),
 ]
@@ -41,8 +42,9 @@ ALLOWED = {
     "reader": {"reader", "post", "nc", "events"} | BASE,
     "dialect": {"dialect", "post", "reader", "nc", "events"} | BASE,
     "analysis": {"analysis", "reader", "post", "nc", "events"} | BASE,
+    "simulation": {"simulation", "analysis", "reader", "post", "nc", "events", "job"} | BASE,
     "schema": {"schema", "operations", "job", "post", "nc", "events"} | BASE,
-    "cli": {"cli", "schema", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
+    "cli": {"cli", "schema", "simulation", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
 }
 # A dialect folder includes its own files and the shared registry header only, never another
 # dialect's folder.
