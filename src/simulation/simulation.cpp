@@ -171,6 +171,10 @@ private:
             cell = std::ceil(std::sqrt(w * h / budget) * 1000.0 - 1e-9) / 1000.0;  // whole microns
             cell = std::max(cell, 0.001);
         }
+        // Whole cells over the box may exceed the budget by a row and a column: a micron more.
+        if (!(options_.resolution > 0))
+            while (std::ceil(w / cell - 1e-9) * std::ceil(h / cell - 1e-9) > static_cast<double>(options_.cell_budget))
+                cell += 0.001;
         const double nxd = std::ceil(w / cell - 1e-9), nyd = std::ceil(h / cell - 1e-9);
         if (nxd * nyd > 400e6) throw SimInputError(fmt::format("a resolution of {} mm makes {} cells, more than 400 million",
                                                                number_text(cell), number_text(nxd * nyd, 0)));
@@ -234,9 +238,17 @@ private:
     }
 
     void mill_move(const Step& s, const ToolShape& tool, SimMoveAcc& acc) {
-        const SimProfile prof = sim_profile_of(tool);
+        if (s.tool != profile_tool_) profile_ = sim_profile_of(tool), profile_tool_ = s.tool;
+        const SimProfile& prof = profile_;
         if (s.kind == StepKind::feed) acc.engagement = engagement(s, prof);
-        if (!s.from_known) {
+        const bool up_from_last = s.from_known && !s.arc && s.from == last_end_ && s.tool == last_tool_ &&
+                                  s.to.z >= s.from.z && s.to.x == s.from.x && s.to.y == s.from.y;
+        last_end_ = s.to;
+        last_tool_ = s.tool;
+        if (up_from_last) {
+            // Straight up from where the last move left the tool: its lowest surface over the
+            // move is where it already was.
+        } else if (!s.from_known) {
             mill_line(s.to, s.to, prof, acc);
         } else if (s.arc && s.arc->plane == Plane::xy && std::abs(s.arc->end.z - s.arc->start.z) < sim_tiny) {
             mill_flat_arc(*s.arc, prof, acc);
@@ -262,7 +274,8 @@ private:
         const double vx = b.x - a.x, vy = b.y - a.y, dz = b.z - a.z;
         const double len2 = vx * vx + vy * vy, len = std::sqrt(len2);
         // Nothing to cut above the stock.
-        if (std::min(a.z, b.z) >= f.top) return;
+        const double zlow = std::min(a.z, b.z);
+        if (zlow >= f.top) return;
         int j0, j1;
         rows(std::min(a.y, b.y) - R, std::max(a.y, b.y) + R, j0, j1);
         const double ux = len > 0 ? vx / len : 0.0, uy = len > 0 ? vy / len : 0.0;
@@ -270,6 +283,26 @@ private:
         // The ball's centre line, unit direction (for the capsule).
         const double dlen = std::sqrt(len2 + dz * dz);
         const double Dx = dlen > 0 ? vx / dlen : 0, Dy = dlen > 0 ? vy / dlen : 0, Dz = dlen > 0 ? dz / dlen : 0;
+        if (len2 < sim_tiny) {
+            // No XY motion (a plunge, a retract, a drill): the tool's disc at its lowest.
+            for (int j = j0; j <= j1; ++j) {
+                const double dy = f.y(j) - a.y;
+                if (std::abs(dy) > R) continue;
+                const double hw = std::sqrt(R * R - dy * dy);
+                int i0, i1;
+                columns(a.x - hw, a.x + hw, i0, i1);
+                const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
+                result_.cell_updates += static_cast<std::size_t>(std::max(0, i1 - i0 + 1));
+                for (int i = i0; i <= i1; ++i) {
+                    if (row[i] <= zlow) continue;
+                    const double dx = f.x(i) - a.x, d2 = dx * dx + dy * dy;
+                    if (d2 > R * R) continue;
+                    const double z = zlow + prof(std::sqrt(d2));
+                    if (z < row[i]) lower(i, j, z, acc);
+                }
+            }
+            return;
+        }
         for (int j = j0; j <= j1; ++j) {
             const double y = f.y(j);
             // The row's x-interval in the stadium: end discs and the band between them.
@@ -294,6 +327,8 @@ private:
             const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
             for (int i = i0; i <= i1; ++i) {
                 ++result_.cell_updates;
+                // The tool is nowhere lower than its tip's lowest point.
+                if (row[i] <= zlow) continue;
                 const double wx = f.x(i) - a.x, wy = y - a.y;
                 const double w2 = wx * wx + wy * wy;
                 double z;
@@ -392,6 +427,7 @@ private:
             const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
             for (int i = i0; i <= i1; ++i) {
                 ++result_.cell_updates;
+                if (row[i] <= z0) continue;
                 const double dx = f.x(i) - cx;
                 const double rho = std::hypot(dx, dy);
                 double d;
@@ -626,16 +662,27 @@ private:
         return list.back();
     }
 
+    SimFigure& tool_figure(int tool) {
+        if (last_figure_tool_ != tool || last_figure_ >= result_.tools.size()) {
+            figure(result_.tools, fmt::format("T{}", tool), tool);
+            last_figure_ = static_cast<std::size_t>(
+                std::find_if(result_.tools.begin(), result_.tools.end(), [&](const SimFigure& f) { return f.tool == tool; }) -
+                result_.tools.begin());
+            last_figure_tool_ = tool;
+        }
+        return result_.tools[last_figure_];
+    }
+
     void account(const Step& s, const ToolShape& tool, const SimMoveAcc& acc) {
+        if (!(acc.volume > 0) && !(acc.engagement > 0) && !(acc.max_depth > 0)) return;
         const std::string& op = operation_of(s.line);
         if (acc.volume > 0) {
             result_.removed_volume += acc.volume;
-            figure(result_.tools, fmt::format("T{}", s.tool), s.tool).volume += acc.volume;
+            tool_figure(s.tool).volume += acc.volume;
             if (!op.empty()) figure(result_.operations, op, s.tool).volume += acc.volume;
         }
         if (acc.engagement > 0) {
-            for (SimFigure* f : {&figure(result_.tools, fmt::format("T{}", s.tool), s.tool),
-                                 op.empty() ? nullptr : &figure(result_.operations, op, s.tool)}) {
+            for (SimFigure* f : {&tool_figure(s.tool), op.empty() ? nullptr : &figure(result_.operations, op, s.tool)}) {
                 if (f && acc.engagement > f->max_engagement) f->max_engagement = acc.engagement, f->engagement_line = s.line;
             }
         }
@@ -658,6 +705,12 @@ private:
     std::string current_op_;
     const std::string empty_;
     int skipped_tool0_ = 0;
+    SimProfile profile_;     // of profile_tool_ (a tangent per move costs as much as the move)
+    int profile_tool_ = -1;
+    int last_figure_tool_ = -1;       // the tool of result_.tools[last_figure_]
+    std::size_t last_figure_ = 0;
+    Vec3 last_end_{0, 0, std::numeric_limits<double>::infinity()};  // where the last move left the tool
+    int last_tool_ = -1;
     int off_axis_ = 0;
 };
 

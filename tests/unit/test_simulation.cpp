@@ -43,7 +43,14 @@ SimStock box(Vec3 lo, Vec3 hi) {
     return s;
 }
 
-ToolShape flat(double d) { return ToolShape{ToolForm::flat, d}; }
+ToolShape shape(ToolForm form, double d = 0.0) {
+    ToolShape t;
+    t.form = form;
+    t.diameter = d;
+    return t;
+}
+
+ToolShape flat(double d) { return shape(ToolForm::flat, d); }
 
 // The volume below the stock's top a field lost, summed over its cells, and the same with the
 // expected depth at each cell's centre given by `depth(x, y)` (the sampled reference).
@@ -116,7 +123,7 @@ TEST_CASE("simulation: a flat-bottom bore by helix removes pi r^2 d, every cell 
 TEST_CASE("simulation: a drilled hole removes its cylinder and its cone") {
     const Machine m = load_machine("linuxcnc");
     const double R = 3, depth_ = 10;
-    ToolShape drill{ToolForm::cone, 2 * R};
+    ToolShape drill = shape(ToolForm::cone, 2 * R);
     drill.tip_angle = 118;
     const double slope = 1 / std::tan(59 * pi_ / 180), hc = R * slope;
     std::vector<Step> steps = {move(StepKind::rapid, {50, 50, 5}, {50, 50, 2}),
@@ -255,7 +262,7 @@ TEST_CASE("simulation: a turned shaft removes the bar's volume of revolution bey
     bar.bar_diameter = 40;
     bar.bar_length = 100;
     bar.face_z = 0;
-    ToolShape tip{ToolForm::turning};
+    ToolShape tip = shape(ToolForm::turning);
     std::vector<Step> steps = {move(StepKind::rapid, {22, 0, 2}, {22, 0, -1}, 1, 5),
                                move(StepKind::feed, {22, 0, -1}, {0, 0, -1}, 1, 6),
                                move(StepKind::rapid, {0, 0, -1}, {0, 0, 2}, 1, 7),
@@ -289,7 +296,7 @@ TEST_CASE("simulation: a lathe's drill on the axis bores its radius above its po
     bar.kind = SimStock::Kind::bar;
     bar.bar_diameter = 40;
     bar.bar_length = 100;
-    ToolShape drill{ToolForm::cone, 10};
+    ToolShape drill = shape(ToolForm::cone, 10);
     drill.tip_angle = 118;
     const double slope = 1 / std::tan(59 * pi_ / 180), hc = 5 * slope;
     std::vector<Step> steps = {move(StepKind::rapid, {0, 0, 5}, {0, 0, 2}),
@@ -351,7 +358,7 @@ TEST_CASE("simulation: a tool without a shape, and stock that has no volume, are
                          SimInputError);
     const Machine m = load_machine("linuxcnc");
     CHECK_THROWS_AS(simulate({}, m, box({0, 0, 0}, {10, 10, 0}), {}), SimInputError);
-    CHECK_THROWS_AS(simulate({}, m, box({0, 0, -1}, {10, 10, 0}), {{1, ToolShape{ToolForm::flat, 0}}}), SimInputError);
+    CHECK_THROWS_AS(simulate({}, m, box({0, 0, -1}, {10, 10, 0}), {{1, shape(ToolForm::flat, 0)}}), SimInputError);
 }
 
 TEST_CASE("simulation: the default resolution keeps within the cell budget and says so") {
