@@ -792,7 +792,9 @@ std::string format_simulation(const SimResult& r) {
         if (!e.operation.empty()) out += fmt::format(" ({})", e.operation);
         out += fmt::format(", tool {}: {}\n", e.tool, e.message);
     }
-    out += r.errors.empty() ? "simulation: no errors\n" : fmt::format("simulation: {} errors\n", r.errors.size());
+    out += r.errors.empty()        ? std::string("simulation: no errors\n")
+           : r.errors.size() == 1 ? std::string("simulation: 1 error\n")
+                                   : fmt::format("simulation: {} errors\n", r.errors.size());
     return out;
 }
 

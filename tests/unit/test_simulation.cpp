@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -420,6 +421,43 @@ TEST_CASE("simulation: the samples simulate clean") {
         CHECK(r.errors.empty());
         CHECK(r.removed_volume > 0);
     }
+}
+
+TEST_CASE("camgen simulate: the plate in its box is clean, a rapid into it exits 1 at its line, bad stock is usage") {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::scratch("simulate-cli");
+    const std::string job = CAMGEN_SOURCE_DIR "/samples/plate.json";
+    const std::string program = (dir / "plate.ngc").string();
+    REQUIRE(test::run({job, "--machine", "linuxcnc", "-o", program}).code == 0);
+    test::Run ok = test::run({"simulate", program, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-8,100,50,0",
+                              "--resolution", "0.05"});
+    CHECK(ok.code == 0);
+    CHECK(ok.out.find("simulation: mill, height field of 2000 x 1000 cells of 0.05 mm (2000000 cells)\n") != std::string::npos);
+    CHECK(ok.out.find("stock: 40000 mm^3, removed ") != std::string::npos);
+    CHECK(ok.out.find("tool T2: removed ") != std::string::npos);
+    CHECK(ok.out.find("machining time: 51.4 s\n") != std::string::npos);
+    CHECK(ok.out.find("simulation: no errors\n") != std::string::npos);
+    // The spot drill's rapid to R2 made a rapid to Z-1: a crash at its line (9 of the program),
+    // the cone's point 0.986 mm deep at the nearest cell centre of the default field (0.036 mm).
+    std::string text = test::read_file(program);
+    const std::string z2 = "\nZ2\n";
+    REQUIRE(text.find(z2) != std::string::npos);
+    text.replace(text.find(z2), z2.size(), "\nZ-1\n");
+    const std::string crashing = (dir / "crash.ngc").string();
+    std::ofstream(crashing) << text;
+    test::Run crash = test::run({"simulate", crashing, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-8,100,50,0"});
+    CHECK(crash.code == 1);
+    CHECK(crash.out.find("error: line 9, tool 1: a rapid removes material (a crash): 0.986 mm deep") != std::string::npos);
+    CHECK(crash.out.find("simulation: 1 error\n") != std::string::npos);
+    // The stock is required, of the machine's kind, and has a volume.
+    CHECK(test::run({"simulate", program, "--machine", "linuxcnc", "--job", job}).code == 2);
+    CHECK(test::run({"simulate", program, "--machine", "linuxcnc", "--job", job, "--bar", "40,60"}).code == 2);
+    test::Run flat_box = test::run({"simulate", program, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,0,100,50,0"});
+    CHECK(flat_box.code == 2);
+    CHECK(flat_box.err == "camgen: cannot simulate: the stock has no volume\n");
+    test::Run words = test::run({"simulate", program, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-8,100,50"});
+    CHECK(words.code == 2);
+    CHECK(words.err == "camgen: --stock-box takes x0,y0,z0,x1,y1,z1 in mm, not \"0,0,-8,100,50\"\n");
 }
 
 }  // namespace test_simulation
