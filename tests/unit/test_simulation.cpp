@@ -121,6 +121,58 @@ TEST_CASE("simulation: a flat-bottom bore by helix removes pi r^2 d, every cell 
     CHECK(r.tools[0].volume == doctest::Approx(r.removed_volume));
 }
 
+TEST_CASE("simulation: a sloping straight move leaves each tool's lowest surface, checked against a dense search") {
+    const Machine m = load_machine("linuxcnc");
+    ToolShape ball = shape(ToolForm::ball, 6), bull = shape(ToolForm::bull_nose, 6), cone = shape(ToolForm::cone, 6),
+              vbit = shape(ToolForm::cone, 6);
+    bull.corner_radius = 1;
+    cone.tip_angle = 90;
+    vbit.tip_angle = 60;
+    vbit.tip_diameter = 1;
+    // A ramp along X and one along a diagonal, from above the stock to 3 mm into it.
+    const Vec3 ramps[][2] = {{{5, 50, 1}, {35, 50, -3}}, {{5, 44, 0.5}, {30, 56, -2}}};
+    for (const ToolShape& t : {flat(6), ball, bull, cone, vbit}) {
+        for (const auto& ramp : ramps) {
+            CAPTURE(static_cast<int>(t.form));
+            CAPTURE(ramp[1].y);
+            SimOptions o;
+            o.resolution = 0.25;
+            const SimResult r =
+                simulate({move(StepKind::feed, ramp[0], ramp[1])}, m, box({0, 40, -10}, {40, 60, 0}), {{1, t}}, o);
+            const HeightField& f = r.field;
+            const double R = 3;
+            auto surface = [&](double d) {  // the tool's lowest surface above its tip, as the header defines it
+                switch (t.form) {
+                case ToolForm::ball: return R - std::sqrt(R * R - d * d);
+                case ToolForm::bull_nose: return d <= 2 ? 0.0 : 1 - std::sqrt(std::max(0.0, 1 - (d - 2) * (d - 2)));
+                case ToolForm::cone: return d <= t.tip_diameter / 2 ? 0.0 : (d - t.tip_diameter / 2) / std::tan(t.tip_angle / 2 * pi_ / 180);
+                default: return 0.0;
+                }
+            };
+            // The lowest surface over 1500 positions along the move (and its ends): at most the
+            // exact one plus the surface's rise over half a step (0.01 mm along the move) at its
+            // steepest away from the rim (cone: 1.8 x; ball and bull within 0.03).
+            int worse = 0, higher = 0;
+            for (int j = 0; j < f.ny; ++j)
+                for (int i = 0; i < f.nx; ++i) {
+                    double best = f.top;
+                    for (int k = 0; k <= 1500; ++k) {
+                        const double u = k / 1500.0;
+                        const Vec3 p{ramp[0].x + u * (ramp[1].x - ramp[0].x), ramp[0].y + u * (ramp[1].y - ramp[0].y),
+                                     ramp[0].z + u * (ramp[1].z - ramp[0].z)};
+                        const double d = std::hypot(f.x(i) - p.x, f.y(j) - p.y);
+                        if (d <= R) best = std::min(best, p.z + surface(d));
+                    }
+                    const double h = f.at(i, j);
+                    if (h > best + 1e-5) ++higher;          // the sweep left material the tool passed through
+                    if (h < best - 0.03) ++worse;           // the sweep cut below every position's surface
+                }
+            CHECK(higher == 0);
+            CHECK(worse == 0);
+        }
+    }
+}
+
 TEST_CASE("simulation: a drilled hole removes its cylinder and its cone") {
     const Machine m = load_machine("linuxcnc");
     const double R = 3, depth_ = 10;
