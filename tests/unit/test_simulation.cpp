@@ -368,6 +368,45 @@ TEST_CASE("simulation: a lathe's drill on the axis bores its radius above its po
     CHECK(std::abs(r.removed_volume - exact) <= bound);
 }
 
+TEST_CASE("simulation: a bar with a bore holds the ring between them") {
+    const Machine m = load_machine("linuxcnc-lathe");
+    SimStock tube;
+    tube.kind = SimStock::Kind::bar;
+    tube.bar_diameter = 40;
+    tube.bar_length = 50;
+    tube.face_z = 10;
+    tube.bore_diameter = 10;
+    SimOptions o;
+    o.resolution = 0.01;
+    const SimResult r = simulate({}, m, tube, {}, o);
+    CHECK(r.initial_volume == doctest::Approx(pi_ * (400 - 25) * 50).epsilon(1e-9));
+    CHECK(r.lathe.z0 == doctest::Approx(-40));
+    tube.bore_diameter = 40;
+    CHECK_THROWS_AS(simulate({}, m, tube, {}, o), SimInputError);
+}
+
+TEST_CASE("simulation: a Simulator fed as a stream names the operation begun, per tool and per operation") {
+    const Machine m = load_machine("linuxcnc");
+    SimOptions o;
+    o.resolution = 0.1;
+    Simulator sim(m, box({0, 0, -10}, {50, 50, 0}), {{1, flat(6)}, {2, flat(4)}}, o);
+    sim.begin_operation("operations[0]");
+    sim.step(move(StepKind::feed, {10, 10, 1}, {10, 10, -1}, 1, 0));
+    sim.begin_operation("operations[1]");
+    sim.step(move(StepKind::feed, {30, 30, 1}, {30, 30, -1}, 1, 0));
+    sim.step(move(StepKind::feed, {30, 10, 1}, {30, 10, -2}, 2, 0));
+    sim.finish({});
+    const SimResult& r = sim.result();
+    REQUIRE(r.tools.size() == 2);
+    REQUIRE(r.operations.size() == 2);
+    CHECK(r.operations[0].name == "operations[0]");
+    CHECK(r.operations[1].name == "operations[1]");
+    CHECK(r.operations[1].volume == doctest::Approx(r.operations[0].volume + r.tools[1].volume));
+    CHECK(r.tools[0].name == "T1");
+    CHECK(r.tools[1].name == "T2");
+    CHECK(r.tools[0].volume == doctest::Approx(2 * r.operations[0].volume));
+}
+
 // A linuxcnc program around one move under test; `tools` the shapes.
 SimResult run_program(const std::string& body, const std::map<int, ToolShape>& tools) {
     const Machine m = load_machine("linuxcnc");
