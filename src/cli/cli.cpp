@@ -34,6 +34,7 @@
 #include "camgen/reader/reader.hpp"
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
+#include "camgen/simulation/simulation.hpp"
 #include "camgen/analysis/stats.hpp"
 #include "src/cli/man.hpp"
 #include "camgen/post/safety.hpp"
@@ -71,6 +72,16 @@ struct VerifyOptions {
     std::string units;
     std::string tool_table;                // the control's tool table (LinuxCNC's format): G41/G42 radii
     std::string tool_table_units = "mm";   // its lengths
+};
+
+// `camgen simulate PROGRAM --machine M --job JOB (--stock-box ... | --bar ...) [--resolution MM]`
+struct SimulateOptions {
+    std::string program;
+    std::string machine;
+    std::string job;
+    std::string stock_box;  // "x0,y0,z0,x1,y1,z1", mm
+    std::string bar;        // "D,L[,FACEZ]", mm
+    double resolution = 0.0;
 };
 
 // True for a file that can be read more than once: not a pipe (`camgen verify <(...)`), FIFO
@@ -589,6 +600,87 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     return exit_ok;
 }
 
+// The numbers of a comma-separated option, `count` of them (or `count - optional` or more).
+std::vector<double> option_numbers(const std::string& text, const char* option, std::size_t count, std::size_t optional,
+                                   const char* form) {
+    std::vector<double> values;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        const std::size_t end = std::min(text.find(',', at), text.size());
+        const std::string part = text.substr(at, end - at);
+        char* stop = nullptr;
+        const double v = std::strtod(part.c_str(), &stop);
+        if (part.empty() || stop != part.c_str() + part.size() || !std::isfinite(v))
+            throw UsageError(fmt::format("{} takes {} in mm, not \"{}\"", option, form, text));
+        values.push_back(v);
+        at = end + 1;
+    }
+    if (values.size() > count || values.size() + optional < count)
+        throw UsageError(fmt::format("{} takes {} in mm, not \"{}\"", option, form, text));
+    return values;
+}
+
+// `camgen simulate`: the program read back and swept through the stock; exit 1 on an error.
+int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) {
+    Inputs inputs(in);
+    std::vector<MachineSource> machine_files;
+    const Machine machine = load_machine(v.machine, machine_files);
+    inputs.note(machine_files);
+    if (v.program == "-" && v.job == "-") throw UsageError("the program and the job cannot both come from standard input");
+    const std::string source = v.program == "-" ? "<stdin>" : v.program;
+    inputs.note(v.program, "the program");
+    const InputText job_input = inputs.read(v.job, "the job", json_input());
+    SimStock stock;
+    if (v.stock_box.empty() == v.bar.empty())
+        throw UsageError("simulate needs the stock: --stock-box x0,y0,z0,x1,y1,z1 for a mill or --bar D,L[,FACEZ] for a lathe");
+    if (!v.stock_box.empty()) {
+        if (machine.kind == MachineKind::lathe) throw UsageError(fmt::format("{} is a lathe: its stock is a --bar", machine.name));
+        const auto n = option_numbers(v.stock_box, "--stock-box", 6, 0, "x0,y0,z0,x1,y1,z1");
+        stock.kind = SimStock::Kind::box;
+        stock.min = {n[0], n[1], n[2]};
+        stock.max = {n[3], n[4], n[5]};
+    } else {
+        if (machine.kind != MachineKind::lathe) throw UsageError(fmt::format("{} is a mill: its stock is a --stock-box", machine.name));
+        const auto n = option_numbers(v.bar, "--bar", 3, 1, "D,L[,FACEZ]");
+        stock.kind = SimStock::Kind::bar;
+        stock.bar_diameter = n[0];
+        stock.bar_length = n[1];
+        stock.face_z = n.size() > 2 ? n[2] : 0.0;
+    }
+    if (!(v.resolution >= 0)) throw UsageError("--resolution takes a length above 0 in mm");
+    std::optional<Job> job;
+    try {
+        job = parse_job(job_input, v.job, JobLimits{}, v.machine);
+        check_machine_kind(*job, machine.kind, machine.name);
+    } catch (const InputErrors&) {
+        throw;
+    } catch (const InputError& e) {
+        throw locate(e, v.job, job_input.text);
+    }
+    SimOptions options;
+    options.resolution = v.resolution;
+    std::optional<Simulator> sim;
+    try {
+        sim.emplace(machine, stock, tool_shapes(job->tools), options);
+    } catch (const SimInputError& e) {
+        throw UsageError(fmt::format("cannot simulate: {}", e.what()));
+    }
+    ProgramInput program(v.program, in, false);
+    try {
+        TraceBuilder trace(machine, *sim, TraceOptions{job_compensation_radii(*job)});
+        ProgramReader reader(program.open(), machine, source, trace);
+        reader.read_all();
+    } catch (const ControlRefusal& e) {
+        throw e.located(source, e.line());
+    } catch (const SimInputError& e) {
+        throw InputError("", e.what(), 0, source);
+    }
+    const SimResult& r = sim->result();
+    out << fmt::format("{} on machine {}\n", source, machine.name) << format_simulation(r);
+    finish_stream(out, "standard output");
+    return r.errors.empty() ? exit_ok : exit_invalid_input;
+}
+
 // After posting: read the program back for --stats (to `err`) and --plot (into `plot`, not
 // yet committed, so that a failed plot leaves the program file as it was).
 void read_back(std::string_view program, const Job& job, const Options& o, const Machine& loaded, std::ostream& err,
@@ -681,6 +773,19 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                        "The units of the tool table's lengths: mm (default) or inch (LinuxCNC's standalone rs274 table)")
         ->check(CLI::IsMember({"mm", "inch"}));
 
+    SimulateOptions so;
+    CLI::App* simulate_cmd = app.add_subcommand(
+        "simulate", "Sweep an NC program, as read back, through the stock: a mill's height field or a lathe's turned "
+                    "profile; volumes per tool, radial engagement, machining time, and the errors (a rapid that "
+                    "removes material, a feed deeper than a tool's fluteLength) at their lines (exit 1)");
+    simulate_cmd->add_option("program", so.program, "The NC program; - reads standard input")->required();
+    simulate_cmd->add_option("-m,--machine", so.machine, "The machine the program was written for")->required();
+    simulate_cmd->add_option("--job", so.job, "The job whose tools the program uses (their shapes)")->required();
+    simulate_cmd->add_option("--stock-box", so.stock_box, "A mill's stock: the box's corners x0,y0,z0,x1,y1,z1 in mm");
+    simulate_cmd->add_option("--bar", so.bar, "A lathe's stock: the bar's diameter, length and face Z (default 0), D,L[,FACEZ] in mm");
+    simulate_cmd->add_option("--resolution", so.resolution,
+                             "Cell size (mill) or Z step (lathe) in mm (default: 4 million cells, 100,000 steps)");
+
     std::string schema_name;
     CLI::App* schema = app.add_subcommand(
         "schema", "Print the JSON Schema (draft 2020-12) of job files (schema job) or machine files (schema machine), "
@@ -701,6 +806,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             return exit_ok;
         }
         if (verify->parsed()) return run_verify(vo, in, out);
+        if (simulate_cmd->parsed()) return run_simulate(so, in, out);
         if (schema->parsed()) {
             const std::optional<std::string> text = schema_text(schema_name);
             if (!text) {

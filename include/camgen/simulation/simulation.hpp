@@ -1,0 +1,202 @@
+#pragma once
+// Material simulation: the motion a program makes (the steps of a TraceBuilder: tool-centre
+// moves with cutter compensation applied, lines and arcs, tool changes) swept through a stock.
+// A mill's stock is a height field (Z-map) over its XY extent; a lathe's bar is its turned
+// profile r(z) (and bore) sampled along Z. Each move lowers the material it passes through to
+// the tool's lowest surface and is then dropped: memory is the field plus a constant.
+//
+// Exactness (mill, heights at each cell's centre):
+// - a straight move: exact for every tool shape where the move is horizontal or vertical; a
+//   flat (or cylindrical) tool on any straight 3D move is exact (the covered interval of the
+//   move by a quadratic, the lowest point at its lower end); a ball on any straight move is
+//   exact (the swept capsule met by the column: a quadratic and the two end spheres); a
+//   bull-nose or cone tip on a sloping move is found by golden-section search of the lowest
+//   surface over the covered interval (convex in the move's parameter: a convex, radially
+//   non-decreasing tool profile over the convex distance of a column from a line), to 1e-10 of
+//   the move: the height error is below 1e-6 mm for a cone and below sqrt(2 x corner radius x
+//   1e-10 x move length) for a bull-nose;
+// - an arc in XY at one height: exact for every tool (the column's nearest point on the arc);
+// - a helix, or an arc in XZ or YZ: chords whose sagitta (the largest distance of the tool
+//   centre from the arc) is at most `arc_chord_fraction` x the cell (1/8), each exact as above.
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camgen/analysis/stats.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/geometry/profile.hpp"
+#include "camgen/job/job.hpp"
+#include "camgen/post/machine.hpp"
+
+namespace camgen {
+
+// The shape of a tool's cutting end.
+enum class ToolForm {
+    flat,       // flat end mill (and a face mill)
+    ball,       // ball end mill: a hemisphere of the tool's radius
+    bull_nose,  // flat bottom with a corner radius
+    cone,       // a point: drill and spot drill (tip angle), chamfer mill and V-bit (tip angle and
+                // tip diameter, the flat at the point)
+    cylinder,   // tap, reamer: its diameter, flat at the end
+    turning,    // a lathe's tool: its tip point, or a circle of its nose radius
+};
+
+// A tool as the simulation sweeps it, mm and degrees.
+struct ToolShape {
+    ToolForm form = ToolForm::flat;
+    double diameter = 0.0;                // mm (turning: unused)
+    double corner_radius = 0.0;           // bull_nose: mm, at most the radius
+    double tip_angle = 118.0;             // cone: included angle, degrees (0 < angle < 180)
+    double tip_diameter = 0.0;            // cone: the flat at the point, mm (0: a sharp point)
+    double nose_radius = 0.0;             // turning: mm (0: the tip point); the program's point is the
+                                          // imaginary tip (the nose tangent to its X and Z)
+    std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error
+};
+
+// The stock before the program runs.
+struct SimStock {
+    enum class Kind { box, profile, bar };
+    Kind kind = Kind::box;
+    // box: its corners, mm
+    Vec3 min, max;
+    // profile: a closed profile in XY, the material between bottom and top (mm)
+    Profile profile;
+    double top = 0.0, bottom = 0.0;
+    // bar (lathe, Z along the spindle, radius along X): from face_z down to face_z - length
+    double bar_diameter = 0.0;
+    double bar_length = 0.0;
+    double face_z = 0.0;
+    std::optional<double> bore_diameter;  // a tube: its inside diameter
+};
+
+// A program line from which on the steps belong to an operation (its JSON path).
+struct OperationSpan {
+    int first_line = 0;
+    std::string path;
+};
+
+// How to simulate.
+struct SimOptions {
+    double resolution = 0.0;               // mm per cell (mill) or Z sample (lathe); 0: from the budget
+    std::size_t cell_budget = 4'000'000;   // mill: the most cells when no resolution is given
+    std::size_t lathe_budget = 100'000;    // lathe: the most Z samples when no resolution is given
+    double crash_depth = 0.002;            // mm: a rapid that removes more than this in a column is a crash
+    std::vector<OperationSpan> operations; // sorted by first_line; steps before the first: no operation
+};
+
+// The chords of a helix (or of an arc out of XY) keep the tool centre within this fraction
+// of a cell of the arc.
+inline constexpr double arc_chord_fraction = 0.125;
+
+// The height field of a mill's stock: the material's top at each cell's centre, row after row
+// (x fastest). A column with no material holds `bottom`.
+struct HeightField {
+    double x0 = 0.0, y0 = 0.0;   // the corner of cell (0, 0), mm
+    double cell = 0.0;           // mm
+    int nx = 0, ny = 0;
+    double bottom = 0.0;         // the stock's bottom, mm
+    double top = 0.0;            // the stock's top as it was, mm
+    std::vector<float> heights;  // nx * ny
+    double at(int i, int j) const { return heights[static_cast<std::size_t>(j) * nx + i]; }
+    // The centre of cell (i, j).
+    double x(int i) const { return x0 + (i + 0.5) * cell; }
+    double y(int j) const { return y0 + (j + 0.5) * cell; }
+};
+
+// A lathe's bar: at each Z sample the outside radius and the bore's radius (0: none); no
+// material where the outside is not above the bore.
+struct LatheProfile {
+    double z0 = 0.0;    // the bottom of sample 0, mm (face_z - length)
+    double dz = 0.0;    // mm
+    int nz = 0;
+    std::vector<double> outside;  // mm, radius
+    std::vector<double> bore;     // mm, radius
+    double z(int k) const { return z0 + (k + 0.5) * dz; }
+};
+
+// An error the simulation found, at a program line (0: a job's event) and operation.
+struct SimReport {
+    int line = 0;
+    std::string operation;  // the operation's JSON path, empty when unknown
+    int tool = 0;
+    std::string message;
+};
+
+// Material removed and the largest radial engagement, per tool or per operation.
+struct SimFigure {
+    std::string name;           // "T3" or the operation's path
+    int tool = 0;
+    double volume = 0.0;        // mm^3
+    double max_engagement = 0.0;  // the largest fraction of the diameter in material (see below)
+    int engagement_line = 0;    // the line of that move
+};
+
+// Radial engagement of a feed move with XY motion: at sample points along the move (one a cell,
+// at most 256), the width across the direction of travel, within the tool's radius, of the
+// columns that held material above the tool's lowest surface there before the move, as a
+// fraction of the diameter. A slot is 1, a side cut of a quarter of the diameter 0.25.
+// Plunges (no XY motion) and lathe moves have none.
+
+// What a simulation found.
+struct SimResult {
+    MachineKind kind = MachineKind::mill;
+    double resolution = 0.0;     // mm, as chosen
+    std::size_t cells = 0;       // cells (mill) or Z samples (lathe)
+    HeightField field;           // mill
+    LatheProfile lathe;          // lathe
+    double initial_volume = 0.0; // mm^3
+    double removed_volume = 0.0; // mm^3
+    std::vector<SimFigure> tools;       // in order of first cut
+    std::vector<SimFigure> operations;  // in order of first cut (empty without OperationSpans)
+    std::vector<SimReport> errors;      // in program order
+    ProgramStats stats;          // machining time and lengths, as verify --stats
+    std::size_t cell_updates = 0;  // columns (or samples) visited by moves, for the rate
+    std::vector<std::string> notes;  // what was not swept, and why
+};
+
+// Refused simulation input (a stock or a tool that cannot be swept), with its reason.
+class SimInputError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Sweeps steps as they come (a TraceSink): hand it to a TraceBuilder, or to a TraceFanOut
+// beside other sinks. Tools missing from `tools` are refused at their first move.
+class Simulator : public TraceSink {
+public:
+    Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options = {});
+    ~Simulator() override;
+    void step(const Step& step) override;
+    void hole(const Hole& hole) override;
+    void finish(const TraceSummary& summary) override;
+    // The steps that follow belong to this operation (a job's OperationStart; read-back
+    // programs use SimOptions::operations).
+    void begin_operation(std::string path);
+    // The result, complete after finish.
+    const SimResult& result() const;
+    SimResult take();
+
+private:
+    class Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// The shape of a job's tool: end mill flat, ball mill ball, drill, centre and spot drill a cone
+// of their tip angle (118 and 90 degrees where none is given), tap, reamer and boring bar a
+// cylinder, a turning tool its nose (its diameter is the nose's); fluteLength as given.
+ToolShape tool_shape(const Tool& tool);
+std::map<int, ToolShape> tool_shapes(const std::map<int, Tool>& tools);
+
+// Sweeps a whole trace's steps.
+SimResult simulate(const std::vector<Step>& steps, const Machine& machine, const SimStock& stock,
+                   const std::map<int, ToolShape>& tools, const SimOptions& options = {});
+
+// The result as text: resolution, cells, volumes per tool and operation, engagement, time and
+// the errors, each at its line.
+std::string format_simulation(const SimResult& result);
+
+}  // namespace camgen

@@ -1,0 +1,801 @@
+// Material simulation: steps swept through a height field (mill) or a turned profile (lathe).
+// See simulation.hpp for what is exact and the bounds of what is not.
+#include "camgen/simulation/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "camgen/common/number_text.hpp"
+#include "camgen/geometry/vec.hpp"
+
+namespace camgen {
+
+namespace {
+
+constexpr double sim_tiny = 1e-12;
+// Material thinner than this above a tool's surface does not count as engaged, mm.
+constexpr double sim_engaged_above = 1e-3;
+// Golden-section iterations: the bracket shrinks to 0.618^50 < 1e-10 of the move.
+constexpr int sim_golden_iterations = 50;
+constexpr double sim_golden = 0.6180339887498949;
+// The most engagement samples along one move.
+constexpr int sim_engagement_samples = 256;
+
+// The height of a tool's lowest surface above its tip at `r` mm from its axis (r <= radius).
+struct SimProfile {
+    ToolForm form = ToolForm::flat;
+    double radius = 0.0;
+    double corner = 0.0;    // bull_nose
+    double flat = 0.0;      // bull_nose: radius - corner; cone: tip radius
+    double slope = 0.0;     // cone: rise per mm of radius
+    double operator()(double r) const {
+        switch (form) {
+        case ToolForm::flat:
+        case ToolForm::cylinder:
+        case ToolForm::turning: return 0.0;
+        case ToolForm::ball: return radius - std::sqrt(std::max(0.0, radius * radius - r * r));
+        case ToolForm::bull_nose: {
+            if (r <= flat) return 0.0;
+            const double s = r - flat;
+            return corner - std::sqrt(std::max(0.0, corner * corner - s * s));
+        }
+        case ToolForm::cone: return r <= flat ? 0.0 : (r - flat) * slope;
+        }
+        return 0.0;
+    }
+};
+
+SimProfile sim_profile_of(const ToolShape& t) {
+    SimProfile p;
+    p.form = t.form;
+    p.radius = t.diameter / 2;
+    if (t.form == ToolForm::bull_nose) {
+        p.corner = std::min(t.corner_radius, p.radius);
+        p.flat = p.radius - p.corner;
+    } else if (t.form == ToolForm::cone) {
+        p.flat = std::min(t.tip_diameter / 2, p.radius);
+        p.slope = 1.0 / std::tan(t.tip_angle / 2 * rad_per_deg);
+    }
+    return p;
+}
+
+// lo <= k * x + c <= hi narrows [xlo, xhi]; false when empty.
+bool sim_clip(double k, double c, double lo, double hi, double& xlo, double& xhi) {
+    if (std::abs(k) < sim_tiny) return c >= lo && c <= hi;
+    double a = (lo - c) / k, b = (hi - c) / k;
+    if (a > b) std::swap(a, b);
+    xlo = std::max(xlo, a);
+    xhi = std::min(xhi, b);
+    return xlo <= xhi;
+}
+
+// What one move did: its deepest cut below the surface as it was, its volume.
+struct SimMoveAcc {
+    double volume = 0.0;     // mm^3
+    double max_depth = 0.0;  // mm: the deepest material removed in one column (a crash's measure)
+    double flute_depth = 0.0;  // mm: how far below the material's surface before the move the tool cut
+    double engagement = 0.0; // fraction of the diameter
+};
+
+}  // namespace
+
+class Simulator::Impl {
+public:
+    Impl(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)
+        : stats_(machine), stock_(std::move(stock)), tools_(std::move(tools)), options_(std::move(options)) {
+        result_.kind = machine.kind;
+        for (const auto& [number, t] : tools_) check_tool(number, t);
+        if (machine.kind == MachineKind::lathe) init_lathe();
+        else init_mill();
+    }
+
+    void step(const Step& s) {
+        stats_.step(s);
+        if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
+        const ToolShape* tool = shape_of(s.tool, s.line);
+        if (!tool) return;
+        SimMoveAcc acc;
+        if (result_.kind == MachineKind::lathe) lathe_move(s, *tool, acc);
+        else mill_move(s, *tool, acc);
+        account(s, *tool, acc);
+    }
+    void hole(const Hole& h) { stats_.hole(h); }
+    void finish(const TraceSummary& summary) {
+        stats_.finish(summary);
+        result_.stats = stats_.stats();
+        if (skipped_tool0_ > 0)
+            result_.notes.push_back(fmt::format("{} moves before the first tool change were not swept (no tool)",
+                                                skipped_tool0_));
+    }
+    void begin_operation(std::string path) { current_op_ = std::move(path); }
+    SimResult result_;
+
+private:
+    void check_tool(int number, const ToolShape& t) {
+        auto bad = [&](const std::string& why) {
+            throw SimInputError(fmt::format("tool {}: {}", number, why));
+        };
+        if (t.form != ToolForm::turning && !(t.diameter > 0)) bad("needs a diameter above 0");
+        if (t.form == ToolForm::bull_nose && !(t.corner_radius >= 0 && t.corner_radius <= t.diameter / 2))
+            bad("a corner radius from 0 to the tool's radius");
+        if (t.form == ToolForm::cone && !(t.tip_angle > 0 && t.tip_angle < 180)) bad("a tip angle between 0 and 180 degrees");
+        if (t.form == ToolForm::cone && !(t.tip_diameter >= 0 && t.tip_diameter <= t.diameter))
+            bad("a tip diameter from 0 to the tool's diameter");
+        if (t.form == ToolForm::turning && !(t.nose_radius >= 0)) bad("a nose radius of 0 or more");
+        if (t.flute_length && !(*t.flute_length > 0)) bad("a flute length above 0");
+    }
+
+    const ToolShape* shape_of(int number, int line) {
+        auto it = tools_.find(number);
+        if (it != tools_.end()) return &it->second;
+        if (number == 0) {
+            ++skipped_tool0_;
+            return nullptr;
+        }
+        throw SimInputError(fmt::format("line {}: tool {} has no shape to simulate", line, number));
+    }
+
+    // ---- mill ----------------------------------------------------------------------------
+
+    void init_mill() {
+        double x0, y0, x1, y1, top, bottom;
+        std::vector<Vec2> polygon;
+        if (stock_.kind == SimStock::Kind::box) {
+            x0 = std::min(stock_.min.x, stock_.max.x), x1 = std::max(stock_.min.x, stock_.max.x);
+            y0 = std::min(stock_.min.y, stock_.max.y), y1 = std::max(stock_.min.y, stock_.max.y);
+            bottom = std::min(stock_.min.z, stock_.max.z), top = std::max(stock_.min.z, stock_.max.z);
+        } else if (stock_.kind == SimStock::Kind::profile) {
+            if (!is_closed(stock_.profile) || stock_.profile.segments.empty())
+                throw SimInputError("the stock's profile is not closed");
+            top = stock_.top, bottom = stock_.bottom;
+            if (bottom > top) std::swap(top, bottom);
+            polygon = sample_profile(stock_.profile, 0.001);
+            x0 = y0 = std::numeric_limits<double>::infinity();
+            x1 = y1 = -x0;
+            for (Vec2 p : polygon) {
+                x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+                y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+            }
+        } else {
+            throw SimInputError("a bar is a lathe's stock; a mill needs a box or a profile");
+        }
+        const double w = x1 - x0, h = y1 - y0;
+        if (!(w > 0 && h > 0 && top > bottom) || !std::isfinite(w + h + top + bottom))
+            throw SimInputError("the stock has no volume");
+        double cell = options_.resolution;
+        if (!(cell > 0)) {
+            const double budget = static_cast<double>(std::max<std::size_t>(options_.cell_budget, 1));
+            cell = std::ceil(std::sqrt(w * h / budget) * 1000.0 - 1e-9) / 1000.0;  // whole microns
+            cell = std::max(cell, 0.001);
+        }
+        // Whole cells over the box may exceed the budget by a row and a column: a micron more.
+        if (!(options_.resolution > 0))
+            while (std::ceil(w / cell - 1e-9) * std::ceil(h / cell - 1e-9) > static_cast<double>(options_.cell_budget))
+                cell += 0.001;
+        const double nxd = std::ceil(w / cell - 1e-9), nyd = std::ceil(h / cell - 1e-9);
+        if (nxd * nyd > 400e6) throw SimInputError(fmt::format("a resolution of {} mm makes {} cells, more than 400 million",
+                                                               number_text(cell), number_text(nxd * nyd, 0)));
+        HeightField& f = result_.field;
+        f.x0 = x0, f.y0 = y0, f.cell = cell, f.nx = static_cast<int>(nxd), f.ny = static_cast<int>(nyd);
+        f.bottom = bottom, f.top = top;
+        f.heights.assign(static_cast<std::size_t>(f.nx) * f.ny, static_cast<float>(bottom));
+        for (int j = 0; j < f.ny; ++j) {
+            const double y = f.y(j);
+            if (y > y1) continue;
+            float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
+            if (polygon.empty()) {
+                for (int i = 0; i < f.nx; ++i)
+                    if (f.x(i) <= x1) row[i] = static_cast<float>(top);
+                continue;
+            }
+            // Even-odd crossings of the row's centre line.
+            std::vector<double> xs;
+            for (std::size_t k = 0; k < polygon.size(); ++k) {
+                Vec2 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+                if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+            }
+            std::sort(xs.begin(), xs.end());
+            for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+                const int i0 = std::max(0, static_cast<int>(std::ceil((xs[k] - x0) / cell - 0.5)));
+                const int i1 = std::min(f.nx - 1, static_cast<int>(std::floor((xs[k + 1] - x0) / cell - 0.5)));
+                for (int i = i0; i <= i1; ++i) row[i] = static_cast<float>(top);
+            }
+        }
+        result_.resolution = cell;
+        result_.cells = f.heights.size();
+        double sum = 0.0;
+        for (float v : f.heights) sum += v - bottom;
+        result_.initial_volume = sum * cell * cell;
+    }
+
+    // The rows [j0, j1] whose centres lie in [ylo, yhi] (empty: j0 > j1).
+    void rows(double ylo, double yhi, int& j0, int& j1) const {
+        const HeightField& f = result_.field;
+        j0 = std::max(0, static_cast<int>(std::ceil((ylo - f.y0) / f.cell - 0.5)));
+        j1 = std::min(f.ny - 1, static_cast<int>(std::floor((yhi - f.y0) / f.cell - 0.5)));
+    }
+    void columns(double xlo, double xhi, int& i0, int& i1) const {
+        const HeightField& f = result_.field;
+        i0 = std::max(0, static_cast<int>(std::ceil((xlo - f.x0) / f.cell - 0.5)));
+        i1 = std::min(f.nx - 1, static_cast<int>(std::floor((xhi - f.x0) / f.cell - 0.5)));
+    }
+
+    // Lowers a column to `z` (not below the bottom).
+    void lower(int i, int j, double z, SimMoveAcc& acc) {
+        HeightField& f = result_.field;
+        float& h = f.heights[static_cast<std::size_t>(j) * f.nx + i];
+        const double nz = std::max(z, f.bottom);
+        if (nz < h) {
+            const double depth = h - nz;
+            acc.volume += depth;
+            acc.max_depth = std::max(acc.max_depth, depth);
+            acc.flute_depth = acc.max_depth;
+            h = static_cast<float>(nz);
+        }
+    }
+
+    void mill_move(const Step& s, const ToolShape& tool, SimMoveAcc& acc) {
+        if (s.tool != profile_tool_) profile_ = sim_profile_of(tool), profile_tool_ = s.tool;
+        const SimProfile& prof = profile_;
+        if (s.kind == StepKind::feed) acc.engagement = engagement(s, prof);
+        const bool up_from_last = s.from_known && !s.arc && s.from == last_end_ && s.tool == last_tool_ &&
+                                  s.to.z >= s.from.z && s.to.x == s.from.x && s.to.y == s.from.y;
+        last_end_ = s.to;
+        last_tool_ = s.tool;
+        if (up_from_last) {
+            // Straight up from where the last move left the tool: its lowest surface over the
+            // move is where it already was.
+        } else if (!s.from_known) {
+            mill_line(s.to, s.to, prof, acc);
+        } else if (s.arc && s.arc->plane == Plane::xy && std::abs(s.arc->end.z - s.arc->start.z) < sim_tiny) {
+            mill_flat_arc(*s.arc, prof, acc);
+        } else if (s.arc) {
+            const double tol = arc_chord_fraction * result_.field.cell;
+            const int n = std::max(1, segments_for_tolerance(s.arc->radius, s.arc->sweep, tol));
+            Vec3 prev = s.arc->start;
+            for (int k = 1; k <= n; ++k) {
+                const Vec3 p = k == n ? s.arc->end : point_on_arc(*s.arc, static_cast<double>(k) / n);
+                mill_line(prev, p, prof, acc);
+                prev = p;
+            }
+        } else {
+            mill_line(s.from, s.to, prof, acc);
+        }
+        acc.volume *= result_.field.cell * result_.field.cell;
+    }
+
+    // A straight move of the tool tip from a to b.
+    void mill_line(const Vec3& a, const Vec3& b, const SimProfile& prof, SimMoveAcc& acc) {
+        const HeightField& f = result_.field;
+        const double R = prof.radius;
+        const double vx = b.x - a.x, vy = b.y - a.y, dz = b.z - a.z;
+        const double len2 = vx * vx + vy * vy, len = std::sqrt(len2);
+        // Nothing to cut above the stock.
+        const double zlow = std::min(a.z, b.z);
+        if (zlow >= f.top) return;
+        int j0, j1;
+        rows(std::min(a.y, b.y) - R, std::max(a.y, b.y) + R, j0, j1);
+        const double ux = len > 0 ? vx / len : 0.0, uy = len > 0 ? vy / len : 0.0;
+        const bool level = std::abs(dz) < sim_tiny;
+        // The ball's centre line, unit direction (for the capsule).
+        const double dlen = std::sqrt(len2 + dz * dz);
+        const double Dx = dlen > 0 ? vx / dlen : 0, Dy = dlen > 0 ? vy / dlen : 0, Dz = dlen > 0 ? dz / dlen : 0;
+        if (len2 < sim_tiny) {
+            // No XY motion (a plunge, a retract, a drill): the tool's disc at its lowest.
+            for (int j = j0; j <= j1; ++j) {
+                const double dy = f.y(j) - a.y;
+                if (std::abs(dy) > R) continue;
+                const double hw = std::sqrt(R * R - dy * dy);
+                int i0, i1;
+                columns(a.x - hw, a.x + hw, i0, i1);
+                const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
+                result_.cell_updates += static_cast<std::size_t>(std::max(0, i1 - i0 + 1));
+                for (int i = i0; i <= i1; ++i) {
+                    if (row[i] <= zlow) continue;
+                    const double dx = f.x(i) - a.x, d2 = dx * dx + dy * dy;
+                    if (d2 > R * R) continue;
+                    const double z = zlow + prof(std::sqrt(d2));
+                    if (z < row[i]) lower(i, j, z, acc);
+                }
+            }
+            return;
+        }
+        for (int j = j0; j <= j1; ++j) {
+            const double y = f.y(j);
+            // The row's x-interval in the stadium: end discs and the band between them.
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (const Vec3* e : {&a, &b}) {
+                const double dy = y - e->y;
+                if (std::abs(dy) <= R) {
+                    const double hw = std::sqrt(R * R - dy * dy);
+                    lo = std::min(lo, e->x - hw), hi = std::max(hi, e->x + hw);
+                }
+            }
+            if (len > 0) {
+                double blo = -std::numeric_limits<double>::infinity(), bhi = -blo;
+                // n = (-uy, ux): |n.(p - a)| <= R; u.(p - a) in [0, len]
+                if (sim_clip(-uy, uy * a.x + ux * (y - a.y), -R, R, blo, bhi) &&
+                    sim_clip(ux, -ux * a.x + uy * (y - a.y), 0.0, len, blo, bhi) && blo <= bhi)
+                    lo = std::min(lo, blo), hi = std::max(hi, bhi);
+            }
+            if (!(lo <= hi)) continue;
+            int i0, i1;
+            columns(lo, hi, i0, i1);
+            const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
+            for (int i = i0; i <= i1; ++i) {
+                ++result_.cell_updates;
+                // The tool is nowhere lower than its tip's lowest point.
+                if (row[i] <= zlow) continue;
+                const double wx = f.x(i) - a.x, wy = y - a.y;
+                const double w2 = wx * wx + wy * wy;
+                double z;
+                if (len2 < sim_tiny) {
+                    if (w2 > R * R) continue;
+                    z = std::min(a.z, b.z) + prof(std::sqrt(w2));
+                } else if (level) {
+                    const double t = std::clamp((wx * vx + wy * vy) / len2, 0.0, 1.0);
+                    const double ex = wx - t * vx, ey = wy - t * vy;
+                    const double d2 = ex * ex + ey * ey;
+                    if (d2 > R * R) continue;
+                    z = a.z + prof(std::sqrt(d2));
+                } else {
+                    // The covered interval: |w - t v|^2 <= R^2.
+                    const double B = -2 * (wx * vx + wy * vy), C = w2 - R * R;
+                    const double disc = B * B - 4 * len2 * C;
+                    if (disc < 0) continue;
+                    const double sq = std::sqrt(disc);
+                    const double t1 = std::max(0.0, (-B - sq) / (2 * len2)), t2 = std::min(1.0, (-B + sq) / (2 * len2));
+                    if (t1 > t2) continue;
+                    if (prof.form == ToolForm::flat || prof.form == ToolForm::cylinder) {
+                        z = a.z + dz * (dz < 0 ? t2 : t1);
+                    } else if (prof.form == ToolForm::ball) {
+                        z = std::numeric_limits<double>::infinity();
+                        for (const Vec3* e : {&a, &b}) {
+                            const double ex = f.x(i) - e->x, ey = y - e->y, d2 = ex * ex + ey * ey;
+                            if (d2 <= R * R) z = std::min(z, e->z + R - std::sqrt(R * R - d2));
+                        }
+                        // The cylinder around the centre line: |q - A|^2 - ((q - A).D)^2 = R^2 on the column.
+                        const double k = wx * Dx + wy * Dy;
+                        const double qa = 1 - Dz * Dz, qb = -2 * k * Dz, qc = w2 - k * k - R * R;
+                        const double qd = qb * qb - 4 * qa * qc;
+                        if (qa > sim_tiny && qd >= 0) {
+                            const double zr = (-qb - std::sqrt(qd)) / (2 * qa);
+                            const double foot = k + zr * Dz;
+                            if (foot >= 0 && foot <= dlen) z = std::min(z, a.z + R + zr);
+                        }
+                        if (!std::isfinite(z)) continue;
+                    } else {
+                        auto g = [&](double t) {
+                            const double ex = wx - t * vx, ey = wy - t * vy;
+                            return a.z + dz * t + prof(std::min(R, std::sqrt(ex * ex + ey * ey)));
+                        };
+                        double lo_t = t1, hi_t = t2;
+                        double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
+                        double g1 = g(m1), g2 = g(m2);
+                        for (int it = 0; it < sim_golden_iterations; ++it) {
+                            if (g1 <= g2) {
+                                hi_t = m2, m2 = m1, g2 = g1;
+                                m1 = hi_t - sim_golden * (hi_t - lo_t), g1 = g(m1);
+                            } else {
+                                lo_t = m1, m1 = m2, g1 = g2;
+                                m2 = lo_t + sim_golden * (hi_t - lo_t), g2 = g(m2);
+                            }
+                        }
+                        z = std::min({g(t1), g(t2), g1, g2});
+                    }
+                }
+                if (z < row[i]) lower(i, j, z, acc);
+            }
+        }
+    }
+
+    // An arc in XY at one height: each column's nearest point on the arc.
+    void mill_flat_arc(const ArcGeometry& arc, const SimProfile& prof, SimMoveAcc& acc) {
+        const HeightField& f = result_.field;
+        const double z0 = arc.start.z;
+        if (z0 >= f.top) return;
+        const double R = prof.radius, r = arc.radius;
+        const double cx = arc.centre.x, cy = arc.centre.y;
+        const double sign = arc.direction == ArcDirection::ccw ? 1.0 : -1.0;
+        const bool full = arc.sweep >= two_pi - 1e-12;
+        // The arc's box: its ends and the axis extremes it passes.
+        double bx0 = std::min(arc.start.x, arc.end.x), bx1 = std::max(arc.start.x, arc.end.x);
+        double by0 = std::min(arc.start.y, arc.end.y), by1 = std::max(arc.start.y, arc.end.y);
+        auto within = [&](double angle) {
+            const double d = std::fmod(sign * (angle - arc.start_angle) + 8 * two_pi, two_pi);
+            return full || d <= arc.sweep;
+        };
+        for (int q = 0; q < 4; ++q) {
+            const double ang = q * pi / 2;
+            if (within(ang)) {
+                const double px = cx + r * std::cos(ang), py = cy + r * std::sin(ang);
+                bx0 = std::min(bx0, px), bx1 = std::max(bx1, px), by0 = std::min(by0, py), by1 = std::max(by1, py);
+            }
+        }
+        int j0, j1;
+        rows(by0 - R, by1 + R, j0, j1);
+        const double outer = r + R;
+        for (int j = j0; j <= j1; ++j) {
+            const double y = f.y(j), dy = y - cy;
+            if (std::abs(dy) > outer) continue;
+            const double hw = std::sqrt(outer * outer - dy * dy);
+            int i0, i1;
+            columns(std::max(bx0 - R, cx - hw), std::min(bx1 + R, cx + hw), i0, i1);
+            const float* row = &f.heights[static_cast<std::size_t>(j) * f.nx];
+            for (int i = i0; i <= i1; ++i) {
+                ++result_.cell_updates;
+                if (row[i] <= z0) continue;
+                const double dx = f.x(i) - cx;
+                const double rho = std::hypot(dx, dy);
+                double d;
+                if (std::abs(rho - r) > R) {
+                    continue;
+                } else if (full || within(std::atan2(dy, dx))) {
+                    d = std::abs(rho - r);
+                } else {
+                    d = std::min(std::hypot(f.x(i) - arc.start.x, y - arc.start.y),
+                                 std::hypot(f.x(i) - arc.end.x, y - arc.end.y));
+                    if (d > R) continue;
+                }
+                const double z = z0 + prof(d);
+                if (z < row[i]) lower(i, j, z, acc);
+            }
+        }
+    }
+
+    // The move's radial engagement on the field before it (see SimFigure).
+    double engagement(const Step& s, const SimProfile& prof) const {
+        if (!s.from_known) return 0.0;
+        const HeightField& f = result_.field;
+        const double R = prof.radius;
+        const int across = std::max(1, static_cast<int>(std::ceil(2 * R / f.cell)));
+        double length;
+        if (s.arc && s.arc->plane == Plane::xy) length = s.arc->radius * s.arc->sweep;
+        else if (s.arc) return 0.0;
+        else length = std::hypot(s.to.x - s.from.x, s.to.y - s.from.y);
+        if (length < 1e-9) return 0.0;
+        const int n = std::clamp(static_cast<int>(std::ceil(length / f.cell)), 1, sim_engagement_samples);
+        double best = 0.0;
+        for (int k = 0; k < n; ++k) {
+            const double t = (k + 0.5) / n;
+            Vec3 p;
+            double tx, ty;
+            if (s.arc) {
+                p = point_on_arc(*s.arc, t);
+                const double rx = p.x - s.arc->centre.x, ry = p.y - s.arc->centre.y, rn = std::hypot(rx, ry);
+                const double sg = s.arc->direction == ArcDirection::ccw ? 1.0 : -1.0;
+                tx = -sg * ry / rn, ty = sg * rx / rn;
+            } else {
+                p = {s.from.x + t * (s.to.x - s.from.x), s.from.y + t * (s.to.y - s.from.y),
+                     s.from.z + t * (s.to.z - s.from.z)};
+                tx = (s.to.x - s.from.x) / length, ty = (s.to.y - s.from.y) / length;
+            }
+            if (p.z >= f.top) continue;
+            int in = 0;
+            for (int q = 0; q < across; ++q) {
+                const double u = -R + (q + 0.5) * (2 * R / across);
+                const double x = p.x - ty * u, y = p.y + tx * u;
+                const int i = static_cast<int>(std::floor((x - f.x0) / f.cell));
+                const int j = static_cast<int>(std::floor((y - f.y0) / f.cell));
+                if (i < 0 || j < 0 || i >= f.nx || j >= f.ny) continue;
+                if (f.at(i, j) > p.z + prof(std::abs(u)) + sim_engaged_above) ++in;
+            }
+            best = std::max(best, static_cast<double>(in) / across);
+        }
+        return best;
+    }
+
+    // ---- lathe ---------------------------------------------------------------------------
+
+    void init_lathe() {
+        if (stock_.kind != SimStock::Kind::bar) throw SimInputError("a lathe's stock is a bar");
+        if (!(stock_.bar_diameter > 0 && stock_.bar_length > 0) || !std::isfinite(stock_.face_z))
+            throw SimInputError("the bar needs a diameter and a length above 0");
+        const double bore = stock_.bore_diameter.value_or(0.0);
+        if (!(bore >= 0 && bore < stock_.bar_diameter)) throw SimInputError("the bore must be smaller than the bar");
+        double dz = options_.resolution;
+        if (!(dz > 0)) {
+            const double budget = static_cast<double>(std::max<std::size_t>(options_.lathe_budget, 1));
+            dz = std::max(0.001, std::ceil(stock_.bar_length / budget * 1000.0 - 1e-9) / 1000.0);
+        }
+        const double n = std::ceil(stock_.bar_length / dz - 1e-9);
+        if (n > 100e6) throw SimInputError(fmt::format("a resolution of {} mm makes more than 100 million samples", number_text(dz)));
+        LatheProfile& p = result_.lathe;
+        p.dz = dz;
+        p.nz = static_cast<int>(n);
+        p.z0 = stock_.face_z - stock_.bar_length;
+        p.outside.assign(p.nz, stock_.bar_diameter / 2);
+        p.bore.assign(p.nz, bore / 2);
+        // A last sample whose centre is above the face holds no material.
+        for (int k = 0; k < p.nz; ++k)
+            if (p.z(k) > stock_.face_z) p.outside[k] = p.bore[k];
+        result_.resolution = dz;
+        result_.cells = static_cast<std::size_t>(p.nz);
+        double v = 0.0;
+        for (int k = 0; k < p.nz; ++k) v += ring(p.outside[k], p.bore[k]);
+        result_.initial_volume = v * dz;
+    }
+
+    static double ring(double outside, double bore) { return outside > bore ? pi * (outside * outside - bore * bore) : 0.0; }
+
+    // Sets a sample's outside radius to at most `r` and its bore to at least `b`; returns the
+    // radial depth of material removed, mm.
+    double lathe_cut(int k, double r, double b, SimMoveAcc& acc) {
+        LatheProfile& p = result_.lathe;
+        ++result_.cell_updates;
+        const double before = ring(p.outside[k], p.bore[k]);
+        const double old_r = p.outside[k], old_b = p.bore[k];
+        if (r < p.outside[k]) p.outside[k] = std::max(r, 0.0);
+        if (b > p.bore[k]) p.bore[k] = b;
+        const double removed = before - ring(p.outside[k], p.bore[k]);
+        if (!(removed > 0) || !(old_r > old_b)) return 0.0;
+        acc.volume += removed;
+        return std::max(old_r - std::max(p.outside[k], old_b), std::min(p.bore[k], old_r) - old_b);
+    }
+
+    void lathe_move(const Step& s, const ToolShape& tool, SimMoveAcc& acc) {
+        const Vec3 b = s.to;
+        const Vec3 a = s.from_known ? s.from : s.to;
+        std::vector<std::pair<Vec3, Vec3>> pieces;
+        if (s.arc) {
+            const int n = std::max(1, segments_for_tolerance(s.arc->radius, s.arc->sweep, arc_chord_fraction * result_.lathe.dz));
+            Vec3 prev = s.arc->start;
+            for (int k = 1; k <= n; ++k) {
+                const Vec3 q = k == n ? s.arc->end : point_on_arc(*s.arc, static_cast<double>(k) / n);
+                pieces.emplace_back(prev, q);
+                prev = q;
+            }
+        } else {
+            pieces.emplace_back(a, b);
+        }
+        for (const auto& [p, q] : pieces) {
+            // The program's point is the imaginary tip: the nose circle's centre is a nose
+            // radius above it in X and Z.
+            const double n = tool.nose_radius;
+            if (tool.form == ToolForm::turning)
+                lathe_turn({std::abs(p.x) + n, p.y, p.z + n}, {std::abs(q.x) + n, q.y, q.z + n}, n, acc);
+            else lathe_axial(s, p, q, tool, acc);
+        }
+        acc.volume *= result_.lathe.dz;
+    }
+
+    // A turning tool: its nose circle's centre at P (its tip where the nose is 0), its body
+    // toward +X and +Z (cutting toward the chuck, -Z, and facing toward the axis): it clears
+    // r >= x - nose at z >= Pz, and the nose's lower quarter below.
+    void lathe_turn(const Vec3& a, const Vec3& b, double nose, SimMoveAcc& acc) {
+        const LatheProfile& p = result_.lathe;
+        const double xa = std::abs(a.x), xb = std::abs(b.x);
+        const double zlo = std::min(a.z, b.z) - nose;
+        int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
+        for (int k = k0; k < p.nz; ++k) {
+            const double z = p.z(k);
+            // Positions at or below z: the part of the segment with Pz <= z.
+            double r = std::numeric_limits<double>::infinity();
+            if (a.z <= z) r = std::min(r, xa);
+            if (b.z <= z) r = std::min(r, xb);
+            if ((a.z <= z) != (b.z <= z)) r = std::min(r, xa + (z - a.z) / (b.z - a.z) * (xb - xa));
+            r -= nose;
+            if (nose > 0 && !(a.z <= z && b.z <= z)) {
+                // Positions with z < Pz <= z + nose: the nose circle's lower quarter (convex in t).
+                double t_lo = 0, t_hi = 1;
+                const double dzs = b.z - a.z;
+                if (std::abs(dzs) > sim_tiny) {
+                    double u0 = (z - a.z) / dzs, u1 = (z + nose - a.z) / dzs;
+                    if (u0 > u1) std::swap(u0, u1);
+                    t_lo = std::max(0.0, u0), t_hi = std::min(1.0, u1);
+                } else if (!(a.z > z && a.z <= z + nose)) {
+                    t_lo = 1, t_hi = 0;
+                }
+                if (t_lo <= t_hi) {
+                    auto g = [&](double t) {
+                        const double pz = a.z + t * dzs, px = xa + t * (xb - xa), e = pz - z;
+                        return px - std::sqrt(std::max(0.0, nose * nose - e * e));
+                    };
+                    double lo_t = t_lo, hi_t = t_hi;
+                    for (int it = 0; it < sim_golden_iterations; ++it) {
+                        const double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
+                        if (g(m1) <= g(m2)) hi_t = m2;
+                        else lo_t = m1;
+                    }
+                    r = std::min({r, g(t_lo), g(t_hi), g((lo_t + hi_t) / 2)});
+                }
+            }
+            if (!std::isfinite(r)) continue;
+            if (r < p.outside[k] && p.outside[k] > p.bore[k])
+                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+        }
+    }
+
+    // A drill (or any round tool) on the spindle's axis: it clears its radius above its point.
+    void lathe_axial(const Step& s, const Vec3& a, const Vec3& b, const ToolShape& tool, SimMoveAcc& acc) {
+        const LatheProfile& p = result_.lathe;
+        if (std::abs(a.x) > 1e-3 || std::abs(b.x) > 1e-3) {
+            ++off_axis_;
+            if (off_axis_ == 1)
+                result_.notes.push_back(fmt::format("line {}: tool {} moves off the spindle's axis; a lathe simulates a "
+                                                    "round tool on the axis only (not swept)", s.line, s.tool));
+            return;
+        }
+        const SimProfile prof = sim_profile_of(tool);
+        const double zt = std::min(a.z, b.z);
+        const int k0 = std::max(0, static_cast<int>(std::ceil((zt - p.z0) / p.dz - 0.5)));
+        // The drill's depth below the material it meets at the axis before the move.
+        double below = 0.0;
+        for (int k = p.nz - 1; k >= k0; --k) {
+            if (p.outside[k] > p.bore[k] && p.bore[k] < prof.radius) {
+                below = p.z(k) + p.dz / 2 - zt;
+                break;
+            }
+        }
+        // A crash's depth: the length along Z over which the bore grew.
+        double bored = 0.0;
+        for (int k = k0; k < p.nz; ++k) {
+            const double h = p.z(k) - zt;
+            // The radius the point reaches h above its tip: the inverse of the tool's profile.
+            double rad = prof.radius;
+            if (prof.form == ToolForm::cone && prof.slope > 0) rad = std::min(prof.radius, prof.flat + h / prof.slope);
+            if (rad > p.bore[k] && lathe_cut(k, std::numeric_limits<double>::infinity(), rad, acc) > 1e-6) bored += p.dz;
+        }
+        if (bored > 0) {
+            acc.max_depth = std::max(acc.max_depth, bored);
+            acc.flute_depth = std::max(acc.flute_depth, below);
+        }
+    }
+
+    // ---- per move ------------------------------------------------------------------------
+
+    const std::string& operation_of(int line) {
+        if (options_.operations.empty() || line <= 0) return current_op_;
+        auto it = std::upper_bound(options_.operations.begin(), options_.operations.end(), line,
+                                   [](int l, const OperationSpan& o) { return l < o.first_line; });
+        if (it == options_.operations.begin()) return empty_;
+        return std::prev(it)->path;
+    }
+
+    static SimFigure& figure(std::vector<SimFigure>& list, const std::string& name, int tool) {
+        for (SimFigure& f : list)
+            if (f.name == name) return f;
+        list.push_back({name, tool});
+        return list.back();
+    }
+
+    SimFigure& tool_figure(int tool) {
+        if (last_figure_tool_ != tool || last_figure_ >= result_.tools.size()) {
+            figure(result_.tools, fmt::format("T{}", tool), tool);
+            last_figure_ = static_cast<std::size_t>(
+                std::find_if(result_.tools.begin(), result_.tools.end(), [&](const SimFigure& f) { return f.tool == tool; }) -
+                result_.tools.begin());
+            last_figure_tool_ = tool;
+        }
+        return result_.tools[last_figure_];
+    }
+
+    void account(const Step& s, const ToolShape& tool, const SimMoveAcc& acc) {
+        if (!(acc.volume > 0) && !(acc.engagement > 0) && !(acc.max_depth > 0)) return;
+        const std::string& op = operation_of(s.line);
+        if (acc.volume > 0) {
+            result_.removed_volume += acc.volume;
+            tool_figure(s.tool).volume += acc.volume;
+            if (!op.empty()) figure(result_.operations, op, s.tool).volume += acc.volume;
+        }
+        if (acc.engagement > 0) {
+            for (SimFigure* f : {&tool_figure(s.tool), op.empty() ? nullptr : &figure(result_.operations, op, s.tool)}) {
+                if (f && acc.engagement > f->max_engagement) f->max_engagement = acc.engagement, f->engagement_line = s.line;
+            }
+        }
+        if (s.kind == StepKind::rapid && acc.max_depth > options_.crash_depth) {
+            result_.errors.push_back({s.line, op, s.tool,
+                                      fmt::format("a rapid removes material (a crash): {} mm deep, {} mm^3",
+                                                  number_text(acc.max_depth, 3), number_text(acc.volume, 3))});
+        } else if (s.kind == StepKind::feed && tool.flute_length && acc.flute_depth > *tool.flute_length + 1e-6) {
+            result_.errors.push_back({s.line, op, s.tool,
+                                      fmt::format("a feed cuts {} mm below the stock's surface, deeper than tool {}'s "
+                                                  "fluteLength {} mm",
+                                                  number_text(acc.flute_depth, 3), s.tool, number_text(*tool.flute_length))});
+        }
+    }
+
+    StatsAccumulator stats_;
+    SimStock stock_;
+    std::map<int, ToolShape> tools_;
+    SimOptions options_;
+    std::string current_op_;
+    const std::string empty_;
+    int skipped_tool0_ = 0;
+    SimProfile profile_;     // of profile_tool_ (a tangent per move costs as much as the move)
+    int profile_tool_ = -1;
+    int last_figure_tool_ = -1;       // the tool of result_.tools[last_figure_]
+    std::size_t last_figure_ = 0;
+    Vec3 last_end_{0, 0, std::numeric_limits<double>::infinity()};  // where the last move left the tool
+    int last_tool_ = -1;
+    int off_axis_ = 0;
+};
+
+Simulator::Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)
+    : impl_(std::make_unique<Impl>(machine, std::move(stock), std::move(tools), std::move(options))) {}
+Simulator::~Simulator() = default;
+void Simulator::step(const Step& step) { impl_->step(step); }
+void Simulator::hole(const Hole& hole) { impl_->hole(hole); }
+void Simulator::finish(const TraceSummary& summary) { impl_->finish(summary); }
+void Simulator::begin_operation(std::string path) { impl_->begin_operation(std::move(path)); }
+const SimResult& Simulator::result() const { return impl_->result_; }
+SimResult Simulator::take() { return std::move(impl_->result_); }
+
+ToolShape tool_shape(const Tool& tool) {
+    ToolShape s;
+    s.diameter = tool.diameter;
+    s.flute_length = tool.flute_length;
+    switch (tool.type) {
+    case ToolType::end_mill: s.form = ToolForm::flat; break;
+    case ToolType::ball_mill: s.form = ToolForm::ball; break;
+    case ToolType::drill:
+    case ToolType::centre_drill:
+    case ToolType::spot_drill:
+        s.form = ToolForm::cone;
+        s.tip_angle = tool.tip_angle.value_or(tool.type == ToolType::drill ? 118.0 : 90.0);
+        break;
+    case ToolType::tap:
+    case ToolType::reamer:
+    case ToolType::boring_bar: s.form = ToolForm::cylinder; break;
+    case ToolType::turning_tool:
+        s.form = ToolForm::turning;
+        s.nose_radius = tool.diameter / 2;
+        break;
+    }
+    return s;
+}
+
+std::map<int, ToolShape> tool_shapes(const std::map<int, Tool>& tools) {
+    std::map<int, ToolShape> out;
+    for (const auto& [number, tool] : tools) out[number] = tool_shape(tool);
+    return out;
+}
+
+SimResult simulate(const std::vector<Step>& steps, const Machine& machine, const SimStock& stock,
+                   const std::map<int, ToolShape>& tools, const SimOptions& options) {
+    Simulator sim(machine, stock, tools, options);
+    for (const Step& s : steps) sim.step(s);
+    sim.finish({});
+    return sim.take();
+}
+
+std::string format_simulation(const SimResult& r) {
+    std::string out;
+    auto vol = [](double v) { return number_text(v, 3); };
+    if (r.kind == MachineKind::lathe)
+        out += fmt::format("simulation: lathe, turned profile of {} samples of {} mm along Z\n", r.cells,
+                           number_text(r.resolution));
+    else
+        out += fmt::format("simulation: mill, height field of {} x {} cells of {} mm ({} cells)\n", r.field.nx, r.field.ny,
+                           number_text(r.resolution), r.cells);
+    out += fmt::format("stock: {} mm^3, removed {} mm^3, left {} mm^3\n", vol(r.initial_volume), vol(r.removed_volume),
+                       vol(r.initial_volume - r.removed_volume));
+    auto figures = [&](const std::vector<SimFigure>& list, const char* what) {
+        for (const SimFigure& f : list) {
+            out += fmt::format("{} {}: removed {} mm^3", what, f.name, vol(f.volume));
+            if (f.max_engagement > 0)
+                out += fmt::format(", largest radial engagement {} % of the diameter (line {})",
+                                   number_text(f.max_engagement * 100, 1), f.engagement_line);
+            out += '\n';
+        }
+    };
+    figures(r.tools, "tool");
+    figures(r.operations, "operation");
+    out += fmt::format("machining time: {}\n", format_duration(r.stats.total_time()));
+    out += fmt::format("cell visits by moves: {}\n", r.cell_updates);
+    for (const std::string& n : r.notes) out += fmt::format("note: {}\n", n);
+    for (const SimReport& e : r.errors) {
+        out += fmt::format("error: line {}", e.line);
+        if (!e.operation.empty()) out += fmt::format(" ({})", e.operation);
+        out += fmt::format(", tool {}: {}\n", e.tool, e.message);
+    }
+    out += r.errors.empty()        ? std::string("simulation: no errors\n")
+           : r.errors.size() == 1 ? std::string("simulation: 1 error\n")
+                                   : fmt::format("simulation: {} errors\n", r.errors.size());
+    return out;
+}
+
+}  // namespace camgen
