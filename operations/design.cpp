@@ -297,6 +297,17 @@ private:
         cut.region = normalised(cut.region);
         cut.floor.z = z.bottom_z;
         cut.top_z = z.reference_z;
+        // Beyond its edge the tool overhangs: it may cut there, down to the same floor, as far as
+        // the overhang and its diameter reach.
+        if (std::optional<PlaneRegion> beyond = design_grown(cut.region, op.overhang + 2.0 * op.tool_radius)) {
+            DesignCut over = cut;
+            over.what = "the overhang beyond the faced area";
+            over.region = *beyond;
+            over.may_leave = true;
+            design_.cuts.push_back(std::move(cut));
+            design_.cuts.push_back(std::move(over));
+            return;
+        }
         design_.cuts.push_back(std::move(cut));
     }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <limits>
+#include <numbers>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -34,7 +36,11 @@
 #include "camgen/reader/reader.hpp"
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
+#include "camgen/simulation/design_check.hpp"
 #include "camgen/simulation/simulation.hpp"
+#include "camgen/operations/design.hpp"
+#include "camgen/geometry/region.hpp"
+#include "camgen/common/number_text.hpp"
 #include "camgen/analysis/stats.hpp"
 #include "src/cli/man.hpp"
 #include "camgen/post/safety.hpp"
@@ -621,6 +627,49 @@ std::vector<double> option_numbers(const std::string& text, const char* option, 
 }
 
 // `camgen simulate`: the program read back and swept through the stock; exit 1 on an error.
+// The simulated part against the job's design (a mill's): each finding a line, gouges as
+// errors ("error: ... gouge"), material left as warnings; returns the gouges' count.
+std::size_t design_check_report(const Job& job, const Machine& machine, const SimStock& stock, const SimResult& r,
+                                std::ostream& out) {
+    if (r.kind != MachineKind::mill || r.field.heights.empty()) return 0;
+    const HeightField& f = r.field;
+    const PartDesign design = part_design(job);
+    std::optional<RegionRows> inside;  // a profile stock: the cells in it
+    if (stock.kind == SimStock::Kind::profile) inside.emplace(PlaneRegion{stock.profile, {}});
+    std::vector<std::uint8_t> in_stock;
+    if (inside) {
+        in_stock.assign(f.heights.size(), 0);
+        for (int j = 0; j < f.ny; ++j)
+            for (const auto& [a, b] : inside->spans(f.y(j)))
+                for (int i = std::max(0, static_cast<int>(std::ceil((a - f.x0) / f.cell - 0.5)));
+                     i <= std::min(f.nx - 1, static_cast<int>(std::floor((b - f.x0) / f.cell - 0.5))); ++i)
+                    in_stock[static_cast<std::size_t>(j) * f.nx + i] = 1;
+    }
+    HeightGridView g;
+    g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
+    g.top = f.top;
+    g.height = [&](std::size_t i, std::size_t j) {
+        const std::size_t k = j * g.nx + i;
+        return !in_stock.empty() && !in_stock[k] ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(f.heights[k]);
+    };
+    g.line = [&](std::size_t i, std::size_t j) { return static_cast<int>(f.lines[j * g.nx + i]); };
+    // As verify compares: the position, the machine's tolerance and its chords.
+    const double tolerance = compare_tolerance(machine).path;
+    const double margin = f.cell * std::numbers::sqrt2 / 2.0 + tolerance;
+    const std::vector<DesignFinding> found = check_design(design, g, tolerance, margin);
+    std::size_t gouges = 0;
+    out << fmt::format("design check   {} cuts, {} keeps, within {} mm, cells farther than {} mm inside their regions\n",
+                       design.cuts.size(), design.keeps.size(), number_text(tolerance), number_text(margin));
+    for (const std::string& u : design.unchecked) out << "  not checked: " << u << '\n';
+    for (const DesignFinding& d : found) {
+        const bool gouge = d.kind == DesignFinding::Kind::gouge;
+        gouges += gouge;
+        out << (gouge ? "error: gouge: " : "warning: ") << d.message() << '\n';
+    }
+    if (found.empty()) out << "  the part is as designed\n";
+    return gouges;
+}
+
 int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) {
     Inputs inputs(in);
     std::vector<MachineSource> machine_files;
@@ -677,8 +726,9 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     }
     const SimResult& r = sim->result();
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_simulation(r);
+    const std::size_t gouges = design_check_report(*job, machine, stock, r, out);
     finish_stream(out, "standard output");
-    return r.errors.empty() ? exit_ok : exit_invalid_input;
+    return r.errors.empty() && gouges == 0 ? exit_ok : exit_invalid_input;
 }
 
 // After posting: read the program back for --stats (to `err`) and --plot (into `plot`, not

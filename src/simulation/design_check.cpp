@@ -57,21 +57,30 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> designed(n, nan);
     std::vector<std::int32_t> owner(n, -1);  // cuts 0..C-1, keeps C..
-    enum : std::uint8_t { near_cut = 1, may_leave = 2 };
+    enum : std::uint8_t { near_cut = 1, may_leave = 2, edge = 4 };
     std::vector<std::uint8_t> flags(n, 0);
     const auto at = [&](std::size_t i, std::size_t j) { return j * g.nx + i; };
     const std::int32_t cuts = static_cast<std::int32_t>(design.cuts.size());
 
+    // A cell within the margin of a cut's edge, inside or out, could be that cut's or not: it
+    // is judged by nothing (edge).
+    std::vector<std::int32_t> grown(n, -1), strict(n, -1);
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
             flags[at(i, j)] |= near_cut | (cut.may_leave ? may_leave : 0);
+            grown[at(i, j)] = c;
         });
-        if (cut.overrides || cut.may_leave) continue;
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
+            strict[at(i, j)] = c;
+            if (cut.overrides) return;
             const double f = cut.floor.at(p);
             double& d = designed[at(i, j)];
             if (std::isnan(d) || f < d) d = f, owner[at(i, j)] = c;
+        });
+        if (cut.overrides) continue;
+        design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
+            if (strict[at(i, j)] != c) flags[at(i, j)] |= edge;
         });
     }
     for (std::int32_t c = 0; c < cuts; ++c) {
@@ -96,10 +105,10 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     for (std::size_t j = 0; j < g.ny; ++j)
         for (std::size_t i = 0; i < g.nx; ++i) {
             const std::size_t a = at(i, j);
-            if (owner[a] < 0) continue;
+            if (owner[a] < 0 || (flags[a] & edge)) continue;
             const double h = g.height(i, j);
             if (std::isnan(h)) continue;
-            const double below = designed[a] - h;
+            const double below = std::min(designed[a], g.top) - h;
             if (below > tolerance) {
                 DesignFinding& f = gouges[static_cast<std::size_t>(owner[a])];
                 ++f.cells;
@@ -107,7 +116,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
                     f.amount = below;
                     f.at = {g.x0 + (static_cast<double>(i) + 0.5) * g.cell, g.y0 + (static_cast<double>(j) + 0.5) * g.cell};
                     f.height = h;
-                    f.designed = designed[a];
+                    f.designed = std::min(designed[a], g.top);
                     f.line = g.line ? g.line(i, j) : 0;
                 }
             }
@@ -118,7 +127,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         const DesignCut& cut = design.cuts[c];
         if (cut.overrides || cut.may_leave) continue;
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            if (flags[at(i, j)] & may_leave) return;
+            if (flags[at(i, j)] & (may_leave | edge)) return;
             const double h = g.height(i, j);
             const double limit = cut.floor.at(p) + cut.axial_allowance;
             if (std::isnan(h) || h - limit <= tolerance) return;

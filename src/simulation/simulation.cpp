@@ -94,6 +94,7 @@ public:
 
     void step(const Step& s) {
         stats_.step(s);
+        line_ = s.line;
         if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
         const ToolShape* tool = shape_of(s.tool, s.line);
         if (!tool) return;
@@ -182,6 +183,7 @@ private:
         f.x0 = x0, f.y0 = y0, f.cell = cell, f.nx = static_cast<int>(nxd), f.ny = static_cast<int>(nyd);
         f.bottom = bottom, f.top = top;
         f.heights.assign(static_cast<std::size_t>(f.nx) * f.ny, static_cast<float>(bottom));
+        f.lines.assign(f.heights.size(), 0);
         for (int j = 0; j < f.ny; ++j) {
             const double y = f.y(j);
             if (y > y1) continue;
@@ -234,6 +236,7 @@ private:
             acc.max_depth = std::max(acc.max_depth, depth);
             acc.flute_depth = acc.max_depth;
             h = static_cast<float>(nz);
+            f.lines[static_cast<std::size_t>(j) * f.nx + i] = line_;
         }
     }
 
@@ -707,6 +710,7 @@ private:
     int skipped_tool0_ = 0;
     SimProfile profile_;     // of profile_tool_ (a tangent per move costs as much as the move)
     int profile_tool_ = -1;
+    int line_ = 0;  // the program line of the step being swept
     int last_figure_tool_ = -1;       // the tool of result_.tools[last_figure_]
     std::size_t last_figure_ = 0;
     Vec3 last_end_{0, 0, std::numeric_limits<double>::infinity()};  // where the last move left the tool

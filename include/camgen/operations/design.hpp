@@ -43,7 +43,7 @@ struct DesignCut {
     double top_z = 0.0;           // the stock top the operation starts from
     double axial_allowance = 0.0; // mm it may leave on its floor (its stated stock)
     bool overrides = false;       // a tab: its operation's floor here, not the lowest
-    bool may_leave = false;       // where the tool climbs onto a tab: material may stay
+    bool may_leave = false;       // where the tool may cut to the floor or not (a tab's ends, a face's overhang)
 };
 
 // Part material beside a cut that must stay, up to top_z.

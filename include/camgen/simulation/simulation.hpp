@@ -19,6 +19,7 @@
 // - a helix, or an arc in XZ or YZ: chords whose sagitta (the largest distance of the tool
 //   centre from the arc) is at most `arc_chord_fraction` x the cell (1/8), each exact as above.
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -101,6 +102,7 @@ struct HeightField {
     double bottom = 0.0;         // the stock's bottom, mm
     double top = 0.0;            // the stock's top as it was, mm
     std::vector<float> heights;  // nx * ny
+    std::vector<std::int32_t> lines;  // nx * ny: the program line of the move that last lowered the cell (0: none)
     double at(int i, int j) const { return heights[static_cast<std::size_t>(j) * nx + i]; }
     // The centre of cell (i, j).
     double x(int i) const { return x0 + (i + 0.5) * cell; }
