@@ -181,13 +181,15 @@ void read_stock(Fields& top, JobInput& in) {
     stock.path = s.path();
     stock.line = in.source().lines.line_of_early(stock.path);
     stock.source = in.source().name;
-    // Every move between operations runs at the clearance: above the material.
+    // Every move between operations runs at the clearance: above the material. (The stock is
+    // kept all the same: the operations read against it, with errors of their own.)
+    in.set_stock(std::move(stock));
+    const Stock& kept = *in.header().stock;
     const double clearance = in.header().clearance;
-    if (!(clearance > stock.top()))
+    if (!(clearance > kept.top()))
         top.fail("clearance", fmt::format("the clearance (Z {}) is not above {}: moves between operations would run "
                                           "through the material",
-                                          in.show(clearance), stock_top_text(stock, in)));
-    in.set_stock(std::move(stock));
+                                          in.show(clearance), stock_top_text(kept, in)));
 }
 
 std::string stock_top_text(const Stock& stock, const JobInput& in) {

@@ -130,6 +130,10 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     if (f.has("rectangle") && f.has("start")) f.fail("", "a face needs exactly one of rectangle, or start and path");
     if (!f.has("rectangle") && !f.has("start")) {
         // The stock's outline, where the job gives a mill's stock.
+        // A stock that failed to read is reported as such.
+        if (!stock && in.root().is_object() && in.root().contains("stock"))
+            throw FollowOnError(f.path(), "a face without an area faces the job's stock, which failed to read",
+                                in.source().lines.line_of(f.path()), in.source().name);
         if (!stock || !stock->for_mill())
             f.fail("", stock ? "a face needs a rectangle, or start and path: the job's stock is a lathe's bar"
                              : "a face needs a rectangle, or start and path, or a stock (box or profile) in the job to face");
