@@ -168,6 +168,14 @@ void read_stock(Fields& top, JobInput& in) {
     if (!value) return;
     Fields f(*value, top.path_of("stock"), in.source());
     if (!value->is_object()) f.fail("", "expected an object, got " + JobInput::describe(*value));
+    // A shape's keys straight in "stock": said where they go.
+    for (const auto& [key, shape] : {std::pair{"min", "box"}, std::pair{"max", "box"}, std::pair{"size", "box"},
+                                     std::pair{"origin", "box"}, std::pair{"start", "profile"}, std::pair{"path", "profile"},
+                                     std::pair{"top", "profile"}, std::pair{"bottom", "profile"},
+                                     std::pair{"diameter", "bar"}, std::pair{"length", "bar"}, std::pair{"faceZ", "bar"},
+                                     std::pair{"boreDiameter", "bar"}})
+        if (f.has(key) && !f.has(shape))
+            f.fail(key, fmt::format("{} belongs in the stock's {}: \"stock\": {{\"{}\": {{\"{}\": ...}}}}", key, shape, shape, key));
     JobInput::known_keys(f, stock_keys);
     const int given = int{f.has("box")} + int{f.has("profile")} + int{f.has("bar")};
     if (given != 1)
