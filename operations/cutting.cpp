@@ -445,6 +445,14 @@ void read_packed_lines(const json::PackedArray& packed, const std::string& base,
 
 }  // namespace
 
+void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
+    if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit) return;
+    f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
+                               "of a pointed tool is not its diameter); chamfering and engraving operations for "
+                               "chamfer mills and V-bits are planned (issue 29)",
+                               tool.number, tool_types[static_cast<int>(tool.type)].description, what));
+}
+
 Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::string_view start_key, std::string_view path_key) {
     Profile p;
     p.start = in.point(f, start_key);

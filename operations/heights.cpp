@@ -20,8 +20,9 @@ std::vector<KeySpec> height_keys(bool with_safe_distance) {
     std::vector<KeySpec> keys{
         {.key = "retractPlane", .quantity = Quantity::length,
          .description = "absolute Z the tool travels at between holes or passes (default: clearance)"},
-        {.key = "referencePlane", .quantity = Quantity::length, .default_json = "0",
-         .description = "absolute Z of the stock top; relative values are measured from it"},
+        {.key = "referencePlane", .quantity = Quantity::length,
+         .description = "absolute Z of the stock top; relative values are measured from it (default: the top of the "
+                        "job's stock where it gives one, else 0)"},
     };
     if (with_safe_distance)
         keys.push_back({.key = "safeDistance", .quantity = Quantity::length, .min = Bound{0, true},
@@ -40,7 +41,9 @@ std::vector<KeySpec> height_keys(bool with_safe_distance) {
 Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what) {
     Heights p;
     p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
-    p.reference_plane = in.optional_length(f, "referencePlane").value_or(0.0);
+    // A mill's stock gives the stock top; without one it is Z0.
+    const Stock* stock = in.header().stock && in.header().stock->for_mill() ? &*in.header().stock : nullptr;
+    p.reference_plane = in.optional_length(f, "referencePlane").value_or(stock ? stock->top() : 0.0);
     p.safe_distance = in.optional_length(f, "safeDistance");
     p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
     p.end_depth = in.length(f, "endDepth");
@@ -66,6 +69,12 @@ Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what)
                            in.show(p.retract_plane), f.has("retractPlane") ? "" : ", the clearance",
                            in.show(z.safe_z)));
 
+    // The job's stock top: the tool travels above it. (A retract plane left out is the clearance,
+    // which the stock's reading checked.)
+    if (stock && f.has("retractPlane") && !(p.retract_plane > stock->top()))
+        f.fail("retractPlane", fmt::format("retractPlane (Z {}) is not above the stock top (Z {}, {}): between {}s the tool "
+                                           "would rapid through the material",
+                                           in.show(p.retract_plane), in.show(stock->top()), stock->path, what));
     // The stock top (referencePlane) is where the material starts: nothing may rapid below it.
     if (p.retract_plane <= p.reference_plane)
         f.fail("retractPlane",

@@ -17,6 +17,7 @@
 #include "camgen/common/file_kind.hpp"
 #include "camgen/common/input_file.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/operations/stock.hpp"
 
 namespace camgen {
 
@@ -49,7 +50,7 @@ Operation read_operation(const nlohmann::json& value, const std::string& path, c
     return read_as(type, f, in);
 }
 
-// The errors of one job as read_job finds them, in three groups: the header's (at most one),
+// The errors of one job as read_job finds them, in three groups: the header's (its first and the stock's),
 // the tools' and the operations', each group in file order. Only the first InputErrors::shown
 // of a group are kept (no later one can be among the first shown of the job), the rest counted.
 class JobErrors {
@@ -117,6 +118,12 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
         if (!in.units_and_clearance()) errors.throw_if_any();
         top.emplace(in.root(), "", in.source());
     }
+    // The stock, before the operations: they take its top.
+    try {
+        read_stock(*top, in);
+    } catch (const InputError& e) {
+        errors.add(JobErrors::header, e);
+    }
     in.read_tools(*top, [&](const InputError& e) { errors.add(JobErrors::tools, e); });
     Job job;
     const nlohmann::json* operations = nullptr;
@@ -154,6 +161,7 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
 }
 
 void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name) {
+    if (job.stock) check_stock_machine_kind(*job.stock, kind, machine_name);
     for (const Operation& op : job.operations)
         visit_exhaustive(
             [&]<OperationType Op>(const Op& o) {

@@ -129,6 +129,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     std::vector<KeySpec> keys = objects().front().keys;
     JobInput::known_keys(f, keys);
     const Tool& tool = in.tool(f);
+    check_cutting_tool(f, tool, "a contour");
     ContourOp op;
     op.path = f.path();
     op.tool = tool.number;

@@ -18,7 +18,7 @@ using Json = nlohmann::json;
 using Fields = json::Fields;
 
 constexpr KeySpec face_area_keys[] = {
-    {.key = "rectangle", .type = JsonType::object, .ref = "faceRectangle", .description = "the area: a rectangle by two opposite corners"},
+    {.key = "rectangle", .type = JsonType::object, .ref = "faceRectangle", .description = "the area: a rectangle by two opposite corners (default: the outline of the job's stock)"},
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "or a closed profile: where it starts [x, y]"},
     {.key = "path", .type = JsonType::array, .ref = "contourElement", .min_items = 1, .description = "and its lines and arcs, ending at its start"},
 };
@@ -98,7 +98,7 @@ std::vector<ObjectSpec> FaceOp::objects() {
     std::vector<ObjectSpec> out{
         {.name = "face", .description = "mill the stock top flat over a rectangle or a closed profile, in rows past its edges",
          .keys = keys,
-         .groups = {{.keys = {"rectangle", "start"}, .min = 1, .max = 1, .description = "exactly one of rectangle or start and path"}}},
+         .groups = {{.keys = {"rectangle", "start"}, .min = 0, .max = 1, .description = "at most one of rectangle or start and path (neither: the job's stock outline)"}}},
         {.name = "faceRectangle", .description = "a rectangle by two opposite corners", .keys = {std::begin(face_rectangle_keys), std::end(face_rectangle_keys)}},
     };
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
@@ -108,6 +108,7 @@ std::vector<ObjectSpec> FaceOp::objects() {
 FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, objects().front().keys);
     const Tool& tool = in.tool(f);
+    check_cutting_tool(f, tool, "a face");
     FaceOp op;
     op.path = f.path();
     op.tool = tool.number;
@@ -115,13 +116,30 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     if (!(tool.diameter > 0)) f.fail("tool", fmt::format("tool {} has no diameter", tool.number));
     op.tool_radius = tool.diameter / 2;
     op.heights = read_heights(f, in, "pass");
+    // A face's top is the stock's: it faces from there.
+    const std::optional<Stock>& stock = in.header().stock;
+    if (stock && stock->for_mill() && f.has("referencePlane") && std::abs(op.heights.reference_plane - stock->top()) > 1e-9)
+        f.fail("referencePlane", fmt::format("referencePlane (Z {}) is not the stock top (Z {}, {}): a face starts at the "
+                                             "stock top (leave referencePlane out to take it)",
+                                             in.show(op.heights.reference_plane), in.show(stock->top()), stock->path));
     const Planes z = resolve_planes(op.heights);
     const double total_depth = z.reference_z - z.bottom_z;
     if (tool.flute_length && total_depth > *tool.flute_length)
         f.fail("endDepth", fmt::format("the face is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(total_depth), tool.number, in.show(*tool.flute_length)));
-    if (f.has("rectangle") == f.has("start")) f.fail("", "a face needs exactly one of rectangle, or start and path");
-    if (f.has("rectangle")) {
+    if (f.has("rectangle") && f.has("start")) f.fail("", "a face needs exactly one of rectangle, or start and path");
+    if (!f.has("rectangle") && !f.has("start")) {
+        // The stock's outline, where the job gives a mill's stock.
+        // A stock that failed to read is reported as such.
+        if (!stock && in.root().is_object() && in.root().contains("stock"))
+            throw FollowOnError(f.path(), "a face without an area faces the job's stock, which failed to read",
+                                in.source().lines.line_of(f.path()), in.source().name);
+        if (!stock || !stock->for_mill())
+            f.fail("", stock ? "a face needs a rectangle, or start and path: the job's stock is a lathe's bar"
+                             : "a face needs a rectangle, or start and path, or a stock (box or profile) in the job to face");
+        if (f.has("path")) f.fail("path", "path goes with start");
+        op.area = stock->outline;
+    } else if (f.has("rectangle")) {
         if (f.has("path")) f.fail("path", "path goes with start, not with rectangle");
         Fields r(f.required("rectangle"), f.path_of("rectangle"), in.source());
         JobInput::known_keys(r, face_rectangle_keys);

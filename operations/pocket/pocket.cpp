@@ -804,6 +804,7 @@ std::vector<ObjectSpec> PocketOp::objects() {
 PocketOp PocketOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, objects().front().keys);
     const Tool& tool = in.tool(f);
+    check_cutting_tool(f, tool, "a pocket");
     PocketOp op;
     op.path = f.path();
     op.tool = tool.number;

@@ -255,6 +255,24 @@ private:
     std::vector<std::unique_ptr<char[]>> blocks_;
 };
 
+// The stock as the first line of --events: {"event": "stock", "shape": ..., "path": ..., its
+// bounding box "min" and "max" (mm), and a bar's sizes}.
+std::string stock_json(const Stock& stock) {
+    nlohmann::ordered_json j;
+    j["event"] = "stock";
+    j["shape"] = stock.shape == StockShape::box ? "box" : stock.shape == StockShape::profile ? "profile" : "bar";
+    j["path"] = stock.path;
+    j["min"] = {stock.min.x, stock.min.y, stock.min.z};
+    j["max"] = {stock.max.x, stock.max.y, stock.max.z};
+    if (stock.shape == StockShape::bar) {
+        j["diameter"] = stock.diameter;
+        j["length"] = stock.length;
+        j["faceZ"] = stock.face_z;
+        if (stock.bore_diameter) j["boreDiameter"] = *stock.bore_diameter;
+    }
+    return j.dump();
+}
+
 // The holes the job's drill and bore-mill operations make, each a hole the safety check logs,
 // and a few for the plunges of other operations.
 std::size_t drilled_holes(const Job& job) {
@@ -271,6 +289,8 @@ std::size_t drilled_holes(const Job& job) {
 void write_program(const Job& job, const Options& o, const Machine* loaded, std::ostream& out, std::ostream& err,
                    bool out_discards_failures) {
     if (o.events) {
+        // The job's stock first, where it gives one: what the events cut.
+        if (job.stock) out << stock_json(*job.stock) << '\n';
         EventPrinter printer(out);
         expand_job(job, printer);
         return;
@@ -295,6 +315,7 @@ void write_program(const Job& job, const Options& o, const Machine* loaded, std:
     std::unique_ptr<Post> post = make_post(machine, out_discards_failures ? out : *buffer, po);
     SafetyCheck check(limits);
     check.reserve_holes(drilled_holes(job));
+    if (job.stock && job.stock->for_mill()) check.warn_below_stock(job.stock->bottom(), err);
     // Passes each event through the check, then to the post.
     struct Checked : EventSink {
         SafetyCheck& check;

@@ -304,6 +304,23 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 }  // namespace
 
+int LineMap::line_of_early(std::string_view pointer) const {
+    if (scanned_ || text_.empty()) return line_of(pointer);
+    struct Found {
+        int line;
+    };
+    try {
+        Scanner(text_).run(
+            [&](std::string_view p, int line) {
+                if (p == pointer) throw Found{line};
+            },
+            [](std::string_view, int) {}, false);
+    } catch (const Found& found) {
+        return found.line;
+    }
+    return 0;
+}
+
 int LineMap::line_of(std::string_view pointer) const {
     // Kept in document order: building stays O(n); lookups (only made for error messages)
     // are a linear search, until a job with many errors has made enough of them to pay for

@@ -32,6 +32,9 @@ constexpr KeySpec job_keys[] = {
      .max = Bound{99999999, true},
      .description = "the program number (Fanuc O-number), overriding the machine's; refused where the control "
                     "takes none (default: the machine's)"},
+    {.key = "stock", .type = JsonType::object, .ref = "stock",
+     .description = "the material before the first operation: a box or a closed profile on a mill, a bar on a lathe "
+                    "(default: none; the safety checks and face use it where it is given)"},
     {.key = "tools", .type = JsonType::array, .required = true, .ref = "tool", .min_items = 1,
      .description = "the tool table, at least one tool"},
     {.key = "operations", .type = JsonType::array, .required = true, .ref = "operation",
@@ -46,12 +49,19 @@ constexpr KeySpec tool_keys[] = {
      .description = "kind of tool"},
     {.key = "diameter", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
      .description = "cutting diameter"},
-    {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{30, true}, .max = Bound{180, false},
-     .description = "included point angle (needed by drillTip)"},
+    {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+     .description = "included point angle: a drill's (30 or more; needed by drillTip), a chamfer mill's or V-bit's "
+                    "(required for them)"},
+    {.key = "cornerRadius", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a bull-nose end mill's corner radius, at most half the diameter (required for bull-nose, refused "
+                    "for other types)"},
+    {.key = "tipDiameter", .quantity = Quantity::length, .min = Bound{0, true},
+     .description = "a chamfer mill's or V-bit's diameter at its point, less than diameter (default: 0, a sharp "
+                    "point; refused for other types)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
     {.key = "centreCutting", .type = JsonType::boolean,
-     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills and boring bars, true for the rest); "
+     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills and boring bars, true for the rest); "
                     "a pocket plunges only with such a tool"},
     {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
@@ -65,10 +75,21 @@ constexpr KeySpec tool_keys[] = {
 }  // namespace
 
 std::vector<ObjectSpec> JobInput::objects() {
+    // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
+    // for chamfer mills and V-bits only, which need a tipAngle.
+    std::vector<std::string> not_bull_nose, not_pointed;
+    for (const auto& t : tool_types) {
+        if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
+        if (t.value != ToolType::chamfer_mill && t.value != ToolType::v_bit) not_pointed.emplace_back(t.name);
+    }
     return {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
          .keys = {std::begin(job_keys), std::end(job_keys)}},
-        {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)}},
+        {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)},
+         .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
+                   {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
+                   {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
+                   {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}}}},
     };
 }
 
@@ -191,17 +212,48 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     tool.type = f.choice("type", tool_types, ToolType::drill);
     tool.diameter = length(f, "diameter");
     if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
+    const bool pointed = tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit;
+    const std::string_view type_name = name_of(tool_types, tool.type);
     tool.tip_angle = f.optional_number("tipAngle");
-    // Drill points are 60 to 140 degrees (centre drills 60, spot drills 90 to 142); below 30 a
-    // point is a needle whose tip length, added by drillTip, would be several diameters.
-    if (tool.tip_angle && (*tool.tip_angle < 30 || *tool.tip_angle >= 180))
+    if (pointed) {
+        // Engraving V-bits go down to 10 degrees, chamfer mills are 60 to 120.
+        if (!tool.tip_angle) f.fail("tipAngle", fmt::format("a {} needs its tipAngle (the included angle of its point)", type_name));
+        if (!(*tool.tip_angle > 0 && *tool.tip_angle < 180))
+            f.fail("tipAngle", fmt::format("tipAngle {} degrees is not a {}'s point: it must be more than 0 and less than 180 "
+                                           "degrees",
+                                           *tool.tip_angle, type_name));
+    } else if (tool.tip_angle && (*tool.tip_angle < 30 || *tool.tip_angle >= 180)) {
+        // Drill points are 60 to 140 degrees (centre drills 60, spot drills 90 to 142); below 30 a
+        // point is a needle whose tip length, added by drillTip, would be several diameters.
         f.fail("tipAngle", fmt::format("tipAngle {} degrees is not a drill point: it must be between 30 (inclusive) "
                                        "and 180 degrees (drills are 60 to 140)",
                                        *tool.tip_angle));
+    }
+    tool.corner_radius = optional_length(f, "cornerRadius");
+    if (tool.type == ToolType::bull_nose) {
+        if (!tool.corner_radius) f.fail("cornerRadius", "a bull-nose end mill needs its cornerRadius");
+        if (!(*tool.corner_radius > 0 && *tool.corner_radius <= tool.diameter / 2 + 1e-9))
+            f.fail("cornerRadius", fmt::format("cornerRadius {} must be more than 0 and at most half the diameter ({}); a "
+                                               "corner radius of half the diameter is a ball-mill",
+                                               show(*tool.corner_radius), show(tool.diameter / 2)));
+    } else if (tool.corner_radius) {
+        f.fail("cornerRadius", fmt::format("cornerRadius is for a bull-nose end mill, not a {} (a ball-mill's is half its "
+                                           "diameter)",
+                                           type_name));
+    }
+    if (auto tip = optional_length(f, "tipDiameter")) {
+        if (!pointed)
+            f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill or v-bit, not a {}", type_name));
+        if (!(*tip >= 0 && *tip < tool.diameter))
+            f.fail("tipDiameter", fmt::format("tipDiameter {} must be at least 0 and less than the diameter ({})", show(*tip),
+                                              show(tool.diameter)));
+        tool.tip_diameter = *tip;
+    }
     tool.flute_length = optional_length(f, "fluteLength");
     if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
     tool.centre_cutting = f.has("centreCutting") ? f.boolean("centreCutting", false)
-                                                  : tool.type != ToolType::end_mill && tool.type != ToolType::boring_bar;
+                                                  : tool.type != ToolType::end_mill && tool.type != ToolType::bull_nose &&
+                                                        tool.type != ToolType::chamfer_mill && tool.type != ToolType::boring_bar;
     tool.rpm = f.number("rpm");
     if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
     tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/large_buffer.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/geometry/arc.hpp"
 
 namespace camgen {
 
@@ -92,7 +94,12 @@ void SafetyCheck::fail(const std::string& key, const std::string& detail) const 
     throw InputError(op_path_ + key, detail);
 }
 
+void SafetyCheck::reach(double z) {
+    if (!op_lowest_z_ || z < *op_lowest_z_) op_lowest_z_ = z;
+}
+
 void SafetyCheck::move(const Vec3& to, bool feed) {
+    reach(to.z);
     const double retract = op_retract_z_.value_or(limits_.clearance);
     if (!pos_) {
         // From the tool-change position the post goes up, across, then down: only the end counts.
@@ -197,6 +204,7 @@ void SafetyCheck::emit(const Event& event) {
         overloaded{
             [&](const OperationStart& op) {
                 op_path_ = op.path;
+                op_lowest_z_.reset();
                 op_retract_z_.reset();
                 op_reference_z_.reset();
                 op_safe_z_.reset();
@@ -207,6 +215,12 @@ void SafetyCheck::emit(const Event& event) {
                 }
             },
             [&](const OperationEnd&) {
+                if (stock_bottom_ && op_lowest_z_ && *op_lowest_z_ < *stock_bottom_ - eps && warnings_)
+                    *warnings_ << fmt::format("camgen: warning: {}: the operation goes down to Z {}, {} mm below the "
+                                                     "stock bottom (Z {}): into what holds the stock\n",
+                                                     op_path_, z_of(*op_lowest_z_),
+                                                     z_of(*stock_bottom_ - *op_lowest_z_), z_of(*stock_bottom_));
+                op_lowest_z_.reset();
                 op_retract_z_.reset();
                 op_reference_z_.reset();
                 op_safe_z_.reset();
@@ -219,6 +233,12 @@ void SafetyCheck::emit(const Event& event) {
             [&](const Rapid& r) { move(r.to, false); },
             [&](const Linear& l) { move(l.to, true); },
             [&](const Arc& a) {
+                // An arc in XY (or a helix) is lowest at an end; one in XZ or YZ may dip between.
+                reach(a.to.z);
+                if (a.plane != Plane::xy && pos_) {
+                    const ArcGeometry g = resolve_arc(*pos_, a);
+                    for (const Vec3& p : linearize_arc(g, 64)) reach(p.z);
+                }
                 // An arc's ends: it does not start a hole; its plunge was a feed move before it.
                 pos_ = a.to;
                 last_was_feed_ = true;
@@ -242,6 +262,7 @@ void SafetyCheck::emit(const Event& event) {
                                                       fmt::format("{:.3f}", depth), tool_,
                                                       fmt::format("{:.3f}", it->second)));
                 }
+                reach(c.bottom_z);
                 cycle_ = c;
                 op_retract_z_ = c.retract_z;
                 op_reference_z_ = c.reference_z;

@@ -12,6 +12,7 @@
 #include "camgen/job/job_input.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/operations/registry.hpp"
+#include "camgen/operations/stock.hpp"
 
 namespace camgen {
 
@@ -117,7 +118,8 @@ OJson group_schema(const KeyGroup& g) {
     }
     OJson one = OJson::array();
     const std::size_t n = g.keys.size();
-    for (std::size_t mask = 1; mask < (std::size_t{1} << n); ++mask) {
+    // A group that may be left out (min 0) takes the subset of none as well.
+    for (std::size_t mask = g.min == 0 ? 0 : 1; mask < (std::size_t{1} << n); ++mask) {
         OJson required = OJson::array(), absent = OJson::object();
         for (std::size_t i = 0; i < n; ++i) {
             if (mask & (std::size_t{1} << i)) required.push_back(g.keys[i]);
@@ -270,7 +272,9 @@ std::string value_text(const KeySpec& k) {
 }  // namespace
 
 std::optional<std::string> keys_markdown(std::string_view name) {
-    for (const ObjectSpec& spec : operation_objects()) {
+    std::vector<ObjectSpec> objects = operation_objects();
+    for (ObjectSpec& o : stock_objects()) objects.push_back(std::move(o));
+    for (const ObjectSpec& spec : objects) {
         if (spec.name != name) continue;
         std::string s = "| key | value | default | meaning |\n| --- | --- | --- | --- |\n";
         for (const KeySpec& k : spec.keys) {
@@ -289,7 +293,9 @@ std::optional<std::string> keys_markdown(std::string_view name) {
 }
 
 OJson job_schema() {
-    return file_schema("job", "camgen job", JobInput::objects(), operation_defs(), SchemaKind::job);
+    std::vector<ObjectSpec> objects = JobInput::objects();
+    for (ObjectSpec& o : stock_objects()) objects.push_back(std::move(o));
+    return file_schema("job", "camgen job", objects, operation_defs(), SchemaKind::job);
 }
 
 OJson machine_schema() {

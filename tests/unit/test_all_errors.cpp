@@ -160,14 +160,14 @@ TEST_CASE("every error at once: the header's errors, and what ends reading after
 )" + drill_op("9") + R"(
   ],
   "programNumber": 0,
-  "stock": 1
+  "spindle": 1
 })";
     std::vector<InputError> errors = errors_of(late_header);
     REQUIRE(errors.size() == 2);
     CHECK(errors[0].path() == "/operations/0/tool");
     CHECK(errors[0].line() == 5);
     // The header's first error only: an unknown key is reported before the keys are read.
-    CHECK(errors[1].path() == "/stock");
+    CHECK(errors[1].path() == "/spindle");
     CHECK(errors[1].line() == 8);
 
     // Units and clearance measure everything after them: a mistake there is the only error.

@@ -12,6 +12,7 @@
 #include "camgen/schema/schema.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 #include "camgen/operations/registry.hpp"
+#include "camgen/operations/stock.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
 namespace test_docs {
@@ -72,6 +73,15 @@ TEST_CASE("docs: the cycle table is the vocabulary's") {
     CHECK(table.find("| `bore-stop` | G86: feed in, spindle stop, rapid out | **plungingFeedrate**, bottomDwell |") !=
           std::string::npos);
     check_section("cycle kinds", table);
+}
+
+TEST_CASE("docs: the stock key tables are the stock's key tables") {
+    for (const ObjectSpec& spec : stock_objects()) {
+        const std::optional<std::string> table = keys_markdown(spec.name);
+        REQUIRE(table);
+        for (const KeySpec& k : spec.keys) CHECK(table->find("| `" + std::string(k.key) + "` |") != std::string::npos);
+        check_section(std::string(spec.name) + " keys", *table);
+    }
 }
 
 TEST_CASE("docs: the contour, path, bore-mill, stop, custom, pocket and face key tables are the operations' key tables") {

@@ -402,7 +402,7 @@ TEST_CASE("errors at the top level") {
   "operations": [],
   "stock": {"min": [0, 0, 0], "max": [1, 1, 1]}
 })",
-                "/stock", 5, "unknown key \"stock\"");
+                "/stock/min", 5, "min belongs in the stock's box: \"stock\": {\"box\": {\"min\": ...}}");
     check_error(R"({
   "clearence": 5,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000}],

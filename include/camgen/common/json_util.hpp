@@ -38,6 +38,9 @@ public:
     }
     // Line where the value at `pointer` starts (for an object member: its key); 0 if unknown.
     int line_of(std::string_view pointer) const;
+    // The same, scanning the text only up to that value and keeping no map (a value near the
+    // start of a large job, such as its stock, is found without mapping the rest); 0 if unknown.
+    int line_of_early(std::string_view pointer) const;
 
 private:
     std::shared_ptr<const std::string> copy_;  // shared: copies of a map share the text

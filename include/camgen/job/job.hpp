@@ -7,6 +7,7 @@
 #include <string>
 
 #include "camgen/geometry/geometry.hpp"
+#include "camgen/geometry/profile.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen {
@@ -16,7 +17,9 @@ struct Tool {
     int number = 0;
     ToolType type = ToolType::drill;
     double diameter = 0.0;                 // mm
-    std::optional<double> tip_angle;       // degrees, included angle of the point
+    std::optional<double> tip_angle;       // degrees, included angle of the point (drills, chamfer mill, V-bit)
+    std::optional<double> corner_radius;   // mm, a bull-nose end mill's corner radius (0 < r <= diameter / 2)
+    double tip_diameter = 0.0;             // mm, a chamfer mill's or V-bit's flat at its point (0: pointed)
     std::optional<double> flute_length;    // mm, how deep it can cut (job key fluteLength)
     bool centre_cutting = true;            // cuts at its centre: may plunge into material
     double rpm = 0.0;                      // rev/min, > 0
@@ -24,6 +27,31 @@ struct Tool {
     std::string comment;
     CoolantMode coolant = CoolantMode::off;  // while the tool cuts
     std::string path;                      // JSON path, for messages
+};
+
+// The shape of the stock: a box or a prism over a closed outline (mills), a bar (lathes).
+enum class StockShape { box, profile, bar };
+
+// The material before the first operation (job key "stock"), in mm. Every shape fills `min`
+// and `max`, its bounding box: a mill's stock from its bottom (min.z) to its top (max.z); a
+// bar lies along Z, its axis at X0 Y0, from its face (max.z = face_z) back to min.z.
+struct Stock {
+    StockShape shape = StockShape::box;
+    Vec3 min;                              // mm
+    Vec3 max;                              // mm
+    Profile outline;                       // profile: closed, in XY, as drawn
+    double diameter = 0.0;                 // bar: outer diameter
+    double length = 0.0;                   // bar: along Z
+    double face_z = 0.0;                   // bar: Z of its face (towards the tailstock end of the work)
+    std::optional<double> bore_diameter;   // bar: a tube's inner diameter
+    std::string path;                      // JSON path of the shape's object ("/stock/box"), for messages
+    int line = 0;                          // ... its line in the job file
+    std::string source;                    // ... and the file's name
+    // Z of the stock top (a bar: its face) and of its bottom (a bar: its far end).
+    double top() const { return max.z; }
+    double bottom() const { return min.z; }
+    // Whether it is a mill's stock (box or profile) rather than a lathe's bar.
+    bool for_mill() const { return shape != StockShape::bar; }
 };
 
 // What a job says besides its operations.
@@ -34,6 +62,7 @@ struct JobHeader {
     std::string work_offset;            // the work offset the program selects ("G54"); empty: none written
     std::optional<int> program_number;  // the program number, overriding the machine's
     std::map<int, Tool> tools;          // by tool number
+    std::optional<Stock> stock;         // the material, where the job gives it
 };
 
 }  // namespace camgen

@@ -70,6 +70,9 @@ public:
     // tool's number is unknown) then gets a FollowOnError from tool().
     void read_tools(Fields& top, const std::function<void(const InputError&)>& report);
     const JobHeader& header() const { return header_; }
+    // Sets the job's stock, read by the operations layer (its profile form reads like a
+    // contour's), before the operations are read: they take their stock top from it.
+    void set_stock(Stock stock) { header_.stock = std::move(stock); }
     JobHeader take_header() { return std::move(header_); }
     const json::Source& source() const { return source_; }
     const Json& root() const { return doc_.root; }

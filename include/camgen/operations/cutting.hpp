@@ -118,6 +118,11 @@ std::vector<KeySpec> depth_pass_keys();
 // contourLead, contourRamp, contourTabs), for the JSON Schema.
 std::vector<ObjectSpec> cutting_objects();
 
+// Refuses a pointed tool (chamfer-mill, v-bit) for an operation that cuts with the tool's side
+// at its diameter (contour, pocket, face; `what` names it: "a contour"): an error at "tool".
+// Other tool types are accepted as they always were.
+void check_cutting_tool(json::Fields& f, const Tool& tool, std::string_view what);
+
 // A profile from `start_key` and `path_key` (lines and arcs; packed lines read straight into
 // numbers), refused when an element is shorter than min_profile_segment or the profile crosses
 // itself. `what` names the owner in messages ("a contour").

@@ -36,7 +36,9 @@ Planes resolve_planes(const Heights& heights);
 // false leaves safeDistance to a table that has it already (the drilling fields).
 std::vector<KeySpec> height_keys(bool with_safe_distance);
 
-// Reads and checks the heights (each error names the key and the Z values involved): the
+// Reads and checks the heights (each error names the key and the Z values involved). Where the
+// job gives a mill's stock, referencePlane defaults to its top and a retractPlane not above
+// that top is refused. The
 // bottom below the safe distance, the safe distance not below the stock top, the retract
 // plane above the stock top and not below the safe distance. `what` names the cut in
 // messages ("hole", "pass").

@@ -72,9 +72,9 @@ std::vector<std::string> operation_type_names();
 // `limits` bound its size (holes, path elements, nesting) before anything is allocated for it.
 Job read_job(std::string_view text, const std::string& source_name, JobLimits limits = {});
 
-// Refuses a job with an operation made for another kind of machine than `kind` (a drill
-// operation on a lathe, a turning operation on a mill): an InputError at the first such
-// operation's "type", naming the operation and both kinds.
+// Refuses a job with a stock or an operation made for another kind of machine than `kind` (a
+// bar on a mill, a drill operation on a lathe, a turning operation on a mill): an InputError at
+// the stock's shape, else at the first such operation's "type", naming it and both kinds.
 void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name);
 
 // Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.

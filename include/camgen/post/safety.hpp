@@ -2,8 +2,11 @@
 // Safety checks on the events of a job, before a post writes any text: rapids below the
 // retract plane, feeds that start inside the stock where no hole is, planes in the wrong
 // order, holes deeper than the tool's flutes. Each failure is an InputError naming the
-// operation's JSON path.
+// operation's JSON path. Where the job gives a stock, an operation that goes below its bottom
+// gets a warning (a through-cut does by design; a 30 mm cut in a 10 mm plate must not pass
+// silently).
 #include <cstddef>
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -76,6 +79,12 @@ public:
     // Room for `holes` holes in the log of holes drilled (a hint: the holes a job's drilling
     // operations drill, known once it is read; more still fit).
     void reserve_holes(std::size_t holes) { holes_.reserve(holes); }
+    // Where the job gives a stock: an operation whose moves go below `bottom` (absolute Z, mm)
+    // gets a warning on `warnings` ("camgen: warning: PATH: ..."), at its end.
+    void warn_below_stock(double bottom, std::ostream& warnings) {
+        stock_bottom_ = bottom;
+        warnings_ = &warnings;
+    }
 
 private:
     // A rapid or feed move to `to` (feed: true for a feed move).
@@ -125,6 +134,11 @@ private:
     int tool_ = 0;
     DrilledHoles holes_;
     LonghandBuffers longhand_buffers_;     // reused by every hole's moves
+    std::optional<double> stock_bottom_;   // the stock bottom, where a warning is wanted
+    std::ostream* warnings_ = nullptr;     // ... and where it goes
+    std::optional<double> op_lowest_z_;    // the lowest Z the current operation's moves reach
+    // Lowers op_lowest_z_ to `z`.
+    void reach(double z);
     std::optional<std::string> pending_descent_;  // a rapid down to a retract plane not yet known: the error
     double pending_z_ = 0.0;                      // ... and the Z it went down to
 };

@@ -114,7 +114,10 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
     {SpindleDirection::ccw, "ccw", "counter-clockwise (M4)"},
 };
 
-enum class ToolType { drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, turning_tool };
+enum class ToolType {
+    drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, bull_nose, chamfer_mill, v_bit,
+    turning_tool
+};
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::drill, "drill", "drill"},
@@ -125,6 +128,9 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::boring_bar, "boring-bar", "boring bar"},
     {ToolType::end_mill, "end-mill", "end mill"},
     {ToolType::ball_mill, "ball-mill", "ball mill"},
+    {ToolType::bull_nose, "bull-nose", "bull-nose end mill"},
+    {ToolType::chamfer_mill, "chamfer-mill", "chamfer mill"},
+    {ToolType::v_bit, "v-bit", "V-bit"},
     {ToolType::turning_tool, "turning-tool", "turning tool"},
 };
 

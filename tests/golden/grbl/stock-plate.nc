@@ -1,0 +1,136 @@
+(stock-plate)
+G40 G49 G17 G90 G94 G21
+(face the 120 x 80 plate from its top [Z0.5] to Z0)
+(Insert tool 5: 20 mm end mill - 20 mm face mill)
+M0
+S3000 M3
+G0 Z15
+X-10.665 Y-5.5
+Z5
+Z1.5
+G1 Z0 F400
+X130.665 F1200
+X132 Y7.5
+X-12
+Y20.5
+X132
+Y33.5
+X-12
+Y46.5
+X132
+Y59.5
+X-12
+Y72.5
+X132
+X130.665 Y85.5
+X-10.665
+G0 Z15
+M5
+(pocket 50 x 30, R5 corners, 4 deep, from the faced top)
+(Insert tool 3: 8 mm bull-nose end mill - 8 mm bull-nose R0.5)
+M0
+S7000 M3
+G0 Z15
+X48.6 Y38.6
+Z5
+Z1
+G1 Z0 F250
+G3 X48.6 Y38.6 Z-2 I0 J4 F900
+G1 X71.4
+Y41.4
+X48.6
+Y38.6
+X45.4 Y35.4
+X74.6
+Y44.6
+X45.4
+Y35.4
+X42.2 Y32.2
+X77.8
+Y47.8
+X42.2
+Y32.2
+X40 Y29
+X80
+G3 X81 Y30 I0 J1
+G1 Y50
+G3 X80 Y51 I-1 J0
+G1 X40
+G3 X39 Y50 I0 J-1
+G1 Y30
+G3 X40 Y29 I1 J0
+G0 Z5
+X48.6 Y38.6
+Z1
+G1 Z-2 F250
+G3 X48.6 Y38.6 Z-4 I0 J4 F900
+G1 X71.4
+Y41.4
+X48.6
+Y38.6
+X45.4 Y35.4
+X74.6
+Y44.6
+X45.4
+Y35.4
+X42.2 Y32.2
+X77.8
+Y47.8
+X42.2
+Y32.2
+X40 Y29
+X80
+G3 X81 Y30 I0 J1
+G1 Y50
+G3 X80 Y51 I-1 J0
+G1 X40
+G3 X39 Y50 I0 J-1
+G1 Y30
+G3 X40 Y29 I1 J0
+G0 Z15
+M5
+(spot four holes)
+(Insert tool 1: 10 mm spot drill)
+M0
+S2500 M3
+G0 Z15
+X10 Y10
+Z2
+G1 Z-1.5 F80
+G0 Z2
+X110
+G1 Z-1.5
+G0 Z2
+Y70
+G1 Z-1.5
+G0 Z2
+X10
+G1 Z-1.5
+G0 Z2
+Z15
+M5
+(drill four holes 10 deep, blind in the 12 mm plate)
+(Insert tool 2: 6.8 mm drill - HSS 6.8)
+M0
+S1800 M3
+G0 Z15
+X10 Y10
+Z5
+Z1
+G1 Z-10 F120
+G0 Z5
+X110
+Z1
+G1 Z-10
+G0 Z5
+Y70
+Z1
+G1 Z-10
+G0 Z5
+X10
+Z1
+G1 Z-10
+G0 Z5
+Z15
+M5
+M2
