@@ -701,15 +701,14 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     inputs.note(v.program, "the program");
     const InputText job_input = inputs.read(v.job, "the job", json_input());
     SimStock stock;
-    if (v.stock_box.empty() == v.bar.empty())
-        throw UsageError("simulate needs the stock: --stock-box x0,y0,z0,x1,y1,z1 for a mill or --bar D,L[,FACEZ] for a lathe");
+    if (!v.stock_box.empty() && !v.bar.empty()) throw UsageError("simulate takes one stock: --stock-box or --bar, not both");
     if (!v.stock_box.empty()) {
         if (machine.kind == MachineKind::lathe) throw UsageError(fmt::format("{} is a lathe: its stock is a --bar", machine.name));
         const auto n = option_numbers(v.stock_box, "--stock-box", 6, 0, "x0,y0,z0,x1,y1,z1");
         stock.kind = SimStock::Kind::box;
         stock.min = {n[0], n[1], n[2]};
         stock.max = {n[3], n[4], n[5]};
-    } else {
+    } else if (!v.bar.empty()) {
         if (machine.kind != MachineKind::lathe) throw UsageError(fmt::format("{} is a mill: its stock is a --stock-box", machine.name));
         const auto n = option_numbers(v.bar, "--bar", 3, 1, "D,L[,FACEZ]");
         stock.kind = SimStock::Kind::bar;
@@ -726,6 +725,35 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         throw;
     } catch (const InputError& e) {
         throw locate(e, v.job, job_input.text);
+    }
+    if (v.stock_box.empty() && v.bar.empty()) {
+        // The job's own stock (read and checked against the machine's kind with the job).
+        if (!job->stock)
+            throw UsageError(fmt::format("simulate needs the stock: the job's \"stock\" (a box, a profile or a lathe's bar), "
+                                         "or --stock-box x0,y0,z0,x1,y1,z1 for a mill or --bar D,L[,FACEZ] for a lathe"));
+        const Stock& js = *job->stock;
+        switch (js.shape) {
+            case StockShape::box:
+                stock.kind = SimStock::Kind::box;
+                stock.min = js.min;
+                stock.max = js.max;
+                break;
+            case StockShape::profile:
+                stock.kind = SimStock::Kind::profile;
+                stock.profile = js.outline;
+                stock.top = js.top();
+                stock.bottom = js.bottom();
+                stock.min = js.min;
+                stock.max = js.max;
+                break;
+            case StockShape::bar:
+                stock.kind = SimStock::Kind::bar;
+                stock.bar_diameter = js.diameter;
+                stock.bar_length = js.length;
+                stock.face_z = js.face_z;
+                stock.bore_diameter = js.bore_diameter;
+                break;
+        }
     }
     SimOptions options;
     options.resolution = v.resolution;
@@ -852,8 +880,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     simulate_cmd->add_option("program", so.program, "The NC program; - reads standard input")->required();
     simulate_cmd->add_option("-m,--machine", so.machine, "The machine the program was written for")->required();
     simulate_cmd->add_option("--job", so.job, "The job whose tools the program uses (their shapes)")->required();
-    simulate_cmd->add_option("--stock-box", so.stock_box, "A mill's stock: the box's corners x0,y0,z0,x1,y1,z1 in mm");
-    simulate_cmd->add_option("--bar", so.bar, "A lathe's stock: the bar's diameter, length and face Z (default 0), D,L[,FACEZ] in mm");
+    simulate_cmd->add_option("--stock-box", so.stock_box, "A mill's stock: the box's corners x0,y0,z0,x1,y1,z1 in mm (default: the job's stock)");
+    simulate_cmd->add_option("--bar", so.bar, "A lathe's stock: the bar's diameter, length and face Z (default 0), D,L[,FACEZ] in mm (default: the job's stock)");
     simulate_cmd->add_option("--resolution", so.resolution,
                              "Cell size (mill) or Z step (lathe) in mm (default: 4 million cells, 100,000 steps)");
 

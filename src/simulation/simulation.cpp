@@ -735,6 +735,16 @@ ToolShape tool_shape(const Tool& tool) {
     switch (tool.type) {
     case ToolType::end_mill: s.form = ToolForm::flat; break;
     case ToolType::ball_mill: s.form = ToolForm::ball; break;
+    case ToolType::bull_nose:
+        s.form = ToolForm::bull_nose;
+        s.corner_radius = tool.corner_radius.value_or(0.0);
+        break;
+    case ToolType::chamfer_mill:
+    case ToolType::v_bit:
+        s.form = ToolForm::cone;
+        s.tip_angle = tool.tip_angle.value_or(90.0);
+        s.tip_diameter = tool.tip_diameter;
+        break;
     case ToolType::drill:
     case ToolType::centre_drill:
     case ToolType::spot_drill:
