@@ -15,6 +15,7 @@ ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 LAYERS = [
     ("include/camgen/geometry/", "geometry"), ("src/geometry/", "geometry"), ("camgen/geometry/", "geometry"),
     ("include/camgen/vocabulary/", "vocabulary"), ("src/vocabulary/", "vocabulary"), ("camgen/vocabulary/", "vocabulary"),
+    ("include/camgen/dxf/", "dxf"), ("src/dxf/", "dxf"), ("camgen/dxf/", "dxf"),
     ("include/camgen/common/", "common"), ("src/common/", "common"), ("camgen/common/", "common"),
     ("include/camgen/events/", "events"), ("src/events/", "events"), ("camgen/events/", "events"),
     ("include/camgen/job/", "job"), ("src/job/", "job"), ("camgen/job/", "job"),
@@ -35,14 +36,15 @@ ALLOWED = {
     "common": {"common", "vocabulary", "geometry"},
     "events": {"events", "vocabulary", "geometry"},
     "job": {"job"} | BASE,
-    "operations": {"operations", "job", "events"} | BASE,
+    "dxf": {"dxf", "geometry"},
+    "operations": {"operations", "job", "events", "dxf"} | BASE,
     "nc": {"nc", "common"},
     "post": {"post", "nc", "events"} | BASE,
     "reader": {"reader", "post", "nc", "events"} | BASE,
     "dialect": {"dialect", "post", "reader", "nc", "events"} | BASE,
     "analysis": {"analysis", "reader", "post", "nc", "events"} | BASE,
     "schema": {"schema", "operations", "job", "post", "nc", "events"} | BASE,
-    "cli": {"cli", "schema", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
+    "cli": {"cli", "dxf", "schema", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
 }
 # A dialect folder includes its own files and the shared registry header only, never another
 # dialect's folder.
