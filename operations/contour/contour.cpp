@@ -140,7 +140,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     if (const Planes z = resolve_planes(op.heights); tool.flute_length && z.reference_z - z.bottom_z > *tool.flute_length)
         f.fail("endDepth", fmt::format("the contour is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));
-    op.profile = read_profile(f, in, "a contour");
+    op.profile = read_profile(f, in, "a contour", "start", "path", &op.notes);
     const bool closed = is_closed(op.profile);
 
     op.side = f.choice("side", contour_sides, ContourSide::outside);
