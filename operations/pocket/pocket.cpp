@@ -926,7 +926,7 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
         f.fail(f.has(e.key) ? e.key : "", e.what());
     }
     op.steps = std::move(planner.steps);
-    op.notes = std::move(planner.notes);
+    op.notes.insert(op.notes.end(), planner.notes.begin(), planner.notes.end());  // after the drawing's
     note_corners(op, in, op.tool_radius + op.stock_to_leave, op.notes);
     std::size_t smaller = 0, along = 0, line = 0;
     for (const PocketStep& s : op.steps) {

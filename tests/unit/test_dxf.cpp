@@ -206,3 +206,102 @@ TEST_CASE("dxf: chaining joins pieces into closed profiles, nests them, and note
 }
 
 }  // namespace test_dxf
+
+#include "camgen/common/error.hpp"
+#include "camgen/operations/registry.hpp"
+
+namespace test_dxf {
+
+// A job in tests/dxf/ (so that drawings are found beside it) with one operation.
+std::string job_text(const std::string& op, const std::string& units = "mm") {
+    return R"({"name": "t", "units": ")" + units + R"(", "clearance": 15, "tools": [
+      {"number": 1, "type": "drill", "diameter": 5, "rpm": 1800},
+      {"number": 2, "type": "end-mill", "diameter": 6, "rpm": 8000}],
+      "operations": [)" + op + "]}";
+}
+const std::string job_name = CAMGEN_SOURCE_DIR "/tests/dxf/t.json";
+
+std::string job_error(const std::string& op, const std::string& units = "mm") {
+    try {
+        read_job(job_text(op, units), job_name);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const std::string drill_head = R"({"type": "drill", "tool": 1, "cycle": "drill", "retractPlane": 5, "safeDistance": 1, "endDepth": 3, "plungingFeedrate": 100, )";
+const std::string contour_head = R"({"type": "contour", "tool": 2, "retractPlane": 5, "safeDistance": 1, "endDepth": 3, "feed": 500, )";
+
+TEST_CASE("dxf in a job: holes from a drawing's circles, selected by layer and diameter, transformed") {
+    Job job = read_job(job_text(drill_head + R"("drawing": {"dxf": "plate.dxf", "layer": "HOLES", "diameter": [4.9, 5.1],
+        "transform": {"rotate": 90, "translate": [100, 0]}}})"), job_name);
+    const auto& drill = std::get<DrillOp>(job.operations.at(0));
+    REQUIRE(drill.holes.size() == 4);
+    // (8, 8) turned 90 degrees is (-8, 8), moved by (100, 0).
+    CHECK(std::abs(drill.holes[0].x - 92) < 1e-9);
+    CHECK(std::abs(drill.holes[0].y - 8) < 1e-9);
+    CHECK(std::abs(drill.holes[2].x - 58) < 1e-9);
+    CHECK(std::abs(drill.holes[2].y - 72) < 1e-9);
+    // Mirrored in X and scaled.
+    job = read_job(job_text(drill_head + R"("drawing": {"dxf": "plate.dxf", "layer": "HOLES", "diameter": [6, 7],
+        "transform": {"mirror": "x", "scale": 2}}})"), job_name);
+    const auto& small = std::get<DrillOp>(job.operations.at(0));
+    REQUIRE(small.holes.size() == 1);
+    CHECK(small.holes[0] == Vec2{-80, 88});
+}
+
+TEST_CASE("dxf in a job: units from $INSUNITS against the job's") {
+    // An inch drawing in a mm job: scaled by 25.4.
+    Job job = read_job(job_text(drill_head + R"("drawing": {"dxf": "inch.dxf"}})"), job_name);
+    const auto& d = std::get<DrillOp>(job.operations.at(0));
+    REQUIRE(d.holes.size() == 1);
+    CHECK(std::abs(d.holes[0].x - 25.4) < 1e-9);
+    CHECK(std::abs(d.holes[0].y - 12.7) < 1e-9);
+    CHECK(d.notes.empty());
+}
+
+TEST_CASE("dxf in a job: a contour and a pocket from a drawing") {
+    Job job = read_job(job_text(contour_head + R"("side": "outside", "profile": {"dxf": "plate.dxf", "layer": "OUTLINE"}})"), job_name);
+    const Profile& outline = std::get<ContourOp>(job.operations.at(0)).profile;
+    CHECK(outline.start == Vec2{5, 0});
+    REQUIRE(outline.segments.size() == 8);
+    CHECK(outline.segments[1].centre.has_value());
+    CHECK(std::abs(outline.segments[1].centre->x - 75) < 1e-9);
+    CHECK(std::abs(outline.segments[1].centre->y - 5) < 1e-9);
+    CHECK(is_closed(outline));
+    job = read_job(job_text(R"({"type": "pocket", "tool": 2, "retractPlane": 5, "safeDistance": 1, "endDepth": 3, "feed": 500,
+        "profile": {"dxf": "plate.dxf", "layer": "POCKET"}})"), job_name);
+    const PocketOp& pocket = std::get<PocketOp>(job.operations.at(0));
+    CHECK(pocket.region.islands.size() == 1);
+    CHECK(std::abs(enclosed_area(pocket.region.outer) - (800 + pi * 100)) < 0.1);
+    CHECK(std::abs(enclosed_area(pocket.region.islands[0]) - pi * 16) < 0.1);
+}
+
+TEST_CASE("dxf in a job: bad drawings and selections are errors naming the key, the drawing and the entity") {
+    CHECK(job_error(drill_head + R"("drawing": {"dxf": "plate.dxf", "layer": "HOLE"}})")
+              .find("/operations/0/drawing: " CAMGEN_SOURCE_DIR "/tests/dxf/plate.dxf: layer HOLE not found; layers are: 0, Defpoints, "
+                    "OUTLINE, POCKET, HOLES") != std::string::npos);
+    CHECK(job_error(drill_head + R"("drawing": {"dxf": "missing.dxf"}})").find("cannot open the drawing") != std::string::npos);
+    CHECK(job_error(drill_head + R"("drawing": {"dxf": "bad-truncated.dxf"}})").find("cut short") != std::string::npos);
+    CHECK(job_error(drill_head + R"("drawing": {"dxf": "bad-entity.dxf"}})").find("does not read 3DFACE") != std::string::npos);
+    CHECK(job_error(drill_head + R"("drawing": {"dxf": "plate.dxf", "layer": "OUTLINE"}})")
+              .find("plate.dxf has no circles or points on layer OUTLINE") != std::string::npos);
+    const std::string gap = job_error(R"({"type": "pocket", "tool": 2, "retractPlane": 5, "safeDistance": 1, "endDepth": 3, "feed": 500,
+        "profile": {"dxf": "bad-gap.dxf"}})");
+    CHECK(gap.find("/operations/0/profile: a pocket needs closed profiles, but the one from LINE handle") != std::string::npos);
+    CHECK(gap.find("is open (its ends are 0.500 mm apart") != std::string::npos);
+    CHECK(job_error(contour_head + R"("profile": {"dxf": "bad-crossing.dxf"}})").find("crosses or touches itself") != std::string::npos);
+    CHECK(job_error(contour_head + R"("profile": {"dxf": "plate.dxf"}})").find("a contour takes one profile, but the selection holds 8") !=
+          std::string::npos);
+    CHECK(job_error(contour_head + R"("start": [0, 0], "profile": {"dxf": "plate.dxf"}})").find("give start and path, or profile, not both") !=
+          std::string::npos);
+    // The gap closed when the tolerance allows it, with a note naming both entities.
+    Job job = read_job(job_text(R"({"type": "pocket", "tool": 2, "retractPlane": 5, "safeDistance": 1, "endDepth": 3, "feed": 500,
+        "profile": {"dxf": "bad-gap.dxf", "gapTolerance": 0.6}})"), job_name);
+    const PocketOp& p = std::get<PocketOp>(job.operations.at(0));
+    REQUIRE(!p.notes.empty());
+    CHECK(p.notes[0].find("/operations/0/profile: bad-gap.dxf: a gap of 0.5 between LINE handle") != std::string::npos);
+}
+
+}  // namespace test_dxf
