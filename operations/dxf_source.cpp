@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <iterator>
+#include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -187,16 +189,27 @@ std::vector<Vec2> read_dxf_holes(Fields& f, const JobInput& in, std::string_view
     }
     std::vector<Vec2> holes;
     std::vector<const dxf::Piece*> from;
+    std::map<std::pair<long long, long long>, std::vector<std::size_t>> cells;
     for (const dxf::Piece* p : picked) {
         if (p->kind == dxf::Piece::Kind::path) continue;
         const Vec2 at = dxf_to_work(r, p->centre);
-        // A hole drawn twice (a counterbore's two circles, a point in a circle) is drilled once.
-        const auto same = std::find_if(holes.begin(), holes.end(), [&](Vec2 h) { return distance(h, at) < 1e-6; });
-        if (holes.size() < 10000 && same != holes.end()) {
+        // A hole drawn twice (a counterbore's two circles, a point in a circle) is drilled once:
+        // holes in cells of 1e-5 mm, the neighbouring cells searched.
+        const long long cx = std::llround(std::floor(at.x * 1e5)), cy = std::llround(std::floor(at.y * 1e5));
+        std::optional<std::size_t> same;
+        for (long long dx = -1; dx <= 1 && !same; ++dx)
+            for (long long dy = -1; dy <= 1 && !same; ++dy) {
+                const auto found = cells.find({cx + dx, cy + dy});
+                if (found == cells.end()) continue;
+                for (std::size_t i : found->second)
+                    if (distance(holes[i], at) < 1e-6) same = i;
+            }
+        if (same) {
             notes.push_back(fmt::format("{}: {} is at the same place as {}: one hole", r.path, dxf::describe(p->origin),
-                                        dxf::describe(from[static_cast<std::size_t>(same - holes.begin())]->origin)));
+                                        dxf::describe(from[*same]->origin)));
             continue;
         }
+        cells[{cx, cy}].push_back(holes.size());
         holes.push_back(at);
         from.push_back(p);
     }
