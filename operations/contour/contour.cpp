@@ -117,7 +117,8 @@ std::vector<ObjectSpec> ContourOp::objects() {
     add({std::begin(contour_entry_keys), std::end(contour_entry_keys)});
     add(cut_feed_keys());
     add(tolerance_keys());
-    std::vector<ObjectSpec> out{{.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys}};
+    std::vector<ObjectSpec> out{{.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys,
+                                 .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}}};
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
     return out;
 }

@@ -821,7 +821,8 @@ std::vector<ObjectSpec> PocketOp::objects() {
     add(cut_feed_keys());
     add(tolerance_keys());
     std::vector<ObjectSpec> out{
-        {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys},
+        {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys,
+         .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}},
         {.name = "pocketIsland", .description = "an island: a closed profile of lines and arcs", .keys = {std::begin(island_keys), std::end(island_keys)}},
     };
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
