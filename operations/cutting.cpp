@@ -11,6 +11,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/large_buffer.hpp"
+#include "camgen/operations/dxf_source.hpp"
 
 namespace camgen {
 
@@ -32,8 +33,9 @@ constexpr KeySpec tolerance_key_table[] = {
 
 // The keys of a profile's start and path; "start" and "path" are renamed by profile_keys.
 constexpr KeySpec profile_key_table[] = {
-    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "where the profile starts [x, y]"},
-    {.key = "path", .type = JsonType::array, .required = true, .ref = "contourElement", .min_items = 1, .description = "the profile's lines and arcs in XY, each starting where the previous one ends"},
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "where the profile starts [x, y]"},
+    {.key = "path", .type = JsonType::array, .ref = "contourElement", .min_items = 1, .description = "the profile's lines and arcs in XY, each starting where the previous one ends"},
+    {.key = "profile", .type = JsonType::object, .ref = "dxfSource", .description = "or the profile from a DXF drawing: its lines, arcs and polylines on the selection, chained"},
 };
 
 constexpr KeySpec depth_pass_key_table[] = {
@@ -453,7 +455,29 @@ void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
                                tool.number, tool_types[static_cast<int>(tool.type)].description, what));
 }
 
-Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::string_view start_key, std::string_view path_key) {
+Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::string_view start_key, std::string_view path_key,
+                     std::vector<std::string>* notes) {
+    if (f.has("profile") && start_key == "start") {
+        if (f.has(start_key) || f.has(path_key)) f.fail("profile", fmt::format("give {} and {}, or profile, not both", start_key, path_key));
+        std::vector<std::string> own;
+        const double tolerance = read_tolerance(f, in).value_or(0.01);
+        DxfProfiles d = read_dxf_profiles(f, in, "profile", tolerance, notes ? *notes : own);
+        if (d.profiles.size() != 1) {
+            std::string list;
+            for (std::size_t i = 0; i < d.profiles.size() && i < 8; ++i)
+                list += fmt::format("{}{} {}", i ? "; " : "", d.closed[i] ? "a closed profile from" : "an open profile from", d.describe[i]);
+            if (d.profiles.size() > 8) list += fmt::format("; and {} more", d.profiles.size() - 8);
+            f.fail("profile", fmt::format("{} takes one profile, but the selection holds {}: {}; select one by layer, colour, linetype or "
+                                          "block (or raise gapTolerance to join pieces)",
+                                          what, d.profiles.size(), list));
+        }
+        Profile& p = d.profiles.front();
+        if (auto k = first_short_segment(p, min_profile_segment))
+            f.fail("profile", fmt::format("segment {} of {} is shorter than {} mm", *k, d.describe.front(), min_profile_segment));
+        if (!is_simple(p))
+            f.fail("profile", fmt::format("the profile from {} crosses or touches itself", d.describe.front()));
+        return std::move(p);
+    }
     Profile p;
     p.start = in.point(f, start_key);
     const std::string base = f.path_of(path_key);
@@ -640,6 +664,10 @@ std::vector<KeySpec> depth_pass_keys() { return {std::begin(depth_pass_key_table
 
 std::vector<ObjectSpec> cutting_objects() {
     return {
+        {.name = "dxfSource", .description = "geometry from a DXF drawing, selected by layer, colour, linetype, block or diameter",
+         .keys = dxf_source_objects()[0].keys},
+        {.name = "dxfTransform", .description = "drawing to work coordinates: scale, mirror, rotate, translate, in that order",
+         .keys = dxf_source_objects()[1].keys},
         {.name = "contourElement", .description = "one element of a profile: exactly one of line or arc",
          .keys = {std::begin(contour_element_keys), std::end(contour_element_keys)},
          .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line or arc"}}},

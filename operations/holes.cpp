@@ -10,6 +10,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/common/large_buffer.hpp"
 #include "camgen/geometry/transform.hpp"
+#include "camgen/operations/dxf_source.hpp"
 
 namespace camgen {
 
@@ -30,6 +31,8 @@ constexpr KeySpec source_keys[] = {
     {.key = "grid", .type = JsonType::object, .ref = "drillGrid", .description = "a grid of holes"},
     {.key = "boltCircle", .type = JsonType::object, .ref = "drillBoltCircle", .description = "holes on a circle"},
     {.key = "line", .type = JsonType::object, .ref = "drillLine", .description = "holes evenly spaced along a line"},
+    {.key = "drawing", .type = JsonType::object, .ref = "dxfSource",
+     .description = "holes from a DXF drawing: the centres of its circles and its points, selected"},
 };
 
 // The keys of a hole given as an object.
@@ -92,7 +95,7 @@ void read_packed_holes(const json::PackedArray& packed, Fields& f, const JobInpu
 // counted now and made later (make_pending_holes), once the whole job's count is known.
 void read_holes(Fields& f, const JobInput& in, std::string_view op_type, std::vector<Vec2>& holes,
                 std::vector<HolePattern>& patterns) {
-    const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line");
+    const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line") || f.has("drawing");
     if (!any)
         f.fail("", fmt::format("a {} operation needs holes: give at least one of holes, grid, boltCircle "
                                "or line",
@@ -272,11 +275,12 @@ void two_opt(std::vector<Vec2>& p) {
 std::vector<KeySpec> hole_keys() { return {std::begin(source_keys), std::end(source_keys)}; }
 
 KeyGroup hole_group(std::string_view description) {
-    return {.keys = {"holes", "grid", "boltCircle", "line"}, .min = 1, .max = 4, .description = description};
+    return {.keys = {"holes", "grid", "boltCircle", "line", "drawing"}, .min = 1, .max = 5, .description = description};
 }
 
 std::vector<ObjectSpec> hole_objects() {
-    return {
+    std::vector<ObjectSpec> out = dxf_source_objects();
+    std::vector<ObjectSpec> own = {
         {.name = "drillHole", .description = "a hole {\"x\": x, \"y\": y} (or a point [x, y])",
          .keys = {std::begin(point_keys), std::end(point_keys)}, .also_point = true},
         {.name = "drillGrid", .description = "holes row by row, X fastest", .keys = {std::begin(grid_keys), std::end(grid_keys)}},
@@ -285,12 +289,19 @@ std::vector<ObjectSpec> hole_objects() {
         {.name = "drillLine", .description = "holes evenly spaced from start to end",
          .keys = {std::begin(line_keys), std::end(line_keys)}},
     };
+    for (ObjectSpec& o : own) out.push_back(std::move(o));
+    return out;
 }
 
 HoleSet read_hole_set(Fields& f, const JobInput& in, std::string_view op_type) {
     HoleSet set;
     set.order = f.choice("order", hole_orders, HoleOrder::as_given);
     read_holes(f, in, op_type, set.holes, set.pending_patterns);
+    // The drawing's holes after the list's (the patterns' follow in make_pending_holes).
+    if (f.has("drawing")) {
+        std::vector<Vec2> drawn = read_dxf_holes(f, in, "drawing", set.notes);
+        set.holes.insert(set.holes.end(), drawn.begin(), drawn.end());
+    }
     return set;
 }
 

@@ -117,7 +117,8 @@ std::vector<ObjectSpec> ContourOp::objects() {
     add({std::begin(contour_entry_keys), std::end(contour_entry_keys)});
     add(cut_feed_keys());
     add(tolerance_keys());
-    std::vector<ObjectSpec> out{{.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys}};
+    std::vector<ObjectSpec> out{{.name = "contour", .description = "cut beside (or on) a profile of lines and arcs, in depth passes", .keys = keys,
+                                 .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}}};
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
     return out;
 }
@@ -141,7 +142,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     if (const Planes z = resolve_planes(op.heights); tool.flute_length && z.reference_z - z.bottom_z > *tool.flute_length)
         f.fail("endDepth", fmt::format("the contour is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));
-    op.profile = read_profile(f, in, "a contour");
+    op.profile = read_profile(f, in, "a contour", "start", "path", &op.notes);
     const bool closed = is_closed(op.profile);
 
     op.side = f.choice("side", contour_sides, ContourSide::outside);

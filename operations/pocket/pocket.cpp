@@ -1,4 +1,5 @@
 #include "camgen/operations/pocket/pocket.hpp"
+#include "camgen/operations/dxf_source.hpp"
 #include "camgen/geometry/clearance.hpp"
 #include "camgen/geometry/vec.hpp"
 
@@ -776,6 +777,32 @@ Profile read_loop(Fields& f, const JobInput& in, std::string_view what) {
     return p;
 }
 
+// The outline and islands of a pocket from a drawing: the one outermost closed profile, and
+// the closed profiles directly inside it (those inside an island are left standing with it).
+void read_drawn_region(Fields& f, const JobInput& in, PocketOp& op) {
+    const DxfProfiles d = read_dxf_profiles(f, in, "profile", read_tolerance(f, in).value_or(0.01), op.notes);
+    std::vector<std::size_t> outer;
+    for (std::size_t i = 0; i < d.profiles.size(); ++i) {
+        if (!d.closed[i])
+            f.fail("profile", fmt::format("a pocket needs closed profiles, but the one from {} is open (its ends are {} apart, more "
+                                          "than gapTolerance): close it in the drawing or raise gapTolerance",
+                                          d.describe[i], in.show(distance(d.profiles[i].start, d.profiles[i].segments.back().end))));
+        if (d.parent[i] < 0) outer.push_back(i);
+    }
+    if (outer.size() != 1)
+        f.fail("profile", fmt::format("a pocket takes one outline, but the selection holds {} closed profiles side by side (the first "
+                                      "from {}): select one by layer, colour, linetype or block",
+                                      outer.size(), d.describe[outer[0]]));
+    for (std::size_t i = 0; i < d.profiles.size(); ++i) {
+        if (!is_simple(d.profiles[i])) f.fail("profile", fmt::format("the profile from {} crosses or touches itself", d.describe[i]));
+        if (i == outer[0]) op.region.outer = d.profiles[i];
+        else if (d.parent[i] == static_cast<int>(outer[0])) op.region.islands.push_back(d.profiles[i]);
+        else
+            op.notes.push_back(fmt::format("{}/profile: the profile from {} lies inside an island: left standing with it", op.path,
+                                           d.describe[i]));
+    }
+}
+
 constexpr KeySpec island_keys[] = {
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "where the island's profile starts [x, y]"},
     {.key = "path", .type = JsonType::array, .required = true, .ref = "contourElement", .min_items = 1, .description = "the island's lines and arcs, ending at its start"},
@@ -794,7 +821,8 @@ std::vector<ObjectSpec> PocketOp::objects() {
     add(cut_feed_keys());
     add(tolerance_keys());
     std::vector<ObjectSpec> out{
-        {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys},
+        {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys,
+         .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}},
         {.name = "pocketIsland", .description = "an island: a closed profile of lines and arcs", .keys = {std::begin(island_keys), std::end(island_keys)}},
     };
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
@@ -819,7 +847,13 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
     if (tool.flute_length && total_depth > *tool.flute_length)
         f.fail("endDepth", fmt::format("the pocket is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(total_depth), tool.number, in.show(*tool.flute_length)));
-    op.region.outer = read_loop(f, in, "a pocket's outline");
+    if (f.has("profile")) {
+        if (f.has("start") || f.has("path")) f.fail("profile", "give start and path, or profile, not both");
+        if (f.has("islands")) f.fail("islands", "the islands of a pocket from a drawing are the closed profiles inside its outline");
+        read_drawn_region(f, in, op);
+    } else {
+        op.region.outer = read_loop(f, in, "a pocket's outline");
+    }
     if (const Json* islands = f.member("islands")) {
         const Json& list = in.array(f, "islands");
         (void)islands;
@@ -894,7 +928,7 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
         f.fail(f.has(e.key) ? e.key : "", e.what());
     }
     op.steps = std::move(planner.steps);
-    op.notes = std::move(planner.notes);
+    op.notes.insert(op.notes.end(), planner.notes.begin(), planner.notes.end());  // after the drawing's
     note_corners(op, in, op.tool_radius + op.stock_to_leave, op.notes);
     std::size_t smaller = 0, along = 0, line = 0;
     for (const PocketStep& s : op.steps) {

@@ -1,5 +1,6 @@
 #include "camgen/common/file_kind.hpp"
 
+#include <filesystem>
 #include <algorithm>
 #include <cctype>
 #include <vector>
@@ -175,7 +176,11 @@ std::optional<std::string> not_json(std::string_view text, bool cut, const std::
                                    : "camgen reads machine files in JSON text (docs/machine-files.md)");
         case FileKind::utf16:
             return fmt::format("a text in UTF-16: camgen reads a {} in UTF-8; save it as UTF-8", expected);
-        case FileKind::dxf: return drawing("a DXF drawing", "DXF");
+        case FileKind::dxf:
+            return job ? fmt::format("a DXF drawing, not a job: {}; name the drawing in a job, as a drill's \"drawing\" or a contour's "
+                                     "or pocket's \"profile\": {{\"dxf\": \"{}\", \"layer\": ...}}",
+                                     reads, std::filesystem::path(file).filename().string())
+                       : drawing("a DXF drawing", "DXF");
         case FileKind::svg: return drawing("an SVG drawing", "SVG");
         case FileKind::step: return drawing("a STEP model", "STEP");
         case FileKind::stl: return drawing("an STL mesh", "STL");

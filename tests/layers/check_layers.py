@@ -15,6 +15,7 @@ ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 LAYERS = [
     ("include/camgen/geometry/", "geometry"), ("src/geometry/", "geometry"), ("camgen/geometry/", "geometry"),
     ("include/camgen/vocabulary/", "vocabulary"), ("src/vocabulary/", "vocabulary"), ("camgen/vocabulary/", "vocabulary"),
+    ("include/camgen/dxf/", "dxf"), ("src/dxf/", "dxf"), ("camgen/dxf/", "dxf"),
     ("include/camgen/common/", "common"), ("src/common/", "common"), ("camgen/common/", "common"),
     ("include/camgen/events/", "events"), ("src/events/", "events"), ("camgen/events/", "events"),
     ("include/camgen/job/", "job"), ("src/job/", "job"), ("camgen/job/", "job"),
@@ -36,7 +37,8 @@ ALLOWED = {
     "common": {"common", "vocabulary", "geometry"},
     "events": {"events", "vocabulary", "geometry"},
     "job": {"job"} | BASE,
-    "operations": {"operations", "job", "events"} | BASE,
+    "dxf": {"dxf", "geometry"},
+    "operations": {"operations", "job", "events", "dxf"} | BASE,
     "nc": {"nc", "common"},
     "post": {"post", "nc", "events"} | BASE,
     "reader": {"reader", "post", "nc", "events"} | BASE,
@@ -44,7 +46,7 @@ ALLOWED = {
     "analysis": {"analysis", "reader", "post", "nc", "events"} | BASE,
     "simulation": {"simulation", "analysis", "reader", "post", "nc", "operations", "job", "events"} | BASE,
     "schema": {"schema", "operations", "job", "post", "nc", "events"} | BASE,
-    "cli": {"cli", "schema", "simulation", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
+    "cli": {"cli", "dxf", "schema", "simulation", "analysis", "reader", "dialect", "post", "nc", "operations", "job", "events"} | BASE,
 }
 # A dialect folder includes its own files and the shared registry header only, never another
 # dialect's folder.

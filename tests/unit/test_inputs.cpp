@@ -427,7 +427,8 @@ TEST_CASE("a drawing, a model, a binary or an empty file given as a job or machi
     };
     const std::vector<Case> cases = {
         {(dir / "part.dxf").string(),
-         "a DXF drawing, not a job: camgen reads jobs in JSON (docs/job-format.md); DXF import is not built yet"},
+         "a DXF drawing, not a job: camgen reads jobs in JSON (docs/job-format.md); name the drawing in a job, as a drill's "
+         "\"drawing\" or a contour's or pocket's \"profile\": {\"dxf\": \"part.dxf\", \"layer\": ...}"},
         {svg, "an SVG drawing, not a job: camgen reads jobs in JSON (docs/job-format.md); SVG import is not built yet"},
         {(dir / "part.step").string(),
          "a STEP model, not a job: camgen reads jobs in JSON (docs/job-format.md); STEP import is not built yet"},

@@ -126,8 +126,10 @@ void check_cutting_tool(json::Fields& f, const Tool& tool, std::string_view what
 // A profile from `start_key` and `path_key` (lines and arcs; packed lines read straight into
 // numbers), refused when an element is shorter than min_profile_segment or the profile crosses
 // itself. `what` names the owner in messages ("a contour").
+// Or, when f has "profile" (and `start_key` is "start"), the one profile of a DXF drawing's
+// selection (dxf_source.hpp), its notes added to `notes`.
 Profile read_profile(json::Fields& f, const JobInput& in, std::string_view what, std::string_view start_key = "start",
-                     std::string_view path_key = "path");
+                     std::string_view path_key = "path", std::vector<std::string>* notes = nullptr);
 // The lead at `key` (none when absent); radius and length default to the tool's diameter.
 Lead read_lead(json::Fields& f, const JobInput& in, std::string_view key, double tool_diameter);
 // The ramp at `key` (a plunge when absent); a helix radius defaults to the tool's radius.

@@ -4,6 +4,7 @@
 // reading and one set of messages for every such operation.
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,10 +24,12 @@ struct HoleSet {
     // them (make_pending_holes) once every operation is read, so that a job over the limit is
     // refused before any pattern allocates its holes.
     std::vector<HolePattern> pending_patterns;
+    // What camgen decided that the job did not ask for (a drawing's units, a hole drawn twice).
+    std::vector<std::string> notes;
 };
 
 // The keys of the hole sources, in the order a job lists them: order, holes, grid,
-// boltCircle, line.
+// boltCircle, line, drawing (a DXF drawing's circles and points, dxf_source.hpp).
 std::vector<KeySpec> hole_keys();
 
 // The key group saying an operation needs at least one hole source; `description` names the
