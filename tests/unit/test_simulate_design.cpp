@@ -1,0 +1,107 @@
+// camgen simulate checks the simulated part against the job's design (issue 27): every mill
+// sample on every mill machine simulates as designed, and a hand-edited program's gouge and
+// material left are found, the gouge at the line that cut it.
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include "support.hpp"
+
+namespace test_simulate_design {
+
+namespace fs = std::filesystem;
+using namespace camgen;
+
+namespace {
+
+const std::string samples = CAMGEN_SOURCE_DIR "/samples/";
+
+std::string edited(std::string text, const std::string& from, const std::string& to, bool all = false) {
+    std::size_t at = text.find(from);
+    REQUIRE_MESSAGE(at != std::string::npos, from);
+    do {
+        text.replace(at, from.size(), to);
+        at = text.find(from, at + to.size());
+    } while (all && at != std::string::npos);
+    return text;
+}
+
+}  // namespace
+
+TEST_CASE("camgen simulate: every mill sample on every mill machine makes the part its job designs") {
+    const fs::path dir = test::scratch("simulate-design");
+    // The stock each sample is cut from (stock-plate.json gives its own): its top where the
+    // job's reference plane is.
+    const std::vector<std::pair<std::string, std::string>> jobs = {
+        {"plate.json", "-20,-20,-20,120,70,0"},          {"pocket.json", "-20,-20,-20,120,90,0"},
+        {"face.json", "-20,-20,-20,120,90,1"},           {"bores.json", "-20,-20,-30,130,120,0"},
+        {"drilling.json", "-30,-30,-40,150,120,0"},      {"plate-outline.json", "-30,-30,-20,230,150,0"},
+        {"plate-outline-control.json", "-30,-30,-20,230,150,0"}, {"pocket-wall.json", "-30,-30,-20,150,120,0"},
+        {"stock-plate.json", ""}};
+    int simulated = 0;
+    for (const char* machine : {"fanuc", "linuxcnc", "grbl", "sinumerik", "heidenhain", "wabeco", "kosy"})
+        for (const auto& [file, box] : jobs) {
+            CAPTURE(machine);
+            CAPTURE(file);
+            const std::string job = samples + file;
+            const std::string program = (dir / "p.nc").string();
+            if (test::run({job, "--machine", machine, "-q", "-o", program}).code != 0) continue;  // refused there (a golden .err)
+            std::vector<std::string> args{"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"};
+            if (!box.empty()) args.insert(args.end(), {"--stock-box", box});
+            const test::Run r = test::run(args);
+            CHECK_MESSAGE(r.code == 0, std::string(r.out + r.err));
+            CHECK(r.out.find("simulation: no errors\n") != std::string::npos);
+            CHECK_MESSAGE(r.out.find("  the part is as designed\n") != std::string::npos, r.out);
+            ++simulated;
+        }
+    CHECK(simulated >= 55);
+}
+
+TEST_CASE("camgen simulate: a pocket's floor cut too deep is a gouge at its line; a floor left high is material left") {
+    const fs::path dir = test::scratch("simulate-gouge");
+    const std::string job = samples + "pocket.json";
+    const std::string program = (dir / "pocket.ngc").string();
+    REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
+    const std::string text = test::read_file(program);
+    const std::vector<std::string> args{"--machine", "linuxcnc", "--job", job, "--stock-box", "-20,-20,-20,120,90,0", "--resolution", "0.1"};
+    auto simulate = [&](const std::string& name, const std::string& body) {
+        const std::string file = (dir / name).string();
+        std::ofstream(file) << body;
+        std::vector<std::string> a{"simulate", file};
+        a.insert(a.end(), args.begin(), args.end());
+        return test::run(a);
+    };
+    // As posted: as designed.
+    const test::Run ok = simulate("ok.ngc", text);
+    CHECK(ok.code == 0);
+    CHECK(ok.out.find("  the part is as designed\n") != std::string::npos);
+    // The first move down to the floor (Z-6) goes on to Z-6.3 and back: the cells under the tool
+    // there are 0.3 mm below the floor, cut by the added line.
+    const std::vector<std::string> lines = test::lines_of(text);
+    const std::regex at_floor(R"(Z-6(\s|$))");
+    std::size_t floor = 0;
+    while (floor < lines.size() && !std::regex_search(lines[floor], at_floor)) ++floor;
+    REQUIRE(floor < lines.size());
+    std::string deep;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        deep += lines[i] + "\n";
+        if (i == floor) deep += "G1 Z-6.3\nG1 Z-6\n";
+    }
+    const test::Run gouge = simulate("deep.ngc", deep);
+    CHECK(gouge.code == 1);
+    CHECK_MESSAGE(gouge.out.find(fmt::format("error: gouge: /operations/0 (the pocket): material removed 0.3 mm below the designed -6 at ")) !=
+                      std::string::npos,
+                  gouge.out);
+    CHECK_MESSAGE(gouge.out.find(fmt::format(", by line {} (", floor + 2)) != std::string::npos, gouge.out);
+    // Every Z-6 written as Z-5.5: the pocket's floor is left 0.5 mm high (a warning: exit 0).
+    const test::Run high = simulate("high.ngc", edited(text, "Z-6", "Z-5.5", true));
+    CHECK(high.code == 0);
+    CHECK_MESSAGE(high.out.find("warning: /operations/0 (the pocket): material left 0.5 mm above its floor and allowance -6 at ") !=
+                      std::string::npos,
+                  high.out);
+}
+
+}  // namespace test_simulate_design
