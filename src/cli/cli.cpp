@@ -669,6 +669,7 @@ std::size_t design_check_report(const Job& job, const Machine& machine, const Si
     HeightGridView g;
     g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
     g.top = f.top;
+    g.bottom = f.bottom;
     g.height = [&](std::size_t i, std::size_t j) {
         const std::size_t k = j * g.nx + i;
         return !in_stock.empty() && !in_stock[k] ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(f.heights[k]);

@@ -129,7 +129,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
             if (flags[at(i, j)] & (may_leave | edge)) return;
             const double h = g.height(i, j);
-            const double limit = cut.floor.at(p) + cut.axial_allowance;
+            const double limit = std::max(cut.floor.at(p) + cut.axial_allowance, g.bottom);
             if (std::isnan(h) || h - limit <= tolerance) return;
             DesignFinding& f = left[c];
             ++f.cells;

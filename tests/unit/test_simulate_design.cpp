@@ -34,9 +34,10 @@ std::string edited(std::string text, const std::string& from, const std::string&
 TEST_CASE("camgen simulate: every mill sample on every mill machine makes the part its job designs") {
     const fs::path dir = test::scratch("simulate-design");
     // The stock each sample is cut from (stock-plate.json gives its own): its top where the
-    // job's reference plane is.
+    // job's reference plane is; the plate's 8 mm, drilled through (the floor below the stock's bottom
+    // is its bottom).
     const std::vector<std::pair<std::string, std::string>> jobs = {
-        {"plate.json", "-20,-20,-20,120,70,0"},          {"pocket.json", "-20,-20,-20,120,90,0"},
+        {"plate.json", "-20,-20,-8,120,70,0"},          {"pocket.json", "-20,-20,-20,120,90,0"},
         {"face.json", "-20,-20,-20,120,90,1"},           {"bores.json", "-20,-20,-30,130,120,0"},
         {"drilling.json", "-30,-30,-40,150,120,0"},      {"plate-outline.json", "-30,-30,-20,230,150,0"},
         {"plate-outline-control.json", "-30,-30,-20,230,150,0"}, {"pocket-wall.json", "-30,-30,-20,150,120,0"},

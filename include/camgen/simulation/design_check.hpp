@@ -21,7 +21,8 @@ namespace camgen {
 struct HeightGridView {
     double x0 = 0.0, y0 = 0.0, cell = 1.0;
     std::size_t nx = 0, ny = 0;
-    double top = 1e300;  // the stock's top: a design above it is taken at it
+    double top = 1e300;      // the stock's top: a design above it is taken at it
+    double bottom = -1e300;  // the stock's bottom: a floor below it is taken at it (a through hole)
     std::function<double(std::size_t, std::size_t)> height;
     std::function<int(std::size_t, std::size_t)> line;
 };
