@@ -81,6 +81,7 @@ std::vector<Step> normalised(const Trace& trace) {
                 break;
             }
             case StepKind::tool_change: break;
+            case StepKind::stop: break;  // no motion (tests/oracle/test_stop_oracle.cpp compares the stops)
         }
     }
     return steps;
