@@ -655,25 +655,12 @@ std::size_t design_check_report(const Job& job, const Machine& machine, const Si
     if (r.kind != MachineKind::mill || r.field.heights.empty()) return 0;
     const HeightField& f = r.field;
     const PartDesign design = part_design(job);
-    std::optional<RegionRows> inside;  // a profile stock: the cells in it
-    if (stock.kind == SimStock::Kind::profile) inside.emplace(PlaneRegion{stock.profile, {}});
-    std::vector<std::uint8_t> in_stock;
-    if (inside) {
-        in_stock.assign(f.heights.size(), 0);
-        for (int j = 0; j < f.ny; ++j)
-            for (const auto& [a, b] : inside->spans(f.y(j)))
-                for (int i = std::max(0, static_cast<int>(std::ceil((a - f.x0) / f.cell - 0.5)));
-                     i <= std::min(f.nx - 1, static_cast<int>(std::floor((b - f.x0) / f.cell - 0.5))); ++i)
-                    in_stock[static_cast<std::size_t>(j) * f.nx + i] = 1;
-    }
     HeightGridView g;
     g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
     g.top = f.top;
     g.bottom = f.bottom;
-    g.height = [&](std::size_t i, std::size_t j) {
-        const std::size_t k = j * g.nx + i;
-        return !in_stock.empty() && !in_stock[k] ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(f.heights[k]);
-    };
+    if (stock.kind == SimStock::Kind::profile) g.stock = PlaneRegion{stock.profile, {}};
+    g.height = [&](std::size_t i, std::size_t j) { return static_cast<double>(f.heights[j * g.nx + i]); };
     g.line = [&](std::size_t i, std::size_t j) { return static_cast<int>(f.lines[j * g.nx + i]); };
     // As verify compares: the position, the machine's tolerance and its chords.
     const double tolerance = compare_tolerance(machine).path;

@@ -64,13 +64,9 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
 
     // A cell within the margin of a cut's edge, inside or out, could be that cut's or not: it
     // is judged by nothing (edge).
-    std::vector<std::int32_t> grown(n, -1), strict(n, -1);
+    std::vector<std::int32_t> strict(n, -1);
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
-        design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
-            flags[at(i, j)] |= near_cut | (cut.may_leave ? may_leave : 0);
-            grown[at(i, j)] = c;
-        });
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
             strict[at(i, j)] = c;
             if (cut.overrides) return;
@@ -78,9 +74,10 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
             double& d = designed[at(i, j)];
             if (std::isnan(d) || f < d) d = f, owner[at(i, j)] = c;
         });
-        if (cut.overrides) continue;
         design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
-            if (strict[at(i, j)] != c) flags[at(i, j)] |= edge;
+            std::uint8_t& fl = flags[at(i, j)];
+            fl |= near_cut | (cut.may_leave ? may_leave : 0);
+            if (!cut.overrides && strict[at(i, j)] != c) fl |= edge;
         });
     }
     for (std::int32_t c = 0; c < cuts; ++c) {
@@ -100,6 +97,13 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         });
     }
 
+    // Outside a profile stock there is nothing to judge.
+    if (g.stock) {
+        std::vector<std::uint8_t> inside(n, 0);
+        design_cells(*g.stock, 0.0, g, [&](std::size_t i, std::size_t j, Vec2) { inside[at(i, j)] = 1; });
+        for (std::size_t a = 0; a < n; ++a)
+            if (!inside[a]) owner[a] = -1, flags[a] |= edge;
+    }
     const std::size_t features = design.cuts.size() + design.keeps.size();
     std::vector<DesignFinding> gouges(features), left(design.cuts.size());
     for (std::size_t j = 0; j < g.ny; ++j)

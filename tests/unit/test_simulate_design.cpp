@@ -106,3 +106,24 @@ TEST_CASE("camgen simulate: a pocket's floor cut too deep is a gouge at its line
 }
 
 }  // namespace test_simulate_design
+
+namespace test_simulate_design {
+
+TEST_CASE("camgen simulate: a profile stock that leaves out part of the band kept around a pocket: the cells outside it are not judged") {
+    const fs::path dir = test::scratch("simulate-profile-stock");
+    // The pocket's outline spans 10..90 x 10..60: the band kept around it reaches 4..96 and
+    // 4..66; this stock, 0..100 x 0..70 with its corners cut off 14 mm along each side, leaves
+    // the band's corners out: their cells hold no material (the field's bottom), nothing to keep.
+    std::string job = test::read_file(samples + "pocket.json");
+    job = edited(job, "\"clearance\": 15,", R"("clearance": 15, "stock": {"profile": {"start": [14, 0], "path": [{"line": [86, 0]},
+        {"line": [100, 14]}, {"line": [100, 56]}, {"line": [86, 70]}, {"line": [14, 70]}, {"line": [0, 56]}, {"line": [0, 14]},
+        {"line": [14, 0]}], "top": 0, "bottom": -20}},)");
+    const std::string job_file = (dir / "pocket.json").string(), program = (dir / "pocket.ngc").string();
+    std::ofstream(job_file) << job;
+    REQUIRE(test::run({job_file, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
+    const test::Run r = test::run({"simulate", program, "--machine", "linuxcnc", "--job", job_file, "--resolution", "0.1"});
+    CHECK_MESSAGE(r.code == 0, r.out);
+    CHECK(r.out.find("  the part is as designed\n") != std::string::npos);
+}
+
+}  // namespace test_simulate_design

@@ -7,9 +7,11 @@
 // judges and says nothing within the margin of a wall.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "camgen/geometry/region.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/design.hpp"
 
@@ -23,6 +25,7 @@ struct HeightGridView {
     std::size_t nx = 0, ny = 0;
     double top = 1e300;      // the stock's top: a design above it is taken at it
     double bottom = -1e300;  // the stock's bottom: a floor below it is taken at it (a through hole)
+    std::optional<PlaneRegion> stock;  // a profile stock's outline: cells outside it are not judged
     std::function<double(std::size_t, std::size_t)> height;
     std::function<int(std::size_t, std::size_t)> line;
 };
