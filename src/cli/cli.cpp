@@ -37,6 +37,7 @@
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/simulation/design_check.hpp"
+#include "operation_lines.hpp"
 #include "camgen/simulation/simulation.hpp"
 #include "camgen/operations/design.hpp"
 #include "camgen/geometry/region.hpp"
@@ -767,6 +768,10 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     }
     SimOptions options;
     options.resolution = v.resolution;
+    // The operation each line belongs to: the program against the job posted again.
+    ProgramInput program(v.program, in, true);
+    const OperationLines ops = operation_lines(*job, machine, program.open());
+    options.operations = ops.spans;
     std::optional<Simulator> sim;
     try {
         sim.emplace(machine, stock, tool_shapes(job->tools), options);
@@ -774,7 +779,6 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }
     std::optional<SimDesignCheck> check = prepare_design_check(*job, machine, stock, *sim);
-    ProgramInput program(v.program, in, false);
     try {
         TraceBuilder trace(machine, *sim, TraceOptions{job_compensation_radii(*job)});
         ProgramReader reader(program.open(), machine, source, trace);
@@ -785,7 +789,9 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         throw InputError("", e.what(), 0, source);
     }
     const SimResult& r = sim->result();
-    out << fmt::format("{} on machine {}\n", source, machine.name) << format_simulation(r);
+    out << fmt::format("{} on machine {}\n", source, machine.name);
+    if (!ops.note.empty()) out << "note: " << ops.note << '\n';
+    out << format_simulation(r);
     const std::size_t gouges = check ? design_check_report(*check, r, out) : 0;
     finish_stream(out, "standard output");
     return r.errors.empty() && gouges == 0 ? exit_ok : exit_invalid_input;

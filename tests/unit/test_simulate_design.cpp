@@ -158,6 +158,11 @@ TEST_CASE("camgen simulate: a tool 0.05 mm into a contour's wall is a gouge at i
     const test::Run ok = simulate("ok.ngc", "-5");
     CHECK_MESSAGE(ok.code == 0, ok.out);
     CHECK(ok.out.find("  the part is as designed\n") != std::string::npos);
+    // The four lines put for the posted "G1 Y52" are the contour's: its volume is all there is.
+    CHECK_MESSAGE(ok.out.find("note: 4 lines of the program differ from what the job posts: counted with the operation of the "
+                              "line before\n") != std::string::npos,
+                  ok.out);
+    CHECK(ok.out.find("operation /operations/0: removed ") != std::string::npos);
     const test::Run gouge = simulate("gouge.ngc", "-4.95");
     CHECK(gouge.code == 1);
     CHECK_MESSAGE(gouge.out.find("error: gouge: /operations/0 (the part inside the contour): material removed 6 mm below the designed 0 at (0.008, ") !=

@@ -578,6 +578,10 @@ TEST_CASE("camgen simulate: the plate in its box is clean, a rapid into it exits
     CHECK(ok.out.find("tool T2: removed ") != std::string::npos);
     CHECK(ok.out.find("machining time: 51.4 s\n") != std::string::npos);
     CHECK(ok.out.find("simulation: no errors\n") != std::string::npos);
+    // The program is the job's own: each line has its operation, the volumes add up.
+    CHECK(ok.out.find("note: ") == std::string::npos);
+    CHECK(ok.out.find("operation /operations/0: removed ") != std::string::npos);
+    CHECK(ok.out.find("operation /operations/1: removed ") != std::string::npos);
     // The spot drill's rapid to R2 made a rapid to Z-1: a crash at its line (9 of the program),
     // the cone's point 0.986 mm deep at the nearest cell centre of the default field (0.036 mm).
     std::string text = test::read_file(program);
@@ -588,7 +592,10 @@ TEST_CASE("camgen simulate: the plate in its box is clean, a rapid into it exits
     std::ofstream(crashing) << text;
     test::Run crash = test::run({"simulate", crashing, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-8,100,50,0"});
     CHECK(crash.code == 1);
-    CHECK(crash.out.find("error: line 9, tool 1: a rapid removes material (a crash): 0.986 mm deep") != std::string::npos);
+    CHECK(crash.out.find("note: 1 line of the program differs from what the job posts: counted with the operation of the line "
+                         "before\n") != std::string::npos);
+    CHECK(crash.out.find("error: line 9 (/operations/0), tool 1: a rapid removes material (a crash): 0.986 mm deep") !=
+          std::string::npos);
     CHECK(crash.out.find("simulation: 1 error\n") != std::string::npos);
     // The stock is required, of the machine's kind, and has a volume.
     CHECK(test::run({"simulate", program, "--machine", "linuxcnc", "--job", job}).code == 2);

@@ -76,6 +76,9 @@ public:
     void emit(const Event& event) override;
     // Writes the program end (nothing for a snippet) and flushes. Throws IoError.
     void close();
+    // Hands the blocks finished so far to the stream (a block being built stays), so that the
+    // stream's lines are the program's so far (which line an operation starts at).
+    void flush_blocks() { out_.flush(); }
     // How many holes were written as canned cycles so far.
     int canned_holes() const { return canned_holes_; }
     // How many holes were written longhand so far.
