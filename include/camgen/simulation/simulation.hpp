@@ -80,6 +80,16 @@ struct OperationSpan {
     std::string path;
 };
 
+// Told of every change of the stock as it happens (the page's history of the part, pictures.hpp).
+class SimObserver {
+public:
+    virtual ~SimObserver() = default;
+    // Mill: the field's cell `cell` (row after row) was lowered to `height` by program line `line`.
+    virtual void lowered(std::size_t cell, float height, int line) = 0;
+    // Lathe: Z sample `sample` was turned to this outside radius and bore by line `line`.
+    virtual void turned(int sample, double outside, double bore, int line) = 0;
+};
+
 // How to simulate.
 struct SimOptions {
     double resolution = 0.0;               // mm per cell (mill) or Z sample (lathe); 0: from the budget
@@ -87,6 +97,7 @@ struct SimOptions {
     std::size_t lathe_budget = 100'000;    // lathe: the most Z samples when no resolution is given
     double crash_depth = 0.002;            // mm: a rapid that removes more than this in a column is a crash
     std::vector<OperationSpan> operations; // sorted by first_line; steps before the first: no operation
+    SimObserver* observer = nullptr;       // told of each change (none: nothing costs)
 };
 
 // The chords of a helix (or of an arc out of XY) keep the tool centre within this fraction
@@ -178,6 +189,8 @@ public:
     // The steps that follow belong to this operation (a job's OperationStart; read-back
     // programs use SimOptions::operations).
     void begin_operation(std::string path);
+    // From now on tell `observer` of each change (nullptr: none).
+    void observe(SimObserver* observer);
     // The result, complete after finish.
     const SimResult& result() const;
     SimResult take();
