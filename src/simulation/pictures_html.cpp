@@ -96,6 +96,7 @@ pre{margin:0;font:12px/1.35 "DejaVu Sans Mono",monospace;white-space:pre-wrap;wo
 #nc-current{background:#fff3b0;border-left:3px solid #e0a800;padding-left:4px}
 #gl{cursor:grab;background:#fff}
 .note{color:#666;font-size:12px}
+[hidden]{display:none!important}
 )CSS";
 
 constexpr const char* sim_script = R"JS(
@@ -189,7 +190,8 @@ constexpr const char* sim_script = R"JS(
     for (let c = 0; c < nx; ++c) {
       if (state[c] < initial[c] - 1e-6 || state[n + c] > initial[n + c] + 1e-6) ++cutCells;
       if (!(state[c] > state[n + c])) continue;
-      tctx.fillRect(X(data.x0 + c * data.cell), Y(state[c]), data.cell * sc + 0.5, (state[c] - state[n + c]) * sc);
+      const a = Math.round(X(data.x0 + c * data.cell)), b = Math.round(X(data.x0 + (c + 1) * data.cell));
+      tctx.fillRect(a, Math.round(Y(state[c])), b - a, Math.round(Y(state[n + c])) - Math.round(Y(state[c])));
     }
     tctx.strokeStyle = "#c01a1a"; tctx.setLineDash([5, 4]); tctx.lineWidth = 1;
     tctx.strokeRect(X(data.x0), Y(data.top), nx * data.cell * sc, data.top * sc);
@@ -214,7 +216,7 @@ constexpr const char* sim_script = R"JS(
       const i = Math.floor((x - data.x0) / data.cell), j = Math.floor((y - data.y0) / data.cell);
       const inside = i >= 0 && j >= 0 && i < nx && j < ny;
       const h = inside ? state[j * nx + i] : null, h0 = inside ? initial[j * nx + i] : null;
-      const px = t * len * sx, w = len * sx / steps + 0.5;
+      const px = Math.round(t * len * sx), w = Math.max(1, Math.round((k + 1) / steps * len * sx) - px);
       if (inside && h > data.bottom) { ctx.fillStyle = "rgb(150,160,176)"; ctx.fillRect(px, Y(h), w, Y(data.bottom) - Y(h)); }
       if (inside && h0 > data.bottom) { ctx.fillStyle = "#c01a1a"; ctx.fillRect(px, Y(data.top), w, 1); ctx.fillRect(px, Y(data.bottom), w, 1); }
       if (inside) { if (prev === null) ctx.moveTo(px, Y(h)); else ctx.lineTo(px, Y(h)); ctx.lineTo(px + w, Y(h)); prev = h; }
@@ -232,7 +234,6 @@ constexpr const char* sim_script = R"JS(
   if (!gl || data.lathe) {
     glCanvas.hidden = true;
     $("gl-missing").hidden = false;
-    if (data.lathe) $("gl-missing").textContent = "The 3D view shows a mill's height field; a lathe's part is its half-section.";
   } else {
     const vs = "attribute vec3 p;attribute vec3 nrm;attribute vec3 col;uniform mat4 m;varying vec3 c;" +
                "void main(){gl_Position=m*vec4(p,1.0);float l=max(dot(normalize(nrm),normalize(vec3(-0.4,0.5,0.75))),0.0);c=col*(0.35+0.75*l);}";
@@ -255,7 +256,7 @@ constexpr const char* sim_script = R"JS(
       return o;
     }
     function matrix() {
-      const d = 1.6 * size / zoom, f = 1 / Math.tan(0.4), asp = glCanvas.width / glCanvas.height, near = d / 20, far = d * 4;
+      const d = 1.25 * size / zoom, f = 1 / Math.tan(0.4), asp = glCanvas.width / glCanvas.height, near = d / 20, far = d * 4;
       const proj = new Float32Array([f / asp, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0]);
       const cyw = Math.cos(yaw), syw = Math.sin(yaw), cp = Math.cos(pitch), sp = Math.sin(pitch);
       // The part turned about Z by yaw, tipped by pitch, d in front of the eye.
@@ -444,9 +445,10 @@ void write_simulation_html(std::ostream& out, const SimResult& r, const SimHisto
                                                                              number_text(d["exaggeration"].get<double>(), 0))
                                                                : "",
                            sec_w, sec_h);
-    out << "<section><h2>3D view</h2>\n<canvas id=\"gl\" width=\"640\" height=\"420\"></canvas>\n"
-           "<p id=\"gl-missing\" class=\"note\" hidden>This browser has no WebGL: the 3D view cannot be drawn.</p>\n"
-           "<p class=\"note\">Drag to turn, wheel to zoom.</p></section>\n</div>\n";
+    out << fmt::format("<section{}><h2>3D view</h2>\n<canvas id=\"gl\" width=\"640\" height=\"420\"></canvas>\n"
+                       "<p id=\"gl-missing\" class=\"note\" hidden>This browser has no WebGL: the 3D view cannot be "
+                       "drawn.</p>\n<p class=\"note\">Drag to turn, wheel to zoom.</p></section>\n</div>\n",
+                       lathe ? " hidden" : "");
     out << fmt::format("<aside>\n<section><h2>Cut up to block <span id=\"line-no\"></span></h2>\n<div class=\"controls\">"
                        "<button id=\"prev\" type=\"button\">&lt;</button><input id=\"slider\" type=\"range\" min=\"1\" "
                        "max=\"1\" value=\"1\"><button id=\"next\" type=\"button\">&gt;</button></div>\n")
