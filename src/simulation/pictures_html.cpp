@@ -256,7 +256,7 @@ constexpr const char* sim_script = R"JS(
       return o;
     }
     function matrix() {
-      const d = 1.25 * size / zoom, f = 1 / Math.tan(0.4), asp = glCanvas.width / glCanvas.height, near = d / 20, far = d * 4;
+      const d = 1.45 * size / zoom, f = 1 / Math.tan(0.4), asp = glCanvas.width / glCanvas.height, near = d / 20, far = d * 4;
       const proj = new Float32Array([f / asp, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0]);
       const cyw = Math.cos(yaw), syw = Math.sin(yaw), cp = Math.cos(pitch), sp = Math.sin(pitch);
       // The part turned about Z by yaw, tipped by pitch, d in front of the eye.

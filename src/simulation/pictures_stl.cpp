@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -258,13 +259,6 @@ void stl_lathe(const std::vector<StlBand>& bands, int n, StlEmitter& e) {
 
 StlSummary write_simulation_stl(const SimResult& r, const StlOptions& options, std::ostream& out) {
     StlSummary summary;
-    auto emit_all = [&](StlEmitter& e) {
-        if (r.kind == MachineKind::lathe) {
-            stl_lathe(stl_bands(r.lathe, options.lathe_bands), options.lathe_segments, e);
-        } else {
-            static_cast<void>(e);
-        }
-    };
     std::optional<StlBlocks> blocks;
     if (r.kind == MachineKind::lathe) {
         if (options.lathe_segments < 3) throw SimInputError("a revolved part needs at least 3 segments");
@@ -280,7 +274,7 @@ StlSummary write_simulation_stl(const SimResult& r, const StlOptions& options, s
     }
     auto run = [&](StlEmitter& e) {
         if (blocks) stl_mill(*blocks, e);
-        else emit_all(e);
+        else stl_lathe(stl_bands(r.lathe, options.lathe_bands), options.lathe_segments, e);
     };
     StlEmitter counter(nullptr);
     run(counter);
