@@ -389,6 +389,47 @@ TEST_CASE("pictures: the page's history replays to the final part, shows less cu
     }
 }
 
+TEST_CASE("pictures: a lathe's history replays to its turned profile, band by band") {
+    const Machine m = load_machine("linuxcnc-lathe");
+    SimStock bar;
+    bar.kind = SimStock::Kind::bar;
+    bar.bar_diameter = 40;
+    bar.bar_length = 100;
+    ToolShape tip;
+    tip.form = ToolForm::turning;
+    SimOptions o;
+    o.resolution = 0.01;  // 10,000 samples: bands of 10
+    Simulator sim(m, bar, {{1, tip}}, o);
+    SimHistory h(sim.result());
+    CHECK(h.factor == 10);
+    CHECK(h.nx == 1000);
+    sim.observe(&h);
+    Step face = feed({22, 0, -1}, {0, 0, -1}, 6), turn = feed({15, 0, 2}, {15, 0, -50}, 9);
+    sim.step(face);
+    sim.step(turn);
+    sim.finish({});
+    const SimResult r = sim.take();
+    h.finish(r);
+    const std::size_t n = static_cast<std::size_t>(h.nx);
+    std::vector<float> want(2 * n);
+    for (std::size_t c = 0; c < n; ++c) {
+        float out = 1e9f, bore = 0;
+        for (std::size_t k = 10 * c; k < 10 * c + 10; ++k) {
+            out = std::min(out, static_cast<float>(r.lathe.outside[k]));
+            bore = std::max(bore, static_cast<float>(r.lathe.bore[k]));
+        }
+        want[c] = out, want[n + c] = bore;
+    }
+    CHECK(h.final == want);
+    // Replayed up to line 6 only the face is cut: the bands from Z-50 to -1 still hold radius 20.
+    std::vector<float> s = h.initial;
+    for (const SimHistory::Event& e : h.events)
+        if (e.line <= 6) s[static_cast<std::size_t>(e.cell)] = std::min(s[static_cast<std::size_t>(e.cell)], e.value);
+    CHECK(s[700] == 20.0f);   // Z -30: not turned yet
+    CHECK(s[995] == 0.0f);    // Z -0.5: faced to the axis
+    CHECK(h.final[700] == 15.0f);
+}
+
 TEST_CASE("camgen simulate --png --stl --plot: written after the run; a refused run writes nothing and leaves files") {
     const std::filesystem::path dir = test::scratch("sim-pictures");
     const std::string job = CAMGEN_SOURCE_DIR "/samples/pocket.json";
