@@ -654,27 +654,49 @@ std::vector<double> option_numbers(const std::string& text, const char* option, 
 
 // `camgen simulate`: the program read back and swept through the stock; exit 1 on an error.
 // The simulated part against the job's design (a mill's): each finding a line, gouges as
-// errors ("error: ... gouge"), material left as warnings; returns the gouges' count.
-std::size_t design_check_report(const Job& job, const Machine& machine, const SimStock& stock, const SimResult& r,
-                                std::ostream& out) {
-    if (r.kind != MachineKind::mill || r.field.heights.empty()) return 0;
+// errors ("error: ... gouge"), material left as warnings. The design and its wall probes are
+// made once the simulator has laid out its field, before the sweep; the report after it.
+struct SimDesignCheck {
+    PartDesign design;
+    HeightGridView grid;
+    DesignProbes probes;
+    double tolerance = 0.0, margin = 0.0;
+};
+
+std::optional<SimDesignCheck> prepare_design_check(const Job& job, const Machine& machine, const SimStock& stock,
+                                                   Simulator& sim) {
+    const SimResult& r = sim.result();
+    if (r.kind != MachineKind::mill || r.field.heights.empty()) return std::nullopt;
     const HeightField& f = r.field;
-    const PartDesign design = part_design(job);
-    HeightGridView g;
+    SimDesignCheck c;
+    c.design = part_design(job);
+    HeightGridView& g = c.grid;
     g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
     g.top = f.top;
     g.bottom = f.bottom;
     if (stock.kind == SimStock::Kind::profile) g.stock = PlaneRegion{stock.profile, {}};
+    // As verify compares: the position, the machine's tolerance and its chords.
+    c.tolerance = compare_tolerance(machine).path;
+    c.margin = f.cell * std::numbers::sqrt2 / 2.0 + c.tolerance;
+    c.probes = design_probes(c.design, g, c.tolerance, c.margin, std::max<std::size_t>(r.cells / 4, 1000));
+    sim.set_probes(c.probes.points);
+    return c;
+}
+
+// Returns the gouges' count.
+std::size_t design_check_report(SimDesignCheck& c, const SimResult& r, std::ostream& out) {
+    const HeightField& f = r.field;
+    HeightGridView& g = c.grid;
     g.height = [&](std::size_t i, std::size_t j) { return static_cast<double>(f.heights[j * g.nx + i]); };
     g.line = [&](std::size_t i, std::size_t j) { return static_cast<int>(f.lines[j * g.nx + i]); };
-    // As verify compares: the position, the machine's tolerance and its chords.
-    const double tolerance = compare_tolerance(machine).path;
-    const double margin = f.cell * std::numbers::sqrt2 / 2.0 + tolerance;
-    const std::vector<DesignFinding> found = check_design(design, g, tolerance, margin);
+    const std::vector<DesignFinding> found =
+        check_design(c.design, g, c.tolerance, c.margin, ProbeHeights{&c.probes, &r.probe_heights, &r.probe_lines});
     std::size_t gouges = 0;
-    out << fmt::format("design check   {} cuts, {} keeps, within {} mm, cells farther than {} mm inside their regions\n",
-                       design.cuts.size(), design.keeps.size(), number_text(tolerance), number_text(margin));
-    for (const std::string& u : design.unchecked) out << "  not checked: " << u << '\n';
+    out << fmt::format("design check   {} cuts, {} keeps, within {} mm, cells farther than {} mm inside their regions, "
+                       "{} points on the walls {} mm apart\n",
+                       c.design.cuts.size(), c.design.keeps.size(), number_text(c.tolerance), number_text(c.margin),
+                       c.probes.points.size(), number_text(c.probes.spacing, 3));
+    for (const std::string& u : c.design.unchecked) out << "  not checked: " << u << '\n';
     for (const DesignFinding& d : found) {
         const bool gouge = d.kind == DesignFinding::Kind::gouge;
         gouges += gouge;
@@ -769,6 +791,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     } catch (const SimInputError& e) {
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }
+    std::optional<SimDesignCheck> check = prepare_design_check(*job, machine, stock, *sim);
     // The page's history of the part, told of each change as the program is swept.
     std::optional<SimHistory> history;
     if (!v.plot.empty()) {
@@ -787,7 +810,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     }
     const SimResult& r = sim->result();
     out << fmt::format("{} on machine {}\n", source, machine.name) << format_simulation(r);
-    const std::size_t gouges = design_check_report(*job, machine, stock, r, out);
+    const std::size_t gouges = check ? design_check_report(*check, r, out) : 0;
     // The pictures, also of a part with errors (they show them); each written whole before
     // any replaces its file.
     const PictureLabels labels{base_name(source), machine.name};

@@ -2,13 +2,16 @@
 #include "camgen/simulation/design_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "camgen/common/number_text.hpp"
+#include "camgen/geometry/clearance.hpp"
 #include "camgen/geometry/region.hpp"
 
 namespace camgen {
@@ -40,19 +43,158 @@ void design_cells(const PlaneRegion& region, double d, const HeightGridView& g, 
     }
 }
 
+// Calls f(point, inward normal) every `spacing` mm along a loop (a point in the middle of each
+// of a segment's equal pieces); `inward`: +1 where the material is to the loop's left.
+template <class F>
+void design_loop_points(const Profile& loop, double spacing, F f) {
+    const double left = orientation(loop) == Orientation::ccw ? 1.0 : -1.0;
+    for (std::size_t k = 0; k < loop.segments.size(); ++k) {
+        const Vec2 a = segment_start(loop, k);
+        const ProfileSegment& seg = loop.segments[k];
+        if (!seg.centre) {
+            const double len = distance(a, seg.end);
+            if (len < 1e-9) continue;
+            const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+            const Vec2 u = (seg.end - a) * (1.0 / len);
+            for (int q = 0; q < n; ++q) f(a + u * (len * (q + 0.5) / n), left_of(u) * left);
+            continue;
+        }
+        const Vec2 c = *seg.centre;
+        const double r = distance(a, c), sweep = segment_sweep(loop, k);
+        if (r < 1e-9) continue;
+        const double sign = seg.direction == ArcDirection::ccw ? 1.0 : -1.0;
+        const double a0 = std::atan2(a.y - c.y, a.x - c.x);
+        const int n = std::max(1, static_cast<int>(std::ceil(r * sweep / spacing)));
+        for (int q = 0; q < n; ++q) {
+            const Vec2 radial = unit_at(a0 + sign * sweep * (q + 0.5) / n);
+            f(c + radial * r, left_of(radial * sign) * left);
+        }
+    }
+}
+
+// A cut's region as the probes ask of it: inside, and how far from its edge (exact, by a
+// grid of its pieces where it has many).
+class DesignCutShape {
+public:
+    DesignCutShape(const PlaneRegion& region, double reach) : region_(region) {
+        std::size_t n = region.outer.segments.size();
+        for (const Profile& p : region.islands) n += p.segments.size();
+        if (n <= 64) return;
+        loops_.emplace_back(region.outer, reach);
+        for (const Profile& p : region.islands) loops_.emplace_back(p, reach);
+    }
+    // The distance from the edge, negative inside.
+    double signed_distance(Vec2 p) const {
+        if (loops_.empty()) {
+            const double d = region_boundary_distance(region_, p);
+            return region_contains(region_, p) ? -d : d;
+        }
+        double d = std::numeric_limits<double>::infinity();
+        for (const ProfileClearance& l : loops_) d = std::min(d, l.nearest(p).distance);
+        bool in = loops_[0].inside(p);
+        for (std::size_t k = 1; in && k < loops_.size(); ++k) in = !loops_[k].inside(p);
+        return in ? -d : d;
+    }
+
+private:
+    const PlaneRegion& region_;
+    std::vector<ProfileClearance> loops_;
+};
+
+// The extent of a region's outline: {x0, y0, x1, y1}.
+std::array<double, 4> design_extent(const PlaneRegion& region) {
+    std::array<double, 4> b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (Vec2 p : sample_profile(region.outer, 0.01)) {
+        b[0] = std::min(b[0], p.x - 0.01), b[1] = std::min(b[1], p.y - 0.01);
+        b[2] = std::max(b[2], p.x + 0.01), b[3] = std::max(b[3], p.y + 0.01);
+    }
+    return b;
+}
+
 }  // namespace
+
+DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, double tolerance, double margin,
+                           std::size_t budget) {
+    DesignProbes out;
+    if (design.keeps.empty() || design.cuts.empty() || g.nx == 0 || g.ny == 0) return out;
+    double length = 0.0;
+    for (const DesignKeep& k : design.keeps) {
+        length += profile_length(k.region.outer);
+        for (const Profile& p : k.region.islands) length += profile_length(p);
+    }
+    out.spacing = std::max(g.cell, length / static_cast<double>(std::max<std::size_t>(budget, 1)));
+    // The cuts by buckets of the field: each in those its extent grown by the margin meets.
+    const double reach = margin + tolerance;
+    const double bucket = std::max(g.cell * 64, 4 * reach);
+    const double fx1 = g.x0 + static_cast<double>(g.nx) * g.cell, fy1 = g.y0 + static_cast<double>(g.ny) * g.cell;
+    const std::size_t bx = static_cast<std::size_t>(std::ceil((fx1 - g.x0) / bucket)) + 1;
+    const std::size_t by = static_cast<std::size_t>(std::ceil((fy1 - g.y0) / bucket)) + 1;
+    auto bucket_of = [&](double v, double v0, std::size_t n) {
+        return static_cast<std::size_t>(std::clamp(std::floor((v - v0) / bucket), 0.0, static_cast<double>(n - 1)));
+    };
+    std::vector<std::vector<std::uint32_t>> buckets(bx * by);
+    for (std::size_t c = 0; c < design.cuts.size(); ++c) {
+        const auto e = design_extent(design.cuts[c].region);
+        if (e[2] + reach < g.x0 || e[0] - reach > fx1 || e[3] + reach < g.y0 || e[1] - reach > fy1) continue;
+        for (std::size_t j = bucket_of(e[1] - reach, g.y0, by); j <= bucket_of(e[3] + reach, g.y0, by); ++j)
+            for (std::size_t i = bucket_of(e[0] - reach, g.x0, bx); i <= bucket_of(e[2] + reach, g.x0, bx); ++i)
+                buckets[j * bx + i].push_back(static_cast<std::uint32_t>(c));
+    }
+    std::vector<std::unique_ptr<DesignCutShape>> shapes(design.cuts.size());
+    auto shape = [&](std::size_t c) -> const DesignCutShape& {
+        if (!shapes[c]) shapes[c] = std::make_unique<DesignCutShape>(design.cuts[c].region, reach);
+        return *shapes[c];
+    };
+    const std::uint32_t cuts = static_cast<std::uint32_t>(design.cuts.size());
+    for (std::size_t k = 0; k < design.keeps.size(); ++k) {
+        const DesignKeep& keep = design.keeps[k];
+        auto place = [&](Vec2 p, Vec2 inward) {
+            const Vec2 q = p + inward * tolerance;
+            if (q.x < g.x0 || q.x > fx1 || q.y < g.y0 || q.y > fy1) return;
+            if (g.stock && !region_contains(*g.stock, q)) return;
+            bool near = false;
+            double designed = keep.top_z, override_floor = std::numeric_limits<double>::quiet_NaN();
+            std::uint32_t owner = cuts + static_cast<std::uint32_t>(k);
+            for (std::uint32_t c : buckets[bucket_of(q.y, g.y0, by) * bx + bucket_of(q.x, g.x0, bx)]) {
+                const double d = shape(c).signed_distance(q);
+                if (std::abs(d) < tolerance / 2) return;  // on a cut's edge: either way
+                if (d > reach) continue;
+                near = true;
+                if (d > 0) continue;
+                const DesignCut& cut = design.cuts[c];
+                const double f = cut.floor.at(q);
+                if (cut.overrides) override_floor = f, owner = c;
+                else if (std::isnan(override_floor) && f < designed) designed = f, owner = c;
+            }
+            if (!near) return;
+            if (!std::isnan(override_floor)) designed = override_floor;
+            out.points.push_back(q);
+            out.designed.push_back(std::clamp(designed, g.bottom, g.top));
+            out.owner.push_back(owner);
+        };
+        design_loop_points(keep.region.outer, out.spacing, place);
+        for (const Profile& island : keep.region.islands)
+            design_loop_points(island, out.spacing, [&](Vec2 p, Vec2 inward) { place(p, inward * -1.0); });
+    }
+    return out;
+}
 
 std::string DesignFinding::message() const {
     const std::string where = fmt::format("({}, {})", number_text(at.x, 3), number_text(at.y, 3));
     if (kind == Kind::gouge)
-        return fmt::format("{} ({}): material removed {} mm below the designed {} at {}{} ({} cells of the part cut)", path, what,
+        return fmt::format("{} ({}): material removed {} mm below the designed {} at {}{} ({} of the part cut)", path, what,
                            number_text(amount, 3), number_text(designed, 3), where,
-                           line > 0 ? fmt::format(", by line {}", line) : std::string(), cells);
+                           line > 0 ? fmt::format(", by line {}", line) : std::string(),
+                           points == 0  ? fmt::format("{} cells", cells)
+                           : cells == 0 ? fmt::format("{} points on its walls", points)
+                                        : fmt::format("{} cells and {} points on its walls", cells, points));
     return fmt::format("{} ({}): material left {} mm above its floor and allowance {} at {} ({} cells)", path, what,
                        number_text(amount, 3), number_text(designed, 3), where, cells);
 }
 
-std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& g, double tolerance, double margin) {
+std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& g, double tolerance, double margin,
+                                        const ProbeHeights& probes) {
     const std::size_t n = g.nx * g.ny;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> designed(n, nan);
@@ -125,6 +267,23 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
                 }
             }
         }
+    // The walls' probes, swept exactly.
+    if (probes.probes && probes.heights && probes.lines) {
+        const DesignProbes& pr = *probes.probes;
+        for (std::size_t k = 0; k < pr.points.size() && k < probes.heights->size(); ++k) {
+            const double below = pr.designed[k] - (*probes.heights)[k];
+            if (std::isnan(below) || below <= tolerance) continue;
+            DesignFinding& f = gouges[pr.owner[k]];
+            ++f.points;
+            if (below > f.amount) {
+                f.amount = below;
+                f.at = pr.points[k];
+                f.height = (*probes.heights)[k];
+                f.designed = pr.designed[k];
+                f.line = (*probes.lines)[k];
+            }
+        }
+    }
     // Material left: each cut over its own cells (another cut's deeper floor does not excuse it,
     // nor hide it: the height is below both then).
     for (std::size_t c = 0; c < design.cuts.size(); ++c) {
@@ -142,7 +301,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     }
     std::vector<DesignFinding> out;
     for (std::size_t k = 0; k < features; ++k) {
-        if (gouges[k].cells == 0) continue;
+        if (gouges[k].cells + gouges[k].points == 0) continue;
         DesignFinding f = gouges[k];
         f.kind = DesignFinding::Kind::gouge;
         f.path = k < design.cuts.size() ? design.cuts[k].path : design.keeps[k - design.cuts.size()].path;

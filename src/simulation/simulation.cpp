@@ -23,6 +23,8 @@ constexpr int sim_golden_iterations = 50;
 constexpr double sim_golden = 0.6180339887498949;
 // The most engagement samples along one move.
 constexpr int sim_engagement_samples = 256;
+// Probe columns are found by blocks of this many cells a side.
+constexpr int sim_probe_block = 16;
 
 // The height of a tool's lowest surface above its tip at `r` mm from its axis (r <= radius).
 struct SimProfile {
@@ -78,6 +80,109 @@ struct SimMoveAcc {
     double max_depth = 0.0;  // mm: the deepest material removed in one column (a crash's measure)
     double flute_depth = 0.0;  // mm: how far below the material's surface before the move the tool cut
     double engagement = 0.0; // fraction of the diameter
+};
+
+// The lowest surface of a tool whose tip moves straight from a to b, over the column at (x, y):
+// +inf where the tool does not pass over it. Exact for every form on horizontal and vertical
+// moves, for flat, cylinder and ball on any move; bull-nose and cone on a sloping move by
+// golden-section search (see simulation.hpp).
+struct SimLineColumns {
+    Vec3 a, b;
+    SimProfile prof;
+    double R, vx, vy, dz, len2, len, ux, uy, dlen, Dx, Dy, Dz, zlow;
+    bool level;
+    SimLineColumns(const Vec3& a_, const Vec3& b_, const SimProfile& p)
+        : a(a_), b(b_), prof(p), R(p.radius), vx(b_.x - a_.x), vy(b_.y - a_.y), dz(b_.z - a_.z) {
+        len2 = vx * vx + vy * vy, len = std::sqrt(len2);
+        ux = len > 0 ? vx / len : 0.0, uy = len > 0 ? vy / len : 0.0;
+        level = std::abs(dz) < sim_tiny;
+        dlen = std::sqrt(len2 + dz * dz);
+        Dx = dlen > 0 ? vx / dlen : 0, Dy = dlen > 0 ? vy / dlen : 0, Dz = dlen > 0 ? dz / dlen : 0;
+        zlow = std::min(a.z, b.z);
+    }
+    [[gnu::always_inline]] double low(double x, double y) const {
+        constexpr double none = std::numeric_limits<double>::infinity();
+        const double wx = x - a.x, wy = y - a.y;
+        const double w2 = wx * wx + wy * wy;
+        if (len2 < sim_tiny) return w2 > R * R ? none : zlow + prof(std::sqrt(w2));
+        if (level) {
+            const double t = std::clamp((wx * vx + wy * vy) / len2, 0.0, 1.0);
+            const double ex = wx - t * vx, ey = wy - t * vy;
+            const double d2 = ex * ex + ey * ey;
+            return d2 > R * R ? none : a.z + prof(std::sqrt(d2));
+        }
+        // The covered interval: |w - t v|^2 <= R^2.
+        const double B = -2 * (wx * vx + wy * vy), C = w2 - R * R;
+        const double disc = B * B - 4 * len2 * C;
+        if (disc < 0) return none;
+        const double sq = std::sqrt(disc);
+        const double t1 = std::max(0.0, (-B - sq) / (2 * len2)), t2 = std::min(1.0, (-B + sq) / (2 * len2));
+        if (t1 > t2) return none;
+        if (prof.form == ToolForm::flat || prof.form == ToolForm::cylinder) return a.z + dz * (dz < 0 ? t2 : t1);
+        if (prof.form == ToolForm::ball) {
+            double z = none;
+            for (const Vec3* e : {&a, &b}) {
+                const double ex = x - e->x, ey = y - e->y, d2 = ex * ex + ey * ey;
+                if (d2 <= R * R) z = std::min(z, e->z + R - std::sqrt(R * R - d2));
+            }
+            // The cylinder around the centre line: |q - A|^2 - ((q - A).D)^2 = R^2 on the column.
+            const double k = wx * Dx + wy * Dy;
+            const double qa = 1 - Dz * Dz, qb = -2 * k * Dz, qc = w2 - k * k - R * R;
+            const double qd = qb * qb - 4 * qa * qc;
+            if (qa > sim_tiny && qd >= 0) {
+                const double zr = (-qb - std::sqrt(qd)) / (2 * qa);
+                const double foot = k + zr * Dz;
+                if (foot >= 0 && foot <= dlen) z = std::min(z, a.z + R + zr);
+            }
+            return z;
+        }
+        auto g = [&](double t) __attribute__((always_inline)) {
+            const double ex = wx - t * vx, ey = wy - t * vy;
+            return a.z + dz * t + prof(std::min(R, std::sqrt(ex * ex + ey * ey)));
+        };
+        double lo_t = t1, hi_t = t2;
+        double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
+        double g1 = g(m1), g2 = g(m2);
+        for (int it = 0; it < sim_golden_iterations; ++it) {
+            if (g1 <= g2) {
+                hi_t = m2, m2 = m1, g2 = g1;
+                m1 = hi_t - sim_golden * (hi_t - lo_t), g1 = g(m1);
+            } else {
+                lo_t = m1, m1 = m2, g1 = g2;
+                m2 = lo_t + sim_golden * (hi_t - lo_t), g2 = g(m2);
+            }
+        }
+        return std::min({g(t1), g(t2), g1, g2});
+    }
+};
+
+// The same for an arc in XY at one height: the column's nearest point on the arc.
+struct SimArcColumns {
+    const ArcGeometry& arc;
+    SimProfile prof;
+    double R, r, cx, cy, sign, z0;
+    bool full;
+    SimArcColumns(const ArcGeometry& a, const SimProfile& p)
+        : arc(a), prof(p), R(p.radius), r(a.radius), cx(a.centre.x), cy(a.centre.y),
+          sign(a.direction == ArcDirection::ccw ? 1.0 : -1.0), z0(a.start.z), full(a.sweep >= two_pi - 1e-12) {}
+    bool within(double angle) const {
+        const double d = std::fmod(sign * (angle - arc.start_angle) + 8 * two_pi, two_pi);
+        return full || d <= arc.sweep;
+    }
+    double low(double x, double y) const {
+        constexpr double none = std::numeric_limits<double>::infinity();
+        const double dx = x - cx, dy = y - cy;
+        const double rho = std::hypot(dx, dy);
+        double d;
+        if (std::abs(rho - r) > R) return none;
+        if (full || within(std::atan2(dy, dx))) {
+            d = std::abs(rho - r);
+        } else {
+            d = std::min(std::hypot(x - arc.start.x, y - arc.start.y), std::hypot(x - arc.end.x, y - arc.end.y));
+            if (d > R) return none;
+        }
+        return z0 + prof(d);
+    }
 };
 
 }  // namespace
@@ -212,7 +317,56 @@ private:
         double sum = 0.0;
         for (float v : f.heights) sum += v - bottom;
         result_.initial_volume = sum * cell * cell;
+        field_x1_ = x1, field_y1_ = y1;
+        stock_polygon_ = std::move(polygon);
+        if (!options_.probes.empty()) {
+            std::vector<Vec2> probes = std::move(options_.probes);
+            set_probes(std::move(probes));
+        }
     }
+
+public:
+    // The probe columns: the stock's top where they lie in the stock, else NaN (no material,
+    // nothing swept); indexed by blocks of cells.
+    void set_probes(std::vector<Vec2> points) {
+        if (result_.kind != MachineKind::mill) throw SimInputError("probes are a mill's");
+        options_.probes = std::move(points);
+        const std::vector<Vec2>& probes = options_.probes;
+        const double x1 = field_x1_, y1 = field_y1_;
+        const std::vector<Vec2>& polygon = stock_polygon_;
+        if (probes.size() > std::numeric_limits<std::uint32_t>::max()) throw SimInputError("more than 2^32 probes");
+        const HeightField& f = result_.field;
+        result_.probe_heights.assign(probes.size(), std::numeric_limits<double>::quiet_NaN());
+        result_.probe_lines.assign(probes.size(), 0);
+        const double span = f.cell * sim_probe_block;
+        probe_nx_ = (f.nx + sim_probe_block - 1) / sim_probe_block;
+        probe_ny_ = (f.ny + sim_probe_block - 1) / sim_probe_block;
+        const std::size_t blocks = static_cast<std::size_t>(probe_nx_) * static_cast<std::size_t>(probe_ny_);
+        std::vector<std::size_t> block_of(probes.size(), blocks);
+        probe_start_.assign(blocks + 1, 0);
+        for (std::size_t k = 0; k < probes.size(); ++k) {
+            const Vec2 q = probes[k];
+            if (!(q.x >= f.x0 && q.x <= x1 && q.y >= f.y0 && q.y <= y1)) continue;
+            bool inside = polygon.empty();
+            for (std::size_t e = 0; e < polygon.size(); ++e) {
+                const Vec2 a = polygon[e], b = polygon[(e + 1) % polygon.size()];
+                if ((a.y <= q.y) != (b.y <= q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x)) inside = !inside;
+            }
+            if (!inside) continue;
+            result_.probe_heights[k] = f.top;
+            const int bx = std::min(probe_nx_ - 1, static_cast<int>((q.x - f.x0) / span));
+            const int by = std::min(probe_ny_ - 1, static_cast<int>((q.y - f.y0) / span));
+            block_of[k] = static_cast<std::size_t>(by) * static_cast<std::size_t>(probe_nx_) + static_cast<std::size_t>(bx);
+            ++probe_start_[block_of[k] + 1];
+        }
+        for (std::size_t b = 0; b < blocks; ++b) probe_start_[b + 1] += probe_start_[b];
+        probe_order_.assign(probe_start_[blocks], 0);
+        std::vector<std::uint32_t> next(probe_start_.begin(), probe_start_.end() - 1);
+        for (std::size_t k = 0; k < probes.size(); ++k)
+            if (block_of[k] < blocks) probe_order_[next[block_of[k]]++] = static_cast<std::uint32_t>(k);
+    }
+
+private:
 
     // The rows [j0, j1] whose centres lie in [ylo, yhi] (empty: j0 > j1).
     void rows(double ylo, double yhi, int& j0, int& j1) const {
@@ -275,20 +429,15 @@ private:
     // A straight move of the tool tip from a to b.
     void mill_line(const Vec3& a, const Vec3& b, const SimProfile& prof, SimMoveAcc& acc) {
         const HeightField& f = result_.field;
-        const double R = prof.radius;
-        const double vx = b.x - a.x, vy = b.y - a.y, dz = b.z - a.z;
-        const double len2 = vx * vx + vy * vy, len = std::sqrt(len2);
+        const SimLineColumns m(a, b, prof);
+        const double R = m.R;
         // Nothing to cut above the stock.
-        const double zlow = std::min(a.z, b.z);
+        const double zlow = m.zlow;
         if (zlow >= f.top) return;
+        probe(std::min(a.x, b.x) - R, std::min(a.y, b.y) - R, std::max(a.x, b.x) + R, std::max(a.y, b.y) + R, zlow, m);
         int j0, j1;
         rows(std::min(a.y, b.y) - R, std::max(a.y, b.y) + R, j0, j1);
-        const double ux = len > 0 ? vx / len : 0.0, uy = len > 0 ? vy / len : 0.0;
-        const bool level = std::abs(dz) < sim_tiny;
-        // The ball's centre line, unit direction (for the capsule).
-        const double dlen = std::sqrt(len2 + dz * dz);
-        const double Dx = dlen > 0 ? vx / dlen : 0, Dy = dlen > 0 ? vy / dlen : 0, Dz = dlen > 0 ? dz / dlen : 0;
-        if (len2 < sim_tiny) {
+        if (m.len2 < sim_tiny) {
             // No XY motion (a plunge, a retract, a drill): the tool's disc at its lowest.
             for (int j = j0; j <= j1; ++j) {
                 const double dy = f.y(j) - a.y;
@@ -319,11 +468,11 @@ private:
                     lo = std::min(lo, e->x - hw), hi = std::max(hi, e->x + hw);
                 }
             }
-            if (len > 0) {
+            if (m.len > 0) {
                 double blo = -std::numeric_limits<double>::infinity(), bhi = -blo;
                 // n = (-uy, ux): |n.(p - a)| <= R; u.(p - a) in [0, len]
-                if (sim_clip(-uy, uy * a.x + ux * (y - a.y), -R, R, blo, bhi) &&
-                    sim_clip(ux, -ux * a.x + uy * (y - a.y), 0.0, len, blo, bhi) && blo <= bhi)
+                if (sim_clip(-m.uy, m.uy * a.x + m.ux * (y - a.y), -R, R, blo, bhi) &&
+                    sim_clip(m.ux, -m.ux * a.x + m.uy * (y - a.y), 0.0, m.len, blo, bhi) && blo <= bhi)
                     lo = std::min(lo, blo), hi = std::max(hi, bhi);
             }
             if (!(lo <= hi)) continue;
@@ -334,64 +483,7 @@ private:
                 ++result_.cell_updates;
                 // The tool is nowhere lower than its tip's lowest point.
                 if (row[i] <= zlow) continue;
-                const double wx = f.x(i) - a.x, wy = y - a.y;
-                const double w2 = wx * wx + wy * wy;
-                double z;
-                if (len2 < sim_tiny) {
-                    if (w2 > R * R) continue;
-                    z = std::min(a.z, b.z) + prof(std::sqrt(w2));
-                } else if (level) {
-                    const double t = std::clamp((wx * vx + wy * vy) / len2, 0.0, 1.0);
-                    const double ex = wx - t * vx, ey = wy - t * vy;
-                    const double d2 = ex * ex + ey * ey;
-                    if (d2 > R * R) continue;
-                    z = a.z + prof(std::sqrt(d2));
-                } else {
-                    // The covered interval: |w - t v|^2 <= R^2.
-                    const double B = -2 * (wx * vx + wy * vy), C = w2 - R * R;
-                    const double disc = B * B - 4 * len2 * C;
-                    if (disc < 0) continue;
-                    const double sq = std::sqrt(disc);
-                    const double t1 = std::max(0.0, (-B - sq) / (2 * len2)), t2 = std::min(1.0, (-B + sq) / (2 * len2));
-                    if (t1 > t2) continue;
-                    if (prof.form == ToolForm::flat || prof.form == ToolForm::cylinder) {
-                        z = a.z + dz * (dz < 0 ? t2 : t1);
-                    } else if (prof.form == ToolForm::ball) {
-                        z = std::numeric_limits<double>::infinity();
-                        for (const Vec3* e : {&a, &b}) {
-                            const double ex = f.x(i) - e->x, ey = y - e->y, d2 = ex * ex + ey * ey;
-                            if (d2 <= R * R) z = std::min(z, e->z + R - std::sqrt(R * R - d2));
-                        }
-                        // The cylinder around the centre line: |q - A|^2 - ((q - A).D)^2 = R^2 on the column.
-                        const double k = wx * Dx + wy * Dy;
-                        const double qa = 1 - Dz * Dz, qb = -2 * k * Dz, qc = w2 - k * k - R * R;
-                        const double qd = qb * qb - 4 * qa * qc;
-                        if (qa > sim_tiny && qd >= 0) {
-                            const double zr = (-qb - std::sqrt(qd)) / (2 * qa);
-                            const double foot = k + zr * Dz;
-                            if (foot >= 0 && foot <= dlen) z = std::min(z, a.z + R + zr);
-                        }
-                        if (!std::isfinite(z)) continue;
-                    } else {
-                        auto g = [&](double t) {
-                            const double ex = wx - t * vx, ey = wy - t * vy;
-                            return a.z + dz * t + prof(std::min(R, std::sqrt(ex * ex + ey * ey)));
-                        };
-                        double lo_t = t1, hi_t = t2;
-                        double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
-                        double g1 = g(m1), g2 = g(m2);
-                        for (int it = 0; it < sim_golden_iterations; ++it) {
-                            if (g1 <= g2) {
-                                hi_t = m2, m2 = m1, g2 = g1;
-                                m1 = hi_t - sim_golden * (hi_t - lo_t), g1 = g(m1);
-                            } else {
-                                lo_t = m1, m1 = m2, g1 = g2;
-                                m2 = lo_t + sim_golden * (hi_t - lo_t), g2 = g(m2);
-                            }
-                        }
-                        z = std::min({g(t1), g(t2), g1, g2});
-                    }
-                }
+                const double z = m.low(f.x(i), y);
                 if (z < row[i]) lower(i, j, z, acc);
             }
         }
@@ -400,31 +492,26 @@ private:
     // An arc in XY at one height: each column's nearest point on the arc.
     void mill_flat_arc(const ArcGeometry& arc, const SimProfile& prof, SimMoveAcc& acc) {
         const HeightField& f = result_.field;
-        const double z0 = arc.start.z;
+        const SimArcColumns m(arc, prof);
+        const double z0 = m.z0;
         if (z0 >= f.top) return;
-        const double R = prof.radius, r = arc.radius;
-        const double cx = arc.centre.x, cy = arc.centre.y;
-        const double sign = arc.direction == ArcDirection::ccw ? 1.0 : -1.0;
-        const bool full = arc.sweep >= two_pi - 1e-12;
+        const double R = m.R, r = m.r, cx = m.cx;
         // The arc's box: its ends and the axis extremes it passes.
         double bx0 = std::min(arc.start.x, arc.end.x), bx1 = std::max(arc.start.x, arc.end.x);
         double by0 = std::min(arc.start.y, arc.end.y), by1 = std::max(arc.start.y, arc.end.y);
-        auto within = [&](double angle) {
-            const double d = std::fmod(sign * (angle - arc.start_angle) + 8 * two_pi, two_pi);
-            return full || d <= arc.sweep;
-        };
         for (int q = 0; q < 4; ++q) {
             const double ang = q * pi / 2;
-            if (within(ang)) {
-                const double px = cx + r * std::cos(ang), py = cy + r * std::sin(ang);
+            if (m.within(ang)) {
+                const double px = cx + r * std::cos(ang), py = m.cy + r * std::sin(ang);
                 bx0 = std::min(bx0, px), bx1 = std::max(bx1, px), by0 = std::min(by0, py), by1 = std::max(by1, py);
             }
         }
+        probe(bx0 - R, by0 - R, bx1 + R, by1 + R, z0, m);
         int j0, j1;
         rows(by0 - R, by1 + R, j0, j1);
         const double outer = r + R;
         for (int j = j0; j <= j1; ++j) {
-            const double y = f.y(j), dy = y - cy;
+            const double y = f.y(j), dy = y - m.cy;
             if (std::abs(dy) > outer) continue;
             const double hw = std::sqrt(outer * outer - dy * dy);
             int i0, i1;
@@ -433,22 +520,35 @@ private:
             for (int i = i0; i <= i1; ++i) {
                 ++result_.cell_updates;
                 if (row[i] <= z0) continue;
-                const double dx = f.x(i) - cx;
-                const double rho = std::hypot(dx, dy);
-                double d;
-                if (std::abs(rho - r) > R) {
-                    continue;
-                } else if (full || within(std::atan2(dy, dx))) {
-                    d = std::abs(rho - r);
-                } else {
-                    d = std::min(std::hypot(f.x(i) - arc.start.x, y - arc.start.y),
-                                 std::hypot(f.x(i) - arc.end.x, y - arc.end.y));
-                    if (d > R) continue;
-                }
-                const double z = z0 + prof(d);
+                const double z = m.low(f.x(i), y);
                 if (z < row[i]) lower(i, j, z, acc);
             }
         }
+    }
+
+    // The probe columns (SimOptions::probes) under a move's box: each lowered to the move's
+    // lowest surface over it, exactly as a cell's centre is.
+    template <class Columns>
+    void probe(double x0, double y0, double x1, double y1, double zlow, const Columns& m) {
+        if (probe_start_.empty()) return;
+        const HeightField& f = result_.field;
+        const double span = f.cell * sim_probe_block;
+        const int bx0 = std::max(0, static_cast<int>(std::floor((x0 - f.x0) / span)));
+        const int by0 = std::max(0, static_cast<int>(std::floor((y0 - f.y0) / span)));
+        const int bx1 = std::min(probe_nx_ - 1, static_cast<int>(std::floor((x1 - f.x0) / span)));
+        const int by1 = std::min(probe_ny_ - 1, static_cast<int>(std::floor((y1 - f.y0) / span)));
+        for (int by = by0; by <= by1; ++by)
+            for (int bx = bx0; bx <= bx1; ++bx) {
+                const std::size_t b = static_cast<std::size_t>(by) * static_cast<std::size_t>(probe_nx_) + static_cast<std::size_t>(bx);
+                for (std::uint32_t k = probe_start_[b]; k < probe_start_[b + 1]; ++k) {
+                    const std::size_t p = probe_order_[k];
+                    double& h = result_.probe_heights[p];
+                    if (h <= zlow) continue;
+                    const Vec2 q = options_.probes[p];
+                    const double z = std::max(m.low(q.x, q.y), f.bottom);
+                    if (z < h) h = z, result_.probe_lines[p] = line_;
+                }
+            }
     }
 
     // The move's radial engagement on the field before it (see SimFigure).
@@ -720,6 +820,11 @@ private:
     Vec3 last_end_{0, 0, std::numeric_limits<double>::infinity()};  // where the last move left the tool
     int last_tool_ = -1;
     int off_axis_ = 0;
+    // Probe columns by block: block b's probes are probe_order_[probe_start_[b] .. probe_start_[b + 1]).
+    std::vector<std::uint32_t> probe_start_, probe_order_;
+    int probe_nx_ = 0, probe_ny_ = 0;
+    double field_x1_ = 0.0, field_y1_ = 0.0;  // the stock's extent (the field may reach beyond)
+    std::vector<Vec2> stock_polygon_;          // a profile stock's outline as sampled (empty: a box)
 };
 
 Simulator::Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)
@@ -729,6 +834,7 @@ void Simulator::step(const Step& step) { impl_->step(step); }
 void Simulator::hole(const Hole& hole) { impl_->hole(hole); }
 void Simulator::finish(const TraceSummary& summary) { impl_->finish(summary); }
 void Simulator::begin_operation(std::string path) { impl_->begin_operation(std::move(path)); }
+void Simulator::set_probes(std::vector<Vec2> points) { impl_->set_probes(std::move(points)); }
 void Simulator::observe(SimObserver* observer) { impl_->observe(observer); }
 const SimResult& Simulator::result() const { return impl_->result_; }
 SimResult Simulator::take() { return std::move(impl_->result_); }

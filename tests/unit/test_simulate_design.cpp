@@ -127,3 +127,44 @@ TEST_CASE("camgen simulate: a profile stock that leaves out part of the band kep
 }
 
 }  // namespace test_simulate_design
+
+namespace test_simulate_design {
+
+TEST_CASE("camgen simulate: a tool 0.05 mm into a contour's wall is a gouge at its line, found by the points on the wall") {
+    const fs::path dir = test::scratch("simulate-wall");
+    // The outline's wall is at X0; the 10 mm tool finishes it at X-5 (Z-6, between the tabs at
+    // Y52..68). An added move to X-4.95 and back at Y30 takes 0.05 mm of the wall: at 0.2 mm
+    // cells no judged cell centre is that close to the wall (they keep 0.149 mm from it); the
+    // points on the wall (0.008 mm inside it) are.
+    const std::string job = samples + "plate-outline.json";
+    const std::string program = (dir / "outline.ngc").string();
+    REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
+    const std::string text = test::read_file(program);
+    const std::vector<std::string> lines = test::lines_of(text);
+    std::size_t along = 0;  // the finishing pass up the left wall
+    while (along < lines.size() && !(lines[along] == "G1 Y52" && lines[along - 1].rfind("G2 X-5 Y10 ", 0) == 0)) ++along;
+    REQUIRE(along < lines.size());
+    REQUIRE(lines[along - 1].rfind("G2 X-5 Y10 ", 0) == 0);
+    auto simulate = [&](const std::string& name, const std::string& into) {
+        std::string body;
+        for (std::size_t i = 0; i < lines.size(); ++i)
+            body += i == along ? fmt::format("G1 Y30\nX{}\nX-5\nY52\n", into) : lines[i] + "\n";
+        const std::string file = (dir / name).string();
+        std::ofstream(file) << body;
+        return test::run({"simulate", file, "--machine", "linuxcnc", "--job", job, "--stock-box", "-30,-30,-20,230,150,0",
+                          "--resolution", "0.2"});
+    };
+    // The same detour that stays on the wall's line (X-5) is as designed.
+    const test::Run ok = simulate("ok.ngc", "-5");
+    CHECK_MESSAGE(ok.code == 0, ok.out);
+    CHECK(ok.out.find("  the part is as designed\n") != std::string::npos);
+    const test::Run gouge = simulate("gouge.ngc", "-4.95");
+    CHECK(gouge.code == 1);
+    CHECK_MESSAGE(gouge.out.find("error: gouge: /operations/0 (the part inside the contour): material removed 6 mm below the designed 0 at (0.008, ") !=
+                      std::string::npos,
+                  gouge.out);
+    CHECK_MESSAGE(gouge.out.find(fmt::format(", by line {} (", along + 2)) != std::string::npos, gouge.out);
+    CHECK_MESSAGE(gouge.out.find(" points on its walls of the part cut)") != std::string::npos, gouge.out);
+}
+
+}  // namespace test_simulate_design

@@ -173,6 +173,56 @@ TEST_CASE("simulation: a sloping straight move leaves each tool's lowest surface
     }
 }
 
+TEST_CASE("simulation: probes are swept exactly as cells' centres are, wherever they lie") {
+    const Machine m = load_machine("linuxcnc");
+    ToolShape ball = shape(ToolForm::ball, 6), bull = shape(ToolForm::bull_nose, 6), vbit = shape(ToolForm::cone, 6);
+    bull.corner_radius = 1;
+    vbit.tip_angle = 60;
+    vbit.tip_diameter = 1;
+    // A ramp, a level line, a plunge, a level arc and a helix (chords), lines 1 to 5.
+    std::vector<Step> steps{move(StepKind::feed, {5, 44, 0.5}, {30, 56, -2}, 1, 1), move(StepKind::feed, {5, 47, -1}, {35, 47, -1}, 1, 2),
+                            move(StepKind::feed, {20, 52, 1}, {20, 52, -3}, 1, 3)};
+    steps.push_back(arc({10, 50, -0.5}, {30, 50, -0.5}, {20, 50, 0}, ArcDirection::ccw));
+    steps.back().line = 4;
+    steps.push_back(arc({28, 50, 0.2}, {12, 50, -1.5}, {20, 50, 0}, ArcDirection::cw));
+    steps.back().line = 5;
+    for (const ToolShape& t : {flat(6), ball, bull, vbit}) {
+        CAPTURE(static_cast<int>(t.form));
+        SimOptions o;
+        o.resolution = 0.25;
+        // Every cell's centre, and points between them.
+        for (int j = 0; j < 80; ++j)
+            for (int i = 0; i < 160; ++i) o.probes.push_back({0.125 + 0.25 * i, 40.125 + 0.25 * j});
+        SimOptions fine = o;
+        fine.resolution = 0.25 / 3;
+        const SimResult r = simulate(steps, m, box({0, 40, -10}, {40, 60, 0}), {{1, t}}, o);
+        const SimResult rf = simulate(steps, m, box({0, 40, -10}, {40, 60, 0}), {{1, t}}, fine);
+        REQUIRE(r.probe_heights.size() == o.probes.size());
+        int differ = 0, lines_differ = 0, cut = 0, fine_differ = 0;
+        for (int j = 0; j < 80; ++j)
+            for (int i = 0; i < 160; ++i) {
+                const std::size_t k = static_cast<std::size_t>(j) * 160 + static_cast<std::size_t>(i);
+                // The field holds floats, the probes doubles.
+                if (std::abs(r.probe_heights[k] - r.field.at(i, j)) > 1e-5) ++differ;
+                if (r.probe_lines[k] != r.field.lines[k]) ++lines_differ;
+                cut += r.probe_heights[k] < 0;
+                // At a third of the cell the same point is a cell's centre too: (3i+1, 3j+1).
+                if (std::abs(rf.probe_heights[k] - rf.field.at(3 * i + 1, 3 * j + 1)) > 1e-5) ++fine_differ;
+            }
+        CHECK(differ == 0);
+        CHECK(lines_differ == 0);
+        CHECK(fine_differ == 0);
+        CHECK(cut > 1000);
+    }
+    // A probe outside the stock has no height.
+    SimOptions o;
+    o.probes = {{50, 50}, {20, 52}};
+    const SimResult r = simulate(steps, m, box({0, 40, -10}, {40, 60, 0}), {{1, flat(6)}}, o);
+    CHECK(std::isnan(r.probe_heights[0]));
+    CHECK(r.probe_heights[1] == doctest::Approx(-3));
+    CHECK(r.probe_lines[1] == 3);
+}
+
 TEST_CASE("simulation: a drilled hole removes its cylinder and its cone") {
     const Machine m = load_machine("linuxcnc");
     const double R = 3, depth_ = 10;

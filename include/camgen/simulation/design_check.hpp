@@ -6,6 +6,7 @@
 // region (a cell across a wall could go either way), so the check is exact at the centres it
 // judges and says nothing within the margin of a wall.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -40,13 +41,39 @@ struct DesignFinding {
     double designed = 0.0;  // the designed height there (gouge) or the floor plus its allowance (left)
     double amount = 0.0;  // mm below (gouge) or above (left)
     std::size_t cells = 0;  // cells of this finding
+    std::size_t points = 0; // wall probes of this finding (DesignProbes)
     int line = 0;         // the program line that cut the worst cell (gouge)
     std::string message() const;
 };
 
-// Every finding, the worst cell of each cut or keep, gouges first, in the design's order.
-// `tolerance`: mm a height may differ from the design (chords, rounding); `margin`: mm a judged
-// centre keeps from a region's edge (at least half a cell's diagonal plus the tolerance).
-std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& grid, double tolerance, double margin);
+// Points on the part's walls, which the cells miss: the cells within the margin of a cut's edge
+// are not judged, so a tool that strays a little into a wall (a lead-in arc 0.05 mm into the
+// part) could leave no judged cell lower. Along every loop of every keep, a point every
+// `spacing` mm, `tolerance` inside the keep (where a tool that enters the wall by more than the
+// tolerance lowers it), kept where it lies within the margin of a cut's edge (elsewhere the
+// cells judge) and farther than half the tolerance from every cut's edge (on an edge it could go
+// either way). Its designed height is its keep's top, or the lowest floor of the cuts that
+// cover it (a face over the part). The simulation sweeps them exactly (SimOptions::probes).
+struct DesignProbes {
+    std::vector<Vec2> points;
+    std::vector<double> designed;      // mm
+    std::vector<std::uint32_t> owner;  // the feature: cuts 0..C-1, then keeps
+    double spacing = 0.0;              // mm, as used: the cell, or more where the budget asks
+};
+DesignProbes design_probes(const PartDesign& design, const HeightGridView& grid, double tolerance, double margin,
+                           std::size_t budget = 1'000'000);
+
+// The probes as swept: each point's height and the line that last lowered it.
+struct ProbeHeights {
+    const DesignProbes* probes = nullptr;
+    const std::vector<double>* heights = nullptr;
+    const std::vector<std::int32_t>* lines = nullptr;
+};
+
+// Every finding, the worst cell (or probe) of each cut or keep, gouges first, in the design's
+// order. `tolerance`: mm a height may differ from the design (chords, rounding); `margin`: mm a
+// judged centre keeps from a region's edge (at least half a cell's diagonal plus the tolerance).
+std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& grid, double tolerance, double margin,
+                                        const ProbeHeights& probes = {});
 
 }  // namespace camgen

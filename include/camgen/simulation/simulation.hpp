@@ -97,6 +97,9 @@ struct SimOptions {
     std::size_t lathe_budget = 100'000;    // lathe: the most Z samples when no resolution is given
     double crash_depth = 0.002;            // mm: a rapid that removes more than this in a column is a crash
     std::vector<OperationSpan> operations; // sorted by first_line; steps before the first: no operation
+    // mill: points whose heights are swept exactly as cells' centres are (the design check's
+    // points on the part's walls, which the cells' centres miss); at most 2^32.
+    std::vector<Vec2> probes;
     SimObserver* observer = nullptr;       // told of each change (none: nothing costs)
 };
 
@@ -169,6 +172,10 @@ struct SimResult {
     ProgramStats stats;          // machining time and lengths, as verify --stats
     std::size_t cell_updates = 0;  // columns (or samples) visited by moves, for the rate
     std::vector<std::string> notes;  // what was not swept, and why
+    // mill, SimOptions::probes: the material's top at each probe (NaN outside the stock) and the
+    // program line of the move that last lowered it (0: none).
+    std::vector<double> probe_heights;
+    std::vector<std::int32_t> probe_lines;
 };
 
 // Refused simulation input (a stock or a tool that cannot be swept), with its reason.
@@ -189,6 +196,9 @@ public:
     // The steps that follow belong to this operation (a job's OperationStart; read-back
     // programs use SimOptions::operations).
     void begin_operation(std::string path);
+    // Sets SimOptions::probes (before the first step): a mill's field is laid out by then
+    // (result().field), so that probes can be placed on it.
+    void set_probes(std::vector<Vec2> points);
     // From now on tell `observer` of each change (nullptr: none).
     void observe(SimObserver* observer);
     // The result, complete after finish.
