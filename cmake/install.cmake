@@ -62,12 +62,12 @@ set(CPACK_COMPONENTS_ALL runtime development)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME camgen)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SECTION misc)
-# libfmt, libstdc++ and libc as dpkg-shlibdeps finds them in the executable.
+# libfmt, libcairo2, libstdc++ and libc as dpkg-shlibdeps finds them in the executable.
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "bash-completion")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME camgen-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
-set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS "libfmt-dev, nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libboost-dev (>= 1.74)")
+set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS "libfmt-dev, nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libboost-dev (>= 1.74), libcairo2-dev, pkgconf")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SUGGESTS "camgen")
 # A Debian description: its summary line, then the long description.
 set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "CAM for CNC mills and lathes: JSON job in, NC program out

@@ -39,6 +39,7 @@
 #include "camgen/simulation/design_check.hpp"
 #include "operation_lines.hpp"
 #include "camgen/simulation/simulation.hpp"
+#include "camgen/simulation/pictures.hpp"
 #include "camgen/operations/design.hpp"
 #include "camgen/geometry/region.hpp"
 #include "camgen/common/number_text.hpp"
@@ -89,6 +90,10 @@ struct SimulateOptions {
     std::string stock_box;  // "x0,y0,z0,x1,y1,z1", mm
     std::string bar;        // "D,L[,FACEZ]", mm
     double resolution = 0.0;
+    std::string png;      // --png: the top view (and section) or the half-section
+    std::string section;  // --section "x0,y0,x1,y1", mm
+    std::string plot;     // --plot: the HTML page
+    std::string stl;      // --stl: the part as a binary STL
 };
 
 // True for a file that can be read more than once: not a pipe (`camgen verify <(...)`), FIFO
@@ -728,6 +733,19 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         stock.face_z = n.size() > 2 ? n[2] : 0.0;
     }
     if (!(v.resolution >= 0)) throw UsageError("--resolution takes a length above 0 in mm");
+    // The pictures' options, and no output over an input or another output, before anything is read.
+    std::optional<SectionLine> section;
+    if (!v.section.empty()) {
+        if (machine.kind == MachineKind::lathe)
+            throw UsageError(fmt::format("{} is a lathe: --section is a mill's picture (a lathe's --png and --plot show its "
+                                         "half-section)", machine.name));
+        if (v.png.empty() && v.plot.empty()) throw UsageError("--section is drawn in the --png picture or the --plot page: give one");
+        const auto n = option_numbers(v.section, "--section", 4, 0, "x0,y0,x1,y1");
+        section = SectionLine{{n[0], n[1]}, {n[2], n[3]}};
+        if (!(distance(section->a, section->b) > 0)) throw UsageError("--section takes two different points");
+    }
+    if (!v.plot.empty() && !is_html_plot(v.plot)) throw UsageError(fmt::format("--plot writes an HTML page: {} must end in .html", v.plot));
+    inputs.check_outputs({{"--png", v.png}, {"--plot", v.plot}, {"--stl", v.stl}}, out);
     std::optional<Job> job;
     try {
         job = parse_job(job_input, v.job, JobLimits{}, v.machine);
@@ -779,6 +797,12 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }
     std::optional<SimDesignCheck> check = prepare_design_check(*job, machine, stock, *sim);
+    // The page's history of the part, told of each change as the program is swept.
+    std::optional<SimHistory> history;
+    if (!v.plot.empty()) {
+        history.emplace(sim->result());
+        sim->observe(&*history);
+    }
     try {
         TraceBuilder trace(machine, *sim, TraceOptions{job_compensation_radii(*job)});
         ProgramReader reader(program.open(), machine, source, trace);
@@ -793,6 +817,33 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     if (!ops.note.empty()) out << "note: " << ops.note << '\n';
     out << format_simulation(r);
     const std::size_t gouges = check ? design_check_report(*check, r, out) : 0;
+    // The pictures, also of a part with errors (they show them); each written whole before
+    // any replaces its file.
+    const PictureLabels labels{base_name(source), machine.name};
+    std::vector<std::unique_ptr<OutputFile>> pictures;
+    try {
+        if (!v.png.empty()) {
+            pictures.push_back(std::make_unique<OutputFile>(v.png));
+            write_simulation_png(r, section, labels, pictures.back()->stream());
+        }
+        if (!v.stl.empty()) {
+            pictures.push_back(std::make_unique<OutputFile>(v.stl));
+            const StlSummary stl = write_simulation_stl(r, StlOptions{}, pictures.back()->stream());
+            out << fmt::format("stl: {} triangles{}\n", stl.triangles,
+                               stl.block <= 1                  ? std::string()
+                               : r.kind == MachineKind::lathe ? fmt::format(", bands of {} samples", stl.block)
+                                                              : fmt::format(", blocks of {} x {} cells", stl.block, stl.block));
+        }
+        if (!v.plot.empty()) {
+            history->finish(r);
+            pictures.push_back(std::make_unique<OutputFile>(v.plot));
+            write_simulation_html(pictures.back()->stream(), r, *history, section, labels,
+                                  [&]() -> std::istream& { return program.open(); });
+        }
+    } catch (const SimInputError& e) {
+        throw UsageError(fmt::format("cannot draw the simulation: {}", e.what()));
+    }
+    for (auto& p : pictures) p->commit();
     finish_stream(out, "standard output");
     return r.errors.empty() && gouges == 0 ? exit_ok : exit_invalid_input;
 }
@@ -901,6 +952,20 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     simulate_cmd->add_option("--bar", so.bar, "A lathe's stock: the bar's diameter, length and face Z (default 0), D,L[,FACEZ] in mm (default: the job's stock)");
     simulate_cmd->add_option("--resolution", so.resolution,
                              "Cell size (mill) or Z step (lathe) in mm (default: 4 million cells, 100,000 steps)");
+    simulate_cmd->add_option("--png", so.png,
+                             "Write a PNG: a mill's top view shaded and coloured by depth (depth scale, mm scale bar), "
+                             "and the --section under it; a lathe's half-section (the turned profile, the bore, the bar as it was)");
+    simulate_cmd->add_option("--section", so.section,
+                             "A mill's section along the segment x0,y0,x1,y1 (mm): the part's height along it, to scale, "
+                             "with the stock as it was; drawn in the --png and on the --plot page");
+    simulate_cmd->add_option("--plot", so.plot,
+                             "Write an HTML page: the top view (a lathe: the half-section) and the --section, a block "
+                             "slider that shows the part cut up to that block (#block=N), and a 3D (WebGL) view of the "
+                             "height field; nothing loaded from the network");
+    simulate_cmd->add_option("--stl", so.stl,
+                             "Write the simulated part as a binary STL in mm: a mill's height field as a closed surface "
+                             "(fields over 250,000 cells merged into blocks, their volume kept), a lathe's profile revolved "
+                             "(128 segments)");
 
     std::string schema_name;
     CLI::App* schema = app.add_subcommand(

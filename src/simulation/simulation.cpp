@@ -217,6 +217,7 @@ public:
                                                 skipped_tool0_));
     }
     void begin_operation(std::string path) { current_op_ = std::move(path); }
+    void observe(SimObserver* observer) { options_.observer = observer; }
     SimResult result_;
 
 private:
@@ -391,6 +392,7 @@ private:
             acc.flute_depth = acc.max_depth;
             h = static_cast<float>(nz);
             f.lines[static_cast<std::size_t>(j) * f.nx + i] = line_;
+            if (options_.observer) options_.observer->lowered(static_cast<std::size_t>(j) * f.nx + i, h, line_);
         }
     }
 
@@ -634,6 +636,8 @@ private:
         if (r < p.outside[k]) p.outside[k] = std::max(r, 0.0);
         if (b > p.bore[k]) p.bore[k] = b;
         const double removed = before - ring(p.outside[k], p.bore[k]);
+        if (options_.observer && (p.outside[k] != old_r || p.bore[k] != old_b))
+            options_.observer->turned(k, p.outside[k], p.bore[k], line_);
         if (!(removed > 0) || !(old_r > old_b)) return 0.0;
         acc.volume += removed;
         return std::max(old_r - std::max(p.outside[k], old_b), std::min(p.bore[k], old_r) - old_b);
@@ -831,6 +835,7 @@ void Simulator::hole(const Hole& hole) { impl_->hole(hole); }
 void Simulator::finish(const TraceSummary& summary) { impl_->finish(summary); }
 void Simulator::begin_operation(std::string path) { impl_->begin_operation(std::move(path)); }
 void Simulator::set_probes(std::vector<Vec2> points) { impl_->set_probes(std::move(points)); }
+void Simulator::observe(SimObserver* observer) { impl_->observe(observer); }
 const SimResult& Simulator::result() const { return impl_->result_; }
 SimResult Simulator::take() { return std::move(impl_->result_); }
 

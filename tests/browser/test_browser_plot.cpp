@@ -4,6 +4,9 @@
 // shows (the block's line and text, the tool's X Y Z, the tool, the marker), then switches each
 // layer off and on. The dumped DOM is compared with camgen's own read-back of the same program.
 // Machines: a mill on ISO (fanuc), a mill on nccad (wabeco), a lathe (fanuc-lathe).
+// The simulation's page (`camgen simulate --plot`): it draws, its slider shows the part cut up
+// to a block (less early), its WebGL view draws (SwiftShader); screenshots are saved under
+// build/simulate-screenshots/.
 // Exits 77 (ctest: skipped) with a message when chromium is not installed.
 #define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
@@ -20,6 +23,7 @@
 #include "camgen/analysis/backplot.hpp"
 #include "camgen/analysis/stats.hpp"
 #include "camgen/reader/reader.hpp"
+#include "camgen/simulation/pictures.hpp"
 #include "tests/unit/html_plot_support.hpp"
 #include "tests/unit/support.hpp"
 
@@ -162,6 +166,91 @@ TEST_CASE("browser: every block of a wabeco (nccad) program with ramps and a hel
 TEST_CASE("browser: every block of a lathe program, the half-section's marker at (Z, X)") {
     check_in_browser("lathe", test::read_file(CAMGEN_SOURCE_DIR "/samples/shaft.json"), "fanuc-lathe",
                      {"t1", "t2", "t3", "k-rapid", "k-feed", "k-width"});
+}
+
+namespace {
+
+// The simulation's page (camgen simulate --plot): chromium with SwiftShader's software WebGL.
+// `hash` steps the slider; returns the page's check lines.
+std::vector<nlohmann::json> browse_simulation(const std::filesystem::path& page, const std::string& hash) {
+    const std::filesystem::path profile = page.parent_path() / "chromium-profile", log = page.parent_path() / "chromium.err";
+    const auto [dom, status] = output_of(fmt::format("timeout 90 chromium --headless --no-sandbox --use-gl=swiftshader "
+                                                     "--enable-unsafe-swiftshader --disable-dev-shm-usage --no-first-run "
+                                                     "--user-data-dir='{}' --dump-dom 'file://{}{}' 2>'{}'",
+                                                     profile.string(), page.string(), hash, log.string()));
+    const std::string open = "<pre id=\"steps\" hidden=\"\">";
+    const auto from = dom.find(open);
+    REQUIRE_MESSAGE((status == 0 && from != std::string::npos), "chromium exit status " << status << ", no check output in:\n"
+                                                                   << dom.substr(0, 400) << "\nchromium's errors:\n"
+                                                                   << test::read_file(log.string()));
+    const auto to = dom.find("</pre>", from);
+    std::vector<nlohmann::json> lines;
+    for (const std::string& line : test::lines_of(unescape(dom.substr(from + open.size(), to - from - open.size()))))
+        lines.push_back(nlohmann::json::parse(line));
+    return lines;
+}
+
+void screenshot(const std::filesystem::path& page, const std::string& hash, const std::filesystem::path& png) {
+    const std::filesystem::path profile = page.parent_path() / "chromium-profile";
+    std::filesystem::create_directories(png.parent_path());
+    std::filesystem::remove(png);
+    const auto [out, status] = output_of(fmt::format("timeout 90 chromium --headless --no-sandbox --use-gl=swiftshader "
+                                                     "--enable-unsafe-swiftshader --disable-dev-shm-usage --no-first-run "
+                                                     "--user-data-dir='{}' --window-size=1280,1400 --screenshot='{}' "
+                                                     "'file://{}{}' 2>/dev/null",
+                                                     profile.string(), png.string(), page.string(), hash));
+    CHECK(status == 0);
+    CHECK(std::filesystem::exists(png));
+}
+
+}  // namespace
+
+TEST_CASE("browser: the simulation page draws, its slider shows less cut early, its WebGL view draws") {
+    const std::filesystem::path dir = test::scratch("browser-simulate");
+    const std::string job = CAMGEN_SOURCE_DIR "/samples/pocket.json";
+    const std::filesystem::path nc = dir / "pocket.ngc", page = dir / "pocket.html";
+    std::ofstream(nc) << test::post_job(test::read_file(job), "linuxcnc").text;
+    const test::Run r = test::run({"simulate", nc.string(), "--machine", "linuxcnc", "--job", job, "--stock-box",
+                                   "-10,-10,-12,110,80,0", "--section", "-10,30,110,30", "--plot", page.string()});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    const std::size_t lines = test::lines_of(test::read_file(nc.string())).size();
+    const std::vector<nlohmann::json> shown = browse_simulation(page, fmt::format("#block=40,300,{}&check", lines));
+    REQUIRE(shown.size() == 3);
+    for (const nlohmann::json& s : shown) {
+        CAPTURE(s.dump());
+        CHECK(s["top"].get<int>() > 100000);    // the top view is drawn (not blank)
+        CHECK(s["section"].get<int>() > 1000);  // and the section
+    }
+    const nlohmann::json &early = shown[0], &middle = shown[1], &late = shown[2];
+    CHECK(early["line"] == 40);
+    CHECK(late["line"].get<std::size_t>() == lines);
+    // The slider moves the cut: fewer cells cut at block 40 than at the end, and other pictures.
+    CHECK(early["cut"].get<int>() > 0);
+    CHECK(early["cut"].get<int>() < middle["cut"].get<int>());
+    CHECK(middle["cut"].get<int>() < late["cut"].get<int>());
+    CHECK(early["topSum"] != late["topSum"]);
+    CHECK(early["sectionSum"] != late["sectionSum"]);
+    // SwiftShader gives headless chromium WebGL: the 3D view draws, and changes with the slider.
+    REQUIRE_MESSAGE(early["webgl"].get<bool>(), "chromium has no WebGL even with SwiftShader");
+    CHECK(early["gl"].get<int>() > 10000);
+    CHECK(early["glSum"] != late["glSum"]);
+    // Screenshots for a person to look at.
+    const std::filesystem::path shots = CAMGEN_BUILD_DIR "/simulate-screenshots";
+    screenshot(page, "#block=40", shots / "pocket-block-40.png");
+    screenshot(page, fmt::format("#block={}", lines), shots / "pocket-last-block.png");
+    // A lathe's page: the half-section, no 3D view.
+    const std::string shaft = CAMGEN_SOURCE_DIR "/samples/shaft.json";
+    const std::filesystem::path lnc = dir / "shaft.nc", lpage = dir / "shaft.html";
+    std::ofstream(lnc) << test::post_job(test::read_file(shaft), "fanuc-lathe").text;
+    const test::Run lr = test::run({"simulate", lnc.string(), "--machine", "fanuc-lathe", "--job", shaft, "--bar", "40,80,0",
+                                    "--plot", lpage.string()});
+    REQUIRE_MESSAGE(lr.code == 0, lr.err);
+    const std::vector<nlohmann::json> lathe = browse_simulation(lpage, "#block=20,1000&check");
+    REQUIRE(lathe.size() == 2);
+    CHECK(lathe[0]["top"].get<int>() > 10000);
+    CHECK(lathe[0]["cut"].get<int>() < lathe[1]["cut"].get<int>());
+    CHECK(lathe[0]["gl"].is_null());
+    screenshot(lpage, "#block=1000", shots / "shaft-last-block.png");
 }
 
 int main(int argc, char** argv) {

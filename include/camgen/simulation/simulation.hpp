@@ -80,6 +80,16 @@ struct OperationSpan {
     std::string path;
 };
 
+// Told of every change of the stock as it happens (the page's history of the part, pictures.hpp).
+class SimObserver {
+public:
+    virtual ~SimObserver() = default;
+    // Mill: the field's cell `cell` (row after row) was lowered to `height` by program line `line`.
+    virtual void lowered(std::size_t cell, float height, int line) = 0;
+    // Lathe: Z sample `sample` was turned to this outside radius and bore by line `line`.
+    virtual void turned(int sample, double outside, double bore, int line) = 0;
+};
+
 // How to simulate.
 struct SimOptions {
     double resolution = 0.0;               // mm per cell (mill) or Z sample (lathe); 0: from the budget
@@ -90,6 +100,7 @@ struct SimOptions {
     // mill: points whose heights are swept exactly as cells' centres are (the design check's
     // points on the part's walls, which the cells' centres miss); at most 2^32.
     std::vector<Vec2> probes;
+    SimObserver* observer = nullptr;       // told of each change (none: nothing costs)
 };
 
 // The chords of a helix (or of an arc out of XY) keep the tool centre within this fraction
@@ -188,6 +199,8 @@ public:
     // Sets SimOptions::probes (before the first step): a mill's field is laid out by then
     // (result().field), so that probes can be placed on it.
     void set_probes(std::vector<Vec2> points);
+    // From now on tell `observer` of each change (nullptr: none).
+    void observe(SimObserver* observer);
     // The result, complete after finish.
     const SimResult& result() const;
     SimResult take();
