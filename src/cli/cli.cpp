@@ -675,7 +675,17 @@ std::optional<SimDesignCheck> prepare_design_check(const Job& job, const Machine
     g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
     g.top = f.top;
     g.bottom = f.bottom;
-    if (stock.kind == SimStock::Kind::profile) g.stock = PlaneRegion{stock.profile, {}};
+    if (stock.kind == SimStock::Kind::profile) {
+        g.stock = PlaneRegion{stock.profile, {}};
+    } else {
+        // The field's last row and column may reach beyond the box: no stock there.
+        const double x0 = std::min(stock.min.x, stock.max.x), x1 = std::max(stock.min.x, stock.max.x);
+        const double y0 = std::min(stock.min.y, stock.max.y), y1 = std::max(stock.min.y, stock.max.y);
+        Profile box;
+        box.start = {x0, y0};
+        box.segments = {{{x1, y0}}, {{x1, y1}}, {{x0, y1}}, {{x0, y0}}};
+        g.stock = PlaneRegion{box, {}};
+    }
     // As verify compares: the position, the machine's tolerance and its chords.
     c.tolerance = compare_tolerance(machine).path;
     c.margin = f.cell * std::numbers::sqrt2 / 2.0 + c.tolerance;
