@@ -1,9 +1,8 @@
 // Reading the ISO lathe dialect (iso-lathe: linuxcnc-lathe, fanuc-lathe): the ISO reader with
-// what lathes write differently, by its hooks: LinuxCNC's diameter and radius modes G7/G8 (as
-// the machine's start block selects one), Fanuc T's spindle limit G50 S and constant speed G97,
-// turret calls T0101 (setting toolCall "turret"), canned cycles only under G17 where the post
-// drills in that plane (setting drillingPlane), and Fanuc T's two-block end-face peck drilling
-// G74 R(e) / G74 Z Q F.
+// what lathes write differently, by its hooks: Fanuc T's spindle limit G50 S and constant speed G97,
+// turret calls T0101 (setting toolCall "turret"), canned cycles in any plane where the post
+// writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
+// end-face peck drilling G74 R(e) / G74 Z Q F.
 #include <algorithm>
 #include <cmath>
 
@@ -36,18 +35,6 @@ private:
 };
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word& x, Code c) {
-    if (c.value == code(7) || c.value == code(8)) {
-        // LinuxCNC's diameter (G7) and radius (G8) modes, on a machine whose start block
-        // selects one: its xDiameterProg says which.
-        const auto& start = machine_.frame.start_block;
-        const bool has_modes = std::find(start.begin(), start.end(), "G7") != start.end() ||
-                               std::find(start.begin(), start.end(), "G8") != start.end();
-        if (!has_modes) return false;
-        if ((c.value == code(7)) != machine_.x_diameter)
-            fail(fmt::format("{}: machine {} {}", x.text, machine_.name,
-                             machine_.x_diameter ? "programs X as a diameter (G7)" : "programs X as a radius (G8)"));
-        return true;
-    }
     if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code)) {
         // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
         set_group(codes.spindle_mode, c);
@@ -83,11 +70,8 @@ bool IsoLatheReader::variant_cycle(const DrillingCycleSpec& spec, BlockWords& w)
 }
 
 void IsoLatheReader::check_cycle_plane(const std::string& name) const {
-    // A canned cycle drills along the plane's normal: where the post drills under G17, only G17
-    // drills along Z (Fanuc T's face drilling cycles take no plane).
-    if (lathe_.drilling_plane && plane() != Plane::xy)
-        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
-                         plane() == Plane::xz ? "G18" : "G19", plane() == Plane::xz ? "Y" : "X"));
+    // Fanuc T's face drilling cycles take no plane (drillingPlane false).
+    if (lathe_.drilling_plane) IsoReader::check_cycle_plane(name);
 }
 
 void IsoLatheReader::face_peck(const DrillingCycleSpec& spec, BlockWords& w) {

@@ -138,6 +138,18 @@ void IsoReader::block(const Block& b) {
                     set_group(k.motion, c);
                     break;
                 case code(17): case code(18): case code(19): set_group(k.plane, c); break;
+                case code(7): case code(8): {
+                    // LinuxCNC's diameter (G7) and radius (G8) modes, on a machine whose start block
+                    // selects one: its xDiameterProg says which.
+                    const auto& start = machine_.frame.start_block;
+                    const bool has_modes = std::find(start.begin(), start.end(), "G7") != start.end() ||
+                                           std::find(start.begin(), start.end(), "G8") != start.end();
+                    if (!has_modes) fail(fmt::format("unknown code {}", x.text));
+                    if ((c.value == code(7)) != machine_.x_diameter)
+                        fail(fmt::format("{}: machine {} {}", x.text, machine_.name,
+                                         machine_.x_diameter ? "programs X as a diameter (G7)" : "programs X as a radius (G8)"));
+                    break;
+                }
                 case code(20): case code(21): set_group(k.units, c); break;
                 case code(90): break;
                 case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
@@ -401,7 +413,12 @@ bool IsoReader::variant_tool_call(const Word&) { return false; }
 
 bool IsoReader::variant_cycle(const DrillingCycleSpec&, BlockWords&) { return false; }
 
-void IsoReader::check_cycle_plane(const std::string&) const {}
+void IsoReader::check_cycle_plane(const std::string& name) const {
+    // A canned cycle drills along the plane's normal: on a lathe only G17 drills along Z.
+    if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
+                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
+}
 
 std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source) {
     return std::make_unique<IsoReader>(machine, std::move(source), settings_of<iso::Settings>(machine));

@@ -44,7 +44,7 @@ protected:
     void block(const Block& b) override;
     void finish() override;
 
-    // A variant's hooks. A G code the base does not know (a lathe's G7/G8, G50/G97): taken into
+    // A variant's hooks. A G code the base does not know (a lathe's G50/G97): taken into
     // `codes` (true), or unknown (false).
     virtual bool variant_code(BlockCodes& codes, const Word& x, Code c);
     // The block's words before its S is read as a speed (Fanuc T's G50 S is a limit).
@@ -53,7 +53,8 @@ protected:
     virtual bool variant_tool_call(const Word& t);
     // A canned cycle of a style only the variant writes (Fanuc T's G74): true if read.
     virtual bool variant_cycle(const DrillingCycleSpec& spec, BlockWords& w);
-    // Refuses a canned cycle that would drill along another axis than Z in the current plane.
+    // Refuses a canned cycle that would drill along another axis than Z in the current plane (on
+    // a lathe: one not under G17; a variant whose post writes no plane word lets it be).
     virtual void check_cycle_plane(const std::string& name) const;
 
     void set_group(std::optional<Code>& group, Code c) const { NcReader::set_group(group, c, "modal group"); }

@@ -77,6 +77,20 @@ TEST_CASE("the post and the reader share the ISO settings read with the machine"
     CHECK(settings_of<iso::LatheSettings>(load_machine("fanuc-lathe")).tool_call == iso::LatheToolCall::turret);
 }
 
+TEST_CASE("the ISO reader takes G7/G8 where the start block selects one, on a mill too; G50 only on the lathe") {
+    // The start block decides, not the lathe variant: a mill in radius mode (G8) writes it in
+    // every custom block's read-back.
+    Machine mill = load_machine("linuxcnc");
+    CHECK_THROWS_WITH_AS(read_program("G8\nM2\n", mill), doctest::Contains("unknown code G8"), InputError);
+    mill.frame.start_block.push_back("G8");
+    CHECK_NOTHROW(read_program("G8\nG0 X1 Y2 Z3\nM2\n", mill));
+    CHECK_THROWS_WITH_AS(read_program("G7\nM2\n", mill), doctest::Contains("programs X as a radius (G8)"), InputError);
+    // Fanuc T's spindle limit is the lathe variant's word.
+    CHECK_THROWS_WITH_AS(read_program("G50 S3000\nM30\n", load_machine("fanuc")), doctest::Contains("unknown code G50"),
+                         InputError);
+    CHECK_NOTHROW(read_program("%\nO1000\nG50 S3000\nG97 S500 M3\nM30\n%\n", load_machine("fanuc-lathe")));
+}
+
 TEST_CASE("Sinumerik writes CR= for the radius and states the end point even where forceXY is off") {
     Machine m = load_machine("sinumerik");
     m.arcs.format = ArcFormat::radius;
