@@ -34,7 +34,7 @@ private:
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
 };
 
-bool IsoLatheReader::variant_code(BlockCodes& codes, const Word& x, Code c) {
+bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
     if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code)) {
         // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
         set_group(codes.spindle_mode, c);

@@ -112,16 +112,8 @@ void IsoReader::finish() {
     NcReader::finish();
 }
 
-void IsoReader::block(const Block& b) {
-    if (ended_) fail("a block after the end of the program");
-    if (b.words.front().letter == 'O') {
-        if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
-        (void)integer_of(b.words.front());
-        ++program_numbers_;
-        return;
-    }
+IsoReader::BlockCodes IsoReader::block_codes(const Block& b, BlockWords& w) {
     BlockCodes k;
-    BlockWords w(*this, "XYZIJKRQPFSTHD");
     for (const Word& x : b.words) {
         if (x.letter == 'G') {
             Code c{code_of(x), &x};
@@ -191,6 +183,19 @@ void IsoReader::block(const Block& b) {
             w.add(x);
         }
     }
+    return k;
+}
+
+void IsoReader::block(const Block& b) {
+    if (ended_) fail("a block after the end of the program");
+    if (b.words.front().letter == 'O') {
+        if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
+        (void)integer_of(b.words.front());
+        ++program_numbers_;
+        return;
+    }
+    BlockWords w(*this, "XYZIJKRQPFSTHD");
+    const BlockCodes k = block_codes(b, w);
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
     if (k.feed_mode && feed_mode_of(*k.feed_mode->word)) set_feed_mode(*feed_mode_of(*k.feed_mode->word));

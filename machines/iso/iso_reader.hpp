@@ -61,6 +61,8 @@ protected:
     Plane plane() const { return plane_; }
 
 private:
+    // The block's G and M codes by group; its other words go into `w`.
+    BlockCodes block_codes(const Block& b, BlockWords& w);
     void motion_block(int mode, BlockWords& w);
     void cycle_block(int g, BlockWords& w);
     void rigid_tap(BlockWords& w);

@@ -430,8 +430,6 @@ nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base, const json::Sour
     return base;
 }
 
-}  // namespace
-
 // The "settings" object of the schema: every dialect's keys (a file that extends another need
 // not name its dialect), each described with the dialects that have it.
 const ObjectSpec& settings_object() {
@@ -457,6 +455,8 @@ const ObjectSpec& settings_object() {
     }();
     return object;
 }
+
+}  // namespace
 
 std::vector<ObjectSpec> machine_objects() {
     auto spec = [](std::string_view name, std::string_view description, std::span<const KeySpec> keys) {
