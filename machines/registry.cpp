@@ -13,8 +13,10 @@
 #include "machines/iso/iso_lathe_post.hpp"
 #include "machines/iso/iso_post.hpp"
 #include "machines/iso/iso_reader.hpp"
+#include "machines/iso/iso_settings.hpp"
 #include "machines/nccad/nccad_post.hpp"
 #include "machines/nccad/nccad_reader.hpp"
+#include "machines/nccad/nccad_settings.hpp"
 #include "machines/sinumerik/sinumerik_lathe_post.hpp"
 #include "machines/sinumerik/sinumerik_post.hpp"
 #include "machines/sinumerik/sinumerik_reader.hpp"
@@ -29,22 +31,26 @@ std::unique_ptr<Post> post_of(const Machine& machine, std::ostream& out, PostOpt
     return std::make_unique<P>(machine, out, std::move(options));
 }
 
-// Name, post, reader, machine check: one line per dialect.
-constexpr Dialect registry[] = {
-    {"iso", post_of<IsoPost>, reader::make_iso_reader, check_iso_machine},
-    {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_reader, check_iso_machine},
-    {"nccad", post_of<NccadPost>, reader::make_nccad_reader, check_nccad_machine},
-    {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader, check_sinumerik_machine},
-    {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader, check_sinumerik_machine},
-    {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader, check_heidenhain_machine},
-};
-
 }  // namespace
 
-std::span<const Dialect> dialects() { return registry; }
+std::span<const Dialect> dialects() {
+    // Name, post, reader, machine check, settings: one entry per dialect. A variant (iso-lathe)
+    // names its own post, reader and settings, each extending its base dialect's.
+    static const Dialect registry[] = {
+        {"iso", post_of<IsoPost>, reader::make_iso_reader, check_iso_machine, iso::setting_keys(), iso::read_settings},
+        {"iso-lathe", post_of<IsoLathePost>, reader::make_iso_lathe_reader, check_iso_machine, iso::lathe_setting_keys(),
+         iso::read_lathe_settings},
+        {"nccad", post_of<NccadPost>, reader::make_nccad_reader, check_nccad_machine, nccad::setting_keys(),
+         nccad::read_settings},
+        {"sinumerik", post_of<SinumerikPost>, reader::make_sinumerik_reader, check_sinumerik_machine},
+        {"sinumerik-lathe", post_of<SinumerikLathePost>, reader::make_sinumerik_reader, check_sinumerik_machine},
+        {"heidenhain", post_of<HeidenhainPost>, reader::make_heidenhain_reader, check_heidenhain_machine},
+    };
+    return registry;
+}
 
 const Dialect* find_dialect(std::string_view name) {
-    for (const Dialect& d : registry)
+    for (const Dialect& d : dialects())
         if (d.name == name) return &d;
     return nullptr;
 }
@@ -52,7 +58,7 @@ const Dialect* find_dialect(std::string_view name) {
 std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options) {
     if (const Dialect* d = find_dialect(machine.dialect)) return d->make_post(machine, out, std::move(options));
     std::vector<std::string_view> names;
-    for (const Dialect& d : registry) names.push_back(d.name);
+    for (const Dialect& d : dialects()) names.push_back(d.name);
     std::sort(names.begin(), names.end());
     throw InputError("/dialect", fmt::format("unknown dialect \"{}\"; dialects: {}", machine.dialect, fmt::join(names, ", ")),
                      0, machine.source);

@@ -77,11 +77,7 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
 }
 
 HeidenhainPost::HeidenhainPost(const Machine& machine, std::ostream& out, PostOptions options)
-    : Post(machine, out, std::move(options)) {
-    json::Source source{machine.source, json::LineMap{}};
-    json::Fields f(machine.dialect_settings, "/settings", source);
-    f.finish();
-}
+    : Post(machine, out, std::move(options)) {}
 
 std::string HeidenhainPost::program_name() const {
     // A TNC program name: letters, digits, '_' and '-'.

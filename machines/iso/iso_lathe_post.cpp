@@ -8,36 +8,12 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "camgen/common/json_util.hpp"
 #include "camgen/common/number_text.hpp"
 
 namespace camgen {
 
-namespace iso {
-LatheMachine::LatheMachine(const Machine& machine) : iso_machine(machine) {
-    for (std::string_view key : lathe_setting_keys) {
-        const std::string k(key);
-        if (!iso_machine.dialect_settings.contains(k)) continue;
-        lathe_settings[k] = iso_machine.dialect_settings[k];
-        iso_machine.dialect_settings.erase(k);
-    }
-}
-}  // namespace iso
-
 IsoLathePost::IsoLathePost(const Machine& machine, std::ostream& out, PostOptions options)
-    : iso::LatheMachine(machine), IsoPost(iso_machine, out, std::move(options)) {
-    json::Source source{machine.source, json::LineMap{}};
-    json::Fields f(lathe_settings, "/settings", source);
-    drilling_plane_ = f.boolean("drillingPlane", true);
-    tool_call_ = f.choice<iso::LatheToolCall>("toolCall", {{"m6", iso::LatheToolCall::m6}, {"turret", iso::LatheToolCall::turret}},
-                                              iso::LatheToolCall::m6);
-    spindle_limit_ = f.boolean("spindleLimit", false);
-    if (spindle_limit_ && !(machine.limits.max_rpm > 0))
-        throw InputError("/settings/spindleLimit", "spindleLimit writes G50 S<maxRpm>: the machine needs limits.maxRpm", 0,
-                         machine.source);
-    if (machine.kind != MachineKind::lathe)
-        throw InputError("/dialect", "the iso-lathe dialect writes for lathes: set \"kind\": \"lathe\"", 0, machine.source);
-}
+    : IsoPost(machine, out, std::move(options)), lathe_(settings_of<iso::LatheSettings>(this->machine())) {}
 
 void IsoLathePost::on_open() {
     IsoPost::on_open();
@@ -46,7 +22,7 @@ void IsoLathePost::on_open() {
 }
 
 void IsoLathePost::on_tool_change(const ToolChange& tool) {
-    if (tool_call_ == iso::LatheToolCall::m6) {
+    if (lathe_.tool_call == iso::LatheToolCall::m6) {
         IsoPost::on_tool_change(tool);
         return;
     }
@@ -58,7 +34,7 @@ void IsoLathePost::on_tool_change(const ToolChange& tool) {
 }
 
 void IsoLathePost::on_spindle(const Spindle& s) {
-    if (s.state == SpindleState::off || !spindle_limit_) {
+    if (s.state == SpindleState::off || !lathe_.spindle_limit) {
         IsoPost::on_spindle(s);
         return;
     }
@@ -88,7 +64,7 @@ std::optional<std::string> IsoLathePost::canned_limit(const DrillCycle& c, const
 void IsoLathePost::on_drilling_header(const DrillCycle& c, const DrillingCycleSpec& spec) {
     IsoPost::on_drilling_header(c, spec);
     // Under G18 a canned cycle drills along Y (LinuxCNC): the axial hole needs G17.
-    if (drilling_plane_ && spec.style != CannedStyle::fanuc_g74) writer().add(g(17)).end();
+    if (lathe_.drilling_plane && spec.style != CannedStyle::fanuc_g74) writer().add(g(17)).end();
 }
 
 void IsoLathePost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpec& spec, Vec2 at, bool first) {
@@ -122,7 +98,7 @@ bool IsoLathePost::writes_return_level() const {
 
 void IsoLathePost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& spec) {
     IsoPost::on_drilling_footer(c, spec);
-    if (drilling_plane_ && spec.style != CannedStyle::fanuc_g74) writer().add(g(18)).end();
+    if (lathe_.drilling_plane && spec.style != CannedStyle::fanuc_g74) writer().add(g(18)).end();
 }
 
 }  // namespace camgen

@@ -1,28 +1,16 @@
 #pragma once
 // The ISO lathe post (dialect "iso-lathe": linuxcnc-lathe, fanuc-lathe): the ISO post in the
-// XZ plane, with what lathes write differently. Its own settings (machine file "settings",
-// beside the ISO ones): drillingPlane (true: the canned cycle runs under G17, so that it
-// drills along Z, and G18 follows it - LinuxCNC; false: no plane word - Fanuc T), toolCall
-// ("m6": the ISO tool change; "turret": T0101, tool and offset number), spindleLimit (true:
-// G50 S<maxRpm> before the first spindle start, and G97 S.. M3). A cycle of style
-// "fanuc-g74" is Fanuc T's two-block peck drilling G74 R(e) / G74 Z Q(least increments) F.
-#include <nlohmann/json.hpp>
-
+// XZ plane, with what lathes write differently. Its settings are iso::LatheSettings: the ISO
+// ones and its own, drillingPlane (true: the canned cycle runs under G17, so that it drills
+// along Z, and G18 follows it - LinuxCNC; false: no plane word - Fanuc T), toolCall ("m6": the
+// ISO tool change; "turret": T0101, tool and offset number), spindleLimit (true: G50 S<maxRpm>
+// before the first spindle start, and G97 S.. M3). A cycle of style "fanuc-g74" is Fanuc T's
+// two-block peck drilling G74 R(e) / G74 Z Q(least increments) F.
 #include "machines/iso/iso_post.hpp"
 
 namespace camgen {
 
-namespace iso {
-// The machine as the ISO post reads it (without the lathe's own settings) and those settings:
-// held in a base that is built before IsoPost, which reads the machine in its constructor.
-struct LatheMachine {
-    explicit LatheMachine(const Machine& machine);
-    Machine iso_machine;
-    nlohmann::json lathe_settings = nlohmann::json::object();
-};
-}  // namespace iso
-
-class IsoLathePost : private iso::LatheMachine, public IsoPost {
+class IsoLathePost : public IsoPost {
 public:
     IsoLathePost(const Machine& machine, std::ostream& out, PostOptions options);
 
@@ -39,9 +27,7 @@ protected:
     bool writes_return_level() const override;
 
 private:
-    bool drilling_plane_ = true;
-    iso::LatheToolCall tool_call_ = iso::LatheToolCall::m6;
-    bool spindle_limit_ = false;
+    const iso::LatheSettings& lathe_;
     bool limit_written_ = false;  // G50 S was written
 };
 

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "camgen/common/json_util.hpp"
 #include "camgen/post/machine_checks.hpp"
 
 namespace camgen {
@@ -19,22 +18,12 @@ bool carries(const std::vector<DrillField>& fields, DrillField field) {
 }  // namespace
 
 IsoPost::IsoPost(const Machine& machine, std::ostream& out, PostOptions options)
-    : Post(machine, out, std::move(options)) {
-    json::Source source{machine.source, json::LineMap{}};
-    json::Fields f(machine.dialect_settings, "/settings", source);
-    program_number_ = f.optional_integer("programNumber").value_or(1000);
-    percent_ = f.boolean("percentLines", true);
-    length_offset_ = f.boolean("toolLengthOffset", true);
-    tool_change_ = iso::tool_change_setting(f);
-    stop_style_ = iso::stop_style_setting(f);
-    end_code_ = f.optional_string("endCode").value_or("M30");
-    f.finish();
-}
+    : Post(machine, out, std::move(options)), settings_(settings_of<iso::Settings>(this->machine())) {}
 
 void IsoPost::on_open() {
-    if (percent_) writer().raw("%");
-    if (program_number_ > 0) {
-        std::string line = fmt::format("O{:04}", options().program_number.value_or(program_number_));
+    if (settings_.percent) writer().raw("%");
+    if (settings_.program_number > 0) {
+        std::string line = fmt::format("O{:04}", options().program_number.value_or(settings_.program_number));
         if (!options().program_name.empty())
             line += " (" + writer().clean_comment(options().program_name) + ")";
         writer().raw(line);
@@ -46,12 +35,12 @@ void IsoPost::on_open() {
 }
 
 void IsoPost::on_close() {
-    writer().add(end_code_).end();
-    if (percent_) writer().raw("%");
+    writer().add(settings_.end_code).end();
+    if (settings_.percent) writer().raw("%");
 }
 
 void IsoPost::on_tool_change(const ToolChange& tool) {
-    switch (tool_change_) {
+    switch (settings_.tool_change) {
         case iso::ToolChangeStyle::m6:
             if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
             writer().add(fmt::format("T{}", tool.number)).add(m(6)).end();
@@ -66,18 +55,18 @@ void IsoPost::on_tool_change(const ToolChange& tool) {
             if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
             break;
     }
-    length_offset_pending_ = length_offset_;
+    length_offset_pending_ = settings_.length_offset;
 }
 
 void IsoPost::on_stop(const Stop& stop) {
     const bool optional = stop.kind == StopKind::optional;
-    if (optional && !stop_style_.optional_stop)
+    if (optional && !settings_.stop.optional_stop)
         note(fmt::format("{}: machine {} ignores M1 (it has no optional stop): the optional stop is written as M0, "
                          "which always stops",
                          operation_path(), machine().name));
     std::string text = stop.message;
-    if (stop_style_.msg && !text.empty()) text = fmt::format("{} {}", iso::msg_prefix, text);
-    writer().add(m(optional && stop_style_.optional_stop ? 1 : 0)).add(text.empty() ? "" : inline_comment(text)).end();
+    if (settings_.stop.msg && !text.empty()) text = fmt::format("{} {}", iso::msg_prefix, text);
+    writer().add(m(optional && settings_.stop.optional_stop ? 1 : 0)).add(text.empty() ? "" : inline_comment(text)).end();
 }
 
 void IsoPost::on_dwell(double seconds) { writer().add(g(4)).add(dwell_format().word("P", seconds)).end(); }
@@ -176,8 +165,8 @@ std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
                                               "cycle, not a mode: take it out of the start block",
                                               b[i])};
     // GRBL's tool change is a comment and M0: the reader needs the whole "Insert tool" comment.
-    const auto change = machine.dialect_settings.find("toolChange");
-    if (change != machine.dialect_settings.end() && *change == "pause" && machine.block.comment_max_length > 0 &&
+    const iso::Settings& settings = settings_of<iso::Settings>(machine);
+    if (settings.tool_change == iso::ToolChangeStyle::pause && machine.block.comment_max_length > 0 &&
         machine.block.comment_max_length < static_cast<int>(nc::default_comment_limit))
         return MachineProblem{{"/commentMaxLength", "/settings/toolChange"},
                               fmt::format("a tool change that pauses (M0) tells the operator the tool in a comment: "
@@ -189,9 +178,7 @@ std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
                               "absolute mode G90.1 is not written): ijk-absolute would put every centre elsewhere; use "
                               "ijk-relative or radius"};
     // The O line carries the program name in parentheses, whatever the comment style.
-    const auto number = machine.dialect_settings.find("programNumber");
-    const bool o_line = number == machine.dialect_settings.end() || !number->is_number() || number->get<double>() != 0;
-    if (o_line && machine.block.comment_style == nc::CommentStyle::semicolon)
+    if (settings.program_number > 0 && machine.block.comment_style == nc::CommentStyle::semicolon)
         return MachineProblem{{"/comments", "/settings/programNumber"},
                               "a program number writes the program's name as \"O1000 (name)\", and Fanuc reads "
                               "comments in parentheses only: use \"comments\": \"parentheses\" (or programNumber 0, "

@@ -5,7 +5,8 @@
 // (or LinuxCNC's "(MSG, text)"), S.. M3/M4/M5, G4 P, arcs by the machine's arc format
 // (helices as full-turn blocks or with P), the machine's canned cycles with sticky R/Z/Q/P and
 // G98/G99 (G98: back to the Z before the first cycle block, G99: to R), LinuxCNC G33.1 rigid
-// tapping, M2/M30.
+// tapping, M2/M30. The lathe's codes, turret calls and Fanuc T's G74 are its lathe variant's
+// (iso_lathe_reader.cpp), through the hooks of IsoReader (iso_reader.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -13,7 +14,6 @@
 
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
-#include "src/reader/nc_reader.hpp"
 
 namespace camgen::reader {
 
@@ -30,80 +30,10 @@ bool has_field(const DrillingCycleSpec& spec, DrillField f) {
     return std::find(spec.fields.begin(), spec.fields.end(), f) != spec.fields.end();
 }
 
-// How the machine's post writes a tool change (the setting "toolChange", read as the post
-// reads it).
-iso::ToolChangeStyle tool_change_style(const Machine& m) {
-    json::Source source{m.source, json::LineMap{}};
-    json::Fields f(m.dialect_settings, "/settings", source);
-    return iso::tool_change_setting(f);
-}
+}  // namespace
 
-// How the machine's post writes stops (the settings "stopMessage" and "optionalStop").
-iso::StopStyle stop_style(const Machine& m) {
-    json::Source source{m.source, json::LineMap{}};
-    json::Fields f(m.dialect_settings, "/settings", source);
-    return iso::stop_style_setting(f);
-}
-
-// Whether a lathe calls its tools as a turret does (iso-lathe setting "toolCall": T0101).
-bool turret_calls(const Machine& m) {
-    if (m.kind != MachineKind::lathe) return false;
-    const auto it = m.dialect_settings.find("toolCall");
-    return it != m.dialect_settings.end() && *it == "turret";
-}
-
-// Whether a lathe's canned cycles drill along Z only under G17 (iso-lathe setting
-// "drillingPlane", LinuxCNC); Fanuc T's face drilling cycles take no plane.
-bool drills_under_g17(const Machine& m) {
-    if (m.kind != MachineKind::lathe) return false;
-    const auto it = m.dialect_settings.find("drillingPlane");
-    return it == m.dialect_settings.end() || *it != false;
-}
-
-// A tool change announced by a comment, to be made by the M0 on the next line.
-struct InsertTool {
-    int number = 0;
-    std::string description;
-    int line = 0;
-};
-
-class IsoReader : public NcReader {
-public:
-    IsoReader(const Machine& machine, std::string source)
-        : NcReader(machine, std::move(source)), tool_change_(tool_change_style(machine)), stop_style_(stop_style(machine)),
-          turret_(turret_calls(machine)) {}
-    std::vector<std::pair<std::string, std::string>> modal_state() const override;
-
-protected:
-    bool frame_line(std::string_view line) override { return line == "%"; }
-    void line(std::string_view text) override;
-    void block(const Block& b) override;
-    void finish() override;
-
-private:
-    void set_group(std::optional<Code>& group, Code c) const { NcReader::set_group(group, c, "modal group"); }
-    void motion_block(int mode, BlockWords& w);
-    void cycle_block(int g, BlockWords& w);
-    void rigid_tap(BlockWords& w);
-    void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
-    const DrillingCycleSpec* canned_spec(int g) const;
-    std::optional<InsertTool> insert_tool(const std::string& comment) const;
-
-    iso::ToolChangeStyle tool_change_;
-    iso::StopStyle stop_style_;
-    bool turret_ = false;                 // T0101 calls tool 1 (a lathe's turret)
-    std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
-    std::optional<InsertTool> pending_insert_;
-    int motion_ = -1;  // the modal motion code (tenths); -1: none yet
-    Plane plane_ = Plane::xy;
-    bool g98_ = true;  // return to the initial level (LinuxCNC's default)
-    std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
-    std::optional<double> initial_z_;  // Z when the current run of cycle blocks began
-    std::optional<int> selected_tool_;
-    std::string length_offset_ = "none";  // "G43 H1", "G49": the tool length offset selected last
-    int program_numbers_ = 0;             // O lines read
-    bool ended_ = false;
-};
+IsoReader::IsoReader(const Machine& machine, std::string source, const iso::Settings& settings)
+    : NcReader(machine, std::move(source)), settings_(settings) {}
 
 std::vector<std::pair<std::string, std::string>> IsoReader::modal_state() const {
     std::vector<std::pair<std::string, std::string>> s = NcReader::modal_state();
@@ -124,7 +54,7 @@ const DrillingCycleSpec* IsoReader::canned_spec(int g) const {
     return nullptr;
 }
 
-std::optional<InsertTool> IsoReader::insert_tool(const std::string& comment) const {
+std::optional<IsoInsertTool> IsoReader::insert_tool(const std::string& comment) const {
     // The pause post's comment: "Insert tool <n>" or "Insert tool <n>: <description>".
     constexpr std::string_view prefix = "Insert tool ";
     if (comment.rfind(prefix, 0) != 0) return std::nullopt;
@@ -133,7 +63,7 @@ std::optional<InsertTool> IsoReader::insert_tool(const std::string& comment) con
     std::string_view number = rest.substr(0, end);
     if (number.empty() || number.size() > 9)
         fail(fmt::format("({}): no tool number after \"Insert tool\"", comment));
-    InsertTool t{std::stoi(std::string(number)), "", line_};
+    IsoInsertTool t{std::stoi(std::string(number)), "", line_};
     if (end != std::string_view::npos) {
         if (rest.substr(end, 2) != ": " || rest.size() == end + 2)
             fail(fmt::format("({}): expected \"Insert tool {}: <description>\"", comment, t.number));
@@ -146,21 +76,31 @@ void IsoReader::line(std::string_view text) {
     Block b = split_line(text);
     bool announced_before = pending_insert_.has_value();
     emit_comments(b);
-    if (tool_change_ == iso::ToolChangeStyle::pause) {
-        for (const std::string& c : b.comments) {
-            auto t = insert_tool(c);
-            if (!t) continue;
-            if (pending_insert_)
-                fail(fmt::format("a second tool change comment before the M0 that makes the one on line {}",
-                                 pending_insert_->line));
-            pending_insert_ = t;
-        }
-    }
+    if (pauses_for_tools()) announce_tools(b);
     if (!b.words.empty()) block(b);
     if (announced_before && pending_insert_)
         fail(fmt::format("the tool change announced on line {} (Insert tool {}) is not made: machine {} pauses "
                          "for it with M0 on the next line",
                          pending_insert_->line, pending_insert_->number, machine_.name));
+}
+
+void IsoReader::announce_tools(const Block& b) {
+    for (const std::string& c : b.comments) {
+        auto t = insert_tool(c);
+        if (!t) continue;
+        if (pending_insert_)
+            fail(fmt::format("a second tool change comment before the M0 that makes the one on line {}", pending_insert_->line));
+        pending_insert_ = t;
+    }
+}
+
+void IsoReader::refuse_tool_words(const Word* t, const BlockCodes& codes) const {
+    if (t)
+        fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
+                         "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
+    if (codes.m.tool_change)
+        fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
+                         "and pauses with M0", machine_.name));
 }
 
 void IsoReader::finish() {
@@ -172,34 +112,24 @@ void IsoReader::finish() {
     NcReader::finish();
 }
 
-void IsoReader::block(const Block& b) {
-    if (ended_) fail("a block after the end of the program");
-    if (b.words.front().letter == 'O') {
-        if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
-        (void)integer_of(b.words.front());
-        ++program_numbers_;
-        return;
-    }
-    std::optional<Code> motion, plane, units, feed_mode, comp, length_offset, return_level, dwell, work_offset;
-    std::optional<Code> coolant, machine_coords, spindle_mode;
-    MCodes m;
-    BlockWords w(*this, "XYZIJKRQPFSTHD");
+IsoReader::BlockCodes IsoReader::block_codes(const Block& b, BlockWords& w) {
+    BlockCodes k;
     for (const Word& x : b.words) {
         if (x.letter == 'G') {
             Code c{code_of(x), &x};
             // A lathe's feed mode codes (frame feedModes; Fanuc T's G98/G99 are these, not return levels).
             if (feed_mode_of(x)) {
-                set_group(feed_mode, c);
+                set_group(k.feed_mode, c);
                 continue;
             }
             switch (c.value) {
-                case code(0): case code(1): case code(2): case code(3): case code(80): set_group(motion, c); break;
+                case code(0): case code(1): case code(2): case code(3): case code(80): set_group(k.motion, c); break;
                 case code(iso::rigid_tap_code):
                     if (!canned_spec(c.value))
                         fail(fmt::format("{} (rigid tapping) is not a cycle of machine {}", x.text, machine_.name));
-                    set_group(motion, c);
+                    set_group(k.motion, c);
                     break;
-                case code(17): case code(18): case code(19): set_group(plane, c); break;
+                case code(17): case code(18): case code(19): set_group(k.plane, c); break;
                 case code(7): case code(8): {
                     // LinuxCNC's diameter (G7) and radius (G8) modes, on a machine whose start block
                     // selects one: its xDiameterProg says which.
@@ -212,25 +142,20 @@ void IsoReader::block(const Block& b) {
                                          machine_.x_diameter ? "programs X as a diameter (G7)" : "programs X as a radius (G8)"));
                     break;
                 }
-                case code(20): case code(21): set_group(units, c); break;
+                case code(20): case code(21): set_group(k.units, c); break;
                 case code(90): break;
                 case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
-                case code(94): set_group(feed_mode, c); break;
+                case code(94): set_group(k.feed_mode, c); break;
                 case code(93): case code(95):
                     fail(fmt::format("{}: only feed per minute (G94) is read", x.text));
-                case code(40): case code(41): case code(42): set_group(comp, c); break;
-                case code(43): case code(49): set_group(length_offset, c); break;
-                case code(98): case code(99): set_group(return_level, c); break;
-                case code(4): set_group(dwell, c); break;
-                case code(iso::spindle_limit_code): case code(iso::constant_rpm_code):
-                    // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
-                    if (machine_.kind != MachineKind::lathe) fail(fmt::format("unknown code {}", x.text));
-                    set_group(spindle_mode, c);
-                    break;
-                case code(53): set_group(machine_coords, c); break;
+                case code(40): case code(41): case code(42): set_group(k.comp, c); break;
+                case code(43): case code(49): set_group(k.length_offset, c); break;
+                case code(98): case code(99): set_group(k.return_level, c); break;
+                case code(4): set_group(k.dwell, c); break;
+                case code(53): set_group(k.machine_coords, c); break;
                 default:
                     if (work_offset_code(c.value)) {
-                        set_group(work_offset, c);
+                        set_group(k.work_offset, c);
                         break;
                     }
                     if (cycle_kind_of(c.value)) {
@@ -241,16 +166,16 @@ void IsoReader::block(const Block& b) {
                             fail(fmt::format("{} is not a canned cycle of machine {} (it has: {})", x.text, machine_.name,
                                              names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
                         }
-                        set_group(motion, c);
+                        set_group(k.motion, c);
                         break;
                     }
-                    fail(fmt::format("unknown code {}", x.text));
+                    if (!variant_code(k, x, c)) fail(fmt::format("unknown code {}", x.text));
             }
         } else if (x.letter == 'M') {
             Code c{code_of(x), &x};
-            if (shared_m_code(c, m, "modal group")) continue;
+            if (shared_m_code(c, k.m, "modal group")) continue;
             if (coolant_of(x)) {
-                set_group(coolant, c);
+                set_group(k.coolant, c);
                 continue;
             }
             fail(fmt::format("unknown code {}", x.text));
@@ -258,74 +183,70 @@ void IsoReader::block(const Block& b) {
             w.add(x);
         }
     }
+    return k;
+}
+
+void IsoReader::block(const Block& b) {
+    if (ended_) fail("a block after the end of the program");
+    if (b.words.front().letter == 'O') {
+        if (b.words.size() != 1) fail("the program number O.. must stand alone on its line");
+        (void)integer_of(b.words.front());
+        ++program_numbers_;
+        return;
+    }
+    BlockWords w(*this, "XYZIJKRQPFSTHD");
+    const BlockCodes k = block_codes(b, w);
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
-    if (feed_mode && feed_mode_of(*feed_mode->word)) set_feed_mode(*feed_mode_of(*feed_mode->word));
+    if (k.feed_mode && feed_mode_of(*k.feed_mode->word)) set_feed_mode(*feed_mode_of(*k.feed_mode->word));
     if (const Word* f = w.take('F')) set_feed(*f);
-    if (spindle_mode && spindle_mode->value == code(iso::spindle_limit_code)) {
-        // G50 S: the highest speed the spindle may turn, not a speed.
-        const Word* s = w.take('S');
-        if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", spindle_mode->word->text, spindle_mode->word->text));
-        if (machine_.limits.max_rpm > 0 && rpm(*s) > machine_.limits.max_rpm)
-            fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s->text, machine_.name, machine_.limits.max_rpm));
-    }
-    if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
-    if (const Word* t = w.take('T'); t && turret_) {
-        // A turret call T<tool><offset>: the tool with its own offset.
-        const int call = integer_of(*t);
-        if (call < 100 || call % 100 != call / 100)
-            fail(fmt::format("{}: machine {} calls tool n with its offset n, T0101 to T9999", t->text, machine_.name));
-        change_tool(call / 100, commented_description(call / 100));
-    } else if (t) {
-        if (tool_change_ == iso::ToolChangeStyle::pause)
-            fail(fmt::format("{}: machine {} has no tool changer; it announces a tool in a comment "
-                             "(Insert tool <n>) and pauses with M0", t->text, machine_.name));
-        selected_tool_ = integer_of(*t);
-    }
-    if (m.tool_change && tool_change_ == iso::ToolChangeStyle::pause)
-        fail(fmt::format("M6: machine {} has no tool changer; it announces a tool in a comment (Insert tool <n>) "
-                         "and pauses with M0", machine_.name));
+    variant_words(k, w);
+    if (const Word* s = w.take('S')) spindle_speed(rpm(*s), k.m.spindle ? k.m.spindle->word : nullptr);
+    const Word* t = w.take('T');
+    if (t && variant_tool_call(*t)) t = nullptr;
+    if (pauses_for_tools()) refuse_tool_words(t, k);
+    if (t) selected_tool_ = integer_of(*t);
     bool tool_pause = false;
-    if (m.stop && m.stop->value == code(0) && tool_change_ == iso::ToolChangeStyle::pause && pending_insert_) {
+    if (k.m.stop && k.m.stop->value == code(0) && pauses_for_tools() && pending_insert_) {
         // GRBL: the spindle is off; the operator changes the tool the comment names.
         change_tool(pending_insert_->number, pending_insert_->description);
         pending_insert_.reset();
         tool_pause = true;
     }
-    if (m.tool_change) {
+    if (k.m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool number T");
         change_tool(*selected_tool_, commented_description(*selected_tool_));
     }
-    if (m.spindle) switch_spindle(*m.spindle->word, "S");
-    if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
-    if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
-    if (dwell) {
+    if (k.m.spindle) switch_spindle(*k.m.spindle->word, "S");
+    if (k.coolant) emit(Coolant{*coolant_of(*k.coolant->word), ""});
+    if (k.work_offset) select_work_offset(k.work_offset->value, *k.work_offset->word, w);
+    if (k.dwell) {
         const Word* p = w.take('P');
-        if (!p) fail(fmt::format("{} without its time P", dwell->word->text));
+        if (!p) fail(fmt::format("{} without its time P", k.dwell->word->text));
         emit(Dwell{seconds(*p)});
     }
-    if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
-    if (units) set_units(units->value == code(20) ? Units::inch : Units::mm);
-    if (comp) {
-        if (comp->value == code(40)) {
+    if (k.plane) plane_ = k.plane->value == code(17) ? Plane::xy : k.plane->value == code(18) ? Plane::xz : Plane::yz;
+    if (k.units) set_units(k.units->value == code(20) ? Units::inch : Units::mm);
+    if (k.comp) {
+        if (k.comp->value == code(40)) {
             emit(Compensation{CompensationSide::off});
         } else {
             const Word* d = w.take('D');
-            if (!d) fail(fmt::format("{} without its offset number D", comp->word->text));
+            if (!d) fail(fmt::format("{} without its offset number D", k.comp->word->text));
             // The radius is the control's, in its offset register D (trace_program applies it).
-            emit(Compensation{comp->value == code(41) ? CompensationSide::left : CompensationSide::right, integer_of(*d)});
+            emit(Compensation{k.comp->value == code(41) ? CompensationSide::left : CompensationSide::right, integer_of(*d)});
         }
     }
-    if (length_offset && length_offset->value == code(43)) {
+    if (k.length_offset && k.length_offset->value == code(43)) {
         const Word* h = w.take('H');
-        if (!h) fail(fmt::format("{} without its offset number H", length_offset->word->text));
+        if (!h) fail(fmt::format("{} without its offset number H", k.length_offset->word->text));
         length_offset_ = fmt::format("G43 H{}", integer_of(*h));
-    } else if (length_offset) {
+    } else if (k.length_offset) {
         length_offset_ = "G49";
     }
-    if (return_level) g98_ = return_level->value == code(98);
-    if (motion) {
-        if (motion->value == code(80)) {
+    if (k.return_level) g98_ = k.return_level->value == code(98);
+    if (k.motion) {
+        if (k.motion->value == code(80)) {
             drill_end();
             cycle_r_.reset();
             cycle_z_.reset();
@@ -333,31 +254,31 @@ void IsoReader::block(const Block& b) {
             cycle_p_.reset();
             initial_z_.reset();
         }
-        motion_ = motion->value;
+        motion_ = k.motion->value;
     }
-    if (machine_coords) {
+    if (k.machine_coords) {
         // G53 G0 Z0: the machine's safe retract (frame safeRetract), the only G53 move camgen writes.
         if (machine_.frame.safe_retract.empty())
-            fail(fmt::format("{}: machine {} has no safe retract in machine coordinates", machine_coords->word->text, machine_.name));
+            fail(fmt::format("{}: machine {} has no safe retract in machine coordinates", k.machine_coords->word->text, machine_.name));
         const Word* z = w.take('Z');
-        const bool rapid = (motion ? motion->value : motion_) == code(0);
+        const bool rapid = (k.motion ? k.motion->value : motion_) == code(0);
         if (!z || z->value != 0.0 || w.has('X') || w.has('Y') || !rapid)
-            fail(fmt::format("{}: camgen writes G53 only as G53 G0 Z0, the machine's safe retract", machine_coords->word->text));
+            fail(fmt::format("{}: camgen writes G53 only as G53 G0 Z0, the machine's safe retract", k.machine_coords->word->text));
         drill_end();
         initial_z_.reset();
         retract_to_top();
     }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || w.has('R') ||
                 w.has('Q') || w.unused('P');
-    if (axes && !machine_coords) {
+    if (axes && !k.machine_coords) {
         if (motion_ < 0 || motion_ == code(80))
             fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
         motion_block(motion_, w);
     }
     w.require_all_used();
-    if (m.stop && (m.stop->value == code(0) || m.stop->value == code(1)) && !tool_pause) {
+    if (k.m.stop && (k.m.stop->value == code(0) || k.m.stop->value == code(1)) && !tool_pause) {
         // A stop for the operator, its message the block's comment.
-        if (m.stop->value == code(1) && !stop_style_.optional_stop)
+        if (k.m.stop->value == code(1) && !settings_.stop.optional_stop)
             fail(fmt::format("M1: machine {} ignores M1 (it has no optional stop switch), so the program would not stop "
                              "there; camgen writes M0",
                              machine_.name));
@@ -367,9 +288,9 @@ void IsoReader::block(const Block& b) {
             message.erase(0, iso::msg_prefix.size());
             message.erase(0, message.find_first_not_of(' ') == std::string::npos ? message.size() : message.find_first_not_of(' '));
         }
-        stop(m.stop->value == code(1) ? StopKind::optional : StopKind::mandatory, std::move(message));
+        stop(k.m.stop->value == code(1) ? StopKind::optional : StopKind::mandatory, std::move(message));
     }
-    if (m.stop && (m.stop->value == code(2) || m.stop->value == code(30))) {
+    if (k.m.stop && (k.m.stop->value == code(2) || k.m.stop->value == code(30))) {
         drill_end();
         ended_ = true;
     }
@@ -400,17 +321,13 @@ void IsoReader::motion_block(int mode, BlockWords& w) {
 
 void IsoReader::cycle_block(int g, BlockWords& w) {
     const DrillingCycleSpec& spec = *canned_spec(g);
-    if (spec.style == CannedStyle::fanuc_g74) {
-        face_peck(spec, w);
-        return;
-    }
+    if (variant_cycle(spec, w)) return;
+    if (spec.style == CannedStyle::fanuc_g74)
+        fail(fmt::format("{}: Fanuc T's end-face peck drilling is read by the iso-lathe dialect only", spec.name));
     const std::string name = spec.name;
     if (w.has('I') || w.has('J') || w.has('K')) fail(fmt::format("I/J/K in a {} block", name));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
-    // A canned cycle drills along the plane's normal: on such a lathe only G17 drills along Z.
-    if (drills_under_g17(machine_) && plane_ != Plane::xy)
-        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
-                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
+    check_cycle_plane(name);
     Vec3 here = position();
     if (!initial_z_) initial_z_ = here.z;
     std::optional<double> x, y;
@@ -461,48 +378,6 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     drill_point({x.value_or(here.x), y.value_or(here.y)});
 }
 
-void IsoReader::face_peck(const DrillingCycleSpec& spec, BlockWords& w) {
-    // Fanuc T G74 in two blocks: G74 R(e) sets the back-off; G74 Z Q F pecks from where the tool
-    // stands (the start point, X0 on a centre hole) by Q, backs off e, ... to Z, and returns to
-    // the start point. Q is in least input increments without a decimal point.
-    const std::string& name = spec.name;
-    for (char letter : {'Y', 'I', 'J', 'K', 'P'})
-        if (const Word* x = w.find(letter)) fail(fmt::format("{} in a {} block: camgen drills with it on the axis only", x->text, name));
-    if (const Word* r = w.take('R')) {
-        if (w.has('Z') || w.has('Q') || w.has('X')) fail(fmt::format("{}: R(e) stands in the first {} block alone", r->text, name));
-        face_back_off_ = length(*r);
-        if (!(*face_back_off_ > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
-        return;
-    }
-    const Word* zw = w.take('Z');
-    const Word* qw = w.take('Q');
-    if (w.has('X')) fail(fmt::format("X in the second {} block: camgen drills at the start point's X", name));
-    if (!zw || !qw) fail(fmt::format("the second {} block needs the bottom Z and the peck Q", name));
-    if (!face_back_off_) fail(fmt::format("{} Z Q without the first block {} R(e)", name, name));
-    if (qw->has_point) fail(fmt::format("{}: Q is in least input increments, without a decimal point", qw->text));
-    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
-    if (!feed_) fail(fmt::format("{} without a feed F", name));
-    const Vec3 here = position();
-    const double bottom = length(*zw);
-    const double increments = std::pow(10.0, length_format('Z').spec().decimals);
-    const double peck = length_value(qw->value / increments);
-    if (!(peck > 0)) fail(fmt::format("{}: the peck Q must be > 0", qw->text));
-    if (!(bottom < here.z)) fail(fmt::format("{} {}: the bottom is not below the start point", name, zw->text));
-    DrillCycle c;
-    c.kind = CycleKind::chip_break;
-    c.output = CycleOutput::canned;
-    c.retract_z = c.reference_z = c.safe_z = here.z;
-    c.bottom_z = bottom;
-    c.feed = *feed_;
-    c.spindle_rpm = rpm_;
-    c.values.set(DrillField::first_depth, peck);
-    c.values.set(DrillField::pecking_retract, *face_back_off_);
-    c.values.set(DrillField::plunging_feedrate, *feed_);
-    drill_cycle(c);
-    drill_point({here.x, here.y});
-    drill_end();
-}
-
 void IsoReader::rigid_tap(BlockWords& w) {
     // LinuxCNC G33.1 Z K: from where the tool stands, in to Z synchronised with the spindle
     // (feed = pitch K x speed), spindle reversed, out to the start Z, the spindle's direction
@@ -535,10 +410,23 @@ void IsoReader::rigid_tap(BlockWords& w) {
     drill_end();
 }
 
-}  // namespace
+bool IsoReader::variant_code(BlockCodes&, const Word&, Code) { return false; }
+
+void IsoReader::variant_words(const BlockCodes&, BlockWords&) {}
+
+bool IsoReader::variant_tool_call(const Word&) { return false; }
+
+bool IsoReader::variant_cycle(const DrillingCycleSpec&, BlockWords&) { return false; }
+
+void IsoReader::check_cycle_plane(const std::string& name) const {
+    // A canned cycle drills along the plane's normal: on a lathe only G17 drills along Z.
+    if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
+                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
+}
 
 std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source) {
-    return std::make_unique<IsoReader>(machine, std::move(source));
+    return std::make_unique<IsoReader>(machine, std::move(source), settings_of<iso::Settings>(machine));
 }
 
 }  // namespace camgen::reader

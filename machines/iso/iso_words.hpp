@@ -1,9 +1,8 @@
 #pragma once
 // The ISO (Fanuc-style) words that the post writes and the reader reads back: the canned
-// cycle codes and the machine file's "toolChange" setting.
-#include <optional>
+// cycle codes and the values of the dialect settings both follow (iso_settings.hpp reads them).
+#include <string_view>
 
-#include "camgen/common/json_util.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen::iso {
@@ -32,9 +31,6 @@ constexpr double cycle_code(CycleKind kind) {
 // (T.. M6), or a turret's T0101 (tool 01 with offset 01, Fanuc T).
 enum class LatheToolCall { m6, turret };
 
-// The settings of the iso-lathe dialect, beside the ISO ones.
-inline constexpr std::string_view lathe_setting_keys[] = {"drillingPlane", "toolCall", "spindleLimit"};
-
 // The maximum spindle speed code of Fanuc T (system A): G50 S<rpm>.
 inline constexpr double spindle_limit_code = 50;
 // Constant spindle speed (rpm), Fanuc T and LinuxCNC: G97.
@@ -49,16 +45,6 @@ inline constexpr double rigid_tap_code = 33.1;
 // (GRBL), or not at all.
 enum class ToolChangeStyle { m6, pause, none };
 
-// The machine file's "toolChange" setting from the dialect settings `f`: true or "m6", "pause",
-// false or "none"; absent: m6. Throws InputError for any other value.
-inline ToolChangeStyle tool_change_setting(json::Fields& f) {
-    if (const auto* tc = f.member("toolChange"); tc && tc->is_boolean())
-        return tc->get<bool>() ? ToolChangeStyle::m6 : ToolChangeStyle::none;
-    return f.choice<ToolChangeStyle>(
-        "toolChange", {{"m6", ToolChangeStyle::m6}, {"pause", ToolChangeStyle::pause}, {"none", ToolChangeStyle::none}},
-        ToolChangeStyle::m6);
-}
-
 // How an ISO control shows a stop's message, and whether it stops at M1: the settings
 // "stopMessage" ("comment": the message as a comment in the M0/M1 block, as Fanuc shows the
 // block; "msg": LinuxCNC's "(MSG, text)", which it shows in a window) and "optionalStop"
@@ -67,14 +53,6 @@ struct StopStyle {
     bool msg = false;
     bool optional_stop = true;
 };
-
-// The stop settings from the dialect settings `f`. Throws InputError for another value.
-inline StopStyle stop_style_setting(json::Fields& f) {
-    StopStyle s;
-    s.msg = f.choice<bool>("stopMessage", {{"comment", false}, {"msg", true}}, false);
-    s.optional_stop = f.boolean("optionalStop", true);
-    return s;
-}
 
 // The prefix of LinuxCNC's message comment "(MSG, text)".
 inline constexpr std::string_view msg_prefix = "MSG,";

@@ -9,20 +9,12 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
-#include "camgen/common/json_util.hpp"
 #include "camgen/post/machine_checks.hpp"
 
 namespace camgen {
 
 NccadPost::NccadPost(const Machine& machine, std::ostream& out, PostOptions options)
-    : Post(machine, out, std::move(options)) {
-    json::Source source{machine.source, json::LineMap{}};
-    json::Fields f(machine.dialect_settings, "/settings", source);
-    underscore_lines_ = f.optional_integer("underscoreLines").value_or(2);
-    reference_run_ = f.boolean("referenceRun", false);
-    home_at_end_ = f.boolean("homeAtEnd", true);
-    end_of_program_ = f.boolean("endOfProgram", true);
-    f.finish();
+    : Post(machine, out, std::move(options)), settings_(settings_of<nccad::Settings>(this->machine())) {
     // nccad has no unit word and reads every length as mm, every feed in its feed unit.
     if (machine.units != Units::mm)
         throw InputError("/units", fmt::format("machine {}: nccad has no inch mode; its programs are in mm", machine.name),
@@ -30,16 +22,16 @@ NccadPost::NccadPost(const Machine& machine, std::ostream& out, PostOptions opti
 }
 
 void NccadPost::on_open() {
-    for (int i = 0; i < underscore_lines_; ++i) writer().raw("_");
+    for (int i = 0; i < settings_.underscore_lines; ++i) writer().raw("_");
     if (!options().program_name.empty()) writer().comment(options().program_name);
     write_start_block("");
-    if (reference_run_) writer().add(g(76)).end();
+    if (settings_.reference_run) writer().add(g(76)).end();
 }
 
 void NccadPost::on_close() {
     if (spindle_on_) writer().add(m(10)).add("O6.0").end();
-    if (home_at_end_) writer().add(g(77)).end();
-    if (end_of_program_) writer().add(g(99)).end();
+    if (settings_.home_at_end) writer().add(g(77)).end();
+    if (settings_.end_of_program) writer().add(g(99)).end();
 }
 
 void NccadPost::on_tool_change(const ToolChange& tool) {

@@ -2,6 +2,7 @@
 #include <optional>
 
 #include "camgen/post/post.hpp"
+#include "machines/nccad/nccad_settings.hpp"
 
 namespace camgen {
 
@@ -33,10 +34,7 @@ protected:
 
 private:
     void flush_tool_message(std::optional<double> rpm);
-    int underscore_lines_ = 2;
-    bool reference_run_ = false;
-    bool home_at_end_ = true;
-    bool end_of_program_ = true;
+    const nccad::Settings& settings_;
     bool spindle_on_ = false;
     double speed_ = 0.0;
     std::optional<ToolChange> pending_tool_;

@@ -117,11 +117,7 @@ std::string sinumerik_cycle_call(const DrillCycle& c, const Machine& machine) {
 }
 
 SinumerikPost::SinumerikPost(const Machine& machine, std::ostream& out, PostOptions options)
-    : Post(machine, out, std::move(options)) {
-    json::Source source{machine.source, json::LineMap{}};
-    json::Fields f(machine.dialect_settings, "/settings", source);
-    f.finish();
-}
+    : Post(machine, out, std::move(options)) {}
 
 void SinumerikPost::on_open() {
     if (!options().program_name.empty()) writer().comment(options().program_name);

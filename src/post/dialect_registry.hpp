@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "camgen/common/key_spec.hpp"
 #include "camgen/post/post.hpp"
 
 namespace camgen {
@@ -20,14 +21,27 @@ namespace reader {
 class NcReader;
 }  // namespace reader
 
+namespace json {
+class Fields;
+struct Source;
+}  // namespace json
+
 // One dialect: the name a machine file gives in "dialect", the factories of its post and
-// reader (make_reader is nullptr for a dialect camgen cannot read), and the check of a
-// machine's settings against what the dialect writes and reads (nullptr: none).
+// reader (make_reader is nullptr for a dialect camgen cannot read), the check of a machine's
+// settings against what the dialect writes and reads (nullptr: none), and its machine files'
+// "settings": their keys (a variant's are its base dialect's and its own; the schema, the docs
+// and the unknown-key check take them from here) and the reader of them, which parse_machine
+// calls once with the settings' Fields (every error names the file, line and key) and the
+// machine read so far (`source` for paths outside the settings, such as /dialect). The post and
+// the reader take the struct it returns from Machine::settings (settings_of).
 struct Dialect {
     std::string_view name;
     std::unique_ptr<Post> (*make_post)(const Machine& machine, std::ostream& out, PostOptions options);
     std::unique_ptr<reader::NcReader> (*make_reader)(const Machine& machine, std::string source);
     std::optional<MachineProblem> (*check_machine)(const Machine& machine) = nullptr;
+    std::span<const KeySpec> settings_keys = {};
+    std::shared_ptr<const DialectSettings> (*read_settings)(json::Fields& settings, const Machine& machine,
+                                                            const json::Source& source) = nullptr;
 };
 
 // What a machine's reader made of some lines of a program (a custom block): the events of each

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <deque>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/common/json_util.hpp"
 #include "camgen/post/capabilities.hpp"
+#include "src/post/dialect_registry.hpp"
 #include "src/post/machine_files.hpp"
 
 namespace camgen {
@@ -116,7 +118,9 @@ constexpr KeySpec machine_keys[] = {
      .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
     {.key = "frame", .type = JsonType::object, .ref = "frame",
      .description = "the program frame: safe-start words, work offsets, coolant codes"},
-    {.key = "settings", .type = JsonType::object, .description = "dialect settings, read by the dialect code"},
+    {.key = "settings", .type = JsonType::object, .ref = "settings",
+     .description = "the dialect's settings, read with the machine: the keys of its dialect only (a file that names "
+                    "its dialect is checked against settings-<dialect>)"},
 };
 
 // The keys of frame.
@@ -346,6 +350,46 @@ std::vector<std::string> expand_work_offset(const std::string& entry, const std:
     return out;
 }
 
+// The dialects whose settings have `key`, by name.
+std::vector<std::string_view> dialects_with_setting(std::string_view key) {
+    std::vector<std::string_view> names;
+    for (const Dialect& d : dialects())
+        for (const KeySpec& k : d.settings_keys)
+            if (k.key == key) names.push_back(d.name);
+    return names;
+}
+
+// Reads the machine file's "settings" (`settings`, nullptr when absent) with the reader of the
+// machine's dialect into m.settings: each key from the dialect's table, every error naming the
+// file, line and key. A key of another dialect's settings is named as such. A machine of an
+// unknown dialect keeps none (make_post refuses it).
+void read_dialect_settings(const nlohmann::json* settings, Machine& m, const json::Source& source) {
+    const Dialect* d = find_dialect(m.dialect);
+    if (!d) return;
+    static const nlohmann::json none = nlohmann::json::object();
+    json::Fields f(settings ? *settings : none, "/settings", source);
+    const auto own = [&](std::string_view key) {
+        return std::any_of(d->settings_keys.begin(), d->settings_keys.end(), [&](const KeySpec& k) { return k.key == key; });
+    };
+    // The first foreign key in the file's order, as Fields::finish names the first unknown one.
+    std::optional<std::pair<int, std::string>> foreign;
+    if (settings)
+        for (const auto& [key, value] : settings->items()) {
+            if (own(key) || dialects_with_setting(key).empty()) continue;
+            const int line = source.lines.line_of(f.path_of(key));
+            if (!foreign || line < foreign->first) foreign = std::pair{line, key};
+        }
+    if (foreign) {
+        const std::vector<std::string_view> owners = dialects_with_setting(foreign->second);
+        const std::string ours = d->settings_keys.empty() ? "has no settings"
+                                                          : fmt::format("has {}", fmt::join(keys_of(d->settings_keys), ", "));
+        f.fail(foreign->second, fmt::format("\"{}\" is a setting of dialect {}, not of this machine's dialect {} (which {})",
+                                            foreign->second, fmt::join(owners, " and "), m.dialect, ours));
+    }
+    if (d->read_settings) m.settings = d->read_settings(f, m, source);
+    f.finish(d->settings_keys);
+}
+
 nc::FormatSpec default_format(const std::string& key) {
     nc::FormatSpec s;
     if (key == "xyz" || key == "ijk" || key == "x" || key == "z" || key == "i" || key == "dwell" || key == "angle")
@@ -386,6 +430,32 @@ nc::FormatSpec read_format(json::Fields f, nc::FormatSpec base, const json::Sour
     return base;
 }
 
+// The "settings" object of the schema: every dialect's keys (a file that extends another need
+// not name its dialect), each described with the dialects that have it.
+const ObjectSpec& settings_object() {
+    static std::deque<std::string> descriptions;  // the keys' descriptions point into it
+    static const ObjectSpec object = [] {
+        ObjectSpec o{.name = "settings",
+                     .description = "the dialect's settings: iso (fanuc, linuxcnc, grbl), iso-lathe (the iso settings "
+                                    "and its own), nccad; sinumerik, sinumerik-lathe and heidenhain have none. camgen "
+                                    "refuses a key of another dialect than the machine's"};
+        std::vector<std::pair<KeySpec, std::vector<std::string_view>>> keys;
+        for (const Dialect& d : dialects())
+            for (const KeySpec& k : d.settings_keys) {
+                auto it = std::find_if(keys.begin(), keys.end(), [&](const auto& e) { return e.first.key == k.key; });
+                if (it == keys.end()) keys.push_back({k, {d.name}});
+                else it->second.push_back(d.name);
+            }
+        for (auto& [k, owners] : keys) {
+            descriptions.push_back(fmt::format("{}: {}", fmt::join(owners, ", "), k.description));
+            k.description = descriptions.back();
+            o.keys.push_back(k);
+        }
+        return o;
+    }();
+    return object;
+}
+
 }  // namespace
 
 std::vector<ObjectSpec> machine_objects() {
@@ -397,7 +467,7 @@ std::vector<ObjectSpec> machine_objects() {
     for (std::string_view key : {"description", "dialect", "extension"})
         machine.groups.push_back({.keys = {"extends", key}, .min = 1, .max = 2,
                                   .description = "extends another machine, or says what the inherited file would"});
-    return {
+    std::vector<ObjectSpec> objects = {
         machine,
         spec("globals", "block layout and numbers", globals_keys),
         spec("formats", "number formats per word family", format_keys),
@@ -409,7 +479,25 @@ std::vector<ObjectSpec> machine_objects() {
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
         spec("feedModeCodes", "the code of each feed mode", feed_mode_keys),
+        settings_object(),
     };
+    // Each dialect's own settings object, "settings-<dialect>": the schema checks a file's
+    // settings against the one of the dialect it names.
+    static std::deque<std::string> texts;  // the specs' names and descriptions point into it
+    static const std::vector<ObjectSpec> dialect_objects = [] {
+        std::vector<ObjectSpec> out;
+        for (const Dialect& d : dialects()) {
+            const std::string_view name = texts.emplace_back(fmt::format("settings-{}", d.name));
+            const std::string_view description =
+                texts.emplace_back(d.settings_keys.empty() ? fmt::format("dialect {} has no settings", d.name)
+                                                           : fmt::format("the settings of dialect {}", d.name));
+            out.push_back(ObjectSpec{.name = name, .description = description,
+                                     .keys = {d.settings_keys.begin(), d.settings_keys.end()}});
+        }
+        return out;
+    }();
+    objects.insert(objects.end(), dialect_objects.begin(), dialect_objects.end());
+    return objects;
 }
 
 nc::Format Machine::format(const std::string& key) const {
@@ -732,8 +820,8 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
     if (const auto* s = f.member("settings")) {
         if (!s->is_object()) f.fail("settings", "expected an object");
         check_settings_text(*s, "/settings", source);
-        m.dialect_settings = *s;
     }
+    read_dialect_settings(f.member("settings"), m, source);
     f.finish(machine_keys);
     if (auto problem = machine_problem(m)) refuse(*problem);
     return m;

@@ -97,6 +97,13 @@ OJson value_schema(const KeySpec& k, SchemaKind file) {
         default: s["type"] = type_name(k.type); break;
     }
     if (k.type == JsonType::string && k.choices) s["enum"] = enum_of(k.choices);
+    if (k.or_boolean) {
+        s["type"] = OJson::array({"string", "boolean"});
+        if (s.contains("enum")) {
+            s["enum"].push_back(true);
+            s["enum"].push_back(false);
+        }
+    }
     if (k.min) s[k.min->inclusive ? "minimum" : "exclusiveMinimum"] = number_json(k.min->value);
     if (k.max) s[k.max->inclusive ? "maximum" : "exclusiveMaximum"] = number_json(k.max->value);
     if (!k.default_json.empty()) s["default"] = OJson::parse(k.default_json);
@@ -262,7 +269,7 @@ std::string value_text(const KeySpec& k) {
             if (!k.choices) return "string";
             std::string s;
             for (const auto& c : k.choices()) s += (s.empty() ? "`\"" : ", `\"") + c + "\"`";
-            return s;
+            return k.or_boolean ? s + ", `true`, `false`" : s;
         }
         case JsonType::number: break;
     }
@@ -274,6 +281,7 @@ std::string value_text(const KeySpec& k) {
 std::optional<std::string> keys_markdown(std::string_view name) {
     std::vector<ObjectSpec> objects = operation_objects();
     for (ObjectSpec& o : stock_objects()) objects.push_back(std::move(o));
+    for (ObjectSpec& o : machine_objects()) objects.push_back(std::move(o));
     for (const ObjectSpec& spec : objects) {
         if (spec.name != name) continue;
         std::string s = "| key | value | default | meaning |\n| --- | --- | --- | --- |\n";
@@ -299,7 +307,20 @@ OJson job_schema() {
 }
 
 OJson machine_schema() {
-    return file_schema("machine", "camgen machine", machine_objects(), OJson::object(), SchemaKind::machine);
+    const std::vector<ObjectSpec> objects = machine_objects();
+    OJson s = file_schema("machine", "camgen machine", objects, OJson::object(), SchemaKind::machine);
+    // A file that names its dialect: its settings are that dialect's (settings-<dialect>).
+    constexpr std::string_view prefix = "settings-";
+    for (const ObjectSpec& o : objects) {
+        if (!o.name.starts_with(prefix)) continue;
+        OJson condition;
+        condition["properties"]["dialect"]["const"] = o.name.substr(prefix.size());
+        condition["required"] = OJson::array({"dialect"});
+        OJson then;
+        then["properties"]["settings"] = ref_to(o.name);
+        s["allOf"].push_back(OJson{{"if", condition}, {"then", then}});
+    }
+    return s;
 }
 
 std::vector<std::string> schema_names() { return {"job", "machine"}; }

@@ -1,6 +1,6 @@
 // The dialect registry and what a dialect folder shares between its post and its reader:
 // one table names both sides, the D register of a compensation, the rigid-tapping style of
-// a drilling cycle, and the ISO toolChange setting parsed strictly on both sides.
+// a drilling cycle, and the ISO settings both sides share.
 #include <doctest/doctest.h>
 
 #include <sstream>
@@ -9,6 +9,7 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
+#include "machines/iso/iso_settings.hpp"
 #include "support.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
@@ -60,12 +61,34 @@ TEST_CASE("a drilling cycle's style makes it rigid tapping, not its name") {
     CHECK(load_machine("fanuc").canned_cycle(CycleKind::tap)->style == CannedStyle::standard);
 }
 
-TEST_CASE("the reader parses the ISO toolChange setting as strictly as the post") {
-    Machine m = load_machine("grbl");
-    m.dialect_settings["toolChange"] = "robot";
-    std::ostringstream out;
-    CHECK_THROWS_AS(make_post(m, out, {}), InputError);
-    CHECK_THROWS_WITH_AS(read_program("G0 X0\n", m), doctest::Contains("toolChange"), InputError);
+TEST_CASE("the post and the reader share the ISO settings read with the machine") {
+    // One struct, read once: a machine made in code takes the dialect's defaults on both sides.
+    const Machine grbl = load_machine("grbl");
+    REQUIRE(grbl.settings);
+    const auto& s = settings_of<iso::Settings>(grbl);
+    CHECK(s.tool_change == iso::ToolChangeStyle::pause);
+    CHECK_FALSE(s.stop.optional_stop);
+    CHECK(s.end_code == "M2");
+    Machine bare = grbl;
+    bare.settings = nullptr;
+    CHECK(settings_of<iso::Settings>(bare).tool_change == iso::ToolChangeStyle::m6);
+    // Another dialect's struct is a programming error, not a machine's.
+    CHECK_THROWS_AS(settings_of<iso::LatheSettings>(grbl), std::logic_error);
+    CHECK(settings_of<iso::LatheSettings>(load_machine("fanuc-lathe")).tool_call == iso::LatheToolCall::turret);
+}
+
+TEST_CASE("the ISO reader takes G7/G8 where the start block selects one, on a mill too; G50 only on the lathe") {
+    // The start block decides, not the lathe variant: a mill in radius mode (G8) writes it in
+    // every custom block's read-back.
+    Machine mill = load_machine("linuxcnc");
+    CHECK_THROWS_WITH_AS(read_program("G8\nM2\n", mill), doctest::Contains("unknown code G8"), InputError);
+    mill.frame.start_block.push_back("G8");
+    CHECK_NOTHROW(read_program("G8\nG0 X1 Y2 Z3\nM2\n", mill));
+    CHECK_THROWS_WITH_AS(read_program("G7\nM2\n", mill), doctest::Contains("programs X as a radius (G8)"), InputError);
+    // Fanuc T's spindle limit is the lathe variant's word.
+    CHECK_THROWS_WITH_AS(read_program("G50 S3000\nM30\n", load_machine("fanuc")), doctest::Contains("unknown code G50"),
+                         InputError);
+    CHECK_NOTHROW(read_program("%\nO1000\nG50 S3000\nG97 S500 M3\nM30\n%\n", load_machine("fanuc-lathe")));
 }
 
 TEST_CASE("Sinumerik writes CR= for the radius and states the end point even where forceXY is off") {

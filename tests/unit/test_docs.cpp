@@ -21,9 +21,10 @@ using namespace camgen;
 
 namespace {
 
-const std::string doc_path = std::string(CAMGEN_SOURCE_DIR) + "/docs/job-format.md";
+const std::string job_format_doc = std::string(CAMGEN_SOURCE_DIR) + "/docs/job-format.md";
+const std::string reference_doc = std::string(CAMGEN_SOURCE_DIR) + "/docs/reference.md";
 
-std::string read_doc() {
+std::string read_doc(const std::string& doc_path) {
     std::ifstream in(doc_path, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
@@ -39,10 +40,10 @@ std::pair<size_t, size_t> section(const std::string& doc, const std::string& nam
     return {a + open.size(), b};
 }
 
-void check_section(const std::string& name, const std::string& expected) {
-    std::string doc = read_doc();
+void check_section(const std::string& name, const std::string& expected, const std::string& doc_path = job_format_doc) {
+    std::string doc = read_doc(doc_path);
     auto [a, b] = section(doc, name);
-    REQUIRE_MESSAGE(a != std::string::npos, "docs/job-format.md has no generated section " << name);
+    REQUIRE_MESSAGE(a != std::string::npos, doc_path << " has no generated section " << name);
     REQUIRE(b != std::string::npos);
     if (std::getenv("CAMGEN_UPDATE_DOCS")) {
         doc.replace(a, b - a, expected);
@@ -50,7 +51,7 @@ void check_section(const std::string& name, const std::string& expected) {
         return;
     }
     CHECK_MESSAGE(doc.substr(a, b - a) == expected,
-                  "docs/job-format.md section '" << name << "' differs from the vocabulary or key tables; run "
+                  doc_path << " section '" << name << "' differs from the vocabulary or key tables; run "
                   "CAMGEN_UPDATE_DOCS=1 build/camgen_tests -tc='docs*'");
 }
 
@@ -113,6 +114,18 @@ TEST_CASE("docs: the contour, path, bore-mill, stop, custom, pocket and face key
     CHECK(bore.find("| `diameter` | length (mm) > 0 | **required** |") != std::string::npos);
     CHECK(bore.find("| `direction` | `\"climb\"`, `\"conventional\"` | `\"climb\"` |") != std::string::npos);
     CHECK_FALSE(keys_markdown("no such object"));
+}
+
+TEST_CASE("docs: the dialect settings tables of the reference are the dialects' key tables") {
+    for (const char* dialect : {"iso", "iso-lathe", "nccad"}) {
+        const std::string name = std::string("settings-") + dialect;
+        const std::optional<std::string> table = keys_markdown(name);
+        REQUIRE(table);
+        check_section(name + " keys", *table, reference_doc);
+    }
+    CHECK(keys_markdown("settings-iso")->find("| `toolChange` | `\"m6\"`, `\"pause\"`, `\"none\"`, `true`, `false` | "
+                                              "`\"m6\"` |") != std::string::npos);
+    CHECK(keys_markdown("settings-iso-lathe")->find("| `spindleLimit` | boolean | `false` |") != std::string::npos);
 }
 
 }  // namespace test_docs

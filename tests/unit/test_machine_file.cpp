@@ -136,6 +136,47 @@ TEST_CASE("machine file: limits are positive and below 1000000") {
     check_accepted("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000})");
 }
 
+TEST_CASE("machine file: dialect settings are read with the machine, each error naming its line and key") {
+    // A misspelt key, with the dialect's own keys to choose from.
+    check_refused("fanuc", R"("percentLines": true)", R"("percentLine": true)", "/settings/percentLine",
+                  "unknown key \"percentLine\" (did you mean \"percentLines\"?)");
+    check_refused("wabeco", R"("homeAtEnd": true)", R"("homeAtEnd": true, "endOfProgramm": true)",
+                  "/settings/endOfProgramm", "(did you mean \"endOfProgram\"?)");
+    // A wrong type, or a value outside the key's bounds or choices.
+    check_refused("fanuc", R"("toolLengthOffset": true)", R"("toolLengthOffset": "yes")", "/settings/toolLengthOffset",
+                  "true or false");
+    check_refused("fanuc", R"("programNumber": 1000)", R"("programNumber": "O1000")", "/settings/programNumber",
+                  "integer");
+    check_refused("fanuc", R"("programNumber": 1000)", R"("programNumber": -5)", "/settings/programNumber",
+                  "programNumber must be between 0 (none) and 99999999");
+    check_refused("grbl", R"("toolChange": "pause")", R"("toolChange": "robot")", "/settings/toolChange",
+                  "\"robot\" is not one of \"m6\", \"pause\" or \"none\"");
+    check_refused("linuxcnc", R"("stopMessage": "msg")", R"("stopMessage": "MSG")", "/settings/stopMessage",
+                  "(did you mean \"msg\"?)");
+    check_refused("wabeco", R"("underscoreLines": 2)", R"("underscoreLines": 1000000000)", "/settings/underscoreLines",
+                  "underscoreLines must be between 0 and 100");
+    check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "")", "/settings/endCode", "must not be empty");
+    // A setting of another dialect is named as such, not merely unknown.
+    check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "M30", "toolCall": "turret")", "/settings/toolCall",
+                  "\"toolCall\" is a setting of dialect iso-lathe, not of this machine's dialect iso (which has "
+                  "programNumber, percentLines, toolLengthOffset, toolChange, endCode, stopMessage, optionalStop)");
+    check_refused("wabeco", R"("homeAtEnd": true)", R"("homeAtEnd": true, "percentLines": false)", "/settings/percentLines",
+                  "\"percentLines\" is a setting of dialect iso and iso-lathe, not of this machine's dialect nccad");
+    check_refused("sinumerik", R"("settings": {})", R"("settings": {"underscoreLines": 1})", "/settings/underscoreLines",
+                  "\"underscoreLines\" is a setting of dialect nccad, not of this machine's dialect sinumerik (which "
+                  "has no settings)");
+    // The lathe variant's own checks, at the line of what is wrong.
+    check_refused("fanuc", R"("dialect": "iso")", R"("dialect": "iso-lathe")", "/dialect",
+                  "the iso-lathe dialect writes for lathes: set \"kind\": \"lathe\"");
+    int line = 0;
+    const Refusal limit = refusal("fanuc-lathe", R"(, "maxRpm": 3000})", "}", line);
+    CHECK(limit.path == "/settings/spindleLimit");
+    CHECK(limit.detail == "spindleLimit writes G50 S<maxRpm>: the machine needs limits.maxRpm");
+    CHECK(limit.line == 55);
+    // The lathe variant takes the ISO keys as well as its own.
+    check_accepted("fanuc-lathe", R"("toolCall": "turret")", R"("toolCall": "m6", "optionalStop": false)");
+}
+
 TEST_CASE("machine file: text written into programs has no control bytes, line breaks, ( ) ; or %") {
     const std::string rule = "text written into the program must be printable ASCII without ( ) ; %";
     // A line break in the end code would end the block early; '%' would end a Fanuc tape.

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "machines/iso/iso_settings.hpp"
 #include "support.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
@@ -124,6 +125,39 @@ TEST_CASE("an extension of an extension applies both, the nearer file winning") 
     REQUIRE(at != std::string::npos);
     fanuc.replace(at, 5, "O4343");
     CHECK(out == fanuc);
+}
+
+TEST_CASE("an extension's dialect settings merge over its base's, and their errors name its file and line") {
+    UserConfig user("settings");
+    // Settings merge key by key: the lathe keeps fanuc-lathe's turret and spindle limit.
+    user.write("shop-lathe.json", "{\"extends\": \"fanuc-lathe\",\n \"settings\": {\"programNumber\": 77}}");
+    const Machine lathe = load_machine("shop-lathe");
+    const auto& s = settings_of<iso::LatheSettings>(lathe);
+    CHECK(s.program_number == 77);
+    CHECK(s.tool_call == iso::LatheToolCall::turret);
+    CHECK(s.spindle_limit);
+    CHECK_FALSE(s.percent == settings_of<iso::Settings>(load_machine("linuxcnc-lathe")).percent);
+    // A key of the lathe variant's dialect on a mill that extends fanuc: the user's file and line.
+    const std::string mill = user.write("shop-mill.json", "{\"extends\": \"fanuc\",\n \"settings\":\n {\"toolCall\": \"turret\"}}");
+    try {
+        load_machine("shop-mill");
+        FAIL("shop-mill was accepted");
+    } catch (const InputError& e) {
+        CHECK(e.source() == mill);
+        CHECK(e.line() == 3);
+        CHECK(e.path() == "/settings/toolCall");
+        CHECK(e.detail().find("a setting of dialect iso-lathe, not of this machine's dialect iso") != std::string::npos);
+    }
+    // A misspelt key two files down the chain is named in the file that holds it.
+    const std::string cell = user.write("cell.json", "{\"extends\": \"shop-lathe\",\n \"settings\": {\"spindleLimt\": false}}");
+    try {
+        load_machine("cell");
+        FAIL("cell was accepted");
+    } catch (const InputError& e) {
+        CHECK(e.source() == cell);
+        CHECK(e.line() == 2);
+        CHECK(e.detail() == "unknown key \"spindleLimt\" (did you mean \"spindleLimit\"?)");
+    }
 }
 
 TEST_CASE("a cycle of extensions is an error naming the files") {

@@ -40,6 +40,7 @@ struct KeySpec {
     std::optional<JsonType> items = std::nullopt; // an array's item type (when no ref or choices)
     std::size_t min_items = 0;                    // arrays
     std::string_view description = {};
+    bool or_boolean = false;                      // a string of choices that also takes true or false
 };
 
 // How many of `keys` an object must have: at least `min`, at most `max`.

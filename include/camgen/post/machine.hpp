@@ -2,7 +2,9 @@
 // A machine: the settings of one control, read from machines/<name>.json (installed or
 // compiled in, see installed_machine_dir) or from a file given by path, plus the name of the dialect code that writes for it.
 #include <map>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,15 @@ struct FrameSettings {
                                             // ("G53", "G0", "Z0"); empty: the job's clearance
 };
 
+// A dialect's machine-file "settings", as its dialect reads them (machines/<dialect>/): the base
+// of each dialect's own struct (iso::Settings, ...). They are read once, with the machine file
+// (parse_machine: each key from the dialect's key table, errors naming the file, line and key),
+// and shared by the dialect's post and reader; a variant's struct (iso::LatheSettings) extends
+// its base dialect's.
+struct DialectSettings {
+    virtual ~DialectSettings() = default;
+};
+
 struct Machine {
     std::string name;                  // "wabeco"
     std::string description;           // one line for --list-machines
@@ -109,7 +120,9 @@ struct Machine {
     TappingMode tapping = TappingMode::none;  // machine file drilling.tapping
     std::vector<DrillingCycleSpec> drilling;
     FrameSettings frame;
-    nlohmann::json dialect_settings = nlohmann::json::object();  // read by the dialect code
+    // The dialect's settings (machine file "settings"), read by parse_machine; null for a machine
+    // made in code, whose dialect takes its defaults (settings_of).
+    std::shared_ptr<const DialectSettings> settings;
     std::string source;                // where it was read from, for messages
 
     // The format named `key` for the output units, with the decimal mark applied. The axis
@@ -129,6 +142,16 @@ struct Machine {
     // How longhand cycles move on this machine (so that they equal its canned cycles).
     LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
 };
+
+// The machine's dialect settings as the dialect's struct S: the defaults of S for a machine
+// made in code without them. Throws std::logic_error when they are another dialect's.
+template <class S>
+const S& settings_of(const Machine& machine) {
+    static const S defaults{};
+    if (!machine.settings) return defaults;
+    if (const auto* s = dynamic_cast<const S*>(machine.settings.get())) return *s;
+    throw std::logic_error("machine " + machine.name + ": its settings are not those of dialect " + machine.dialect);
+}
 
 // Settings of a machine file that its dialect would write as wrong motion, or that camgen
 // could not read back: the JSON paths of the settings involved (changing any one of them
@@ -162,7 +185,8 @@ std::optional<std::string> installed_machine_dir();
 Machine parse_machine(const std::string& text, const std::string& name, const std::string& source);
 
 // The objects of a machine file, for the JSON Schema: the top level ("machine") first, then
-// globals, formats, format, limits, arcs, drilling, drillingCycle, frame and coolantCodes.
+// globals, formats, format, limits, arcs, drilling, drillingCycle, frame, coolantCodes,
+// feedModeCodes, settings (every dialect's keys) and settings-<dialect> for each dialect.
 std::vector<ObjectSpec> machine_objects();
 
 // A machine camgen finds by name. Search order, first match wins: each folder of

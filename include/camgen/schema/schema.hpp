@@ -23,7 +23,8 @@ std::vector<std::string> schema_names();
 
 // The keys of the job-file object named `name` (an operation type such as "contour", or one
 // of its objects such as "contourLead") as a Markdown table for docs/job-format.md: key, value,
-// default, meaning. nullopt for an unknown name.
+// default, meaning; or of a machine-file object (a dialect's settings, "settings-iso", for
+// docs/reference.md) where no job object has the name. nullopt for an unknown name.
 std::optional<std::string> keys_markdown(std::string_view name);
 
 // The schema named `name` as text (2-space indent, trailing newline); nullopt for an unknown name.

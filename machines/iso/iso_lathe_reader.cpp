@@ -1,0 +1,125 @@
+// Reading the ISO lathe dialect (iso-lathe: linuxcnc-lathe, fanuc-lathe): the ISO reader with
+// what lathes write differently, by its hooks: Fanuc T's spindle limit G50 S and constant speed G97,
+// turret calls T0101 (setting toolCall "turret"), canned cycles in any plane where the post
+// writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
+// end-face peck drilling G74 R(e) / G74 Z Q F.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "machines/iso/iso_reader.hpp"
+#include "machines/iso/iso_words.hpp"
+
+namespace camgen::reader {
+
+namespace {
+
+class IsoLatheReader : public IsoReader {
+public:
+    IsoLatheReader(const Machine& machine, std::string source, const iso::LatheSettings& settings)
+        : IsoReader(machine, std::move(source), settings), lathe_(settings) {}
+
+protected:
+    bool variant_code(BlockCodes& codes, const Word& x, Code c) override;
+    void variant_words(const BlockCodes& codes, BlockWords& w) override;
+    bool variant_tool_call(const Word& t) override;
+    bool variant_cycle(const DrillingCycleSpec& spec, BlockWords& w) override;
+    void check_cycle_plane(const std::string& name) const override;
+
+private:
+    void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
+
+    const iso::LatheSettings& lathe_;
+    std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
+};
+
+bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
+    if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code)) {
+        // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
+        set_group(codes.spindle_mode, c);
+        return true;
+    }
+    return false;
+}
+
+void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {
+    if (!codes.spindle_mode || codes.spindle_mode->value != code(iso::spindle_limit_code)) return;
+    // G50 S: the highest speed the spindle may turn, not a speed.
+    const Word* s = w.take('S');
+    const std::string& g50 = codes.spindle_mode->word->text;
+    if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", g50, g50));
+    if (machine_.limits.max_rpm > 0 && rpm(*s) > machine_.limits.max_rpm)
+        fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s->text, machine_.name, machine_.limits.max_rpm));
+}
+
+bool IsoLatheReader::variant_tool_call(const Word& t) {
+    if (lathe_.tool_call != iso::LatheToolCall::turret) return false;
+    // A turret call T<tool><offset>: the tool with its own offset.
+    const int call = integer_of(t);
+    if (call < 100 || call % 100 != call / 100)
+        fail(fmt::format("{}: machine {} calls tool n with its offset n, T0101 to T9999", t.text, machine_.name));
+    change_tool(call / 100, commented_description(call / 100));
+    return true;
+}
+
+bool IsoLatheReader::variant_cycle(const DrillingCycleSpec& spec, BlockWords& w) {
+    if (spec.style != CannedStyle::fanuc_g74) return false;
+    face_peck(spec, w);
+    return true;
+}
+
+void IsoLatheReader::check_cycle_plane(const std::string& name) const {
+    // Fanuc T's face drilling cycles take no plane (drillingPlane false).
+    if (lathe_.drilling_plane) IsoReader::check_cycle_plane(name);
+}
+
+void IsoLatheReader::face_peck(const DrillingCycleSpec& spec, BlockWords& w) {
+    // Fanuc T G74 in two blocks: G74 R(e) sets the back-off; G74 Z Q F pecks from where the tool
+    // stands (the start point, X0 on a centre hole) by Q, backs off e, ... to Z, and returns to
+    // the start point. Q is in least input increments without a decimal point.
+    const std::string& name = spec.name;
+    for (char letter : {'Y', 'I', 'J', 'K', 'P'})
+        if (const Word* x = w.find(letter)) fail(fmt::format("{} in a {} block: camgen drills with it on the axis only", x->text, name));
+    if (const Word* r = w.take('R')) {
+        if (w.has('Z') || w.has('Q') || w.has('X')) fail(fmt::format("{}: R(e) stands in the first {} block alone", r->text, name));
+        face_back_off_ = length(*r);
+        if (!(*face_back_off_ > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
+        return;
+    }
+    const Word* zw = w.take('Z');
+    const Word* qw = w.take('Q');
+    if (w.has('X')) fail(fmt::format("X in the second {} block: camgen drills at the start point's X", name));
+    if (!zw || !qw) fail(fmt::format("the second {} block needs the bottom Z and the peck Q", name));
+    if (!face_back_off_) fail(fmt::format("{} Z Q without the first block {} R(e)", name, name));
+    if (qw->has_point) fail(fmt::format("{}: Q is in least input increments, without a decimal point", qw->text));
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (!feed_) fail(fmt::format("{} without a feed F", name));
+    const Vec3 here = position();
+    const double bottom = length(*zw);
+    const double increments = std::pow(10.0, length_format('Z').spec().decimals);
+    const double peck = length_value(qw->value / increments);
+    if (!(peck > 0)) fail(fmt::format("{}: the peck Q must be > 0", qw->text));
+    if (!(bottom < here.z)) fail(fmt::format("{} {}: the bottom is not below the start point", name, zw->text));
+    DrillCycle c;
+    c.kind = CycleKind::chip_break;
+    c.output = CycleOutput::canned;
+    c.retract_z = c.reference_z = c.safe_z = here.z;
+    c.bottom_z = bottom;
+    c.feed = *feed_;
+    c.spindle_rpm = rpm_;
+    c.values.set(DrillField::first_depth, peck);
+    c.values.set(DrillField::pecking_retract, *face_back_off_);
+    c.values.set(DrillField::plunging_feedrate, *feed_);
+    drill_cycle(c);
+    drill_point({here.x, here.y});
+    drill_end();
+}
+
+}  // namespace
+
+std::unique_ptr<NcReader> make_iso_lathe_reader(const Machine& machine, std::string source) {
+    return std::make_unique<IsoLatheReader>(machine, std::move(source), settings_of<iso::LatheSettings>(machine));
+}
+
+}  // namespace camgen::reader
