@@ -239,7 +239,25 @@ def curves():
     save(doc, "curves", exp)
 
 
+def starter():
+    """For camgen new --from (tests/dxf/new_from.sh): everything on layer 0, so that the
+    starter job holds the outline, the pocket and its island itself; holes of 6 mm (also the
+    island's diameter: written as points) and of 4 mm."""
+    doc = new(4)
+    msp = doc.modelspace()
+    for a, b in (((0, 0), (100, 0)), ((100, 0), (100, 60)), ((100, 60), (0, 60)), ((0, 60), (0, 0))):
+        msp.add_line(a, b)
+    msp.add_lwpolyline([(30, 15, 0), (70, 15, 0), (70, 45, 0), (30, 45, 0)], format="xyb", close=True)
+    msp.add_circle((50, 30), 3)
+    for x, y in ((10, 10), (90, 10), (90, 50), (10, 50)):
+        msp.add_circle((x, y), 3)
+    msp.add_circle((50, 52), 2)
+    msp.add_circle((50, 8), 2)
+    doc.saveas(HERE / "starter.dxf")
+
+
 if __name__ == "__main__":
+    starter()
     curves()
     entities()
     ocs()
