@@ -246,7 +246,7 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
         read_path_profile(f, in, op);
         return op;
     }
-    if (!f.has("start")) f.fail("", "a path needs start and path, or profile");
+    if (!f.has("start") && !f.has("path")) f.fail("", "a path needs start and path, or profile");
     op.start = in.point(f, "start");
 
     const std::string base = f.path_of("path");

@@ -93,6 +93,9 @@ void compare(const std::string& name, double tolerance = 0.01) {
 TEST_CASE("dxf: every entity type ezdxf writes reads as the geometry it was given") { compare("entities"); }
 TEST_CASE("dxf: the curves are fitted within a tighter tolerance when asked") { compare("entities", 0.0005); }
 TEST_CASE("dxf: extrusion (0, 0, -1) mirrors X and turns arcs clockwise") { compare("ocs"); }
+// Written by FreeCAD's own exporter (tests/dxf/make_freecad.py, freecadcmd): its lines, arcs and
+// circles, on a layer per object, at the positions FreeCAD was given.
+TEST_CASE("dxf: FreeCAD's DXF export reads as the geometry FreeCAD was given") { compare("freecad"); }
 TEST_CASE("dxf: nested, rotated, scaled, mirrored inserts and arrays") {
     compare("blocks");
     const dxf::Drawing d = dxf::read_file(drawing("blocks.dxf"));

@@ -206,6 +206,7 @@ TEST_CASE("shapes: wrong shapes are errors naming the JSON path") {
     CHECK(job_error(path_head + R"("start": [0, 0], "profile": {"circle": {"centre": [0, 0], "diameter": 40}}})")
               .find("/operations/0/profile: give start and path, or profile, not both") != std::string::npos);
     CHECK(job_error(path_head + R"("comment": "none"})").find("/operations/0: a path needs start and path, or profile") != std::string::npos);
+    CHECK(job_error(path_head + R"("path": [{"line": [1, 0]}]})").find("/operations/0/start: required key \"start\" is missing") != std::string::npos);
 }
 
 }  // namespace test_shapes
