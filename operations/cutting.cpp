@@ -12,6 +12,7 @@
 #include "camgen/common/error.hpp"
 #include "camgen/common/large_buffer.hpp"
 #include "camgen/operations/dxf_source.hpp"
+#include "camgen/operations/shapes.hpp"
 
 namespace camgen {
 
@@ -35,7 +36,7 @@ constexpr KeySpec tolerance_key_table[] = {
 constexpr KeySpec profile_key_table[] = {
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "where the profile starts [x, y]"},
     {.key = "path", .type = JsonType::array, .ref = "contourElement", .min_items = 1, .description = "the profile's lines and arcs in XY, each starting where the previous one ends"},
-    {.key = "profile", .type = JsonType::object, .ref = "dxfSource", .description = "or the profile from a DXF drawing: its lines, arcs and polylines on the selection, chained"},
+    {.key = "profile", .type = JsonType::object, .ref = "profileSource", .description = "or the profile from a DXF drawing (its lines, arcs and polylines on the selection, chained) or a shape (rectangle, circle, slot, polygon)"},
 };
 
 constexpr KeySpec depth_pass_key_table[] = {
@@ -459,6 +460,7 @@ Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::
                      std::vector<std::string>* notes) {
     if (f.has("profile") && start_key == "start") {
         if (f.has(start_key) || f.has(path_key)) f.fail("profile", fmt::format("give {} and {}, or profile, not both", start_key, path_key));
+        if (std::optional<Profile> shape = read_shape_profile(f, in, "profile")) return std::move(*shape);
         std::vector<std::string> own;
         const double tolerance = read_tolerance(f, in).value_or(0.01);
         DxfProfiles d = read_dxf_profiles(f, in, "profile", tolerance, notes ? *notes : own);
@@ -663,11 +665,8 @@ std::vector<KeySpec> cut_feed_keys() { return {std::begin(feed_key_table), std::
 std::vector<KeySpec> depth_pass_keys() { return {std::begin(depth_pass_key_table), std::end(depth_pass_key_table)}; }
 
 std::vector<ObjectSpec> cutting_objects() {
-    return {
-        {.name = "dxfSource", .description = "geometry from a DXF drawing, selected by layer, colour, linetype, block or diameter",
-         .keys = dxf_source_objects()[0].keys},
-        {.name = "dxfTransform", .description = "drawing to work coordinates: scale, mirror, rotate, translate, in that order",
-         .keys = dxf_source_objects()[1].keys},
+    std::vector<ObjectSpec> out = profile_source_objects();
+    std::vector<ObjectSpec> own{
         {.name = "contourElement", .description = "one element of a profile: exactly one of line or arc",
          .keys = {std::begin(contour_element_keys), std::end(contour_element_keys)},
          .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line or arc"}}},
@@ -681,6 +680,8 @@ std::vector<ObjectSpec> cutting_objects() {
          .keys = {std::begin(tab_keys), std::end(tab_keys)},
          .groups = {{.keys = {"count", "spacing", "at"}, .min = 1, .max = 1, .description = "exactly one of count, spacing or at"}}},
     };
+    for (ObjectSpec& o : own) out.push_back(std::move(o));
+    return out;
 }
 
 Ramp read_ramp(Fields& f, const JobInput& in, std::string_view key, double tool_radius) {

@@ -97,8 +97,8 @@ void read_holes(Fields& f, const JobInput& in, std::string_view op_type, std::ve
                 std::vector<HolePattern>& patterns) {
     const bool any = f.has("holes") || f.has("grid") || f.has("boltCircle") || f.has("line") || f.has("drawing");
     if (!any)
-        f.fail("", fmt::format("a {} operation needs holes: give at least one of holes, grid, boltCircle "
-                               "or line",
+        f.fail("", fmt::format("a {} operation needs holes: give at least one of holes, grid, boltCircle, "
+                               "line or drawing (a DXF drawing's circles and points)",
                                op_type));
 
     if (f.has("holes")) {

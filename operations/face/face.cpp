@@ -21,6 +21,7 @@ constexpr KeySpec face_area_keys[] = {
     {.key = "rectangle", .type = JsonType::object, .ref = "faceRectangle", .description = "the area: a rectangle by two opposite corners (default: the outline of the job's stock)"},
     {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "or a closed profile: where it starts [x, y]"},
     {.key = "path", .type = JsonType::array, .ref = "contourElement", .min_items = 1, .description = "and its lines and arcs, ending at its start"},
+    {.key = "profile", .type = JsonType::object, .ref = "profileSource", .description = "or a closed profile from a DXF drawing or a shape (rectangle, circle, slot, polygon)"},
 };
 
 constexpr KeySpec face_keys[] = {
@@ -98,7 +99,7 @@ std::vector<ObjectSpec> FaceOp::objects() {
     std::vector<ObjectSpec> out{
         {.name = "face", .description = "mill the stock top flat over a rectangle or a closed profile, in rows past its edges",
          .keys = keys,
-         .groups = {{.keys = {"rectangle", "start"}, .min = 0, .max = 1, .description = "at most one of rectangle or start and path (neither: the job's stock outline)"}}},
+         .groups = {{.keys = {"rectangle", "start", "profile"}, .min = 0, .max = 1, .description = "at most one of rectangle, start and path, or profile (none: the job's stock outline)"}}},
         {.name = "faceRectangle", .description = "a rectangle by two opposite corners", .keys = {std::begin(face_rectangle_keys), std::end(face_rectangle_keys)}},
     };
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
@@ -127,16 +128,17 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     if (tool.flute_length && total_depth > *tool.flute_length)
         f.fail("endDepth", fmt::format("the face is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(total_depth), tool.number, in.show(*tool.flute_length)));
-    if (f.has("rectangle") && f.has("start")) f.fail("", "a face needs exactly one of rectangle, or start and path");
-    if (!f.has("rectangle") && !f.has("start")) {
+    if (int{f.has("rectangle")} + int{f.has("start")} + int{f.has("profile")} > 1)
+        f.fail("", "a face needs at most one of rectangle, start and path, or profile");
+    if (!f.has("rectangle") && !f.has("start") && !f.has("profile")) {
         // The stock's outline, where the job gives a mill's stock.
         // A stock that failed to read is reported as such.
         if (!stock && in.root().is_object() && in.root().contains("stock"))
             throw FollowOnError(f.path(), "a face without an area faces the job's stock, which failed to read",
                                 in.source().lines.line_of(f.path()), in.source().name);
         if (!stock || !stock->for_mill())
-            f.fail("", stock ? "a face needs a rectangle, or start and path: the job's stock is a lathe's bar"
-                             : "a face needs a rectangle, or start and path, or a stock (box or profile) in the job to face");
+            f.fail("", stock ? "a face needs a rectangle, start and path, or a profile: the job's stock is a lathe's bar"
+                             : "a face needs a rectangle, start and path, a profile, or a stock (box or profile) in the job to face");
         if (f.has("path")) f.fail("path", "path goes with start");
         op.area = stock->outline;
     } else if (f.has("rectangle")) {
@@ -150,14 +152,15 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
         op.area.start = lo;
         for (Vec2 p : {Vec2{hi.x, lo.y}, hi, Vec2{lo.x, hi.y}, lo}) op.area.segments.push_back({p, std::nullopt, ArcDirection::ccw});
     } else {
-        op.area = read_profile(f, in, "a face's area");
+        op.area = read_profile(f, in, "a face's area", "start", "path", &op.notes);
+        const std::string_view area_key = f.has("profile") ? "profile" : "path";
         if (!is_closed(op.area))
-            f.fail("path", fmt::format("the area must be closed, but it ends at ({}, {}), not at its start ({}, {})",
+            f.fail(area_key, fmt::format("the area must be closed, but it ends at ({}, {}), not at its start ({}, {})",
                                        in.show(op.area.segments.back().end.x), in.show(op.area.segments.back().end.y),
                                        in.show(op.area.start.x), in.show(op.area.start.y)));
         // What the region geometry cannot grow (an arc's end a hair off its circle at a sharp
         // corner, crossing back): said as it is, not as an empty area later.
-        if (const std::optional<RegionProblem> problem = region_problem(PlaneRegion{op.area, {}})) f.fail("path", problem->message);
+        if (const std::optional<RegionProblem> problem = region_problem(PlaneRegion{op.area, {}})) f.fail(area_key, problem->message);
     }
     op.overhang = in.optional_length(f, "overhang").value_or(2.0);
     if (!(op.overhang >= 0)) f.fail("overhang", "overhang must be >= 0");

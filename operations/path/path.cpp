@@ -10,6 +10,9 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/operations/cutting.hpp"
+#include "camgen/operations/dxf_source.hpp"
+#include "camgen/operations/shapes.hpp"
 
 namespace camgen {
 
@@ -35,10 +38,12 @@ constexpr KeySpec path_keys[] = {
     {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true},
      .description = "how far the lines of an arc the machine cannot write may stray from it (default: the machine's "
                     "chordTolerance, which also caps it)"},
-    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length,
      .description = "where the path starts [x, y], at z"},
-    {.key = "path", .type = JsonType::array, .required = true, .ref = "pathElement", .min_items = 1,
+    {.key = "path", .type = JsonType::array, .ref = "pathElement", .min_items = 1,
      .description = "the path elements, each starting where the previous one ends"},
+    {.key = "profile", .type = JsonType::object, .ref = "profileSource",
+     .description = "or the path in XY at z: one profile of a DXF drawing (open or closed) or a shape (rectangle, circle, slot, polygon)"},
 };
 
 // The keys of a path element: exactly one of them.
@@ -162,12 +167,46 @@ PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
     return helix;
 }
 
+// The path from "profile": a shape, or the one profile (open or closed) of a drawing's
+// selection, in XY at the path's z. A path is the tool centre's: it may cross itself.
+void read_path_profile(Fields& f, const JobInput& in, PathOp& op) {
+    Profile p;
+    std::string what = "the profile";
+    if (std::optional<Profile> shape = read_shape_profile(f, in, "profile")) {
+        p = std::move(*shape);
+    } else {
+        DxfProfiles d = read_dxf_profiles(f, in, "profile", op.tolerance.value_or(0.01), op.notes);
+        if (d.profiles.size() != 1) {
+            std::string list;
+            for (std::size_t i = 0; i < d.profiles.size() && i < 8; ++i)
+                list += fmt::format("{}{} {}", i ? "; " : "", d.closed[i] ? "a closed profile from" : "an open profile from", d.describe[i]);
+            if (d.profiles.size() > 8) list += fmt::format("; and {} more", d.profiles.size() - 8);
+            f.fail("profile", fmt::format("a path takes one profile, but the selection holds {}: {}; select one by layer, colour, "
+                                          "linetype or block (or raise gapTolerance to join pieces), or give one path operation "
+                                          "for each",
+                                          d.profiles.size(), list));
+        }
+        p = std::move(d.profiles.front());
+        what = "the profile from " + d.describe.front();
+    }
+    if (auto k = first_short_segment(p, min_profile_segment))
+        f.fail("profile", fmt::format("segment {} of {} is shorter than {} mm", *k, what, min_profile_segment));
+    op.start = p.start;
+    op.elements.reserve(p.segments.size());
+    for (const ProfileSegment& s : p.segments) {
+        const Vec3 end{s.end.x, s.end.y, op.z};
+        if (s.centre) op.elements.emplace_back(PathArc{end, {s.centre->x, s.centre->y, op.z}, s.direction, Plane::xy});
+        else op.elements.emplace_back(PathLine{end});
+    }
+}
+
 }  // namespace
 
 std::vector<ObjectSpec> PathOp::objects() {
-    return {
+    std::vector<ObjectSpec> out{
         {.name = "path", .description = "feed the tool centre along a path of lines, arcs in any plane and helices, at absolute Z",
-         .keys = {std::begin(path_keys), std::end(path_keys)}},
+         .keys = {std::begin(path_keys), std::end(path_keys)},
+         .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}},
         {.name = "pathElement", .description = "one element of a path: exactly one of line, arc or helix",
          .keys = {std::begin(path_element_keys), std::end(path_element_keys)},
          .groups = {{.keys = {"line", "arc", "helix"}, .min = 1, .max = 1,
@@ -179,6 +218,8 @@ std::vector<ObjectSpec> PathOp::objects() {
          .groups = {{.keys = {"z", "turns", "pitch"}, .min = 2, .max = 2,
                      .description = "exactly two of z, turns and pitch"}}},
     };
+    for (ObjectSpec& o : profile_source_objects()) out.push_back(std::move(o));
+    return out;
 }
 
 PathOp PathOp::read(Fields& f, const JobInput& in) {
@@ -200,6 +241,12 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
     op.tolerance = in.optional_length(f, "tolerance");
     // Finer than any control resolves; a smaller value only multiplies the segments of broken arcs.
     if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
+    if (f.has("profile")) {
+        if (f.has("start") || f.has("path")) f.fail("profile", "give start and path, or profile, not both");
+        read_path_profile(f, in, op);
+        return op;
+    }
+    if (!f.has("start") && !f.has("path")) f.fail("", "a path needs start and path, or profile");
     op.start = in.point(f, "start");
 
     const std::string base = f.path_of("path");

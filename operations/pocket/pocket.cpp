@@ -1,5 +1,6 @@
 #include "camgen/operations/pocket/pocket.hpp"
 #include "camgen/operations/dxf_source.hpp"
+#include "camgen/operations/shapes.hpp"
 #include "camgen/geometry/clearance.hpp"
 #include "camgen/geometry/vec.hpp"
 
@@ -804,8 +805,9 @@ void read_drawn_region(Fields& f, const JobInput& in, PocketOp& op) {
 }
 
 constexpr KeySpec island_keys[] = {
-    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true, .description = "where the island's profile starts [x, y]"},
-    {.key = "path", .type = JsonType::array, .required = true, .ref = "contourElement", .min_items = 1, .description = "the island's lines and arcs, ending at its start"},
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .description = "where the island's profile starts [x, y]"},
+    {.key = "path", .type = JsonType::array, .ref = "contourElement", .min_items = 1, .description = "the island's lines and arcs, ending at its start"},
+    {.key = "profile", .type = JsonType::object, .ref = "profileSource", .description = "or the island as a shape (rectangle, circle, slot, polygon) or from a DXF drawing (one closed profile)"},
 };
 
 }  // namespace
@@ -823,7 +825,8 @@ std::vector<ObjectSpec> PocketOp::objects() {
     std::vector<ObjectSpec> out{
         {.name = "pocket", .description = "clear the material inside a closed outline and around islands, in depth passes", .keys = keys,
          .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}},
-        {.name = "pocketIsland", .description = "an island: a closed profile of lines and arcs", .keys = {std::begin(island_keys), std::end(island_keys)}},
+        {.name = "pocketIsland", .description = "an island: a closed profile of lines and arcs, a shape or from a drawing", .keys = {std::begin(island_keys), std::end(island_keys)},
+         .groups = {{.keys = {"start", "profile"}, .min = 1, .max = 1, .description = "start and path, or profile"}}},
     };
     for (ObjectSpec& o : cutting_objects()) out.push_back(std::move(o));
     return out;
@@ -847,7 +850,7 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
     if (tool.flute_length && total_depth > *tool.flute_length)
         f.fail("endDepth", fmt::format("the pocket is {} deep below the reference plane, but tool {} has a fluteLength of {}",
                                        in.show(total_depth), tool.number, in.show(*tool.flute_length)));
-    if (f.has("profile")) {
+    if (f.has("profile") && !names_a_shape(*f.member("profile"))) {
         if (f.has("start") || f.has("path")) f.fail("profile", "give start and path, or profile, not both");
         if (f.has("islands")) f.fail("islands", "the islands of a pocket from a drawing are the closed profiles inside its outline");
         read_drawn_region(f, in, op);

@@ -31,6 +31,8 @@
 #include "camgen/analysis/trace.hpp"
 #include "camgen/operations/registry.hpp"
 #include "camgen/cli/output.hpp"
+#include "camgen/cli/dxf_commands.hpp"
+#include "camgen/dxf/dxf.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/post/capabilities.hpp"
 #include "camgen/reader/reader.hpp"
@@ -889,6 +891,75 @@ void read_back(std::string_view program, const Job& job, const Options& o, const
 
 }  // namespace
 
+// camgen dxf-info F.dxf: what the drawing holds.
+int run_dxf_info(const std::string& file, std::ostream& out) {
+    const dxf::Drawing d = dxf::read_file(file);
+    out << dxf_info_text(d);
+    finish_stream(out, "standard output");
+    return exit_ok;
+}
+
+// camgen new --from F.dxf [--machine M] [-o job.json]: a starter job that posts as written
+// (on M when given: posted into a buffer first); the end mill the largest of 6, 5, 4, 3, 2
+// and 1 mm with which the job reads (its pockets planned) and posts.
+int run_new(const std::string& from, const std::string& machine_name, const std::string& output, std::ostream& out, std::ostream& err) {
+    namespace fs = std::filesystem;
+    if (output != "-") {
+        std::error_code ec;
+        if (fs::exists(output, ec) && fs::equivalent(output, from, ec)) throw UsageError("-o names the drawing: the job would replace it");
+    }
+    const dxf::Drawing d = dxf::read_file(from);
+    std::optional<Machine> machine;
+    if (!machine_name.empty()) machine = load_machine(machine_name);
+    std::string dxf_path = from;
+    std::string source = "new.json";
+    if (output != "-") {
+        source = output;
+        const fs::path dir = fs::absolute(fs::path(output)).parent_path();
+        dxf_path = fs::absolute(fs::path(from)).lexically_relative(dir).generic_string();
+    }
+    std::string last_error, text;
+    std::vector<std::string> notes;
+    double used = 0;
+    for (double mill : {6.0, 5.0, 4.0, 3.0, 2.0, 1.0}) {
+        notes.clear();
+        text = starter_job_text(d, dxf_path, mill, notes);
+        if (nlohmann::json::parse(text)["operations"].empty()) {
+            for (const std::string& n : notes) err << "camgen: note: " << n << '\n';
+            err << "camgen: " << from << " holds nothing a starter job machines: no circles and no closed profile\n";
+            return exit_invalid_input;
+        }
+        try {
+            const Job job = read_job(text, source, JobLimits{});
+            if (machine) {
+                Options o;
+                o.machine = machine_name;
+                std::ostringstream program, quiet;
+                write_program(job, o, &*machine, program, quiet, false);
+            }
+            used = mill;
+            break;
+        } catch (const InputError& e) {
+            last_error = e.what();
+        }
+    }
+    if (used == 0) {
+        err << "camgen: the starter job from " << from << " does not " << (machine ? "post: " : "read: ") << last_error << '\n';
+        return exit_invalid_input;
+    }
+    if (used < 6.0) notes.push_back(fmt::format("the end mill is {} mm: a larger one does not fit the pockets", number_text(used, 1)));
+    for (const std::string& n : notes) err << "camgen: note: " << n << '\n';
+    if (output == "-") {
+        out << text;
+        finish_stream(out, "standard output");
+    } else {
+        OutputFile file(output);
+        file.stream() << text;
+        file.commit();
+    }
+    return exit_ok;
+}
+
 int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& out, std::ostream& err) {
     Options o;
     CLI::App app{"camgen: turns a JSON job into the NC program of a machine.\n"
@@ -977,6 +1048,21 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                              "(fields over 250,000 cells merged into blocks, their volume kept), a lathe's profile revolved "
                              "(128 segments)");
 
+    std::string info_file;
+    CLI::App* info_cmd = app.add_subcommand(
+        "dxf-info", "Print what a DXF drawing holds: its units, layers with their entity counts, closed and open "
+                    "profiles (chained per layer) with their extents, circles grouped by diameter");
+    info_cmd->add_option("drawing", info_file, "The drawing (ASCII DXF)")->required();
+
+    std::string new_from, new_machine, new_output = "-";
+    CLI::App* new_cmd = app.add_subcommand(
+        "new", "Write a starter job from a drawing: a drill operation per circle diameter, pockets for the closed "
+               "profiles inside the outermost one, a contour outside it; it posts as written (on --machine when given: "
+               "checked by posting it); edit its depths, tools and feeds");
+    new_cmd->add_option("--from", new_from, "The drawing (ASCII DXF)")->required();
+    new_cmd->add_option("-m,--machine", new_machine, "Check that the job posts on this machine");
+    new_cmd->add_option("-o,--output", new_output, "The job file to write (default -: standard output); the drawing is named relative to it");
+
     std::string schema_name;
     CLI::App* schema = app.add_subcommand(
         "schema", "Print the JSON Schema (draft 2020-12) of job files (schema job) or machine files (schema machine), "
@@ -998,6 +1084,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
         }
         if (verify->parsed()) return run_verify(vo, in, out);
         if (simulate_cmd->parsed()) return run_simulate(so, in, out);
+        if (info_cmd->parsed()) return run_dxf_info(info_file, out);
+        if (new_cmd->parsed()) return run_new(new_from, new_machine, new_output, out, err);
         if (schema->parsed()) {
             const std::optional<std::string> text = schema_text(schema_name);
             if (!text) {
@@ -1113,6 +1201,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             for (std::size_t end; (end = text.find('\n')) != std::string_view::npos; text.remove_prefix(end + 1))
                 err << "camgen: " << text.substr(0, end) << '\n';
         err << "camgen: " << text << '\n';
+        return exit_invalid_input;
+    } catch (const dxf::Error& e) {
+        err << "camgen: " << e.what() << '\n';
         return exit_invalid_input;
     } catch (const UsageError& e) {
         err << "camgen: " << e.what() << '\n';

@@ -215,7 +215,50 @@ def bad():
     (HERE / "bad-truncated.dxf").write_text(text[: text.index("ENTITIES") + 400])
 
 
+def curves():
+    """Ellipses and splines for the fit's deviation (tests/unit/test_dxf.cpp): each curve's
+    definition as ezdxf wrote it (ellipse: centre, major axis, ratio, parameters; spline:
+    degree, knots, control points, weights) and 21 points ezdxf puts on it, against which the
+    test's own evaluation of the curve is checked first."""
+    doc = new(4)
+    msp = doc.modelspace()
+    exp = {"units": 4, "curves": []}
+    for centre, major, ratio, t0, t1 in (((0, 0), (20, 10), 0.4, 0.3, 4.0), ((60, 0), (15, 0), 0.6, 0, 2 * math.pi)):
+        el = msp.add_ellipse(centre, major_axis=major, ratio=ratio, start_param=t0, end_param=t1)
+        params = [t0 + (t1 - t0) * i / 20 for i in range(21)]
+        exp["curves"].append({"ellipse": {"centre": list(centre), "major": list(major), "ratio": ratio, "t0": t0, "t1": t1},
+                              "points": [[p.x, p.y] for p in el.construction_tool().vertices(params)]})
+    for ctrl, weights, degree in (([(0, 40), (10, 60), (20, 20), (30, 70), (40, 40), (50, 45)], None, 3),
+                                  ([(60, 40), (70, 60), (80, 40), (90, 60)], [1, 3, 0.5, 1], 2)):
+        sp = (msp.add_open_spline(ctrl, degree=degree) if weights is None
+              else msp.add_rational_spline(ctrl, weights, degree=degree))
+        tool = sp.construction_tool()
+        exp["curves"].append({"spline": {"degree": degree, "knots": list(sp.knots), "control": [list(c)[:2] for c in ctrl],
+                                         "weights": list(weights or [1] * len(ctrl))},
+                              "points": [[p.x, p.y] for p in tool.points([tool.max_t * i / 20 for i in range(21)])]})
+    save(doc, "curves", exp)
+
+
+def starter():
+    """For camgen new --from (tests/dxf/new_from.sh): everything on layer 0, so that the
+    starter job holds the outline, the pocket and its island itself; holes of 6 mm (also the
+    island's diameter: written as points) and of 4 mm."""
+    doc = new(4)
+    msp = doc.modelspace()
+    for a, b in (((0, 0), (100, 0)), ((100, 0), (100, 60)), ((100, 60), (0, 60)), ((0, 60), (0, 0))):
+        msp.add_line(a, b)
+    msp.add_lwpolyline([(30, 15, 0), (70, 15, 0), (70, 45, 0), (30, 45, 0)], format="xyb", close=True)
+    msp.add_circle((50, 30), 3)
+    for x, y in ((10, 10), (90, 10), (90, 50), (10, 50)):
+        msp.add_circle((x, y), 3)
+    msp.add_circle((50, 52), 2)
+    msp.add_circle((50, 8), 2)
+    doc.saveas(HERE / "starter.dxf")
+
+
 if __name__ == "__main__":
+    starter()
+    curves()
     entities()
     ocs()
     blocks()

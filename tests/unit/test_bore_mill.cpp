@@ -340,7 +340,7 @@ TEST_CASE("bore-mill: bad input names the JSON path, exits 1 and writes nothing"
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 1, "rampFeed": 0, "holes": [[0, 0]])"), "/operations/0/rampFeed",
          {"rampFeed must be > 0"}},
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 1)"), "/operations/0",
-         {"a bore-mill operation needs holes: give at least one of holes, grid, boltCircle or line"}},
+         {"a bore-mill operation needs holes: give at least one of holes, grid, boltCircle, line or drawing (a DXF drawing's circles and points)"}},
         {bore_job(12, 6, R"("endDepth": 3, "pitch": 1, "holes": [])"), "/operations/0/holes",
          {"a bore-mill operation needs at least one hole"}},
     };
@@ -380,7 +380,7 @@ TEST_CASE("hole sources: drill and bore-mill read them alike, each naming its ow
     const std::string drill = R"({"type": "drill", "tool": 1, "endDepth": 3, "plungingFeedrate": 100, )";
     const std::string bore = R"({"type": "bore-mill", "tool": 1, "endDepth": 3, "diameter": 10, "pitch": 1, "feed": 100, )";
     CHECK(error_of(header + drill + R"("comment": ""}]})").find(
-              "/operations/0: a drill operation needs holes: give at least one of holes, grid, boltCircle or line") !=
+              "/operations/0: a drill operation needs holes: give at least one of holes, grid, boltCircle, line or drawing (a DXF drawing's circles and points)") !=
           std::string::npos);
     CHECK(error_of(header + drill + R"("holes": []}]})").find(
               "/operations/0/holes: holes is empty: a drill operation needs at least one hole") != std::string::npos);

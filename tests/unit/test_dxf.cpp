@@ -4,12 +4,15 @@
 // arcs. Then selection, chaining, nesting and the errors of bad drawings.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "camgen/dxf/dxf.hpp"
+#include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace test_dxf {
@@ -90,6 +93,9 @@ void compare(const std::string& name, double tolerance = 0.01) {
 TEST_CASE("dxf: every entity type ezdxf writes reads as the geometry it was given") { compare("entities"); }
 TEST_CASE("dxf: the curves are fitted within a tighter tolerance when asked") { compare("entities", 0.0005); }
 TEST_CASE("dxf: extrusion (0, 0, -1) mirrors X and turns arcs clockwise") { compare("ocs"); }
+// Written by FreeCAD's own exporter (tests/dxf/make_freecad.py, freecadcmd): its lines, arcs and
+// circles, on a layer per object, at the positions FreeCAD was given.
+TEST_CASE("dxf: FreeCAD's DXF export reads as the geometry FreeCAD was given") { compare("freecad"); }
 TEST_CASE("dxf: nested, rotated, scaled, mirrored inserts and arrays") {
     compare("blocks");
     const dxf::Drawing d = dxf::read_file(drawing("blocks.dxf"));
@@ -203,6 +209,136 @@ TEST_CASE("dxf: chaining joins pieces into closed profiles, nests them, and note
     CHECK(tr.chains.size() == 1);
     REQUIRE(tr.notes.size() == 1);
     CHECK(tr.notes[0] == "t.dxf: LINE handle A2 (line 17, layer 0) is drawn twice (also LINE handle A1 (line 5, layer 0)): left out");
+}
+
+// ---- The fit of ellipses and splines by arcs and lines, against the exact curves.
+
+// The curve of tests/dxf/curves.expected.json at parameter t: an ellipse in closed form, a
+// (rational) spline by the Cox-de Boor recursion (not camgen's de Boor).
+struct ExactCurve {
+    json def;
+    double t0 = 0, t1 = 1;
+    explicit ExactCurve(const json& c) : def(c) {
+        if (def.contains("ellipse")) {
+            t0 = def["ellipse"]["t0"].get<double>();
+            t1 = def["ellipse"]["t1"].get<double>();
+        } else {
+            const auto& k = def["spline"]["knots"];
+            const int p = def["spline"]["degree"].get<int>();
+            t0 = k[p].get<double>();
+            t1 = k[k.size() - 1 - p].get<double>();
+        }
+    }
+    static double basis(const std::vector<double>& k, int i, int p, double t) {
+        if (p == 0) return (k[i] <= t && t < k[i + 1]) ? 1.0 : 0.0;
+        double v = 0;
+        if (k[i + p] > k[i]) v += (t - k[i]) / (k[i + p] - k[i]) * basis(k, i, p - 1, t);
+        if (k[i + p + 1] > k[i + 1]) v += (k[i + p + 1] - t) / (k[i + p + 1] - k[i + 1]) * basis(k, i + 1, p - 1, t);
+        return v;
+    }
+    Vec2 at(double t) const {
+        if (def.contains("ellipse")) {
+            const json& e = def["ellipse"];
+            const Vec2 c{e["centre"][0].get<double>(), e["centre"][1].get<double>()};
+            const Vec2 major{e["major"][0].get<double>(), e["major"][1].get<double>()};
+            const Vec2 minor = Vec2{-major.y, major.x} * e["ratio"].get<double>();
+            return c + major * std::cos(t) + minor * std::sin(t);
+        }
+        const json& sp = def["spline"];
+        const std::vector<double> k = sp["knots"].get<std::vector<double>>();
+        const int p = sp["degree"].get<int>();
+        const std::size_t n = sp["control"].size();
+        if (t >= t1) return {sp["control"][n - 1][0].get<double>(), sp["control"][n - 1][1].get<double>()};
+        Vec2 sum;
+        double wsum = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double b = basis(k, static_cast<int>(i), p, t) * sp["weights"][i].get<double>();
+            sum = sum + Vec2{sp["control"][i][0].get<double>(), sp["control"][i][1].get<double>()} * b;
+            wsum += b;
+        }
+        return sum * (1.0 / wsum);
+    }
+};
+
+// The exact distance of q from the segment k of p (a line or an arc).
+double off_segment(const Profile& p, std::size_t k, Vec2 q) {
+    const Vec2 a = segment_start(p, k), b = p.segments[k].end;
+    if (!p.segments[k].centre) {
+        const Vec2 ab = b - a;
+        const double t = std::clamp(dot(q - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        return distance(q, a + ab * t);
+    }
+    const Vec2 c = *p.segments[k].centre;
+    const bool ccw = p.segments[k].direction == ArcDirection::ccw;
+    const double sa = std::atan2(a.y - c.y, a.x - c.x);
+    auto turn = [&](Vec2 v) {
+        double u = std::atan2(v.y - c.y, v.x - c.x) - sa;
+        if (ccw && u < 0) u += two_pi;
+        if (!ccw && u > 0) u -= two_pi;
+        return std::abs(u);
+    };
+    if (turn(q) <= turn(b)) return std::abs(distance(q, c) - distance(a, c));
+    return std::min(distance(q, a), distance(q, b));
+}
+
+// The largest distance of the fit from the curve, measured both ways: the curve's points (20,000
+// even steps of its parameter) from the fit, and the fit's points (64 on each segment) from the
+// curve (the nearest of its 20,000 points, refined by a ternary search of the parameter).
+double fit_deviation(const Profile& fit, const ExactCurve& curve) {
+    constexpr int n = 20000;
+    std::vector<Vec2> dense(n + 1);
+    for (int i = 0; i <= n; ++i) dense[i] = curve.at(curve.t0 + (curve.t1 - curve.t0) * i / n);
+    double worst = 0;
+    for (const Vec2& q : dense) {
+        double best = 1e300;
+        for (std::size_t k = 0; k < fit.segments.size(); ++k) best = std::min(best, off_segment(fit, k, q));
+        worst = std::max(worst, best);
+    }
+    for (std::size_t k = 0; k < fit.segments.size(); ++k) {
+        Profile one;
+        one.start = segment_start(fit, k);
+        one.segments.push_back(fit.segments[k]);
+        const double length = profile_length(one);
+        for (int j = 0; j <= 64; ++j) {
+            const Vec2 q = point_at(one, length * j / 64).point;
+            int nearest = 0;
+            for (int i = 1; i <= n; ++i)
+                if (distance(dense[i], q) < distance(dense[nearest], q)) nearest = i;
+            const double step = (curve.t1 - curve.t0) / n;
+            double lo = curve.t0 + step * std::max(nearest - 1, 0), hi = curve.t0 + step * std::min(nearest + 1, n);
+            for (int it = 0; it < 60; ++it) {
+                const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+                if (distance(curve.at(m1), q) < distance(curve.at(m2), q)) hi = m2;
+                else lo = m1;
+            }
+            worst = std::max(worst, std::min(distance(curve.at((lo + hi) / 2), q), distance(dense[nearest], q)));
+        }
+    }
+    return worst;
+}
+
+TEST_CASE("dxf: ellipses and splines are fitted by arcs and lines within the tolerance of the exact curve") {
+    const json want = expected("curves");
+    for (double tolerance : {0.01, 0.001}) {
+        dxf::ReadOptions o;
+        o.curve_tolerance = tolerance;
+        const dxf::Drawing d = dxf::read_file(drawing("curves.dxf"), o);
+        REQUIRE(d.pieces.size() == want["curves"].size());
+        for (std::size_t i = 0; i < d.pieces.size(); ++i) {
+            const ExactCurve curve(want["curves"][i]);
+            // The test's own curve is ezdxf's.
+            for (std::size_t j = 0; j <= 20; ++j)
+                near(curve.at(curve.t0 + (curve.t1 - curve.t0) * double(j) / 20), want["curves"][i]["points"][j], "the exact curve");
+            const Profile& fit = d.pieces[i].path;
+            std::size_t arcs = 0;
+            for (const ProfileSegment& s : fit.segments) arcs += s.centre ? 1 : 0;
+            const double deviation = fit_deviation(fit, curve);
+            INFO("curve " << i << " at tolerance " << tolerance << ": " << fit.segments.size() << " segments, " << arcs
+                          << " arcs, largest deviation " << deviation);
+            CHECK(arcs > 0);
+            CHECK(deviation <= tolerance + 1e-9);
+        }
+    }
 }
 
 }  // namespace test_dxf

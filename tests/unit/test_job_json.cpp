@@ -671,7 +671,7 @@ TEST_CASE("hole source errors, at nested levels") {
     const std::string head = R"(      "tool": 1, "endDepth": 5, "plungingFeedrate": 100,
 )";
     check_error(drill_job(R"(      "tool": 1, "endDepth": 5, "plungingFeedrate": 100)"),
-                "/operations/0", 8, "needs holes: give at least one of holes, grid, boltCircle or line");
+                "/operations/0", 8, "needs holes: give at least one of holes, grid, boltCircle, line or drawing (a DXF drawing's circles and points)");
     check_error(drill_job(head + R"(      "holes": [])"), "/operations/0/holes", 11, "at least one hole");
     check_error(drill_job(head + R"(      "holes": [[0, 0],
                 [1, "a"]])"),

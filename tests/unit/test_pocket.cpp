@@ -463,7 +463,7 @@ TEST_CASE("face: bad input names its key") {
     CHECK(error_of(job).find("/operations/0/finishingStock") != std::string::npos);
     op.erase("finishingStock");
     op["start"] = Json::array({0, 0});
-    CHECK(error_of(job).find("exactly one of rectangle") != std::string::npos);
+    CHECK(error_of(job).find("at most one of rectangle, start and path, or profile") != std::string::npos);
 }
 
 }  // namespace test_pocket

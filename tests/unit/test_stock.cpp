@@ -246,9 +246,9 @@ TEST_CASE("stock: a face starts at the stock top, and without an area faces the 
     CHECK(reach == doctest::Approx(25).epsilon(1e-3));
     // Without an area and without a stock, or with a bar, there is nothing to face.
     CHECK(stock_error(stock_job("", "[" + face + "]")) ==
-          "test.json:5: /operations/0: a face needs a rectangle, or start and path, or a stock (box or profile) in the job to face");
+          "test.json:5: /operations/0: a face needs a rectangle, start and path, a profile, or a stock (box or profile) in the job to face");
     CHECK(stock_error(stock_job(R"({"bar": {"diameter": 40, "length": 100}})", "[" + face + "]")).find(
-              "/operations/0: a face needs a rectangle, or start and path: the job's stock is a lathe's bar") != std::string::npos);
+              "/operations/0: a face needs a rectangle, start and path, or a profile: the job's stock is a lathe's bar") != std::string::npos);
 }
 
 TEST_CASE("stock: a cut below the stock bottom is a warning naming the operation, its lowest Z and the bottom") {

@@ -1,8 +1,8 @@
 #pragma once
 // Reading 2D geometry from an ASCII DXF drawing (R12 to R2018), camgen's own strict reader
 // after the group codes of the published DXF reference: LINE, ARC, CIRCLE, LWPOLYLINE and
-// POLYLINE (with bulges), POINT, ELLIPSE and SPLINE (fitted by lines within a tolerance; an
-// ellipse that is a circle stays arcs), INSERT of blocks (nested, scaled, rotated, mirrored,
+// POLYLINE (with bulges), POINT, ELLIPSE and SPLINE (fitted by arcs and lines within a tolerance;
+// an ellipse that is a circle stays arcs), INSERT of blocks (nested, scaled, rotated, mirrored,
 // arrays), entities in an OCS whose extrusion is +Z or -Z (-Z mirrors X: common from CAD
 // exports). Model space only unless asked. Binary DXF and DWG are refused by name; every error
 // names the file, the line of the group code, and where there is one the entity's type,
@@ -67,7 +67,7 @@ struct Drawing {
 };
 
 struct ReadOptions {
-    double curve_tolerance = 0.01;   // chords of ellipses and splines from the curve, drawing units
+    double curve_tolerance = 0.01;   // the arcs and lines of ellipses and splines from the curve, drawing units
     bool paper_space = false;        // also entities of paper space
 };
 

@@ -61,6 +61,7 @@ struct PathOp {
     double feed = 0.0;                   // mm/min
     std::optional<double> plunge_feed;   // mm/min; absent: feed
     std::optional<double> tolerance;     // mm, for arcs that become lines (capped by the machine's)
+    std::vector<std::string> notes;      // what camgen decided that the job did not ask for (a drawing's gaps closed, ...)
 };
 
 // Rapid above the start at the clearance, feed down to depth, cut the path, rapid up.
