@@ -39,7 +39,7 @@
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/simulation/design_check.hpp"
-#include "operation_lines.hpp"
+#include "camgen/cli/operation_lines.hpp"
 #include "camgen/simulation/simulation.hpp"
 #include "camgen/simulation/pictures.hpp"
 #include "camgen/operations/design.hpp"

@@ -1,5 +1,5 @@
 // Which operation each program line belongs to (operation_lines.hpp).
-#include "operation_lines.hpp"
+#include "camgen/cli/operation_lines.hpp"
 
 #include <algorithm>
 #include <functional>

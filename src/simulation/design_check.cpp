@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -18,10 +19,81 @@ namespace camgen {
 
 namespace {
 
+// A loop that is a circle (arcs about one centre, one radius): its centre and radius. Holes'
+// discs and rings are, and are answered without the region functions (a hundred thousand holes).
+struct DesignCircle {
+    Vec2 centre;
+    double radius = 0.0;
+};
+std::optional<DesignCircle> design_circle(const Profile& loop) {
+    if (loop.segments.empty() || !is_closed(loop)) return std::nullopt;
+    const auto& first = loop.segments.front().centre;
+    if (!first) return std::nullopt;
+    const double r = distance(loop.start, *first);
+    for (const ProfileSegment& seg : loop.segments)
+        if (!seg.centre || distance(*seg.centre, *first) > 1e-9 || std::abs(distance(seg.end, *first) - r) > 1e-9)
+            return std::nullopt;
+    return DesignCircle{*first, r};
+}
+// A region of circles: its outline and islands.
+struct DesignCircles {
+    DesignCircle outer;
+    std::vector<DesignCircle> islands;
+};
+std::optional<DesignCircles> design_circles(const PlaneRegion& region) {
+    const auto outer = design_circle(region.outer);
+    if (!outer) return std::nullopt;
+    DesignCircles c{*outer, {}};
+    for (const Profile& i : region.islands) {
+        const auto island = design_circle(i);
+        if (!island) return std::nullopt;
+        c.islands.push_back(*island);
+    }
+    return c;
+}
+
 // Calls f(i, j, centre) for every cell whose centre lies in the region grown (d > 0) or shrunk
 // (d < 0) by |d|.
 template <class F>
 void design_cells(const PlaneRegion& region, double d, const HeightGridView& g, F f) {
+    if (const auto c = design_circles(region)) {
+        // The disc of radius r + d less the discs of the islands' radii less d.
+        const double r = c->outer.radius + d;
+        if (!(r > 0)) return;
+        const Vec2 o = c->outer.centre;
+        const double j0 = std::max(0.0, std::ceil((o.y - r - g.y0) / g.cell - 0.5));
+        const double j1 = std::min(static_cast<double>(g.ny) - 1.0, std::floor((o.y + r - g.y0) / g.cell - 0.5));
+        std::vector<std::pair<double, double>> spans;
+        for (double jd = j0; jd <= j1; ++jd) {
+            const double y = g.y0 + (jd + 0.5) * g.cell, dy = y - o.y;
+            if (dy * dy > r * r) continue;
+            const double hw = std::sqrt(r * r - dy * dy);
+            spans.assign(1, {o.x - hw, o.x + hw});
+            for (const DesignCircle& island : c->islands) {
+                const double ri = island.radius - d, di = y - island.centre.y;
+                if (!(ri > 0) || di * di >= ri * ri) continue;
+                const double iw = std::sqrt(ri * ri - di * di), a = island.centre.x - iw, b = island.centre.x + iw;
+                std::vector<std::pair<double, double>> next;
+                for (const auto& [xa, xb] : spans) {
+                    if (b <= xa || a >= xb) {
+                        next.emplace_back(xa, xb);
+                        continue;
+                    }
+                    if (a > xa) next.emplace_back(xa, a);
+                    if (b < xb) next.emplace_back(b, xb);
+                }
+                spans = std::move(next);
+            }
+            const std::size_t j = static_cast<std::size_t>(jd);
+            for (const auto& [xa, xb] : spans) {
+                // Strictly inside: a centre on an island's edge is not the region's.
+                const double i0 = std::max(0.0, std::ceil((xa - g.x0) / g.cell - 0.5));
+                const double i1 = std::min(static_cast<double>(g.nx) - 1.0, std::floor((xb - g.x0) / g.cell - 0.5));
+                for (double id = i0; id <= i1; ++id) f(static_cast<std::size_t>(id), j, Vec2{g.x0 + (id + 0.5) * g.cell, y});
+            }
+        }
+        return;
+    }
     std::vector<PlaneRegion> parts;
     if (d > 0.0) parts = grow_region(region, d).regions;
     else if (d < 0.0) parts = offset_region(region, -d).regions;
@@ -76,7 +148,8 @@ void design_loop_points(const Profile& loop, double spacing, F f) {
 // grid of its pieces where it has many).
 class DesignCutShape {
 public:
-    DesignCutShape(const PlaneRegion& region, double reach) : region_(region) {
+    DesignCutShape(const PlaneRegion& region, double reach) : region_(region), circles_(design_circles(region)) {
+        if (circles_) return;
         std::size_t n = region.outer.segments.size();
         for (const Profile& p : region.islands) n += p.segments.size();
         if (n <= 64) return;
@@ -85,6 +158,14 @@ public:
     }
     // The distance from the edge, negative inside.
     double signed_distance(Vec2 p) const {
+        if (circles_) {
+            // Outside the outline, or inside an island: the distance to it; inside the region
+            // the nearest of them.
+            auto dist = [&](Vec2 c) { return std::sqrt((p.x - c.x) * (p.x - c.x) + (p.y - c.y) * (p.y - c.y)); };
+            double d = dist(circles_->outer.centre) - circles_->outer.radius;
+            for (const DesignCircle& i : circles_->islands) d = std::max(d, i.radius - dist(i.centre));
+            return d;
+        }
         if (loops_.empty()) {
             const double d = region_boundary_distance(region_, p);
             return region_contains(region_, p) ? -d : d;
@@ -98,11 +179,14 @@ public:
 
 private:
     const PlaneRegion& region_;
+    std::optional<DesignCircles> circles_;
     std::vector<ProfileClearance> loops_;
 };
 
 // The extent of a region's outline: {x0, y0, x1, y1}.
 std::array<double, 4> design_extent(const PlaneRegion& region) {
+    if (const auto c = design_circle(region.outer))
+        return {c->centre.x - c->radius, c->centre.y - c->radius, c->centre.x + c->radius, c->centre.y + c->radius};
     std::array<double, 4> b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                             -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     for (Vec2 p : sample_profile(region.outer, 0.01)) {
@@ -126,8 +210,9 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
     out.spacing = std::max(g.cell, length / static_cast<double>(std::max<std::size_t>(budget, 1)));
     // The cuts by buckets of the field: each in those its extent grown by the margin meets.
     const double reach = margin + tolerance;
-    const double bucket = std::max(g.cell * 64, 4 * reach);
     const double fx1 = g.x0 + static_cast<double>(g.nx) * g.cell, fy1 = g.y0 + static_cast<double>(g.ny) * g.cell;
+    // Small enough that a probe asks few cuts, at most a million buckets.
+    const double bucket = std::max({g.cell * 8, 4 * reach, std::sqrt((fx1 - g.x0) * (fy1 - g.y0) / 1e6)});
     const std::size_t bx = static_cast<std::size_t>(std::ceil((fx1 - g.x0) / bucket)) + 1;
     const std::size_t by = static_cast<std::size_t>(std::ceil((fy1 - g.y0) / bucket)) + 1;
     auto bucket_of = [&](double v, double v0, std::size_t n) {
