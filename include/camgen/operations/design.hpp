@@ -15,6 +15,7 @@
 // designed elsewhere (the scrap outside an outside contour, what a path passes through).
 // Operations without a designed part (path, custom, stops, open contours, the lathe's) are named
 // in `unchecked`.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,11 @@ struct DesignFloor {
     double z = 0.0;
     std::optional<Vec2> apex;
     double slope = 0.0;  // mm of height per mm from the apex (1 / tan of half the tip angle)
-    double at(Vec2 p) const { return apex ? z + slope * distance(p, *apex) : z; }
+    double at(Vec2 p) const {
+        if (!apex) return z;
+        const double dx = p.x - apex->x, dy = p.y - apex->y;
+        return z + slope * std::sqrt(dx * dx + dy * dy);
+    }
 };
 
 // Material an operation removes.
