@@ -1,6 +1,7 @@
 // The interactive backplot page: the SVG drawing of backplot.cpp with its layers marked, the
 // per-block data of the read-back trace, and a small script that steps through it.
 #include "camgen/analysis/backplot_html.hpp"
+#include "camgen/common/markup.hpp"
 #include "camgen/geometry/vec.hpp"
 
 #include "camgen/common/error.hpp"
@@ -32,42 +33,6 @@ constexpr double data_unit = 0.0001;
 // A coordinate in data units, held within 100 km so that the differences stay exact integers
 // (in the script's doubles too) whatever a program says.
 long long data_units(double mm) { return std::llround(std::clamp(mm / data_unit, -1e12, 1e12)); }
-
-// Text for the page's markup: the five characters that could open or close markup or an
-// attribute are written as references.
-std::string html(std::string_view s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-// A JSON string that can stand inside a <script> element: ASCII only (bytes that are no UTF-8
-// become U+FFFD), and '<', '>', '&' as \u escapes, so that no "</script>" or "<!--" can
-// appear in it. Those three occur in JSON only inside strings, so replacing them is safe.
-std::string script_json(const nlohmann::json& value) {
-    const std::string text = value.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
-    std::string out;
-    out.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
-            case '<': out += "\\u003c"; break;
-            case '>': out += "\\u003e"; break;
-            case '&': out += "\\u0026"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
 
 // A count as people read it: 1,234,567.
 std::string grouped(std::size_t n) {
@@ -564,10 +529,10 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
     auto add = [&](std::string_view s) { out << s; };
     add("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
     add("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n");
-    add(fmt::format("<title>{} - camgen backplot</title>\n", html(title)));
+    add(fmt::format("<title>{} - camgen backplot</title>\n", html_text(title)));
     add(fmt::format("<style>{}</style>\n<style id=\"layer-style\"></style>\n</head>\n<body>\n", style));
-    add(fmt::format("<header><h1>{}</h1><p>{}backplot of the program as camgen reads it back, {}</p></header>\n", html(title),
-                    options.machine.empty() ? "" : html("machine " + options.machine + " - "),
+    add(fmt::format("<header><h1>{}</h1><p>{}backplot of the program as camgen reads it back, {}</p></header>\n", html_text(title),
+                    options.machine.empty() ? "" : html_text("machine " + options.machine + " - "),
                     lathe ? "XZ half-section" : "XY view"));
     add("<main>\n<div id=\"view\">\n");
     add(drawing.svg);
@@ -597,7 +562,7 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
     for (const ToolStats& t : stats.tools)
         add(fmt::format("<label><input type=\"checkbox\" checked data-class=\"t{0}\"><span class=\"swatch\" data-class=\"t{0}\"></span>"
                         "T{0} {1}</label>\n",
-                        t.tool, html(t.description)));
+                        t.tool, html_text(t.description)));
     std::array<std::size_t, std::size(backplot_layers)> counts = counts_;
     counts[static_cast<std::size_t>(BackplotLayer::width)] = counts[static_cast<std::size_t>(BackplotLayer::feed)];
     counts[static_cast<std::size_t>(BackplotLayer::hole)] = lathe ? 0 : plan_.holes;
@@ -605,7 +570,7 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
         const std::size_t n = counts[static_cast<std::size_t>(layer.value)];
         const bool moves = layer.value != BackplotLayer::width && layer.value != BackplotLayer::hole;
         add(fmt::format("<label{}><input type=\"checkbox\" {} data-class=\"k-{}\">{} <span class=\"note\">{}{}</span></label>\n",
-                        n ? "" : " class=\"off\"", n ? "checked" : "disabled", layer.name, layer.name, html(layer.description),
+                        n ? "" : " class=\"off\"", n ? "checked" : "disabled", layer.name, layer.name, html_text(layer.description),
                         n == 0 ? ": none in this program"
                                : moves ? fmt::format(", {} move{}", grouped(n), n == 1 ? "" : "s")
                                : layer.value == BackplotLayer::hole ? fmt::format(", {}", grouped(n))
@@ -621,7 +586,7 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
                         grouped(limits.holes), grouped(plan_.holes - limits.holes), grouped(plan_.holes)));
     add("</section>\n");
 
-    add(fmt::format("<section id=\"stats\"><h2>Statistics</h2>\n<pre>{}</pre></section>\n", html(format_stats(stats))));
+    add(fmt::format("<section id=\"stats\"><h2>Statistics</h2>\n<pre>{}</pre></section>\n", html_text(format_stats(stats))));
     add("</aside>\n</main>\n<pre id=\"steps\" hidden></pre>\n");
 
     // The data: every block's text, and where each block leaves the tool (written in pieces:

@@ -3,6 +3,7 @@
 // up to the slider's block, and a WebGL view of the height field. Nothing is loaded from the
 // network.
 #include "camgen/simulation/pictures.hpp"
+#include "camgen/common/markup.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -16,36 +17,6 @@
 namespace camgen {
 
 namespace {
-
-// Text for markup: the five characters that could open or close markup or an attribute.
-std::string sim_html(std::string_view s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-// JSON text that can stand inside a <script> element: ASCII only, '<', '>' and '&' escaped
-// (they occur in JSON only inside strings).
-std::string sim_script_json(const nlohmann::json& value) {
-    const std::string text = value.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
-    std::string out;
-    for (char c : text) {
-        if (c == '<') out += "\\u003c";
-        else if (c == '>') out += "\\u003e";
-        else if (c == '&') out += "\\u0026";
-        else out += c;
-    }
-    return out;
-}
 
 // Little-endian bytes as base64 (the page's typed arrays).
 std::string sim_base64(const std::vector<unsigned char>& bytes) {
@@ -417,8 +388,8 @@ void write_simulation_html(std::ostream& out, const SimResult& r, const SimHisto
     const std::string title = fmt::format("{} on {}", labels.program, labels.machine);
     out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-        << fmt::format("<title>camgen simulate: {}</title>\n<style>{}</style>\n</head>\n<body>\n", sim_html(title), sim_style)
-        << fmt::format("<header><h1>camgen simulate: {}</h1>\n", sim_html(title));
+        << fmt::format("<title>camgen simulate: {}</title>\n<style>{}</style>\n</head>\n<body>\n", html_text(title), sim_style)
+        << fmt::format("<header><h1>camgen simulate: {}</h1>\n", html_text(title));
     if (lathe)
         out << fmt::format("<p>Turned profile of {} samples of {} mm; the page shows {} bands of {} mm (each the smallest "
                            "outside and largest bore of its samples).</p>\n",
@@ -455,7 +426,7 @@ void write_simulation_html(std::ostream& out, const SimResult& r, const SimHisto
         << "<pre id=\"nc-before\"></pre><pre id=\"nc-current\"><span id=\"nc-no\"></span>  <span id=\"nc-text\"></span></pre>"
            "<pre id=\"nc-after\"></pre>\n<p class=\"note\">Cells cut so far: <span id=\"cut\"></span>.</p></section>\n</aside>\n"
            "</main>\n<pre id=\"steps\" hidden></pre>\n";
-    out << "<script type=\"application/json\" id=\"camgen-sim\">" << sim_script_json(d) << "</script>\n";
+    out << "<script type=\"application/json\" id=\"camgen-sim\">" << script_json(d) << "</script>\n";
     // The program's text, a line at a time, as one JSON string.
     out << "<script type=\"application/json\" id=\"camgen-nc\">\"";
     std::istream& in = text();
@@ -463,7 +434,7 @@ void write_simulation_html(std::ostream& out, const SimResult& r, const SimHisto
     bool first = true;
     while (std::getline(in, line)) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        const std::string quoted = sim_script_json(nlohmann::json(line));
+        const std::string quoted = script_json(nlohmann::json(line));
         if (!first) out << "\\n";
         out << std::string_view(quoted).substr(1, quoted.size() - 2);
         first = false;
