@@ -1,4 +1,5 @@
 #include "camgen/analysis/backplot.hpp"
+#include "camgen/common/markup.hpp"
 #include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
@@ -26,20 +27,6 @@ std::string n(double v, int decimals = 2) {
 }
 
 std::string mm(double v) { return n(v, 3); }
-
-std::string escape(std::string_view s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
 
 std::string clip(std::string s, size_t max) {
     if (s.size() <= max) return s;
@@ -297,7 +284,7 @@ public:
         double ly = top;
         auto text = [&](double x, const std::string& s, int size = 12, const char* weight = "normal", const char* fill = "#222") {
             legend.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"{}\" font-weight=\"{}\" fill=\"{}\">{}</text>", n(x), n(ly), font,
-                                   size, weight, fill, escape(s)));
+                                   size, weight, fill, html_text(s)));
         };
         double lx = legend_x;
         text(lx, "Key", 13, "bold");
@@ -398,10 +385,10 @@ public:
                             n(height, 0)));
         svg.add(fmt::format("<rect width=\"{}\" height=\"{}\" fill=\"#fff\"/>", n(width, 0), n(height, 0)));
         svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"18\" font-weight=\"bold\" fill=\"#111\">{}</text>", n(left), n(30), font,
-                            escape(options.title.empty() ? "program" : options.title)));
+                            html_text(options.title.empty() ? "program" : options.title)));
         svg.add(fmt::format("<text x=\"{}\" y=\"{}\" {} font-size=\"12\" fill=\"#555\">{}backplot of the program as camgen reads it back, "
                             "{}</text>",
-                            n(left), n(47), font, escape(options.machine.empty() ? "" : "machine " + options.machine + " - "), view.name));
+                            n(left), n(47), font, html_text(options.machine.empty() ? "" : "machine " + options.machine + " - "), view.name));
         return {svg.text() + body.text() + legend.text() + "</svg>\n", {v.min_x, v.max_y, v.scale, v.left, v.top}};
     }
 

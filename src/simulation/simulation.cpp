@@ -449,9 +449,7 @@ private:
                 result_.cell_updates += static_cast<std::size_t>(std::max(0, i1 - i0 + 1));
                 for (int i = i0; i <= i1; ++i) {
                     if (row[i] <= zlow) continue;
-                    const double dx = f.x(i) - a.x, d2 = dx * dx + dy * dy;
-                    if (d2 > R * R) continue;
-                    const double z = zlow + prof(std::sqrt(d2));
+                    const double z = m.low(f.x(i), f.y(j));
                     if (z < row[i]) lower(i, j, z, acc);
                 }
             }
