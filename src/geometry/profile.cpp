@@ -114,8 +114,35 @@ bool is_simple(const Profile& profile, double tolerance) {
     return !bg::intersects(line);
 }
 
-Orientation orientation(const Profile& profile, double tolerance) {
-    return bg::area(ring_of(profile, tolerance)) >= 0.0 ? Orientation::ccw : Orientation::cw;
+namespace {
+
+// The signed area (counter-clockwise positive), exact: the chords' polygon (the shoelace sum)
+// and, for each arc, the circular segment between its chord and itself, r^2 (sweep - sin sweep) / 2,
+// added where the arc turns counter-clockwise and taken where it turns clockwise.
+double exact_signed_area(const Profile& profile) {
+    double twice = 0.0;
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        const ProfileSegment& s = profile.segments[i];
+        const Vec2 a = segment_start(profile, i);
+        twice += a.x * s.end.y - s.end.x * a.y;
+        if (s.centre) {
+            const ArcGeometry arc = arc_of(a, s);
+            const double piece = arc.radius * arc.radius * (arc.sweep - std::sin(arc.sweep));
+            twice += s.direction == ArcDirection::ccw ? piece : -piece;
+        }
+    }
+    // An open profile is closed by the chord from its end back to its start.
+    if (!profile.segments.empty()) {
+        const Vec2 e = profile.segments.back().end;
+        twice += e.x * profile.start.y - profile.start.x * e.y;
+    }
+    return twice / 2.0;
+}
+
+}  // namespace
+
+Orientation orientation(const Profile& profile, double) {
+    return exact_signed_area(profile) >= 0.0 ? Orientation::ccw : Orientation::cw;
 }
 
 double enclosed_area(const Profile& profile, double tolerance) {

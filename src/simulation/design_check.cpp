@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -232,12 +233,25 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
         return *shapes[c];
     };
     const std::uint32_t cuts = static_cast<std::uint32_t>(design.cuts.size());
+    // A profile stock's outline, asked of every point: its segments by a grid, once.
+    std::vector<ProfileClearance> stock_loops;
+    if (g.stock) {
+        stock_loops.emplace_back(g.stock->outer, reach);
+        for (const Profile& p : g.stock->islands) stock_loops.emplace_back(p, reach);
+    }
+    auto in_stock = [&](Vec2 q) {
+        if (stock_loops.empty()) return true;
+        if (!stock_loops[0].inside(q)) return false;
+        for (std::size_t s = 1; s < stock_loops.size(); ++s)
+            if (stock_loops[s].inside(q)) return false;
+        return true;
+    };
     for (std::size_t k = 0; k < design.keeps.size(); ++k) {
         const DesignKeep& keep = design.keeps[k];
         auto place = [&](Vec2 p, Vec2 inward) {
             const Vec2 q = p + inward * tolerance;
             if (q.x < g.x0 || q.x > fx1 || q.y < g.y0 || q.y > fy1) return;
-            if (g.stock && !region_contains(*g.stock, q)) return;
+            if (!in_stock(q)) return;
             bool near = false;
             double designed = keep.top_z, override_floor = std::numeric_limits<double>::quiet_NaN();
             std::uint32_t owner = cuts + static_cast<std::uint32_t>(k);
@@ -278,76 +292,94 @@ std::string DesignFinding::message() const {
                        number_text(amount, 3), number_text(designed, 3), where, cells);
 }
 
+namespace {
+
+// A finding as the check gathers it (its names are added at the end, for the few found).
+struct DesignTally {
+    double amount = 0.0;
+    Vec2 at;
+    double height = 0.0, designed = 0.0;
+    std::size_t cells = 0, points = 0;
+    int line = 0;
+};
+
+}  // namespace
+
 std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& g, double tolerance, double margin,
                                         const ProbeHeights& probes) {
+    // Per cell: its designed height (a float, as the field's heights are), the feature that
+    // designs it and flags: 9 bytes beside the field's own 8.
     const std::size_t n = g.nx * g.ny;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::vector<double> designed(n, nan);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> designed(n, nan);
     std::vector<std::int32_t> owner(n, -1);  // cuts 0..C-1, keeps C..
-    enum : std::uint8_t { near_cut = 1, may_leave = 2, edge = 4 };
+    enum : std::uint8_t { near_cut = 1, may_leave = 2, edge = 4, strict_now = 8 };
     std::vector<std::uint8_t> flags(n, 0);
     const auto at = [&](std::size_t i, std::size_t j) { return j * g.nx + i; };
     const std::int32_t cuts = static_cast<std::int32_t>(design.cuts.size());
 
     // A cell within the margin of a cut's edge, inside or out, could be that cut's or not: it
-    // is judged by nothing (edge).
-    std::vector<std::int32_t> strict(n, -1);
+    // is judged by nothing (edge). The cut's own strict cells are marked while its margin is
+    // walked (strict_now), then unmarked.
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            strict[at(i, j)] = c;
+            flags[at(i, j)] |= strict_now;
             if (cut.overrides) return;
-            const double f = cut.floor.at(p);
-            double& d = designed[at(i, j)];
+            const float f = static_cast<float>(cut.floor.at(p));
+            float& d = designed[at(i, j)];
             if (std::isnan(d) || f < d) d = f, owner[at(i, j)] = c;
         });
         design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
             std::uint8_t& fl = flags[at(i, j)];
             fl |= near_cut | (cut.may_leave ? may_leave : 0);
-            if (!cut.overrides && strict[at(i, j)] != c) fl |= edge;
+            if (!cut.overrides && !(fl & strict_now)) fl |= edge;
         });
+        design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2) { flags[at(i, j)] &= ~strict_now; });
     }
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         if (!cut.overrides) continue;
         design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            designed[at(i, j)] = cut.floor.at(p);
+            designed[at(i, j)] = static_cast<float>(cut.floor.at(p));
             owner[at(i, j)] = c;
         });
     }
     for (std::size_t k = 0; k < design.keeps.size(); ++k) {
         const DesignKeep& keep = design.keeps[k];
+        const float top = static_cast<float>(keep.top_z);
         design_cells(keep.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2) {
             const std::size_t a = at(i, j);
             if (flags[a] & near_cut) return;
-            if (std::isnan(designed[a]) || keep.top_z < designed[a]) designed[a] = keep.top_z, owner[a] = cuts + static_cast<std::int32_t>(k);
+            if (std::isnan(designed[a]) || top < designed[a]) designed[a] = top, owner[a] = cuts + static_cast<std::int32_t>(k);
         });
     }
 
-    // Outside a profile stock there is nothing to judge.
+    // Outside a profile stock there is nothing to judge (strict_now marks the inside here).
     if (g.stock) {
-        std::vector<std::uint8_t> inside(n, 0);
-        design_cells(*g.stock, 0.0, g, [&](std::size_t i, std::size_t j, Vec2) { inside[at(i, j)] = 1; });
-        for (std::size_t a = 0; a < n; ++a)
-            if (!inside[a]) owner[a] = -1, flags[a] |= edge;
+        design_cells(*g.stock, 0.0, g, [&](std::size_t i, std::size_t j, Vec2) { flags[at(i, j)] |= strict_now; });
+        for (std::size_t a = 0; a < n; ++a) {
+            if (!(flags[a] & strict_now)) owner[a] = -1, flags[a] |= edge;
+            flags[a] &= ~strict_now;
+        }
     }
-    const std::size_t features = design.cuts.size() + design.keeps.size();
-    std::vector<DesignFinding> gouges(features), left(design.cuts.size());
+    const float top = static_cast<float>(g.top);
+    std::unordered_map<std::uint32_t, DesignTally> gouges, left;  // by feature, by cut: the few found
     for (std::size_t j = 0; j < g.ny; ++j)
         for (std::size_t i = 0; i < g.nx; ++i) {
             const std::size_t a = at(i, j);
             if (owner[a] < 0 || (flags[a] & edge)) continue;
             const double h = g.height(i, j);
             if (std::isnan(h)) continue;
-            const double below = std::min(designed[a], g.top) - h;
+            const double want = std::min(designed[a], top), below = want - h;
             if (below > tolerance) {
-                DesignFinding& f = gouges[static_cast<std::size_t>(owner[a])];
+                DesignTally& f = gouges[static_cast<std::uint32_t>(owner[a])];
                 ++f.cells;
                 if (below > f.amount) {
                     f.amount = below;
                     f.at = {g.x0 + (static_cast<double>(i) + 0.5) * g.cell, g.y0 + (static_cast<double>(j) + 0.5) * g.cell};
                     f.height = h;
-                    f.designed = std::min(designed[a], g.top);
+                    f.designed = want;
                     f.line = g.line ? g.line(i, j) : 0;
                 }
             }
@@ -358,7 +390,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         for (std::size_t k = 0; k < pr.points.size() && k < probes.heights->size(); ++k) {
             const double below = pr.designed[k] - (*probes.heights)[k];
             if (std::isnan(below) || below <= tolerance) continue;
-            DesignFinding& f = gouges[pr.owner[k]];
+            DesignTally& f = gouges[pr.owner[k]];
             ++f.points;
             if (below > f.amount) {
                 f.amount = below;
@@ -379,27 +411,28 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
             const double h = g.height(i, j);
             const double limit = std::max(cut.floor.at(p) + cut.axial_allowance, g.bottom);
             if (std::isnan(h) || h - limit <= tolerance) return;
-            DesignFinding& f = left[c];
+            DesignTally& f = left[static_cast<std::uint32_t>(c)];
             ++f.cells;
             if (h - limit > f.amount) f.amount = h - limit, f.at = p, f.height = h, f.designed = limit;
         });
     }
-    std::vector<DesignFinding> out;
-    for (std::size_t k = 0; k < features; ++k) {
-        if (gouges[k].cells + gouges[k].points == 0) continue;
-        DesignFinding f = gouges[k];
-        f.kind = DesignFinding::Kind::gouge;
+    // In the design's order: gouges by feature, then what is left by cut.
+    auto finding = [&](std::uint32_t k, const DesignTally& t, DesignFinding::Kind kind) {
+        DesignFinding f;
+        f.kind = kind;
+        f.amount = t.amount, f.at = t.at, f.height = t.height, f.designed = t.designed;
+        f.cells = t.cells, f.points = t.points, f.line = t.line;
         f.path = k < design.cuts.size() ? design.cuts[k].path : design.keeps[k - design.cuts.size()].path;
         f.what = k < design.cuts.size() ? design.cuts[k].what : design.keeps[k - design.cuts.size()].what;
-        out.push_back(std::move(f));
-    }
-    for (std::size_t c = 0; c < design.cuts.size(); ++c) {
-        if (left[c].cells == 0) continue;
-        DesignFinding f = left[c];
-        f.kind = DesignFinding::Kind::left;
-        f.path = design.cuts[c].path;
-        f.what = design.cuts[c].what;
-        out.push_back(std::move(f));
+        return f;
+    };
+    std::vector<DesignFinding> out;
+    for (auto* group : {&gouges, &left}) {
+        std::vector<std::uint32_t> keys;
+        for (const auto& [k, t] : *group) keys.push_back(k);
+        std::sort(keys.begin(), keys.end());
+        for (std::uint32_t k : keys)
+            out.push_back(finding(k, group->at(k), group == &gouges ? DesignFinding::Kind::gouge : DesignFinding::Kind::left));
     }
     return out;
 }

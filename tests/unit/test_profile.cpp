@@ -59,6 +59,29 @@ TEST_CASE("profile: a closed outline with arcs is closed, simple, counter-clockw
     CHECK(segment_sweep(p, 0) == 0.0);
 }
 
+TEST_CASE("profile: orientation counts the arcs exactly (half discs whose chords enclose nothing)") {
+    // (1, 0) to (-1, 0) by an arc about the origin and back along the X axis: the chords alone
+    // enclose no area, so only the arcs' own areas decide the turning direction.
+    auto half_disc = [](ArcDirection d) {
+        Profile p;
+        p.start = {1, 0};
+        p.segments = {{{-1, 0}, Vec2{0, 0}, d}, {{1, 0}}};
+        return p;
+    };
+    CHECK(orientation(half_disc(ArcDirection::ccw)) == Orientation::ccw);  // over the top, back below
+    CHECK(orientation(half_disc(ArcDirection::cw)) == Orientation::cw);    // under the bottom, back above
+    CHECK(orientation(reversed(half_disc(ArcDirection::ccw))) == Orientation::cw);
+    // A circle of two half arcs, and a full circle of one arc.
+    Profile circle;
+    circle.start = {3, 2};
+    circle.segments = {{{1, 2}, Vec2{2, 2}, ArcDirection::cw}, {{3, 2}, Vec2{2, 2}, ArcDirection::cw}};
+    CHECK(orientation(circle) == Orientation::cw);
+    Profile full;
+    full.start = {3, 2};
+    full.segments = {{{3, 2}, Vec2{2, 2}, ArcDirection::ccw}};
+    CHECK(orientation(full) == Orientation::ccw);
+}
+
 TEST_CASE("profile: reversed walks the other way, same area, arcs turn the other way") {
     const Profile r = reversed(plate());
     CHECK(is_closed(r));

@@ -61,7 +61,8 @@ std::vector<Vec2> sample_profile(const Profile& profile, double tolerance);
 // The polygon questions, on the sampling (within `tolerance` mm):
 // a closed profile that does not touch or cross itself (an open one: a chain that does not);
 bool is_simple(const Profile& profile, double tolerance = 0.001);
-// the turning direction of a closed profile (by its signed area);
+// the turning direction of a closed profile (by its signed area, computed exactly with its arcs:
+// the tolerance is not used);
 Orientation orientation(const Profile& profile, double tolerance = 0.001);
 // the area enclosed by a closed profile, mm^2, positive;
 double enclosed_area(const Profile& profile, double tolerance = 0.001);
