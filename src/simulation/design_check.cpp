@@ -139,8 +139,10 @@ void design_loop_points(const Profile& loop, double spacing, F f) {
         const double a0 = std::atan2(a.y - c.y, a.x - c.x);
         const int n = std::max(1, static_cast<int>(std::ceil(r * sweep / spacing)));
         for (int q = 0; q < n; ++q) {
+            // Travel along the arc is left_of(radial) x sign; its left, left_of of that, is
+            // -radial x sign.
             const Vec2 radial = unit_at(a0 + sign * sweep * (q + 0.5) / n);
-            f(c + radial * r, left_of(radial * sign) * left);
+            f(c + radial * r, radial * (-sign * left));
         }
     }
 }
