@@ -16,15 +16,6 @@ namespace camgen {
 
 namespace {
 
-// A circle as a closed profile (two half arcs), counter-clockwise.
-Profile design_circle(Vec2 centre, double radius) {
-    Profile p;
-    p.start = {centre.x + radius, centre.y};
-    p.segments.push_back({{centre.x - radius, centre.y}, centre, ArcDirection::ccw});
-    p.segments.push_back({{centre.x + radius, centre.y}, centre, ArcDirection::ccw});
-    return p;
-}
-
 // The largest region of an offset (the one a band is made of), or none.
 std::optional<PlaneRegion> design_largest(const RegionOffset& o) {
     std::optional<PlaneRegion> best;
@@ -88,8 +79,6 @@ PlaneRegion design_stretch(const Profile& p, double from, double to, double o0, 
     return normalised(r);
 }
 
-std::string design_point(Vec2 p) { return fmt::format("({}, {})", number_text(p.x), number_text(p.y)); }
-
 class Designer {
 public:
     Designer(const Job& job, double keep_band) : job_(job), keep_band_(keep_band) {}
@@ -123,25 +112,20 @@ private:
     }
 
     void holes(const std::string& path, const std::vector<Vec2>& centres, double radius, double top, DesignFloor floor) {
-        const double band = band_for(2.0 * radius);
-        for (std::size_t i = 0; i < centres.size(); ++i) {
-            const Vec2 c = centres[i];
-            DesignCut cut;
-            cut.path = path;
-            cut.what = fmt::format("hole {} at {}", i, design_point(c));
-            cut.region.outer = design_circle(c, radius);
-            cut.floor = floor;
-            if (cut.floor.apex) cut.floor.apex = c;
-            cut.top_z = top;
-            design_.cuts.push_back(std::move(cut));
-            DesignKeep keep;
-            keep.path = path;
-            keep.what = fmt::format("the part around hole {} at {}", i, design_point(c));
-            keep.region.outer = design_circle(c, radius + band);
-            keep.region.islands = {reversed(design_circle(c, radius))};
-            keep.top_z = top;
-            design_.keeps.push_back(std::move(keep));
-        }
+        if (centres.empty()) return;
+        DesignCut cut;
+        cut.path = path;
+        cut.what = "hole";
+        cut.discs = DesignDiscs{centres, radius, 0.0};
+        cut.floor = floor;
+        cut.top_z = top;
+        design_.cuts.push_back(std::move(cut));
+        DesignKeep keep;
+        keep.path = path;
+        keep.what = "the part around hole";
+        keep.discs = DesignDiscs{centres, radius + band_for(2.0 * radius), radius};
+        keep.top_z = top;
+        design_.keeps.push_back(std::move(keep));
     }
 
     void drill(const DrillOp& op) {
@@ -317,6 +301,18 @@ private:
 };
 
 }  // namespace
+
+std::size_t design_cut_count(const PartDesign& design) {
+    std::size_t n = 0;
+    for (const DesignCut& c : design.cuts) n += c.discs ? c.discs->centres.size() : 1;
+    return n;
+}
+
+std::size_t design_keep_count(const PartDesign& design) {
+    std::size_t n = 0;
+    for (const DesignKeep& k : design.keeps) n += k.discs ? k.discs->centres.size() : 1;
+    return n;
+}
 
 PartDesign part_design(const Job& job, double keep_band) { return Designer(job, keep_band).run(); }
 

@@ -707,7 +707,7 @@ std::size_t design_check_report(SimDesignCheck& c, const SimResult& r, std::ostr
     std::size_t gouges = 0;
     out << fmt::format("design check   {} cuts, {} keeps, within {} mm, cells farther than {} mm inside their regions, "
                        "{} points on the walls {} mm apart\n",
-                       c.design.cuts.size(), c.design.keeps.size(), number_text(c.tolerance), number_text(c.margin),
+                       design_cut_count(c.design), design_keep_count(c.design), number_text(c.tolerance), number_text(c.margin),
                        c.probes.points.size(), number_text(c.probes.spacing, 3));
     for (const std::string& u : c.design.unchecked) out << "  not checked: " << u << '\n';
     for (const DesignFinding& d : found) {

@@ -53,48 +53,52 @@ std::optional<DesignCircles> design_circles(const PlaneRegion& region) {
     return c;
 }
 
+// Calls f(i, j, centre) for every cell whose centre lies in the disc `outer` less the discs
+// `islands`, grown (d > 0) or shrunk (d < 0) by |d|.
+template <class F>
+void design_circle_cells(const DesignCircle& outer, const std::vector<DesignCircle>& islands, double d, const HeightGridView& g,
+                         F f) {
+    const double r = outer.radius + d;
+    if (!(r > 0)) return;
+    const Vec2 o = outer.centre;
+    const double j0 = std::max(0.0, std::ceil((o.y - r - g.y0) / g.cell - 0.5));
+    const double j1 = std::min(static_cast<double>(g.ny) - 1.0, std::floor((o.y + r - g.y0) / g.cell - 0.5));
+    std::vector<std::pair<double, double>> spans, next;
+    for (double jd = j0; jd <= j1; ++jd) {
+        const double y = g.y0 + (jd + 0.5) * g.cell, dy = y - o.y;
+        if (dy * dy > r * r) continue;
+        const double hw = std::sqrt(r * r - dy * dy);
+        spans.assign(1, {o.x - hw, o.x + hw});
+        for (const DesignCircle& island : islands) {
+            const double ri = island.radius - d, di = y - island.centre.y;
+            if (!(ri > 0) || di * di >= ri * ri) continue;
+            const double iw = std::sqrt(ri * ri - di * di), a = island.centre.x - iw, b = island.centre.x + iw;
+            next.clear();
+            for (const auto& [xa, xb] : spans) {
+                if (b <= xa || a >= xb) {
+                    next.emplace_back(xa, xb);
+                    continue;
+                }
+                if (a > xa) next.emplace_back(xa, a);
+                if (b < xb) next.emplace_back(b, xb);
+            }
+            spans.swap(next);
+        }
+        const std::size_t j = static_cast<std::size_t>(jd);
+        for (const auto& [xa, xb] : spans) {
+            // Strictly inside: a centre on an island's edge is not the region's.
+            const double i0 = std::max(0.0, std::ceil((xa - g.x0) / g.cell - 0.5));
+            const double i1 = std::min(static_cast<double>(g.nx) - 1.0, std::floor((xb - g.x0) / g.cell - 0.5));
+            for (double id = i0; id <= i1; ++id) f(static_cast<std::size_t>(id), j, Vec2{g.x0 + (id + 0.5) * g.cell, y});
+        }
+    }
+}
+
 // Calls f(i, j, centre) for every cell whose centre lies in the region grown (d > 0) or shrunk
 // (d < 0) by |d|.
 template <class F>
 void design_cells(const PlaneRegion& region, double d, const HeightGridView& g, F f) {
-    if (const auto c = design_circles(region)) {
-        // The disc of radius r + d less the discs of the islands' radii less d.
-        const double r = c->outer.radius + d;
-        if (!(r > 0)) return;
-        const Vec2 o = c->outer.centre;
-        const double j0 = std::max(0.0, std::ceil((o.y - r - g.y0) / g.cell - 0.5));
-        const double j1 = std::min(static_cast<double>(g.ny) - 1.0, std::floor((o.y + r - g.y0) / g.cell - 0.5));
-        std::vector<std::pair<double, double>> spans;
-        for (double jd = j0; jd <= j1; ++jd) {
-            const double y = g.y0 + (jd + 0.5) * g.cell, dy = y - o.y;
-            if (dy * dy > r * r) continue;
-            const double hw = std::sqrt(r * r - dy * dy);
-            spans.assign(1, {o.x - hw, o.x + hw});
-            for (const DesignCircle& island : c->islands) {
-                const double ri = island.radius - d, di = y - island.centre.y;
-                if (!(ri > 0) || di * di >= ri * ri) continue;
-                const double iw = std::sqrt(ri * ri - di * di), a = island.centre.x - iw, b = island.centre.x + iw;
-                std::vector<std::pair<double, double>> next;
-                for (const auto& [xa, xb] : spans) {
-                    if (b <= xa || a >= xb) {
-                        next.emplace_back(xa, xb);
-                        continue;
-                    }
-                    if (a > xa) next.emplace_back(xa, a);
-                    if (b < xb) next.emplace_back(b, xb);
-                }
-                spans = std::move(next);
-            }
-            const std::size_t j = static_cast<std::size_t>(jd);
-            for (const auto& [xa, xb] : spans) {
-                // Strictly inside: a centre on an island's edge is not the region's.
-                const double i0 = std::max(0.0, std::ceil((xa - g.x0) / g.cell - 0.5));
-                const double i1 = std::min(static_cast<double>(g.nx) - 1.0, std::floor((xb - g.x0) / g.cell - 0.5));
-                for (double id = i0; id <= i1; ++id) f(static_cast<std::size_t>(id), j, Vec2{g.x0 + (id + 0.5) * g.cell, y});
-            }
-        }
-        return;
-    }
+    if (const auto c = design_circles(region)) return design_circle_cells(c->outer, c->islands, d, g, f);
     std::vector<PlaneRegion> parts;
     if (d > 0.0) parts = grow_region(region, d).regions;
     else if (d < 0.0) parts = offset_region(region, -d).regions;
@@ -114,6 +118,46 @@ void design_cells(const PlaneRegion& region, double d, const HeightGridView& g, 
             }
         }
     }
+}
+
+// One piece of a cut's or keep's region: the region itself, or one of its discs (a ring where
+// `islands` has the hole).
+struct DesignPiece {
+    const PlaneRegion* region = nullptr;
+    DesignCircle outer;
+    std::vector<DesignCircle> islands;
+};
+
+// Calls f(piece) for each piece of a cut or keep (one piece object, refilled).
+template <class T, class F>
+void design_pieces(const T& feature, F f) {
+    if (!feature.discs) {
+        DesignPiece piece;
+        piece.region = &feature.region;
+        f(piece);
+        return;
+    }
+    const DesignDiscs& d = *feature.discs;
+    DesignPiece piece;
+    if (d.hole > 0) piece.islands.resize(1);
+    for (const Vec2 c : d.centres) {
+        piece.outer = {c, d.radius};
+        if (d.hole > 0) piece.islands[0] = {c, d.hole};
+        f(piece);
+    }
+}
+
+template <class F>
+void design_cells(const DesignPiece& piece, double d, const HeightGridView& g, F f) {
+    if (piece.region) design_cells(*piece.region, d, g, f);
+    else design_circle_cells(piece.outer, piece.islands, d, g, f);
+}
+
+// A cut's floor over one of its pieces: a drill's point at each disc's centre.
+DesignFloor design_floor(const DesignCut& cut, const DesignPiece& piece) {
+    DesignFloor f = cut.floor;
+    if (cut.discs && f.apex) f.apex = piece.outer.centre;
+    return f;
 }
 
 // Calls f(point, inward normal) every `spacing` mm along a loop (a point in the middle of each
@@ -201,17 +245,49 @@ std::array<double, 4> design_extent(const PlaneRegion& region) {
 
 }  // namespace
 
+namespace {
+
+// Calls f(point, inward normal) every `spacing` mm around a circle; `inside`: the material is
+// inside it (else outside).
+template <class F>
+void design_circle_points(const DesignCircle& c, double spacing, bool inside, F f) {
+    const int n = std::max(1, static_cast<int>(std::ceil(two_pi * c.radius / spacing)));
+    for (int q = 0; q < n; ++q) {
+        const Vec2 radial = unit_at(two_pi * (q + 0.5) / n);
+        f(c.centre + radial * c.radius, inside ? radial * -1.0 : radial);
+    }
+}
+
+}  // namespace
+
 DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, double tolerance, double margin,
                            std::size_t budget) {
     DesignProbes out;
     if (design.keeps.empty() || design.cuts.empty() || g.nx == 0 || g.ny == 0) return out;
     double length = 0.0;
-    for (const DesignKeep& k : design.keeps) {
-        length += profile_length(k.region.outer);
-        for (const Profile& p : k.region.islands) length += profile_length(p);
-    }
+    for (const DesignKeep& k : design.keeps)
+        design_pieces(k, [&](const DesignPiece& p) {
+            if (p.region) {
+                length += profile_length(p.region->outer);
+                for (const Profile& i : p.region->islands) length += profile_length(i);
+                return;
+            }
+            length += two_pi * p.outer.radius;
+            for (const DesignCircle& i : p.islands) length += two_pi * i.radius;
+        });
     out.spacing = std::max(g.cell, length / static_cast<double>(std::max<std::size_t>(budget, 1)));
-    // The cuts by buckets of the field: each in those its extent grown by the margin meets.
+    // The cuts' pieces (a region, or one disc of a cut's discs) by buckets of the field: each in
+    // those its extent grown by the margin meets.
+    struct CutPiece {
+        std::uint32_t cut;
+        const PlaneRegion* region;  // or the disc
+        DesignCircle disc;
+    };
+    std::vector<CutPiece> pieces;
+    for (std::size_t c = 0; c < design.cuts.size(); ++c)
+        design_pieces(design.cuts[c], [&](const DesignPiece& p) {
+            pieces.push_back({static_cast<std::uint32_t>(c), p.region, p.outer});
+        });
     const double reach = margin + tolerance;
     const double fx1 = g.x0 + static_cast<double>(g.nx) * g.cell, fy1 = g.y0 + static_cast<double>(g.ny) * g.cell;
     // Small enough that a probe asks few cuts, at most a million buckets.
@@ -222,17 +298,22 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
         return static_cast<std::size_t>(std::clamp(std::floor((v - v0) / bucket), 0.0, static_cast<double>(n - 1)));
     };
     std::vector<std::vector<std::uint32_t>> buckets(bx * by);
-    for (std::size_t c = 0; c < design.cuts.size(); ++c) {
-        const auto e = design_extent(design.cuts[c].region);
+    for (std::size_t q = 0; q < pieces.size(); ++q) {
+        const CutPiece& p = pieces[q];
+        const auto e = p.region ? design_extent(*p.region)
+                                : std::array<double, 4>{p.disc.centre.x - p.disc.radius, p.disc.centre.y - p.disc.radius,
+                                                        p.disc.centre.x + p.disc.radius, p.disc.centre.y + p.disc.radius};
         if (e[2] + reach < g.x0 || e[0] - reach > fx1 || e[3] + reach < g.y0 || e[1] - reach > fy1) continue;
         for (std::size_t j = bucket_of(e[1] - reach, g.y0, by); j <= bucket_of(e[3] + reach, g.y0, by); ++j)
             for (std::size_t i = bucket_of(e[0] - reach, g.x0, bx); i <= bucket_of(e[2] + reach, g.x0, bx); ++i)
-                buckets[j * bx + i].push_back(static_cast<std::uint32_t>(c));
+                buckets[j * bx + i].push_back(static_cast<std::uint32_t>(q));
     }
-    std::vector<std::unique_ptr<DesignCutShape>> shapes(design.cuts.size());
-    auto shape = [&](std::size_t c) -> const DesignCutShape& {
-        if (!shapes[c]) shapes[c] = std::make_unique<DesignCutShape>(design.cuts[c].region, reach);
-        return *shapes[c];
+    std::vector<std::unique_ptr<DesignCutShape>> shapes(pieces.size());
+    auto signed_distance = [&](std::size_t q, Vec2 p) {
+        const CutPiece& piece = pieces[q];
+        if (!piece.region) return distance(p, piece.disc.centre) - piece.disc.radius;
+        if (!shapes[q]) shapes[q] = std::make_unique<DesignCutShape>(*piece.region, reach);
+        return shapes[q]->signed_distance(p);
     };
     const std::uint32_t cuts = static_cast<std::uint32_t>(design.cuts.size());
     // A profile stock's outline, asked of every point: its segments by a grid, once.
@@ -257,14 +338,17 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
             bool near = false;
             double designed = keep.top_z, override_floor = std::numeric_limits<double>::quiet_NaN();
             std::uint32_t owner = cuts + static_cast<std::uint32_t>(k);
-            for (std::uint32_t c : buckets[bucket_of(q.y, g.y0, by) * bx + bucket_of(q.x, g.x0, bx)]) {
-                const double d = shape(c).signed_distance(q);
+            for (std::uint32_t piece : buckets[bucket_of(q.y, g.y0, by) * bx + bucket_of(q.x, g.x0, bx)]) {
+                const double d = signed_distance(piece, q);
                 if (std::abs(d) < tolerance / 2) return;  // on a cut's edge: either way
                 if (d > reach) continue;
                 near = true;
                 if (d > 0) continue;
+                const std::uint32_t c = pieces[piece].cut;
                 const DesignCut& cut = design.cuts[c];
-                const double f = cut.floor.at(q);
+                DesignFloor floor = cut.floor;
+                if (cut.discs && floor.apex) floor.apex = pieces[piece].disc.centre;
+                const double f = floor.at(q);
                 if (cut.overrides) override_floor = f, owner = c;
                 else if (std::isnan(override_floor) && f < designed) designed = f, owner = c;
             }
@@ -274,9 +358,16 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
             out.designed.push_back(std::clamp(designed, g.bottom, g.top));
             out.owner.push_back(owner);
         };
-        design_loop_points(keep.region.outer, out.spacing, place);
-        for (const Profile& island : keep.region.islands)
-            design_loop_points(island, out.spacing, [&](Vec2 p, Vec2 inward) { place(p, inward * -1.0); });
+        design_pieces(keep, [&](const DesignPiece& p) {
+            if (!p.region) {
+                design_circle_points(p.outer, out.spacing, true, place);
+                for (const DesignCircle& i : p.islands) design_circle_points(i, out.spacing, false, place);
+                return;
+            }
+            design_loop_points(p.region->outer, out.spacing, place);
+            for (const Profile& island : p.region->islands)
+                design_loop_points(island, out.spacing, [&](Vec2 pt, Vec2 inward) { place(pt, inward * -1.0); });
+        });
     }
     return out;
 }
@@ -325,35 +416,43 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     // walked (strict_now), then unmarked.
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
-        design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            flags[at(i, j)] |= strict_now;
-            if (cut.overrides) return;
-            const float f = static_cast<float>(cut.floor.at(p));
-            float& d = designed[at(i, j)];
-            if (std::isnan(d) || f < d) d = f, owner[at(i, j)] = c;
+        design_pieces(cut, [&](const DesignPiece& piece) {
+            const DesignFloor floor = design_floor(cut, piece);
+            design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
+                flags[at(i, j)] |= strict_now;
+                if (cut.overrides) return;
+                const float f = static_cast<float>(floor.at(p));
+                float& d = designed[at(i, j)];
+                if (std::isnan(d) || f < d) d = f, owner[at(i, j)] = c;
+            });
+            design_cells(piece, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
+                std::uint8_t& fl = flags[at(i, j)];
+                fl |= near_cut | (cut.may_leave ? may_leave : 0);
+                if (!cut.overrides && !(fl & strict_now)) fl |= edge;
+            });
+            design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2) { flags[at(i, j)] &= ~strict_now; });
         });
-        design_cells(cut.region, margin, g, [&](std::size_t i, std::size_t j, Vec2) {
-            std::uint8_t& fl = flags[at(i, j)];
-            fl |= near_cut | (cut.may_leave ? may_leave : 0);
-            if (!cut.overrides && !(fl & strict_now)) fl |= edge;
-        });
-        design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2) { flags[at(i, j)] &= ~strict_now; });
     }
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         if (!cut.overrides) continue;
-        design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            designed[at(i, j)] = static_cast<float>(cut.floor.at(p));
-            owner[at(i, j)] = c;
+        design_pieces(cut, [&](const DesignPiece& piece) {
+            const DesignFloor floor = design_floor(cut, piece);
+            design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
+                designed[at(i, j)] = static_cast<float>(floor.at(p));
+                owner[at(i, j)] = c;
+            });
         });
     }
     for (std::size_t k = 0; k < design.keeps.size(); ++k) {
         const DesignKeep& keep = design.keeps[k];
         const float top = static_cast<float>(keep.top_z);
-        design_cells(keep.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2) {
-            const std::size_t a = at(i, j);
-            if (flags[a] & near_cut) return;
-            if (std::isnan(designed[a]) || top < designed[a]) designed[a] = top, owner[a] = cuts + static_cast<std::int32_t>(k);
+        design_pieces(keep, [&](const DesignPiece& piece) {
+            design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2) {
+                const std::size_t a = at(i, j);
+                if (flags[a] & near_cut) return;
+                if (std::isnan(designed[a]) || top < designed[a]) designed[a] = top, owner[a] = cuts + static_cast<std::int32_t>(k);
+            });
         });
     }
 
@@ -408,14 +507,17 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     for (std::size_t c = 0; c < design.cuts.size(); ++c) {
         const DesignCut& cut = design.cuts[c];
         if (cut.overrides || cut.may_leave) continue;
-        design_cells(cut.region, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
-            if (flags[at(i, j)] & (may_leave | edge)) return;
-            const double h = g.height(i, j);
-            const double limit = std::max(cut.floor.at(p) + cut.axial_allowance, g.bottom);
-            if (std::isnan(h) || h - limit <= tolerance) return;
-            DesignTally& f = left[static_cast<std::uint32_t>(c)];
-            ++f.cells;
-            if (h - limit > f.amount) f.amount = h - limit, f.at = p, f.height = h, f.designed = limit;
+        design_pieces(cut, [&](const DesignPiece& piece) {
+            const DesignFloor floor = design_floor(cut, piece);
+            design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
+                if (flags[at(i, j)] & (may_leave | edge)) return;
+                const double h = g.height(i, j);
+                const double limit = std::max(floor.at(p) + cut.axial_allowance, g.bottom);
+                if (std::isnan(h) || h - limit <= tolerance) return;
+                DesignTally& f = left[static_cast<std::uint32_t>(c)];
+                ++f.cells;
+                if (h - limit > f.amount) f.amount = h - limit, f.at = p, f.height = h, f.designed = limit;
+            });
         });
     }
     // In the design's order: gouges by feature, then what is left by cut.
@@ -424,8 +526,17 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         f.kind = kind;
         f.amount = t.amount, f.at = t.at, f.height = t.height, f.designed = t.designed;
         f.cells = t.cells, f.points = t.points, f.line = t.line;
-        f.path = k < design.cuts.size() ? design.cuts[k].path : design.keeps[k - design.cuts.size()].path;
-        f.what = k < design.cuts.size() ? design.cuts[k].what : design.keeps[k - design.cuts.size()].what;
+        const bool is_cut = k < design.cuts.size();
+        f.path = is_cut ? design.cuts[k].path : design.keeps[k - design.cuts.size()].path;
+        f.what = is_cut ? design.cuts[k].what : design.keeps[k - design.cuts.size()].what;
+        // A feature of discs: the hole nearest the worst point ("hole 3 at (20, 10)").
+        if (const auto& discs = is_cut ? design.cuts[k].discs : design.keeps[k - design.cuts.size()].discs) {
+            std::size_t best = 0;
+            for (std::size_t q = 1; q < discs->centres.size(); ++q)
+                if (distance(discs->centres[q], t.at) < distance(discs->centres[best], t.at)) best = q;
+            const Vec2 c = discs->centres[best];
+            f.what = fmt::format("{} {} at ({}, {})", f.what, best, number_text(c.x), number_text(c.y));
+        }
         return f;
     };
     std::vector<DesignFinding> out;

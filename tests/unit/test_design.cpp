@@ -143,21 +143,37 @@ TEST_CASE("design: drilled holes cut the tool's disc with its point, bores their
         {"type": "bore-mill", "tool": 2, "diameter": 20, "retractPlane": 2, "endDepth": 5, "pitch": 1, "feed": 300, "rampFeed": 200, "holes": [[60, 20]]},
         {"type": "path", "tool": 2, "z": 1, "feed": 300, "start": [0, 0], "path": [{"line": [10, 0]}]}]})");
     const PartDesign d = part_design(job);
-    const DesignCut* h0 = cut_named(d, "hole 0 at (10, 10)");
-    const DesignCut* h1 = cut_named(d, "hole 1 at (30, 10)");
-    REQUIRE(h0);
-    REQUIRE(h1);
-    CHECK(h0->floor.z == doctest::Approx(-12));
-    REQUIRE(h1->floor.apex);
-    CHECK(h1->floor.apex->x == doctest::Approx(30));
+    // Each operation's holes are one cut of discs and one keep of rings around them.
+    REQUIRE(d.cuts.size() == 2);
+    REQUIRE(d.keeps.size() == 2);
+    CHECK(design_cut_count(d) == 3);
+    CHECK(design_keep_count(d) == 3);
+    const DesignCut& drilled = d.cuts[0];
+    CHECK(drilled.path == "/operations/0");
+    CHECK(drilled.what == "hole");
+    REQUIRE(drilled.discs);
+    CHECK(drilled.discs->centres == std::vector<Vec2>{{10, 10}, {30, 10}});
+    CHECK(drilled.discs->radius == doctest::Approx(4));
+    CHECK(drilled.discs->hole == 0);
+    CHECK(drilled.region.outer.segments.empty());
+    CHECK(drilled.floor.z == doctest::Approx(-12));
+    REQUIRE(drilled.floor.apex);  // at each hole's centre: the check places it
     // At the hole's edge the point rises by r / tan(59 deg).
-    CHECK(h1->floor.at({34, 10}) == doctest::Approx(-12 + 4 / std::tan(59.0 * std::numbers::pi / 180)));
-    CHECK(region_area(h0->region) == doctest::Approx(std::numbers::pi * 16).epsilon(1e-9));
-    const DesignCut* bore = cut_named(d, "hole 0 at (60, 20)");
-    REQUIRE(bore);
-    CHECK(!bore->floor.apex);
-    CHECK(bore->floor.z == doctest::Approx(-5));
-    CHECK(region_area(bore->region) == doctest::Approx(std::numbers::pi * 100).epsilon(1e-9));
+    DesignFloor at_hole1 = drilled.floor;
+    at_hole1.apex = Vec2{30, 10};
+    CHECK(at_hole1.at({34, 10}) == doctest::Approx(-12 + 4 / std::tan(59.0 * std::numbers::pi / 180)));
+    // The part around them: rings from the hole out by one tool diameter (8 mm).
+    REQUIRE(d.keeps[0].discs);
+    CHECK(d.keeps[0].what == "the part around hole");
+    CHECK(d.keeps[0].discs->radius == doctest::Approx(12));
+    CHECK(d.keeps[0].discs->hole == doctest::Approx(4));
+    const DesignCut& bore = d.cuts[1];
+    REQUIRE(bore.discs);
+    CHECK(bore.path == "/operations/1");
+    CHECK(bore.discs->centres == std::vector<Vec2>{{60, 20}});
+    CHECK(!bore.floor.apex);
+    CHECK(bore.floor.z == doctest::Approx(-5));
+    CHECK(bore.discs->radius == doctest::Approx(10));
     REQUIRE(d.unchecked.size() == 1);
     CHECK(d.unchecked[0] == "/operations/2: a path has no designed part");
 }

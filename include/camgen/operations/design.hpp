@@ -39,11 +39,22 @@ struct DesignFloor {
     }
 };
 
+// An operation's holes: discs of one radius about their centres (a cut: each disc; a keep: each
+// ring from `hole` out to `radius`), kept as centres rather than as a region each (a hundred
+// thousand holes). A feature with discs has an empty `region`; its floor's apex, if it has one,
+// is each disc's centre; its `what` names a hole by its index ("hole" -> "hole 3 at (20, 10)").
+struct DesignDiscs {
+    std::vector<Vec2> centres;
+    double radius = 0.0;  // mm, each disc's
+    double hole = 0.0;    // mm, a keep's ring: the hole's radius inside it (0: a full disc)
+};
+
 // Material an operation removes.
 struct DesignCut {
     std::string path;   // the operation's JSON path
     std::string what;   // for messages: "the pocket", "the band beside the wall", "hole 3 at (20, 10)", "tab 2"
     PlaneRegion region;
+    std::optional<DesignDiscs> discs;  // set: the region is these discs
     DesignFloor floor;
     double top_z = 0.0;           // the stock top the operation starts from
     double axial_allowance = 0.0; // mm it may leave on its floor (its stated stock)
@@ -56,6 +67,7 @@ struct DesignKeep {
     std::string path;
     std::string what;
     PlaneRegion region;
+    std::optional<DesignDiscs> discs;  // set: the region is these rings
     double top_z = 0.0;
 };
 
@@ -64,6 +76,10 @@ struct PartDesign {
     std::vector<DesignKeep> keeps;
     std::vector<std::string> unchecked;  // "/operations/3 (path): a path has no designed part"
 };
+
+// How many cuts and keeps a design has, each disc counted.
+std::size_t design_cut_count(const PartDesign& design);
+std::size_t design_keep_count(const PartDesign& design);
 
 // The job's design. `keep_band`: how far beside a pocket's wall or a hole the part is kept
 // (0: one tool diameter, at least 3 mm).
