@@ -338,7 +338,7 @@ struct RingForest {
     std::vector<std::size_t> roots;
 };
 
-RingForest ring_forest(const PlaneRegion& region, double d0, double s, std::vector<std::string>& notes, const PocketOp& op) {
+RingForest ring_forest(const PlaneRegion& region, double d0, double s, std::vector<std::string>& notes) {
     RingForest forest;
     std::vector<std::size_t> level;  // the previous level's nodes
     std::size_t paths = 0;
@@ -382,7 +382,7 @@ std::vector<Profile> walked_loops(const PlaneRegion& r, bool area_left) {
 }
 
 void plan_offset(PocketPlanner& planner, const PocketOp& op, double d0) {
-    RingForest forest = ring_forest(op.region, d0, op.step_over, planner.notes, op);
+    RingForest forest = ring_forest(op.region, d0, op.step_over, planner.notes);
     if (forest.roots.empty())
         throw PlanError("path", fmt::format("the tool (radius {}) with the stock left does not fit in the pocket", planner.in.show(op.tool_radius)));
     // The material a ring cuts lies towards the walls (inside-out) or towards the middle

@@ -40,9 +40,6 @@ std::string upper(std::string_view s) {
     return out;
 }
 
-// The length in mm of one unit in the last digit of a format (scale and decimals as given).
-double unit_of(const nc::FormatSpec& spec) { return std::pow(10.0, -spec.decimals) / spec.scale; }
-
 // The problems of every dialect: formats. The formats of mm output first; an inch format's
 // problem also names the mm format it inherits from.
 std::optional<MachineProblem> format_problem(const Machine& m) {
