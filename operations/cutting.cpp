@@ -723,6 +723,10 @@ CutFeeds read_cut_feeds(Fields& f, const JobInput& in, const Tool& tool, double 
     const std::optional<double> computed = f.has("feed") ? std::nullopt : computed_milling_feed(tool, engagement, notes);
     if (computed) {
         feeds.cutting = *computed;
+    } else if (!f.has("feed") && tool.cutting) {
+        f.fail("feed", fmt::format("required key \"feed\" is missing, and the cutting data of {} for {} give no "
+                                   "feedPerTooth to compute it from",
+                                   tool.cutting->path, tool.cutting->material));
     } else {
         feeds.cutting = in.length(f, "feed");
         if (!(feeds.cutting > 0)) f.fail("feed", "feed must be > 0");

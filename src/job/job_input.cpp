@@ -169,6 +169,13 @@ bool JobInput::units_and_clearance() {
         header_.units = top.choice("units", unit_names, Units::mm);
         scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
         header_.clearance = length(top, "clearance");
+        // The material too, which library tools are read by: an error of another header key
+        // must not make every library tool's "give the job's material" as well.
+        try {
+            Fields again(doc_.root, "", source_);
+            header_.material = again.optional_string("material").value_or("");
+        } catch (const InputError&) {
+        }
         return true;
     } catch (const InputError&) {
         return false;
@@ -382,7 +389,11 @@ void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entr
     if (!entry.cutting.empty()) {
         std::vector<std::string> materials;
         for (const CuttingData& c : entry.cutting) materials.push_back(c.material);
-        if (header_.material.empty()) {
+        if (header_.material.empty() && doc_.root.is_object() && doc_.root.contains("material")) {
+            // The job's material failed to read: its error is reported.
+            throw FollowOnError(f.path_of("library"), "the job's material failed to read",
+                                source_.lines.line_of(f.path_of("library")), source_.name);
+        } else if (header_.material.empty()) {
             if (tool.rpm <= 0)
                 f.fail("library", fmt::format("{} has cutting data for {}: give the job's material (or this tool's rpm "
                                               "and the operations' feeds)",
