@@ -363,3 +363,19 @@ TEST_CASE("an inch library gives its lengths in inch and its surface speed in ft
     CHECK(j.tools.at(1).rpm == 2291);
     CHECK(op_at<ContourOp>(j, 0).feeds.cutting == 232);
 }
+
+TEST_CASE("a program from library tools reads back as its job on every mill, the spindle speed kept in nccad's long tool message") {
+    const fs::path dir = scratch("toollib-verify");
+    for (const char* machine : {"wabeco", "kosy", "fanuc", "linuxcnc", "grbl", "sinumerik", "heidenhain"}) {
+        CAPTURE(machine);
+        const std::string program = (dir / (std::string(machine) + ".nc")).string();
+        const Run post = run({sample_job, "--machine", machine, "--tools", sample_tools, "-q", "-o", program});
+        REQUIRE_MESSAGE(post.code == 0, post.err);
+        const Run v = run({"verify", program, "--machine", machine, "--job", sample_job, "--tools", sample_tools});
+        CHECK_MESSAGE(v.code == 0, v.err);
+        CHECK(v.out.find("matches job") != std::string::npos);
+    }
+    // nccad: the description is cut before the spindle speed, never the speed.
+    const std::string text = read_file((dir / "wabeco.nc").string());
+    CHECK(text.find(", spindle 3978 rpm\n") != std::string::npos);
+}
