@@ -379,3 +379,12 @@ TEST_CASE("a program from library tools reads back as its job on every mill, the
     const std::string text = read_file((dir / "wabeco.nc").string());
     CHECK(text.find(", spindle 3978 rpm\n") != std::string::npos);
 }
+
+TEST_CASE("the output never replaces the tool library") {
+    const fs::path dir = scratch("toollib-output");
+    const std::string tools = write_to(dir, "tools.json", read_file(sample_tools));
+    const Run r = run({sample_job, "--machine", "fanuc", "--tools", tools, "-o", tools});
+    CHECK(r.code == 2);
+    CHECK(r.err.find("would replace the tool library " + tools) != std::string::npos);
+    CHECK(read_file(tools) == read_file(sample_tools));
+}
