@@ -27,8 +27,8 @@ set(CAMGEN_ZSH_COMPLETION_DIR ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions
 
 install(TARGETS camgen RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(FILES ${CAMGEN_MACHINE_FILES} DESTINATION ${CMAKE_INSTALL_DATADIR}/camgen/machines COMPONENT runtime)
-# The committed schemas equal `camgen schema job|machine` (a unit test keeps them so).
-install(FILES schema/job.schema.json schema/machine.schema.json
+# The committed schemas equal `camgen schema job|machine|tools` (a unit test keeps them so).
+install(FILES schema/job.schema.json schema/machine.schema.json schema/tools.schema.json
         DESTINATION ${CMAKE_INSTALL_DATADIR}/camgen/schema COMPONENT runtime)
 install(FILES ${CMAKE_BINARY_DIR}/camgen.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT runtime)
 install(FILES completions/camgen.bash DESTINATION ${CAMGEN_BASH_COMPLETION_DIR} RENAME camgen COMPONENT runtime)

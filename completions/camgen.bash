@@ -73,7 +73,7 @@ _camgen() {
         return 0
     fi
     case $sub in
-    schema) COMPREPLY=($(compgen -W 'job machine' -- "$cur")) ;;
+    schema) COMPREPLY=($(compgen -W 'job machine tools' -- "$cur")) ;;
     verify) _camgen_files "$cur" '*' ;;
     *)
         COMPREPLY=($(compgen -W 'verify schema' -- "$cur"))

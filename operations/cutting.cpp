@@ -45,7 +45,7 @@ constexpr KeySpec depth_pass_key_table[] = {
 };
 
 constexpr KeySpec feed_key_table[] = {
-    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false}, .description = "cutting feed"},
+    {.key = "feed", .quantity = Quantity::feed, .min = Bound{0, false}, .description = "cutting feed; required unless the tool comes from the library with a feedPerTooth for the job's material (default: then fz x flutes x rpm)"},
     {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .description = "feed straight down (default: feed)"},
     {.key = "rampFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .description = "feed of a ramp (default: feed)"},
     {.key = "leadInFeed", .quantity = Quantity::feed, .min = Bound{0, false}, .description = "feed of the lead-in (default: feed)"},
@@ -718,10 +718,19 @@ std::optional<Finishing> read_finishing(Fields& f, const JobInput& in, double to
     return finishing;
 }
 
-CutFeeds read_cut_feeds(Fields& f, const JobInput& in) {
+CutFeeds read_cut_feeds(Fields& f, const JobInput& in, const Tool& tool, double engagement, std::vector<std::string>& notes) {
     CutFeeds feeds;
-    feeds.cutting = in.length(f, "feed");
-    if (!(feeds.cutting > 0)) f.fail("feed", "feed must be > 0");
+    const std::optional<double> computed = f.has("feed") ? std::nullopt : computed_milling_feed(tool, engagement, notes);
+    if (computed) {
+        feeds.cutting = *computed;
+    } else if (!f.has("feed") && tool.cutting) {
+        f.fail("feed", fmt::format("required key \"feed\" is missing, and the cutting data of {} for {} give no "
+                                   "feedPerTooth to compute it from",
+                                   tool.cutting->path, tool.cutting->material));
+    } else {
+        feeds.cutting = in.length(f, "feed");
+        if (!(feeds.cutting > 0)) f.fail("feed", "feed must be > 0");
+    }
     feeds.plunge = feed_of(f, in, "plungeFeed", feeds.cutting);
     feeds.ramp = feed_of(f, in, "rampFeed", feeds.cutting);
     feeds.lead_in = feed_of(f, in, "leadInFeed", feeds.cutting);

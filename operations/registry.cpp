@@ -26,6 +26,8 @@ namespace {
 std::string describe(const Tool& t) {
     std::string s = fmt::format("{:g} mm {}", t.diameter, tool_types[static_cast<int>(t.type)].description);
     if (!t.comment.empty()) s += " - " + t.comment;
+    // What camgen computed for a library tool, in its line of the program's tool list.
+    if (!t.computed.empty()) s += fmt::format(" - library {}: {} computed", t.library, fmt::join(t.computed, ", "));
     return s;
 }
 
@@ -103,9 +105,10 @@ std::vector<std::string> operation_type_names() {
     }(std::make_index_sequence<std::variant_size_v<Operation>>());
 }
 
-Job read_job(std::string_view text, const std::string& source_name, JobLimits limits) {
+Job read_job(std::string_view text, const std::string& source_name, JobLimits limits, const ToolLibraryOptions& tools) {
     // A syntax error ends reading here: the one error.
     JobInput in(text, source_name, limits);
+    in.set_tool_library(tools);
     // The header, the tools and each operation are read on after an error of another, and their
     // errors reported together; within one of them the first error is the only one.
     JobErrors errors;
@@ -226,6 +229,13 @@ void expand_job(const Job& job, EventSink& sink) {
                 if constexpr (requires { o.tolerance; }) tolerance = o.tolerance;
                 std::vector<std::string> notes;
                 if constexpr (requires { o.notes; }) notes = o.notes;
+                // What camgen computed for the tool, said where it is changed to.
+                if (tool.number != current) {
+                    std::vector<std::string> computed;
+                    for (const std::string& c : tool.computed)
+                        computed.push_back(fmt::format("T{} (library tool \"{}\"): {} computed", tool.number, tool.library, c));
+                    notes.insert(notes.begin(), computed.begin(), computed.end());
+                }
                 std::optional<OperationPlanes> planes;
                 if constexpr (requires { o.heights; }) {
                     const Planes z = resolve_planes(o.heights);

@@ -78,11 +78,20 @@ void NccadPost::flush_tool_message(std::optional<double> rpm) {
     const ToolChange& t = *pending_tool_;
     std::string msg = fmt::format("Insert tool {}", t.number);
     if (!t.description.empty()) msg += " " + t.description;
-    if (rpm) msg += fmt::format(", spindle {} rpm", speed_text(*rpm));
+    const std::string tail = rpm ? fmt::format(", spindle {} rpm", speed_text(*rpm)) : "";
+    std::string cleaned = writer().clean_comment(msg + tail);
+    if (!tail.empty() && !cleaned.ends_with(tail)) {
+        // A long description (a library tool's computed values) is cut, never the spindle speed
+        // the operator sets and the reader reads.
+        std::string head = writer().clean_comment(msg);
+        head.resize(std::min(head.size(), cleaned.size() > tail.size() ? cleaned.size() - tail.size() : 0));
+        while (!head.empty() && head.back() == ' ') head.pop_back();
+        cleaned = head + tail;
+    }
     // ';' starts a comment in nccad: it must not appear in the message.
-    for (char& c : msg)
+    for (char& c : cleaned)
         if (c == ';') c = ',';
-    writer().add(m(1)).add(writer().clean_comment(msg)).end();
+    writer().add(m(1)).add(cleaned).end();
     pending_tool_.reset();
 }
 

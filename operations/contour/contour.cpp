@@ -204,7 +204,8 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
         g.tool_diameter = tool.diameter;
         op.tabs = read_tabs(f, in, g, total_depth, closed);
     }
-    op.feeds = read_cut_feeds(f, in);
+    // The radial engagement of a contour is not known (its first pass may be a slot).
+    op.feeds = read_cut_feeds(f, in, tool, 0.0, op.notes);
     op.tolerance = read_tolerance(f, in);
     OffsetRequest request;
     request.profile = &op.profile;

@@ -64,7 +64,8 @@ std::vector<KeyRule> drill_rules() {
     for (const auto& kind : cycle_kinds) {
         KeyRule r{.when_key = "cycle", .values = {std::string(kind.name)}, .require = {}, .forbid = {}};
         for (const auto& d : drill_fields) {
-            if (d.required_by.contains(kind.value)) r.require.push_back(d.key);
+            // A plunging feed may come from the tool's library cutting data: not required here.
+            if (d.required_by.contains(kind.value) && d.field != DrillField::plunging_feedrate) r.require.push_back(d.key);
             if (!d.in_planes && !d.used_by.contains(kind.value)) r.forbid.push_back(d.key);
         }
         rules.push_back(std::move(r));
@@ -184,8 +185,18 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     static_cast<Heights&>(p) = read_heights(f, in, "hole");
 
     // The optional fields, by the vocabulary's table; then the degression, which reads two.
-    for (const auto& d : drill_fields)
-        if (!d.in_planes) read_field(f, in, d, p.kind, p.values);
+    // The plunging feed, where the job gives none, from the tool's library cutting data (a
+    // feed per revolution x rpm).
+    std::vector<std::string> computed_notes;
+    for (const auto& d : drill_fields) {
+        if (d.in_planes) continue;
+        if (d.field == DrillField::plunging_feedrate && !f.has(d.key) && d.used_by.contains(p.kind))
+            if (const auto feed = computed_drilling_feed(tool, computed_notes)) {
+                p.values.set(d.field, *feed);
+                continue;
+            }
+        read_field(f, in, d, p.kind, p.values);
+    }
     read_degression(f, in, p.values);
 
     p.drill_tip = f.boolean("drillTip", false);
@@ -196,6 +207,7 @@ DrillOp DrillOp::read(Fields& f, const JobInput& in) {
     p.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     p.unsupported = f.choice("unsupported", unsupported_cycles, UnsupportedCycle::refuse);
     static_cast<HoleSet&>(op) = read_hole_set(f, in, type);
+    op.notes.insert(op.notes.begin(), computed_notes.begin(), computed_notes.end());
     return op;
 }
 

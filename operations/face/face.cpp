@@ -176,7 +176,8 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     if (op.finishing_stock >= total_depth)
         f.fail("finishingStock", fmt::format("finishingStock {} is not less than the depth faced ({})", in.show(op.finishing_stock),
                                              in.show(total_depth)));
-    op.feeds = read_cut_feeds(f, in);
+    // The rows take the stepover each, the first beside the edge less: thinning by the stepover.
+    op.feeds = read_cut_feeds(f, in, tool, op.step_over, op.notes);
     plan_face_rows(op, in, f);
     return op;
 }

@@ -911,7 +911,9 @@ PocketOp PocketOp::read(Fields& f, const JobInput& in) {
                    fmt::format("tool {} does not cut at its centre: it cannot plunge into the material (give the tool \"centreCutting\": "
                                "true if it does, or a helix or along ramp)",
                                tool.number));
-    op.feeds = read_cut_feeds(f, in);
+    // No chip-thinning correction for the stepover: each level begins with a cut of the
+    // tool's full width (the first ring or row), which the thinned feed would overload.
+    op.feeds = read_cut_feeds(f, in, tool, 0.0, op.notes);
     op.tolerance = read_tolerance(f, in);
 
     const double radial = op.finishing ? op.finishing->radial_stock : 0.0;

@@ -70,6 +70,7 @@ struct Options {
     std::string plot;   // SVG backplot of the program as read back
     bool stats = false; // statistics of the program as read back, to stderr
     JobLimits limits;   // how large a job may be (--max-holes, --max-elements)
+    std::string tools;  // --tools: the tool library (a file or a folder)
     bool quiet = false; // no notes on stderr (warnings and errors still)
 };
 
@@ -82,6 +83,7 @@ struct VerifyOptions {
     std::string units;
     std::string tool_table;                // the control's tool table (LinuxCNC's format): G41/G42 radii
     std::string tool_table_units = "mm";   // its lengths
+    std::string tools;                     // --tools: the job's tool library
 };
 
 // `camgen simulate PROGRAM --machine M --job JOB (--stock-box ... | --bar ...) [--resolution MM]`
@@ -92,6 +94,7 @@ struct SimulateOptions {
     std::string stock_box;  // "x0,y0,z0,x1,y1,z1", mm
     std::string bar;        // "D,L[,FACEZ]", mm
     double resolution = 0.0;
+    std::string tools;    // --tools: the job's tool library
     std::string png;      // --png: the top view (and section) or the half-section
     std::string section;  // --section "x0,y0,x1,y1", mm
     std::string plot;     // --plot: the HTML page
@@ -183,15 +186,29 @@ InputRules program_input() { return InputRules{.max_line = max_program_line}; }
 
 // Reads a job's text into a Job; a file that is not JSON (a drawing, an NC program, a binary
 // file, nothing) is named as such after the JSON parse failed.
-Job parse_job(const InputText& input, const std::string& file, const JobLimits& limits, const std::string& machine) {
+Job parse_job(const InputText& input, const std::string& file, const JobLimits& limits, const std::string& machine,
+              const ToolLibraryOptions& tools) {
     const std::string source = file == "-" ? "<stdin>" : file;
     try {
-        return read_job(input.text, source, limits);
+        return read_job(input.text, source, limits, tools);
     } catch (const InputError& e) {
         if (e.path().empty())
             if (auto what = not_json(input.text, input.cut, source, "job", machine)) throw InputError("", *what, 0, source);
         throw;
     }
+}
+
+// Where the job's library tools come from (--tools, else the search) and the bounds of the
+// machine (none: --events) on the speeds and feeds computed from their cutting data.
+ToolLibraryOptions library_options(const std::string& tools, const Machine* machine) {
+    ToolLibraryOptions options;
+    options.file = tools;
+    if (machine) {
+        options.max_rpm = machine->limits.max_rpm;
+        options.max_feed = machine->limits.max_feed;
+        options.machine = machine->name;
+    }
+    return options;
 }
 
 std::string job_stem(const std::string& file) {
@@ -579,7 +596,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     std::optional<Job> job;
     if (!v.job.empty()) {
         try {
-            job = parse_job(job_input, v.job, JobLimits{}, v.machine);
+            job = parse_job(job_input, v.job, JobLimits{}, v.machine, library_options(v.tools, &machine));
             check_machine_kind(*job, machine.kind, machine.name);
         } catch (const InputErrors&) {
             throw;  // each located already
@@ -760,7 +777,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     inputs.check_outputs({{"--png", v.png}, {"--plot", v.plot}, {"--stl", v.stl}}, out);
     std::optional<Job> job;
     try {
-        job = parse_job(job_input, v.job, JobLimits{}, v.machine);
+        job = parse_job(job_input, v.job, JobLimits{}, v.machine, library_options(v.tools, &machine));
         check_machine_kind(*job, machine.kind, machine.name);
     } catch (const InputErrors&) {
         throw;
@@ -988,6 +1005,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     app.add_option("--plot", o.plot,
                    "Also write a backplot of the program as read back: F.svg a drawing (XY view, a lathe's XZ "
                    "half-section), F.html an interactive page (block slider, layers, statistics)");
+    app.add_option("--tools", o.tools,
+                   "The tool library (a JSON file, or a folder of them) whose tools the job names (\"library\"); "
+                   "default: CAMGEN_TOOLS (files or folders, colon-separated), then $XDG_CONFIG_HOME/camgen/tools");
     app.add_option("--max-holes", o.limits.holes,
                    fmt::format("Refuse jobs with more holes than this (default {})", JobLimits{}.holes));
     app.add_option("--max-elements", o.limits.path_elements,
@@ -1012,6 +1032,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     verify->add_option("-m,--machine", vo.machine, "The machine the program was written for")->required();
     verify->add_option("--job", vo.job, "The job the program should carry out");
     verify->add_option("--plot", vo.plot, "Write a backplot of the program: F.svg a drawing, F.html an interactive page");
+    verify->add_option("--tools", vo.tools, "The tool library of the job's library tools (as camgen --tools)");
     verify->add_option("--units", vo.units, "The units the program was written in, if not the machine's (as camgen --units)")
         ->check(CLI::IsMember({"mm", "inch"}));
     verify->add_option("--tool-table", vo.tool_table,
@@ -1031,6 +1052,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     simulate_cmd->add_option("--job", so.job, "The job whose tools the program uses (their shapes)")->required();
     simulate_cmd->add_option("--stock-box", so.stock_box, "A mill's stock: the box's corners x0,y0,z0,x1,y1,z1 in mm (default: the job's stock)");
     simulate_cmd->add_option("--bar", so.bar, "A lathe's stock: the bar's diameter, length and face Z (default 0), D,L[,FACEZ] in mm (default: the job's stock)");
+    simulate_cmd->add_option("--tools", so.tools, "The tool library of the job's library tools (as camgen --tools)");
     simulate_cmd->add_option("--resolution", so.resolution,
                              "Cell size (mill) or Z step (lathe) in mm (default: 4 million cells, 100,000 steps)");
     simulate_cmd->add_option("--png", so.png,
@@ -1065,9 +1087,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
 
     std::string schema_name;
     CLI::App* schema = app.add_subcommand(
-        "schema", "Print the JSON Schema (draft 2020-12) of job files (schema job) or machine files (schema machine), "
-                  "for editors and validators");
-    schema->add_option("file", schema_name, "job or machine")->required();
+        "schema", "Print the JSON Schema (draft 2020-12) of job files (schema job), machine files (schema machine) or "
+                  "tool libraries (schema tools), for editors and validators");
+    schema->add_option("file", schema_name, "job, machine or tools")->required();
 
     try {
         app.parse(argc, argv);
@@ -1091,8 +1113,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             if (!text) {
                 const auto names = schema_names();
                 const auto hint = json::did_you_mean(schema_name, names);
-                err << fmt::format("camgen: unknown schema \"{}\"{}; camgen schema takes {} or {}\n", schema_name,
-                                   hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", names.front(), names.back());
+                err << fmt::format("camgen: unknown schema \"{}\"{}; camgen schema takes {}\n", schema_name,
+                                   hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", fmt::join(names, ", "));
                 return exit_usage;
             }
             out << *text;
@@ -1151,12 +1173,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
             }
         }
         const InputText input = inputs.read(o.job, "the job", json_input());
+        if (!o.tools.empty()) inputs.note(o.tools, "the tool library");
         const std::string& text = input.text;
         // Before anything is written: no output replaces an input, and the outputs are two files.
         inputs.check_outputs({{"-o", o.output}, {"--plot", o.plot}}, out);
         Job job;
         try {
-            job = parse_job(input, o.job, o.limits, o.machine);
+            job = parse_job(input, o.job, o.limits, o.machine, library_options(o.tools, machine ? &*machine : nullptr));
             if (job.name.empty()) job.name = job_stem(o.job);
             // Every output is written completely (the program, the plot) before any is committed:
             // a failure on the way leaves every file as it was. Reading back needs the text, so

@@ -120,7 +120,17 @@ the built-in machine files installed with camgen, e.g. \fI/usr/share/camgen/mach
 compiled in
 the same built-in files as built into the program, used when there is no installed folder (a run from the build folder, a program linked with the camgen library)
 .PP
-The JSON Schemas of job and machine files are installed in \fI../share/camgen/schema\fR (and printed by \fBcamgen schema job\fR and \fBcamgen schema machine\fR).
+A job's tool that names a library tool (\fB"library": "NAME"\fR) is looked up in the tool library: the file or folder of \fB--tools\fR alone when it is given, else the files below, in this order; the first tool of a name wins. A folder's \fI*.json\fR files are read in name order.
+.TP
+each file or folder of \fBCAMGEN_TOOLS\fR (colon-separated)
+the user's tool libraries
+.TP
+\fI$XDG_CONFIG_HOME/camgen/tools\fR (\fI~/.config/camgen/tools\fR when XDG_CONFIG_HOME is unset)
+the user's tool libraries
+.PP
+A library tool's cutting data for the job's \fBmaterial\fR give its rpm (vc x 1000 / (pi x D)) and the feeds of its contour, pocket, face (fz x flutes x rpm, a face's feed corrected for radial chip thinning) and drill operations (feed per rev x rpm) where the job gives none, within the machine's maxRpm and maxFeed; what camgen computed is written in the tool's comment line and printed as a note.
+.PP
+The JSON Schemas of job and machine files and tool libraries are installed in \fI../share/camgen/schema\fR (and printed by \fBcamgen schema job\fR, \fBcamgen schema machine\fR and \fBcamgen schema tools\fR).
 .SH ENVIRONMENT
 .TP
 \fBCAMGEN_MAX_INPUT_SIZE\fR
@@ -128,6 +138,9 @@ the largest input camgen reads (job, machine file, program, tool table): bytes, 
 .TP
 \fBCAMGEN_MACHINES\fR, \fBXDG_CONFIG_HOME\fR
 where the user's machine files are (see FILES).
+.TP
+\fBCAMGEN_TOOLS\fR, \fBXDG_CONFIG_HOME\fR
+where the user's tool libraries are (see FILES).
 .SH EXIT STATUS
 0 done, 1 invalid job or machine file (the message names the JSON path and line; a job's independent errors come together, a line each, up to 20), 2 usage (unknown option or machine; an output that would replace an input), 3 a file could not be read or written.
 .SH SEE ALSO

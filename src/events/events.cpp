@@ -26,6 +26,7 @@ std::string event_to_json(const Event& event) {
                    [&](const OperationStart& e) {
                        j = {{"event", "operation-start"}, {"name", e.name}, {"path", e.path}};
                        put_optional(j, "tolerance", e.tolerance);
+                       if (!e.notes.empty()) j["notes"] = e.notes;
                        if (e.feed_mode != FeedMode::per_minute) j["feedMode"] = name_of(feed_modes, e.feed_mode);
                    },
                    [&](const OperationEnd&) { j = {{"event", "operation-end"}}; },

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 
 namespace camgen {
 
@@ -35,6 +36,9 @@ constexpr KeySpec job_keys[] = {
     {.key = "stock", .type = JsonType::object, .ref = "stock",
      .description = "the material before the first operation: a box or a closed profile on a mill, a bar on a lathe "
                     "(default: none; the safety checks and face use it where it is given)"},
+    {.key = "material", .type = JsonType::string,
+     .description = "what the stock is made of (\"aluminium\", \"steel\", ...): the cutting data of library tools "
+                    "for it give their rpm and feeds (default: none)"},
     {.key = "tools", .type = JsonType::array, .required = true, .ref = "tool", .min_items = 1,
      .description = "the tool table, at least one tool"},
     {.key = "operations", .type = JsonType::array, .required = true, .ref = "operation",
@@ -47,8 +51,11 @@ constexpr KeySpec tool_keys[] = {
      .min = Bound{1, true}, .description = "tool number (T word), unique within the job"},
     {.key = "type", .type = JsonType::string, .default_json = "\"drill\"", .choices = &choices_of<tool_types>,
      .description = "kind of tool"},
-    {.key = "diameter", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
-     .description = "cutting diameter"},
+    {.key = "library", .type = JsonType::string,
+     .description = "the name of a tool of the tool library (--tools, CAMGEN_TOOLS, ~/.config/camgen/tools): its keys "
+                    "and cutting data, the keys given here overriding them"},
+    {.key = "diameter", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "cutting diameter (required unless the tool comes from the library)"},
     {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
      .description = "included point angle: a drill's (30 or more; needed by drillTip), a chamfer mill's or V-bit's "
                     "(required for them)"},
@@ -60,11 +67,15 @@ constexpr KeySpec tool_keys[] = {
                     "point; refused for other types)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
+    {.key = "flutes", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{max_tool_flutes, true},
+     .description = "cutting edges: the feed computed from a feed per tooth is fz x flutes x rpm"},
     {.key = "centreCutting", .type = JsonType::boolean,
      .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills and boring bars, true for the rest); "
                     "a pocket plunges only with such a tool"},
-    {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
-     .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
+    {.key = "rpm", .quantity = Quantity::speed, .min = Bound{0, false},
+     .description = "spindle speed (also the tapping speed unless tappingSpeed is given); required unless the tool "
+                    "comes from the library, which gives it or computes it from its cutting data for the job's material"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
      .choices = &choices_of<spindle_directions>, .description = "spindle direction: cw (M3) or ccw (M4)"},
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "free text for the tool list"},
@@ -86,6 +97,10 @@ std::vector<ObjectSpec> JobInput::objects() {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
          .keys = {std::begin(job_keys), std::end(job_keys)}},
         {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)},
+         .groups = {{.keys = {"diameter", "library"}, .min = 1, .max = 2,
+                     .description = "`diameter`, or `library` (the library tool's)"},
+                    {.keys = {"rpm", "library"}, .min = 1, .max = 2,
+                     .description = "`rpm`, or `library` (the library tool's, or computed from its cutting data)"}},
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
                    {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
@@ -138,6 +153,8 @@ JobInput::Fields JobInput::read_header() {
     scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
     header_.clearance = length(top, "clearance");
     header_.work_offset = top.optional_string("workOffset").value_or("");
+    header_.material = top.optional_string("material").value_or("");
+    if (top.has("material") && header_.material.empty()) top.fail("material", "material must not be empty");
     if (auto n = top.optional_integer("programNumber")) {
         if (*n < 1 || *n > 99999999) top.fail("programNumber", "a program number must be between 1 and 99999999");
         header_.program_number = static_cast<int>(*n);
@@ -152,6 +169,13 @@ bool JobInput::units_and_clearance() {
         header_.units = top.choice("units", unit_names, Units::mm);
         scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
         header_.clearance = length(top, "clearance");
+        // The material too, which library tools are read by: an error of another header key
+        // must not make every library tool's "give the job's material" as well.
+        try {
+            Fields again(doc_.root, "", source_);
+            header_.material = again.optional_string("material").value_or("");
+        } catch (const InputError&) {
+        }
         return true;
     } catch (const InputError&) {
         return false;
@@ -188,6 +212,8 @@ void JobInput::read_tools(Fields& top, const std::function<void(const InputError
             Tool tool = read_tool(value, path);
             header_.tools.emplace(tool.number, std::move(tool));
         } catch (const InputError& e) {
+            // A tool naming a library that failed to read: the library's error is reported.
+            const bool follow_on = dynamic_cast<const FollowOnError*>(&e) != nullptr;
             // An operation naming the number the tool says it has may have meant this tool.
             // When the number itself is the error (missing, not an integer, below 1, already
             // used), the tool may have been meant to have another: then any number the table
@@ -195,7 +221,7 @@ void JobInput::read_tools(Fields& top, const std::function<void(const InputError
             const std::optional<std::int64_t> said = integer_member(value, "number");
             if (said) failed_tools_.insert(*said);
             if (!said || e.path() == path + "/number") unnumbered_tool_failed_ = true;
-            report(e);
+            if (!follow_on) report(e);
         }
     }
 }
@@ -209,12 +235,43 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     if (tool.number < 1) f.fail("number", "a tool number must be 1 or more");
     if (auto it = header_.tools.find(tool.number); it != header_.tools.end())
         f.fail("number", fmt::format("tool number {} is already used by {}", tool.number, it->second.path));
-    tool.type = f.choice("type", tool_types, ToolType::drill);
-    tool.diameter = length(f, "diameter");
+    const LibraryTool* entry = nullptr;
+    if (auto name = f.optional_string("library")) entry = &library_tool(f, *name);
+    read_tool_keys(f, tool, entry ? &entry->tool : nullptr, false);
+    if (entry) {
+        tool.library = entry->name;
+        apply_cutting_data(f, tool, *entry, f.has("rpm"));
+    }
+    return tool;
+}
+
+Tool JobInput::read_library_tool(Fields& f) {
+    known_keys(f, tool_keys);
+    for (std::string_view job_only : {"number", "library"})
+        if (f.has(job_only))
+            f.fail(job_only, fmt::format("{} is a key of a job's tool, not of a library tool", job_only));
+    Tool tool;
+    tool.path = f.path();
+    read_tool_keys(f, tool, nullptr, true);
+    return tool;
+}
+
+JobInput::Fields JobInput::read_library_units() {
+    Fields top(doc_.root, "", source_);
+    header_.units = top.choice("units", unit_names, Units::mm);
+    scale_ = header_.units == Units::inch ? mm_per_inch : 1.0;
+    return top;
+}
+
+void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool library_tool) {
+    // A key of the object, else the base's value (a library tool's).
+    const auto from_base = [&](std::string_view key) { return base && !f.has(key); };
+    tool.type = from_base("type") ? base->type : f.choice("type", tool_types, ToolType::drill);
+    tool.diameter = from_base("diameter") ? base->diameter : length(f, "diameter");
     if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
     const bool pointed = tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit;
     const std::string_view type_name = name_of(tool_types, tool.type);
-    tool.tip_angle = f.optional_number("tipAngle");
+    tool.tip_angle = from_base("tipAngle") ? base->tip_angle : f.optional_number("tipAngle");
     if (pointed) {
         // Engraving V-bits go down to 10 degrees, chamfer mills are 60 to 120.
         if (!tool.tip_angle) f.fail("tipAngle", fmt::format("a {} needs its tipAngle (the included angle of its point)", type_name));
@@ -229,7 +286,7 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
                                        "and 180 degrees (drills are 60 to 140)",
                                        *tool.tip_angle));
     }
-    tool.corner_radius = optional_length(f, "cornerRadius");
+    tool.corner_radius = from_base("cornerRadius") ? base->corner_radius : optional_length(f, "cornerRadius");
     if (tool.type == ToolType::bull_nose) {
         if (!tool.corner_radius) f.fail("cornerRadius", "a bull-nose end mill needs its cornerRadius");
         if (!(*tool.corner_radius > 0 && *tool.corner_radius <= tool.diameter / 2 + 1e-9))
@@ -241,7 +298,10 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
                                            "diameter)",
                                            type_name));
     }
-    if (auto tip = optional_length(f, "tipDiameter")) {
+    std::optional<double> tip = from_base("tipDiameter") ? (base->tip_diameter > 0 ? std::optional<double>(base->tip_diameter)
+                                                                                   : std::nullopt)
+                                                         : optional_length(f, "tipDiameter");
+    if (tip) {
         if (!pointed)
             f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill or v-bit, not a {}", type_name));
         if (!(*tip >= 0 && *tip < tool.diameter))
@@ -249,17 +309,134 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
                                               show(tool.diameter)));
         tool.tip_diameter = *tip;
     }
-    tool.flute_length = optional_length(f, "fluteLength");
+    tool.flute_length = from_base("fluteLength") ? base->flute_length : optional_length(f, "fluteLength");
     if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
-    tool.centre_cutting = f.has("centreCutting") ? f.boolean("centreCutting", false)
-                                                  : tool.type != ToolType::end_mill && tool.type != ToolType::bull_nose &&
-                                                        tool.type != ToolType::chamfer_mill && tool.type != ToolType::boring_bar;
-    tool.rpm = f.number("rpm");
-    if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
-    tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);
-    tool.comment = f.optional_string("comment").value_or("");
-    tool.coolant = f.choice("coolant", coolant_modes, CoolantMode::off);
-    return tool;
+    tool.flutes = from_base("flutes") ? base->flutes : f.optional_integer("flutes");
+    if (tool.flutes && (*tool.flutes < 1 || *tool.flutes > max_tool_flutes))
+        f.fail("flutes", fmt::format("flutes must be between 1 and {}", max_tool_flutes));
+    // A library tool's own centreCutting (or its type's default) stays unless the job gives
+    // either.
+    tool.centre_cutting = f.has("centreCutting")                  ? f.boolean("centreCutting", false)
+                          : from_base("centreCutting") && !f.has("type") ? base->centre_cutting
+                                                                    : tool.type != ToolType::end_mill &&
+                                                                          tool.type != ToolType::bull_nose &&
+                                                                          tool.type != ToolType::chamfer_mill &&
+                                                                          tool.type != ToolType::boring_bar;
+    if (library_tool || base) {
+        // A library tool may leave its rpm to its cutting data; a job's tool from the library
+        // takes the library's (apply_cutting_data).
+        tool.rpm = from_base("rpm") ? base->rpm : f.optional_number("rpm").value_or(0.0);
+        if (f.has("rpm") && tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
+    } else {
+        tool.rpm = f.number("rpm");
+        if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
+    }
+    tool.direction = from_base("direction") ? base->direction : f.choice("direction", spindle_directions, SpindleDirection::cw);
+    tool.comment = from_base("comment") ? base->comment : f.optional_string("comment").value_or("");
+    tool.coolant = from_base("coolant") ? base->coolant : f.choice("coolant", coolant_modes, CoolantMode::off);
+}
+
+std::span<const KeySpec> JobInput::tool_key_table() { return tool_keys; }
+
+const LibraryTool& JobInput::library_tool(Fields& f, const std::string& name) {
+    if (!library_) {
+        // A library that failed to read is reported once, with its file's own error (its file,
+        // path and line); the other tools that name it follow from that error.
+        if (library_failed_)
+            throw FollowOnError(f.path_of("library"), "the tool library failed to read",
+                                source_.lines.line_of(f.path_of("library")), source_.name);
+        try {
+            library_ = load_tool_library(library_options_);
+        } catch (const InputError&) {
+            library_failed_ = true;
+            throw;
+        } catch (const IoError& e) {
+            library_failed_ = true;
+            f.fail("library", e.what());
+        }
+    }
+    if (library_->tools.empty())
+        f.fail("library", fmt::format("no tool library found for tool \"{}\": looked in {} (give one with --tools, or "
+                                      "set CAMGEN_TOOLS)",
+                                      name, fmt::join(library_->searched, ", ")));
+    if (const LibraryTool* entry = library_->find(name)) return *entry;
+    std::vector<std::string> names;
+    for (const LibraryTool& t : library_->tools) names.push_back(t.name);
+    const auto hint = json::did_you_mean(name, names);
+    // The closest few names by their start, beside the one did_you_mean finds.
+    std::string listed;
+    const std::size_t shown = 20;
+    for (std::size_t i = 0; i < names.size() && i < shown; ++i) listed += (i ? ", " : "") + names[i];
+    if (names.size() > shown) listed += fmt::format(", ... ({} in all)", names.size());
+    f.fail("library", fmt::format("no tool \"{}\" in the tool library{} ({}); its tools: {}", name,
+                                  hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                                  fmt::join(library_->files, ", "), listed));
+}
+
+namespace {
+// A material's name as compared: lower case.
+std::string job_input_lower(std::string_view text) {
+    std::string s(text);
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+}
+}  // namespace
+
+void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entry, bool rpm_given) {
+    const std::string where = fmt::format("library tool \"{}\" ({} {})", entry.name, entry.file, entry.path);
+    const CuttingData* data = nullptr;
+    if (!entry.cutting.empty()) {
+        std::vector<std::string> materials;
+        for (const CuttingData& c : entry.cutting) materials.push_back(c.material);
+        if (header_.material.empty() && doc_.root.is_object() && doc_.root.contains("material")) {
+            // The job's material failed to read: its error is reported.
+            throw FollowOnError(f.path_of("library"), "the job's material failed to read",
+                                source_.lines.line_of(f.path_of("library")), source_.name);
+        } else if (header_.material.empty()) {
+            if (tool.rpm <= 0)
+                f.fail("library", fmt::format("{} has cutting data for {}: give the job's material (or this tool's rpm "
+                                              "and the operations' feeds)",
+                                              where, fmt::join(materials, ", ")));
+        } else {
+            for (const CuttingData& c : entry.cutting)
+                if (job_input_lower(c.material) == job_input_lower(header_.material)) data = &c;
+            if (!data) {
+                const auto hint = json::did_you_mean(header_.material, materials);
+                f.fail("library", fmt::format("{} has no cutting data for material \"{}\"{}; it has {}", where,
+                                              header_.material, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                                              fmt::join(materials, ", ")));
+            }
+        }
+    }
+    if (data) {
+        ToolCutting cut;
+        cut.material = data->material;
+        cut.surface_speed = data->surface_speed;
+        cut.feed_per_tooth = data->feed_per_tooth;
+        cut.feed_per_rev = data->feed_per_rev;
+        if (!cut.feed_per_rev && cut.feed_per_tooth && tool.flutes) cut.feed_per_rev = *cut.feed_per_tooth * *tool.flutes;
+        cut.max_feed = library_options_.max_feed;
+        cut.path = where;
+        if (cut.feed_per_tooth && !tool.flutes)
+            f.fail("library", fmt::format("{} gives a feedPerTooth for {} but not its flutes: give flutes", where, cut.material));
+        if (!rpm_given) {
+            const double wanted = rpm_for_surface_speed(cut.surface_speed, tool.diameter);
+            tool.rpm = wanted;
+            std::string text = fmt::format("{} rpm from vc {} m/min for {}", number_text(wanted),
+                                           number_text(cut.surface_speed), cut.material);
+            if (library_options_.max_rpm > 0 && wanted > library_options_.max_rpm) {
+                tool.rpm = library_options_.max_rpm;
+                text = fmt::format("{} rpm, the limit of machine {} (vc {} m/min for {} wants {} rpm)",
+                                   number_text(tool.rpm), library_options_.machine, number_text(cut.surface_speed),
+                                   cut.material, number_text(wanted));
+            }
+            tool.computed.push_back(text);
+        }
+        tool.cutting = std::move(cut);
+    }
+    if (tool.rpm <= 0)
+        f.fail("library", fmt::format("{} gives no rpm and no cutting data: give this tool's rpm", where));
 }
 
 const Tool& JobInput::tool(Fields& f) const {

@@ -282,6 +282,7 @@ std::optional<std::string> keys_markdown(std::string_view name) {
     std::vector<ObjectSpec> objects = operation_objects();
     for (ObjectSpec& o : stock_objects()) objects.push_back(std::move(o));
     for (ObjectSpec& o : machine_objects()) objects.push_back(std::move(o));
+    for (ObjectSpec& o : tool_library_objects()) objects.push_back(std::move(o));
     for (const ObjectSpec& spec : objects) {
         if (spec.name != name) continue;
         std::string s = "| key | value | default | meaning |\n| --- | --- | --- | --- |\n";
@@ -323,11 +324,17 @@ OJson machine_schema() {
     return s;
 }
 
-std::vector<std::string> schema_names() { return {"job", "machine"}; }
+OJson tools_schema() {
+    // A library's lengths follow its units, as a job's do.
+    return file_schema("tools", "camgen tool library", tool_library_objects(), OJson::object(), SchemaKind::job);
+}
+
+std::vector<std::string> schema_names() { return {"job", "machine", "tools"}; }
 
 std::optional<std::string> schema_text(std::string_view name) {
     if (name == "job") return job_schema().dump(2) + "\n";
     if (name == "machine") return machine_schema().dump(2) + "\n";
+    if (name == "tools") return tools_schema().dump(2) + "\n";
     return std::nullopt;
 }
 

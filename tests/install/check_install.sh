@@ -22,7 +22,7 @@ camgen=$prefix/bin/camgen
 for f in "$source_dir"/machines/*.json; do
   cmp -s "$f" "$prefix/share/camgen/machines/$(basename "$f")" || fail "machine file $(basename "$f") not installed"
 done
-for s in job machine; do
+for s in job machine tools; do
   "$camgen" schema $s | cmp -s - "$prefix/share/camgen/schema/$s.schema.json" || fail "schema/$s.schema.json is not camgen schema $s"
 done
 "$camgen" --man | cmp -s - "$prefix/share/man/man1/camgen.1" || fail "camgen.1 is not camgen --man"

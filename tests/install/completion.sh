@@ -41,7 +41,7 @@ expect_bash "fanuc fanuc-lathe " "$camgen" --describe-machine fa
 CAMGEN_MACHINES=$scratch/machines expect_bash "fanuc fanuc-lathe fanuc-shop " "$camgen" --machine fa
 expect_bash "--machine --max-elements --max-holes " "$camgen" --ma
 expect_bash "--job " "$camgen" verify --j
-expect_bash "job machine " "$camgen" schema ""
+expect_bash "job machine tools " "$camgen" schema ""
 expect_bash "inch " "$camgen" --units i
 expect_bash "jobs/plate.json " "$camgen" jobs/pl
 expect_bash "jobs/plate.json jobs/plate.nc " "$camgen" verify jobs/pl

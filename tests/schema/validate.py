@@ -3,10 +3,11 @@
 
     validate.py SOURCE_DIR [CAMGEN]
 
-1. schema/job.schema.json and schema/machine.schema.json are valid draft 2020-12 schemas
-   (Draft202012Validator.check_schema).
+1. schema/job.schema.json, schema/machine.schema.json and schema/tools.schema.json are valid
+   draft 2020-12 schemas (Draft202012Validator.check_schema).
 2. Every samples/*.json is valid against the job schema, every machines/*.json against the
-   machine schema.
+   machine schema; samples/library/tools.json against the tools schema and the job beside it
+   against the job schema; bad libraries are rejected.
 3. The validator rejects bad jobs (an unknown key, a wrong type, values out of range, a key
    the cycle does not use, ...), each for the expected reason. A good job is accepted first,
    so that each rejection is the one change's doing.
@@ -142,7 +143,7 @@ def main():
     print(f"{sys.executable}: jsonschema from {os.path.dirname(jsonschema.__file__)}, Draft202012Validator")
 
     validators = {}
-    for name in ("job", "machine"):
+    for name in ("job", "machine", "tools"):
         path = os.path.join(root, "schema", f"{name}.schema.json")
         with open(path, encoding="utf-8") as f:
             schema = json.load(f)
@@ -155,11 +156,12 @@ def main():
             failures.append(f"{path} does not declare draft 2020-12")
         validators[name] = Draft202012Validator(schema)
         print(f"ok   {path}: a valid draft 2020-12 schema")
-    if len(validators) != 2:
+    if len(validators) != 3:
         print("\n".join("FAIL " + f for f in failures))
         return 1
 
-    for name, pattern in (("job", "samples/*.json"), ("machine", "machines/*.json")):
+    for name, pattern in (("job", "samples/*.json"), ("machine", "machines/*.json"),
+                          ("tools", "samples/library/tools.json"), ("job", "samples/library/plate-library.json")):
         files = sorted(glob.glob(os.path.join(root, pattern)))
         if not files:
             failures.append(f"no files match {pattern}")
@@ -231,6 +233,35 @@ def main():
             failures.append(f"the validator accepts a machine file without {key} that extends nothing")
         else:
             print(f"ok   a machine file without {key} that extends nothing is rejected")
+
+    # Tool libraries: each bad one rejected for its reason.
+    with open(os.path.join(root, "samples", "library", "tools.json"), encoding="utf-8") as f:
+        good_library = json.load(f)
+    bad_libraries = (
+        ("a tool without a name", ["tools", 0, "name"], None, "required"),
+        ("an unknown key", ["tools", 0, "bogus"], 1, "additionalProperties"),
+        ("a diameter as a string", ["tools", 0, "diameter"], "6", "type"),
+        ("a tool number", ["tools", 0, "number"], 3, "additionalProperties"),
+        ("a negative surface speed", ["tools", 0, "cuttingData", 0, "surfaceSpeed"], -5, "exclusiveMinimum"),
+        ("cutting data without a material", ["tools", 0, "cuttingData", 0, "material"], None, "required"),
+    )
+    for what, path, value, keyword in bad_libraries:
+        library = copy.deepcopy(good_library)
+        target = library
+        for step in path[:-1]:
+            target = target[step]
+        if value is None:
+            del target[path[-1]]
+        else:
+            target[path[-1]] = value
+        if validators["tools"].is_valid(library):
+            failures.append(f"the validator accepts a tool library with {what}")
+        elif not rejects_for(validators["tools"], library, keyword,
+                             path[:-1] if keyword in ("required", "additionalProperties") else path):
+            failures.append(f"a tool library with {what} is rejected, but not by {keyword}: "
+                            f"{describe_errors(validators['tools'], library)}")
+        else:
+            print(f"ok   a tool library with {what} is rejected ({keyword})")
 
     for f in failures:
         print("FAIL " + f)

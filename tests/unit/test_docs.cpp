@@ -85,6 +85,16 @@ TEST_CASE("docs: the stock key tables are the stock's key tables") {
     }
 }
 
+TEST_CASE("docs: the tool library's key tables are its key tables") {
+    for (const ObjectSpec& spec : tool_library_objects()) {
+        if (spec.name == "libraryTool") continue;  // a job tool's keys, documented with them
+        const std::optional<std::string> table = keys_markdown(spec.name);
+        REQUIRE(table);
+        for (const KeySpec& k : spec.keys) CHECK(table->find("| `" + std::string(k.key) + "` |") != std::string::npos);
+        check_section(std::string(spec.name) + " keys", *table);
+    }
+}
+
 TEST_CASE("docs: the contour, path, bore-mill, stop, custom, pocket and face key tables are the operations' key tables") {
     std::vector<ObjectSpec> objects = ContourOp::objects();
     const std::vector<ObjectSpec> path = PathOp::objects();

@@ -99,8 +99,14 @@ std::vector<Case> cases_of(const std::string& sample, const std::string& origina
 
 // What camgen prints for a case (the job on standard input): exit code and standard error, one
 // line (\n written as \\n).
-std::string outcome(const Case& c, const std::string& machine) {
-    Run r = run({"-", "--machine", machine}, c.text);
+// `extra`: more arguments (--tools); each (path, name) of `renamed` is written as its name.
+std::string outcome(const Case& c, const std::string& machine, const std::vector<std::string>& extra = {},
+                    const std::vector<std::pair<std::string, std::string>>& renamed = {}) {
+    std::vector<std::string> args{"-", "--machine", machine};
+    args.insert(args.end(), extra.begin(), extra.end());
+    Run r = run(args, c.text);
+    for (const auto& [path, name] : renamed)
+        for (std::size_t at; (at = r.err.find(path)) != std::string::npos;) r.err.replace(at, path.size(), name);
     std::string flat;
     for (char ch : r.err) flat += ch == '\n' ? std::string("\\n") : std::string(1, ch);
     return std::to_string(r.code) + " " + flat;
@@ -124,6 +130,23 @@ TEST_CASE("error messages of broken samples stay exactly as they were") {
         const std::string machine = machine_of(sample);
         for (const Case& c : cases_of(sample, read_file(path.string())))
             actual << c.label << " | " << outcome(c, machine) << '\n';
+    }
+    // The tool library sample (samples/library): its job broken as the samples are, posted with
+    // its library; and its library broken the same ways, each posted with the job.
+    const std::filesystem::path library_dir = samples_dir / "library";
+    const std::string library = (library_dir / "tools.json").string();
+    const std::string library_job = (library_dir / "plate-library.json").string();
+    const std::vector<std::pair<std::string, std::string>> library_names{{library, "samples/library/tools.json"}};
+    for (const Case& c : cases_of("library-job", read_file(library_job)))
+        actual << c.label << " | " << outcome(c, "fanuc", {"--tools", library}, library_names) << '\n';
+    const std::filesystem::path broken = scratch("error-messages-library") / "tools.json";
+    const std::string job_text = read_file(library_job);
+    for (const Case& c : cases_of("library", read_file(library))) {
+        std::ofstream(broken, std::ios::binary) << c.text;
+        const Case posted{c.label, job_text};
+        actual << c.label << " | "
+               << outcome(posted, "fanuc", {"--tools", broken.string()}, {{broken.string(), "samples/library/tools.json"}})
+               << '\n';
     }
     if (std::getenv("CAMGEN_UPDATE_ERRORS")) {
         std::filesystem::create_directories(golden_path.parent_path());

@@ -33,8 +33,8 @@ const std::string minimal_job = R"({
 
 }  // namespace
 
-TEST_CASE("camgen schema job and machine equal the committed schema files byte for byte") {
-    for (const std::string name : {"job", "machine"}) {
+TEST_CASE("camgen schema job, machine and tools equal the committed schema files byte for byte") {
+    for (const std::string name : {"job", "machine", "tools"}) {
         CAPTURE(name);
         Run r = run({"schema", name});
         CHECK(r.code == 0);
@@ -50,7 +50,7 @@ TEST_CASE("camgen schema with an unknown or missing word is a usage error") {
     Run r = run({"schema", "machines"});
     CHECK(r.code == 2);
     CHECK(r.out.empty());
-    CHECK(r.err == "camgen: unknown schema \"machines\" (did you mean \"machine\"?); camgen schema takes job or machine\n");
+    CHECK(r.err == "camgen: unknown schema \"machines\" (did you mean \"machine\"?); camgen schema takes job, machine, tools\n");
     Run none = run({"schema"});
     CHECK(none.code == 2);
     Run help = run({"--help"});

@@ -5,12 +5,24 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "camgen/geometry/geometry.hpp"
 #include "camgen/geometry/profile.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen {
+
+// What a tool's library gives for the job's material (library key cuttingData), and the
+// machine's feed bound that a feed computed from it keeps to. Speeds m/min, lengths mm.
+struct ToolCutting {
+    std::string material;
+    double surface_speed = 0.0;              // m/min (vc)
+    std::optional<double> feed_per_tooth;    // mm (fz), for milling
+    std::optional<double> feed_per_rev;      // mm, for drilling (feedPerRev, else fz x flutes)
+    double max_feed = 0.0;                   // mm/min, the machine's maxFeed (0: no machine known)
+    std::string path;                        // the library entry's JSON path and file, for messages
+};
 
 // A tool of the job's tool table.
 struct Tool {
@@ -27,6 +39,10 @@ struct Tool {
     std::string comment;
     CoolantMode coolant = CoolantMode::off;  // while the tool cuts
     std::string path;                      // JSON path, for messages
+    std::optional<int> flutes;             // cutting edges (job key flutes)
+    std::string library;                   // the library tool it was taken from (job key library), or ""
+    std::optional<ToolCutting> cutting;    // its library's cutting data for the job's material
+    std::vector<std::string> computed;     // what camgen computed for it ("13262 rpm from vc 250 m/min ...")
 };
 
 // The shape of the stock: a box or a prism over a closed outline (mills), a bar (lathes).
@@ -63,6 +79,7 @@ struct JobHeader {
     std::optional<int> program_number;  // the program number, overriding the machine's
     std::map<int, Tool> tools;          // by tool number
     std::optional<Stock> stock;         // the material, where the job gives it
+    std::string material;               // what the stock is made of (job key material), for library cutting data
 };
 
 }  // namespace camgen

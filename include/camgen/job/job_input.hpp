@@ -18,11 +18,13 @@
 #include "camgen/common/json_util.hpp"
 #include "camgen/common/key_spec.hpp"
 #include "camgen/job/job.hpp"
+#include "camgen/job/tool_library.hpp"
 
 namespace camgen {
 
 // Sanity bounds for values in a job.
 inline constexpr double max_job_length = 1e6;  // mm or mm/min: 1 km, 1 km/min
+inline constexpr int max_tool_flutes = 1000;     // cutting edges of a tool (a saw has a few hundred)
 
 // How large a job may be, checked before anything is allocated for it: holes over all drill
 // operations, path elements over all contours, and the nesting of the JSON text. The command
@@ -49,6 +51,9 @@ public:
     // Parses `text`, which must outlive this object (its line map reads it for messages).
     // Throws InputError naming the line for a syntax error or nesting deeper than limits.nesting.
     JobInput(std::string_view text, const std::string& source_name, JobLimits limits = {});
+    // Where the job's library tools are found and the machine's bounds on what is computed
+    // from their cutting data (the library is read when a tool first names one).
+    void set_tool_library(ToolLibraryOptions options) { library_options_ = std::move(options); }
 
     // Counts `count` more holes (or path elements) against the job's limit before they are
     // made; an InputError at f's `key` when the job would exceed it.
@@ -118,9 +123,25 @@ public:
     // The objects the header is made of: the top level ("job", its "operations" items being
     // the "operation" object) and a tool ("tool").
     static std::vector<ObjectSpec> objects();
+    // The keys of a job's tool (a library tool has them too, besides number and library).
+    static std::span<const KeySpec> tool_key_table();
+
+    // Reads the tool at `f` of a tool library whose text this object holds (its "units" read
+    // already by read_library_units): the keys of a job's tool besides number and library, its
+    // rpm optional. The caller has marked the library tool's own keys (name, cuttingData) known.
+    Tool read_library_tool(Fields& f);
+    // Reads a library's "units" (default mm) and returns its top-level fields.
+    Fields read_library_units();
 
 private:
     Tool read_tool(const Json& value, const std::string& path);
+    // The keys of a tool besides its number: over `base` (a library tool) where given, where
+    // the object has no such key; `library_tool`: read for a library (rpm optional).
+    void read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool library_tool);
+    // The library tool a job's tool names, the library read on first use.
+    const LibraryTool& library_tool(Fields& f, const std::string& name);
+    // rpm and cutting data of a tool from the library tool `entry` for the job's material.
+    void apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entry, bool rpm_given);
 
     JobLimits limits_;
     mutable json::Document doc_;  // mutable: array() unpacks a packed array for a reader that wants JSON
@@ -133,6 +154,9 @@ private:
     // The numbers of the tools that failed to read, and whether one failed whose number is not known.
     std::set<std::int64_t> failed_tools_;
     bool unnumbered_tool_failed_ = false;
+    ToolLibraryOptions library_options_;
+    std::optional<ToolLibrary> library_;  // read on first use
+    bool library_failed_ = false;
 };
 
 }  // namespace camgen

@@ -136,8 +136,12 @@ Lead read_lead(json::Fields& f, const JobInput& in, std::string_view key, double
 Ramp read_ramp(json::Fields& f, const JobInput& in, std::string_view key, double tool_radius);
 // The finishing pass at "finishing", checked against the depth of the cut.
 std::optional<Finishing> read_finishing(json::Fields& f, const JobInput& in, double total_depth);
-// The feeds: "feed" required, each other one defaulting to it.
-CutFeeds read_cut_feeds(json::Fields& f, const JobInput& in);
+// The feeds: "feed", each other one defaulting to it. Where the job gives no feed and `tool` has
+// library cutting data with a feed per tooth, the feed is computed from them (corrected for a
+// radial `engagement` below half the diameter, mm; 0: not known, no correction) and a note saying
+// so appended to `notes`; else "feed" is required.
+CutFeeds read_cut_feeds(json::Fields& f, const JobInput& in, const Tool& tool, double engagement,
+                        std::vector<std::string>& notes);
 // "stepDown" (absent: one pass), checked against the depth's pass count.
 std::optional<double> read_step_down(json::Fields& f, const JobInput& in, double total_depth);
 // The step between rings or rows: "stepOver" (a length) or "stepOverPercent" (of the tool's

@@ -12,6 +12,7 @@
 
 #include "camgen/events/events.hpp"
 #include "camgen/job/job.hpp"
+#include "camgen/job/tool_library.hpp"
 #include "camgen/operations/bore_mill/bore_mill.hpp"
 #include "camgen/operations/contour/contour.hpp"
 #include "camgen/operations/custom/custom.hpp"
@@ -70,7 +71,10 @@ std::vector<std::string> operation_type_names();
 // Parses and validates a job. `source_name` names the file in messages.
 // Throws InputError (JSON path + line) on any problem. Inch input is converted to mm here.
 // `limits` bound its size (holes, path elements, nesting) before anything is allocated for it.
-Job read_job(std::string_view text, const std::string& source_name, JobLimits limits = {});
+// `tools`: where its library tools are found and the machine's limits on what is computed from
+// their cutting data.
+Job read_job(std::string_view text, const std::string& source_name, JobLimits limits = {},
+             const ToolLibraryOptions& tools = {});
 
 // Refuses a job with a stock or an operation made for another kind of machine than `kind` (a
 // bar on a mill, a drill operation on a lathe, a turning operation on a mill): an InputError at

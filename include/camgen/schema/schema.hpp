@@ -18,7 +18,10 @@ nlohmann::ordered_json job_schema();
 // The schema of a machine file.
 nlohmann::ordered_json machine_schema();
 
-// The names `camgen schema` takes, in order: "job", "machine".
+// The schema of a tool library file.
+nlohmann::ordered_json tools_schema();
+
+// The names `camgen schema` takes, in order: "job", "machine", "tools".
 std::vector<std::string> schema_names();
 
 // The keys of the job-file object named `name` (an operation type such as "contour", or one
