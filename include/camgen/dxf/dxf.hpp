@@ -98,7 +98,8 @@ Drawing read_file(const std::string& path, const ReadOptions& options = {});
 // in file order, then the pieces of inserts) instead of keeping it: the Drawing returned has
 // no pieces (its layers, units, notes and text are whole). The Origin of a piece views the
 // Drawing's text, valid while it lives. With a TABLES section after the entities (rare), the
-// pieces before it are held until the end (their layers resolved then).
+// pieces before it are held until the end (their layers resolved then). After an Error the
+// pieces handed on view text that is gone: drop them.
 using PieceSink = std::function<void(Piece&&)>;
 Drawing read_file(const std::string& path, const PieceSink& each, const ReadOptions& options = {});
 Drawing read_text(std::string_view text, const std::string& name, const PieceSink& each, const ReadOptions& options = {});
