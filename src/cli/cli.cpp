@@ -910,8 +910,7 @@ void read_back(std::string_view program, const Job& job, const Options& o, const
 
 // camgen dxf-info F.dxf: what the drawing holds.
 int run_dxf_info(const std::string& file, std::ostream& out) {
-    const dxf::Drawing d = dxf::read_file(file);
-    out << dxf_info_text(d);
+    out << dxf_info_file(file);
     finish_stream(out, "standard output");
     return exit_ok;
 }

@@ -35,30 +35,6 @@ std::string dxf_cmd_units(const dxf::Drawing& d) {
     return fmt::format("{} ($INSUNITS {})", name, d.insunits);
 }
 
-// The path pieces of each layer chained (gap 0.01 drawing units), layer by layer.
-struct DxfCmdChains {
-    std::vector<dxf::Chain> chains;
-    std::vector<std::string> layer;
-    std::vector<std::string> notes;
-};
-
-DxfCmdChains dxf_cmd_chain_by_layer(const dxf::Drawing& d) {
-    DxfCmdChains out;
-    for (const dxf::Layer& l : d.layers) {
-        std::vector<const dxf::Piece*> pieces;
-        for (const dxf::Piece& p : d.pieces)
-            if (p.kind == dxf::Piece::Kind::path && p.origin.layer == l.name) pieces.push_back(&p);
-        if (pieces.empty()) continue;
-        dxf::ChainResult r = dxf::chain(pieces, 0.01, d.name);
-        for (dxf::Chain& c : r.chains) {
-            out.chains.push_back(std::move(c));
-            out.layer.push_back(l.name);
-        }
-        out.notes.insert(out.notes.end(), r.notes.begin(), r.notes.end());
-    }
-    return out;
-}
-
 std::string dxf_cmd_extent(const Profile& p) {
     const dxf::Box b = dxf::extent(p);
     return fmt::format("X {} .. {}  Y {} .. {}", dxf_cmd_number(b.min.x), dxf_cmd_number(b.max.x), dxf_cmd_number(b.min.y),
@@ -71,58 +47,102 @@ std::string dxf_cmd_chain_words(const dxf::Chain& c) {
     return s;
 }
 
+// What dxf-info reports, tallied piece by piece as the reader hands them on: only the path
+// pieces are kept (to be chained); circles and points are counted.
+struct DxfCmdTally {
+    std::size_t pieces = 0, points = 0;
+    // Per layer name (as the pieces spell it), the count of each entity type.
+    std::map<std::string_view, std::map<std::string_view, std::size_t>> by_layer;
+    // Circles by diameter (to 0.0001 drawing units): how many, on which layers.
+    std::map<long long, std::pair<std::size_t, std::set<std::string_view>>> by_diameter;
+    std::vector<dxf::Piece> paths;
+
+    void add(dxf::Piece&& p) {
+        ++pieces;
+        ++by_layer[p.origin.layer][p.origin.type];
+        if (p.kind == dxf::Piece::Kind::circle) {
+            auto& d = by_diameter[std::llround(p.radius * 2 * 1e4)];
+            ++d.first;
+            d.second.insert(p.origin.layer);
+        } else if (p.kind == dxf::Piece::Kind::point) {
+            ++points;
+        } else {
+            paths.push_back(std::move(p));
+        }
+    }
+
+    std::string text(const dxf::Drawing& d) {
+        std::string out = fmt::format("{}: {}, {} entit{} in model space (inserts expanded)\n", d.name, dxf_cmd_units(d), pieces,
+                                      pieces == 1 ? "y" : "ies");
+        out += "layers:\n";
+        for (const dxf::Layer& l : d.layers) {
+            std::size_t count = 0;
+            std::string list;
+            if (const auto found = by_layer.find(l.name); found != by_layer.end())
+                for (const auto& [type, n] : found->second) {
+                    list += fmt::format("{}{} {}", list.empty() ? "" : ", ", type, n);
+                    count += n;
+                }
+            out += fmt::format("  {:<16} {:>8}{}{}\n", l.name, count, list.empty() ? "" : "  ", list);
+        }
+        // The path pieces of each layer chained (gap 0.01 drawing units), layer by layer, their
+        // paths moved into the chains.
+        std::vector<dxf::Chain> chains;
+        std::vector<std::string_view> chain_layer;
+        std::vector<std::string> notes;
+        for (const dxf::Layer& l : d.layers) {
+            std::vector<dxf::Piece*> pieces_of;
+            for (dxf::Piece& p : paths)
+                if (p.origin.layer == l.name) pieces_of.push_back(&p);
+            if (pieces_of.empty()) continue;
+            dxf::ChainResult r = dxf::chain_taking(pieces_of, 0.01, d.name);
+            for (dxf::Chain& c : r.chains) {
+                chains.push_back(std::move(c));
+                chain_layer.push_back(l.name);
+            }
+            notes.insert(notes.end(), r.notes.begin(), r.notes.end());
+        }
+        for (bool closed : {true, false}) {
+            std::size_t n = 0;
+            for (const dxf::Chain& c : chains) n += c.closed == closed ? 1 : 0;
+            out += fmt::format("{} profiles: {}\n", closed ? "closed" : "open", n);
+            for (std::size_t i = 0; i < chains.size(); ++i) {
+                const dxf::Chain& c = chains[i];
+                if (c.closed != closed) continue;
+                out += fmt::format("  layer {}: {} segment{}, {}{}; from {}\n", chain_layer[i], c.profile.segments.size(),
+                                   c.profile.segments.size() == 1 ? "" : "s", dxf_cmd_extent(c.profile),
+                                   closed ? fmt::format(", area {}", dxf_cmd_number(std::abs(enclosed_area(c.profile)))) : "",
+                                   dxf_cmd_chain_words(c));
+            }
+        }
+        // Circles by diameter, smallest first.
+        out += fmt::format("circles by diameter: {}\n", by_diameter.size());
+        for (const auto& [key, entry] : by_diameter) {
+            const auto& [count, layers] = entry;
+            std::string names;
+            for (std::string_view l : layers) (names += names.empty() ? "" : ", ").append(l);
+            out += fmt::format("  diameter {}: {} circle{} on layer{} {}\n", dxf_cmd_number(double(key) / 1e4), count, count == 1 ? "" : "s",
+                               layers.size() == 1 ? "" : "s", names);
+        }
+        out += fmt::format("points: {}\n", points);
+        for (const std::string& n : d.notes) out += "note: " + n + "\n";
+        for (const std::string& n : notes) out += "note: " + n + "\n";
+        return out;
+    }
+};
+
 }  // namespace
 
 std::string dxf_info_text(const dxf::Drawing& d) {
-    std::string out = fmt::format("{}: {}, {} entit{} in model space (inserts expanded)\n", d.name, dxf_cmd_units(d), d.pieces.size(),
-                                  d.pieces.size() == 1 ? "y" : "ies");
-    out += "layers:\n";
-    for (const dxf::Layer& l : d.layers) {
-        std::map<std::string, std::size_t> types;
-        std::size_t count = 0;
-        for (const dxf::Piece& p : d.pieces)
-            if (p.origin.layer == l.name) {
-                ++types[p.origin.type];
-                ++count;
-            }
-        std::string list;
-        for (const auto& [type, n] : types) list += fmt::format("{}{} {}", list.empty() ? "" : ", ", type, n);
-        out += fmt::format("  {:<16} {:>8}{}{}\n", l.name, count, list.empty() ? "" : "  ", list);
-    }
-    const DxfCmdChains chains = dxf_cmd_chain_by_layer(d);
-    for (bool closed : {true, false}) {
-        std::size_t n = 0;
-        for (const dxf::Chain& c : chains.chains) n += c.closed == closed ? 1 : 0;
-        out += fmt::format("{} profiles: {}\n", closed ? "closed" : "open", n);
-        for (std::size_t i = 0; i < chains.chains.size(); ++i) {
-            const dxf::Chain& c = chains.chains[i];
-            if (c.closed != closed) continue;
-            out += fmt::format("  layer {}: {} segment{}, {}{}; from {}\n", chains.layer[i], c.profile.segments.size(),
-                               c.profile.segments.size() == 1 ? "" : "s", dxf_cmd_extent(c.profile),
-                               closed ? fmt::format(", area {}", dxf_cmd_number(std::abs(enclosed_area(c.profile)))) : "",
-                               dxf_cmd_chain_words(c));
-        }
-    }
-    // Circles by diameter (to 0.0001 drawing units), smallest first.
-    std::map<long long, std::vector<const dxf::Piece*>> by_diameter;
-    std::size_t points = 0;
-    for (const dxf::Piece& p : d.pieces) {
-        if (p.kind == dxf::Piece::Kind::circle) by_diameter[std::llround(p.radius * 2 * 1e4)].push_back(&p);
-        if (p.kind == dxf::Piece::Kind::point) ++points;
-    }
-    out += fmt::format("circles by diameter: {}\n", by_diameter.size());
-    for (const auto& [key, list] : by_diameter) {
-        std::set<std::string> layers;
-        for (const dxf::Piece* p : list) layers.insert(p->origin.layer);
-        std::string names;
-        for (const std::string& l : layers) names += (names.empty() ? "" : ", ") + l;
-        out += fmt::format("  diameter {}: {} circle{} on layer{} {}\n", dxf_cmd_number(double(key) / 1e4), list.size(),
-                           list.size() == 1 ? "" : "s", layers.size() == 1 ? "" : "s", names);
-    }
-    out += fmt::format("points: {}\n", points);
-    for (const std::string& n : d.notes) out += "note: " + n + "\n";
-    for (const std::string& n : chains.notes) out += "note: " + n + "\n";
-    return out;
+    DxfCmdTally tally;
+    for (const dxf::Piece& p : d.pieces) tally.add(dxf::Piece(p));
+    return tally.text(d);
+}
+
+std::string dxf_info_file(const std::string& path) {
+    DxfCmdTally tally;
+    const dxf::Drawing d = dxf::read_file(path, [&](dxf::Piece&& p) { tally.add(std::move(p)); });
+    return tally.text(d);
 }
 
 namespace {
@@ -151,7 +171,7 @@ struct DxfCmdStarter {
         std::string layer;
         for (const dxf::Piece* p : pieces) {
             if (!layer.empty() && p->origin.layer != layer) return "";
-            layer = p->origin.layer;
+            layer = std::string(p->origin.layer);
         }
         return layer;
     }

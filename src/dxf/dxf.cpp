@@ -1,18 +1,69 @@
 #include "camgen/dxf/dxf.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <deque>
 #include <map>
 #include <sstream>
 #include <unordered_map>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "camgen/geometry/arc.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace camgen::dxf {
+
+// The text pieces name: interned names (layers, linetypes, block names), handles in chunks
+// (never moved, so views stay valid), chains of block names.
+struct DrawingText {
+    std::deque<std::string> names;
+    std::unordered_map<std::string_view, std::string_view> by_name;
+    std::vector<std::unique_ptr<char[]>> chunks;
+    std::size_t chunk_used = 0, chunk_size = 0;
+    std::deque<std::vector<std::string_view>> chains;
+    std::unordered_map<std::string, std::span<const std::string_view>> by_chain;
+    std::string_view last_name;  // the name interned last (entities in a row share a layer)
+
+    std::string_view intern(std::string_view s) {
+        if (s == last_name) return last_name;
+        const auto found = by_name.find(s);
+        if (found != by_name.end()) return last_name = found->second;
+        const std::string_view v = names.emplace_back(s);
+        by_name.emplace(v, v);
+        return last_name = v;
+    }
+    // A handle (any short text) kept in a chunk.
+    std::string_view keep(std::string_view s) {
+        if (s.empty()) return {};
+        if (chunk_used + s.size() > chunk_size) {
+            chunk_size = std::max<std::size_t>(s.size(), 64 * 1024);
+            chunks.push_back(std::make_unique<char[]>(chunk_size));
+            chunk_used = 0;
+        }
+        char* at = chunks.back().get() + chunk_used;
+        std::memcpy(at, s.data(), s.size());
+        chunk_used += s.size();
+        return {at, s.size()};
+    }
+    std::span<const std::string_view> chain(const std::vector<std::string_view>& names_in) {
+        std::string key;
+        for (std::string_view n : names_in) (key += n) += '\n';
+        const auto found = by_chain.find(key);
+        if (found != by_chain.end()) return found->second;
+        std::vector<std::string_view>& kept = chains.emplace_back();
+        for (std::string_view n : names_in) kept.push_back(intern(n));
+        const std::span<const std::string_view> s(kept);
+        by_chain.emplace(std::move(key), s);
+        return s;
+    }
+};
 
 namespace {
 
@@ -30,6 +81,14 @@ std::string dxf_upper(std::string_view s) {
     return out;
 }
 
+// The same name without case (ASCII, as CAD compares names).
+bool dxf_same_name(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) return false;
+    return true;
+}
+
 std::string_view dxf_trim(std::string_view s) {
     while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
     while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
@@ -43,22 +102,91 @@ std::string dxf_number_text(double v) {
     return o.str();
 }
 
+// A file mapped for reading; the pages behind the reader are let go (`release`): a mapped
+// file's page read again is read again from the page cache, so views into the text stay valid.
+class DxfMappedFile {
+public:
+    explicit DxfMappedFile(const std::string& path) {
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0) throw Error(path + ": cannot open the drawing: " + std::strerror(errno));
+        struct stat st {};
+        if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+            ::close(fd_);
+            throw Error(path + ": cannot read the drawing");
+        }
+        size_ = static_cast<std::size_t>(st.st_size);
+        if (size_ > max_file_bytes) {
+            ::close(fd_);
+            throw Error(path + ": the drawing is larger than " + std::to_string(max_file_bytes >> 20) + " MiB");
+        }
+        if (size_ > 0) {
+            void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd_, 0);
+            if (p == MAP_FAILED) {
+                ::close(fd_);
+                throw Error(path + ": cannot read the drawing: " + std::strerror(errno));
+            }
+            data_ = static_cast<const char*>(p);
+            ::madvise(p, size_, MADV_SEQUENTIAL);
+        }
+    }
+    DxfMappedFile(const DxfMappedFile&) = delete;
+    DxfMappedFile& operator=(const DxfMappedFile&) = delete;
+    ~DxfMappedFile() {
+        if (data_) ::munmap(const_cast<char*>(data_), size_);
+        if (fd_ >= 0) ::close(fd_);
+    }
+    std::string_view text() const { return {data_ ? data_ : "", size_}; }
+    // Lets the pages before `pos` go (whole pages only).
+    void release(std::size_t pos) {
+        const std::size_t page = 4096;
+        const std::size_t end = pos / page * page;
+        if (!data_ || end <= released_) return;
+        ::madvise(const_cast<char*>(data_) + released_, end - released_, MADV_DONTNEED);
+        released_ = end;
+    }
+
+private:
+    int fd_ = -1;
+    const char* data_ = nullptr;
+    std::size_t size_ = 0;
+    std::size_t released_ = 0;
+};
+
+constexpr const char* dxf_binary_words = "a binary file, not an ASCII DXF drawing";
+
 // Reads the file's group pairs one at a time: a code line (an integer) and a value line.
 class DxfPairs {
 public:
-    DxfPairs(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+    DxfPairs(std::string_view text, const std::string& name, DxfMappedFile* file)
+        : text_(text), name_(name), file_(file) {}
 
     // The next pair; false at the end of the text (a code without a value is an error).
     bool next(DxfGroup& g) {
         if (pos_ >= text_.size()) return false;
+        if (file_ && pos_ >= next_release_) {
+            file_->release(pos_ - std::min<std::size_t>(pos_, release_step));
+            next_release_ = pos_ + release_step;
+        }
         const std::size_t code_line = line_ + 1;
-        std::string_view code_text = dxf_trim(take_line());
-        if (pos_ >= text_.size() && code_text.empty()) return false;
+        std::string_view code_text = take_line();
+        // The common code: digits, right-aligned in three columns.
+        std::size_t i = 0;
+        while (i < code_text.size() && code_text[i] == ' ') ++i;
         int code = 0;
-        const auto [p, ec] = std::from_chars(code_text.data(), code_text.data() + code_text.size(), code);
-        if (ec != std::errc{} || p != code_text.data() + code_text.size() || code_text.empty())
-            fail(code_line, "expected a group code (an integer), got \"" + std::string(code_text.substr(0, 40)) +
-                                "\": the file is not an ASCII DXF, or it is damaged");
+        std::size_t digits = 0;
+        while (i < code_text.size() && digits < 9 && static_cast<unsigned>(code_text[i] - '0') < 10u) {
+            code = code * 10 + (code_text[i] - '0');
+            ++i;
+            ++digits;
+        }
+        if (digits == 0 || i != code_text.size()) {
+            const std::string_view trimmed = dxf_trim(code_text);
+            if (pos_ >= text_.size() && trimmed.empty()) return false;
+            const auto [p, ec] = std::from_chars(trimmed.data(), trimmed.data() + trimmed.size(), code);
+            if (ec != std::errc{} || p != trimmed.data() + trimmed.size() || trimmed.empty())
+                fail(code_line, "expected a group code (an integer), got \"" + std::string(trimmed.substr(0, 40)) +
+                                    "\": the file is not an ASCII DXF, or it is damaged");
+        }
         if (pos_ >= text_.size())
             fail(code_line, "the file ends after group code " + std::to_string(code) + " without its value: it is cut short");
         g.code = code;
@@ -71,28 +199,89 @@ public:
         throw Error(name_ + " line " + std::to_string(line) + ": " + message);
     }
     const std::string& name() const { return name_; }
+    // The text not read yet.
+    std::string_view rest() const { return text_.substr(pos_); }
 
 private:
+    static constexpr std::size_t release_step = std::size_t{4} << 20;
+
+private:
+    // The next line (lines are short: a byte loop beats memchr), a NUL byte refused.
     std::string_view take_line() {
-        const std::size_t nl = text_.find('\n', pos_);
-        const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
-        std::string_view l = text_.substr(pos_, end - pos_);
-        pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+        const char* begin = text_.data() + pos_;
+        const char* end = text_.data() + text_.size();
+        const char* p = begin;
+        while (p != end && *p != '\n') {
+            if (*p == '\0') throw Error(name_ + ": " + dxf_binary_words);
+            ++p;
+        }
+        std::string_view l(begin, static_cast<std::size_t>(p - begin));
+        pos_ = static_cast<std::size_t>(p - text_.data()) + (p != end ? 1 : 0);
         ++line_;
         return l;
     }
     std::string_view text_;
     const std::string& name_;
+    DxfMappedFile* file_;
     std::size_t pos_ = 0;
     std::size_t line_ = 0;
+    std::size_t next_release_ = 0;
 };
 
 // ---- Entities as records of groups
+
+// The groups an entity is read from, by code: the index of the first and of the last group of
+// each code the reader asks for (-1: none).
+enum DxfSlot { dxf_s5, dxf_s6, dxf_s8, dxf_s10, dxf_s20, dxf_s11, dxf_s21, dxf_s40, dxf_s41, dxf_s42, dxf_s50, dxf_s51,
+               dxf_s62, dxf_s67, dxf_s70, dxf_s210, dxf_s220, dxf_s230, dxf_s2, dxf_s66, dxf_slots };
+
+inline int dxf_slot_of(int code) {
+    switch (code) {
+        case 2: return dxf_s2;
+        case 5: return dxf_s5;
+        case 6: return dxf_s6;
+        case 8: return dxf_s8;
+        case 10: return dxf_s10;
+        case 20: return dxf_s20;
+        case 11: return dxf_s11;
+        case 21: return dxf_s21;
+        case 40: return dxf_s40;
+        case 41: return dxf_s41;
+        case 42: return dxf_s42;
+        case 50: return dxf_s50;
+        case 51: return dxf_s51;
+        case 62: return dxf_s62;
+        case 66: return dxf_s66;
+        case 67: return dxf_s67;
+        case 70: return dxf_s70;
+        case 210: return dxf_s210;
+        case 220: return dxf_s220;
+        case 230: return dxf_s230;
+        default: return -1;
+    }
+}
 
 struct DxfRecord {
     std::string_view type;
     std::size_t line = 0;
     std::vector<DxfGroup> groups;  // after the "0" group, xdata and 102 groups left out
+    int first[dxf_slots];
+    int last[dxf_slots];
+    void clear() {
+        groups.clear();
+        std::fill(std::begin(first), std::end(first), -1);
+        std::fill(std::begin(last), std::end(last), -1);
+    }
+    void add(const DxfGroup& g) {
+        const int s = dxf_slot_of(g.code);
+        if (s >= 0) {
+            if (first[s] < 0) first[s] = static_cast<int>(groups.size());
+            last[s] = static_cast<int>(groups.size());
+        }
+        groups.push_back(g);
+    }
+    const DxfGroup* first_of(int slot) const { return first[slot] < 0 ? nullptr : &groups[static_cast<std::size_t>(first[slot])]; }
+    const DxfGroup* last_of(int slot) const { return last[slot] < 0 ? nullptr : &groups[static_cast<std::size_t>(last[slot])]; }
 };
 
 // 2D affine placement: p' = m * p + t.
@@ -101,6 +290,7 @@ struct DxfAffine {
     Vec2 t;
     Vec2 operator()(Vec2 p) const { return {a * p.x + b * p.y + t.x, c * p.x + d * p.y + t.y}; }
     double det() const { return a * d - b * c; }
+    bool identity() const { return a == 1 && b == 0 && c == 0 && d == 1 && t.x == 0 && t.y == 0; }
     DxfAffine then(const DxfAffine& outer) const {  // outer after this
         DxfAffine r;
         r.a = outer.a * a + outer.b * c;
@@ -118,30 +308,75 @@ struct DxfAffine {
     }
 };
 
-Profile dxf_transform(const Profile& p, const DxfAffine& m) {
-    Profile out;
-    out.plane = p.plane;
-    out.start = m(p.start);
-    out.segments.reserve(p.segments.size());
+// The profile placed by `m`, in place.
+void dxf_transform_in_place(Profile& p, const DxfAffine& m) {
+    if (m.identity()) return;
+    p.start = m(p.start);
     const bool flip = m.det() < 0;
-    for (const ProfileSegment& s : p.segments) {
-        ProfileSegment r;
-        r.end = m(s.end);
+    for (ProfileSegment& s : p.segments) {
+        s.end = m(s.end);
         if (s.centre) {
-            r.centre = m(*s.centre);
-            r.direction = flip ? (s.direction == ArcDirection::ccw ? ArcDirection::cw : ArcDirection::ccw) : s.direction;
+            s.centre = m(*s.centre);
+            if (flip) s.direction = s.direction == ArcDirection::ccw ? ArcDirection::cw : ArcDirection::ccw;
         }
-        out.segments.push_back(r);
     }
-    return out;
 }
+
+// A bulge segment from `from` to `to`: bulge = tan(sweep / 4), positive counter-clockwise.
+ProfileSegment dxf_bulge_segment(Vec2 from, Vec2 to, double bulge) {
+    if (bulge == 0 || from == to) return {to, std::nullopt, ArcDirection::ccw};
+    const Vec2 chord = to - from;
+    const double c = norm(chord);
+    // The centre sits left of the chord for a positive bulge below 180 degrees.
+    const double offset = c * (1.0 - bulge * bulge) / (4.0 * bulge);
+    const Vec2 mid = (from + to) * 0.5;
+    const Vec2 centre = mid + left_of(chord) * (offset / c);
+    return {to, centre, bulge > 0 ? ArcDirection::ccw : ArcDirection::cw};
+}
+
+// A polyline's profile built vertex by vertex (no list of vertices kept): each vertex with the
+// bulge of the segment after it; segments of no length (a repeated vertex) dropped and counted.
+struct DxfPolylineBuilder {
+    Profile path;
+    Vec2 first, prev, at;
+    double prev_bulge = 0;
+    std::size_t count = 0, dropped = 0;
+    bool closed = false;
+
+    void add(Vec2 v, double bulge) {
+        if (count == 0) {
+            first = v;
+            path.start = v;
+            at = v;
+        } else {
+            segment(dxf_bulge_segment(prev, v, prev_bulge));
+        }
+        prev = v;
+        prev_bulge = bulge;
+        ++count;
+    }
+    void finish(bool closed_flag) {
+        if (closed_flag && count > 1 && prev != first) segment(dxf_bulge_segment(prev, first, prev_bulge));
+        closed = closed_flag || (count > 2 && prev == first);
+    }
+
+private:
+    void segment(const ProfileSegment& s) {
+        if (distance(at, s.end) < profile_same_point) {
+            ++dropped;
+            return;
+        }
+        path.segments.push_back(s);
+        at = s.end;
+    }
+};
 
 struct DxfBlock {
     std::string name;
     Vec2 base;
     std::vector<Piece> pieces;           // in block coordinates
     struct Insert {
-        std::string block;
+        std::string_view block;
         DxfAffine place;                  // one per array copy
         Origin origin;
     };
@@ -149,51 +384,67 @@ struct DxfBlock {
     std::size_t line = 0;
 };
 
+constexpr std::string_view dxf_type_names[] = {"LINE", "POINT", "CIRCLE", "ARC", "LWPOLYLINE", "POLYLINE", "ELLIPSE", "SPLINE", "INSERT"};
+
+// The static name of an entity type the reader makes pieces of (else the record's own view).
+std::string_view dxf_type_name(std::string_view t) {
+    for (std::string_view n : dxf_type_names)
+        if (n == t) return n;
+    return t;
+}
+
 class DxfReader {
 public:
-    DxfReader(std::string_view text, const std::string& name, const ReadOptions& o) : pairs_(text, name), opt_(o) {
+    DxfReader(std::string_view text, const std::string& name, const ReadOptions& o, DxfMappedFile* file, const PieceSink* sink)
+        : pairs_(text, name, file), opt_(o), sink_(sink), text_(std::make_shared<DrawingText>()) {
         drawing_.name = name;
     }
 
     Drawing read() {
         DxfGroup g;
         bool eof = false;
-        while (next(g)) {
-            if (g.code == 999) continue;  // comment
-            if (g.code != 0) pairs_.fail(g.line, "expected \"0\" and SECTION or EOF, got group code " + std::to_string(g.code));
-            if (g.value == "EOF") {
-                eof = true;
-                break;
+        {
+            while (next(g)) {
+                if (g.code == 999) continue;  // comment
+                if (g.code != 0) pairs_.fail(g.line, "expected \"0\" and SECTION or EOF, got group code " + std::to_string(g.code));
+                if (g.value == "EOF") {
+                    eof = true;
+                    break;
+                }
+                if (g.value != "SECTION") pairs_.fail(g.line, "expected SECTION or EOF, got \"" + std::string(g.value.substr(0, 40)) + "\"");
+                DxfGroup n;
+                if (!next(n)) cut_short(g.line, "SECTION");
+                if (n.code != 2) pairs_.fail(n.line, "a SECTION needs its name (group code 2) first");
+                const std::string section(n.value);
+                if (section == "HEADER") read_header();
+                else if (section == "TABLES") read_tables();
+                else if (section == "BLOCKS") read_blocks();
+                else if (section == "ENTITIES") read_entities(model_, nullptr, "ENTITIES");
+                else skip_section(n.line, section);
             }
-            if (g.value != "SECTION") pairs_.fail(g.line, "expected SECTION or EOF, got \"" + std::string(g.value.substr(0, 40)) + "\"");
-            DxfGroup n;
-            if (!next(n)) cut_short(g.line, "SECTION");
-            if (n.code != 2) pairs_.fail(n.line, "a SECTION needs its name (group code 2) first");
-            const std::string section(n.value);
-            if (section == "HEADER") read_header();
-            else if (section == "TABLES") read_tables();
-            else if (section == "BLOCKS") read_blocks();
-            else if (section == "ENTITIES") read_entities(model_, nullptr, "ENTITIES");
-            else skip_section(n.line, section);
         }
         if (!eof) cut_short(last_line_, "the drawing (no EOF)");
+        if (std::memchr(pairs_.rest().data(), 0, pairs_.rest().size())) throw Error(pairs_.name() + ": " + dxf_binary_words);
         resolve_inserts();
-        finish_layers();
+        drawing_.text = text_;
         return std::move(drawing_);
     }
 
 private:
     bool next(DxfGroup& g) {
         if (held_) {
-            g = *held_;
-            held_.reset();
+            g = held_g_;
+            held_ = false;
             return true;
         }
         if (!pairs_.next(g)) return false;
         last_line_ = g.line;
         return true;
     }
-    void push_back(const DxfGroup& g) { held_ = g; }
+    void push_back(const DxfGroup& g) {
+        held_g_ = g;
+        held_ = true;
+    }
 
     [[noreturn]] void cut_short(std::size_t line, const std::string& what) {
         pairs_.fail(line, "the file ends inside " + what + ": it is cut short (truncated)");
@@ -206,12 +457,17 @@ private:
         cut_short(line, "section " + name);
     }
 
-    double number(const DxfGroup& g, const DxfRecord* r = nullptr) {
+    static bool parse_number(const DxfGroup& g, double& x) {
         const std::string_view v = dxf_trim(g.value);
-        double x = 0;
         const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-        if (ec != std::errc{} || p != v.data() + v.size() || v.empty() || !std::isfinite(x) || std::abs(x) > 1e12)
-            fail(g.line, r, "group code " + std::to_string(g.code) + " needs a number, got \"" + std::string(v.substr(0, 40)) + "\"");
+        return ec == std::errc{} && p == v.data() + v.size() && !v.empty() && std::isfinite(x) && std::abs(x) <= 1e12;
+    }
+    std::string number_message(const DxfGroup& g) const {
+        return "group code " + std::to_string(g.code) + " needs a number, got \"" + std::string(dxf_trim(g.value).substr(0, 40)) + "\"";
+    }
+    double number(const DxfGroup& g, const DxfRecord* r = nullptr) {
+        double x = 0;
+        if (!parse_number(g, x)) fail(g.line, r, number_message(g));
         return x;
     }
     long integer(const DxfGroup& g, const DxfRecord* r = nullptr) {
@@ -225,14 +481,15 @@ private:
 
     std::string where(const DxfRecord& r) const {
         std::string s(r.type);
-        std::string handle, layer;
+        std::string_view handle, layer;
         for (const DxfGroup& g : r.groups) {
             if (g.code == 5) handle = g.value;
             if (g.code == 8) layer = g.value;
         }
         s += " (";
-        if (!handle.empty()) s += "handle " + handle + ", ";
-        s += "layer " + (layer.empty() ? std::string("0") : layer) + ")";
+        if (!handle.empty()) (s += "handle ").append(handle) += ", ";
+        s += "layer ";
+        s.append(layer.empty() ? std::string_view("0") : layer) += ")";
         return s;
     }
     [[noreturn]] void fail(std::size_t line, const DxfRecord* r, const std::string& message) {
@@ -240,25 +497,75 @@ private:
     }
 
     // Reads one record after its "0" group: every group up to the next "0", which is held.
-    void read_record(DxfRecord& r, const DxfGroup& head) {
+    // With `poly`, an LWPOLYLINE's vertices (10, 20, 42) go into it as they come instead of into
+    // the record (the first fault in them kept in `fault` until the whole record is read, so
+    // that the message names the handle and layer wherever they stand).
+    struct PolyFault {
+        std::size_t line = 0;
+        std::string message;
+    };
+    void read_record(DxfRecord& r, const DxfGroup& head, DxfPolylineBuilder* poly = nullptr, PolyFault* fault = nullptr,
+                     long* poly_flags = nullptr) {
         r.type = head.value;
         r.line = head.line;
-        r.groups.clear();
+        r.clear();
         DxfGroup g;
         bool in_102 = false;
+        bool have_vertex = false;
+        Vec2 vertex;
+        double bulge = 0;
         while (true) {
             if (!next(g)) cut_short(head.line, std::string(head.value));
             if (g.code == 0) {
                 push_back(g);
-                return;
+                break;
             }
             if (g.code == 102) {
                 in_102 = !g.value.empty() && g.value.front() == '{';
                 continue;
             }
             if (in_102 || g.code >= 1000 || g.code == 999) continue;
-            r.groups.push_back(g);
+            if (poly && (g.code == 10 || g.code == 20 || g.code == 42 || g.code == 70)) {
+                if (!fault->message.empty()) continue;
+                double x = 0;
+                if (g.code == 70) {
+                    const std::string_view v = dxf_trim(g.value);
+                    long f = 0;
+                    const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), f);
+                    if (ec != std::errc{} || p != v.data() + v.size() || v.empty())
+                        *fault = {g.line, "group code 70 needs an integer, got \"" + std::string(v.substr(0, 40)) + "\""};
+                    else *poly_flags = f;
+                    continue;
+                }
+                if (!parse_number(g, x)) {
+                    *fault = {g.line, number_message(g)};
+                    continue;
+                }
+                if (g.code == 10) {
+                    if (have_vertex) poly->add(vertex, bulge);
+                    vertex = {x, 0};
+                    bulge = 0;
+                    have_vertex = true;
+                } else if (g.code == 20) {
+                    if (!have_vertex) *fault = {g.line, "a vertex's Y (20) before its X (10)"};
+                    else vertex.y = x;
+                } else {
+                    if (!have_vertex) *fault = {g.line, "a bulge (42) before the first vertex"};
+                    else bulge = x;
+                }
+                continue;
+            }
+            if (poly && g.code == 90) {
+                // The count of vertices: room for the segments at once (no more than the text left could hold).
+                const std::string_view v = dxf_trim(g.value);
+                long n = 0;
+                const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+                if (ec == std::errc{} && n > 0)
+                    poly->path.segments.reserve(std::min(static_cast<std::size_t>(n) + 1, pairs_.rest().size() / 8 + 1));
+            }
+            r.add(g);
         }
+        if (poly && have_vertex && fault->message.empty()) poly->add(vertex, bulge);
     }
 
     void read_header() {
@@ -280,7 +587,10 @@ private:
         DxfRecord r;
         while (next(g)) {
             if (g.code != 0) continue;
-            if (g.value == "ENDSEC") return;
+            if (g.value == "ENDSEC") {
+                tables_read_ = true;
+                return;
+            }
             if (g.value == "LAYER") {
                 read_record(r, g);
                 Layer l;
@@ -295,11 +605,14 @@ private:
         cut_short(last_line_, "the TABLES section");
     }
 
-    void add_layer(const Layer& l) {
+    std::size_t add_layer(const Layer& l) {
         const std::string key = dxf_upper(l.name);
-        if (layer_index_.count(key)) return;
+        const auto found = layer_index_.find(key);
+        if (found != layer_index_.end()) return found->second;
         layer_index_[key] = drawing_.layers.size();
         drawing_.layers.push_back(l);
+        layer_linetype_.push_back(text_->intern(l.linetype));
+        return drawing_.layers.size() - 1;
     }
 
     void read_blocks() {
@@ -327,17 +640,20 @@ private:
     // Entities up to ENDSEC (ENTITIES) or ENDBLK (a block), into `into`.
     void read_entities(DxfBlock& into, const DxfBlock* block, const std::string& what) {
         DxfGroup g;
-        DxfRecord r;
         const std::size_t start = last_line_;
         while (next(g)) {
             if (g.code != 0) pairs_.fail(g.line, "expected \"0\" and an entity, got group code " + std::to_string(g.code));
             if (!block && g.value == "ENDSEC") return;
             if (block && g.value == "ENDBLK") {
-                read_record(r, g);
+                read_record(record_, g);
                 return;
             }
-            read_record(r, g);
-            entity(r, into);
+            if (g.value == "LWPOLYLINE") {
+                lwpolyline(g, into, block == nullptr);
+                continue;
+            }
+            read_record(record_, g);
+            entity(record_, into, block == nullptr);
         }
         cut_short(start, what);
     }
@@ -356,110 +672,103 @@ private:
 
     Origin origin_of(const DxfRecord& r) {
         Origin o;
-        o.type = std::string(r.type);
+        o.type = dxf_type_name(r.type);
         o.line = r.line;
         o.layer = "0";
         o.linetype = "BYLAYER";
         o.colour = 256;
-        for (const DxfGroup& g : r.groups) {
-            if (g.code == 5) o.handle = g.value;
-            else if (g.code == 8) o.layer = g.value;
-            else if (g.code == 6) o.linetype = g.value;
-            else if (g.code == 62) o.colour = static_cast<int>(integer(g, &r));
-        }
+        if (const DxfGroup* g = r.last_of(dxf_s5)) o.handle = text_->keep(g->value);
+        if (const DxfGroup* g = r.last_of(dxf_s8)) o.layer = text_->intern(g->value);
+        if (const DxfGroup* g = r.last_of(dxf_s6)) o.linetype = text_->intern(g->value);
+        if (r.first[dxf_s62] >= 0)
+            for (const DxfGroup& g : r.groups)
+                if (g.code == 62) o.colour = static_cast<int>(integer(g, &r));
         return o;
     }
 
     static void add_line(Profile& p, Vec2 to) { p.segments.push_back({to, std::nullopt, ArcDirection::ccw}); }
-    // A bulge segment from `from` to `to`: bulge = tan(sweep / 4), positive counter-clockwise.
-    static void add_bulge(Profile& p, Vec2 from, Vec2 to, double bulge) {
-        if (bulge == 0 || from == to) return add_line(p, to);
-        const Vec2 chord = to - from;
-        const double c = norm(chord);
-        // The centre sits left of the chord for a positive bulge below 180 degrees.
-        const double offset = c * (1.0 - bulge * bulge) / (4.0 * bulge);
-        const Vec2 mid = (from + to) * 0.5;
-        const Vec2 centre = mid + left_of(chord) * (offset / c);
-        p.segments.push_back({to, centre, bulge > 0 ? ArcDirection::ccw : ArcDirection::cw});
-    }
 
-    void entity(DxfRecord& r, DxfBlock& into) {
-        const std::string_view t = r.type;
-        // Paper space: left out unless asked.
+    // Paper space (67 = 1) when it is left out, and the extrusion (210, 220, 230: the last of each).
+    bool paper(const DxfRecord& r) {
+        if (r.first[dxf_s67] < 0) return false;
         for (const DxfGroup& g : r.groups)
-            if (g.code == 67 && integer(g, &r) == 1 && !opt_.paper_space) {
-                if (t == "POLYLINE" || t == "INSERT") skip_sequence(r);
-                return;
-            }
+            if (g.code == 67 && integer(g, &r) == 1 && !opt_.paper_space) return true;
+        return false;
+    }
+    Vec3 extrusion(const DxfRecord& r) {
         Vec3 n{0, 0, 1};
+        if (r.first[dxf_s210] < 0 && r.first[dxf_s220] < 0 && r.first[dxf_s230] < 0) return n;
         for (const DxfGroup& g : r.groups) {
             if (g.code == 210) n.x = number(g, &r);
             else if (g.code == 220) n.y = number(g, &r);
             else if (g.code == 230) n.z = number(g, &r);
         }
-        auto coord = [&](int code, double fallback = 0.0) {
-            for (const DxfGroup& g : r.groups)
-                if (g.code == code) return number(g, &r);
-            return fallback;
+        return n;
+    }
+
+    // An LWPOLYLINE, its vertices read as they come.
+    void lwpolyline(const DxfGroup& head, DxfBlock& into, bool model) {
+        DxfPolylineBuilder b;
+        PolyFault fault;
+        long flags = 0;
+        read_record(record_, head, &b, &fault, &flags);
+        const DxfRecord& r = record_;
+        if (paper(r)) return;
+        const Vec3 n = extrusion(r);
+        Piece piece;
+        piece.origin = origin_of(r);
+        if (!fault.message.empty()) fail(fault.line, &r, fault.message);
+        if (!polyline(piece, r, b, (flags & 1) != 0, ocs(r, n))) return;
+        keep(std::move(piece), into, model);
+    }
+
+    void entity(DxfRecord& r, DxfBlock& into, bool model) {
+        const std::string_view t = r.type;
+        // Paper space: left out unless asked.
+        if (paper(r)) {
+            if (t == "POLYLINE" || t == "INSERT") skip_sequence(r);
+            return;
+        }
+        const Vec3 n = extrusion(r);
+        auto coord = [&](int slot, double fallback = 0.0) {
+            const DxfGroup* g = r.first_of(slot);
+            return g ? number(*g, &r) : fallback;
         };
-        auto has = [&](int code) {
-            return std::any_of(r.groups.begin(), r.groups.end(), [&](const DxfGroup& g) { return g.code == code; });
-        };
-        auto need = [&](std::initializer_list<int> codes) {
-            for (int c : codes)
-                if (!has(c)) fail(r.line, &r, "group code " + std::to_string(c) + " is missing");
+        auto need = [&](std::initializer_list<std::pair<int, int>> codes) {
+            for (const auto& [code, slot] : codes)
+                if (r.first[slot] < 0) fail(r.line, &r, "group code " + std::to_string(code) + " is missing");
         };
         Piece piece;
-        if (t == "LINE") {
-            need({10, 20, 11, 21});
-            piece.origin = origin_of(r);
-            piece.path.start = {coord(10), coord(20)};
-            add_line(piece.path, {coord(11), coord(21)});
-        } else if (t == "POINT") {
-            need({10, 20});
-            piece.origin = origin_of(r);
-            piece.kind = Piece::Kind::point;
-            piece.centre = {coord(10), coord(20)};
-        } else if (t == "CIRCLE") {
-            need({10, 20, 40});
+        if (t == "CIRCLE") {
+            need({{10, dxf_s10}, {20, dxf_s20}, {40, dxf_s40}});
             piece.origin = origin_of(r);
             piece.kind = Piece::Kind::circle;
             const DxfAffine m = ocs(r, n);
-            piece.centre = m({coord(10), coord(20)});
-            piece.radius = coord(40);
+            piece.centre = m({coord(dxf_s10), coord(dxf_s20)});
+            piece.radius = coord(dxf_s40);
             if (!(piece.radius > 0)) fail(r.line, &r, "its radius (group code 40) must be more than 0");
-        } else if (t == "ARC") {
-            need({10, 20, 40, 50, 51});
+        } else if (t == "LINE") {
+            need({{10, dxf_s10}, {20, dxf_s20}, {11, dxf_s11}, {21, dxf_s21}});
             piece.origin = origin_of(r);
-            const Vec2 c{coord(10), coord(20)};
-            const double radius = coord(40);
+            piece.path.start = {coord(dxf_s10), coord(dxf_s20)};
+            add_line(piece.path, {coord(dxf_s11), coord(dxf_s21)});
+        } else if (t == "POINT") {
+            need({{10, dxf_s10}, {20, dxf_s20}});
+            piece.origin = origin_of(r);
+            piece.kind = Piece::Kind::point;
+            piece.centre = {coord(dxf_s10), coord(dxf_s20)};
+        } else if (t == "ARC") {
+            need({{10, dxf_s10}, {20, dxf_s20}, {40, dxf_s40}, {50, dxf_s50}, {51, dxf_s51}});
+            piece.origin = origin_of(r);
+            const Vec2 c{coord(dxf_s10), coord(dxf_s20)};
+            const double radius = coord(dxf_s40);
             if (!(radius > 0)) fail(r.line, &r, "its radius (group code 40) must be more than 0");
-            double a0 = coord(50), a1 = coord(51);
+            double a0 = coord(dxf_s50), a1 = coord(dxf_s51);
             while (a1 <= a0) a1 += 360.0;
             piece.path.start = c + unit_at(a0 * rad_per_deg) * radius;
             const Vec2 end = c + unit_at(a1 * rad_per_deg) * radius;
             piece.path.segments.push_back({end, c, ArcDirection::ccw});
-            piece.path = dxf_transform(piece.path, ocs(r, n));
-        } else if (t == "LWPOLYLINE") {
-            piece.origin = origin_of(r);
-            long flags = 0;
-            std::vector<Vec2> v;
-            std::vector<double> bulge;
-            for (const DxfGroup& g : r.groups) {
-                if (g.code == 70) flags = integer(g, &r);
-                else if (g.code == 10) {
-                    v.push_back({number(g, &r), 0});
-                    bulge.push_back(0);
-                } else if (g.code == 20) {
-                    if (v.empty()) fail(g.line, &r, "a vertex's Y (20) before its X (10)");
-                    v.back().y = number(g, &r);
-                } else if (g.code == 42) {
-                    if (v.empty()) fail(g.line, &r, "a bulge (42) before the first vertex");
-                    bulge.back() = number(g, &r);
-                }
-            }
-            polyline(piece, r, v, bulge, (flags & 1) != 0, ocs(r, n));
-            if (piece.path.segments.empty()) return;
+            dxf_transform_in_place(piece.path, ocs(r, n));
         } else if (t == "POLYLINE") {
             piece.origin = origin_of(r);
             long flags = 0;
@@ -467,37 +776,37 @@ private:
                 if (g.code == 70) flags = integer(g, &r);
             if (flags & (8 | 16 | 64))
                 fail(r.line, &r, "a 3D polyline, polygon mesh or polyface mesh: camgen takes 2D drawings in XY");
-            std::vector<Vec2> v;
-            std::vector<double> bulge;
+            DxfPolylineBuilder b;
             DxfGroup g;
-            DxfRecord vx;
+            DxfRecord& vx = vertex_;
+            const std::size_t head_line = r.line;
+            const DxfRecord& head = r;  // record_: the vertices are read into vertex_
             while (true) {
-                if (!next(g)) cut_short(r.line, "a POLYLINE (no SEQEND)");
+                if (!next(g)) cut_short(head_line, "a POLYLINE (no SEQEND)");
                 if (g.code != 0) pairs_.fail(g.line, "expected \"0\" and VERTEX or SEQEND, got group code " + std::to_string(g.code));
                 read_record(vx, g);
                 if (vx.type == "SEQEND") break;
-                if (vx.type != "VERTEX") fail(vx.line, &r, "expected VERTEX or SEQEND after the POLYLINE, got " + std::string(vx.type));
+                if (vx.type != "VERTEX") fail(vx.line, &head, "expected VERTEX or SEQEND after the POLYLINE, got " + std::string(vx.type));
                 long vflags = 0;
                 Vec2 p;
-                double b = 0;
+                double bulge = 0;
                 bool hx = false, hy = false;
                 for (const DxfGroup& x : vx.groups) {
                     if (x.code == 10) p.x = number(x, &vx), hx = true;
                     else if (x.code == 20) p.y = number(x, &vx), hy = true;
-                    else if (x.code == 42) b = number(x, &vx);
+                    else if (x.code == 42) bulge = number(x, &vx);
                     else if (x.code == 70) vflags = integer(x, &vx);
                 }
                 if (!hx || !hy) fail(vx.line, &vx, "a VERTEX needs its X and Y (10, 20)");
                 if (vflags & 16) continue;  // a spline frame's control point: the fitted vertices follow
-                v.push_back(p);
-                bulge.push_back(b);
+                b.add(p, bulge);
             }
-            polyline(piece, r, v, bulge, (flags & 1) != 0, ocs(r, n));
-            if (piece.path.segments.empty()) return;
+            if (!polyline(piece, head, b, (flags & 1) != 0, ocs(head, n))) return;
         } else if (t == "ELLIPSE") {
-            need({10, 20, 11, 21, 40});
+            need({{10, dxf_s10}, {20, dxf_s20}, {11, dxf_s11}, {21, dxf_s21}, {40, dxf_s40}});
             piece.origin = origin_of(r);
-            ellipse(piece, r, {coord(10), coord(20)}, {coord(11), coord(21)}, coord(40), coord(41, 0.0), coord(42, two_pi), n.z < 0);
+            ellipse(piece, r, {coord(dxf_s10), coord(dxf_s20)}, {coord(dxf_s11), coord(dxf_s21)}, coord(dxf_s40), coord(dxf_s41, 0.0),
+                    coord(dxf_s42, two_pi), n.z < 0);
         } else if (t == "SPLINE") {
             piece.origin = origin_of(r);
             spline(piece, r);
@@ -514,7 +823,7 @@ private:
                                  " entities (it reads LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE, POINT, ELLIPSE, SPLINE, INSERT; "
                                  "explode or convert it in the CAD program)");
         }
-        into.pieces.push_back(std::move(piece));
+        keep(std::move(piece), into, model);
     }
 
     void skip_sequence(const DxfRecord& r) {
@@ -523,43 +832,32 @@ private:
             if (g.code == 66 && integer(g) == 1) follows = true;
         if (!follows) return;
         DxfGroup g;
-        DxfRecord x;
+        const std::string type(r.type);
+        const std::size_t line = r.line;
+        DxfRecord& x = vertex_;
         while (next(g)) {
             read_record(x, g);
             if (x.type == "SEQEND") return;
         }
-        cut_short(r.line, std::string(r.type));
+        cut_short(line, type);
     }
 
-    void polyline(Piece& piece, const DxfRecord& r, const std::vector<Vec2>& v, const std::vector<double>& bulge, bool closed,
-                  const DxfAffine& m) {
-        if (v.empty()) fail(r.line, &r, "a polyline without vertices");
-        Profile p;
-        p.start = v[0];
-        for (std::size_t i = 1; i < v.size(); ++i) add_bulge(p, v[i - 1], v[i], bulge[i - 1]);
-        if (closed && v.size() > 1 && v.back() != v.front()) add_bulge(p, v.back(), v.front(), bulge.back());
-        piece.closed = closed || (v.size() > 2 && v.back() == v.front());
-        // A segment of length zero (a repeated vertex) is dropped.
-        Profile clean;
-        clean.start = p.start;
-        Vec2 at = p.start;
-        std::size_t dropped = 0;
-        for (const ProfileSegment& s : p.segments) {
-            if (distance(at, s.end) < profile_same_point) {
-                ++dropped;
-                continue;
-            }
-            clean.segments.push_back(s);
-            at = s.end;
-        }
-        if (dropped)
-            drawing_.notes.push_back(pairs_.name() + " line " + std::to_string(r.line) + ": " + where(r) + ": " + std::to_string(dropped) +
-                                     " zero-length segment" + (dropped == 1 ? "" : "s") + " dropped");
-        if (clean.segments.empty()) {
+    // The polyline's profile into the piece, placed by `m`; false when nothing is left of it.
+    bool polyline(Piece& piece, const DxfRecord& r, DxfPolylineBuilder& b, bool closed, const DxfAffine& m) {
+        if (b.count == 0) fail(r.line, &r, "a polyline without vertices");
+        b.finish(closed);
+        piece.closed = b.closed;
+        if (b.dropped)
+            drawing_.notes.push_back(pairs_.name() + " line " + std::to_string(r.line) + ": " + where(r) + ": " + std::to_string(b.dropped) +
+                                     " zero-length segment" + (b.dropped == 1 ? "" : "s") + " dropped");
+        if (b.path.segments.empty()) {
             drawing_.notes.push_back(pairs_.name() + " line " + std::to_string(r.line) + ": " + where(r) + ": a polyline of no length dropped");
-            return;
+            return false;
         }
-        piece.path = dxf_transform(clean, m);
+        piece.path = std::move(b.path);
+        if (piece.path.segments.capacity() > piece.path.segments.size() + piece.path.segments.size() / 8) piece.path.segments.shrink_to_fit();
+        dxf_transform_in_place(piece.path, m);
+        return true;
     }
 
     // Arcs and lines within the tolerance along a parametric curve; `at(t)`, t from t0 to t1.
@@ -739,6 +1037,7 @@ private:
         }
     }
 
+
     void insert(DxfRecord& r, DxfBlock& into, Vec3 n) {
         DxfBlock::Insert ins;
         ins.origin = origin_of(r);
@@ -761,6 +1060,7 @@ private:
             }
         }
         if (ins.block.empty()) fail(r.line, &r, "an INSERT needs its block's name (group code 2)");
+        ins.block = text_->intern(ins.block);
         if (sx == 0 || sy == 0) fail(r.line, &r, "an INSERT scaled by 0");
         if (cols < 1 || rows < 1 || double(cols) * double(rows) > double(max_pieces))
             fail(r.line, &r, "its array of " + std::to_string(cols) + " x " + std::to_string(rows) + " copies is out of range");
@@ -779,25 +1079,53 @@ private:
             }
     }
 
-    // The model space's inserts expanded, nested, with their transforms.
+    // A piece read: kept in its block, or (model space) handed on; held while the layer table
+    // may still come.
+    void keep(Piece&& p, DxfBlock& into, bool model) {
+        if (!model) into.pieces.push_back(std::move(p));
+        else if (tables_read_) deliver(std::move(p));
+        else pending_.push_back(std::move(p));
+    }
+
+    // The piece's BYLAYER colour and linetype resolved (a layer only entities name is added),
+    // then handed to the sink or kept in the drawing.
+    void deliver(Piece&& p) {
+        std::size_t index = 0;
+        const auto cached = layer_of_.find(p.origin.layer.data());
+        if (cached != layer_of_.end() && cached->second.first == p.origin.layer.size()) {
+            index = cached->second.second;
+        } else {
+            index = add_layer(Layer{std::string(p.origin.layer), 7, "CONTINUOUS"});
+            layer_of_[p.origin.layer.data()] = {p.origin.layer.size(), index};
+        }
+        const Layer& l = drawing_.layers[index];
+        if (p.origin.colour == 256 || p.origin.colour == 0) p.origin.colour = l.colour;
+        if (dxf_same_name(p.origin.linetype, "BYLAYER") || dxf_same_name(p.origin.linetype, "BYBLOCK")) p.origin.linetype = layer_linetype_[index];
+        ++delivered_;
+        if (sink_) (*sink_)(std::move(p));
+        else drawing_.pieces.push_back(std::move(p));
+    }
+
+    // The pieces held, then the model space's inserts expanded, nested, with their transforms.
     void resolve_inserts() {
-        drawing_.pieces = std::move(model_.pieces);
-        std::vector<std::string> chain;
+        for (Piece& p : pending_) deliver(std::move(p));
+        pending_ = {};
+        std::vector<std::string_view> chain;
         for (const DxfBlock::Insert& ins : model_.inserts) expand(ins, DxfAffine{}, nullptr, chain);
         for (const auto& [type, count] : skipped_)
             drawing_.notes.push_back(pairs_.name() + ": " + std::to_string(count) + " " + type + " entit" + (count == 1 ? "y" : "ies") +
                                      " left out (not geometry)");
     }
 
-    void expand(const DxfBlock::Insert& ins, const DxfAffine& outer, const Origin* parent, std::vector<std::string>& chain) {
+    void expand(const DxfBlock::Insert& ins, const DxfAffine& outer, const Origin* parent, std::vector<std::string_view>& chain) {
         const auto found = blocks_.find(dxf_upper(ins.block));
         auto insert_fail = [&](const std::string& message) {
-            pairs_.fail(ins.origin.line, "INSERT (" + (ins.origin.handle.empty() ? "" : "handle " + ins.origin.handle + ", ") + "layer " +
-                                             ins.origin.layer + "): " + message);
+            pairs_.fail(ins.origin.line, "INSERT (" + (ins.origin.handle.empty() ? "" : "handle " + std::string(ins.origin.handle) + ", ") +
+                                             "layer " + std::string(ins.origin.layer) + "): " + message);
         };
-        if (found == blocks_.end()) insert_fail("block " + ins.block + " is not defined in the BLOCKS section");
-        if (std::find(chain.begin(), chain.end(), found->second.name) != chain.end())
-            insert_fail("block " + ins.block + " inserts itself");
+        if (found == blocks_.end()) insert_fail("block " + std::string(ins.block) + " is not defined in the BLOCKS section");
+        if (std::find(chain.begin(), chain.end(), std::string_view(found->second.name)) != chain.end())
+            insert_fail("block " + std::string(ins.block) + " inserts itself");
         if (static_cast<int>(chain.size()) >= max_insert_depth)
             insert_fail("inserts nested deeper than " + std::to_string(max_insert_depth));
         const DxfBlock& b = found->second;
@@ -806,90 +1134,100 @@ private:
         const DxfAffine m = base.then(ins.place).then(outer);
         // What the insert passes on: layer "0", BYBLOCK linetype and colour take its own.
         Origin mine = ins.origin;
+        std::vector<std::string_view> names;
         if (parent) {
             if (mine.layer == "0") mine.layer = parent->layer;
-            if (dxf_upper(mine.linetype) == "BYBLOCK") mine.linetype = parent->linetype;
+            if (dxf_same_name(mine.linetype, "BYBLOCK")) mine.linetype = parent->linetype;
             if (mine.colour == 0) mine.colour = parent->colour;
-            mine.blocks = parent->blocks;
+            names.assign(parent->blocks.begin(), parent->blocks.end());
         }
-        mine.blocks.push_back(b.name);
+        names.push_back(b.name);
+        mine.blocks = text_->chain(names);
         chain.push_back(b.name);
         const std::optional<double> scale = m.uniform_scale();
         for (const Piece& p : b.pieces) {
-            if (drawing_.pieces.size() >= max_pieces) insert_fail("the inserts make more than " + std::to_string(max_pieces) + " pieces");
+            if (delivered_ >= max_pieces) insert_fail("the inserts make more than " + std::to_string(max_pieces) + " pieces");
             Piece q = p;
             if (q.origin.layer == "0") q.origin.layer = mine.layer;
-            if (dxf_upper(q.origin.linetype) == "BYBLOCK") q.origin.linetype = mine.linetype;
+            if (dxf_same_name(q.origin.linetype, "BYBLOCK")) q.origin.linetype = mine.linetype;
             if (q.origin.colour == 0) q.origin.colour = mine.colour;
             q.origin.blocks = mine.blocks;
             const bool curved = q.kind == Piece::Kind::circle ||
                                 std::any_of(q.path.segments.begin(), q.path.segments.end(), [](const ProfileSegment& s) { return s.centre.has_value(); });
             if (curved && !scale)
-                insert_fail("block " + b.name + " is inserted with unequal X and Y scales: its " + q.origin.type + " (line " +
+                insert_fail("block " + b.name + " is inserted with unequal X and Y scales: its " + std::string(q.origin.type) + " (line " +
                             std::to_string(q.origin.line) + ") would be an ellipse; scale it evenly or explode it in the CAD program");
-            if (q.kind == Piece::Kind::path) q.path = dxf_transform(q.path, m);
+            if (q.kind == Piece::Kind::path) dxf_transform_in_place(q.path, m);
             else q.centre = m(q.centre);
             if (q.kind == Piece::Kind::circle) q.radius *= *scale;
-            drawing_.pieces.push_back(std::move(q));
+            deliver(std::move(q));
         }
         for (const DxfBlock::Insert& inner : b.inserts) expand(inner, m, &mine, chain);
         chain.pop_back();
     }
 
-    void finish_layers() {
-        for (Piece& p : drawing_.pieces) {
-            auto found = layer_index_.find(dxf_upper(p.origin.layer));
-            if (found == layer_index_.end()) {
-                add_layer(Layer{p.origin.layer, 7, "CONTINUOUS"});
-                found = layer_index_.find(dxf_upper(p.origin.layer));
-            }
-            const Layer& l = drawing_.layers[found->second];
-            if (p.origin.colour == 256 || p.origin.colour == 0) p.origin.colour = l.colour;
-            const std::string lt = dxf_upper(p.origin.linetype);
-            if (lt == "BYLAYER" || lt == "BYBLOCK") p.origin.linetype = l.linetype;
-        }
-    }
-
     DxfPairs pairs_;
     const ReadOptions& opt_;
+    const PieceSink* sink_;
+    std::shared_ptr<DrawingText> text_;
     Drawing drawing_;
-    std::optional<DxfGroup> held_;
+    DxfGroup held_g_;
+    bool held_ = false;
     std::size_t last_line_ = 0;
+    DxfRecord record_, vertex_;
     DxfBlock model_;
+    bool tables_read_ = false;
+    std::vector<Piece> pending_;
+    std::size_t delivered_ = 0;
     std::unordered_map<std::string, DxfBlock> blocks_;
     std::unordered_map<std::string, std::size_t> layer_index_;
+    std::vector<std::string_view> layer_linetype_;  // interned, by layer index
+    std::unordered_map<const char*, std::pair<std::size_t, std::size_t>> layer_of_;  // a layer name's text -> (size, layer index)
     std::map<std::string, std::size_t> skipped_;
 };
 
-bool dxf_same_name(std::string_view a, std::string_view b) { return dxf_upper(a) == dxf_upper(b); }
-
 }  // namespace
 
-Drawing read_text(std::string_view text, const std::string& name, const ReadOptions& options) {
+namespace {
+
+// Binary DXF and DWG refused by name (a NUL byte anywhere else is refused as the reader meets
+// it, and any other fault of a file with a NUL byte is that).
+void dxf_check_text(std::string_view text, const std::string& name) {
     static constexpr char binary_sentinel[] = "AutoCAD Binary DXF";
     if (text.substr(0, sizeof binary_sentinel - 1) == binary_sentinel)
         throw Error(name + ": a binary DXF: camgen reads ASCII DXF only; save the drawing as ASCII DXF from the CAD program");
     if (text.size() >= 6 && text.substr(0, 4) == "AC10" && std::isdigit(static_cast<unsigned char>(text[4])))
         throw Error(name + ": a DWG drawing (AutoCAD's own binary format), not DXF: save it as ASCII DXF from the CAD program");
-    if (text.find('\0') != std::string_view::npos)
-        throw Error(name + ": a binary file, not an ASCII DXF drawing");
-    DxfReader reader(text, name, options);
-    return reader.read();
+}
+
+Drawing dxf_read(std::string_view text, const std::string& name, const ReadOptions& options, DxfMappedFile* file, const PieceSink* each) {
+    dxf_check_text(text, name);
+    try {
+        return DxfReader(text, name, options, file, each).read();
+    } catch (const Error&) {
+        if (std::memchr(text.data(), 0, text.size())) throw Error(name + ": " + dxf_binary_words);
+        throw;
+    }
+}
+
+}  // namespace
+
+Drawing read_text(std::string_view text, const std::string& name, const ReadOptions& options) {
+    return dxf_read(text, name, options, nullptr, nullptr);
+}
+
+Drawing read_text(std::string_view text, const std::string& name, const PieceSink& each, const ReadOptions& options) {
+    return dxf_read(text, name, options, nullptr, &each);
 }
 
 Drawing read_file(const std::string& path, const ReadOptions& options) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open the drawing: " + std::strerror(errno));
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw Error(path + ": cannot read the drawing");
-    if (static_cast<std::size_t>(size) > max_file_bytes)
-        throw Error(path + ": the drawing is larger than " + std::to_string(max_file_bytes >> 20) + " MiB");
-    in.seekg(0);
-    std::string text(static_cast<std::size_t>(size), '\0');
-    in.read(text.data(), size);
-    if (!in) throw Error(path + ": cannot read the drawing");
-    return read_text(text, path, options);
+    DxfMappedFile file(path);
+    return dxf_read(file.text(), path, options, &file, nullptr);
+}
+
+Drawing read_file(const std::string& path, const PieceSink& each, const ReadOptions& options) {
+    DxfMappedFile file(path);
+    return dxf_read(file.text(), path, options, &file, &each);
 }
 
 std::optional<double> mm_per_unit(int insunits, std::string* name) {
@@ -912,9 +1250,9 @@ std::optional<double> mm_per_unit(int insunits, std::string* name) {
 }
 
 std::string describe(const Origin& o) {
-    std::string s = o.type;
-    if (!o.handle.empty()) s += " handle " + o.handle;
-    s += " (line " + std::to_string(o.line) + ", layer " + o.layer + ")";
+    std::string s(o.type);
+    if (!o.handle.empty()) (s += " handle ").append(o.handle);
+    (s += " (line " + std::to_string(o.line) + ", layer ").append(o.layer) += ")";
     return s;
 }
 
@@ -933,9 +1271,9 @@ std::vector<const Piece*> select(const Drawing& d, const Selection& s, std::stri
     for (const Layer& l : d.layers) layers.push_back(l.name);
     for (const Piece& p : d.pieces) {
         if (std::none_of(linetypes.begin(), linetypes.end(), [&](const std::string& n) { return dxf_same_name(n, p.origin.linetype); }))
-            linetypes.push_back(p.origin.linetype);
-        for (const std::string& b : p.origin.blocks)
-            if (std::none_of(blocks.begin(), blocks.end(), [&](const std::string& n) { return dxf_same_name(n, b); })) blocks.push_back(b);
+            linetypes.emplace_back(p.origin.linetype);
+        for (std::string_view b : p.origin.blocks)
+            if (std::none_of(blocks.begin(), blocks.end(), [&](const std::string& n) { return dxf_same_name(n, b); })) blocks.emplace_back(b);
     }
     check_names(s.layers, layers, "layer");
     check_names(s.linetypes, linetypes, "linetype");
@@ -949,7 +1287,7 @@ std::vector<const Piece*> select(const Drawing& d, const Selection& s, std::stri
             std::none_of(s.linetypes.begin(), s.linetypes.end(), [&](const std::string& n) { return dxf_same_name(n, p.origin.linetype); }))
             continue;
         if (!s.blocks.empty() && std::none_of(s.blocks.begin(), s.blocks.end(), [&](const std::string& n) {
-                return std::any_of(p.origin.blocks.begin(), p.origin.blocks.end(), [&](const std::string& b) { return dxf_same_name(b, n); });
+                return std::any_of(p.origin.blocks.begin(), p.origin.blocks.end(), [&](std::string_view b) { return dxf_same_name(b, n); });
             }))
             continue;
         if (s.min_diameter || s.max_diameter) {
@@ -1002,14 +1340,19 @@ bool dxf_same_path(const Profile& a, const Profile& b) {
 
 }  // namespace
 
-ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std::string& file) {
+namespace {
+
+// chain() and chain_taking(): with `take`, the pieces' paths are moved into the chains.
+ChainResult dxf_chain(const std::vector<const Piece*>& pieces, double gap, const std::string& file, bool take) {
     ChainResult result;
     struct Open {
         Profile path;
         const Piece* piece;
     };
     std::vector<Open> open;
-    std::vector<std::pair<Profile, const Piece*>> seen;  // for duplicates, by first point bucket
+    // For duplicates, by first point bucket: the pieces' own paths (circles' made once), not copies.
+    std::vector<std::pair<const Profile*, const Piece*>> seen;
+    std::deque<Profile> circle_paths;
     std::map<std::pair<long long, long long>, std::vector<std::size_t>> by_start;
     auto bucket = [](Vec2 p) { return std::pair<long long, long long>{std::llround(p.x * 1e4), std::llround(p.y * 1e4)}; };
     auto duplicate = [&](const Profile& p) {
@@ -1020,24 +1363,36 @@ ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std
                     auto found = by_start.find({b.first + dx, b.second + dy});
                     if (found == by_start.end()) continue;
                     for (std::size_t i : found->second)
-                        if (dxf_same_path(seen[i].first, p)) return seen[i].second;
+                        if (dxf_same_path(*seen[i].first, p)) return seen[i].second;
                 }
         }
         return static_cast<const Piece*>(nullptr);
     };
+    // First the pieces left out (no length, drawn twice), each compared in place.
     for (const Piece* piece : pieces) {
         if (piece->kind == Piece::Kind::point) continue;
-        Profile path = piece->kind == Piece::Kind::circle ? dxf_circle_profile(piece->centre, piece->radius) : piece->path;
-        if (profile_length(path) < profile_same_point) {
+        const Profile* own = &piece->path;
+        if (piece->kind == Piece::Kind::circle) own = &circle_paths.emplace_back(dxf_circle_profile(piece->centre, piece->radius));
+        if (profile_length(*own) < profile_same_point) {
             result.notes.push_back(file + ": " + describe(piece->origin) + " has no length: left out");
+            if (piece->kind == Piece::Kind::circle) circle_paths.pop_back();
             continue;
         }
-        if (const Piece* first = duplicate(path)) {
+        if (const Piece* first = duplicate(*own)) {
             result.notes.push_back(file + ": " + describe(piece->origin) + " is drawn twice (also " + describe(first->origin) + "): left out");
+            if (piece->kind == Piece::Kind::circle) circle_paths.pop_back();
             continue;
         }
-        seen.push_back({path, piece});
-        by_start[bucket(path.start)].push_back(seen.size() - 1);
+        seen.push_back({own, piece});
+        by_start[bucket(own->start)].push_back(seen.size() - 1);
+    }
+    // Then each piece kept: a closed chain of its own, or open, to be chained.
+    std::size_t circle = 0;
+    for (const auto& [own, piece] : seen) {
+        Profile path;
+        if (piece->kind == Piece::Kind::circle) path = std::move(circle_paths[circle++]);
+        else if (take) path = std::move(const_cast<Piece*>(piece)->path);
+        else path = piece->path;
         const bool closed = piece->kind == Piece::Kind::circle || piece->closed || is_closed(path);
         if (closed) {
             Chain c;
@@ -1089,7 +1444,7 @@ ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std
         if (used[i]) continue;
         used[i] = true;
         Chain c;
-        c.profile = open[i].path;
+        c.profile = std::move(open[i].path);  // used: no longer looked at
         c.pieces.push_back(open[i].piece);
         // Forwards from the end.
         while (true) {
@@ -1126,6 +1481,16 @@ ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std
     // Joined ends move a segment's end by up to the gap: arcs keep their centre (the end stays
     // within the gap of the circle).
     return result;
+}
+
+}  // namespace
+
+ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std::string& file) {
+    return dxf_chain(pieces, gap, file, false);
+}
+
+ChainResult chain_taking(const std::vector<Piece*>& pieces, double gap, const std::string& file) {
+    return dxf_chain(std::vector<const Piece*>(pieces.begin(), pieces.end()), gap, file, true);
 }
 
 std::vector<int> nesting(const std::vector<Chain>& chains) {

@@ -11,6 +11,9 @@ namespace camgen {
 // The report of dxf-info: units, layers with their entity counts (by type), closed and open
 // profiles (chained per layer) with their extents, circles grouped by diameter, points.
 std::string dxf_info_text(const dxf::Drawing& d);
+// The same for the drawing at `path`, read piece by piece (circles and points counted, not
+// kept): the memory of dxf-info is the paths it chains, not the drawing. Throws dxf::Error.
+std::string dxf_info_file(const std::string& path);
 
 // A starter job for the drawing at `dxf_path` (as the job names it, relative to the job):
 // a drill operation per circle diameter (the circles that are not a pocket's islands), a

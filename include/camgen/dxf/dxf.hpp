@@ -14,7 +14,10 @@
 // Depends on the geometry only. Lengths in the drawing's units (see `Drawing::units`) until a
 // caller scales them.
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -31,15 +34,21 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The text the pieces of a drawing name (handles, layer and linetype names, chains of block
+// names), owned by the Drawing read (shared by its copies): an Origin's views stay valid while
+// the Drawing it came from (or a copy of it) lives. Layer and linetype names are interned (one
+// copy of each name), handles kept in chunks, so a piece costs no heap allocation of its own.
+struct DrawingText;
+
 // Where a piece came from.
 struct Origin {
-    std::string type;     // the DXF entity: "LINE", "ARC", "LWPOLYLINE", ...
-    std::string handle;   // group 5 ("" when the writer gave none)
-    std::string layer;    // resolved: layer "0" inside a block takes the INSERT's
-    std::string linetype; // resolved: BYLAYER from the layer table, BYBLOCK from the INSERT
-    int colour = 7;       // ACI 1..255, resolved as the linetype
-    std::size_t line = 0; // the line of the entity's "0" group in the file
-    std::vector<std::string> blocks;  // the blocks it was inserted through, outermost first
+    std::string_view type;     // the DXF entity: "LINE", "ARC", "LWPOLYLINE", ...
+    std::string_view handle;   // group 5 ("" when the writer gave none)
+    std::string_view layer;    // resolved: layer "0" inside a block takes the INSERT's
+    std::string_view linetype; // resolved: BYLAYER from the layer table, BYBLOCK from the INSERT
+    int colour = 7;            // ACI 1..255, resolved as the linetype
+    std::size_t line = 0;      // the line of the entity's "0" group in the file
+    std::span<const std::string_view> blocks;  // the blocks it was inserted through, outermost first
 };
 
 // One thing drawn, in world coordinates of the XY plane.
@@ -64,6 +73,7 @@ struct Drawing {
     std::vector<Layer> layers;    // the layer table, then layers only entities name
     std::vector<Piece> pieces;    // model space, inserts expanded, in file order
     std::vector<std::string> notes;
+    std::shared_ptr<const DrawingText> text;  // what the pieces' Origins view
 };
 
 struct ReadOptions {
@@ -80,7 +90,19 @@ inline constexpr std::size_t max_pieces = 20'000'000;
 // Reads `text`, named `name` in messages. Throws Error.
 Drawing read_text(std::string_view text, const std::string& name, const ReadOptions& options = {});
 // Reads the file. Throws Error (also for a file that cannot be opened, a binary DXF, a DWG).
+// The file is mapped, not copied, and the pages read are let go as the reader moves on: the
+// memory of a read is the pieces, not the file.
 Drawing read_file(const std::string& path, const ReadOptions& options = {});
+
+// Reads the file as read_file does, but hands each piece to `each` as it is read (model space
+// in file order, then the pieces of inserts) instead of keeping it: the Drawing returned has
+// no pieces (its layers, units, notes and text are whole). The Origin of a piece views the
+// Drawing's text, valid while it lives. With a TABLES section after the entities (rare), the
+// pieces before it are held until the end (their layers resolved then). After an Error the
+// pieces handed on view text that is gone: drop them.
+using PieceSink = std::function<void(Piece&&)>;
+Drawing read_file(const std::string& path, const PieceSink& each, const ReadOptions& options = {});
+Drawing read_text(std::string_view text, const std::string& name, const PieceSink& each, const ReadOptions& options = {});
 
 // Millimetres per drawing unit of an $INSUNITS code, nullopt for 0 (unitless) and codes
 // camgen does not take (an Error names them); `name` gets the unit's name ("inches").
@@ -119,6 +141,9 @@ struct ChainResult {
 // than `gap` are joined (a note for each joint wider than 1e-6); a piece drawn twice and a
 // piece shorter than 1e-6 are dropped with a note. Points are ignored.
 ChainResult chain(const std::vector<const Piece*>& pieces, double gap, const std::string& file);
+// The same, the pieces' paths moved into the chains (no copy of the geometry: a piece keeps its
+// origin, its path left empty). For a caller that owns the pieces and needs their paths no more.
+ChainResult chain_taking(const std::vector<Piece*>& pieces, double gap, const std::string& file);
 
 // "LINE handle 1F (line 120)", for messages.
 std::string describe(const Origin& o);
