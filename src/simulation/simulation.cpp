@@ -650,7 +650,6 @@ public:
     }
 
 private:
-
     static double ring(double outside, double bore) { return outside > bore ? pi * (outside * outside - bore * bore) : 0.0; }
 
     // Sets a sample's outside radius to at most `r` and its bore to at least `b`; returns the
