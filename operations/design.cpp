@@ -94,8 +94,9 @@ public:
                                  [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
                                  [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
                                  [&](const StopOp&) {},
-                                 [&](const TurnDrillOp& o) { skip(o.path, "a lathe's part is not checked yet"); },
-                                 [&](const TurnProfileOp& o) { skip(o.path, "a lathe's part is not checked yet"); },
+                                 // A lathe's part: design_lathe.cpp.
+                                 [&](const TurnDrillOp& o) { design_turn_drill(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnProfileOp& o) { design_turn_profile(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);

@@ -39,6 +39,7 @@
 #include "camgen/reader/tool_table.hpp"
 #include "camgen/schema/schema.hpp"
 #include "camgen/simulation/design_check.hpp"
+#include "camgen/simulation/design_check_lathe.hpp"
 #include "camgen/cli/operation_lines.hpp"
 #include "camgen/simulation/simulation.hpp"
 #include "camgen/simulation/pictures.hpp"
@@ -826,6 +827,10 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }
     std::optional<SimDesignCheck> check = prepare_design_check(*job, machine, stock, *sim);
+    // A lathe's turned part against its design (design_check_lathe.hpp).
+    std::optional<LatheDesignCheck> lathe_check;
+    if (machine.kind == MachineKind::lathe)
+        lathe_check = prepare_lathe_design_check(*job, machine, stock, *sim);
     // The page's history of the part, told of each change as the program is swept.
     std::optional<SimHistory> history;
     if (!v.plot.empty()) {
@@ -845,7 +850,9 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     out << fmt::format("{} on machine {}\n", source, machine.name);
     if (!ops.note.empty()) out << "note: " << ops.note << '\n';
     out << format_simulation(r);
-    const std::size_t gouges = check ? design_check_report(*check, r, out) : 0;
+    const std::size_t gouges = check          ? design_check_report(*check, r, out)
+                               : lathe_check ? report_lathe_design_check(*lathe_check, r, ops.spans, out)
+                                             : 0;
     // The pictures, also of a part with errors (they show them); each written whole before
     // any replaces its file.
     const PictureLabels labels{base_name(source), machine.name};

@@ -620,8 +620,36 @@ private:
         double v = 0.0;
         for (int k = 0; k < p.nz; ++k) v += ring(p.outside[k], p.bore[k]);
         result_.initial_volume = v * dz;
+        p.outside_lines.assign(p.nz, 0);
+        p.bore_lines.assign(p.nz, 0);
+        if (!options_.lathe_sections.empty()) {
+            std::vector<double> z = std::move(options_.lathe_sections);
+            set_lathe_sections(std::move(z));
+        }
     }
 
+public:
+    // The sections: the bar as it is at each Z (no material beyond its ends), swept in order
+    // of Z (section_order_).
+    void set_lathe_sections(std::vector<double> z) {
+        if (result_.kind != MachineKind::lathe) throw SimInputError("sections are a lathe's");
+        if (z.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+            throw SimInputError("more than 2^31 sections");
+        LatheSections& s = result_.lathe_sections;
+        const double bore = stock_.bore_diameter.value_or(0.0) / 2, end = stock_.face_z - stock_.bar_length;
+        s.z = std::move(z);
+        s.bore.assign(s.z.size(), bore);
+        s.outside.assign(s.z.size(), bore);
+        s.outside_lines.assign(s.z.size(), 0);
+        s.bore_lines.assign(s.z.size(), 0);
+        for (std::size_t i = 0; i < s.z.size(); ++i)
+            if (s.z[i] >= end && s.z[i] <= stock_.face_z) s.outside[i] = stock_.bar_diameter / 2;
+        section_order_.resize(s.z.size());
+        for (std::size_t i = 0; i < s.z.size(); ++i) section_order_[i] = static_cast<std::int32_t>(i);
+        std::sort(section_order_.begin(), section_order_.end(), [&](std::int32_t a, std::int32_t b) { return s.z[a] < s.z[b]; });
+    }
+
+private:
     static double ring(double outside, double bore) { return outside > bore ? pi * (outside * outside - bore * bore) : 0.0; }
 
     // Sets a sample's outside radius to at most `r` and its bore to at least `b`; returns the
@@ -631,8 +659,8 @@ private:
         ++result_.cell_updates;
         const double before = ring(p.outside[k], p.bore[k]);
         const double old_r = p.outside[k], old_b = p.bore[k];
-        if (r < p.outside[k]) p.outside[k] = std::max(r, 0.0);
-        if (b > p.bore[k]) p.bore[k] = b;
+        if (r < p.outside[k]) p.outside[k] = std::max(r, 0.0), p.outside_lines[k] = line_;
+        if (b > p.bore[k]) p.bore[k] = b, p.bore_lines[k] = line_;
         const double removed = before - ring(p.outside[k], p.bore[k]);
         if (options_.observer && (p.outside[k] != old_r || p.bore[k] != old_b))
             options_.observer->turned(k, p.outside[k], p.bore[k], line_);
@@ -667,51 +695,77 @@ private:
         acc.volume *= result_.lathe.dz;
     }
 
+    // A section's outside radius to at most `r` (where it holds material) and its bore to at
+    // least `b`, as lathe_cut does a sample's.
+    void section_cut(std::size_t i, double r, double b) {
+        LatheSections& s = result_.lathe_sections;
+        if (r < s.outside[i] && s.outside[i] > s.bore[i]) s.outside[i] = std::max(r, 0.0), s.outside_lines[i] = line_;
+        if (b > s.bore[i]) s.bore[i] = b, s.bore_lines[i] = line_;
+    }
+
+    // The sections at or above Z `zlo`, in order of Z: f(index).
+    template <class F>
+    void sections_above(double zlo, F f) {
+        const std::vector<double>& zs = result_.lathe_sections.z;
+        auto it = std::lower_bound(section_order_.begin(), section_order_.end(), zlo,
+                                   [&](std::int32_t i, double z) { return zs[static_cast<std::size_t>(i)] < z; });
+        for (; it != section_order_.end(); ++it) f(static_cast<std::size_t>(*it));
+    }
+
     // A turning tool: its nose circle's centre at P (its tip where the nose is 0), its body
     // toward +X and +Z (cutting toward the chuck, -Z, and facing toward the axis): it clears
     // r >= x - nose at z >= Pz, and the nose's lower quarter below.
     void lathe_turn(const Vec3& a, const Vec3& b, double nose, SimMoveAcc& acc) {
         const LatheProfile& p = result_.lathe;
-        const double xa = std::abs(a.x), xb = std::abs(b.x);
         const double zlo = std::min(a.z, b.z) - nose;
         int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
         for (int k = k0; k < p.nz; ++k) {
-            const double z = p.z(k);
-            // Positions at or below z: the part of the segment with Pz <= z.
-            double r = std::numeric_limits<double>::infinity();
-            if (a.z <= z) r = std::min(r, xa);
-            if (b.z <= z) r = std::min(r, xb);
-            if ((a.z <= z) != (b.z <= z)) r = std::min(r, xa + (z - a.z) / (b.z - a.z) * (xb - xa));
-            r -= nose;
-            if (nose > 0 && !(a.z <= z && b.z <= z)) {
-                // Positions with z < Pz <= z + nose: the nose circle's lower quarter (convex in t).
-                double t_lo = 0, t_hi = 1;
-                const double dzs = b.z - a.z;
-                if (std::abs(dzs) > sim_tiny) {
-                    double u0 = (z - a.z) / dzs, u1 = (z + nose - a.z) / dzs;
-                    if (u0 > u1) std::swap(u0, u1);
-                    t_lo = std::max(0.0, u0), t_hi = std::min(1.0, u1);
-                } else if (!(a.z > z && a.z <= z + nose)) {
-                    t_lo = 1, t_hi = 0;
-                }
-                if (t_lo <= t_hi) {
-                    auto g = [&](double t) {
-                        const double pz = a.z + t * dzs, px = xa + t * (xb - xa), e = pz - z;
-                        return px - std::sqrt(std::max(0.0, nose * nose - e * e));
-                    };
-                    double lo_t = t_lo, hi_t = t_hi;
-                    for (int it = 0; it < sim_golden_iterations; ++it) {
-                        const double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
-                        if (g(m1) <= g(m2)) hi_t = m2;
-                        else lo_t = m1;
-                    }
-                    r = std::min({r, g(t_lo), g(t_hi), g((lo_t + hi_t) / 2)});
-                }
-            }
+            const double r = turn_reach(a, b, nose, p.z(k));
             if (!std::isfinite(r)) continue;
             if (r < p.outside[k] && p.outside[k] > p.bore[k])
                 acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
         }
+        sections_above(zlo, [&](std::size_t i) {
+            const double r = turn_reach(a, b, nose, result_.lathe_sections.z[i]);
+            if (std::isfinite(r)) section_cut(i, r, 0.0);
+        });
+    }
+
+    // The least radius the move clears at Z z (infinity: none there).
+    static double turn_reach(const Vec3& a, const Vec3& b, double nose, double z) {
+        const double xa = std::abs(a.x), xb = std::abs(b.x);
+        // Positions at or below z: the part of the segment with Pz <= z.
+        double r = std::numeric_limits<double>::infinity();
+        if (a.z <= z) r = std::min(r, xa);
+        if (b.z <= z) r = std::min(r, xb);
+        if ((a.z <= z) != (b.z <= z)) r = std::min(r, xa + (z - a.z) / (b.z - a.z) * (xb - xa));
+        r -= nose;
+        if (nose > 0 && !(a.z <= z && b.z <= z)) {
+            // Positions with z < Pz <= z + nose: the nose circle's lower quarter (convex in t).
+            double t_lo = 0, t_hi = 1;
+            const double dzs = b.z - a.z;
+            if (std::abs(dzs) > sim_tiny) {
+                double u0 = (z - a.z) / dzs, u1 = (z + nose - a.z) / dzs;
+                if (u0 > u1) std::swap(u0, u1);
+                t_lo = std::max(0.0, u0), t_hi = std::min(1.0, u1);
+            } else if (!(a.z > z && a.z <= z + nose)) {
+                t_lo = 1, t_hi = 0;
+            }
+            if (t_lo <= t_hi) {
+                auto g = [&](double t) {
+                    const double pz = a.z + t * dzs, px = xa + t * (xb - xa), e = pz - z;
+                    return px - std::sqrt(std::max(0.0, nose * nose - e * e));
+                };
+                double lo_t = t_lo, hi_t = t_hi;
+                for (int it = 0; it < sim_golden_iterations; ++it) {
+                    const double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
+                    if (g(m1) <= g(m2)) hi_t = m2;
+                    else lo_t = m1;
+                }
+                r = std::min({r, g(t_lo), g(t_hi), g((lo_t + hi_t) / 2)});
+            }
+        }
+        return r;
     }
 
     // A drill (or any round tool) on the spindle's axis: it clears its radius above its point.
@@ -735,15 +789,20 @@ private:
                 break;
             }
         }
+        // The radius the point reaches h above its tip: the inverse of the tool's profile.
+        auto radius_at = [&](double h) {
+            if (prof.form == ToolForm::cone && prof.slope > 0) return std::min(prof.radius, prof.flat + h / prof.slope);
+            return prof.radius;
+        };
         // A crash's depth: the length along Z over which the bore grew.
         double bored = 0.0;
         for (int k = k0; k < p.nz; ++k) {
-            const double h = p.z(k) - zt;
-            // The radius the point reaches h above its tip: the inverse of the tool's profile.
-            double rad = prof.radius;
-            if (prof.form == ToolForm::cone && prof.slope > 0) rad = std::min(prof.radius, prof.flat + h / prof.slope);
+            const double rad = radius_at(p.z(k) - zt);
             if (rad > p.bore[k] && lathe_cut(k, std::numeric_limits<double>::infinity(), rad, acc) > 1e-6) bored += p.dz;
         }
+        sections_above(zt, [&](std::size_t i) {
+            section_cut(i, std::numeric_limits<double>::infinity(), radius_at(result_.lathe_sections.z[i] - zt));
+        });
         if (bored > 0) {
             acc.max_depth = std::max(acc.max_depth, bored);
             acc.flute_depth = std::max(acc.flute_depth, below);
@@ -823,6 +882,7 @@ private:
     int probe_nx_ = 0, probe_ny_ = 0;
     double field_x1_ = 0.0, field_y1_ = 0.0;  // the stock's extent (the field may reach beyond)
     std::vector<Vec2> stock_polygon_;          // a profile stock's outline as sampled (empty: a box)
+    std::vector<std::int32_t> section_order_;  // the lathe's sections in order of Z
 };
 
 Simulator::Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)
@@ -833,6 +893,7 @@ void Simulator::hole(const Hole& hole) { impl_->hole(hole); }
 void Simulator::finish(const TraceSummary& summary) { impl_->finish(summary); }
 void Simulator::begin_operation(std::string path) { impl_->begin_operation(std::move(path)); }
 void Simulator::set_probes(std::vector<Vec2> points) { impl_->set_probes(std::move(points)); }
+void Simulator::set_lathe_sections(std::vector<double> z) { impl_->set_lathe_sections(std::move(z)); }
 void Simulator::observe(SimObserver* observer) { impl_->observe(observer); }
 const SimResult& Simulator::result() const { return impl_->result_; }
 SimResult Simulator::take() { return std::move(impl_->result_); }

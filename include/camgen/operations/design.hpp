@@ -13,8 +13,8 @@
 // At a point the designed height is the lowest floor of the cuts that cover it (a tab: its own
 // operation's floor there is the tab's top), else the top of the keeps that cover it; nothing is
 // designed elsewhere (the scrap outside an outside contour, what a path passes through).
-// Operations without a designed part (path, custom, stops, open contours, the lathe's) are named
-// in `unchecked`.
+// Operations without a designed part (path, custom, stops, open contours) are named in
+// `unchecked`. A lathe's operations design its turned part (`lathe`, design_lathe.hpp).
 #include <cmath>
 #include <optional>
 #include <string>
@@ -22,6 +22,7 @@
 
 #include "camgen/geometry/region.hpp"
 #include "camgen/geometry/vec.hpp"
+#include "camgen/operations/design_lathe.hpp"
 
 namespace camgen {
 
@@ -75,6 +76,7 @@ struct PartDesign {
     std::vector<DesignCut> cuts;
     std::vector<DesignKeep> keeps;
     std::vector<std::string> unchecked;  // "/operations/3 (path): a path has no designed part"
+    LatheDesign lathe;                   // a lathe job's turned part
 };
 
 // How many cuts and keeps a design has, each disc counted.

@@ -100,6 +100,9 @@ struct SimOptions {
     // mill: points whose heights are swept exactly as cells' centres are (the design check's
     // points on the part's walls, which the cells' centres miss); at most 2^32.
     std::vector<Vec2> probes;
+    // lathe: Z positions swept exactly as the samples are (the design check's sections beside
+    // a designed profile's corners, which the samples may miss); any order, at most 2^31.
+    std::vector<double> lathe_sections;
     SimObserver* observer = nullptr;       // told of each change (none: nothing costs)
 };
 
@@ -131,7 +134,17 @@ struct LatheProfile {
     int nz = 0;
     std::vector<double> outside;  // mm, radius
     std::vector<double> bore;     // mm, radius
+    // The program line of the move that last turned each sample's outside, and its bore (0: none).
+    std::vector<std::int32_t> outside_lines, bore_lines;
     double z(int k) const { return z0 + (k + 0.5) * dz; }
+};
+
+// A lathe's bar at given Z positions (SimOptions::lathe_sections), swept exactly as the samples
+// are: the outside radius and the bore there (no material where the outside is not above the
+// bore: beyond the bar's ends) and the lines that last turned them (0: none).
+struct LatheSections {
+    std::vector<double> z, outside, bore;  // mm
+    std::vector<std::int32_t> outside_lines, bore_lines;
 };
 
 // An error the simulation found, at a program line (0: a job's event) and operation.
@@ -176,6 +189,7 @@ struct SimResult {
     // program line of the move that last lowered it (0: none).
     std::vector<double> probe_heights;
     std::vector<std::int32_t> probe_lines;
+    LatheSections lathe_sections;  // lathe, SimOptions::lathe_sections: in their order
 };
 
 // Refused simulation input (a stock or a tool that cannot be swept), with its reason.
@@ -199,6 +213,8 @@ public:
     // Sets SimOptions::probes (before the first step): a mill's field is laid out by then
     // (result().field), so that probes can be placed on it.
     void set_probes(std::vector<Vec2> points);
+    // Sets SimOptions::lathe_sections (before the first step; a lathe's).
+    void set_lathe_sections(std::vector<double> z);
     // From now on tell `observer` of each change (nullptr: none).
     void observe(SimObserver* observer);
     // The result, complete after finish.

@@ -1,0 +1,87 @@
+#pragma once
+// What a lathe job designs (PartDesign::lathe, made by part_design as it visits the turn-drill
+// and turn-profile operations): the turned part as a function of Z, checked against a simulated
+// bar by `camgen simulate --job` (simulation/design_check_lathe.hpp). The part is the bar less
+// what the operations remove:
+//
+// - a turn-profile keeps the material between the spindle axis and its profile, over the Z its
+//   profile covers and above it up to the clearance at the radius of its start (the tool feeds
+//   down along Z to the start); it removes what lies beyond, down to what its tool leaves as the
+//   tip follows the path (the profile is the path of the tip, no nose compensation: a nose leaves
+//   material on slopes, on arcs and in concave corners, `left_radius`);
+// - a turn-drill removes a bore of its drill's radius on the axis, down to its depth with the
+//   drill's point (above startDepth too: the drill comes down the axis), and keeps the part
+//   around and below it.
+//
+// In (u, v) = (Z, radius), mm, as a turn-profile's Profile is. A turn-profile has no inside
+// (bore) side and no stock-to-leave key yet: neither is designed.
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "camgen/geometry/profile.hpp"
+#include "camgen/geometry/vec.hpp"
+
+namespace camgen {
+
+struct Job;
+struct TurnDrillOp;
+struct TurnProfileOp;
+
+// A straight stretch of a tool tip's path in (Z, radius), mm.
+struct LatheTipMove {
+    Vec2 from, to;
+};
+
+// A turn-profile's design.
+struct LatheTurnDesign {
+    std::string path;        // the operation's JSON path
+    int tool = 0;
+    Profile profile;         // (Z, radius): the approach along Z from the clearance, then the operation's profile
+    std::vector<LatheTipMove> tip;  // the tip's whole path (approach, profile with arcs as chords, feed out, return)
+    double nose = 0.0;       // the tool's nose radius, mm (its program point is the imaginary tip)
+    double chord = 0.0;      // mm: the chords of arcs in `tip` stay within this of the arcs
+    double z_lo = 0.0, z_hi = 0.0;  // the Z it designs: the profile's lowest Z up to the clearance
+
+    // The least and the greatest radius of `profile` at Z in [a, b] (none where it has no point
+    // there): exact for lines and arcs.
+    std::optional<std::pair<double, double>> radius_range(double a, double b) const;
+    // The least radius the tool clears at Z z as its tip follows `tip` (its nose circle's centre a
+    // nose radius above the tip in Z and radius, its body toward +Z and +X, as the simulation
+    // sweeps a turning tool): the radius the operation leaves there; infinity where it clears none.
+    double left_radius(double z) const;
+    // The Z of the profile's corners (its start and every element's end), in order.
+    std::vector<double> corners() const;
+};
+
+// A turn-drill's design.
+struct LatheHoleDesign {
+    std::string path;
+    int tool = 0;
+    double top_z = 0.0;      // startDepth, the face the hole starts at
+    double bottom_z = 0.0;   // the point's depth (endDepth, less the tip's length with drillTip)
+    double radius = 0.0;     // the drill's radius, mm
+    double flat = 0.0;       // the radius of the flat at its point (a drill's: 0), mm
+    double slope = 0.0;      // mm of Z per mm of radius along the point (0: a flat end)
+
+    // The designed bore's radius at Z z: 0 below the point, the point's cone, the radius above.
+    double radius_at(double z) const {
+        if (z < bottom_z) return 0.0;
+        if (!(slope > 0)) return radius;
+        return std::min(radius, flat + (z - bottom_z) / slope);
+    }
+};
+
+struct LatheDesign {
+    std::vector<LatheTurnDesign> profiles;
+    std::vector<LatheHoleDesign> holes;
+    bool empty() const { return profiles.empty() && holes.empty(); }
+};
+
+// An operation's design added to `design`, or why it has none to `unchecked` ("PATH: why").
+void design_turn_drill(const TurnDrillOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+
+}  // namespace camgen

@@ -1,0 +1,225 @@
+// What a lathe job designs (design_lathe.hpp): each turn-profile's kept profile and what its
+// tool leaves, each turn-drill's bore.
+#include "camgen/operations/design_lathe.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "camgen/geometry/arc.hpp"
+#include "camgen/operations/registry.hpp"
+
+namespace camgen {
+
+namespace {
+
+// The chords of a profile's arcs in a tip path stay within this of the arcs, mm: far below any
+// machine's tolerance, which the check adds.
+constexpr double lathe_design_chord = 1e-4;
+// The most chords of one arc.
+constexpr int lathe_design_max_chords = 100'000;
+
+const Tool* lathe_design_tool(const Job& job, int number) {
+    const auto it = job.tools.find(number);
+    return it == job.tools.end() ? nullptr : &it->second;
+}
+
+// An arc's start angle and signed sweep in (u, v) (counter-clockwise positive).
+struct LatheDesignArc {
+    Vec2 centre;
+    double radius = 0.0, start = 0.0, sweep = 0.0;
+};
+LatheDesignArc lathe_design_arc(const Profile& p, std::size_t k) {
+    const Vec2 a = segment_start(p, k);
+    const ProfileSegment& s = p.segments[k];
+    LatheDesignArc arc;
+    arc.centre = *s.centre;
+    arc.radius = distance(a, arc.centre);
+    arc.start = std::atan2(a.y - arc.centre.y, a.x - arc.centre.x);
+    arc.sweep = segment_sweep(p, k) * (s.direction == ArcDirection::ccw ? 1.0 : -1.0);
+    return arc;
+}
+
+// Whether the angle lies on the arc's sweep.
+bool lathe_design_on_arc(const LatheDesignArc& arc, double angle) {
+    double d = arc.sweep >= 0 ? angle - arc.start : arc.start - angle;
+    d = std::fmod(d, two_pi);
+    if (d < 0) d += two_pi;
+    return d <= std::abs(arc.sweep) + 1e-12;
+}
+
+// The least radius a tip moving from a to b clears at Z z ((u, v) = (Z, radius)), with a nose of
+// radius n whose centre is n above the tip in both: where the tip is at or below z - n, the
+// body clears down to the tip's radius; where it is between z - n and z, the nose's lower
+// quarter reaches v + n - sqrt(n^2 - w^2), w = u + n - z, which is convex along the move: its
+// least value is at an end of that stretch or where its derivative is 0.
+double lathe_design_reach(Vec2 a, Vec2 b, double n, double z) {
+    const double du = b.x - a.x, dv = b.y - a.y;
+    double best = std::numeric_limits<double>::infinity();
+    // The stretch of the move (t in [0, 1]) whose Z lies in [lo, hi].
+    auto stretch = [&](double lo, double hi, double& t0, double& t1) {
+        if (std::abs(du) < 1e-15) {
+            t0 = 0, t1 = 1;
+            return a.x >= lo && a.x <= hi;
+        }
+        double s0 = (lo - a.x) / du, s1 = (hi - a.x) / du;
+        if (s0 > s1) std::swap(s0, s1);
+        t0 = std::max(0.0, s0), t1 = std::min(1.0, s1);
+        return t0 <= t1;
+    };
+    double t0 = 0, t1 = 0;
+    if (stretch(-std::numeric_limits<double>::infinity(), z - n, t0, t1)) best = std::min(a.y + t0 * dv, a.y + t1 * dv);
+    if (n > 0 && stretch(z - n, z, t0, t1)) {
+        auto g = [&](double t) {
+            const double w = a.x + t * du + n - z;
+            return a.y + t * dv + n - std::sqrt(std::max(0.0, n * n - w * w));
+        };
+        best = std::min({best, g(t0), g(t1)});
+        if (du * dv < 0) {
+            const double w = n * std::abs(dv) / std::hypot(du, dv);
+            const double t = (z - n + w - a.x) / du;
+            if (t > t0 && t < t1) best = std::min(best, g(t));
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+std::optional<std::pair<double, double>> LatheTurnDesign::radius_range(double a, double b) const {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    auto take = [&](double v) { lo = std::min(lo, v), hi = std::max(hi, v); };
+    auto in = [&](double u) { return u >= a && u <= b; };
+    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
+        const Vec2 p = segment_start(profile, k), q = profile.segments[k].end;
+        if (!profile.segments[k].centre) {
+            const double du = q.x - p.x;
+            if (std::abs(du) < 1e-15) {
+                if (in(p.x)) take(p.y), take(q.y);
+                continue;
+            }
+            const double s0 = std::max(0.0, std::min((a - p.x) / du, (b - p.x) / du));
+            const double s1 = std::min(1.0, std::max((a - p.x) / du, (b - p.x) / du));
+            if (s0 <= s1) take(p.y + s0 * (q.y - p.y)), take(p.y + s1 * (q.y - p.y));
+            continue;
+        }
+        // An arc: its points in the window are sub-arcs that end at its ends or where it meets
+        // Z a or b; on each, the radius is greatest or least at those ends or at its top or bottom.
+        const LatheDesignArc arc = lathe_design_arc(profile, k);
+        if (in(p.x)) take(p.y);
+        if (in(q.x)) take(q.y);
+        for (double u : {a, b}) {
+            const double du = u - arc.centre.x;
+            if (std::abs(du) > arc.radius) continue;
+            const double dv = std::sqrt(arc.radius * arc.radius - du * du);
+            for (double side : {1.0, -1.0})
+                if (lathe_design_on_arc(arc, std::atan2(side * dv, du))) take(arc.centre.y + side * dv);
+        }
+        if (in(arc.centre.x))
+            for (double side : {1.0, -1.0})
+                if (lathe_design_on_arc(arc, side * pi / 2)) take(arc.centre.y + side * arc.radius);
+    }
+    if (lo > hi) return std::nullopt;
+    return std::make_pair(lo, hi);
+}
+
+double LatheTurnDesign::left_radius(double z) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (const LatheTipMove& m : tip) {
+        if (std::min(m.from.x, m.to.x) > z) continue;  // all of it above z: it clears nothing there
+        best = std::min(best, lathe_design_reach(m.from, m.to, nose, z));
+    }
+    return best;
+}
+
+std::vector<double> LatheTurnDesign::corners() const {
+    std::vector<double> out;
+    for (const ProfileSegment& s : profile.segments) out.push_back(s.end.x);
+    return out;
+}
+
+void design_turn_drill(const TurnDrillOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    const Tool* tool = lathe_design_tool(job, op.tool);
+    if (!tool) return unchecked.push_back(op.path + ": its tool is not in the job");
+    if (tool->type == ToolType::turning_tool)
+        return unchecked.push_back(op.path + ": its tool is a turning tool, which has no drill's bore");
+    LatheHoleDesign hole;
+    hole.path = op.path;
+    hole.tool = tool->number;
+    hole.top_z = op.cycle.reference_z;
+    hole.bottom_z = op.cycle.bottom_z;
+    hole.radius = tool->diameter / 2;
+    // The point as the simulation sweeps it (simulation's tool_shape): drills, centre and spot
+    // drills, chamfer mills and V-bits a cone of their tip angle (118 degrees for a drill, 90 for
+    // the others where none is given) with a chamfer mill's or V-bit's flat; the rest flat.
+    switch (tool->type) {
+    case ToolType::drill:
+    case ToolType::centre_drill:
+    case ToolType::spot_drill:
+    case ToolType::chamfer_mill:
+    case ToolType::v_bit: {
+        const double angle = tool->tip_angle.value_or(tool->type == ToolType::drill ? 118.0 : 90.0);
+        if (tool->type == ToolType::chamfer_mill || tool->type == ToolType::v_bit)
+            hole.flat = std::min(tool->tip_diameter / 2, hole.radius);
+        hole.slope = 1.0 / std::tan(angle / 2 * rad_per_deg);
+        break;
+    }
+    default: hole.flat = hole.radius; break;
+    }
+    design.holes.push_back(std::move(hole));
+}
+
+void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    const Tool* tool = lathe_design_tool(job, op.tool);
+    if (!tool) return unchecked.push_back(op.path + ": its tool is not in the job");
+    if (tool->type != ToolType::turning_tool)
+        return unchecked.push_back(op.path + ": its tool is not a turning tool (the simulation sweeps other tools on the "
+                                             "spindle's axis only)");
+    LatheTurnDesign d;
+    d.path = op.path;
+    d.tool = tool->number;
+    d.nose = tool->diameter / 2;  // as the simulation's tool_shape
+    d.chord = lathe_design_chord;
+    const double clearance = job.clearance;
+    const Vec2 start = op.profile.start, end = op.profile.segments.back().end;
+    // The kept profile: the approach (down along Z at the start's radius), then the profile.
+    d.profile.plane = ProfilePlane::xz;
+    d.profile.start = {clearance, start.y};
+    d.profile.segments.push_back({start, std::nullopt, ArcDirection::ccw});
+    for (const ProfileSegment& s : op.profile.segments) d.profile.segments.push_back(s);
+    d.z_hi = clearance;
+    // The tip's path as expand() makes it: the approach, the profile, the feed out to retractX
+    // and the return along Z to the clearance.
+    d.tip.push_back({d.profile.start, start});
+    for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
+        const Vec2 a = segment_start(op.profile, k);
+        const ProfileSegment& s = op.profile.segments[k];
+        if (!s.centre) {
+            d.tip.push_back({a, s.end});
+            continue;
+        }
+        const LatheDesignArc arc = lathe_design_arc(op.profile, k);
+        const int n = std::min(lathe_design_max_chords,
+                               std::max(1, segments_for_tolerance(arc.radius, std::abs(arc.sweep), lathe_design_chord)));
+        Vec2 from = a;
+        for (int i = 1; i <= n; ++i) {
+            const Vec2 to = i == n ? s.end : arc.centre + unit_at(arc.start + arc.sweep * i / n) * arc.radius;
+            d.tip.push_back({from, to});
+            from = to;
+        }
+    }
+    d.tip.push_back({end, {end.x, op.retract_x}});
+    d.tip.push_back({{end.x, op.retract_x}, {clearance, op.retract_x}});
+    // The lowest Z of the profile (an arc may reach below its ends).
+    d.z_lo = start.x;
+    for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
+        d.z_lo = std::min(d.z_lo, op.profile.segments[k].end.x);
+        if (!op.profile.segments[k].centre) continue;
+        const LatheDesignArc arc = lathe_design_arc(op.profile, k);
+        if (lathe_design_on_arc(arc, pi)) d.z_lo = std::min(d.z_lo, arc.centre.x - arc.radius);
+    }
+    design.profiles.push_back(std::move(d));
+}
+
+}  // namespace camgen

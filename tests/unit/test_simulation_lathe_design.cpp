@@ -1,0 +1,246 @@
+// camgen simulate checks a lathe's turned part against the job's design (issue 27): the design
+// of turn-profile and turn-drill (operations/design_lathe), every lathe sample on every lathe
+// simulates as designed, and hand-edited programs' gouges (into a finished diameter, a drill too
+// deep, into a shoulder between two Z samples) and material left (a finishing pass removed) are
+// found, the gouges at the line that cut them, each naming its operation.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include "camgen/operations/design.hpp"
+#include "camgen/operations/registry.hpp"
+#include "camgen/simulation/design_check_lathe.hpp"
+#include "support.hpp"
+
+namespace test_simulation_lathe_design {
+
+namespace fs = std::filesystem;
+using namespace camgen;
+
+namespace {
+
+const std::string samples = CAMGEN_SOURCE_DIR "/samples/";
+const double pi_ = std::acos(-1.0);
+
+// The program with `line` (the first line equal to it after `after`) replaced by `with`; the
+// 1-based number of the replaced line.
+std::pair<std::string, std::size_t> replace_line(const std::string& text, const std::string& after, const std::string& line,
+                                                 const std::string& with) {
+    const std::vector<std::string> lines = test::lines_of(text);
+    std::size_t from = 0;
+    while (from < lines.size() && lines[from].find(after) == std::string::npos) ++from;
+    REQUIRE_MESSAGE(from < lines.size(), after);
+    std::size_t at = from;
+    while (at < lines.size() && lines[at] != line) ++at;
+    REQUIRE_MESSAGE(at < lines.size(), line);
+    std::string out;
+    for (std::size_t i = 0; i < lines.size(); ++i) out += (i == at ? with : lines[i]) + "\n";
+    return {out, at + 1};
+}
+
+struct Simulated {
+    test::Run run;
+    std::string program;
+};
+
+// `job` posted for `machine`, edited, and simulated in the shaft's bar (D40 x 60, face Z0).
+Simulated simulate(const std::string& job, const std::string& machine, const std::string& name,
+                   const std::function<std::string(const std::string&)>& edit, const std::string& resolution = "") {
+    const fs::path dir = test::scratch("simulate-lathe-design");
+    const std::string posted = (dir / (name + ".posted")).string(), program = (dir / name).string();
+    REQUIRE(test::run({job, "--machine", machine, "-q", "-o", posted}).code == 0);
+    const std::string text = edit(test::read_file(posted));
+    std::ofstream(program) << text;
+    std::vector<std::string> args{"simulate", program, "--machine", machine, "--job", job, "--bar", "40,60"};
+    if (!resolution.empty()) args.insert(args.end(), {"--resolution", resolution});
+    return {test::run(args), text};
+}
+
+bool has(const test::Run& r, const std::string& s) { return r.out.find(s) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what its nosed tip leaves; a turn-drill bores its drill") {
+    const Job job = read_job(test::read_file(samples + "shaft.json"), "shaft.json");
+    const PartDesign design = part_design(job);
+    CHECK(design.unchecked.empty());
+    CHECK(design.cuts.empty());
+    REQUIRE(design.lathe.profiles.size() == 1);
+    REQUIRE(design.lathe.holes.size() == 2);
+    const LatheTurnDesign& p = design.lathe.profiles[0];
+    CHECK(p.path == "/operations/2");
+    CHECK(p.nose == doctest::Approx(0.4));
+    CHECK(p.z_lo == doctest::Approx(-40));
+    CHECK(p.z_hi == doctest::Approx(20));  // the approach from the clearance
+    // The D30 cylinder, the face at Z0 (radius 12 to 14, and the approach's 12 above it), the R5
+    // fillet exactly (radius 20 - sqrt(25 - 2.5^2) at Z-22.5) and over a window across its end.
+    auto range = [&](double a, double b) {
+        const auto r = p.radius_range(a, b);
+        REQUIRE(r);
+        return *r;
+    };
+    CHECK(range(-10, -10).first == doctest::Approx(15));
+    CHECK(range(-10, -10).second == doctest::Approx(15));
+    CHECK(range(-0.001, 0.001).first == doctest::Approx(12));
+    CHECK(range(-0.001, 0.001).second == doctest::Approx(14.001));
+    CHECK(range(-22.5, -22.5).first == doctest::Approx(20 - std::sqrt(25 - 6.25)).epsilon(1e-12));
+    CHECK(range(-25.5, -24.5).first == doctest::Approx(20 - std::sqrt(25 - 4.5 * 4.5)).epsilon(1e-12));
+    CHECK(range(-25.5, -24.5).second == doctest::Approx(20));
+    CHECK_FALSE(p.radius_range(-45, -41));
+    // What the R0.4 nose leaves: on the cylinder the profile; on the 45 degree chamfer
+    // n (2 - sqrt 2) beyond it in radius (its circle touches the chamfer's line n sqrt 2 from the
+    // imaginary tip's); in the fillet the circle 5 + 0.4 about the fillet's centre moved by the
+    // nose (-19.6, 20.4).
+    CHECK(p.left_radius(-10) == doctest::Approx(15).epsilon(1e-12));
+    CHECK(p.left_radius(-0.5) == doctest::Approx(14.5 + 0.4 * (2 - std::sqrt(2.0))).epsilon(1e-9));
+    const double z = -22.5, fillet = 20.4 - std::sqrt(5.4 * 5.4 - (z + 19.6) * (z + 19.6));
+    CHECK(std::abs(p.left_radius(z) - fillet) <= 1e-4);  // the tip path's chords of the arc: within 0.0001 mm
+    // The centre drill: D4, 60 degrees, to Z-4; the drill: D10, 118 degrees, its tip below Z-30.
+    const LatheHoleDesign& centre = design.lathe.holes[0];
+    CHECK(centre.bottom_z == doctest::Approx(-4));
+    CHECK(centre.radius_at(-3) == doctest::Approx(std::tan(pi_ / 6)));
+    CHECK(centre.radius_at(-4.01) == 0);
+    CHECK(centre.radius_at(10) == doctest::Approx(2));
+    const LatheHoleDesign& drill = design.lathe.holes[1];
+    CHECK(drill.bottom_z == doctest::Approx(-30 - 5 / std::tan(59 * pi_ / 180)));
+    CHECK(drill.radius_at(-20) == doctest::Approx(5));
+}
+
+TEST_CASE("lathe design check: where no operation designs the bar, a cut into it is named after the operation of its line") {
+    // A bar D40 x 10 at Z0..-10 with nothing designed; the simulated outside cut to 19 at Z-5 by
+    // line 12, of the operation that starts at line 10.
+    SimStock bar;
+    bar.kind = SimStock::Kind::bar;
+    bar.bar_diameter = 40;
+    bar.bar_length = 10;
+    LatheProfile part;
+    part.z0 = -10, part.dz = 0.1, part.nz = 100;
+    part.outside.assign(100, 20.0);
+    part.bore.assign(100, 0.0);
+    part.outside_lines.assign(100, 0);
+    part.bore_lines.assign(100, 0);
+    part.outside[50] = 19, part.outside_lines[50] = 12;
+    const LatheCheck c = check_lathe_design({}, bar, part, {}, 0.01, {{1, "/operations/0"}, {10, "/operations/1"}});
+    CHECK(c.samples == 100);
+    REQUIRE(c.findings.size() == 1);
+    CHECK(c.findings[0].message() ==
+          "/operations/1 (the bar, which no operation turns there): material removed 1 mm inside the designed radius 20 at "
+          "Z-4.95 (radius 19), by line 12 (cut at 1 sample)");
+}
+
+TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its job designs") {
+    int simulated = 0;
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"})
+        for (const char* file : {"shaft.json", "shaft-stops.json"}) {
+            CAPTURE(machine);
+            CAPTURE(file);
+            const Simulated s = simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; });
+            CHECK_MESSAGE(s.run.code == 0, std::string(s.run.out + s.run.err));
+            CHECK(has(s.run, "simulation: no errors\n"));
+            CHECK(has(s.run, "design check   lathe: "));
+            CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), s.run.out);
+            ++simulated;
+        }
+    CHECK(simulated == 6);
+    // Where the machine cannot tap, the tap is the operator's: not checked (its bore is not cut).
+    const Simulated stops = simulate(samples + "shaft-stops.json", "fanuc-lathe", "stops.nc", [](const std::string& t) { return t; });
+    CHECK(has(stops.run, "  not checked: /operations/5: the program leaves its cycle to the operator at a stop (machine "
+                         "fanuc-lathe cannot tap)\n"));
+    // The shaft's nose leaves material on the chamfer and in the fillet, which is said.
+    const Simulated shaft = simulate(samples + "shaft.json", "linuxcnc-lathe", "shaft.nc", [](const std::string& t) { return t; });
+    CHECK(has(shaft.run, "design check   lathe: 1 profile, 2 holes, within 0.008 mm in radius and in Z, 60000 samples and 17 "
+                         "sections 0.0088 mm beside the designed corners\n"));
+    CHECK(has(shaft.run, "  note: /operations/2: the nose of tool 3 (radius 0.4 mm) leaves up to "));
+}
+
+TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        // The finishing pass along D30 (to Z-20) stops at Z-10, feeds in to X29.9 and out again
+        // (with decimal points: a Fanuc reads X30 as 0.03 mm).
+        std::size_t dig = 0;
+        const Simulated s = simulate(samples + "shaft.json", machine, "gouge.nc", [&](const std::string& t) {
+            const std::vector<std::string> lines = test::lines_of(t);
+            std::string pass;
+            for (const std::string& l : lines)
+                if (std::regex_search(l, std::regex(R"((^|\s)Z-20(\.0+)?$)"))) pass = l;
+            REQUIRE(!pass.empty());
+            auto [text, at] = replace_line(t, "finish the outside", pass, "G1 Z-10.0\nX29.9\nX30.0\n" + pass);
+            dig = at + 1;
+            return text;
+        });
+        CHECK(s.run.code == 1);
+        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/2 (the part inside the profile): material removed 0.05 mm inside the "
+                                 "designed radius 15 at Z-"),
+                      s.run.out);
+        CHECK_MESSAGE(has(s.run, fmt::format("(radius 14.95), by line {} (cut at ", dig)), s.run.out);
+        CHECK_FALSE(has(s.run, "the part is as designed"));
+    }
+}
+
+TEST_CASE("camgen simulate: a lathe's drill 0.5 mm too deep is a gouge below its point at its line") {
+    // linuxcnc-lathe pecks with G1 (the last to Z-33.0043), fanuc-lathe drills with G74.
+    const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+        {"linuxcnc-lathe", "G1 Z-33.0043", "G1 Z-33.5043"}, {"fanuc-lathe", "Z-33.004 Q6000", "Z-33.504 Q6000"}};
+    for (const auto& [machine, from, to] : cases) {
+        CAPTURE(machine);
+        std::size_t line = 0;
+        const Simulated s = simulate(samples + "shaft.json", machine, "deep.nc", [&](const std::string& t) {
+            const std::vector<std::string> lines = test::lines_of(t);
+            for (std::size_t i = 0; i < lines.size(); ++i)
+                if (lines[i].find(from) != std::string::npos) line = i + 1;
+            REQUIRE(line > 0);
+            std::string out = t;
+            out.replace(out.find(from), from.size(), to);
+            return out;
+        });
+        CHECK(s.run.code == 1);
+        // The hole's cone 0.5 mm lower: below the point, and wider than designed on the cone.
+        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/1 (the part below the hole's point): material removed "), s.run.out);
+        CHECK_MESSAGE(has(s.run, fmt::format("beyond the designed bore radius 0 at Z-33.")), s.run.out);
+        CHECK_MESSAGE(has(s.run, fmt::format("), by line {} (cut at ", line)), s.run.out);
+        CHECK(has(s.run, "error: gouge: /operations/1 (the part around the hole): material removed "));
+    }
+}
+
+TEST_CASE("camgen simulate: the shaft's finishing pass removed leaves material, a warning with where and how much") {
+    // Everything of the pass between its feed down to Z0 and its feed out at Z-40.
+    const Simulated s = simulate(samples + "shaft.json", "linuxcnc-lathe", "left.nc", [](const std::string& t) {
+        const std::size_t a = t.find("G1 Z0 F0.1\n") + std::string("G1 Z0 F0.1\n").size(), b = t.find("G1 Z-40\n");
+        REQUIRE(a < b);
+        return t.substr(0, a) + t.substr(b + std::string("G1 Z-40\n").size());
+    });
+    CHECK(s.run.code == 0);  // a warning
+    // The bar's radius 20 where the tool should have left the D30 (and the chamfer's top, where
+    // the nose leaves 14.243, most).
+    CHECK_MESSAGE(has(s.run, "warning: /operations/2 (the turned profile): material left 5.757 mm above the radius its tool "
+                             "leaves (14.243) at Z-0.0005: radius 20 (at "),
+                  s.run.out);
+    CHECK_FALSE(has(s.run, "error: gouge"));
+    CHECK_FALSE(has(s.run, "the part is as designed"));
+}
+
+TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z samples 0.01 mm apart is found by the sections beside it") {
+    // The face at Z0 from D24 to D28 (the tool feeds out along it): the added moves go in to Z-0.012
+    // at D26 and back. The samples at Z-0.005 (the face within the 0.008 mm tolerance: either side
+    // of it) and Z-0.015 (below the cut) cannot see it; the section 0.0088 mm below the face does.
+    std::size_t line = 0;
+    const Simulated s = simulate(
+        samples + "shaft.json", "linuxcnc-lathe", "shoulder.nc",
+        [&](const std::string& t) {
+            auto [text, at] = replace_line(t, "finish the outside", "X28", "X26.0\nZ-0.012\nZ0.0\nX28");
+            line = at + 1;
+            return text;
+        },
+        "0.01");
+    CHECK(s.run.code == 1);
+    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/2 (the part inside the profile): material removed ")), s.run.out);
+    CHECK_MESSAGE(has(s.run, fmt::format("at Z-0.0088 (radius 13.35), by line {} (cut at 0 samples and 1 section beside corners)", line)),
+                  s.run.out);
+}
+
+}  // namespace test_simulation_lathe_design
