@@ -60,8 +60,17 @@ constexpr KeySpec tool_keys[] = {
                     "point; refused for other types)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
+    {.key = "flutes", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{1000, true}, .description = "number of flutes (cutting edges)"},
+    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a multi-form thread mill's pitch: the one pitch its rows of teeth cut (a thread-mill needs pitch, "
+                    "or minPitch and maxPitch; refused for other types)"},
+    {.key = "minPitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a single-profile thread mill's finest pitch (with maxPitch; refused for other types)"},
+    {.key = "maxPitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a single-profile thread mill's coarsest pitch (with minPitch; refused for other types)"},
     {.key = "centreCutting", .type = JsonType::boolean,
-     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills and boring bars, true for the rest); "
+     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills, thread mills and boring bars, true for the rest); "
                     "a pocket plunges only with such a tool"},
     {.key = "rpm", .quantity = Quantity::speed, .required = true, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given)"},
@@ -77,10 +86,11 @@ constexpr KeySpec tool_keys[] = {
 std::vector<ObjectSpec> JobInput::objects() {
     // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
     // for chamfer mills and V-bits only, which need a tipAngle.
-    std::vector<std::string> not_bull_nose, not_pointed;
+    std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill;
     for (const auto& t : tool_types) {
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
         if (t.value != ToolType::chamfer_mill && t.value != ToolType::v_bit) not_pointed.emplace_back(t.name);
+        if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
     }
     return {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
@@ -89,7 +99,8 @@ std::vector<ObjectSpec> JobInput::objects() {
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
                    {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
-                   {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}}}},
+                   {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}},
+                   {.when_key = "type", .values = not_thread_mill, .forbid = {"pitch", "minPitch", "maxPitch"}}}},
     };
 }
 
@@ -200,6 +211,35 @@ void JobInput::read_tools(Fields& top, const std::function<void(const InputError
     }
 }
 
+namespace {
+// A thread-mill's pitch, or minPitch and maxPitch, into `tool` (refused for other types).
+void job_input_thread_mill_pitches(const JobInput& in, json::Fields& f, Tool& tool, std::string_view type_name) {
+    auto optional_length = [&](std::string_view key) { return in.optional_length(f, key); };
+    auto show = [&](double v) { return in.show(v); };
+    const std::optional<double> pitch = optional_length("pitch"), min = optional_length("minPitch"),
+                                max = optional_length("maxPitch");
+    if (tool.type != ToolType::thread_mill) {
+        for (std::string_view key : {"pitch", "minPitch", "maxPitch"})
+            if (f.has(key)) f.fail(key, fmt::format("{} is for a thread-mill, not a {}", key, type_name));
+        return;
+    }
+    if (pitch && (min || max))
+        f.fail(min ? "minPitch" : "maxPitch", "a thread-mill has pitch (a multi-form tool) or minPitch and maxPitch (a "
+                                              "single-profile tool), not both");
+    if (!pitch && !(min && max))
+        f.fail(pitch || min || max ? (min ? "maxPitch" : "minPitch") : "",
+               "a thread-mill needs pitch (a multi-form tool: the pitch of its teeth) or minPitch and maxPitch (a "
+               "single-profile tool: the pitches it can cut)");
+    for (std::string_view key : {"pitch", "minPitch", "maxPitch"})
+        if (const std::optional<double> v = optional_length(key); v && !(*v > 0))
+            f.fail(key, fmt::format("{} must be > 0", key));
+    tool.min_pitch = pitch ? *pitch : *min;
+    tool.max_pitch = pitch ? *pitch : *max;
+    if (tool.min_pitch > tool.max_pitch)
+        f.fail("maxPitch", fmt::format("maxPitch ({}) is less than minPitch ({})", show(tool.max_pitch), show(tool.min_pitch)));
+}
+}  // namespace
+
 Tool JobInput::read_tool(const Json& value, const std::string& path) {
     Fields f(value, path, source_);
     known_keys(f, tool_keys);
@@ -251,9 +291,16 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     }
     tool.flute_length = optional_length(f, "fluteLength");
     if (tool.flute_length && !(*tool.flute_length > 0)) f.fail("fluteLength", "fluteLength must be > 0");
+    if (f.has("flutes")) {
+        const int flutes = f.integer("flutes");
+        if (flutes < 1 || flutes > 1000) f.fail("flutes", "flutes must be a whole number from 1 to 1000");
+        tool.flutes = flutes;
+    }
+    job_input_thread_mill_pitches(*this, f, tool, type_name);
     tool.centre_cutting = f.has("centreCutting") ? f.boolean("centreCutting", false)
                                                   : tool.type != ToolType::end_mill && tool.type != ToolType::bull_nose &&
-                                                        tool.type != ToolType::chamfer_mill && tool.type != ToolType::boring_bar;
+                                                        tool.type != ToolType::chamfer_mill && tool.type != ToolType::boring_bar &&
+                                                        tool.type != ToolType::thread_mill;
     tool.rpm = f.number("rpm");
     if (tool.rpm <= 0) f.fail("rpm", "rpm must be > 0");
     tool.direction = f.choice("direction", spindle_directions, SpindleDirection::cw);

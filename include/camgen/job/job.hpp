@@ -21,6 +21,11 @@ struct Tool {
     std::optional<double> corner_radius;   // mm, a bull-nose end mill's corner radius (0 < r <= diameter / 2)
     double tip_diameter = 0.0;             // mm, a chamfer mill's or V-bit's flat at its point (0: pointed)
     std::optional<double> flute_length;    // mm, how deep it can cut (job key fluteLength)
+    std::optional<int> flutes;             // number of cutting edges (job key flutes)
+    // A thread mill's pitches: a multi-form tool's teeth cut one pitch (min = max, job key
+    // pitch); a single-profile tool cuts any pitch from min to max (minPitch, maxPitch). mm.
+    double min_pitch = 0.0;
+    double max_pitch = 0.0;
     bool centre_cutting = true;            // cuts at its centre: may plunge into material
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;
