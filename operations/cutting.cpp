@@ -449,6 +449,10 @@ void read_packed_lines(const json::PackedArray& packed, const std::string& base,
 }  // namespace
 
 void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
+    if (tool.type == ToolType::thread_mill)
+        f.fail("tool", fmt::format("tool {} ({}) is a thread mill: {} cuts with an end mill, a ball mill or a bull-nose end "
+                                   "mill; a thread mill's teeth cut only a thread's flanks (the thread-mill operation)",
+                                   tool.number, tool.path, what));
     if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit) return;
     f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
                                "of a pointed tool is not its diameter); chamfering and engraving operations for "

@@ -92,6 +92,9 @@ public:
                                  [&](const PocketOp& o) { pocket(o); },
                                  [&](const FaceOp& o) { face(o); },
                                  [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
+                                 [&](const ThreadMillOp& o) {
+                                     skip(o.path, "a thread's flanks are undercuts, which the height field cannot hold");
+                                 },
                                  [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
                                  [&](const StopOp&) {},
                                  // A lathe's part: design_lathe.cpp.

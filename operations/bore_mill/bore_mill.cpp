@@ -115,6 +115,11 @@ std::vector<ObjectSpec> BoreMillOp::objects() {
 BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, all_bore_mill_keys());
     const Tool& tool = in.tool(f);
+    // Its teeth cut sideways only, at a thread's depth: it cannot go down into material.
+    if (tool.type == ToolType::thread_mill)
+        f.fail("tool", fmt::format("tool {} ({}) is a thread mill: a bore-mill goes down into the material, which a thread "
+                                   "mill's teeth cannot cut (the thread-mill operation mills threads)",
+                                   tool.number, tool.path));
     BoreMillOp op;
     op.path = f.path();
     op.tool = tool.number;

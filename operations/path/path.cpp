@@ -23,6 +23,10 @@ using Fields = json::Fields;
 
 constexpr double min_arc_radius = 0.0005;
 
+// The shortest partial last turn of a helix (mm along its circle): shorter, the end rounds
+// onto the start (or the start's neighbour) and a control reads a full circle or nothing.
+constexpr double path_helix_least_arc = 0.002;
+
 // The keys of a path operation.
 constexpr KeySpec path_keys[] = {
     {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
@@ -52,7 +56,7 @@ constexpr KeySpec path_element_keys[] = {
      .description = "a straight move to [x, y] (at the current Z: where the element before ended) or [x, y, z]"},
     {.key = "arc", .type = JsonType::object, .ref = "pathArc", .description = "an arc about an absolute centre"},
     {.key = "helix", .type = JsonType::object, .ref = "pathHelix",
-     .description = "whole turns about a vertical axis, back to the same X and Y at another Z"},
+     .description = "a helix about a vertical axis to another Z: whole turns, or at an exact pitch a partial last turn"},
 };
 
 // The keys of an arc.
@@ -76,7 +80,12 @@ constexpr KeySpec helix_keys[] = {
     {.key = "z", .quantity = Quantity::length, .description = "absolute Z at the end"},
     {.key = "turns", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
      .max = Bound{100000, true}, .description = "number of whole turns"},
-    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false}, .description = "Z travel per turn, down"},
+    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "Z travel per turn (down with turns; with z kept exactly: a partial last turn ends elsewhere on the "
+                    "circle, unless wholeTurns)"},
+    {.key = "wholeTurns", .type = JsonType::boolean, .default_json = "false",
+     .description = "with z and pitch: whole turns back to the start's X and Y, the fewest that go no further than pitch "
+                    "per turn (the pitch becomes a little less)"},
 };
 
 // Reads an arc from `current` (an end [x, y] is at its Z); `lowest` becomes the lowest Z it
@@ -143,6 +152,9 @@ PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
         h.fail("", "a helix needs exactly two of \"z\" (end Z), \"turns\" and \"pitch\" (Z travel per turn, down)");
     std::optional<double> pitch = in.optional_length(h, "pitch");
     if (pitch && *pitch <= 0) h.fail("pitch", "pitch must be > 0 (the helix goes down by it each turn)");
+    const bool whole_turns = h.boolean("wholeTurns", false);
+    if (h.has("wholeTurns") && !(has_depth && has_pitch))
+        h.fail("wholeTurns", "wholeTurns is for a helix given by z and pitch (with turns it makes whole turns anyway)");
     if (has_turns) {
         const int turns = h.integer("turns");
         if (turns < 1 || turns > 100000) h.fail("turns", "turns must be a whole number from 1 to 100000");
@@ -157,13 +169,33 @@ PathHelix read_helix(Fields& h, const JobInput& in, const Vec3& current) {
             h.fail("z", fmt::format("z is at or above the clearance (Z {}, clearance at Z {})", in.show(helix.end_z),
                                         in.show(in.header().clearance)));
         if (pitch) {
-            const double turns = std::ceil(std::abs(helix.end_z - current.z) / *pitch - 1e-9);
-            if (turns > 100000) h.fail("pitch", "pitch is too small: more than 100000 turns");
-            helix.turns = static_cast<int>(turns);
+            const double exact = std::abs(helix.end_z - current.z) / *pitch;
+            if (exact > 100000) h.fail("pitch", "pitch is too small: more than 100000 turns");
+            if (whole_turns) {
+                helix.turns = static_cast<int>(std::ceil(exact - 1e-9));
+            } else {
+                // The pitch kept: whole turns, then what is left of a turn. A remainder shorter
+                // than path_helix_least_arc along the circle (either way) is no arc a control can
+                // tell from a full circle or from none: the turns are rounded to it instead.
+                int turns = static_cast<int>(std::floor(exact));
+                double partial = (exact - turns) * 2.0 * std::numbers::pi;
+                if (partial * radius < path_helix_least_arc) partial = 0.0;
+                if ((2.0 * std::numbers::pi - partial) * radius < path_helix_least_arc) {
+                    ++turns;
+                    partial = 0.0;
+                }
+                helix.turns = turns;
+                helix.partial = partial;
+            }
         }
     } else {
         helix.end_z = current.z - helix.turns * *pitch;
     }
+    const double sense = helix.direction == ArcDirection::ccw ? 1.0 : -1.0;
+    const Vec2 from{current.x - helix.centre.x, current.y - helix.centre.y};
+    const double c = std::cos(sense * helix.partial), s = std::sin(sense * helix.partial);
+    helix.end = helix.partial == 0.0 ? Vec2{current.x, current.y}
+                                     : Vec2{helix.centre.x + c * from.x - s * from.y, helix.centre.y + s * from.x + c * from.y};
     return helix;
 }
 
@@ -213,7 +245,7 @@ std::vector<ObjectSpec> PathOp::objects() {
                      .description = "exactly one of line, arc or helix"}}},
         {.name = "pathArc", .description = "an arc in a plane about an absolute centre",
          .keys = {std::begin(path_arc_keys), std::end(path_arc_keys)}},
-        {.name = "pathHelix", .description = "whole turns of a helix: exactly two of z, turns and pitch",
+        {.name = "pathHelix", .description = "a helix about a vertical axis: exactly two of z, turns and pitch",
          .keys = {std::begin(helix_keys), std::end(helix_keys)},
          .groups = {{.keys = {"z", "turns", "pitch"}, .min = 2, .max = 2,
                      .description = "exactly two of z, turns and pitch"}}},
@@ -314,7 +346,7 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
             Fields h(e.required("helix"), e.path_of("helix"), in.source());
             PathHelix helix = read_helix(h, in, current);
             op.elements.emplace_back(helix);
-            current.z = helix.end_z;
+            current = {helix.end.x, helix.end.y, helix.end_z};
             lowest = std::min(lowest, helix.end_z);
         }
         if (too_deep()) refuse_depth(path);
@@ -338,10 +370,11 @@ void expand(const PathOp& op, const Context& ctx, EventSink& sink) {
                              },
                              [&](const PathHelix& helix) {
                                  // Whole turns: the end is above or below the start; the first turn
-                                 // is the arc's own sweep, the others are extra turns.
-                                 Vec3 end{at.x, at.y, helix.end_z};
+                                 // is the arc's own sweep, the others are extra turns. With a partial
+                                 // last turn the arc's own sweep is that, all turns are extra.
+                                 Vec3 end{helix.end.x, helix.end.y, helix.end_z};
                                  sink.emit(Arc{end, {helix.centre.x, helix.centre.y, at.z}, helix.direction, Plane::xy,
-                                               op.feed, helix.turns - 1});
+                                               op.feed, helix.partial > 0.0 ? helix.turns : helix.turns - 1});
                                  at = end;
                              },
                          },

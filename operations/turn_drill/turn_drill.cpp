@@ -130,6 +130,11 @@ std::vector<ObjectSpec> TurnDrillOp::objects() {
 TurnDrillOp TurnDrillOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, all_turn_drill_keys());
     const Tool& tool = in.tool(f);
+    // Its teeth cut sideways only, at a thread's depth: it cannot go down into material.
+    if (tool.type == ToolType::thread_mill)
+        f.fail("tool", fmt::format("tool {} ({}) is a thread mill: a turn-drill goes down into the material, which a thread "
+                                   "mill's teeth cannot cut (the thread-mill operation mills threads)",
+                                   tool.number, tool.path));
     TurnDrillOp op;
     op.path = f.path();
     op.tool = tool.number;

@@ -306,6 +306,7 @@ std::size_t drilled_holes(const Job& job) {
     for (const Operation& op : job.operations) {
         if (const auto* drill = std::get_if<DrillOp>(&op)) holes += drill->holes.size();
         if (const auto* bore = std::get_if<BoreMillOp>(&op)) holes += bore->holes.size();
+        if (const auto* thread = std::get_if<ThreadMillOp>(&op)) holes += thread->holes.size();
     }
     return holes;
 }

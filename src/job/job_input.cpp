@@ -70,8 +70,15 @@ constexpr KeySpec tool_keys[] = {
     {.key = "flutes", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
      .max = Bound{max_tool_flutes, true},
      .description = "cutting edges: the feed computed from a feed per tooth is fz x flutes x rpm"},
+    {.key = "pitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a multi-form thread mill's pitch: the one pitch its rows of teeth cut (a thread-mill needs pitch, "
+                    "or minPitch and maxPitch; refused for other types)"},
+    {.key = "minPitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a single-profile thread mill's finest pitch (with maxPitch; refused for other types)"},
+    {.key = "maxPitch", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a single-profile thread mill's coarsest pitch (with minPitch; refused for other types)"},
     {.key = "centreCutting", .type = JsonType::boolean,
-     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills and boring bars, true for the rest); "
+     .description = "the tool cuts at its centre and may plunge into material (default: false for end mills, bull-nose end mills, chamfer mills, thread mills and boring bars, true for the rest); "
                     "a pocket plunges only with such a tool"},
     {.key = "rpm", .quantity = Quantity::speed, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given); required unless the tool "
@@ -88,10 +95,11 @@ constexpr KeySpec tool_keys[] = {
 std::vector<ObjectSpec> JobInput::objects() {
     // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
     // for chamfer mills and V-bits only, which need a tipAngle.
-    std::vector<std::string> not_bull_nose, not_pointed;
+    std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill;
     for (const auto& t : tool_types) {
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
         if (t.value != ToolType::chamfer_mill && t.value != ToolType::v_bit) not_pointed.emplace_back(t.name);
+        if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
     }
     return {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
@@ -104,7 +112,8 @@ std::vector<ObjectSpec> JobInput::objects() {
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
                    {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
-                   {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}}}},
+                   {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}},
+                   {.when_key = "type", .values = not_thread_mill, .forbid = {"pitch", "minPitch", "maxPitch"}}}},
     };
 }
 
@@ -226,6 +235,35 @@ void JobInput::read_tools(Fields& top, const std::function<void(const InputError
     }
 }
 
+namespace {
+// A thread-mill's pitch, or minPitch and maxPitch, into `tool` (refused for other types).
+void job_input_thread_mill_pitches(const JobInput& in, json::Fields& f, Tool& tool, std::string_view type_name) {
+    auto optional_length = [&](std::string_view key) { return in.optional_length(f, key); };
+    auto show = [&](double v) { return in.show(v); };
+    const std::optional<double> pitch = optional_length("pitch"), min = optional_length("minPitch"),
+                                max = optional_length("maxPitch");
+    if (tool.type != ToolType::thread_mill) {
+        for (std::string_view key : {"pitch", "minPitch", "maxPitch"})
+            if (f.has(key)) f.fail(key, fmt::format("{} is for a thread-mill, not a {}", key, type_name));
+        return;
+    }
+    if (pitch && (min || max))
+        f.fail(min ? "minPitch" : "maxPitch", "a thread-mill has pitch (a multi-form tool) or minPitch and maxPitch (a "
+                                              "single-profile tool), not both");
+    if (!pitch && !(min && max))
+        f.fail(pitch || min || max ? (min ? "maxPitch" : "minPitch") : "",
+               "a thread-mill needs pitch (a multi-form tool: the pitch of its teeth) or minPitch and maxPitch (a "
+               "single-profile tool: the pitches it can cut)");
+    for (std::string_view key : {"pitch", "minPitch", "maxPitch"})
+        if (const std::optional<double> v = optional_length(key); v && !(*v > 0))
+            f.fail(key, fmt::format("{} must be > 0", key));
+    tool.min_pitch = pitch ? *pitch : *min;
+    tool.max_pitch = pitch ? *pitch : *max;
+    if (tool.min_pitch > tool.max_pitch)
+        f.fail("maxPitch", fmt::format("maxPitch ({}) is less than minPitch ({})", show(tool.max_pitch), show(tool.min_pitch)));
+}
+}  // namespace
+
 Tool JobInput::read_tool(const Json& value, const std::string& path) {
     Fields f(value, path, source_);
     known_keys(f, tool_keys);
@@ -314,6 +352,13 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
     tool.flutes = from_base("flutes") ? base->flutes : f.optional_integer("flutes");
     if (tool.flutes && (*tool.flutes < 1 || *tool.flutes > max_tool_flutes))
         f.fail("flutes", fmt::format("flutes must be between 1 and {}", max_tool_flutes));
+    if (base && tool.type == base->type && !f.has("pitch") && !f.has("minPitch") && !f.has("maxPitch")) {
+        // A library thread mill's pitches, unless the job gives its own.
+        tool.min_pitch = base->min_pitch;
+        tool.max_pitch = base->max_pitch;
+    } else {
+        job_input_thread_mill_pitches(*this, f, tool, type_name);
+    }
     // A library tool's own centreCutting (or its type's default) stays unless the job gives
     // either.
     tool.centre_cutting = f.has("centreCutting")                  ? f.boolean("centreCutting", false)
@@ -321,7 +366,8 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
                                                                     : tool.type != ToolType::end_mill &&
                                                                           tool.type != ToolType::bull_nose &&
                                                                           tool.type != ToolType::chamfer_mill &&
-                                                                          tool.type != ToolType::boring_bar;
+                                                                          tool.type != ToolType::boring_bar &&
+                                                                          tool.type != ToolType::thread_mill;
     if (library_tool || base) {
         // A library tool may leave its rpm to its cutting data; a job's tool from the library
         // takes the library's (apply_cutting_data).

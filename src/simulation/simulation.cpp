@@ -922,6 +922,7 @@ ToolShape tool_shape(const Tool& tool) {
         s.tip_angle = tool.tip_angle.value_or(tool.type == ToolType::drill ? 118.0 : 90.0);
         break;
     case ToolType::tap:
+    case ToolType::thread_mill:  // its teeth's tips: the height field cannot hold a thread's undercut flanks
     case ToolType::reamer:
     case ToolType::boring_bar: s.form = ToolForm::cylinder; break;
     case ToolType::turning_tool:

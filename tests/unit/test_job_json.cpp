@@ -1,5 +1,7 @@
 // Reading job files: values, defaults, units, hole patterns, and every validation error with
 // its JSON path and line.
+#include <numbers>
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -490,7 +492,7 @@ TEST_CASE("operation errors: type, tool, unknown keys") {
   ]
 })",
                 "/operations/1/type", 6,
-                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"bore-mill\", \"turn-drill\", \"turn-profile\", \"stop\", \"custom\", \"pocket\" or \"face\"");
+                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"bore-mill\", \"turn-drill\", \"turn-profile\", \"stop\", \"custom\", \"pocket\", \"face\" or \"thread-mill\"");
     check_error(R"({
   "clearance": 5,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000}],
@@ -851,9 +853,14 @@ TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
     const auto& helical = std::get<PathArc>(c.elements[3]);
     CHECK(helical.end == Vec3{20, 10, -4});
     CHECK(helical.centre == Vec3{20, 5, -2});
-    // From Z-4 to Z-9.5 at most 2 per turn: 5.5 / 2 = 2.75 -> 3 turns.
+    // From Z-4 to Z-9.5 at exactly 2 per turn: 5.5 / 2 = 2.75 turns, 2 whole and three
+    // quarters, ending three quarter turns on from (20, 10) about (20, 7): (23, 7) (issue 29:
+    // before, 3 whole turns of 1.833).
     const auto& h1 = std::get<PathHelix>(c.elements[4]);
-    CHECK(h1.turns == 3);
+    CHECK(h1.turns == 2);
+    CHECK(h1.partial == doctest::Approx(1.5 * std::numbers::pi));
+    CHECK(h1.end.x == doctest::Approx(23));
+    CHECK(h1.end.y == doctest::Approx(7));
     CHECK(h1.end_z == -9.5);
     CHECK(h1.centre == Vec2{20, 7});
     // 2 turns of 0.5 down: Z-10.5.
@@ -874,8 +881,19 @@ TEST_CASE("contour: 3D points, arcs in XZ and YZ, helices, tolerance") {
     for (const Event& e : rec.events)
         if (const auto* a = std::get_if<Arc>(&e)) arcs.push_back(*a);
     REQUIRE(arcs.size() == 5);
-    CHECK(arcs[3] == Arc{{20, 10, -9.5}, {20, 7, -4}, ArcDirection::ccw, Plane::xy, 400, 2});
-    CHECK(arcs[4] == Arc{{20, 10, -10.5}, {20, 7, -9.5}, ArcDirection::cw, Plane::xy, 400, 1});
+    // The partial helix: its own sweep is the three quarters, both whole turns are extra.
+    CHECK(arcs[3].to.x == doctest::Approx(23));
+    CHECK(arcs[3].to.y == doctest::Approx(7));
+    CHECK(arcs[3].to.z == -9.5);
+    CHECK(arcs[3].centre == Vec3{20, 7, -4});
+    CHECK(arcs[3].turns == 2);
+    CHECK(arcs[3].direction == ArcDirection::ccw);
+    CHECK(arcs[4].to.x == arcs[3].to.x);
+    CHECK(arcs[4].to.y == arcs[3].to.y);
+    CHECK(arcs[4].to.z == -10.5);
+    CHECK(arcs[4].centre == Vec3{20, 7, -9.5});
+    CHECK(arcs[4].turns == 1);
+    CHECK(arcs[4].direction == ArcDirection::cw);
     CHECK(std::get<OperationStart>(rec.events.at(0)).tolerance == 0.002);
 }
 

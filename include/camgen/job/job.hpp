@@ -33,13 +33,17 @@ struct Tool {
     std::optional<double> corner_radius;   // mm, a bull-nose end mill's corner radius (0 < r <= diameter / 2)
     double tip_diameter = 0.0;             // mm, a chamfer mill's or V-bit's flat at its point (0: pointed)
     std::optional<double> flute_length;    // mm, how deep it can cut (job key fluteLength)
+    std::optional<int> flutes;             // number of cutting edges (job key flutes)
+    // A thread mill's pitches: a multi-form tool's teeth cut one pitch (min = max, job key
+    // pitch); a single-profile tool cuts any pitch from min to max (minPitch, maxPitch). mm.
+    double min_pitch = 0.0;
+    double max_pitch = 0.0;
     bool centre_cutting = true;            // cuts at its centre: may plunge into material
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;
     std::string comment;
     CoolantMode coolant = CoolantMode::off;  // while the tool cuts
     std::string path;                      // JSON path, for messages
-    std::optional<int> flutes;             // cutting edges (job key flutes)
     std::string library;                   // the library tool it was taken from (job key library), or ""
     std::optional<ToolCutting> cutting;    // its library's cutting data for the job's material
     std::vector<std::string> computed;     // what camgen computed for it ("13262 rpm from vc 250 m/min ...")

@@ -21,6 +21,7 @@
 #include "camgen/operations/path/path.hpp"
 #include "camgen/operations/pocket/pocket.hpp"
 #include "camgen/operations/stop/stop.hpp"
+#include "camgen/operations/thread_mill/thread_mill.hpp"
 #include "camgen/operations/turn_drill/turn_drill.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
@@ -58,7 +59,8 @@ constexpr bool uses_tool() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp,
+                               ThreadMillOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

@@ -116,7 +116,7 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
 
 enum class ToolType {
     drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, bull_nose, chamfer_mill, v_bit,
-    turning_tool
+    thread_mill, turning_tool
 };
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
@@ -131,6 +131,7 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::bull_nose, "bull-nose", "bull-nose end mill"},
     {ToolType::chamfer_mill, "chamfer-mill", "chamfer mill"},
     {ToolType::v_bit, "v-bit", "V-bit"},
+    {ToolType::thread_mill, "thread-mill", "thread mill"},
     {ToolType::turning_tool, "turning-tool", "turning tool"},
 };
 

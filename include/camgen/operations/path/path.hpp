@@ -32,13 +32,17 @@ struct PathArc {
     Plane plane = Plane::xy;
 };
 
-// Whole turns of a helix about an axis parallel to Z through `centre`, from the current point
-// to the same X and Y at `end_z`, Z changing evenly with the angle.
+// A helix about an axis parallel to Z through `centre`, from the current point to `end_z`, Z
+// changing evenly with the angle: `turns` whole turns, then `partial` radians more (a z and a
+// pitch that are not a whole number of turns apart keep the pitch: the helix ends elsewhere
+// on its circle, at `end`).
 struct PathHelix {
     Vec2 centre;
     ArcDirection direction = ArcDirection::cw;
     int turns = 1;
     double end_z = 0.0;
+    double partial = 0.0;  // radians of the last, partial turn (0: whole turns only)
+    Vec2 end;              // X and Y where it ends (the start's when partial is 0)
 };
 
 using PathElement = std::variant<PathLine, PathArc, PathHelix>;
