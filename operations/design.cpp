@@ -92,9 +92,7 @@ public:
                                  [&](const PocketOp& o) { pocket(o); },
                                  [&](const FaceOp& o) { face(o); },
                                  [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
-                                 [&](const ThreadMillOp& o) {
-                                     skip(o.path, "a thread's flanks are undercuts, which the height field cannot hold");
-                                 },
+                                 [&](const ThreadMillOp& o) { thread(o); },
                                  [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
                                  [&](const StopOp&) {},
                                  // A lathe's part: design_lathe.cpp.
@@ -142,6 +140,46 @@ private:
             floor.slope = 1.0 / std::tan(*tool->tip_angle / 2.0 * rad_per_deg);
         }
         holes(op.path, op.holes, tool->diameter / 2.0, c.reference_z, floor);
+    }
+
+    // A thread as the height field holds it (its flanks are undercuts it cannot): the tool's
+    // sweep, down to the lowest its lead takes it, may reach any depth there (may_leave: the last
+    // turn's floor is a helix); the part beyond the thread's outer edge (internal: the major
+    // diameter) and inside its core (external: the minor diameter) is kept.
+    void thread(const ThreadMillOp& op) {
+        const Tool* tool = tool_of(op.tool);
+        if (!tool) return skip(op.path, "its tool is not in the job");
+        if (op.holes.empty()) return;
+        const Planes z = resolve_planes(op.heights);
+        const double radius = tool->diameter / 2.0;
+        double rise = 0.0, widest = 0.0;
+        for (const double r : thread_pass_radii(op, tool->diameter)) {
+            rise = std::max(rise, thread_lead_rise(op, r, tool->diameter));
+            widest = std::max(widest, r);
+        }
+        DesignCut cut;
+        cut.path = op.path;
+        cut.what = "thread";
+        cut.floor = DesignFloor{z.bottom_z - rise, std::nullopt, 0.0};
+        cut.top_z = z.reference_z;
+        cut.may_leave = true;
+        DesignKeep keep;
+        keep.path = op.path;
+        keep.top_z = z.reference_z;
+        if (op.side == ThreadSide::internal) {
+            // The half-circle leads stay inside the thread's circle.
+            cut.discs = DesignDiscs{op.holes, op.major / 2.0, 0.0};
+            keep.what = "the part around thread";
+            keep.discs = DesignDiscs{op.holes, op.major / 2.0 + band_for(op.major), op.major / 2.0};
+        } else {
+            // The quarter-circle leads of the tool's radius reach at most a tool radius beyond the
+            // widest pass (and the tool its radius beyond that).
+            cut.discs = DesignDiscs{op.holes, widest + 2.0 * radius, op.minor / 2.0};
+            keep.what = "the core of thread";
+            keep.discs = DesignDiscs{op.holes, op.minor / 2.0, 0.0};
+        }
+        design_.cuts.push_back(std::move(cut));
+        design_.keeps.push_back(std::move(keep));
     }
 
     void bore(const BoreMillOp& op) {

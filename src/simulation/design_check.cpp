@@ -282,11 +282,12 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
         std::uint32_t cut;
         const PlaneRegion* region;  // or the disc
         DesignCircle disc;
+        double hole;                // less a disc of this radius (0: none)
     };
     std::vector<CutPiece> pieces;
     for (std::size_t c = 0; c < design.cuts.size(); ++c)
         design_pieces(design.cuts[c], [&](const DesignPiece& p) {
-            pieces.push_back({static_cast<std::uint32_t>(c), p.region, p.outer});
+            pieces.push_back({static_cast<std::uint32_t>(c), p.region, p.outer, p.islands.empty() ? 0.0 : p.islands[0].radius});
         });
     const double reach = margin + tolerance;
     const double fx1 = g.x0 + static_cast<double>(g.nx) * g.cell, fy1 = g.y0 + static_cast<double>(g.ny) * g.cell;
@@ -311,7 +312,10 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
     std::vector<std::unique_ptr<DesignCutShape>> shapes(pieces.size());
     auto signed_distance = [&](std::size_t q, Vec2 p) {
         const CutPiece& piece = pieces[q];
-        if (!piece.region) return distance(p, piece.disc.centre) - piece.disc.radius;
+        if (!piece.region) {
+            const double from_centre = distance(p, piece.disc.centre);
+            return std::max(from_centre - piece.disc.radius, piece.hole - from_centre);
+        }
         if (!shapes[q]) shapes[q] = std::make_unique<DesignCutShape>(*piece.region, reach);
         return shapes[q]->signed_distance(p);
     };

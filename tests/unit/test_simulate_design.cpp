@@ -41,7 +41,7 @@ TEST_CASE("camgen simulate: every mill sample on every mill machine makes the pa
         {"face.json", "-20,-20,-20,120,90,1"},           {"bores.json", "-20,-20,-30,130,120,0"},
         {"drilling.json", "-30,-30,-40,150,120,0"},      {"plate-outline.json", "-30,-30,-20,230,150,0"},
         {"plate-outline-control.json", "-30,-30,-20,230,150,0"}, {"pocket-wall.json", "-30,-30,-20,150,120,0"},
-        {"stock-plate.json", ""}};
+        {"stock-plate.json", ""},                        {"thread.json", ""}};
     int simulated = 0;
     for (const char* machine : {"fanuc", "linuxcnc", "grbl", "sinumerik", "heidenhain", "wabeco", "kosy"})
         for (const auto& [file, box] : jobs) {
@@ -58,7 +58,7 @@ TEST_CASE("camgen simulate: every mill sample on every mill machine makes the pa
             CHECK_MESSAGE(r.out.find("  the part is as designed\n") != std::string::npos, r.out);
             ++simulated;
         }
-    CHECK(simulated >= 55);
+    CHECK(simulated >= 62);
 }
 
 TEST_CASE("camgen simulate: a pocket's floor cut too deep is a gouge at its line; a floor left high is material left") {
@@ -141,6 +141,30 @@ TEST_CASE("camgen simulate: a drill 0.05 mm beside its hole cuts the part around
                   gouge.out);
 }
 
+TEST_CASE("camgen simulate: a thread milled wider than its job's (internal: past the major diameter; external: into the core) is a gouge") {
+    // samples/thread.json's M10 internal and M16 external threads, posted with diameters a little
+    // off (major 10.1 instead of 10; minor 13.4 instead of d3 = 13.546) and simulated against the
+    // sample: the points on the threads' walls find both, named after the thread operations.
+    const fs::path dir = test::scratch("simulate-thread");
+    const std::string job = samples + "thread.json";
+    std::string wide = test::read_file(job);
+    wide = edited(wide, "\"thread\": \"M10\"", "\"majorDiameter\": 10.1, \"minorDiameter\": 8.376, \"pitch\": 1.5");
+    wide = edited(wide, "\"thread\": \"M16\"", "\"majorDiameter\": 16, \"minorDiameter\": 13.4, \"pitch\": 2");
+    const std::string wide_job = (dir / "wide.json").string();
+    std::ofstream(wide_job) << wide;
+    for (const char* machine : {"linuxcnc", "wabeco"}) {
+        CAPTURE(machine);
+        const std::string program = (dir / "wide.nc").string();
+        REQUIRE(test::run({wide_job, "--machine", machine, "-q", "-o", program}).code == 0);
+        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
+        CHECK(r.code == 1);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/2 \(the part around thread 0 at \(25, 30\)\): material removed [0-9.]+ mm below the designed 0 at \([0-9.]+, [0-9.]+\), by line \d+)")),
+                      r.out);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/3 \(the core of thread 0 at \(70, 30\)\): material removed )")),
+                      r.out);
+    }
+}
+
 }  // namespace test_simulate_design
 
 namespace test_simulate_design {
@@ -196,6 +220,30 @@ TEST_CASE("camgen simulate: a drill 0.05 mm beside its hole cuts the part around
                   gouge.out);
     CHECK_MESSAGE(std::regex_search(gouge.out, std::regex(R"(\(the part around hole 1 at \(30, 10\)\): material removed [0-9.]+ mm below the designed 0 at \(32\.50[0-9]*, [0-9.]+\), by line 10 \(\d+ points on its walls of the part cut\))")),
                   gouge.out);
+}
+
+TEST_CASE("camgen simulate: a thread milled wider than its job's (internal: past the major diameter; external: into the core) is a gouge") {
+    // samples/thread.json's M10 internal and M16 external threads, posted with diameters a little
+    // off (major 10.1 instead of 10; minor 13.4 instead of d3 = 13.546) and simulated against the
+    // sample: the points on the threads' walls find both, named after the thread operations.
+    const fs::path dir = test::scratch("simulate-thread");
+    const std::string job = samples + "thread.json";
+    std::string wide = test::read_file(job);
+    wide = edited(wide, "\"thread\": \"M10\"", "\"majorDiameter\": 10.1, \"minorDiameter\": 8.376, \"pitch\": 1.5");
+    wide = edited(wide, "\"thread\": \"M16\"", "\"majorDiameter\": 16, \"minorDiameter\": 13.4, \"pitch\": 2");
+    const std::string wide_job = (dir / "wide.json").string();
+    std::ofstream(wide_job) << wide;
+    for (const char* machine : {"linuxcnc", "wabeco"}) {
+        CAPTURE(machine);
+        const std::string program = (dir / "wide.nc").string();
+        REQUIRE(test::run({wide_job, "--machine", machine, "-q", "-o", program}).code == 0);
+        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
+        CHECK(r.code == 1);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/2 \(the part around thread 0 at \(25, 30\)\): material removed [0-9.]+ mm below the designed 0 at \([0-9.]+, [0-9.]+\), by line \d+)")),
+                      r.out);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/3 \(the core of thread 0 at \(70, 30\)\): material removed )")),
+                      r.out);
+    }
 }
 
 }  // namespace test_simulate_design
@@ -278,6 +326,30 @@ TEST_CASE("camgen simulate: a drill 0.05 mm beside its hole cuts the part around
                   gouge.out);
     CHECK_MESSAGE(std::regex_search(gouge.out, std::regex(R"(\(the part around hole 1 at \(30, 10\)\): material removed [0-9.]+ mm below the designed 0 at \(32\.50[0-9]*, [0-9.]+\), by line 10 \(\d+ points on its walls of the part cut\))")),
                   gouge.out);
+}
+
+TEST_CASE("camgen simulate: a thread milled wider than its job's (internal: past the major diameter; external: into the core) is a gouge") {
+    // samples/thread.json's M10 internal and M16 external threads, posted with diameters a little
+    // off (major 10.1 instead of 10; minor 13.4 instead of d3 = 13.546) and simulated against the
+    // sample: the points on the threads' walls find both, named after the thread operations.
+    const fs::path dir = test::scratch("simulate-thread");
+    const std::string job = samples + "thread.json";
+    std::string wide = test::read_file(job);
+    wide = edited(wide, "\"thread\": \"M10\"", "\"majorDiameter\": 10.1, \"minorDiameter\": 8.376, \"pitch\": 1.5");
+    wide = edited(wide, "\"thread\": \"M16\"", "\"majorDiameter\": 16, \"minorDiameter\": 13.4, \"pitch\": 2");
+    const std::string wide_job = (dir / "wide.json").string();
+    std::ofstream(wide_job) << wide;
+    for (const char* machine : {"linuxcnc", "wabeco"}) {
+        CAPTURE(machine);
+        const std::string program = (dir / "wide.nc").string();
+        REQUIRE(test::run({wide_job, "--machine", machine, "-q", "-o", program}).code == 0);
+        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
+        CHECK(r.code == 1);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/2 \(the part around thread 0 at \(25, 30\)\): material removed [0-9.]+ mm below the designed 0 at \([0-9.]+, [0-9.]+\), by line \d+)")),
+                      r.out);
+        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/3 \(the core of thread 0 at \(70, 30\)\): material removed )")),
+                      r.out);
+    }
 }
 
 }  // namespace test_simulate_design

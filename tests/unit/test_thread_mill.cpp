@@ -169,7 +169,7 @@ TEST_CASE("thread-mill tools: pitch or minPitch and maxPitch, refused on other t
                      "operations": []})",
                   "/tools/0/pitch", "pitch is for a thread-mill, not a end-mill");
     check_refused(R"({"clearance": 10, "tools": [{"number": 1, "diameter": 6, "rpm": 1, "flutes": 0}], "operations": []})",
-                  "/tools/0/flutes", "flutes must be a whole number from 1 to 1000");
+                  "/tools/0/flutes", "flutes must be between 1 and 1000");
 
     // The thread mill in operations that cannot use it, and the thread-mill with another tool.
     const std::string tools = R"("tools": [{"number": 3, "type": "thread-mill", "diameter": 6, "pitch": 1, "rpm": 1000},
