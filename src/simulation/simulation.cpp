@@ -25,6 +25,8 @@ constexpr double sim_golden = 0.6180339887498949;
 constexpr int sim_engagement_samples = 256;
 // Probe columns are found by blocks of this many cells a side.
 constexpr int sim_probe_block = 16;
+// mm: the largest sagitta of a helix's chords (an arc in XY at one height is swept exactly).
+constexpr double sim_helix_sagitta = 0.0005;
 
 // The height of a tool's lowest surface above its tip at `r` mm from its axis (r <= radius).
 struct SimProfile {
@@ -412,7 +414,10 @@ private:
         } else if (s.arc && s.arc->plane == Plane::xy && std::abs(s.arc->end.z - s.arc->start.z) < sim_tiny) {
             mill_flat_arc(*s.arc, prof, acc);
         } else if (s.arc) {
-            const double tol = arc_chord_fraction * result_.field.cell;
+            // Chords cut inside the arc by their sagitta: at most half a micrometre, below the
+            // design check's least tolerance (0.001 mm), so that the wall points it puts that far
+            // into a wall are not lowered by a chord the control does not cut.
+            const double tol = std::min(arc_chord_fraction * result_.field.cell, sim_helix_sagitta);
             const int n = std::max(1, segments_for_tolerance(s.arc->radius, s.arc->sweep, tol));
             Vec3 prev = s.arc->start;
             for (int k = 1; k <= n; ++k) {

@@ -17,7 +17,9 @@
 //   1e-10 x move length) for a bull-nose;
 // - an arc in XY at one height: exact for every tool (the column's nearest point on the arc);
 // - a helix, or an arc in XZ or YZ: chords whose sagitta (the largest distance of the tool
-//   centre from the arc) is at most `arc_chord_fraction` x the cell (1/8), each exact as above.
+//   centre from the arc) is at most `arc_chord_fraction` x the cell (1/8) and 0.0005 mm (below
+//   the design check's least tolerance: its wall points lie that far into a wall), each exact
+//   as above.
 #include <cstddef>
 #include <cstdint>
 #include <map>
