@@ -186,66 +186,6 @@ TEST_CASE("camgen simulate: a profile stock that leaves out part of the band kep
     CHECK(r.out.find("  the part is as designed\n") != std::string::npos);
 }
 
-TEST_CASE("camgen simulate: a drill 0.05 mm beside its hole cuts the part around the hole, found by the points on its wall") {
-    // Three 5 mm holes; the second drilled 0.05 mm to the right takes 0.05 mm of its wall, which no
-    // judged cell centre at 0.2 mm sees (they keep 0.149 mm from the hole's edge): the points on
-    // the wall, 0.008 mm into the part around the hole, do (they were placed along the wall, not
-    // into the part, where a wall is an arc: none was kept).
-    const fs::path dir = test::scratch("simulate-hole-wall");
-    const std::string job = (dir / "holes.json").string();
-    std::ofstream(job) << R"({"name": "holes", "clearance": 10,
-        "tools": [{"number": 1, "type": "drill", "diameter": 5, "tipAngle": 118, "rpm": 1500}],
-        "operations": [{"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 10, "safeDistance": 2,
-          "safeDistanceIsAbsolute": true, "endDepth": -6, "endDepthIsAbsolute": true, "firstDepth": 3,
-          "plungingFeedrate": 100, "holes": [[10, 10], [30, 10], [30, 30]]}]})";
-    const std::string program = (dir / "holes.ngc").string();
-    REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
-    auto simulate = [&](const std::string& name, const std::string& text) {
-        const std::string file = (dir / name).string();
-        std::ofstream(file) << text;
-        return test::run({"simulate", file, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-10,40,40,0",
-                          "--resolution", "0.2"});
-    };
-    const std::string text = test::read_file(program);
-    const test::Run ok = simulate("ok.ngc", text);
-    CHECK_MESSAGE(ok.code == 0, ok.out);
-    CHECK(ok.out.find("  the part is as designed\n") != std::string::npos);
-    std::smatch m;
-    REQUIRE(std::regex_search(ok.out, m, std::regex(R"(, (\d+) points on the walls 0.2 mm apart)")));
-    CHECK(std::stoi(m[1]) > 100);  // on the three holes' walls
-    const test::Run gouge = simulate("gouge.ngc", edited(text, "\nX30 Y10\n", "\nX30.05 Y10\n"));
-    CHECK(gouge.code == 1);
-    CHECK_MESSAGE(gouge.out.find("error: gouge: /operations/0 (the part around hole 1 at (30, 10)): material removed ") !=
-                      std::string::npos,
-                  gouge.out);
-    CHECK_MESSAGE(std::regex_search(gouge.out, std::regex(R"(\(the part around hole 1 at \(30, 10\)\): material removed [0-9.]+ mm below the designed 0 at \(32\.50[0-9]*, [0-9.]+\), by line 10 \(\d+ points on its walls of the part cut\))")),
-                  gouge.out);
-}
-
-TEST_CASE("camgen simulate: a thread milled wider than its job's (internal: past the major diameter; external: into the core) is a gouge") {
-    // samples/thread.json's M10 internal and M16 external threads, posted with diameters a little
-    // off (major 10.1 instead of 10; minor 13.4 instead of d3 = 13.546) and simulated against the
-    // sample: the points on the threads' walls find both, named after the thread operations.
-    const fs::path dir = test::scratch("simulate-thread");
-    const std::string job = samples + "thread.json";
-    std::string wide = test::read_file(job);
-    wide = edited(wide, "\"thread\": \"M10\"", "\"majorDiameter\": 10.1, \"minorDiameter\": 8.376, \"pitch\": 1.5");
-    wide = edited(wide, "\"thread\": \"M16\"", "\"majorDiameter\": 16, \"minorDiameter\": 13.4, \"pitch\": 2");
-    const std::string wide_job = (dir / "wide.json").string();
-    std::ofstream(wide_job) << wide;
-    for (const char* machine : {"linuxcnc", "wabeco"}) {
-        CAPTURE(machine);
-        const std::string program = (dir / "wide.nc").string();
-        REQUIRE(test::run({wide_job, "--machine", machine, "-q", "-o", program}).code == 0);
-        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
-        CHECK(r.code == 1);
-        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/2 \(the part around thread 0 at \(25, 30\)\): material removed [0-9.]+ mm below the designed 0 at \([0-9.]+, [0-9.]+\), by line \d+)")),
-                      r.out);
-        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/3 \(the core of thread 0 at \(70, 30\)\): material removed )")),
-                      r.out);
-    }
-}
-
 }  // namespace test_simulate_design
 
 namespace test_simulate_design {
@@ -290,66 +230,6 @@ TEST_CASE("camgen simulate: a tool 0.05 mm into a contour's wall is a gouge at i
                   gouge.out);
     CHECK_MESSAGE(gouge.out.find(fmt::format(", by line {} (", along + 2)) != std::string::npos, gouge.out);
     CHECK_MESSAGE(gouge.out.find(" points on its walls of the part cut)") != std::string::npos, gouge.out);
-}
-
-TEST_CASE("camgen simulate: a drill 0.05 mm beside its hole cuts the part around the hole, found by the points on its wall") {
-    // Three 5 mm holes; the second drilled 0.05 mm to the right takes 0.05 mm of its wall, which no
-    // judged cell centre at 0.2 mm sees (they keep 0.149 mm from the hole's edge): the points on
-    // the wall, 0.008 mm into the part around the hole, do (they were placed along the wall, not
-    // into the part, where a wall is an arc: none was kept).
-    const fs::path dir = test::scratch("simulate-hole-wall");
-    const std::string job = (dir / "holes.json").string();
-    std::ofstream(job) << R"({"name": "holes", "clearance": 10,
-        "tools": [{"number": 1, "type": "drill", "diameter": 5, "tipAngle": 118, "rpm": 1500}],
-        "operations": [{"type": "drill", "tool": 1, "cycle": "deep", "retractPlane": 10, "safeDistance": 2,
-          "safeDistanceIsAbsolute": true, "endDepth": -6, "endDepthIsAbsolute": true, "firstDepth": 3,
-          "plungingFeedrate": 100, "holes": [[10, 10], [30, 10], [30, 30]]}]})";
-    const std::string program = (dir / "holes.ngc").string();
-    REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
-    auto simulate = [&](const std::string& name, const std::string& text) {
-        const std::string file = (dir / name).string();
-        std::ofstream(file) << text;
-        return test::run({"simulate", file, "--machine", "linuxcnc", "--job", job, "--stock-box", "0,0,-10,40,40,0",
-                          "--resolution", "0.2"});
-    };
-    const std::string text = test::read_file(program);
-    const test::Run ok = simulate("ok.ngc", text);
-    CHECK_MESSAGE(ok.code == 0, ok.out);
-    CHECK(ok.out.find("  the part is as designed\n") != std::string::npos);
-    std::smatch m;
-    REQUIRE(std::regex_search(ok.out, m, std::regex(R"(, (\d+) points on the walls 0.2 mm apart)")));
-    CHECK(std::stoi(m[1]) > 100);  // on the three holes' walls
-    const test::Run gouge = simulate("gouge.ngc", edited(text, "\nX30 Y10\n", "\nX30.05 Y10\n"));
-    CHECK(gouge.code == 1);
-    CHECK_MESSAGE(gouge.out.find("error: gouge: /operations/0 (the part around hole 1 at (30, 10)): material removed ") !=
-                      std::string::npos,
-                  gouge.out);
-    CHECK_MESSAGE(std::regex_search(gouge.out, std::regex(R"(\(the part around hole 1 at \(30, 10\)\): material removed [0-9.]+ mm below the designed 0 at \(32\.50[0-9]*, [0-9.]+\), by line 10 \(\d+ points on its walls of the part cut\))")),
-                  gouge.out);
-}
-
-TEST_CASE("camgen simulate: a thread milled wider than its job's (internal: past the major diameter; external: into the core) is a gouge") {
-    // samples/thread.json's M10 internal and M16 external threads, posted with diameters a little
-    // off (major 10.1 instead of 10; minor 13.4 instead of d3 = 13.546) and simulated against the
-    // sample: the points on the threads' walls find both, named after the thread operations.
-    const fs::path dir = test::scratch("simulate-thread");
-    const std::string job = samples + "thread.json";
-    std::string wide = test::read_file(job);
-    wide = edited(wide, "\"thread\": \"M10\"", "\"majorDiameter\": 10.1, \"minorDiameter\": 8.376, \"pitch\": 1.5");
-    wide = edited(wide, "\"thread\": \"M16\"", "\"majorDiameter\": 16, \"minorDiameter\": 13.4, \"pitch\": 2");
-    const std::string wide_job = (dir / "wide.json").string();
-    std::ofstream(wide_job) << wide;
-    for (const char* machine : {"linuxcnc", "wabeco"}) {
-        CAPTURE(machine);
-        const std::string program = (dir / "wide.nc").string();
-        REQUIRE(test::run({wide_job, "--machine", machine, "-q", "-o", program}).code == 0);
-        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
-        CHECK(r.code == 1);
-        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/2 \(the part around thread 0 at \(25, 30\)\): material removed [0-9.]+ mm below the designed 0 at \([0-9.]+, [0-9.]+\), by line \d+)")),
-                      r.out);
-        CHECK_MESSAGE(std::regex_search(r.out, std::regex(R"(error: gouge: /operations/3 \(the core of thread 0 at \(70, 30\)\): material removed )")),
-                      r.out);
-    }
 }
 
 }  // namespace test_simulate_design
