@@ -153,10 +153,10 @@ void design_cells(const DesignPiece& piece, double d, const HeightGridView& g, F
     else design_circle_cells(piece.outer, piece.islands, d, g, f);
 }
 
-// A cut's floor over one of its pieces: a drill's point at each disc's centre.
-DesignFloor design_floor(const DesignCut& cut, const DesignPiece& piece) {
+// A cut's floor over one of its pieces (`centre`: a disc's): a drill's point at each disc's centre.
+DesignFloor design_floor(const DesignCut& cut, Vec2 centre) {
     DesignFloor f = cut.floor;
-    if (cut.discs && f.apex) f.apex = piece.outer.centre;
+    if (cut.discs && f.apex) f.apex = centre;
     return f;
 }
 
@@ -350,9 +350,7 @@ DesignProbes design_probes(const PartDesign& design, const HeightGridView& g, do
                 if (d > 0) continue;
                 const std::uint32_t c = pieces[piece].cut;
                 const DesignCut& cut = design.cuts[c];
-                DesignFloor floor = cut.floor;
-                if (cut.discs && floor.apex) floor.apex = pieces[piece].disc.centre;
-                const double f = floor.at(q);
+                const double f = design_floor(cut, pieces[piece].disc.centre).at(q);
                 if (cut.overrides) override_floor = f, owner = c;
                 else if (std::isnan(override_floor) && f < designed) designed = f, owner = c;
             }
@@ -421,7 +419,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
     for (std::int32_t c = 0; c < cuts; ++c) {
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         design_pieces(cut, [&](const DesignPiece& piece) {
-            const DesignFloor floor = design_floor(cut, piece);
+            const DesignFloor floor = design_floor(cut, piece.outer.centre);
             design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
                 flags[at(i, j)] |= strict_now;
                 if (cut.overrides) return;
@@ -441,7 +439,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         const DesignCut& cut = design.cuts[static_cast<std::size_t>(c)];
         if (!cut.overrides) continue;
         design_pieces(cut, [&](const DesignPiece& piece) {
-            const DesignFloor floor = design_floor(cut, piece);
+            const DesignFloor floor = design_floor(cut, piece.outer.centre);
             design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
                 designed[at(i, j)] = static_cast<float>(floor.at(p));
                 owner[at(i, j)] = c;
@@ -512,7 +510,7 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
         const DesignCut& cut = design.cuts[c];
         if (cut.overrides || cut.may_leave) continue;
         design_pieces(cut, [&](const DesignPiece& piece) {
-            const DesignFloor floor = design_floor(cut, piece);
+            const DesignFloor floor = design_floor(cut, piece.outer.centre);
             design_cells(piece, -margin, g, [&](std::size_t i, std::size_t j, Vec2 p) {
                 if (flags[at(i, j)] & (may_leave | edge)) return;
                 const double h = g.height(i, j);

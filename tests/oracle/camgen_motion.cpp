@@ -3,11 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "camgen/analysis/trace.hpp"
+#include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 
 namespace camgen::oracle {
+
+std::string posted_program(const Job& job, const Machine& machine) {
+    std::ostringstream out;
+    PostOptions o;
+    o.program_name = job.name;
+    auto post = make_post(machine, out, o);
+    post->open();
+    expand_job(job, *post);
+    post->close();
+    return out.str();
+}
 
 namespace {
 

@@ -5,10 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "camgen/operations/registry.hpp"
 #include "camgen/post/machine.hpp"
 #include "rs274.hpp"
 
 namespace camgen::oracle {
+
+// The job posted for the machine, as `camgen JOB --machine M` writes it (its name as the
+// program's).
+std::string posted_program(const Job& job, const Machine& machine);
 
 // The motion camgen's reader makes of a program: moves of zero length and zero dwells
 // dropped, feeds and arcs with their rate, spindle entries on changes.

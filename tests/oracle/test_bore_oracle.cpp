@@ -26,17 +26,6 @@ using OStep = camgen::oracle::Step;
 
 namespace {
 
-std::string program_for(const Job& job, const Machine& machine) {
-    std::ostringstream out;
-    PostOptions o;
-    o.program_name = job.name;
-    auto post = make_post(machine, out, o);
-    post->open();
-    expand_job(job, *post);
-    post->close();
-    return out.str();
-}
-
 // The steps from the first feed on: before it the two sides know the start differently
 // (rs274 from its origin, camgen from the tool change).
 std::vector<OStep> from_first_feed(const std::vector<OStep>& steps) {
@@ -56,7 +45,7 @@ int check_job(const std::string& job_text) {
     REQUIRE_MESSAGE(!rs274.empty(), "rs274 (LinuxCNC's standalone interpreter) was not found");
     const Job job = read_job(job_text, "bores.json");
     const Machine machine = load_machine("linuxcnc");
-    const std::string program = program_for(job, machine);
+    const std::string program = oracle::posted_program(job, machine);
     std::vector<OStep> theirs;
     REQUIRE_NOTHROW(theirs = from_first_feed(oracle::run_rs274(rs274, program)));
     const std::vector<OStep> ours = from_first_feed(oracle::read_with_camgen(program, machine));

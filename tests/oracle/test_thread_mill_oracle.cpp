@@ -31,17 +31,6 @@ namespace {
 
 constexpr double two_pi = 2 * std::numbers::pi;
 
-std::string thread_program_for(const Job& job, const Machine& machine) {
-    std::ostringstream out;
-    PostOptions o;
-    o.program_name = job.name;
-    auto post = make_post(machine, out, o);
-    post->open();
-    expand_job(job, *post);
-    post->close();
-    return out.str();
-}
-
 std::string thread_read_text(const std::string& path) {
     std::ifstream f(path);
     std::stringstream s;
@@ -112,7 +101,7 @@ TEST_CASE("thread milling: rs274 runs samples/thread.json for linuxcnc and fanuc
     for (const char* name : {"linuxcnc", "fanuc"}) {
         INFO(std::string(name));
         const Machine machine = load_machine(name);
-        const std::string program = thread_program_for(job, machine);
+        const std::string program = oracle::posted_program(job, machine);
         std::vector<OStep> theirs;
         REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274, program));
         // camgen reads the program as rs274 runs it, and the program is the job (verify --job).
