@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 #include "camgen/common/large_buffer.hpp"
 #include "camgen/operations/dxf_source.hpp"
 #include "camgen/operations/shapes.hpp"
@@ -722,19 +723,32 @@ std::optional<Finishing> read_finishing(Fields& f, const JobInput& in, double to
     return finishing;
 }
 
-CutFeeds read_cut_feeds(Fields& f, const JobInput& in, const Tool& tool, double engagement, std::vector<std::string>& notes) {
-    CutFeeds feeds;
+double read_cutting_feed(Fields& f, const JobInput& in, const Tool& tool, double engagement, std::vector<std::string>& notes,
+                         std::optional<CircularCut> circle) {
     const std::optional<double> computed = f.has("feed") ? std::nullopt : computed_milling_feed(tool, engagement, notes);
     if (computed) {
-        feeds.cutting = *computed;
-    } else if (!f.has("feed") && tool.cutting) {
+        if (!circle || !(circle->wall > 0) || !(circle->centre > 0)) return *computed;
+        const double scale = circle->centre / circle->wall;
+        // Rounded down to a whole mm/min as the computed feed is; within the machine's maxFeed.
+        double centre = std::max(1.0, std::floor(*computed * scale));
+        if (tool.cutting && tool.cutting->max_feed > 0) centre = std::min(centre, tool.cutting->max_feed);
+        notes.push_back(fmt::format("the tool centre's feed is {} mm/min: the computed {} mm/min is the cutting edge's, at "
+                                    "radius {}; the centre goes round at radius {}",
+                                    number_text(centre), number_text(*computed), in.show(circle->wall), in.show(circle->centre)));
+        return centre;
+    }
+    if (!f.has("feed") && tool.cutting)
         f.fail("feed", fmt::format("required key \"feed\" is missing, and the cutting data of {} for {} give no "
                                    "feedPerTooth to compute it from",
                                    tool.cutting->path, tool.cutting->material));
-    } else {
-        feeds.cutting = in.length(f, "feed");
-        if (!(feeds.cutting > 0)) f.fail("feed", "feed must be > 0");
-    }
+    const double feed = in.length(f, "feed");
+    if (!(feed > 0)) f.fail("feed", "feed must be > 0");
+    return feed;
+}
+
+CutFeeds read_cut_feeds(Fields& f, const JobInput& in, const Tool& tool, double engagement, std::vector<std::string>& notes) {
+    CutFeeds feeds;
+    feeds.cutting = read_cutting_feed(f, in, tool, engagement, notes);
     feeds.plunge = feed_of(f, in, "plungeFeed", feeds.cutting);
     feeds.ramp = feed_of(f, in, "rampFeed", feeds.cutting);
     feeds.lead_in = feed_of(f, in, "leadInFeed", feeds.cutting);

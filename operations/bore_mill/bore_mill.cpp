@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/operations/cutting.hpp"
 
 namespace camgen {
 
@@ -42,8 +43,10 @@ constexpr KeySpec bore_mill_keys[] = {
                     "diameter"},
     {.key = "finishingAllowance", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
      .description = "radial stock the roughing leaves for one finishing circle at the bottom (0: no finishing)"},
-    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false},
-     .description = "cutting feed: the circle at the bottom and the way back to the centre"},
+    {.key = "feed", .quantity = Quantity::feed, .min = Bound{0, false},
+     .description = "cutting feed: the circle at the bottom and the way back to the centre; required unless the tool "
+                    "comes from the library with a feedPerTooth for the job's material (default: then fz x flutes x rpm "
+                    "at the wall, x (bore - tool diameter) / bore for the tool centre)"},
     {.key = "rampFeed", .quantity = Quantity::feed, .min = Bound{0, false},
      .description = "feed of the helix (default: feed)"},
     {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
@@ -161,9 +164,10 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
                                        in.show(z.reference_z - z.bottom_z), tool.number, in.show(*tool.flute_length)));
     op.direction = f.choice("direction", cut_directions, CutDirection::climb);
 
-    f.required("feed");
-    op.feed = in.optional_quantity(f, "feed", Quantity::feed).value_or(0.0);
-    if (op.feed <= 0) f.fail("feed", "feed must be > 0");
+    // A feed computed from the tool's cutting data is the edge's on the bore's wall.
+    std::vector<std::string> computed_notes;
+    op.feed = read_cutting_feed(f, in, tool, 0.0, computed_notes,
+                                CircularCut{.centre = (op.diameter - tool.diameter) / 2.0, .wall = op.diameter / 2.0});
     op.ramp_feed = read_feed(f, in, "rampFeed", op.feed);
     op.plunge_feed = read_feed(f, in, "plungeFeed", op.feed);
     op.finishing_feed = read_feed(f, in, "finishingFeed", op.feed);
@@ -172,6 +176,7 @@ BoreMillOp BoreMillOp::read(Fields& f, const JobInput& in) {
     if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
 
     static_cast<HoleSet&>(op) = read_hole_set(f, in, type);
+    op.notes.insert(op.notes.begin(), computed_notes.begin(), computed_notes.end());
     return op;
 }
 

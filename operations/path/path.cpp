@@ -36,7 +36,9 @@ constexpr KeySpec path_keys[] = {
      .description = "written as a comment before the operation"},
     {.key = "z", .quantity = Quantity::length, .required = true,
      .description = "absolute Z where the path starts, below clearance"},
-    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false}, .description = "cutting feed"},
+    {.key = "feed", .quantity = Quantity::feed, .min = Bound{0, false},
+     .description = "cutting feed; required unless the tool comes from the library with a feedPerTooth for the job's "
+                    "material (default: then fz x flutes x rpm)"},
     {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
      .description = "feed down to z (default: feed)"},
     {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true},
@@ -266,8 +268,7 @@ PathOp PathOp::read(Fields& f, const JobInput& in) {
         f.fail("z", fmt::format("z is above the clearance (cut at Z {}, clearance at Z {}); "
                                 "it must be below",
                                     in.show(op.z), in.show(in.header().clearance)));
-    op.feed = in.length(f, "feed");
-    if (op.feed <= 0) f.fail("feed", "feed must be > 0");
+    op.feed = read_cutting_feed(f, in, tool, 0.0, op.notes);
     op.plunge_feed = in.optional_length(f, "plungeFeed");
     if (op.plunge_feed && *op.plunge_feed <= 0) f.fail("plungeFeed", "plungeFeed must be > 0");
     op.tolerance = in.optional_length(f, "tolerance");

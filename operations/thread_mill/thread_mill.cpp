@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/operations/cutting.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace camgen {
@@ -60,8 +61,10 @@ constexpr KeySpec thread_mill_keys[] = {
      .max = Bound{100, true}, .default_json = "1", .description = "radial passes to the thread's full depth, equal steps"},
     {.key = "springPass", .type = JsonType::boolean, .default_json = "false",
      .description = "one more pass at the full depth, for the tool's deflection"},
-    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false},
-     .description = "feed of the tool centre along the leads and the helix"},
+    {.key = "feed", .quantity = Quantity::feed, .min = Bound{0, false},
+     .description = "feed of the tool centre along the leads and the helix; required unless the tool comes from the "
+                    "library with a feedPerTooth for the job's material (default: then fz x flutes x rpm at the "
+                    "thread's last diameter, scaled to the tool centre's radius)"},
     {.key = "plungeFeed", .quantity = Quantity::feed, .min = Bound{0, false},
      .description = "feed from the safe distance down to the lead-in's start, in the clear (default: feed)"},
     {.key = "tolerance", .quantity = Quantity::length, .min = Bound{0.0001, true},
@@ -248,9 +251,13 @@ ThreadMillOp ThreadMillOp::read(Fields& f, const JobInput& in) {
                                        in.show(thread_clearance), in.show(op.major)));
     }
 
-    f.required("feed");
-    op.feed = in.optional_quantity(f, "feed", Quantity::feed).value_or(0.0);
-    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
+    // A feed computed from the tool's cutting data is the edge's at the thread's last diameter.
+    std::vector<std::string> computed_notes;
+    {
+        const ThreadRadii radii = thread_radii(op, tool.diameter);
+        const double wall = op.side == ThreadSide::internal ? op.major / 2.0 : op.minor / 2.0;
+        op.feed = read_cutting_feed(f, in, tool, 0.0, computed_notes, CircularCut{.centre = radii.last, .wall = wall});
+    }
     const std::optional<double> plunge = in.optional_quantity(f, "plungeFeed", Quantity::feed);
     if (plunge && !(*plunge > 0)) f.fail("plungeFeed", "plungeFeed must be > 0");
     op.plunge_feed = plunge.value_or(op.feed);
@@ -258,6 +265,7 @@ ThreadMillOp ThreadMillOp::read(Fields& f, const JobInput& in) {
     if (op.tolerance && !(*op.tolerance >= 0.0001)) f.fail("tolerance", "tolerance must be at least 0.0001 mm");
 
     static_cast<HoleSet&>(op) = read_hole_set(f, in, type);
+    op.notes.insert(op.notes.begin(), computed_notes.begin(), computed_notes.end());
     return op;
 }
 

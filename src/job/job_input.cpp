@@ -14,6 +14,12 @@ namespace camgen {
 
 namespace {
 
+// A tool type's name with its article: "an end-mill", "a drill".
+std::string job_input_with_article(std::string_view name) {
+    const bool vowel = !name.empty() && std::string_view("aeiou").find(name.front()) != std::string_view::npos;
+    return fmt::format("{} {}", vowel ? "an" : "a", name);
+}
+
 
 // The top-level keys of a job.
 constexpr KeySpec job_keys[] = {
@@ -54,6 +60,9 @@ constexpr KeySpec tool_keys[] = {
     {.key = "library", .type = JsonType::string,
      .description = "the name of a tool of the tool library (--tools, CAMGEN_TOOLS, ~/.config/camgen/tools): its keys "
                     "and cutting data, the keys given here overriding them"},
+    {.key = "libraryNumber", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .description = "the number of a tool of the tool library (its number there), instead of its name; the job's own "
+                    "number may differ"},
     {.key = "diameter", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "cutting diameter (required unless the tool comes from the library)"},
     {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
@@ -105,10 +114,13 @@ std::vector<ObjectSpec> JobInput::objects() {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
          .keys = {std::begin(job_keys), std::end(job_keys)}},
         {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)},
-         .groups = {{.keys = {"diameter", "library"}, .min = 1, .max = 2,
-                     .description = "`diameter`, or `library` (the library tool's)"},
-                    {.keys = {"rpm", "library"}, .min = 1, .max = 2,
-                     .description = "`rpm`, or `library` (the library tool's, or computed from its cutting data)"}},
+         .groups = {{.keys = {"diameter", "library", "libraryNumber"}, .min = 1, .max = 2,
+                     .description = "`diameter`, or `library` or `libraryNumber` (the library tool's)"},
+                    {.keys = {"rpm", "library", "libraryNumber"}, .min = 1, .max = 2,
+                     .description = "`rpm`, or `library` or `libraryNumber` (the library tool's, or computed from its "
+                                    "cutting data)"},
+                    {.keys = {"library", "libraryNumber"}, .min = 0, .max = 1,
+                     .description = "a library tool by `library` (its name) or by `libraryNumber`, not both"}},
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
                    {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
@@ -244,7 +256,7 @@ void job_input_thread_mill_pitches(const JobInput& in, json::Fields& f, Tool& to
                                 max = optional_length("maxPitch");
     if (tool.type != ToolType::thread_mill) {
         for (std::string_view key : {"pitch", "minPitch", "maxPitch"})
-            if (f.has(key)) f.fail(key, fmt::format("{} is for a thread-mill, not a {}", key, type_name));
+            if (f.has(key)) f.fail(key, fmt::format("{} is for a thread-mill, not {}", key, job_input_with_article(type_name)));
         return;
     }
     if (pitch && (min || max))
@@ -274,7 +286,14 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
     if (auto it = header_.tools.find(tool.number); it != header_.tools.end())
         f.fail("number", fmt::format("tool number {} is already used by {}", tool.number, it->second.path));
     const LibraryTool* entry = nullptr;
-    if (auto name = f.optional_string("library")) entry = &library_tool(f, *name);
+    if (f.has("library") && f.has("libraryNumber"))
+        f.fail("libraryNumber", "give library (the library tool's name) or libraryNumber (its number), not both");
+    if (auto name = f.optional_string("library")) entry = &library_tool(f, "library", *name, std::nullopt);
+    else if (f.has("libraryNumber")) {
+        const std::int64_t n = f.integer("libraryNumber");
+        if (n < 1) f.fail("libraryNumber", "a library tool number must be 1 or more");
+        entry = &library_tool(f, "libraryNumber", fmt::format("number {}", n), n);
+    }
     read_tool_keys(f, tool, entry ? &entry->tool : nullptr, false);
     if (entry) {
         tool.library = entry->name;
@@ -285,7 +304,7 @@ Tool JobInput::read_tool(const Json& value, const std::string& path) {
 
 Tool JobInput::read_library_tool(Fields& f) {
     known_keys(f, tool_keys);
-    for (std::string_view job_only : {"number", "library"})
+    for (std::string_view job_only : {"library", "libraryNumber"})
         if (f.has(job_only))
             f.fail(job_only, fmt::format("{} is a key of a job's tool, not of a library tool", job_only));
     Tool tool;
@@ -332,16 +351,16 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
                                                "corner radius of half the diameter is a ball-mill",
                                                show(*tool.corner_radius), show(tool.diameter / 2)));
     } else if (tool.corner_radius) {
-        f.fail("cornerRadius", fmt::format("cornerRadius is for a bull-nose end mill, not a {} (a ball-mill's is half its "
+        f.fail("cornerRadius", fmt::format("cornerRadius is for a bull-nose end mill, not {} (a ball-mill's is half its "
                                            "diameter)",
-                                           type_name));
+                                           job_input_with_article(type_name)));
     }
     std::optional<double> tip = from_base("tipDiameter") ? (base->tip_diameter > 0 ? std::optional<double>(base->tip_diameter)
                                                                                    : std::nullopt)
                                                          : optional_length(f, "tipDiameter");
     if (tip) {
         if (!pointed)
-            f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill or v-bit, not a {}", type_name));
+            f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill or v-bit, not {}", job_input_with_article(type_name)));
         if (!(*tip >= 0 && *tip < tool.diameter))
             f.fail("tipDiameter", fmt::format("tipDiameter {} must be at least 0 and less than the diameter ({})", show(*tip),
                                               show(tool.diameter)));
@@ -384,13 +403,14 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
 
 std::span<const KeySpec> JobInput::tool_key_table() { return tool_keys; }
 
-const LibraryTool& JobInput::library_tool(Fields& f, const std::string& name) {
+const LibraryTool& JobInput::library_tool(Fields& f, std::string_view key, const std::string& name,
+                                          std::optional<std::int64_t> number) {
     if (!library_) {
         // A library that failed to read is reported once, with its file's own error (its file,
         // path and line); the other tools that name it follow from that error.
         if (library_failed_)
-            throw FollowOnError(f.path_of("library"), "the tool library failed to read",
-                                source_.lines.line_of(f.path_of("library")), source_.name);
+            throw FollowOnError(f.path_of(key), "the tool library failed to read", source_.lines.line_of(f.path_of(key)),
+                                source_.name);
         try {
             library_ = load_tool_library(library_options_);
         } catch (const InputError&) {
@@ -398,13 +418,25 @@ const LibraryTool& JobInput::library_tool(Fields& f, const std::string& name) {
             throw;
         } catch (const IoError& e) {
             library_failed_ = true;
-            f.fail("library", e.what());
+            f.fail(key, e.what());
         }
     }
+    const std::string said = number ? name : fmt::format("\"{}\"", name);
     if (library_->tools.empty())
-        f.fail("library", fmt::format("no tool library found for tool \"{}\": looked in {} (give one with --tools, or "
-                                      "set CAMGEN_TOOLS)",
-                                      name, fmt::join(library_->searched, ", ")));
+        f.fail(key, fmt::format("no tool library found for tool {}: looked in {} (give one with --tools, or set CAMGEN_TOOLS)",
+                                said, fmt::join(library_->searched, ", ")));
+    if (number) {
+        if (const LibraryTool* entry = library_->find_number(*number)) return *entry;
+        std::vector<std::string> numbered;
+        for (const LibraryTool& t : library_->tools)
+            if (t.number) numbered.push_back(fmt::format("{} ({})", *t.number, t.name));
+        const std::size_t shown = 20;
+        std::string listed = numbered.empty() ? std::string("none has a number") : std::string();
+        for (std::size_t i = 0; i < numbered.size() && i < shown; ++i) listed += (i ? ", " : "") + numbered[i];
+        if (numbered.size() > shown) listed += fmt::format(", ... ({} in all)", numbered.size());
+        f.fail(key, fmt::format("no tool {} in the tool library ({}); its numbered tools: {}", said,
+                                fmt::join(library_->files, ", "), listed));
+    }
     if (const LibraryTool* entry = library_->find(name)) return *entry;
     std::vector<std::string> names;
     for (const LibraryTool& t : library_->tools) names.push_back(t.name);
@@ -414,9 +446,9 @@ const LibraryTool& JobInput::library_tool(Fields& f, const std::string& name) {
     const std::size_t shown = 20;
     for (std::size_t i = 0; i < names.size() && i < shown; ++i) listed += (i ? ", " : "") + names[i];
     if (names.size() > shown) listed += fmt::format(", ... ({} in all)", names.size());
-    f.fail("library", fmt::format("no tool \"{}\" in the tool library{} ({}); its tools: {}", name,
-                                  hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
-                                  fmt::join(library_->files, ", "), listed));
+    f.fail(key, fmt::format("no tool {} in the tool library{} ({}); its tools: {}", said,
+                            hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "", fmt::join(library_->files, ", "),
+                            listed));
 }
 
 namespace {
@@ -431,17 +463,19 @@ std::string job_input_lower(std::string_view text) {
 
 void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entry, bool rpm_given) {
     const std::string where = fmt::format("library tool \"{}\" ({} {})", entry.name, entry.file, entry.path);
+    // The key the job's tool names the library tool by, which errors point at.
+    const std::string_view key = f.has("libraryNumber") ? "libraryNumber" : "library";
     const CuttingData* data = nullptr;
     if (!entry.cutting.empty()) {
         std::vector<std::string> materials;
         for (const CuttingData& c : entry.cutting) materials.push_back(c.material);
         if (header_.material.empty() && doc_.root.is_object() && doc_.root.contains("material")) {
             // The job's material failed to read: its error is reported.
-            throw FollowOnError(f.path_of("library"), "the job's material failed to read",
-                                source_.lines.line_of(f.path_of("library")), source_.name);
+            throw FollowOnError(f.path_of(key), "the job's material failed to read",
+                                source_.lines.line_of(f.path_of(key)), source_.name);
         } else if (header_.material.empty()) {
             if (tool.rpm <= 0)
-                f.fail("library", fmt::format("{} has cutting data for {}: give the job's material (or this tool's rpm "
+                f.fail(key, fmt::format("{} has cutting data for {}: give the job's material (or this tool's rpm "
                                               "and the operations' feeds)",
                                               where, fmt::join(materials, ", ")));
         } else {
@@ -449,7 +483,7 @@ void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entr
                 if (job_input_lower(c.material) == job_input_lower(header_.material)) data = &c;
             if (!data) {
                 const auto hint = json::did_you_mean(header_.material, materials);
-                f.fail("library", fmt::format("{} has no cutting data for material \"{}\"{}; it has {}", where,
+                f.fail(key, fmt::format("{} has no cutting data for material \"{}\"{}; it has {}", where,
                                               header_.material, hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
                                               fmt::join(materials, ", ")));
             }
@@ -465,7 +499,14 @@ void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entr
         cut.max_feed = library_options_.max_feed;
         cut.path = where;
         if (cut.feed_per_tooth && !tool.flutes)
-            f.fail("library", fmt::format("{} gives a feedPerTooth for {} but not its flutes: give flutes", where, cut.material));
+            f.fail(key, fmt::format("{} gives a feedPerTooth for {} but not its flutes: give flutes", where, cut.material));
+        if (!rpm_given && tool.type == ToolType::turning_tool)
+            // A turning tool cuts at the work's diameter, not its own: its surface speed is a
+            // constant surface speed (G96) of the lathe operations, which camgen does not write yet.
+            f.fail(key, fmt::format("{} is a turning tool: its surfaceSpeed ({} m/min for {}) sets the work's surface "
+                                    "speed, not an rpm of the tool's diameter, and camgen does not compute a lathe's rpm "
+                                    "from it yet: give this tool's rpm",
+                                    where, number_text(cut.surface_speed), cut.material));
         if (!rpm_given) {
             const double wanted = rpm_for_surface_speed(cut.surface_speed, tool.diameter);
             tool.rpm = wanted;
@@ -482,7 +523,7 @@ void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entr
         tool.cutting = std::move(cut);
     }
     if (tool.rpm <= 0)
-        f.fail("library", fmt::format("{} gives no rpm and no cutting data: give this tool's rpm", where));
+        f.fail(key, fmt::format("{} gives no rpm and no cutting data: give this tool's rpm", where));
 }
 
 const Tool& JobInput::tool(Fields& f) const {

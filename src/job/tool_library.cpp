@@ -40,6 +40,8 @@ constexpr KeySpec tool_library_keys[] = {
 constexpr KeySpec library_tool_own_keys[] = {
     {.key = "name", .type = JsonType::string, .required = true,
      .description = "the name a job's tool gives as its library key, unique within the file"},
+    {.key = "number", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .description = "the tool's number in the library (a job's tool may give it as libraryNumber), unique within the file"},
     {.key = "cuttingData", .type = JsonType::array, .ref = "cuttingData",
      .description = "surface speed and feeds per material; the job's material picks one"},
 };
@@ -77,6 +79,13 @@ std::vector<LibraryTool> read_library_tools(JobInput& in, const std::string& sou
         for (const LibraryTool& other : out)
             if (other.name == entry.name)
                 f.fail("name", fmt::format("tool name \"{}\" is already used by {}", entry.name, other.path));
+        if (f.has("number")) {
+            const std::int64_t n = f.integer("number");
+            if (n < 1) f.fail("number", "a library tool number must be 1 or more");
+            for (const LibraryTool& other : out)
+                if (other.number == n) f.fail("number", fmt::format("tool number {} is already used by {}", n, other.path));
+            entry.number = n;
+        }
         entry.tool = in.read_library_tool(f);
         entry.file = source;
         entry.path = path;
@@ -133,7 +142,7 @@ std::vector<std::string> library_files_in(const std::string& place) {
 std::vector<ObjectSpec> tool_library_objects() {
     std::vector<KeySpec> tool_keys{std::begin(library_tool_own_keys), std::end(library_tool_own_keys)};
     for (const KeySpec& k : JobInput::tool_key_table()) {
-        if (k.key == "number" || k.key == "library") continue;
+        if (k.key == "number" || k.key == "library" || k.key == "libraryNumber") continue;
         KeySpec copy = k;
         copy.required = false;
         if (k.key == "diameter") copy.required = true;
@@ -156,6 +165,12 @@ std::vector<ObjectSpec> tool_library_objects() {
 const LibraryTool* ToolLibrary::find(std::string_view name) const {
     for (const LibraryTool& t : tools)
         if (t.name == name) return &t;
+    return nullptr;
+}
+
+const LibraryTool* ToolLibrary::find_number(std::int64_t number) const {
+    for (const LibraryTool& t : tools)
+        if (t.number == number) return &t;
     return nullptr;
 }
 
@@ -206,9 +221,13 @@ ToolLibrary load_tool_library(const ToolLibraryOptions& options) {
             const InputText input = read_input(file, InputRules{.what = "tool library", .regular_only = true, .json = true}, no_input);
             std::vector<LibraryTool> tools = read_tool_library(input.text, file);
             library.files.push_back(file);
-            // The first tool of a name wins, as the first machine file of a name does.
-            for (LibraryTool& t : tools)
-                if (!library.find(t.name)) library.tools.push_back(std::move(t));
+            // The first tool of a name wins, as the first machine file of a name does; a later
+            // file's tool whose number an earlier one has keeps its name but not the number.
+            for (LibraryTool& t : tools) {
+                if (library.find(t.name)) continue;
+                if (t.number && library.find_number(*t.number)) t.number.reset();
+                library.tools.push_back(std::move(t));
+            }
         }
     }
     return library;

@@ -241,7 +241,8 @@ def main():
         ("a tool without a name", ["tools", 0, "name"], None, "required"),
         ("an unknown key", ["tools", 0, "bogus"], 1, "additionalProperties"),
         ("a diameter as a string", ["tools", 0, "diameter"], "6", "type"),
-        ("a tool number", ["tools", 0, "number"], 3, "additionalProperties"),
+        ("a tool number of 0", ["tools", 0, "number"], 0, "minimum"),
+        ("a job's libraryNumber", ["tools", 0, "libraryNumber"], 3, "additionalProperties"),
         ("a negative surface speed", ["tools", 0, "cuttingData", 0, "surfaceSpeed"], -5, "exclusiveMinimum"),
         ("cutting data without a material", ["tools", 0, "cuttingData", 0, "material"], None, "required"),
     )

@@ -350,7 +350,7 @@ TEST_CASE("tools: the shape keys' errors name their path and line") {
     CHECK(error(R"({"number": 1, "type": "bull-nose", "diameter": 10, "cornerRadius": 0, "rpm": 5000})").find(
               "/tools/0/cornerRadius: cornerRadius 0.000 mm must be more than 0") != std::string::npos);
     CHECK(error(R"({"number": 1, "type": "end-mill", "diameter": 10, "cornerRadius": 1, "rpm": 5000})") ==
-          "test.json:2: /tools/0/cornerRadius: cornerRadius is for a bull-nose end mill, not a end-mill (a ball-mill's is half its "
+          "test.json:2: /tools/0/cornerRadius: cornerRadius is for a bull-nose end mill, not an end-mill (a ball-mill's is half its "
           "diameter)");
     CHECK(error(R"({"number": 1, "type": "v-bit", "diameter": 6, "rpm": 5000})") ==
           "test.json:2: /tools/0/tipAngle: a v-bit needs its tipAngle (the included angle of its point)");

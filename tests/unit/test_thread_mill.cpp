@@ -167,7 +167,7 @@ TEST_CASE("thread-mill tools: pitch or minPitch and maxPitch, refused on other t
                   "/tools/0/maxPitch", "maxPitch (1.000 mm) is less than minPitch (2.000 mm)");
     check_refused(R"({"clearance": 10, "tools": [{"number": 1, "type": "end-mill", "diameter": 6, "rpm": 1, "pitch": 1}],
                      "operations": []})",
-                  "/tools/0/pitch", "pitch is for a thread-mill, not a end-mill");
+                  "/tools/0/pitch", "pitch is for a thread-mill, not an end-mill");
     check_refused(R"({"clearance": 10, "tools": [{"number": 1, "diameter": 6, "rpm": 1, "flutes": 0}], "operations": []})",
                   "/tools/0/flutes", "flutes must be between 1 and 1000");
 

@@ -307,8 +307,13 @@ TEST_CASE("errors of library tools and of library files name the file, the JSON 
           "camgen: " + bad + ":3: /tools/0/diameter: expected a number, got a string \"6\"\n");
     CHECK(error_of("{\"tools\": [\n{\"type\": \"drill\",\n \"diameter\": 6, \"rpm\": 100}]}") ==
           "camgen: " + bad + ":2: /tools/0/name: required key \"name\" is missing\n");
-    CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"number\": 3,\n \"diameter\": 6, \"rpm\": 100}]}") ==
-          "camgen: " + bad + ":2: /tools/0/number: number is a key of a job's tool, not of a library tool\n");
+    CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"libraryNumber\": 3,\n \"diameter\": 6, \"rpm\": 100}]}") ==
+          "camgen: " + bad + ":2: /tools/0/libraryNumber: libraryNumber is a key of a job's tool, not of a library tool\n");
+    CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"number\": 3, \"diameter\": 6, \"rpm\": 100},\n{\"name\": \"b\", \"number\": 3, "
+                   "\"diameter\": 8, \"rpm\": 100}]}") ==
+          "camgen: " + bad + ":3: /tools/1/number: tool number 3 is already used by /tools/0\n");
+    CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"number\": 0, \"diameter\": 6, \"rpm\": 100}]}").find(
+              "/tools/0/number: ") != std::string::npos);
     CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"diameter\": 6, \"rpm\": 100},\n{\"name\": \"a\", \"diameter\": 8, \"rpm\": 100}]}") ==
           "camgen: " + bad + ":3: /tools/1/name: tool name \"a\" is already used by /tools/0\n");
     CHECK(error_of("{\"tools\": [\n{\"name\": \"a\", \"diameter\": 6,\n \"cuttingData\": [{\"material\": \"steel\", \"surfaceSpeed\": 80,\n "
@@ -387,4 +392,124 @@ TEST_CASE("the output never replaces the tool library") {
     CHECK(r.code == 2);
     CHECK(r.err.find("would replace the tool library " + tools) != std::string::npos);
     CHECK(read_file(tools) == read_file(sample_tools));
+}
+
+TEST_CASE("a job's tool takes a library tool by its library number as by its name") {
+    const fs::path dir = scratch("toollib-number");
+    const std::string tools = write_to(dir, "tools.json", R"({"tools": [
+  {"name": "spot", "number": 12, "type": "spot-drill", "diameter": 10, "tipAngle": 90, "rpm": 1500},
+  {"name": "jobber-6", "number": 31, "type": "drill", "diameter": 6, "tipAngle": 118, "rpm": 1200, "fluteLength": 57}
+]})");
+    // A second file of the folder: its tool numbered 12 too keeps its name, not the number.
+    write_to(dir, "zz-more.json", R"({"tools": [{"name": "other", "number": 12, "diameter": 3, "rpm": 3000}]})");
+    const std::string ops = R"("operations": [
+      {"type": "drill", "tool": 7, "retractPlane": 2, "endDepth": 1, "plungingFeedrate": 80, "holes": [[10, 10]]},
+      {"type": "drill", "tool": 2, "retractPlane": 2, "endDepth": 5, "plungingFeedrate": 120, "holes": [[10, 10]]}]})";
+    const std::string by_number = R"({"clearance": 10, "tools": [{"number": 7, "libraryNumber": 12},
+      {"number": 2, "libraryNumber": 31, "comment": "HSS"}], )" + ops;
+    const std::string by_name = R"({"clearance": 10, "tools": [{"number": 7, "library": "spot"},
+      {"number": 2, "library": "jobber-6", "comment": "HSS"}], )" + ops;
+    const std::string written = R"({"clearance": 10, "tools": [
+      {"number": 7, "type": "spot-drill", "diameter": 10, "tipAngle": 90, "rpm": 1500},
+      {"number": 2, "type": "drill", "diameter": 6, "tipAngle": 118, "rpm": 1200, "fluteLength": 57, "comment": "HSS"}], )" + ops;
+    const Run a = run({"-", "--machine", "linuxcnc", "--tools", dir.string()}, by_number);
+    REQUIRE_MESSAGE(a.code == 0, a.err);
+    const Run b = run({"-", "--machine", "linuxcnc", "--tools", dir.string()}, by_name);
+    const Run c = run({"-", "--machine", "linuxcnc"}, written);
+    REQUIRE_MESSAGE(b.code == 0, b.err);
+    REQUIRE_MESSAGE(c.code == 0, c.err);
+    CHECK(a.out == b.out);
+    CHECK(a.out == c.out);
+    CHECK(a.out.find("T7 M6") != std::string::npos);
+    // Errors: an unknown number lists the numbered tools; both keys refused; a number below 1.
+    Run bad = run({"-", "--machine", "linuxcnc", "--tools", dir.string()},
+                  R"({"clearance": 10, "tools": [{"number": 7,
+  "libraryNumber": 13}], "operations": []})");
+    CHECK(bad.code == 1);
+    CHECK(bad.out.empty());
+    CHECK(bad.err.find("camgen: <stdin>:2: /tools/0/libraryNumber: no tool number 13 in the tool library") == 0);
+    CHECK(bad.err.find("its numbered tools: 12 (spot), 31 (jobber-6)") != std::string::npos);
+    bad = run({"-", "--machine", "linuxcnc", "--tools", dir.string()},
+              R"({"clearance": 10, "tools": [{"number": 7, "library": "spot", "libraryNumber": 12}], "operations": []})");
+    CHECK(bad.code == 1);
+    CHECK(bad.err.find("/tools/0") != std::string::npos);
+    CHECK(bad.err.find("not both") != std::string::npos);
+    bad = run({"-", "--machine", "linuxcnc", "--tools", dir.string()},
+              R"({"clearance": 10, "tools": [{"number": 7, "libraryNumber": 0}], "operations": []})");
+    CHECK(bad.code == 1);
+    CHECK(bad.err.find("/tools/0/libraryNumber") != std::string::npos);
+}
+
+TEST_CASE("path, bore-mill and thread-mill feeds are computed from the library, the circles' for the tool centre") {
+    const fs::path dir = scratch("toollib-feeds");
+    const std::string tools = write_to(dir, "tools.json", R"({"tools": [
+  {"name": "em6", "type": "end-mill", "diameter": 6, "flutes": 3, "centreCutting": true,
+   "cuttingData": [{"material": "aluminium", "surfaceSpeed": 120, "feedPerTooth": 0.03}]},
+  {"name": "tm7", "type": "thread-mill", "diameter": 7, "minPitch": 0.75, "maxPitch": 2, "flutes": 3,
+   "cuttingData": [{"material": "aluminium", "surfaceSpeed": 110, "feedPerTooth": 0.045}]}
+]})");
+    const std::string job = R"({"clearance": 10, "material": "aluminium",
+  "tools": [{"number": 1, "library": "em6"}, {"number": 2, "library": "tm7"}],
+  "operations": [
+    {"type": "path", "tool": 1, "z": -1, "start": [0, 0], "path": [{"line": [30, 0]}]},
+    {"type": "bore-mill", "tool": 1, "diameter": 20, "retractPlane": 5, "endDepth": 6, "pitch": 1, "holes": [[50, 50]]},
+    {"type": "thread-mill", "tool": 2, "thread": "M10", "retractPlane": 5, "endDepth": 6, "holes": [[80, 50]]}
+  ]})";
+    ToolLibraryOptions options;
+    options.file = tools;
+    const Job j = read_job(job, "feeds.json", JobLimits{}, options);
+    CHECK(j.tools.at(1).rpm == 6366);  // floor(120 x 1000 / (pi x 6))
+    CHECK(j.tools.at(2).rpm == 5002);  // floor(110 x 1000 / (pi x 7))
+    // Path: floor(0.03 x 3 x 6366) = floor(572.94).
+    CHECK(op_at<PathOp>(j, 0).feed == 572);
+    // Bore 20 with a 6 mm tool: the centre at radius 7 of the wall's 10: floor(572 x 0.7) = 400.
+    const BoreMillOp& bore = op_at<BoreMillOp>(j, 1);
+    CHECK(bore.feed == 400);
+    CHECK(bore.ramp_feed == 400);
+    bool noted = false;
+    for (const std::string& n : bore.notes) noted = noted || n.find("the tool centre's feed is 400 mm/min: the computed 572 mm/min") == 0;
+    CHECK(noted);
+    // M10 internal with a 7 mm thread mill: edge floor(0.045 x 3 x 5002) = floor(675.27) = 675 at the major
+    // radius 5; the centre at 5 - 3.5 = 1.5: floor(675 x 0.3) = floor(202.5) = 202.
+    const ThreadMillOp& thread = op_at<ThreadMillOp>(j, 2);
+    CHECK(thread.feed == 202);
+    noted = false;
+    for (const std::string& n : thread.notes) noted = noted || n.find("the tool centre's feed is 202 mm/min: the computed 675") == 0;
+    CHECK(noted);
+    // The program writes them.
+    const Run r = run({"-", "--machine", "linuxcnc", "--tools", tools}, job);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK(r.out.find("F572") != std::string::npos);
+    CHECK(r.out.find("F400") != std::string::npos);
+    CHECK(r.out.find("F202") != std::string::npos);
+    // Without cutting data for the material the feed is still required, at its path.
+    std::string steel = job;
+    steel.replace(steel.find("\"aluminium\""), 11, "\"steel\"");
+    const Run bad = run({"-", "--machine", "linuxcnc", "--tools", tools}, steel);
+    CHECK(bad.code == 1);
+    CHECK(bad.err.find("/tools/0/library") != std::string::npos);
+    const std::string plain = R"({"clearance": 10, "tools": [{"number": 1, "type": "end-mill", "diameter": 6, "rpm": 1000}],
+  "operations": [{"type": "path", "tool": 1, "z": -1, "start": [0, 0], "path": [{"line": [30, 0]}]}]})";
+    const Run missing = run({"-", "--machine", "linuxcnc"}, plain);
+    CHECK(missing.code == 1);
+    CHECK(missing.err.find("/operations/0/feed: required key \"feed\" is missing") != std::string::npos);
+}
+
+TEST_CASE("a library turning tool's surface speed is not made an rpm of the tool's own diameter") {
+    const fs::path dir = scratch("toollib-turning");
+    const std::string tools = write_to(dir, "tools.json", R"({"tools": [
+  {"name": "cnmg", "type": "turning-tool", "diameter": 12,
+   "cuttingData": [{"material": "steel", "surfaceSpeed": 200, "feedPerRev": 0.2}]}]})");
+    const std::string job = R"({"clearance": 10, "material": "steel",
+  "tools": [{"number": 1, "library": "cnmg"}], "operations": []})";
+    const Run r = run({"-", "--machine", "fanuc-lathe", "--tools", tools}, job);
+    CHECK(r.code == 1);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("/tools/0/library: library tool \"cnmg\"") != std::string::npos);
+    CHECK(r.err.find("is a turning tool: its surfaceSpeed (200 m/min for steel) sets the work's surface speed") !=
+          std::string::npos);
+    // With the job's rpm it is used.
+    std::string with_rpm = job;
+    with_rpm.replace(with_rpm.find("\"library\": \"cnmg\""), 17, "\"library\": \"cnmg\", \"rpm\": 900");
+    CHECK(run({"-", "--machine", "fanuc-lathe", "--tools", tools}, with_rpm).code == 0);
 }

@@ -139,7 +139,8 @@ private:
     // the object has no such key; `library_tool`: read for a library (rpm optional).
     void read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool library_tool);
     // The library tool a job's tool names, the library read on first use.
-    const LibraryTool& library_tool(Fields& f, const std::string& name);
+    const LibraryTool& library_tool(Fields& f, std::string_view key, const std::string& name,
+                                    std::optional<std::int64_t> number);
     // rpm and cutting data of a tool from the library tool `entry` for the job's material.
     void apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entry, bool rpm_given);
 

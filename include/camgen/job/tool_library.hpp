@@ -1,9 +1,10 @@
 #pragma once
-// Tool libraries: JSON files of named tools (the keys of a job's tool, besides its number) with
+// Tool libraries: JSON files of named (and optionally numbered) tools (the keys of a job's tool) with
 // their cutting data per material, found as machine files are (--tools, CAMGEN_TOOLS,
-// $XDG_CONFIG_HOME/camgen/tools). A job's tool names one (key "library"); its spindle speed
+// $XDG_CONFIG_HOME/camgen/tools). A job's tool names one (key "library", or "libraryNumber"); its spindle speed
 // and its operations' feeds are computed from the cutting data for the job's "material" where
 // the job does not give them, within the machine's limits.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,6 +36,7 @@ struct CuttingData {
 // and its cutting data.
 struct LibraryTool {
     std::string name;
+    std::optional<std::int64_t> number;  // its library number, if it has one
     Tool tool;
     std::vector<CuttingData> cutting;
     std::string file;   // the library file it is in
@@ -47,6 +49,7 @@ struct ToolLibrary {
     std::vector<std::string> files;    // the files read, in order
     std::vector<std::string> searched; // where camgen looked, for "found nowhere"
     const LibraryTool* find(std::string_view name) const;
+    const LibraryTool* find_number(std::int64_t number) const;
 };
 
 // The objects of a library file, for its JSON Schema: the file ("toolLibrary"), a tool

@@ -142,6 +142,18 @@ std::optional<Finishing> read_finishing(json::Fields& f, const JobInput& in, dou
 // so appended to `notes`; else "feed" is required.
 CutFeeds read_cut_feeds(json::Fields& f, const JobInput& in, const Tool& tool, double engagement,
                         std::vector<std::string>& notes);
+// An operation's cutting feed "feed", or where it gives none the feed computed from its tool's
+// library cutting data (fz x flutes x rpm, fz corrected for a radial `engagement` below half
+// the diameter; 0: not known), else refused as missing. `circle`: the tool centre goes round a
+// circle of radius `circle->centre` to cut at radius `circle->wall` (a bore's or a thread's);
+// a computed feed is for the cutting edge, so the centre's is scaled by centre / wall (slower
+// inside a hole, faster outside a boss), with a note. What was computed goes to `notes`.
+struct CircularCut {
+    double centre = 0.0;  // mm, the tool centre's radius
+    double wall = 0.0;    // mm, the radius the tool cuts at
+};
+double read_cutting_feed(json::Fields& f, const JobInput& in, const Tool& tool, double engagement,
+                         std::vector<std::string>& notes, std::optional<CircularCut> circle = std::nullopt);
 // "stepDown" (absent: one pass), checked against the depth's pass count.
 std::optional<double> read_step_down(json::Fields& f, const JobInput& in, double total_depth);
 // The step between rings or rows: "stepOver" (a length) or "stepOverPercent" (of the tool's
