@@ -119,6 +119,10 @@ struct ViewText {
 };
 constexpr ViewText xy_view{"XY view from above; moves along Z only show as points.", "XY view", "X", "Y"};
 constexpr ViewText section_view{"XZ half-section: Z right, X (radius) up.", "XZ half-section", "Z", "X"};
+// A lathe that programs X as a diameter: the section is drawn to scale (the radius up), its
+// X labels are the program's diameters.
+constexpr ViewText section_view_diameter{"XZ half-section: Z right, X up, labelled as diameters.",
+                                         "XZ half-section", "Z", "X"};
 
 // A position of a lathe's program in the half-section drawn as XY: (Z, X, Y).
 Vec3 section_of(const Vec3& p) { return {p.z, p.x, p.y}; }
@@ -154,7 +158,7 @@ class BackplotDrawer::Impl {
 public:
     Impl(const BackplotPlan& plan, const ProgramStats& program_stats, const BackplotOptions& options)
         : options_(options),
-          view_(options.kind == MachineKind::lathe ? section_view : xy_view),
+          view_(options.kind != MachineKind::lathe ? xy_view : program_stats.x_diameter ? section_view_diameter : section_view),
           stats_(options.kind == MachineKind::lathe ? section_of(program_stats) : program_stats),
           plan_(plan) {
         const ViewText& view = view_;
@@ -170,6 +174,15 @@ public:
             double r = diameter_[tool] / 2.0;
             min_x = std::min(min_x, box.min.x - r), max_x = std::max(max_x, box.max.x + r);
             min_y = std::min(min_y, box.min.y - r), max_y = std::max(max_y, box.max.y + r);
+        }
+        // A lathe's bar (section: Z across, the radius up) is drawn whole.
+        if (options.kind == MachineKind::lathe && options.bar) {
+            const BackplotBar& bar = *options.bar;
+            const double u0 = bar.face_z - bar.length, u1 = bar.face_z, r = bar.diameter / 2.0;
+            if (!any) min_x = u0, max_x = u1, min_y = 0.0, max_y = r;
+            any = true;
+            min_x = std::min(min_x, u0), max_x = std::max(max_x, u1);
+            min_y = std::min(min_y, 0.0), max_y = std::max(max_y, r);
         }
         span = std::max({max_x - min_x, max_y - min_y, 10.0});
         double pad = span * 0.06;
@@ -194,16 +207,27 @@ public:
         for (double gx = std::ceil(min_x / step) * step; gx <= min_x + dx + 1e-9; gx += step)
             body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", n(v.x(gx)), n(top + draw_h + 14),
                                  mm(std::abs(gx) < 1e-9 ? 0.0 : gx)));
+        const double up_label = diameter_up() ? 2.0 : 1.0;
         for (double gy = std::ceil(min_y / step) * step; gy <= min_y + dy + 1e-9; gy += step)
             body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", n(left - 6), n(v.y(gy) + 3),
-                                 mm(std::abs(gy) < 1e-9 ? 0.0 : gy)));
+                                 mm(std::abs(gy) < 1e-9 ? 0.0 : gy * up_label)));
         body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} mm</text>", n(left + draw_w / 2), n(top + draw_h + 28),
                              view.across));
-        body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{} mm</text>",
-                             n(left - 40), n(top + draw_h / 2), n(left - 40), n(top + draw_h / 2), view.up));
+        body.add(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 {} {})\">{} mm{}</text>",
+                             n(left - 40), n(top + draw_h / 2), n(left - 40), n(top + draw_h / 2), view.up,
+                             options.kind != MachineKind::lathe ? "" : diameter_up() ? " (diameter)" : " (radius)"));
         body.add("</g>");
         body.add(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#bbb\"/>", n(left), n(top),
                              n(draw_w), n(draw_h)));
+        if (options.kind == MachineKind::lathe && options.bar) {
+            // The bar's outline: between its bore (a tube) or the axis and its outside.
+            const BackplotBar& bar = *options.bar;
+            const double u0 = bar.face_z - bar.length, u1 = bar.face_z, r = bar.diameter / 2.0;
+            const double inner = bar.bore_diameter ? *bar.bore_diameter / 2.0 : 0.0;
+            body.add(fmt::format("<path id=\"bar\" d=\"M{},{}H{}V{}H{}Z\" fill=\"#8a8a8a\" fill-opacity=\"0.12\" stroke=\"#666\" "
+                                 "stroke-width=\"1.2\"/>",
+                                 n(v.x(u0)), n(v.y(inner)), n(v.x(u1)), n(v.y(r)), n(v.x(u0))));
+        }
 
         // The work zero.
         if (0 >= min_x && 0 <= min_x + dx && 0 >= min_y && 0 <= min_y + dy) {
@@ -227,7 +251,10 @@ public:
     }
 
     void hole(const Hole& h) {
-        if (options_.kind == MachineKind::lathe) return;  // on the axis: no circle in a section
+        if (options_.kind == MachineKind::lathe) {
+            axis_hole(h);
+            return;
+        }
         const size_t i = holes_++;
         double r = std::max(diameter_[h.tool] / 2.0 * v.scale, 3.0);
         double cx = v.x(h.at.x), cy = v.y(h.at.y);
@@ -256,6 +283,34 @@ public:
         if (fresh_place) labels_.push_back({h.at, {}});
         labels_[it->second].second.push_back({number, h.tool});
     }
+
+    // A hole on a lathe's axis, in the half-section: its bottom (a line across the drill's
+    // radius, a dot on the axis) and its number in drilling order.
+    void axis_hole(const Hole& h) {
+        const size_t i = holes_++;
+        const Vec2 at{h.bottom_z, h.at.x};  // (Z, X): the section's (u, v)
+        const char* c = colour_of(h.tool);
+        const double cx = v.x(at.x), cy = v.y(at.y), r = diameter_[h.tool] / 2.0 * v.scale;
+        if (i < options_.exact || fresh(Cover::hole, h.tool, Vec3{at.x, at.y, 0.0}, Vec3{at.x, at.y, 0.0}, nullptr))
+            hole_marks_.add(fmt::format("<g{} stroke=\"{}\" stroke-width=\"1.2\"><path d=\"M{},{}V{}\"/><circle cx=\"{}\" cy=\"{}\" "
+                                        "r=\"3\" fill=\"{}\"/></g>",
+                                        mark({h.tool}, BackplotLayer::hole), c, n(cx), n(cy), n(cy - std::max(r, 3.0)), n(cx), n(cy), c));
+        else
+            ++thinned_;
+        const int number = static_cast<int>(i) + 1;
+        auto first_last = plan_.first_last.find(h.tool);
+        if (i >= options_.exact && (first_last == plan_.first_last.end() || number != first_last->second.second)) {
+            ++unnumbered_;
+            return;
+        }
+        auto key = std::make_pair(std::lround(at.x * 1000.0), std::lround(at.y * 1000.0));
+        auto [it, fresh_place] = label_at_.try_emplace(key, labels_.size());
+        if (fresh_place) labels_.push_back({at, {}});
+        labels_[it->second].second.push_back({number, h.tool});
+    }
+
+    // A lathe that programs X as a diameter: its X labels are diameters.
+    bool diameter_up() const { return options_.kind == MachineKind::lathe && stats_.x_diameter; }
 
     BackplotDrawing finish() {
         const ViewText& view = view_;
@@ -306,7 +361,8 @@ public:
                                n(ly - 4)));
         legend.add(fmt::format("<path d=\"M{},{}h18M{},{}v18\" stroke=\"#555\" stroke-width=\"0.8\"/>", n(lx + 9), n(ly - 4), n(lx + 18),
                                n(ly - 13)));
-        text(lx + 46, "hole (tool size), number = drilling order");
+        text(lx + 46, options.kind == MachineKind::lathe ? "hole on the axis (its bottom), drilling order"
+                                                         : "hole (tool size), number = drilling order");
         ly += 18;
         legend.add(fmt::format("<g stroke=\"#555\" stroke-width=\"1.2\"><rect x=\"{0}\" y=\"{1}\" width=\"8\" height=\"8\" "
                                "fill=\"#fff\"/><path d=\"M{0},{1}l8,8M{2},{1}l-8,8\"/></g>",
@@ -325,9 +381,15 @@ public:
             text(lx + 22, line, 11, "normal", "#444");
             ly += 15;
             if (!t.box.empty) {
-                text(lx + 22, fmt::format("X {} .. {}, Y {} .. {}, Z {} .. {}", n(t.box.min.x, 1), n(t.box.max.x, 1), n(t.box.min.y, 1),
-                                          n(t.box.max.y, 1), n(t.box.min.z, 1), n(t.box.max.z, 1)),
-                     11, "normal", "#444");
+                if (options.kind == MachineKind::lathe)
+                    text(lx + 22, fmt::format("X ({}) {} .. {}, Z {} .. {}", stats.x_diameter ? "diameter" : "radius",
+                                              n(t.box.min.x * (stats.x_diameter ? 2 : 1), 1), n(t.box.max.x * (stats.x_diameter ? 2 : 1), 1),
+                                              n(t.box.min.z, 1), n(t.box.max.z, 1)),
+                         11, "normal", "#444");
+                else
+                    text(lx + 22, fmt::format("X {} .. {}, Y {} .. {}, Z {} .. {}", n(t.box.min.x, 1), n(t.box.max.x, 1),
+                                              n(t.box.min.y, 1), n(t.box.max.y, 1), n(t.box.min.z, 1), n(t.box.max.z, 1)),
+                         11, "normal", "#444");
                 ly += 20;
             }
         }
@@ -374,7 +436,17 @@ public:
             text(lx, "(but the last of each tool) and are drawn as plain circles.", 11, "normal", "#777");
             ly += 15;
         }
-        text(lx, "No stock outline: the job format has no stock yet.", 11, "normal", "#777");
+        if (options.kind != MachineKind::lathe)
+            text(lx, "No stock outline: the job format has no stock yet.", 11, "normal", "#777");
+        else if (options.bar) {
+            text(lx, fmt::format("Grey: the job's bar, diameter {} mm,", mm(options.bar->diameter)), 11, "normal", "#777");
+            ly += 15;
+            text(lx, fmt::format("{} mm long{}, its face at Z {}.", mm(options.bar->length),
+                                 options.bar->bore_diameter ? fmt::format(" (bore {} mm)", mm(*options.bar->bore_diameter)) : "",
+                                 mm(options.bar->face_z)),
+                 11, "normal", "#777");
+        } else
+            text(lx, "No bar outline: no stock bar given by a job.", 11, "normal", "#777");
         ly += 15;
         text(lx, std::string(view.note), 11, "normal", "#777");
         ly += 10;
@@ -630,9 +702,12 @@ private:
 BackplotPlan::BackplotPlan(MachineKind kind) : kind_(kind) {}
 
 void BackplotPlan::hole(const Hole& h) {
-    if (kind_ == MachineKind::lathe) return;  // a lathe's holes are on the axis: no circles
-    hole_centres[h.tool].add(Vec3{h.at.x, h.at.y, 0.0});
-    places.push_back(h.at);
+    // A lathe's holes are on the axis: no circles to fit in the view, no plunges to tell apart
+    // from them; they are counted and numbered as a mill's.
+    if (kind_ != MachineKind::lathe) {
+        hole_centres[h.tool].add(Vec3{h.at.x, h.at.y, 0.0});
+        places.push_back(h.at);
+    }
     const int number = static_cast<int>(++holes);
     auto [it, fresh] = first_last.try_emplace(h.tool, number, number);
     if (!fresh) it->second.second = number;

@@ -548,7 +548,12 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
     add("<pre id=\"nc-before\"></pre><pre id=\"nc-current\"><span id=\"nc-no\"></span>  <span id=\"nc-text\"></span></pre>"
         "<pre id=\"nc-after\"></pre>\n");
     add("<h2>Tool after this block</h2>\n<table>\n");
-    add(lathe ? "<tr><th>X</th><td class=\"num\" id=\"pos-x\"></td><td>mm (radius)</td></tr>\n"
+    // A lathe's X as the program writes it first (a diameter under xDiameterProg), the other beside it.
+    add(lathe && stats.x_diameter
+            ? "<tr><th>X</th><td class=\"num\" id=\"pos-d\"></td><td>mm (diameter, as programmed)</td></tr>\n"
+              "<tr><th>r</th><td class=\"num\" id=\"pos-x\"></td><td>mm (radius)</td></tr>\n"
+              "<tr hidden><th>Y</th><td class=\"num\" id=\"pos-y\"></td><td>mm</td></tr>\n"
+        : lathe ? "<tr><th>X</th><td class=\"num\" id=\"pos-x\"></td><td>mm (radius, as programmed)</td></tr>\n"
                 "<tr><th>&#216;</th><td class=\"num\" id=\"pos-d\"></td><td>mm (diameter)</td></tr>\n"
                 "<tr hidden><th>Y</th><td class=\"num\" id=\"pos-y\"></td><td>mm</td></tr>\n"
               : "<tr><th>X</th><td class=\"num\" id=\"pos-x\"></td><td>mm</td></tr>\n"
@@ -565,7 +570,7 @@ void HtmlPlot::Impl::write(std::ostream& out, const std::function<std::istream&(
                         t.tool, html_text(t.description)));
     std::array<std::size_t, std::size(backplot_layers)> counts = counts_;
     counts[static_cast<std::size_t>(BackplotLayer::width)] = counts[static_cast<std::size_t>(BackplotLayer::feed)];
-    counts[static_cast<std::size_t>(BackplotLayer::hole)] = lathe ? 0 : plan_.holes;
+    counts[static_cast<std::size_t>(BackplotLayer::hole)] = plan_.holes;
     for (const auto& layer : backplot_layers) {
         const std::size_t n = counts[static_cast<std::size_t>(layer.value)];
         const bool moves = layer.value != BackplotLayer::width && layer.value != BackplotLayer::hole;

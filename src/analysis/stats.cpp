@@ -50,6 +50,11 @@ std::string range(const Box& b, int axis) {
 
 }  // namespace
 
+std::string lathe_x_range(const Box& b, bool diameter) {
+    const double k = diameter ? 2.0 : 1.0;
+    return fmt::format("{} .. {}", num(k * b.min.x), num(k * b.max.x));
+}
+
 void Box::add(const Vec3& p) {
     if (empty) {
         min = max = p;
@@ -86,6 +91,8 @@ Box box_of(const Step& s) {
 
 StatsAccumulator::StatsAccumulator(const Machine& machine) : limits_(machine.limits) {
     stats_.rapid_rate = limits_.rapid_rate;
+    stats_.kind = machine.kind;
+    stats_.x_diameter = machine.kind == MachineKind::lathe && machine.x_diameter;
 }
 
 ToolStats& StatsAccumulator::tool_stats(int tool) {
@@ -181,7 +188,9 @@ std::string format_stats(const ProgramStats& st) {
         rapid += fmt::format(" (+ {} rapid{} from the tool-change position, not measured)", st.unmeasured_rapids,
                              st.unmeasured_rapids == 1 ? "" : "s");
     line("rapid path", rapid);
-    line("rapid in XY", num(st.rapid_xy_length) + " mm");
+    // A lathe has no Y: its rapids' projection on XZ is the rapid path itself.
+    const bool lathe = st.kind == MachineKind::lathe;
+    if (!lathe) line("rapid in XY", num(st.rapid_xy_length) + " mm");
     line("lowest Z", st.lowest_z ? num(*st.lowest_z) + " mm" : std::string("-"));
     line("time", fmt::format("{} (feed {}, rapid {} at {} mm/min, dwell {}){}", format_duration(st.total_time()),
                              format_duration(st.feed_time), format_duration(st.rapid_time), num(st.rapid_rate, 0),
@@ -210,7 +219,10 @@ std::string format_stats(const ProgramStats& st) {
     if (!kinds.empty()) line("feed by kind", fmt::format("{}", fmt::join(kinds, ", ")));
     for (const ToolStats& t : st.tools) {
         line(fmt::format("tool {}", t.tool), t.description.empty() ? std::string("-") : t.description);
-        if (!t.box.empty)
+        if (!t.box.empty && lathe)
+            line("", fmt::format("X ({}) {}  Z {}", st.x_diameter ? "diameter" : "radius", lathe_x_range(t.box, st.x_diameter),
+                                 range(t.box, 2)));
+        else if (!t.box.empty)
             line("", fmt::format("X {}  Y {}  Z {}", range(t.box, 0), range(t.box, 1), range(t.box, 2)));
         line("", fmt::format("{} hole{}, feed {} mm, rapid {} mm, {}", t.holes, t.holes == 1 ? "" : "s", num(t.feed_length),
                              num(t.rapid_length), format_duration(t.time)));

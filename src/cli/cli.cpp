@@ -212,6 +212,13 @@ ToolLibraryOptions library_options(const std::string& tools, const Machine* mach
     return options;
 }
 
+// The job's stock bar for a lathe's backplot (none: the job gives no bar).
+std::optional<BackplotBar> backplot_bar(const Job& job) {
+    if (!job.stock || job.stock->shape != StockShape::bar) return std::nullopt;
+    const Stock& s = *job.stock;
+    return BackplotBar{s.diameter, s.length, s.face_z, s.bore_diameter};
+}
+
 std::string job_stem(const std::string& file) {
     if (file == "-") return "job";
     std::string s = file.substr(file.find_last_of('/') + 1);
@@ -629,8 +636,10 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
     for (const std::string& note : back->notes()) out << "note: " << note << '\n';
     if (!v.plot.empty()) {
         OutputFile plot(v.plot);
-        back->write_plot(plot.stream(), [&]() -> std::istream& { return program.open(); },
-                         {base_name(source), machine.name, machine.kind});
+        BackplotOptions plot_options;
+        plot_options.title = base_name(source), plot_options.machine = machine.name, plot_options.kind = machine.kind;
+        if (job) plot_options.bar = backplot_bar(*job);
+        back->write_plot(plot.stream(), [&]() -> std::istream& { return program.open(); }, plot_options);
         plot.commit();
     }
     if (!job) {
@@ -910,8 +919,10 @@ void read_back(std::string_view program, const Job& job, const Options& o, const
         for (const std::string& note : back.notes()) err << "camgen: note: " << note << '\n';
     if (o.plot.empty()) return;
     TextStream text(program);
-    back.write_plot(plot.emplace(o.plot).stream(), [&]() -> std::istream& { return text.open(); },
-                    {name, machine.name, machine.kind});
+    BackplotOptions plot_options;
+    plot_options.title = name, plot_options.machine = machine.name, plot_options.kind = machine.kind;
+    plot_options.bar = backplot_bar(job);
+    back.write_plot(plot.emplace(o.plot).stream(), [&]() -> std::istream& { return text.open(); }, plot_options);
 }
 
 }  // namespace

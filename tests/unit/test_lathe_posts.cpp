@@ -146,7 +146,7 @@ TEST_CASE("--plot of a lathe program is an XZ half-section: Z across, the radius
     const std::string svg = test::read_file(dir + "/s.svg");
     CHECK(has(svg, "XZ half-section</text>"));
     CHECK(has(svg, ">Z mm</text>"));
-    CHECK(has(svg, ">X mm</text>"));
+    CHECK(has(svg, ">X mm (diameter)</text>"));  // fanuc-lathe programs diameters
     CHECK(has(svg, ">Z0 X0</text>"));
     // The R5 fillet is drawn as an SVG arc (the section maps G18 arcs onto the drawing's plane).
     CHECK(std::regex_search(svg, std::regex("A[0-9.]+,[0-9.]+ 0 0 [01] ")));

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +40,14 @@ enum class BackplotLayers {
               // drawn apart by movement kind (the HTML page switches layers with them)
 };
 
+// A lathe's bar as the job's stock gives it (mm): drawn as its outline in the half-section.
+struct BackplotBar {
+    double diameter = 0.0;
+    double length = 0.0;                  // along Z, back from the face
+    double face_z = 0.0;                  // Z of the face
+    std::optional<double> bore_diameter;  // a tube's inner diameter
+};
+
 struct BackplotOptions {
     std::string title;    // the program's name ("plate.nc")
     std::string machine;  // the machine's name
@@ -53,6 +62,8 @@ struct BackplotOptions {
     // last: the drawing of a program of millions of lines stays within what its picture
     // shows. The legend says how many were left out.
     std::size_t exact = 10000;
+    // A lathe's bar (the job's stock, where a job is given): its outline in the half-section.
+    std::optional<BackplotBar> bar;
 };
 
 // Where a drawing puts a position, in SVG user units: x = left + (u - min_u) * scale and

@@ -57,6 +57,10 @@ struct ProgramStats {
     std::vector<StopNote> stop_notes;  // the first of them, with their lines and messages
     Box box;
     std::vector<ToolStats> tools;   // in order of first use
+    // The machine's kind and how it programs X: a lathe's statistics say X as the program does
+    // (a diameter under xDiameterProg; the boxes stay radii) and have no Y.
+    MachineKind kind = MachineKind::mill;
+    bool x_diameter = false;
     double total_time() const { return feed_time + rapid_time + dwell_time; }
 };
 
@@ -82,6 +86,10 @@ ProgramStats compute_stats(const Trace& trace, const Machine& machine);
 
 // A time as people read it: "50.3 s", "2 min 05.3 s", "1 h 02 min 05.3 s".
 std::string format_duration(double seconds);
+
+// A lathe's X extent of a box as the program writes X: "24.000 .. 44.000" (twice the box's
+// radii where `diameter`, xDiameterProg), mm.
+std::string lathe_x_range(const Box& box, bool diameter);
 
 // The statistics as lines of text, numbers through a fixed formatter (deterministic).
 std::string format_stats(const ProgramStats& stats);
