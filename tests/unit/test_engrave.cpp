@@ -3,6 +3,7 @@
 // independently), its alignment, spacing and placement along a line and around an arc, the
 // strokes' order, a V-bit's line width, paths, and the refusals with their JSON paths.
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -424,6 +425,33 @@ TEST_CASE("engrave: refusals name the JSON path: a character the font lacks, a b
     CHECK(error_of(engrave_job(R"("text": "ABCDEFGHIJ", "height": 5, "centre": [0, 0], "radius": 5, "depth": 0.2)")).find("/operations/0/radius: line 1 of the text is ") != std::string::npos);
     CHECK(error_of(engrave_job(R"("text": "A", "height": 5, "at": [0, 0], "depth": 0)")).find("/operations/0/depth") != std::string::npos);
     CHECK(error_of(engrave_job(R"("text": "A", "start": [0, 0], "height": 5, "at": [0, 0], "depth": 0.2)")).find("exactly one of text, a path") != std::string::npos);
+}
+
+TEST_CASE("engrave: camgen simulate finds a stroke cut 0.1 mm too deep as a gouge of its operation") {
+    // samples/engrave.json on linuxcnc simulates as designed (test_simulate_design.cpp runs it on
+    // every mill); its second stroke (the N's upright, 4 mm long) plunged to Z-0.3 instead of
+    // Z-0.2 and cut there is a gouge 0.1 mm below the design at that stroke.
+    const std::filesystem::path dir = test::scratch("engrave-gouge");
+    const std::string job = CAMGEN_SOURCE_DIR "/samples/engrave.json";
+    const std::string program = (dir / "e.ngc").string();
+    REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
+    std::string text = test::read_file(program);
+    const test::Run ok = test::run({"simulate", program, "--machine", "linuxcnc", "--job", job});
+    CHECK(ok.code == 0);
+    CHECK_MESSAGE(ok.out.find("  the part is as designed\n") != std::string::npos, ok.out);
+    const std::string plunge = "G1 Z-0.2 F100";
+    std::size_t at = text.find(plunge);
+    REQUIRE(at != std::string::npos);
+    at = text.find(plunge, at + 1);
+    REQUIRE(at != std::string::npos);
+    const int line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')) + 1;
+    text.replace(at, plunge.size(), "G1 Z-0.3 F100");
+    const std::string deep = (dir / "deep.ngc").string();
+    std::ofstream(deep) << text;
+    const test::Run r = test::run({"simulate", deep, "--machine", "linuxcnc", "--job", job});
+    CHECK(r.code == 1);
+    CHECK_MESSAGE(r.out.find("error: gouge: /operations/0 (stroke 1): material removed 0.1 mm below the designed -0.2 at ") != std::string::npos, r.out);
+    CHECK_MESSAGE(r.out.find(fmt::format(", by line {} (", line)) != std::string::npos, r.out);
 }
 
 }  // namespace test_engrave
