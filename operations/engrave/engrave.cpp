@@ -377,6 +377,7 @@ EngraveOp EngraveOp::read(Fields& f, const JobInput& in) {
             place.on_arc = true;
             place.centre = in.point(f, "centre");
             place.radius = in.length(f, "radius");
+            if (!(place.radius > 0)) f.fail("radius", "radius must be > 0");
             place.start_angle = f.optional_number("startAngle").value_or(90.0);
             if (!(std::abs(place.start_angle) <= 360.0)) f.fail("startAngle", "startAngle must be from -360 to 360 degrees");
             place.direction = f.choice("direction", arc_directions, ArcDirection::cw);
