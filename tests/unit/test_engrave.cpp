@@ -403,6 +403,30 @@ TEST_CASE("engrave: a path and a profile engraved on their line") {
     CHECK(std::get<EngraveOp>(read_job(circle, "e.json").operations.at(0)).strokes.size() == 1);
 }
 
+TEST_CASE("engrave: every profile of a DXF drawing's selection, open or closed, in nearest order") {
+    // A line (10,10)-(30,10), an arc about (50,30) of radius 5 from 0 to 180 degrees, a circle
+    // about (20,30) of radius 4, on layer MARK: three strokes; from the circle (the first, from
+    // and back to (24, 30)) the line's end (30, 10) is the nearest: the line is cut reversed, to
+    // (10, 10); from there the arc's end (45, 30) is nearer than its start (55, 30): the arc is
+    // cut reversed too (clockwise).
+    const std::filesystem::path dir = test::scratch("engrave-dxf");
+    std::ofstream(dir / "m.dxf") << "0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nMARK\n10\n10\n20\n10\n30\n0\n11\n30\n21\n10\n31\n0\n"
+                                  "0\nARC\n8\nMARK\n10\n50\n20\n30\n30\n0\n40\n5\n50\n0\n51\n180\n"
+                                  "0\nCIRCLE\n8\nMARK\n10\n20\n20\n30\n30\n0\n40\n4\n0\nENDSEC\n0\nEOF\n";
+    const std::string job = engrave_job(R"("profile": {"dxf": "m.dxf", "layer": "MARK"}, "depth": 0.2)", R"("type": "v-bit", "diameter": 3, "tipAngle": 90)");
+    const Job j = read_job(job, (dir / "e.json").string());
+    const auto& op = std::get<EngraveOp>(j.operations.at(0));
+    REQUIRE(op.strokes.size() == 3);
+    CHECK(op.width == doctest::Approx(0.4));
+    CHECK(op.strokes[0].start == Vec2{24, 30});
+    CHECK(op.strokes[1].start == Vec2{30, 10});
+    CHECK(op.strokes[1].segments.at(0).end == Vec2{10, 10});
+    CHECK(op.strokes[2].start == Vec2{45, 30});
+    REQUIRE(op.strokes[2].segments.size() == 1);
+    CHECK(op.strokes[2].segments[0].end == Vec2{55, 30});
+    CHECK(op.strokes[2].segments[0].direction == ArcDirection::cw);
+}
+
 TEST_CASE("engrave: refusals name the JSON path: a character the font lacks, a bad font, a wrong tool, flutes") {
     CHECK(error_of(engrave_job(R"("text": "Nº 12", "height": 5, "at": [0, 0], "depth": 0.2)")) ==
           "e.json:4: /operations/0/text: character 2 of the text, 'º' (U+00BA), is not in font rowmans (it has characters U+0020 to U+007F)");
