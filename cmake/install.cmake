@@ -64,6 +64,8 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME camgen)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SECTION misc)
 # libfmt, libcairo2, libstdc++ and libc as dpkg-shlibdeps finds them in the executable.
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
+# The engrave operation's single-stroke fonts, read at run time from /usr/share/hershey-fonts.
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "hershey-fonts-data")
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "bash-completion")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME camgen-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)

@@ -93,6 +93,7 @@ public:
                                  [&](const FaceOp& o) { face(o); },
                                  [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
                                  [&](const ThreadMillOp& o) { thread(o); },
+                                 [&](const EngraveOp& o) { engrave(o); },
                                  [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
                                  [&](const StopOp&) {},
                                  // A lathe's part: design_lathe.cpp.
@@ -180,6 +181,59 @@ private:
         }
         design_.cuts.push_back(std::move(cut));
         design_.keeps.push_back(std::move(keep));
+    }
+
+    // Engraving: each stroke's piece a band of the line's width about it (a stadium: a
+    // rectangle with half discs at its ends; a stroke without length a disc), down to the depth.
+    // A V's, a ball's or a bull-nose's flanks rise from that floor towards the band's edges: the
+    // band may keep material there (may_leave), but nothing in it may be cut below the depth.
+    void engrave(const EngraveOp& op) {
+        const Tool* tool = tool_of(op.tool);
+        if (!tool) return skip(op.path, "its tool is not in the job");
+        const Planes z = resolve_planes(op.heights);
+        const double h = op.width / 2.0;
+        const bool flat = tool->type == ToolType::end_mill;
+        auto add = [&](PlaneRegion region, std::size_t stroke) {
+            DesignCut cut;
+            cut.path = op.path;
+            cut.what = fmt::format("stroke {}", stroke);
+            cut.region = std::move(region);
+            cut.floor.z = z.bottom_z;
+            cut.top_z = z.reference_z;
+            cut.may_leave = !flat;
+            design_.cuts.push_back(std::move(cut));
+        };
+        std::vector<Vec2> dots;
+        for (std::size_t k = 0; k < op.strokes.size(); ++k) {
+            const std::vector<Vec2> pts = sample_profile(op.strokes[k], 0.005);
+            if (op.strokes[k].segments.empty() || pts.size() < 2) {
+                dots.push_back(op.strokes[k].start);
+                continue;
+            }
+            for (std::size_t i = 1; i < pts.size(); ++i) {
+                const Vec2 a = pts[i - 1], b = pts[i];
+                const double len = distance(a, b);
+                if (len < 1e-9) continue;
+                const Vec2 n = Vec2{-(b.y - a.y), b.x - a.x} * (h / len);
+                PlaneRegion r;
+                r.outer.start = a + n;
+                r.outer.segments = {{b + n, std::nullopt, ArcDirection::ccw},
+                                    {b - n, b, ArcDirection::cw},
+                                    {a - n, std::nullopt, ArcDirection::ccw},
+                                    {a + n, a, ArcDirection::cw}};
+                add(normalised(r), k);
+            }
+        }
+        if (!dots.empty()) {
+            DesignCut cut;
+            cut.path = op.path;
+            cut.what = "dot";
+            cut.discs = DesignDiscs{dots, h, 0.0};
+            cut.floor.z = z.bottom_z;
+            cut.top_z = z.reference_z;
+            cut.may_leave = !flat;
+            design_.cuts.push_back(std::move(cut));
+        }
     }
 
     void bore(const BoreMillOp& op) {

@@ -38,7 +38,8 @@ std::vector<KeySpec> height_keys(bool with_safe_distance) {
     return keys;
 }
 
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what) {
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key) {
+    const bool end_depth = depth_key == "endDepth";
     Heights p;
     p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
     // A mill's stock gives the stock top; without one it is Z0.
@@ -46,22 +47,24 @@ Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what)
     p.reference_plane = in.optional_length(f, "referencePlane").value_or(stock ? stock->top() : 0.0);
     p.safe_distance = in.optional_length(f, "safeDistance");
     p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
-    p.end_depth = in.length(f, "endDepth");
-    p.end_depth_is_absolute = f.boolean("endDepthIsAbsolute", false);
+    p.end_depth = in.length(f, depth_key);
+    p.end_depth_is_absolute = end_depth && f.boolean("endDepthIsAbsolute", false);
 
     if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)
         f.fail("safeDistance",
                "a relative safeDistance cannot be negative (it is measured up from "
                "referencePlane; set safeDistanceIsAbsolute for an absolute Z)");
+    if (!end_depth && !(p.end_depth > 0))
+        f.fail(depth_key, fmt::format("{} must be > 0 (it is the depth below referencePlane)", depth_key));
     if (!p.end_depth_is_absolute && p.end_depth <= 0)
         f.fail("endDepth",
                "a relative endDepth must be > 0 (it is the depth below referencePlane; set "
                "endDepthIsAbsolute for an absolute Z)");
     const Planes z = resolve_planes(p);
     if (z.bottom_z >= z.safe_z)
-        f.fail("endDepth", fmt::format("endDepth is above the safe distance ({} bottom at Z {}, "
+        f.fail(depth_key, fmt::format("{} is above the safe distance ({} bottom at Z {}, "
                                        "safe distance at Z {})",
-                                       what, in.show(z.bottom_z), in.show(z.safe_z)));
+                                       depth_key, what, in.show(z.bottom_z), in.show(z.safe_z)));
     if (p.retract_plane < z.safe_z)
         f.fail("retractPlane",
                fmt::format("retractPlane is below the safe distance (retract plane at Z {}{}, "

@@ -95,13 +95,14 @@ TEST_CASE("docs: the tool library's key tables are its key tables") {
     }
 }
 
-TEST_CASE("docs: the contour, path, bore-mill, thread-mill, stop, custom, pocket and face key tables are the operations' key tables") {
+TEST_CASE("docs: the contour, path, bore-mill, thread-mill, engrave, stop, custom, pocket and face key tables are the operations' key tables") {
     std::vector<ObjectSpec> objects = ContourOp::objects();
     const std::vector<ObjectSpec> path = PathOp::objects();
     objects.insert(objects.end(), path.begin(), path.end());
     // bore-mill's own object (its hole sources are drilling's, documented there).
     objects.push_back(BoreMillOp::objects().front());
     objects.push_back(ThreadMillOp::objects().front());
+    objects.push_back(EngraveOp::objects().front());
     objects.push_back(StopOp::objects().front());
     objects.push_back(CustomOp::objects().front());
     // pocket's and face's own objects (their leads, ramps and finishing are contour's).

@@ -41,7 +41,8 @@ std::vector<KeySpec> height_keys(bool with_safe_distance);
 // that top is refused. The
 // bottom below the safe distance, the safe distance not below the stock top, the retract
 // plane above the stock top and not below the safe distance. `what` names the cut in
-// messages ("hole", "pass").
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what);
+// messages ("hole", "pass"). `depth_key`: the key of the depth; another than "endDepth" (the
+// engrave operation's "depth") is always relative, > 0, without an "...IsAbsolute" key.
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key = "endDepth");
 
 }  // namespace camgen

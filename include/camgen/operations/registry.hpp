@@ -17,6 +17,7 @@
 #include "camgen/operations/contour/contour.hpp"
 #include "camgen/operations/custom/custom.hpp"
 #include "camgen/operations/drill/drill.hpp"
+#include "camgen/operations/engrave/engrave.hpp"
 #include "camgen/operations/face/face.hpp"
 #include "camgen/operations/path/path.hpp"
 #include "camgen/operations/pocket/pocket.hpp"
@@ -60,7 +61,7 @@ constexpr bool uses_tool() {
 
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp,
-                               ThreadMillOp>;
+                               ThreadMillOp, EngraveOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {
