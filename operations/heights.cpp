@@ -38,7 +38,7 @@ std::vector<KeySpec> height_keys(bool with_safe_distance) {
     return keys;
 }
 
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what) {
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::optional<double> depth) {
     Heights p;
     p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
     // A mill's stock gives the stock top; without one it is Z0.
@@ -46,8 +46,8 @@ Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what)
     p.reference_plane = in.optional_length(f, "referencePlane").value_or(stock ? stock->top() : 0.0);
     p.safe_distance = in.optional_length(f, "safeDistance");
     p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
-    p.end_depth = in.length(f, "endDepth");
-    p.end_depth_is_absolute = f.boolean("endDepthIsAbsolute", false);
+    p.end_depth = depth ? *depth : in.length(f, "endDepth");
+    p.end_depth_is_absolute = depth ? false : f.boolean("endDepthIsAbsolute", false);
 
     if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)
         f.fail("safeDistance",

@@ -41,7 +41,8 @@ std::vector<KeySpec> height_keys(bool with_safe_distance);
 // that top is refused. The
 // bottom below the safe distance, the safe distance not below the stock top, the retract
 // plane above the stock top and not below the safe distance. `what` names the cut in
-// messages ("hole", "pass").
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what);
+// messages ("hole", "pass"). `depth`: an operation whose depth follows from its tool (a
+// chamfer) gives it here, below the reference plane; endDepth is then not read.
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::optional<double> depth = std::nullopt);
 
 }  // namespace camgen
