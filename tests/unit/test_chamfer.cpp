@@ -295,13 +295,14 @@ TEST_CASE("camgen simulate: samples/chamfer.json's chamfers as designed on every
             CHECK_MESSAGE(r.out.find("error: gouge: " + owner + ": material removed 0.0") != std::string::npos, r.out);
         }
     }
-    // The outline's chamfer 0.05 too deep: its program's tip depth Z-0.7 made Z-0.75 by hand.
+    // The outline's chamfer 0.05 too deep: its program's tip depth Z-0.7 made Z-0.75 by hand
+    // (the plunge; the moves after it keep its Z).
     const std::string program = (dir / "deep.ngc").string();
     REQUIRE(test::run({job, "--machine", "linuxcnc", "-q", "-o", program}).code == 0);
     std::string nc = test::read_file(program);
     int edits = 0;
-    for (std::size_t at = nc.find("Z-0.7\n"); at != std::string::npos; at = nc.find("Z-0.7\n", at)) {
-        nc.replace(at, 6, "Z-0.75\n");
+    for (std::size_t at = nc.find("Z-0.7 "); at != std::string::npos; at = nc.find("Z-0.7 ", at + 7)) {
+        nc.replace(at, 6, "Z-0.75 ");
         ++edits;
     }
     REQUIRE(edits > 0);

@@ -102,6 +102,7 @@ TEST_CASE("docs: the contour, path, bore-mill, thread-mill, stop, custom, pocket
     // bore-mill's own object (its hole sources are drilling's, documented there).
     objects.push_back(BoreMillOp::objects().front());
     objects.push_back(ThreadMillOp::objects().front());
+    objects.push_back(ChamferOp::objects().front());
     objects.push_back(StopOp::objects().front());
     objects.push_back(CustomOp::objects().front());
     // pocket's and face's own objects (their leads, ramps and finishing are contour's).
