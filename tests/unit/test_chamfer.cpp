@@ -223,10 +223,15 @@ TEST_CASE("chamfer: a tool that cannot cut it is refused at the JSON path, namin
 }
 
 TEST_CASE("chamfer: a lead-in through the part is refused by the part-aware check") {
-    // An arc lead of 3 on the part's side (side left of a counter-clockwise square: inside).
-    chamfer_refused(chamfer_job(R"("width": 0.5, "side": "outside", "leadIn": {"type": "line", "length": 3, "angle": -90}, )" +
+    // Inside the 40 x 30 square a half-circle lead of radius 20 starts 40 from the wall: beyond
+    // the opposite wall, in the part.
+    chamfer_refused(chamfer_job(R"("width": 0.5, "side": "inside", "leadIn": {"type": "arc", "radius": 20, "sweep": 180}, )" +
                                 chamfer_square),
-                    "/operations/0/leadIn", "lead-in");
+                    "/operations/0/leadIn", "in the material");
+    // A lead of radius 5 fits.
+    CHECK_NOTHROW(read_job(chamfer_job(R"("width": 0.5, "side": "inside", "leadIn": {"type": "arc", "radius": 5, "sweep": 180}, )" +
+                                       chamfer_square),
+                           "t.json"));
 }
 
 TEST_CASE("chamfer: the design's face slopes from the edge; the part beyond it is kept") {
