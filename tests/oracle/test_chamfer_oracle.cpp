@@ -123,7 +123,7 @@ TEST_CASE("chamfer: rs274 runs samples/chamfer.json for linuxcnc and fanuc; the 
         for (const Vec3& p : v.points)
             if (p.z < 0.0) CHECK(plate_distance(p.x, p.y) >= nearest - 1e-9);
         const double width = (0.0 - v.lowest) * t45 - nearest, depth = -(v.lowest + nearest / t45);
-        MESSAGE(name << " outline chamfer: tip Z " << v.lowest << ", centre " << nearest << " from the edge: width " << width
+        MESSAGE(std::string(name) << " outline chamfer: tip Z " << v.lowest << ", centre " << nearest << " from the edge: width " << width
                      << ", depth " << depth << " (" << along << " points along it)");
         CHECK(std::abs(width - 0.5) <= 0.001);
         CHECK(std::abs(depth - 0.5) <= 0.001);
@@ -142,7 +142,7 @@ TEST_CASE("chamfer: rs274 runs samples/chamfer.json for linuxcnc and fanuc; the 
                 }
             const double offset = 4.0 - farthest;
             const double hole_width = 0.5 + (0.0 - c.lowest) * t45 - offset, hole_depth = -(c.lowest + (offset - 0.5) / t45);
-            MESSAGE(name << " hole (" << axis.x << ", " << axis.y << ") chamfer: width " << hole_width << ", depth " << hole_depth);
+            MESSAGE(std::string(name) << " hole (" << axis.x << ", " << axis.y << ") chamfer: width " << hole_width << ", depth " << hole_depth);
             CHECK(std::abs(hole_width - 1.0) <= 0.001);
             CHECK(std::abs(hole_depth - 1.0) <= 0.001);
         }
