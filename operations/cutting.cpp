@@ -456,8 +456,8 @@ void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
                                    tool.number, tool.path, what));
     if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit) return;
     f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
-                               "of a pointed tool is not its diameter); chamfering and engraving operations for "
-                               "chamfer mills and V-bits are planned (issue 29)",
+                               "of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the "
+                               "chamfer operation",
                                tool.number, tool_types[static_cast<int>(tool.type)].description, what));
 }
 

@@ -16,6 +16,13 @@ namespace camgen {
 
 namespace {
 
+// A flat floor at z.
+DesignFloor design_flat(double z) {
+    DesignFloor f;
+    f.z = z;
+    return f;
+}
+
 // The largest region of an offset (the one a band is made of), or none.
 std::optional<PlaneRegion> design_largest(const RegionOffset& o) {
     std::optional<PlaneRegion> best;
@@ -94,6 +101,7 @@ public:
                                  [&](const PathOp& o) { skip(o.path, "a path has no designed part"); },
                                  [&](const ThreadMillOp& o) { thread(o); },
                                  [&](const EngraveOp& o) { engrave(o); },
+                                 [&](const ChamferOp& o) { chamfer(o); },
                                  [&](const CustomOp& o) { skip(o.path, "custom blocks have no designed part"); },
                                  [&](const StopOp&) {},
                                  // A lathe's part: design_lathe.cpp.
@@ -135,7 +143,7 @@ private:
         const Tool* tool = tool_of(op.tool);
         if (!tool) return skip(op.path, "its tool is not in the job");
         const DrillCycle c = resolve_cycle(op, *tool);
-        DesignFloor floor{c.bottom_z, std::nullopt, 0.0};
+        DesignFloor floor = design_flat(c.bottom_z);
         if (tool->tip_angle && *tool->tip_angle > 0.0 && *tool->tip_angle < 180.0) {
             floor.apex = Vec2{0.0, 0.0};  // placed at each hole
             floor.slope = 1.0 / std::tan(*tool->tip_angle / 2.0 * rad_per_deg);
@@ -161,7 +169,7 @@ private:
         DesignCut cut;
         cut.path = op.path;
         cut.what = "thread";
-        cut.floor = DesignFloor{z.bottom_z - rise, std::nullopt, 0.0};
+        cut.floor = design_flat(z.bottom_z - rise);
         cut.top_z = z.reference_z;
         cut.may_leave = true;
         DesignKeep keep;
@@ -233,12 +241,85 @@ private:
             cut.top_z = z.reference_z;
             cut.may_leave = !flat;
             design_.cuts.push_back(std::move(cut));
+    // A chamfer: its sloped face as a cut whose floor rises with the distance from the edge (a
+    // hole's: from its centre), `width` into the part; on the air side the cone's continuation
+    // down to the tip's depth (may_leave: beyond the tool's axis its cone rises again); the part
+    // beyond the chamfer kept up to the top face. Open profiles have none.
+    void chamfer(const ChamferOp& op) {
+        const Planes z = resolve_planes(op.heights);
+        const ChamferGeometry& g = op.geometry;
+        const double slope = 1.0 / std::tan(op.angle * rad_per_deg);
+        const double lower = z.reference_z - g.height;  // the chamfer's lower edge
+        const double band = band_for(2.0 * g.reach);
+        auto add_cut = [&](std::string what, DesignFloor floor, bool may_leave) -> DesignCut& {
+            DesignCut cut;
+            cut.path = op.path;
+            cut.what = std::move(what);
+            cut.floor = std::move(floor);
+            cut.top_z = z.reference_z;
+            cut.may_leave = may_leave;
+            design_.cuts.push_back(std::move(cut));
+            return design_.cuts.back();
+        };
+        auto add_keep = [&](std::string what) -> DesignKeep& {
+            DesignKeep keep;
+            keep.path = op.path;
+            keep.what = std::move(what);
+            keep.top_z = z.reference_z;
+            design_.keeps.push_back(std::move(keep));
+            return design_.keeps.back();
+        };
+        if (op.on_holes()) {
+            if (op.holes.empty()) return;
+            const double r = op.diameter / 2.0;
+            // About each hole's centre: lower + slope x (distance - r).
+            DesignFloor floor = design_flat(lower - slope * r);
+            floor.apex = Vec2{0.0, 0.0};
+            floor.slope = slope;
+            add_cut("the chamfer of hole", floor, false).discs = DesignDiscs{op.holes, r + op.width, r};
+            floor.lowest = z.bottom_z;
+            add_cut("the tool's cone inside hole", floor, true).discs = DesignDiscs{op.holes, r, 0.0};
+            add_keep("the part beyond the chamfer of hole").discs = DesignDiscs{op.holes, r + op.width + band, r + op.width};
+            return;
+        }
+        if (!is_closed(op.profile)) return skip(op.path, "only a chamfer of a closed profile has a designed part");
+        PlaneRegion shape;
+        shape.outer = op.profile;
+        shape = normalised(shape);
+        const bool tool_inside = op.side == ContourSide::inside ||
+                                 (op.side == ContourSide::left && orientation(op.profile) == Orientation::ccw) ||
+                                 (op.side == ContourSide::right && orientation(op.profile) == Orientation::cw);
+        const auto edge = std::make_shared<const Profile>(op.profile);
+        // The points inside the shape within d of its edge.
+        auto inner_band = [&](double d) -> std::optional<PlaneRegion> {
+            PlaneRegion b = shape;
+            for (const PlaneRegion& i : offset_region(shape, d).regions) b.islands.push_back(reversed(i.outer));
+            return normalised(b);
+        };
+        const std::optional<PlaneRegion> face = tool_inside ? design_band_outside(shape, op.width) : inner_band(op.width);
+        const std::optional<PlaneRegion> air = tool_inside ? inner_band(g.reach) : design_band_outside(shape, g.reach);
+        if (!face || !air) return skip(op.path, "its chamfer's band is empty");
+        DesignFloor up = design_flat(lower);
+        up.slope = slope;
+        up.edge = edge;
+        add_cut("the chamfer", up, false).region = *face;
+        DesignFloor down = design_flat(lower);
+        down.slope = -slope;
+        down.edge = edge;
+        down.lowest = z.bottom_z;
+        add_cut("the tool's cone beside the chamfer", down, true).region = *air;
+        if (tool_inside) {
+            const std::optional<PlaneRegion> out = design_grown(shape, op.width);
+            if (!out) return;
+            if (std::optional<PlaneRegion> around = design_band_outside(*out, band)) add_keep("the part beyond the chamfer").region = *around;
+        } else {
+            for (const PlaneRegion& i : offset_region(shape, op.width).regions) add_keep("the part inside the chamfer").region = i;
         }
     }
 
     void bore(const BoreMillOp& op) {
         const Planes z = resolve_planes(op.heights);
-        holes(op.path, op.holes, op.diameter / 2.0, z.reference_z, DesignFloor{z.bottom_z, std::nullopt, 0.0});
+        holes(op.path, op.holes, op.diameter / 2.0, z.reference_z, design_flat(z.bottom_z));
     }
 
     void contour(const ContourOp& op) {

@@ -38,8 +38,9 @@ std::vector<KeySpec> height_keys(bool with_safe_distance) {
     return keys;
 }
 
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key) {
-    const bool end_depth = depth_key == "endDepth";
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key,
+                     std::optional<double> depth) {
+    const bool end_depth = depth_key == "endDepth" && !depth;
     Heights p;
     p.retract_plane = in.optional_length(f, "retractPlane").value_or(in.header().clearance);
     // A mill's stock gives the stock top; without one it is Z0.
@@ -47,7 +48,7 @@ Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what,
     p.reference_plane = in.optional_length(f, "referencePlane").value_or(stock ? stock->top() : 0.0);
     p.safe_distance = in.optional_length(f, "safeDistance");
     p.safe_distance_is_absolute = f.boolean("safeDistanceIsAbsolute", false);
-    p.end_depth = in.length(f, depth_key);
+    p.end_depth = depth ? *depth : in.length(f, depth_key);
     p.end_depth_is_absolute = end_depth && f.boolean("endDepthIsAbsolute", false);
 
     if (p.safe_distance && !p.safe_distance_is_absolute && *p.safe_distance < 0)

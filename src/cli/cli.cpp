@@ -314,6 +314,7 @@ std::size_t drilled_holes(const Job& job) {
         if (const auto* drill = std::get_if<DrillOp>(&op)) holes += drill->holes.size();
         if (const auto* bore = std::get_if<BoreMillOp>(&op)) holes += bore->holes.size();
         if (const auto* thread = std::get_if<ThreadMillOp>(&op)) holes += thread->holes.size();
+        if (const auto* chamfer = std::get_if<ChamferOp>(&op)) holes += chamfer->holes.size();
     }
     return holes;
 }

@@ -103,6 +103,7 @@ TEST_CASE("docs: the contour, path, bore-mill, thread-mill, engrave, stop, custo
     objects.push_back(BoreMillOp::objects().front());
     objects.push_back(ThreadMillOp::objects().front());
     objects.push_back(EngraveOp::objects().front());
+    objects.push_back(ChamferOp::objects().front());
     objects.push_back(StopOp::objects().front());
     objects.push_back(CustomOp::objects().front());
     // pocket's and face's own objects (their leads, ramps and finishing are contour's).

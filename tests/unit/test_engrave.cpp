@@ -385,7 +385,12 @@ TEST_CASE("engrave: strokes ordered nearest first, each entered from above, pass
     ball.type = ToolType::ball_mill;
     ball.diameter = 2;
     CHECK(*cut_width_at_depth(ball, 0.2) == doctest::Approx(2 * std::sqrt(1 - 0.8 * 0.8)));
-    CHECK(v_diameter_at_depth(90, 0, 6, 10) == 6);  // above the cone: the tool's diameter
+    Tool vee;
+    vee.type = ToolType::v_bit;
+    vee.diameter = 6;
+    vee.tip_angle = 90;
+    CHECK(*cut_width_at_depth(vee, 10) == 6);  // above the cone: the tool's diameter
+    CHECK(*cut_width_at_depth(vee, 1) == doctest::Approx(2));
 }
 
 TEST_CASE("engrave: a path and a profile engraved on their line") {

@@ -381,8 +381,7 @@ TEST_CASE("tools: contour, pocket and face refuse a chamfer mill or V-bit; path 
     };
     CHECK(op("contour", 1) ==
           "test.json:6: /operations/0/tool: tool 1 is a V-bit: a contour cuts with an end mill, a ball mill or a bull-nose end mill "
-          "(the side of a pointed tool is not its diameter); chamfering and engraving operations for chamfer mills and V-bits "
-          "are planned (issue 29)");
+          "(the side of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the chamfer operation");
     CHECK(op("pocket", 2).find("/operations/0/tool: tool 2 is a chamfer mill: a pocket cuts with") != std::string::npos);
     CHECK(op("face", 1).find("/operations/0/tool: tool 1 is a V-bit: a face cuts with") != std::string::npos);
     for (const char* type : {"contour", "pocket", "face"})

@@ -15,11 +15,15 @@
 // designed elsewhere (the scrap outside an outside contour, what a path passes through).
 // Operations without a designed part (path, custom, stops, open contours) are named in
 // `unchecked`. A lathe's operations design its turned part (`lathe`, design_lathe.hpp).
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/region.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/design_lathe.hpp"
@@ -28,15 +32,20 @@ namespace camgen {
 
 struct Job;
 
-// A floor: flat at `z`, or a drill's point: z + slope x the distance from `apex`.
+// A floor: flat at `z`; or a drill's point or a hole's chamfer: z + slope x the distance from
+// `apex`; or a chamfer beside a profile: z + slope x the distance from `edge` (a negative slope
+// falls away from it); either no lower than `lowest` (a cone's tip).
 struct DesignFloor {
     double z = 0.0;
     std::optional<Vec2> apex;
-    double slope = 0.0;  // mm of height per mm from the apex (1 / tan of half the tip angle)
+    double slope = 0.0;  // mm of height per mm from the apex or edge (a drill: 1 / tan of half the tip angle)
+    std::shared_ptr<const Profile> edge;
+    double lowest = -std::numeric_limits<double>::infinity();
     double at(Vec2 p) const {
+        if (edge) return std::max(lowest, z + slope * distance_to(*edge, p));
         if (!apex) return z;
         const double dx = p.x - apex->x, dy = p.y - apex->y;
-        return z + slope * std::sqrt(dx * dx + dy * dy);
+        return std::max(lowest, z + slope * std::sqrt(dx * dx + dy * dy));
     }
 };
 

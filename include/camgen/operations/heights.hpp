@@ -43,6 +43,9 @@ std::vector<KeySpec> height_keys(bool with_safe_distance);
 // plane above the stock top and not below the safe distance. `what` names the cut in
 // messages ("hole", "pass"). `depth_key`: the key of the depth; another than "endDepth" (the
 // engrave operation's "depth") is always relative, > 0, without an "...IsAbsolute" key.
-Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key = "endDepth");
+// `depth`: an operation whose depth follows from its tool (a chamfer) gives it here, below the
+// reference plane; no depth key is then read, and `depth_key` names the key its errors blame.
+Heights read_heights(json::Fields& f, const JobInput& in, std::string_view what, std::string_view depth_key = "endDepth",
+                     std::optional<double> depth = std::nullopt);
 
 }  // namespace camgen

@@ -14,6 +14,7 @@
 #include "camgen/job/job.hpp"
 #include "camgen/job/tool_library.hpp"
 #include "camgen/operations/bore_mill/bore_mill.hpp"
+#include "camgen/operations/chamfer/chamfer.hpp"
 #include "camgen/operations/contour/contour.hpp"
 #include "camgen/operations/custom/custom.hpp"
 #include "camgen/operations/drill/drill.hpp"
@@ -61,7 +62,7 @@ constexpr bool uses_tool() {
 
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp,
-                               ThreadMillOp, EngraveOp>;
+                               ThreadMillOp, EngraveOp, ChamferOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

@@ -1,0 +1,109 @@
+(chamfer)
+G40 G49 G17 G90 G94 G21
+(plate 80 x 40, R5 corners, 8 deep)
+(Insert tool 1: 6 mm end mill - 6 mm end mill)
+M0
+S8000 M3
+G0 Z15
+X9 Y-7
+Z5
+Z1
+G1 Z-4 F200
+G3 X5 Y-3 I-4 J0 F800
+G2 X-3 Y5 I0 J8
+G1 Y35
+G2 X5 Y43 I8 J0
+G1 X75
+G2 X83 Y35 I0 J-8
+G1 Y5
+G2 X75 Y-3 I-8 J0
+G1 X5
+Z-8 F200
+G2 X-3 Y5 I0 J8 F800
+G1 Y35
+G2 X5 Y43 I8 J0
+G1 X75
+G2 X83 Y35 I0 J-8
+G1 Y5
+G2 X75 Y-3 I-8 J0
+G1 X5
+G3 X1 Y-7 I0 J-4
+G0 Z15
+M5
+(two holes 8 mm, 10 deep)
+(Insert tool 2: 8 mm drill - 8 mm drill)
+M0
+S1500 M3
+G0 Z15
+X15 Y20
+Z5
+G1 Z1 F150
+G0 Z5
+Z1.5
+G1 Z-3
+G0 Z5
+Z-2.5
+G1 Z-7
+G0 Z5
+Z-6.5
+G1 Z-10
+G0 Z5
+X65
+G1 Z1
+G0 Z5
+Z1.5
+G1 Z-3
+G0 Z5
+Z-2.5
+G1 Z-7
+G0 Z5
+Z-6.5
+G1 Z-10
+G0 Z5
+Z15
+M5
+(the outline's top edge 0.5 x 45)
+(Insert tool 3: 6 mm V-bit - 90 degree V-bit)
+M0
+S10000 M3
+G0 Z15
+X8 Y-3.2
+Z5
+Z1
+G1 Z-0.7 F200
+G3 X5 Y-0.2 I-3 J0 F600
+G2 X-0.2 Y5 I0 J5.2
+G1 Y35
+G2 X5 Y40.2 I5.2 J0
+G1 X75
+G2 X80.2 Y35 I0 J-5.2
+G1 Y5
+G2 X75 Y-0.2 I-5.2 J0
+G1 X5
+G3 X2 Y-3.2 I0 J-3
+G0 Z15
+M5
+(the holes' edges 1 x 45)
+(Insert tool 4: 12 mm chamfer mill - 90 degree chamfer mill)
+M0
+S6000 M3
+G0 Z15
+X15 Y20
+Z5
+Z1
+G1 Z-1.2 F200
+G3 X18.3 Y20 I1.65 J0 F500
+X11.7 Y20 I-3.3 J0
+X18.3 Y20 I3.3 J0
+X15 Y20 I-1.65 J0
+G0 Z5
+X65
+Z1
+G1 Z-1.2 F200
+G3 X68.3 Y20 I1.65 J0 F500
+X61.7 Y20 I-3.3 J0
+X68.3 Y20 I3.3 J0
+X65 Y20 I-1.65 J0
+G0 Z15
+M5
+M2
