@@ -98,6 +98,8 @@ public:
                                  // A lathe's part: design_lathe.cpp.
                                  [&](const TurnDrillOp& o) { design_turn_drill(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnProfileOp& o) { design_turn_profile(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnFaceOp& o) { design_turn_face(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnRoughOp& o) { design_turn_rough(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);
