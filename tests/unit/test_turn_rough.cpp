@@ -326,7 +326,7 @@ TEST_CASE("turn-rough: the sample shaft's profile with an arc, allowances on the
         double r;
         if (u > -1) r = 14 + (0 - u);
         else if (u > -20) r = 15;
-        else if (u > -25) r = 20 - std::sqrt(std::max(0.0, 25 - (u + 25) * (u + 25)));
+        else if (u > -25) r = 20 - std::sqrt(std::max(0.0, 25 - (u + 20) * (u + 20)));
         else r = 20;
         return r + 0.2;
     };
