@@ -71,10 +71,15 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     const PartDesign design = part_design(job);
     CHECK(design.unchecked.empty());
     CHECK(design.cuts.empty());
-    REQUIRE(design.lathe.profiles.size() == 1);
+    // The face, the rough (designed in design_turn_face, design_turn_rough) and the finish.
+    REQUIRE(design.lathe.profiles.size() == 3);
     REQUIRE(design.lathe.holes.size() == 2);
-    const LatheTurnDesign& p = design.lathe.profiles[0];
-    CHECK(p.path == "/operations/2");
+    CHECK(design.lathe.profiles[0].path == "/operations/0");
+    CHECK(design.lathe.profiles[1].path == "/operations/3");
+    CHECK(design.lathe.profiles[1].z_hi == doctest::Approx(0.1));   // the boundary: allowanceZ 0.1
+    CHECK(design.lathe.profiles[1].z_lo == doctest::Approx(-39.9));
+    const LatheTurnDesign& p = design.lathe.profiles[2];
+    CHECK(p.path == "/operations/4");
     CHECK(p.nose == doctest::Approx(0.4));
     CHECK(p.z_lo == doctest::Approx(-40));
     CHECK(p.z_hi == doctest::Approx(20));  // the approach from the clearance
