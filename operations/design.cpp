@@ -107,6 +107,8 @@ public:
                                  // A lathe's part: design_lathe.cpp.
                                  [&](const TurnDrillOp& o) { design_turn_drill(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnProfileOp& o) { design_turn_profile(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnFaceOp& o) { design_turn_face(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnRoughOp& o) { design_turn_rough(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);
@@ -241,6 +243,9 @@ private:
             cut.top_z = z.reference_z;
             cut.may_leave = !flat;
             design_.cuts.push_back(std::move(cut));
+        }
+    }
+
     // A chamfer: its sloped face as a cut whose floor rises with the distance from the edge (a
     // hole's: from its centre), `width` into the part; on the air side the cone's continuation
     // down to the tip's depth (may_leave: beyond the tool's axis its cone rises again); the part

@@ -189,8 +189,8 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     d.profile.segments.push_back({start, std::nullopt, ArcDirection::ccw});
     for (const ProfileSegment& s : op.profile.segments) d.profile.segments.push_back(s);
     d.z_hi = clearance;
-    // The tip's path as expand() makes it: the approach, the profile, the feed out to retractX
-    // and the return along Z to the clearance.
+    // The tip's path as expand() makes it: the approach, the profile, the lift off its end, the
+    // rapid out to retractX and the return along Z to the clearance.
     d.tip.push_back({d.profile.start, start});
     for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
         const Vec2 a = segment_start(op.profile, k);
@@ -209,14 +209,95 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
             from = to;
         }
     }
-    d.tip.push_back({end, {end.x, op.retract_x}});
-    d.tip.push_back({{end.x, op.retract_x}, {clearance, op.retract_x}});
+    const Vec2 lifted = end + op.lift_direction * op.lift;
+    d.tip.push_back({end, lifted});
+    d.tip.push_back({lifted, {lifted.x, op.retract_x}});
+    d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}});
     // The lowest Z of the profile (an arc may reach below its ends).
     d.z_lo = start.x;
     for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
         d.z_lo = std::min(d.z_lo, op.profile.segments[k].end.x);
         if (!op.profile.segments[k].centre) continue;
         const LatheDesignArc arc = lathe_design_arc(op.profile, k);
+        if (lathe_design_on_arc(arc, pi)) d.z_lo = std::min(d.z_lo, arc.centre.x - arc.radius);
+    }
+    design.profiles.push_back(std::move(d));
+}
+
+namespace {
+
+// The tip's moves of an operation's expansion, arcs as chords within lathe_design_chord.
+class LatheDesignTipRecorder : public EventSink {
+public:
+    LatheDesignTipRecorder(Vec2 from, std::vector<LatheTipMove>& out) : at_(from), out_(out) {}
+    void emit(const Event& e) override {
+        if (const auto* r = std::get_if<Rapid>(&e)) to({r->to.z, r->to.x});
+        else if (const auto* l = std::get_if<Linear>(&e)) to({l->to.z, l->to.x});
+        else if (const auto* a = std::get_if<Arc>(&e)) arc(*a);
+    }
+
+private:
+    void to(Vec2 p) {
+        if (distance(p, at_) > 0) out_.push_back({at_, p});
+        at_ = p;
+    }
+    void arc(const Arc& a) {
+        const Vec2 c{a.centre.z, a.centre.x}, end{a.to.z, a.to.x};
+        Profile one;
+        one.plane = ProfilePlane::xz;
+        one.start = at_;
+        one.segments.push_back({end, c, a.direction});
+        const LatheDesignArc g = lathe_design_arc(one, 0);
+        const int n = std::min(lathe_design_max_chords,
+                               std::max(1, segments_for_tolerance(g.radius, std::abs(g.sweep), lathe_design_chord)));
+        for (int i = 1; i <= n; ++i) to(i == n ? end : g.centre + unit_at(g.start + g.sweep * i / n) * g.radius);
+    }
+    Vec2 at_;
+    std::vector<LatheTipMove>& out_;
+};
+
+// The design of an operation turned by a turning tool, its tip's path from its expansion.
+template <class Op>
+bool lathe_design_turned(const Op& op, const Job& job, LatheTurnDesign& d, std::vector<std::string>& unchecked) {
+    const Tool* tool = lathe_design_tool(job, op.tool);
+    if (!tool) return unchecked.push_back(op.path + ": its tool is not in the job"), false;
+    d.path = op.path;
+    d.tool = tool->number;
+    d.nose = tool->diameter / 2;  // as the simulation's tool_shape
+    d.chord = lathe_design_chord;
+    d.profile.plane = ProfilePlane::xz;
+    const Context ctx{job, *tool};
+    LatheDesignTipRecorder rec({job.clearance, 0.0}, d.tip);
+    expand(op, ctx, rec);
+    return true;
+}
+
+}  // namespace
+
+void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    d.profile.start = {op.start_z, op.inner};
+    d.profile.segments.push_back({{op.z, op.inner}, std::nullopt, ArcDirection::ccw});
+    d.profile.segments.push_back({{op.z, op.outer}, std::nullopt, ArcDirection::ccw});
+    d.z_lo = op.z;
+    d.z_hi = op.start_z;
+    design.profiles.push_back(std::move(d));
+}
+
+void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    d.profile.start = op.boundary.start;
+    d.profile.segments = op.boundary.segments;
+    const Vec2 end = op.boundary.segments.back().end;
+    if (end.y < op.stock_radius) d.profile.segments.push_back({{end.x, op.stock_radius}, std::nullopt, ArcDirection::ccw});
+    d.z_hi = op.boundary.start.x;
+    d.z_lo = end.x;
+    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
+        d.z_lo = std::min(d.z_lo, op.boundary.segments[k].end.x);
+        if (!op.boundary.segments[k].centre) continue;
+        const LatheDesignArc arc = lathe_design_arc(op.boundary, k);
         if (lathe_design_on_arc(arc, pi)) d.z_lo = std::min(d.z_lo, arc.centre.x - arc.radius);
     }
     design.profiles.push_back(std::move(d));

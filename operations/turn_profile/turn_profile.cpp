@@ -1,4 +1,5 @@
 #include "camgen/operations/turn_profile/turn_profile.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -43,7 +44,14 @@ constexpr KeySpec turn_profile_keys[] = {
     {.key = "path", .type = JsonType::array, .required = true, .ref = "turnProfileElement", .min_items = 1,
      .description = "the profile's elements [x, z], each starting where the previous one ends"},
     {.key = "retractX", .quantity = Quantity::length, .required = true,
-     .description = "X (as xValues) the tool feeds out to from the profile's end, before it rapids back to the clearance"},
+     .description = "X (as xValues) the tool rapids out to after it has lifted off the profile's end, before it rapids "
+                    "back to the clearance"},
+    {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
+     .description = "how far before the start the approach along Z turns from rapid to feed, mm"},
+    {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
+     .description = "how far the tool feeds off the profile's end, away from the finished surface along its tip "
+                    "orientation (orientation 2: +Z and +X at 45 degrees, steeper after a falling slope), before it "
+                    "rapids, mm"},
 };
 
 constexpr KeySpec turn_element_keys[] = {
@@ -111,48 +119,20 @@ std::size_t first_crossing(const Profile& profile) {
 
 }  // namespace
 
-std::vector<ObjectSpec> TurnProfileOp::objects() {
-    return {
-        {.name = "turn-profile",
-         .description = "a lathe finishing pass of the tool tip along a profile of lines and arcs in XZ",
-         .keys = {std::begin(turn_profile_keys), std::end(turn_profile_keys)}},
-        {.name = "turnProfileElement", .description = "one element of a lathe profile: exactly one of line, arc",
-         .keys = {std::begin(turn_element_keys), std::end(turn_element_keys)},
-         .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line, arc"}}},
-        {.name = "turnProfileArc", .description = "an arc in XZ about an absolute centre",
-         .keys = {std::begin(turn_arc_keys), std::end(turn_arc_keys)}},
-    };
-}
-
-TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
-    JobInput::known_keys(f, turn_profile_keys);
-    const Tool& tool = in.tool(f);
-    TurnProfileOp op;
-    op.path = f.path();
-    op.tool = tool.number;
-    op.comment = f.optional_string("comment").value_or("");
-    const XValues xv = f.choice("xValues", x_values, XValues::diameter);
-    op.given_x = xv;
-    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
-    op.feed = in.length(f, "feed");
-    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
-    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
-    op.profile.plane = ProfilePlane::xz;
-    op.profile.start = profile_point(in, f.required("start"), f.path_of("start"), xv);
+Profile read_turned_profile(json::Fields& f, const JobInput& in, XValues xv) {
+    Profile profile;
+    profile.plane = ProfilePlane::xz;
+    profile.start = profile_point(in, f.required("start"), f.path_of("start"), xv);
     const double clearance = in.header().clearance;
-    if (op.profile.start.x >= clearance)
+    if (profile.start.x >= clearance)
         json::fail(in.source(), f.path_of("start") + "/1",
                    fmt::format("the start is at Z {}, at or above the clearance (Z {}): the tool feeds down to it along "
                                "Z from the clearance",
-                               in.show(op.profile.start.x), in.show(clearance)));
-    const double retract = in.length(f, "retractX");
-    if (retract < 0) f.fail("retractX", "retractX is negative: X is measured from the spindle axis");
-    op.retract_x = xv == XValues::diameter ? retract / 2.0 : retract;
-
+                               in.show(profile.start.x), in.show(clearance)));
     const Json& list = in.array(f, "path");
     if (list.empty()) f.fail("path", "a profile needs at least one element");
     in.claim_path_elements(static_cast<double>(list.size()), f, "path");
-    Vec2 at = op.profile.start;
+    Vec2 at = profile.start;
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string path = f.path_of("path") + "/" + std::to_string(i);
         Fields e(list[i], path, in.source());
@@ -185,16 +165,138 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
             e.fail(key, fmt::format("the {} reaches Z {}, at or above the clearance (Z {}): the tool comes to the profile "
                                     "at the clearance, which must be above all of it",
                                     key, in.show(box.u_max), in.show(clearance)));
-        op.profile.segments.push_back(s);
+        profile.segments.push_back(s);
         at = s.end;
     }
-    if (auto short_one = first_short_segment(op.profile))
+    if (auto short_one = first_short_segment(profile))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(*short_one),
                    "this element ends where it starts: it has no length");
-    if (!is_simple(op.profile))
-        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(first_crossing(op.profile)),
+    if (!is_simple(profile))
+        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(first_crossing(profile)),
                    "this element crosses or touches the profile before it: the tool tip would cut into the surface it "
                    "has just finished");
+    return profile;
+}
+
+Vec2 turned_lift_direction(int orientation, const Profile& profile) {
+    // From the imaginary tip towards the nose centre (LinuxCNC's codes, interp_queue.cc), in
+    // (Z, radius): the way the tool's body lies, away from what the tip has just cut.
+    Vec2 d{1.0, 1.0};
+    switch (orientation) {
+    case 1: d = {-1.0, 1.0}; break;
+    case 3: d = {1.0, -1.0}; break;
+    case 4: d = {-1.0, -1.0}; break;
+    case 5: d = {-1.0, 0.0}; break;
+    case 6: d = {0.0, 1.0}; break;
+    case 7: d = {1.0, 0.0}; break;
+    case 8: d = {0.0, -1.0}; break;
+    default: break;
+    }
+    d = d * (1.0 / norm(d));
+    if (orientation != 2 && orientation != 0 && orientation != 9) return d;
+    // After a falling slope (the surface behind the tip rises towards +Z steeper than 45
+    // degrees), halfway between it and straight up.
+    const std::size_t k = profile.segments.size() - 1;
+    const ProfileSegment& s = profile.segments[k];
+    Vec2 back = segment_start(profile, k) - s.end;  // the surface behind the end, towards its start
+    if (s.centre) {
+        const Vec2 r = s.end - *s.centre;
+        back = s.direction == ArcDirection::ccw ? Vec2{r.y, -r.x} : Vec2{-r.y, r.x};
+    }
+    if (!(back.x > 0 && back.y > 0)) return d;
+    const double phi = std::atan2(back.y, back.x);
+    if (phi <= pi / 4) return d;
+    return unit_at((phi + pi / 2) / 2);
+}
+
+std::optional<UnfollowableSegment> first_unfollowable(const Profile& profile, const Tool& tool) {
+    if (!tool.insert_angle || !tool.approach_angle) return std::nullopt;
+    // The directions of travel (degrees from +Z towards +X) the insert can follow: rising up to
+    // the main edge's angle (180 - approachAngle .. 180) and falling down to the end edge's
+    // clearance (-180 .. -180 + 180 - approachAngle - insertAngle), one interval through 180.
+    const double lo = 180.0 - *tool.approach_angle;
+    const double width = *tool.approach_angle + (180.0 - *tool.approach_angle - *tool.insert_angle);
+    const double end_clearance = 180.0 - *tool.approach_angle - *tool.insert_angle;
+    constexpr double slack = 1e-6;  // degrees
+    auto offset_of = [&](double angle_deg) {
+        double d = std::fmod(angle_deg - lo, 360.0);
+        if (d < 0) d += 360.0;
+        if (d > 360.0 - slack) d -= 360.0;
+        return d;
+    };
+    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
+        const ProfileSegment& s = profile.segments[k];
+        const Vec2 a = segment_start(profile, k);
+        double from = 0.0, sweep = 0.0;
+        if (!s.centre) {
+            from = std::atan2(s.end.y - a.y, s.end.x - a.x) * deg_per_rad;
+        } else {
+            const Vec2 r = a - *s.centre;
+            const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+            from = std::atan2(sign * r.x, -sign * r.y) * deg_per_rad;
+            sweep = sign * segment_sweep(profile, k) * deg_per_rad;
+        }
+        const double d0 = offset_of(from), d1 = d0 + sweep;
+        if (d0 >= -slack && d0 <= width + slack && d1 >= -slack && d1 <= width + slack) continue;
+        const double worst = d0 < -slack || d0 > width + slack ? from : from + sweep;
+        const double dir = std::fmod(worst + 540.0, 360.0) - 180.0;
+        UnfollowableSegment out{k, ""};
+        if (dir < 0)
+            out.why = fmt::format("this element falls towards the chuck at {:.1f} degrees, and tool {}'s insert ({:.0f} degrees "
+                                  "in a {:.0f} degree holder) clears only {:.1f}: its end edge would rub the finished surface",
+                                  dir + 180.0, tool.number, *tool.insert_angle,
+                                  *tool.approach_angle, end_clearance);
+        else
+            out.why = fmt::format("this element rises at {:.1f} degrees from the direction of feed, and tool {}'s main edge "
+                                  "stands at {:.0f} degrees (approachAngle): it would rub the wall it leaves",
+                                  180.0 - dir, tool.number, *tool.approach_angle);
+        return out;
+    }
+    return std::nullopt;
+}
+
+std::vector<ObjectSpec> TurnProfileOp::objects() {
+    return {
+        {.name = "turn-profile",
+         .description = "a lathe finishing pass of the tool tip along a profile of lines and arcs in XZ",
+         .keys = {std::begin(turn_profile_keys), std::end(turn_profile_keys)}},
+        {.name = "turnProfileElement", .description = "one element of a lathe profile: exactly one of line, arc",
+         .keys = {std::begin(turn_element_keys), std::end(turn_element_keys)},
+         .groups = {{.keys = {"line", "arc"}, .min = 1, .max = 1, .description = "exactly one of line, arc"}}},
+        {.name = "turnProfileArc", .description = "an arc in XZ about an absolute centre",
+         .keys = {std::begin(turn_arc_keys), std::end(turn_arc_keys)}},
+    };
+}
+
+TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
+    JobInput::known_keys(f, turn_profile_keys);
+    const Tool& tool = in.tool(f);
+    TurnProfileOp op;
+    op.path = f.path();
+    op.tool = tool.number;
+    op.comment = f.optional_string("comment").value_or("");
+    const XValues xv = f.choice("xValues", x_values, XValues::diameter);
+    op.given_x = xv;
+    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
+    op.feed = in.length(f, "feed");
+    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
+    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
+    op.profile = read_turned_profile(f, in, xv);
+    const double retract = in.length(f, "retractX");
+    if (retract < 0) f.fail("retractX", "retractX is negative: X is measured from the spindle axis");
+    op.retract_x = xv == XValues::diameter ? retract / 2.0 : retract;
+    op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
+    if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
+    op.lift = in.optional_length(f, "lift").value_or(0.5);
+    if (!(op.lift > 0)) f.fail("lift", "lift must be > 0");
+    op.lift_direction = turned_lift_direction(tool.orientation, op.profile);
+    if (auto bad = first_unfollowable(op.profile, tool))
+        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
+    if (!tool.insert_angle && tool.type == ToolType::turning_tool)
+        op.notes.push_back(fmt::format("tool {} gives no insertAngle and approachAngle: camgen does not check that its "
+                                       "insert can follow the profile's slopes",
+                                       tool.number));
+
     if (tool.flute_length)
         op.notes.push_back(fmt::format("tool {} has a fluteLength of {}: a turn-profile does not check it (camgen does not "
                                        "know the stock, so not the depth of cut)",
@@ -210,6 +312,8 @@ Vec3 position_of(Vec2 p) { return {p.y, 0.0, p.x}; }
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
     const Vec3 start = position_of(op.profile.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
+    // Rapid to the approach distance before the start, feed the rest.
+    if (start.z + op.approach < ctx.job.clearance) sink.emit(Rapid{{start.x, 0.0, start.z + op.approach}});
     sink.emit(Linear{start, op.feed, Movement::lead_in});
     // The profile is a finishing pass.
     for (const ProfileSegment& s : op.profile.segments) {
@@ -218,8 +322,10 @@ void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
         else
             sink.emit(Linear{position_of(s.end), op.feed, Movement::finishing});
     }
-    const Vec3 end = position_of(op.profile.segments.back().end);
-    sink.emit(Linear{{op.retract_x, 0.0, end.z}, op.feed, Movement::lead_out});
+    // Off the finished surface first, then out and back at rapid.
+    const Vec2 lifted = op.profile.segments.back().end + op.lift_direction * op.lift;
+    sink.emit(Linear{position_of(lifted), op.feed, Movement::lead_out});
+    sink.emit(Rapid{{op.retract_x, 0.0, lifted.x}});
     sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
 }
 
@@ -361,7 +467,7 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         // The approach: before this profile cuts, the material above it is still there.
         if (auto hit = first_hit(kept, kept.size() - 1, start.y, start.x, clearance, true))
             json::fail(in.source(), op->path + "/start",
-                             fmt::format("the approach feeds along Z at X {} from the clearance (Z {}) down to the start "
+                             fmt::format("the approach runs along Z at X {} from the clearance (Z {}) down to the start "
                                          "(Z {}) through the material that {} keeps: X up to {} between Z {} and Z {}",
                                          x(start.y), in.show(clearance), in.show(start.x), whose(*hit->kept, *op),
                                          x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),

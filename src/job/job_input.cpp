@@ -74,6 +74,29 @@ constexpr KeySpec tool_keys[] = {
     {.key = "tipDiameter", .quantity = Quantity::length, .min = Bound{0, true},
      .description = "a chamfer mill's or V-bit's diameter at its point, less than diameter (default: 0, a sharp "
                     "point; refused for other types)"},
+    {.key = "noseRadius", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a turning-tool's or threading-tool's nose radius (diameter may then be left out: it is twice the "
+                    "nose radius, and must be if both are given; refused for other types)"},
+    {.key = "orientation", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
+     .max = Bound{9, true},
+     .description = "a lathe tool's tip orientation, LinuxCNC's 1-9 code (the tool table's Q): where the programmed "
+                    "point (the imaginary tip) lies on the nose circle, seen with +Z to the right and +X up: 1 "
+                    "lower right, 2 lower left, 3 upper left, 4 upper right, 5 right, 6 below, 7 left, 8 above, 9 the "
+                    "centre (default: 2 for a turning-tool, the outside tool cutting towards the chuck; none for the "
+                    "others; refused for tools that are not lathe tools)"},
+    {.key = "insertAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+     .description = "a turning-tool's insert: its included angle at the nose (80 C, 55 D, 35 V, 60 T, 90 S), with "
+                    "approachAngle; together they say which slopes the insert can follow without rubbing (refused for "
+                    "other types)"},
+    {.key = "approachAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+     .description = "a turning-tool's holder: the angle of the main cutting edge from the direction of feed along "
+                    "the part (95 for a PCLNR-style holder, 93 for SVJBR), with insertAngle (refused for other types)"},
+    {.key = "width", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a grooving-tool's or parting-tool's cutting width (required for them, refused for other types; "
+                    "diameter may be left out: it is taken as the width)"},
+    {.key = "profileAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
+     .description = "a threading-tool's included profile angle: 60 for metric and unified threads, 55 for Whitworth "
+                    "(required for it, refused for other types)"},
     {.key = "fluteLength", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "how deep the tool can cut; a hole deeper below its referencePlane is refused"},
     {.key = "flutes", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true},
@@ -104,19 +127,26 @@ constexpr KeySpec tool_keys[] = {
 std::vector<ObjectSpec> JobInput::objects() {
     // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
     // for chamfer mills and V-bits only, which need a tipAngle.
-    std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill;
+    std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill, not_nosed, not_lathe, not_turning, not_grooving,
+        not_threading;
     for (const auto& t : tool_types) {
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
         if (t.value != ToolType::chamfer_mill && t.value != ToolType::v_bit) not_pointed.emplace_back(t.name);
         if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
+        if (t.value != ToolType::turning_tool && t.value != ToolType::threading_tool) not_nosed.emplace_back(t.name);
+        if (!is_lathe_insert(t.value)) not_lathe.emplace_back(t.name);
+        if (t.value != ToolType::turning_tool) not_turning.emplace_back(t.name);
+        if (t.value != ToolType::grooving_tool && t.value != ToolType::parting_tool) not_grooving.emplace_back(t.name);
+        if (t.value != ToolType::threading_tool) not_threading.emplace_back(t.name);
     }
     return {
         {.name = "job", .description = "a camgen job: the tools, and the operations to run with them, in order",
          .keys = {std::begin(job_keys), std::end(job_keys)}},
         {.name = "tool", .description = "a tool of the job's tool table", .keys = {std::begin(tool_keys), std::end(tool_keys)},
-         .groups = {{.keys = {"diameter", "library", "libraryNumber"}, .min = 1, .max = 2,
-                     .description = "`diameter`, or `library` or `libraryNumber` (the library tool's)"},
-                    {.keys = {"rpm", "library", "libraryNumber"}, .min = 1, .max = 2,
+         .groups = {{.keys = {"diameter", "library", "libraryNumber", "noseRadius", "width"}, .min = 1, .max = 5,
+                     .description = "`diameter`, or `library` or `libraryNumber` (the library tool's), or a lathe tool's "
+                                    "`noseRadius` or `width`"},
+                    {.keys = {"rpm", "library", "libraryNumber"}, .min = 1, .max = 3,
                      .description = "`rpm`, or `library` or `libraryNumber` (the library tool's, or computed from its "
                                     "cutting data)"},
                     {.keys = {"library", "libraryNumber"}, .min = 0, .max = 1,
@@ -125,7 +155,14 @@ std::vector<ObjectSpec> JobInput::objects() {
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
                    {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
                    {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}},
-                   {.when_key = "type", .values = not_thread_mill, .forbid = {"pitch", "minPitch", "maxPitch"}}}},
+                   {.when_key = "type", .values = not_thread_mill, .forbid = {"pitch", "minPitch", "maxPitch"}},
+                   {.when_key = "type", .values = not_nosed, .forbid = {"noseRadius"}},
+                   {.when_key = "type", .values = not_lathe, .forbid = {"orientation"}},
+                   {.when_key = "type", .values = not_turning, .forbid = {"insertAngle", "approachAngle"}},
+                   {.when_key = "type", .values = {"grooving-tool", "parting-tool"}, .require = {"width"}},
+                   {.when_key = "type", .values = not_grooving, .forbid = {"width"}},
+                   {.when_key = "type", .values = {"threading-tool"}, .require = {"profileAngle"}},
+                   {.when_key = "type", .values = not_threading, .forbid = {"profileAngle"}}}},
     };
 }
 
@@ -324,10 +361,75 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
     // A key of the object, else the base's value (a library tool's).
     const auto from_base = [&](std::string_view key) { return base && !f.has(key); };
     tool.type = from_base("type") ? base->type : f.choice("type", tool_types, ToolType::drill);
-    tool.diameter = from_base("diameter") ? base->diameter : length(f, "diameter");
-    if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
-    const bool pointed = tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit;
     const std::string_view type_name = name_of(tool_types, tool.type);
+    const bool nosed = tool.type == ToolType::turning_tool || tool.type == ToolType::threading_tool;
+    const bool grooving = tool.type == ToolType::grooving_tool || tool.type == ToolType::parting_tool;
+    const std::optional<double> nose = optional_length(f, "noseRadius"), width = optional_length(f, "width");
+    if (nose && !nosed)
+        f.fail("noseRadius", fmt::format("noseRadius is for a turning-tool or threading-tool, not a {}", type_name));
+    if (nose && !(*nose > 0)) f.fail("noseRadius", "noseRadius must be > 0");
+    if (width && !grooving)
+        f.fail("width", fmt::format("width is for a grooving-tool or parting-tool, not a {}", type_name));
+    if (width && !(*width > 0)) f.fail("width", "width must be > 0");
+    // A lathe tool's diameter is its nose's (turning, threading) or its width (grooving, parting)
+    // where the job gives only those.
+    if (from_base("diameter") && !nose && !width) tool.diameter = base->diameter;
+    else if (!f.has("diameter") && nose) tool.diameter = 2.0 * *nose;
+    else if (!f.has("diameter") && width) tool.diameter = *width;
+    else tool.diameter = length(f, "diameter");
+    if (tool.diameter <= 0) f.fail("diameter", "a tool diameter must be > 0");
+    if (nose && std::abs(tool.diameter - 2.0 * *nose) > 1e-9)
+        f.fail("noseRadius", fmt::format("noseRadius {} and diameter {} disagree: a {}'s diameter is twice its nose radius "
+                                         "(give one of them)",
+                                         show(*nose), show(tool.diameter), type_name));
+    if (nosed) tool.nose_radius = tool.diameter / 2;
+    if (grooving) {
+        if (!width && !(base && base->type == tool.type && base->width > 0))
+            f.fail("width", fmt::format("a {} needs its width (the cutting width of its blade)", type_name));
+        tool.width = width ? *width : base && base->type == tool.type && base->width > 0 ? base->width : 0.0;
+    }
+    // The tip orientation: LinuxCNC's code (interp_queue.cc latheorigin_x/z: the imaginary tip
+    // lies -X of the nose centre for 1, 2, 6; +X for 3, 4, 8; +Z for 1, 4, 5; -Z for 2, 3, 7).
+    if (auto o = f.optional_integer("orientation")) {
+        if (!is_lathe_insert(tool.type))
+            f.fail("orientation", fmt::format("orientation is for a lathe tool (turning-tool, grooving-tool, parting-tool, "
+                                              "threading-tool), not a {}",
+                                              type_name));
+        if (*o < 1 || *o > 9) f.fail("orientation", "orientation is a code from 1 to 9 (LinuxCNC's tool table Q)");
+        tool.orientation = static_cast<int>(*o);
+    } else if (base && base->type == tool.type && base->orientation) {
+        tool.orientation = base->orientation;
+    } else if (tool.type == ToolType::turning_tool) {
+        tool.orientation = 2;
+    }
+    for (std::string_view key : {"insertAngle", "approachAngle"}) {
+        if (!f.has(key)) continue;
+        if (tool.type != ToolType::turning_tool)
+            f.fail(key, fmt::format("{} is for a turning-tool, not a {}", key, type_name));
+        const std::optional<double> angle = f.optional_number(key);
+        if (!(*angle > 0 && *angle < 180))
+            f.fail(key, fmt::format("{} {} degrees must be more than 0 and less than 180", key, *angle));
+    }
+    tool.insert_angle = f.has("insertAngle") ? f.optional_number("insertAngle")
+                        : base && base->type == tool.type ? base->insert_angle : std::nullopt;
+    tool.approach_angle = f.has("approachAngle") ? f.optional_number("approachAngle")
+                          : base && base->type == tool.type ? base->approach_angle : std::nullopt;
+    if (tool.type == ToolType::turning_tool && tool.insert_angle.has_value() != tool.approach_angle.has_value())
+        f.fail(tool.insert_angle ? "approachAngle" : "insertAngle",
+               "a turning-tool's insertAngle and approachAngle go together: the slopes it can follow need both");
+    if (tool.insert_angle && *tool.approach_angle + *tool.insert_angle >= 180)
+        f.fail("insertAngle", fmt::format("insertAngle {} plus approachAngle {} is 180 degrees or more: the insert's end "
+                                          "edge would point into the finished diameter behind the tip",
+                                          *tool.insert_angle, *tool.approach_angle));
+    if (f.has("profileAngle") && tool.type != ToolType::threading_tool)
+        f.fail("profileAngle", fmt::format("profileAngle is for a threading-tool, not a {}", type_name));
+    tool.profile_angle = f.has("profileAngle") ? f.optional_number("profileAngle")
+                         : base && base->type == tool.type ? base->profile_angle : std::nullopt;
+    if (tool.profile_angle && !(*tool.profile_angle > 0 && *tool.profile_angle < 180))
+        f.fail("profileAngle", fmt::format("profileAngle {} degrees must be more than 0 and less than 180", *tool.profile_angle));
+    if (tool.type == ToolType::threading_tool && !tool.profile_angle)
+        f.fail("profileAngle", "a threading-tool needs its profileAngle (60 for metric and unified threads)");
+    const bool pointed = tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit;
     tool.tip_angle = from_base("tipAngle") ? base->tip_angle : f.optional_number("tipAngle");
     if (pointed) {
         // Engraving V-bits go down to 10 degrees, chamfer mills are 60 to 120.

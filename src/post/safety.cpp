@@ -110,6 +110,12 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         return;
     }
     const Vec3 from = *pos_;
+    if (limits_.kind == MachineKind::lathe && (std::abs(from.x) > eps || std::abs(to.x) > eps)) {
+        // A turning move (SafetyLimits::kind).
+        pos_ = to;
+        last_was_feed_ = feed;
+        return;
+    }
     const bool across = std::abs(from.x - to.x) > eps || std::abs(from.y - to.y) > eps;
     const Vec2 xy{to.x, to.y};
     if (!feed) {

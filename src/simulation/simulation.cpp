@@ -934,6 +934,12 @@ ToolShape tool_shape(const Tool& tool) {
         s.form = ToolForm::turning;
         s.nose_radius = tool.diameter / 2;
         break;
+    case ToolType::grooving_tool:  // swept as a tip at their programmed point (their width is not swept yet)
+    case ToolType::parting_tool:
+    case ToolType::threading_tool:
+        s.form = ToolForm::turning;
+        s.nose_radius = tool.nose_radius;
+        break;
     }
     return s;
 }

@@ -318,12 +318,12 @@ TEST_CASE("linuxcnc-lathe (issue 24): a retractX inside the part rapids through 
     const std::string text = post_turned({turned(0, dz(24, 0), shaft(), 10)}, 20);
     std::vector<OStep> steps;
     REQUIRE_NOTHROW(steps = oracle::run_rs274(rs274(), text));
-    // The feed out ends at radius 5, Z-40; the next move is a rapid along Z at radius 5 to the
-    // clearance: through the diameters 28 to 40 between Z-40 and Z0.
+    // After the lift off the end (to Z-39.646) the tool rapids in to radius 5 and along Z at
+    // radius 5 to the clearance: through the diameters 28 to 40 between Z-40 and Z0.
     bool through = false;
     for (std::size_t i = 1; i < steps.size(); ++i)
-        if (steps[i].kind == OStep::Kind::traverse && steps[i - 1].kind == OStep::Kind::feed &&
-            std::abs(steps[i - 1].to.x - 5) < 1e-4 && std::abs(steps[i - 1].to.z + 40) < 1e-4 &&
+        if (steps[i].kind == OStep::Kind::traverse && steps[i - 1].kind == OStep::Kind::traverse &&
+            std::abs(steps[i - 1].to.x - 5) < 1e-4 && std::abs(steps[i - 1].to.z + 39.6464) < 1e-3 &&
             std::abs(steps[i].to.x - 5) < 1e-4 && std::abs(steps[i].to.z - 20) < 1e-4)
             through = true;
     CHECK(through);
@@ -349,8 +349,9 @@ TEST_CASE("linuxcnc-lathe (issue 24): a profile above the clearance: rs274 rapid
 }
 
 TEST_CASE("linuxcnc-lathe (issue 24): a second profile's approach feeds through the first one's diameter in rs274; read_job refuses it") {
-    // After the shaft, a groove at diameter 34 from Z-30: its approach feeds along Z at radius
-    // 17 from the clearance through the diameter 40 left from the fillet (Z-24) on.
+    // After the shaft, a groove at diameter 34 from Z-30: its approach rapids along Z at radius
+    // 17 from the clearance to Z-29 (1 mm before its start) through the diameter 40 left from
+    // the fillet (Z-24) on.
     const std::string text =
         post_turned({turned(0, dz(24, 0), shaft(), 44), turned(1, dz(34, -30), {line_to(34, -35)}, 44)}, 20);
     std::vector<OStep> steps;
@@ -358,14 +359,14 @@ TEST_CASE("linuxcnc-lathe (issue 24): a second profile's approach feeds through 
     bool through = false;
     for (std::size_t i = 1; i < steps.size(); ++i)
         if (steps[i - 1].kind == OStep::Kind::traverse && std::abs(steps[i - 1].to.x - 17) < 1e-4 &&
-            std::abs(steps[i - 1].to.z - 20) < 1e-4 && steps[i].kind == OStep::Kind::feed &&
-            std::abs(steps[i].to.x - 17) < 1e-4 && std::abs(steps[i].to.z + 30) < 1e-4)
+            std::abs(steps[i - 1].to.z - 20) < 1e-4 && steps[i].kind == OStep::Kind::traverse &&
+            std::abs(steps[i].to.x - 17) < 1e-4 && std::abs(steps[i].to.z + 29) < 1e-4)
             through = true;
     CHECK(through);
     CHECK(refusal(turned_json({std::string(shaft_json) + R"(, "retractX": 44)",
                                R"("start": [34, -30], "retractX": 44, "path": [{"line": [34, -35]}])"},
                               20))
-              .find("/operations/1/start: the approach feeds along Z at X 34.000 mm") != std::string::npos);
+              .find("/operations/1/start: the approach runs along Z at X 34.000 mm") != std::string::npos);
 }
 
 }  // namespace test_lathe_oracle

@@ -543,8 +543,9 @@ TEST_CASE("simulation: the samples simulate clean") {
     };
     SimStock shaft;
     shaft.kind = SimStock::Kind::bar;
-    shaft.bar_diameter = 40;
-    shaft.bar_length = 60;
+    shaft.bar_diameter = 44;  // the shaft's stock
+    shaft.bar_length = 70;
+    shaft.face_z = 1;
     const Case cases[] = {
         {"plate.json", "linuxcnc", box({0, 0, -8}, {100, 50, 0})},
         {"pocket.json", "linuxcnc", box({0, 0, -10}, {100, 70, 0})},

@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "camgen/operations/design.hpp"
 #include "camgen/operations/registry.hpp"
@@ -47,15 +48,16 @@ struct Simulated {
     std::string program;
 };
 
-// `job` posted for `machine`, edited, and simulated in the shaft's bar (D40 x 60, face Z0).
+// `job` posted for `machine`, edited, and simulated in `bar` (the shaft's: D44 x 70, face Z1).
 Simulated simulate(const std::string& job, const std::string& machine, const std::string& name,
-                   const std::function<std::string(const std::string&)>& edit, const std::string& resolution = "") {
+                   const std::function<std::string(const std::string&)>& edit, const std::string& resolution = "",
+                   const std::string& bar = "44,70,1") {
     const fs::path dir = test::scratch("simulate-lathe-design");
     const std::string posted = (dir / (name + ".posted")).string(), program = (dir / name).string();
     REQUIRE(test::run({job, "--machine", machine, "-q", "-o", posted}).code == 0);
     const std::string text = edit(test::read_file(posted));
     std::ofstream(program) << text;
-    std::vector<std::string> args{"simulate", program, "--machine", machine, "--job", job, "--bar", "40,60"};
+    std::vector<std::string> args{"simulate", program, "--machine", machine, "--job", job, "--bar", bar};
     if (!resolution.empty()) args.insert(args.end(), {"--resolution", resolution});
     return {test::run(args), text};
 }
@@ -69,10 +71,15 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     const PartDesign design = part_design(job);
     CHECK(design.unchecked.empty());
     CHECK(design.cuts.empty());
-    REQUIRE(design.lathe.profiles.size() == 1);
+    // The face, the rough (designed in design_turn_face, design_turn_rough) and the finish.
+    REQUIRE(design.lathe.profiles.size() == 3);
     REQUIRE(design.lathe.holes.size() == 2);
-    const LatheTurnDesign& p = design.lathe.profiles[0];
-    CHECK(p.path == "/operations/2");
+    CHECK(design.lathe.profiles[0].path == "/operations/0");
+    CHECK(design.lathe.profiles[1].path == "/operations/3");
+    CHECK(design.lathe.profiles[1].z_hi == doctest::Approx(0.1));   // the boundary: allowanceZ 0.1
+    CHECK(design.lathe.profiles[1].z_lo == doctest::Approx(-39.9));
+    const LatheTurnDesign& p = design.lathe.profiles[2];
+    CHECK(p.path == "/operations/4");
     CHECK(p.nose == doctest::Approx(0.4));
     CHECK(p.z_lo == doctest::Approx(-40));
     CHECK(p.z_hi == doctest::Approx(20));  // the approach from the clearance
@@ -152,9 +159,9 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
                          "fanuc-lathe cannot tap)\n"));
     // The shaft's nose leaves material on the chamfer and in the fillet, which is said.
     const Simulated shaft = simulate(samples + "shaft.json", "linuxcnc-lathe", "shaft.nc", [](const std::string& t) { return t; });
-    CHECK(has(shaft.run, "design check   lathe: 1 profile, 2 holes, within 0.008 mm in radius and in Z, 60000 samples and 17 "
+    CHECK(has(shaft.run, "design check   lathe: 3 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 28 "
                          "sections 0.0088 mm beside the designed corners\n"));
-    CHECK(has(shaft.run, "  note: /operations/2: the nose of tool 3 (radius 0.4 mm) leaves up to "));
+    CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
 }
 
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
@@ -174,7 +181,7 @@ TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a go
             return text;
         });
         CHECK(s.run.code == 1);
-        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/2 (the part inside the profile): material removed 0.05 mm inside the "
+        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/4 (the part inside the profile): material removed 0.05 mm inside the "
                                  "designed radius 15 at Z-"),
                       s.run.out);
         CHECK_MESSAGE(has(s.run, fmt::format("(radius 14.95), by line {} (cut at ", dig)), s.run.out);
@@ -200,28 +207,53 @@ TEST_CASE("camgen simulate: a lathe's drill 0.5 mm too deep is a gouge below its
         });
         CHECK(s.run.code == 1);
         // The hole's cone 0.5 mm lower: below the point, and wider than designed on the cone.
-        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/1 (the part below the hole's point): material removed "), s.run.out);
+        CHECK_MESSAGE(has(s.run, "error: gouge: /operations/2 (the part below the hole's point): material removed "), s.run.out);
         CHECK_MESSAGE(has(s.run, fmt::format("beyond the designed bore radius 0 at Z-33.")), s.run.out);
         CHECK_MESSAGE(has(s.run, fmt::format("), by line {} (cut at ", line)), s.run.out);
-        CHECK(has(s.run, "error: gouge: /operations/1 (the part around the hole): material removed "));
+        CHECK(has(s.run, "error: gouge: /operations/2 (the part around the hole): material removed "));
     }
 }
 
 TEST_CASE("camgen simulate: the shaft's finishing pass removed leaves material, a warning with where and how much") {
-    // Everything of the pass between its feed down to Z0 and its feed out at Z-40.
+    // Everything of the pass between its feed down to Z0 and its lift off D40 at Z-40.
     const Simulated s = simulate(samples + "shaft.json", "linuxcnc-lathe", "left.nc", [](const std::string& t) {
-        const std::size_t a = t.find("G1 Z0 F0.1\n") + std::string("G1 Z0 F0.1\n").size(), b = t.find("G1 Z-40\n");
+        const std::string lift = "X40.7071 Z-39.6464\n";
+        const std::size_t a = t.find("G1 Z0 F0.1\n") + std::string("G1 Z0 F0.1\n").size(), b = t.find(lift);
         REQUIRE(a < b);
-        return t.substr(0, a) + t.substr(b + std::string("G1 Z-40\n").size());
+        return t.substr(0, a) + t.substr(b + lift.size());
     });
     CHECK(s.run.code == 0);  // a warning
-    // The bar's radius 20 where the tool should have left the D30 (and the chamfer's top, where
-    // the nose leaves 14.243, most).
-    CHECK_MESSAGE(has(s.run, "warning: /operations/2 (the turned profile): material left 5.757 mm above the radius its tool "
-                             "leaves (14.243) at Z-0.0005: radius 20 (at "),
+    // The bar's radius 22 where the roughing's face (at Z-39.9, allowanceZ 0.1) stops and the
+    // finishing pass should have turned D40 on to Z-40.
+    CHECK_MESSAGE(has(s.run, "warning: /operations/4 (the turned profile): material left 1.855 mm above the radius its tool "
+                             "leaves (20.145) at Z-39.901: radius 22 (at "),
                   s.run.out);
     CHECK_FALSE(has(s.run, "error: gouge"));
     CHECK_FALSE(has(s.run, "the part is as designed"));
+}
+
+TEST_CASE("camgen simulate: a roughing pass 0.1 mm into its allowance is a gouge of the turn-rough at its line") {
+    // The shaft's facing and roughing alone: the rough leaves the profile 0.2 mm out (radius)
+    // and 0.1 mm towards +Z, which its design keeps.
+    const fs::path dir = test::scratch("simulate-lathe-rough");
+    nlohmann::json job = nlohmann::json::parse(test::read_file(samples + "shaft.json"));
+    job["operations"] = nlohmann::json::array({job["operations"][0], job["operations"][3]});
+    const std::string file = (dir / "rough.json").string();
+    std::ofstream(file) << job.dump(1);
+    const Simulated clean = simulate(file, "linuxcnc-lathe", "rough.ngc", [](const std::string& t) { return t; });
+    CHECK_MESSAGE(has(clean.run, "  the part is as designed\n"), clean.run.out);
+    // Its last pass along D30.4 (radius 15.2) run at D30.2 instead.
+    std::size_t line = 0;
+    const Simulated s = simulate(file, "linuxcnc-lathe", "gouge.ngc", [&](const std::string& t) {
+        auto [text, at] = replace_line(t, "rough the outside", "Z-19.9", "X30.2\nZ-19.9\nX30.4");
+        line = at + 1;
+        return text;
+    });
+    CHECK(s.run.code == 1);
+    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/1 (the part inside the profile): material removed 0.1 mm "
+                                         "inside the designed radius 15.2 at Z-")),
+                  s.run.out);
+    CHECK_MESSAGE(has(s.run, fmt::format("(radius 15.1), by line {} (cut at ", line)), s.run.out);
 }
 
 TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z samples 0.01 mm apart is found by the sections beside it") {
@@ -238,7 +270,7 @@ TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z 
         },
         "0.01");
     CHECK(s.run.code == 1);
-    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/2 (the part inside the profile): material removed ")), s.run.out);
+    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/4 (the part inside the profile): material removed ")), s.run.out);
     CHECK_MESSAGE(has(s.run, fmt::format("at Z-0.0088 (radius 13.35), by line {} (cut at 0 samples and 1 section beside corners)", line)),
                   s.run.out);
 }

@@ -3,6 +3,8 @@
 // worked out by hand and read back; bad input refused at its JSON path.
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include "camgen/reader/reader.hpp"
 #include "lathe_support.hpp"
 #include "reader_support.hpp"
@@ -44,18 +46,23 @@ InputError error_of(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("turn-profile: the pass, from the clearance along Z to the start, out to retractX and back") {
+TEST_CASE("turn-profile: the pass, from the clearance along Z to the start, lifted off, out to retractX and back") {
     const std::vector<Event> ev = expand_job(read_job(job(), "p.json"));
     std::vector<Event> moves;
     for (const Event& e : ev)
         if (std::holds_alternative<Rapid>(e) || std::holds_alternative<Linear>(e) || std::holds_alternative<Arc>(e))
             moves.push_back(e);
-    // Radii: start 20, arc to 10 about 10; retract diameter 44 = radius 22.
+    // Radii: start 20, arc to 10 about 10; retract diameter 44 = radius 22. A rapid to 1 mm
+    // (approachDistance) before the start, a feed for the rest; off the end by 0.5 mm (lift) at
+    // 45 degrees, +Z and +X (orientation 2), then rapids.
+    const double l = 0.5 * (1.0 / std::hypot(1.0, 1.0));
     const std::vector<Event> expected = {
         Rapid{{20, 0, 15}},
+        Rapid{{20, 0, 1}},
         Linear{{20, 0, 0}, 100, Movement::lead_in},
         Arc{{10, 0, -10}, {10, 0, 0}, ArcDirection::cw, Plane::xz, 100, 0, Movement::finishing},
-        Linear{{22, 0, -10}, 100, Movement::lead_out},
+        Linear{{10 + l, 0, -10 + l}, 100, Movement::lead_out},
+        Rapid{{22, 0, -10 + l}},
         Rapid{{22, 0, 15}},
     };
     CHECK(moves == expected);
@@ -198,7 +205,7 @@ TEST_CASE("turn-profile: the approach along Z stays out of the material this and
     // feeds through the diameter 40 the first one finished, from the fillet down.
     check_refused(profiles_job({shaft_path + R"(, "retractX": 44)", R"("start": [34, -30], "retractX": 44, "path": [{"line": [34, -35]}])"}),
                   "/operations/1/start",
-                  {"the approach feeds along Z at X 34.000 mm from the clearance (Z 20.000 mm) down to the start (Z -30.000 mm)",
+                  {"the approach runs along Z at X 34.000 mm from the clearance (Z 20.000 mm) down to the start (Z -30.000 mm)",
                    "through the material that the profile of /operations/0 keeps: X up to 40.000 mm between Z -30.000 mm and Z -23.9"});
     // A profile that grows towards +Z keeps material over its own start.
     check_refused(profiles_job({R"("start": [20, -10], "retractX": 44, "path": [{"line": [30, 0]}])"}), "/operations/0/start",

@@ -38,6 +38,18 @@ struct Tool {
     // pitch); a single-profile tool cuts any pitch from min to max (minPitch, maxPitch). mm.
     double min_pitch = 0.0;
     double max_pitch = 0.0;
+    // A lathe's tool in the turret (is_lathe_insert): its nose radius (turning and threading
+    // tools: diameter / 2; grooving and parting tools: 0), the tip orientation (LinuxCNC's 1-9
+    // code: where the programmed point, the imaginary tip, lies on the nose circle; 0: none
+    // given), the insert's included angle and the holder's approach angle (degrees; both or
+    // neither, turning tools only), a grooving or parting tool's width and a threading tool's
+    // profile angle (mm, degrees).
+    double nose_radius = 0.0;
+    int orientation = 0;
+    std::optional<double> insert_angle;
+    std::optional<double> approach_angle;
+    double width = 0.0;
+    std::optional<double> profile_angle;
     bool centre_cutting = true;            // cuts at its centre: may plunge into material
     double rpm = 0.0;                      // rev/min, > 0
     SpindleDirection direction = SpindleDirection::cw;

@@ -9,6 +9,8 @@
 //   down along Z to the start); it removes what lies beyond, down to what its tool leaves as the
 //   tip follows the path (the profile is the path of the tip, no nose compensation: a nose leaves
 //   material on slopes, on arcs and in concave corners, `left_radius`);
+// - a turn-face removes the bar's end beyond its Z, a turn-rough the material beyond the
+//   profile moved by its allowances (design_turn_face, design_turn_rough);
 // - a turn-drill removes a bore of its drill's radius on the axis, down to its depth with the
 //   drill's point (above startDepth too: the drill comes down the axis), and keeps the part
 //   around and below it.
@@ -29,6 +31,8 @@ namespace camgen {
 struct Job;
 struct TurnDrillOp;
 struct TurnProfileOp;
+struct TurnFaceOp;
+struct TurnRoughOp;
 
 // A straight stretch of a tool tip's path in (Z, radius), mm.
 struct LatheTipMove {
@@ -83,5 +87,13 @@ struct LatheDesign {
 // An operation's design added to `design`, or why it has none to `unchecked` ("PATH: why").
 void design_turn_drill(const TurnDrillOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// A turn-face designs the bar's end at its Z: nothing kept above it between its inner and outer
+// radius (a profile along the inner radius from its start Z down to its Z, then out along the
+// face), its tip's whole path as the passes make it.
+void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// A turn-rough designs the boundary it roughs to (the profile moved by the allowances, closed by
+// the face at its end up to the bar): kept there, removed beyond, down to what its tool leaves;
+// its tip's whole path as the passes make it.
+void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

@@ -25,7 +25,9 @@
 #include "camgen/operations/stop/stop.hpp"
 #include "camgen/operations/thread_mill/thread_mill.hpp"
 #include "camgen/operations/turn_drill/turn_drill.hpp"
+#include "camgen/operations/turn_face/turn_face.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
+#include "camgen/operations/turn_rough/turn_rough.hpp"
 
 namespace camgen {
 
@@ -61,8 +63,8 @@ constexpr bool uses_tool() {
 }
 
 // Every operation type: the registration line.
-using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, StopOp, CustomOp, PocketOp, FaceOp,
-                               ThreadMillOp, EngraveOp, ChamferOp>;
+using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, TurnFaceOp, TurnRoughOp, StopOp,
+                               CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

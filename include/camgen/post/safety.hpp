@@ -23,6 +23,11 @@ struct SafetyLimits {
     double clearance = 0.0;                // absolute Z, mm: the job's clearance
     std::map<int, double> flute_lengths;   // mm, by tool number (tools that give fluteLength)
     LonghandOptions longhand;              // how the machine's cycles move (peck clearance)
+    // On a lathe the retract-plane rules hold for moves on the spindle axis (a turn-drill's);
+    // a move off the axis is a turning move, whose air lies outside the part radially, not
+    // above it in Z: the turning operations plan it there and check it themselves
+    // (check_turned_material, turn-face and turn-rough by construction).
+    MachineKind kind = MachineKind::mill;
 };
 
 // The holes drilled so far: the lowest Z reached at each XY (keyed in nm). A job of a million

@@ -116,7 +116,7 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
 
 enum class ToolType {
     drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, bull_nose, chamfer_mill, v_bit,
-    thread_mill, turning_tool
+    thread_mill, turning_tool, grooving_tool, parting_tool, threading_tool
 };
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
@@ -133,7 +133,16 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::v_bit, "v-bit", "V-bit"},
     {ToolType::thread_mill, "thread-mill", "thread mill"},
     {ToolType::turning_tool, "turning-tool", "turning tool"},
+    {ToolType::grooving_tool, "grooving-tool", "grooving tool"},
+    {ToolType::parting_tool, "parting-tool", "parting tool"},
+    {ToolType::threading_tool, "threading-tool", "threading tool"},
 };
+// Whether a tool type is a lathe's tool in the turret (turning, grooving, parting, threading),
+// with a nose or a width and a tip orientation, rather than one turning on the spindle's axis.
+constexpr bool is_lathe_insert(ToolType t) {
+    return t == ToolType::turning_tool || t == ToolType::grooving_tool || t == ToolType::parting_tool ||
+           t == ToolType::threading_tool;
+}
 
 // Drilling cycle kinds, after the Fanuc/LinuxCNC canned cycles named in the descriptions.
 enum class CycleKind { drill, dwell, deep, chip_break, tap, tap_left, ream, bore_stop, bore_dwell };

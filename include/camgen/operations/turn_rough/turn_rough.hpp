@@ -1,0 +1,66 @@
+#pragma once
+// The turn-rough operation: roughing the outside of a bar on a lathe down to a profile (the
+// same start and path as a turn-profile) plus allowances, in passes along Z. The boundary it
+// roughs to is the profile moved by allowanceX outwards and allowanceZ towards +Z (as Fanuc's
+// G71 U W move the finishing shape), closed at the profile's end by a face up to the bar. Passes
+// at levels depthOfCut apart (radial) each feed along -Z wherever the boundary lies below their
+// level, lift off at 45 degrees and return in air; a last pass follows the boundary, so that
+// the allowances are all that is left. Written longhand on every lathe. (Z, radius), mm.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camgen/events/events.hpp"
+#include "camgen/geometry/profile.hpp"
+#include "camgen/job/job_input.hpp"
+#include "camgen/operations/context.hpp"
+
+namespace camgen {
+
+struct TurnRoughOp {
+    static constexpr std::string_view type = "turn-rough";
+    static constexpr MachineKind machine_kind = MachineKind::lathe;
+    // Reads one operation of this type (its "type" is already read).
+    static TurnRoughOp read(json::Fields& f, const JobInput& input);
+    // The objects of its input, for the JSON Schema.
+    static std::vector<ObjectSpec> objects();
+    std::string path;
+    std::string comment;
+    int tool = 0;
+    XValues given_x = XValues::diameter;
+    FeedMode feed_mode = FeedMode::per_minute;
+    double feed = 0.0;              // mm/min
+    Profile profile;                // the finished profile, (Z, radius), Z never rising along it
+    Profile boundary;               // the profile moved by the allowances: what the roughing leaves
+    double allowance_x = 0.0;       // radial, mm
+    double allowance_z = 0.0;       // mm
+    double stock_radius = 0.0;      // the bar's radius it roughs from, mm
+    double bottom = 0.0;            // the boundary's least radius, mm
+    double depth_of_cut = 0.0;      // radial, mm, the most per pass
+    double approach = 1.0;          // mm beyond the boundary's start where passes start, and outside the bar
+    double lift = 0.5;              // mm of the 45-degree lift off each pass's end
+    std::vector<std::string> notes;
+};
+
+// A stretch of a roughing pass along Z at one level: from Z `hi` down to Z `lo`.
+struct TurnRoughSpan {
+    double lo = 0.0, hi = 0.0;
+};
+
+// Where the level `radius` runs above the boundary of `op` between its start's Z and its end's:
+// the spans from +Z to -Z.
+std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double radius);
+
+// The boundary's radius at Z z (the least where a face stands at z), for z within it.
+double turn_rough_boundary_at(const TurnRoughOp& op, double z);
+
+// Rapid outside the bar to approachDistance beyond the boundary's start; for each level, for each
+// span: rapid down in air (beyond the start, or down the column the levels above have cleared),
+// feed along -Z to the span's end, lift at 45 degrees, rapid back in air; then feed along the
+// boundary, up the face at its end to the bar, lift off, rapid back to the clearance.
+void expand(const TurnRoughOp& op, const Context& context, EventSink& sink);
+
+// The operation's name for comments: its comment, else "turn rough".
+std::string default_name(const TurnRoughOp& op);
+
+}  // namespace camgen

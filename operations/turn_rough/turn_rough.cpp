@@ -1,0 +1,317 @@
+#include "camgen/operations/turn_rough/turn_rough.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+#include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/vec.hpp"
+#include "camgen/operations/turn_profile/turn_profile.hpp"
+
+namespace camgen {
+
+namespace {
+
+using Fields = json::Fields;
+
+// Z differences below this are the same Z, mm.
+constexpr double turn_rough_same = 1e-9;
+
+constexpr KeySpec turn_rough_keys[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "a tool number from tools: a turning-tool of orientation 2"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
+     .description = "written as a comment before the operation"},
+    {.key = "xValues", .type = JsonType::string, .default_json = "\"diameter\"", .choices = &choices_of<x_values>,
+     .description = "the points' X, startX and allowanceX as diameters or as radii"},
+    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false},
+     .description = "cutting feed, per minute or per revolution (feedMode)"},
+    {.key = "feedMode", .type = JsonType::string, .default_json = "\"per-minute\"", .choices = &choices_of<feed_modes>,
+     .description = "feed in mm/min or mm/rev; the program feeds the same way (G94/G95, Fanuc T G98/G99)"},
+    {.key = "start", .type = JsonType::point, .quantity = Quantity::length, .required = true,
+     .description = "where the finished profile starts [x, z], at its +Z end"},
+    {.key = "path", .type = JsonType::array, .required = true, .ref = "turnProfileElement", .min_items = 1,
+     .description = "the finished profile's elements [x, z], Z never rising along it (X may fall: an undercut)"},
+    {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "X (as xValues) of the bar roughed from (default: the stock bar's diameter; required without a bar)"},
+    {.key = "allowanceX", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
+     .description = "material left for finishing in X, as xValues gives X (on the diameter by default, like Fanuc's "
+                    "G71 U): the profile is moved out by it"},
+    {.key = "allowanceZ", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
+     .description = "material left for finishing on faces, mm: the profile is moved towards +Z by it"},
+    {.key = "depthOfCut", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
+     .description = "the most material one pass takes, radial (per side), mm; the passes are equal"},
+    {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
+     .description = "how far beyond the profile's start (in Z) each pass begins, and how far outside the bar the tool "
+                    "rapids, mm"},
+    {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
+     .description = "how far each pass lifts off at 45 degrees (in Z and in X) before it rapids back, mm; at most half "
+                    "the depth of a pass"},
+};
+
+// The Z range of a segment of a profile (an arc's may reach beyond its ends).
+std::pair<double, double> turn_rough_z_range(const Profile& p, std::size_t k) {
+    const Vec2 a = segment_start(p, k), b = p.segments[k].end;
+    double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
+    const ProfileSegment& s = p.segments[k];
+    if (!s.centre) return {lo, hi};
+    const Vec2 c = *s.centre;
+    const double r = distance(a, c);
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x), sw = segment_sweep(p, k);
+    for (double ang : {0.0, pi}) {
+        double d = s.direction == ArcDirection::ccw ? ang - a0 : a0 - ang;
+        d = std::fmod(d, two_pi);
+        if (d < 0) d += two_pi;
+        if (d > 1e-12 && d < sw - 1e-12) {
+            lo = std::min(lo, c.x + r * std::cos(ang));
+            hi = std::max(hi, c.x + r * std::cos(ang));
+        }
+    }
+    return {lo, hi};
+}
+
+// Where segment k of p meets the level v: the Z of its crossings.
+void turn_rough_crossings(const Profile& p, std::size_t k, double v, std::vector<double>& out) {
+    const Vec2 a = segment_start(p, k);
+    const ProfileSegment& s = p.segments[k];
+    if (!s.centre) {
+        if ((a.y - v) * (s.end.y - v) > 0 || std::abs(s.end.y - a.y) < 1e-15) return;
+        out.push_back(a.x + (v - a.y) * (s.end.x - a.x) / (s.end.y - a.y));
+        return;
+    }
+    const Vec2 c = *s.centre;
+    const double r = distance(a, c), dv = v - c.y;
+    if (std::abs(dv) > r) return;
+    const double du = std::sqrt(r * r - dv * dv);
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x), sw = segment_sweep(p, k);
+    for (double side : {-1.0, 1.0}) {
+        const double ang = std::atan2(dv, side * du);
+        double d = s.direction == ArcDirection::ccw ? ang - a0 : a0 - ang;
+        d = std::fmod(d, two_pi);
+        if (d < 0) d += two_pi;
+        if (d <= sw + 1e-12) out.push_back(c.x + side * du);
+    }
+}
+
+// The radius of segment k at Z z (z within its range; an arc monotone in Z).
+double turn_rough_radius_on(const Profile& p, std::size_t k, double z) {
+    const Vec2 a = segment_start(p, k);
+    const ProfileSegment& s = p.segments[k];
+    if (!s.centre) {
+        if (std::abs(s.end.x - a.x) < turn_rough_same) return std::min(a.y, s.end.y);
+        return a.y + (z - a.x) * (s.end.y - a.y) / (s.end.x - a.x);
+    }
+    const Vec2 c = *s.centre;
+    const double r = distance(a, c), du = z - c.x;
+    const double dv = std::sqrt(std::max(0.0, r * r - du * du));
+    // The half of the circle the arc lies on: the one its midpoint is on.
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x), sw = segment_sweep(p, k);
+    const double mid = a0 + (s.direction == ArcDirection::ccw ? sw / 2 : -sw / 2);
+    return std::sin(mid) >= 0 ? c.y + dv : c.y - dv;
+}
+
+}  // namespace
+
+double turn_rough_boundary_at(const TurnRoughOp& op, double z) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
+        const auto [lo, hi] = turn_rough_z_range(op.boundary, k);
+        if (z < lo - turn_rough_same || z > hi + turn_rough_same) continue;
+        best = std::min(best, turn_rough_radius_on(op.boundary, k, std::clamp(z, lo, hi)));
+    }
+    return best;
+}
+
+std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double v) {
+    const double z_hi = op.boundary.start.x, z_lo = op.boundary.segments.back().end.x;
+    std::vector<double> zs{z_lo, z_hi};
+    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) turn_rough_crossings(op.boundary, k, v, zs);
+    std::sort(zs.begin(), zs.end(), std::greater<>());
+    std::vector<TurnRoughSpan> out;
+    for (std::size_t i = 0; i + 1 < zs.size(); ++i) {
+        const double hi = std::min(zs[i], z_hi), lo = std::max(zs[i + 1], z_lo);
+        if (hi - lo < 1e-6) continue;
+        if (!(turn_rough_boundary_at(op, (hi + lo) / 2) < v)) continue;
+        if (!out.empty() && std::abs(out.back().lo - hi) < 1e-9) out.back().lo = lo;
+        else out.push_back({lo, hi});
+    }
+    return out;
+}
+
+std::vector<ObjectSpec> TurnRoughOp::objects() {
+    return {{.name = "turn-rough",
+             .description = "roughing the outside of a bar on a lathe to a profile plus allowances, in passes along Z",
+             .keys = {std::begin(turn_rough_keys), std::end(turn_rough_keys)}}};
+}
+
+TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
+    JobInput::known_keys(f, turn_rough_keys);
+    const Tool& tool = in.tool(f);
+    TurnRoughOp op;
+    op.path = f.path();
+    op.tool = tool.number;
+    op.comment = f.optional_string("comment").value_or("");
+    if (tool.type != ToolType::turning_tool || tool.orientation != 2)
+        f.fail("tool", fmt::format("a turn-rough needs a turning-tool of orientation 2 (the outside tool, its tip to -Z and "
+                                   "-X of its nose); tool {} is a {} of orientation {}",
+                                   tool.number, name_of(tool_types, tool.type), tool.orientation));
+    const XValues xv = f.choice("xValues", x_values, XValues::diameter);
+    op.given_x = xv;
+    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
+    op.feed = in.length(f, "feed");
+    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
+    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
+    const double scale = xv == XValues::diameter ? 0.5 : 1.0;
+    op.profile = read_turned_profile(f, in, xv);
+    for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
+        const auto [lo, hi] = turn_rough_z_range(op.profile, k);
+        const Vec2 a = segment_start(op.profile, k);
+        if (hi > a.x + turn_rough_same || lo < op.profile.segments[k].end.x - turn_rough_same)
+            json::fail(in.source(), f.path_of("path") + "/" + std::to_string(k),
+                       "this element turns back towards +Z: a turn-rough cuts along Z towards the chuck, and its "
+                       "profile's Z must never rise from the start to the end");
+    }
+    if (auto bad = first_unfollowable(op.profile, tool))
+        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
+    if (!tool.insert_angle)
+        op.notes.push_back(fmt::format("tool {} gives no insertAngle and approachAngle: camgen does not check that its "
+                                       "insert can follow the profile's slopes",
+                                       tool.number));
+    op.allowance_x = in.optional_length(f, "allowanceX").value_or(0.0) * scale;
+    op.allowance_z = in.optional_length(f, "allowanceZ").value_or(0.0);
+    if (op.allowance_x < 0) f.fail("allowanceX", "allowanceX must be 0 or more");
+    if (op.allowance_z < 0) f.fail("allowanceZ", "allowanceZ must be 0 or more");
+    op.boundary = op.profile;
+    const Vec2 shift{op.allowance_z, op.allowance_x};
+    op.boundary.start = op.boundary.start + shift;
+    for (ProfileSegment& s : op.boundary.segments) {
+        s.end = s.end + shift;
+        if (s.centre) s.centre = *s.centre + shift;
+    }
+    const std::optional<Stock>& stock = in.header().stock;
+    const bool bar = stock && stock->shape == StockShape::bar;
+    if (f.has("startX")) op.stock_radius = in.length(f, "startX") * scale;
+    else if (bar) op.stock_radius = stock->diameter / 2;
+    else f.fail("startX", "give startX (the X of the bar roughed from), or a stock bar whose diameter it is");
+    double top = 0.0;
+    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
+        const Vec2 a = segment_start(op.boundary, k);
+        top = std::max({top, a.y, op.boundary.segments[k].end.y});
+    }
+    if (op.boundary.start.y >= op.stock_radius)
+        f.fail(f.has("startX") ? "startX" : "start",
+               fmt::format("the profile starts (with allowanceX) at X {}, not below the bar's X {}: there is nothing to rough",
+                           in.show(op.boundary.start.y / scale), in.show(op.stock_radius / scale)));
+    if (top > op.stock_radius + turn_rough_same)
+        f.fail("path", fmt::format("the profile (with allowanceX) reaches X {}, beyond the bar's X {}: a turn-rough cuts "
+                                   "within the bar",
+                                   in.show(top / scale), in.show(op.stock_radius / scale)));
+    op.depth_of_cut = in.length(f, "depthOfCut");
+    if (!(op.depth_of_cut > 0)) f.fail("depthOfCut", "depthOfCut must be > 0");
+    op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
+    if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
+    op.lift = in.optional_length(f, "lift").value_or(0.5);
+    if (!(op.lift > 0)) f.fail("lift", "lift must be > 0");
+    if (op.boundary.start.x + op.approach >= in.header().clearance)
+        f.fail("start", fmt::format("the passes begin at Z {} (the start, allowanceZ and approachDistance), at or above the "
+                                    "clearance (Z {})",
+                                    in.show(op.boundary.start.x + op.approach), in.show(in.header().clearance)));
+    const double bottom = [&] {
+        double b = op.stock_radius;
+        for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
+            const Vec2 a = segment_start(op.boundary, k);
+            b = std::min({b, a.y, op.boundary.segments[k].end.y});
+            const ProfileSegment& s = op.boundary.segments[k];
+            if (s.centre) {
+                const double r = distance(a, *s.centre);
+                const double a0 = std::atan2(a.y - s.centre->y, a.x - s.centre->x), sw = segment_sweep(op.boundary, k);
+                double d = s.direction == ArcDirection::ccw ? -pi / 2 - a0 : a0 + pi / 2;
+                d = std::fmod(d, two_pi);
+                if (d < 0) d += two_pi;
+                if (d <= sw) b = std::min(b, s.centre->y - r);
+            }
+        }
+        return b;
+    }();
+    op.bottom = bottom;
+    const int count = static_cast<int>(std::ceil((op.stock_radius - bottom) / op.depth_of_cut - 1e-9));
+    if (count > 100000)
+        f.fail("depthOfCut", fmt::format("depthOfCut {} makes {} passes: more than 100000", in.show(op.depth_of_cut), count));
+    return op;
+}
+
+namespace {
+Vec3 turn_rough_at(double r, double z) { return {r, 0.0, z}; }
+}  // namespace
+
+void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
+    const double z_start = op.boundary.start.x + op.approach;  // where passes begin, beyond the part
+    const double outside = op.stock_radius + op.approach;        // outside the bar
+    // The levels: equal steps from the bar down to the boundary's lowest point; the pass along
+    // the boundary takes the last step.
+    const int count = std::max(1, static_cast<int>(std::ceil((op.stock_radius - op.bottom) / op.depth_of_cut - 1e-9)));
+    const double step = (op.stock_radius - op.bottom) / count;
+    std::vector<double> levels;
+    for (int k = 1; k < count; ++k) levels.push_back(op.stock_radius - step * k);
+    const double lift = std::min(op.lift, step / 2);
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+    sink.emit(Rapid{turn_rough_at(outside, z_start)});
+    double above = op.stock_radius;  // the level before (the bar's surface at first)
+    for (double level : levels) {
+        const std::vector<TurnRoughSpan> spans = turn_rough_spans(op, level);
+        for (const TurnRoughSpan& s : spans) {
+            const bool open = s.hi >= op.boundary.start.x - 1e-9;
+            if (open) {
+                // From beyond the part's start, down in air to the level.
+                sink.emit(Rapid{turn_rough_at(level, z_start)});
+                sink.emit(Linear{turn_rough_at(level, s.hi), op.feed, Movement::cutting});
+            } else {
+                // A span between walls: over the part outside the bar, down the column the
+                // passes above have cleared, feed in.
+                sink.emit(Rapid{turn_rough_at(outside, s.hi)});
+                sink.emit(Rapid{turn_rough_at(above + lift, s.hi)});
+                sink.emit(Linear{turn_rough_at(level, s.hi), op.feed, Movement::plunge});
+            }
+            sink.emit(Linear{turn_rough_at(level, s.lo), op.feed, Movement::cutting});
+            const double back = std::min(lift, s.hi - s.lo);
+            sink.emit(Linear{turn_rough_at(level + lift, s.lo + back), op.feed, Movement::lead_out});
+            // Back above what this level has left: along it to the start, or out of the bar.
+            if (open && &s == &spans.front() && spans.size() == 1) {
+                sink.emit(Rapid{turn_rough_at(level + lift, z_start)});
+            } else {
+                sink.emit(Rapid{turn_rough_at(outside, s.lo + back)});
+                sink.emit(Rapid{turn_rough_at(outside, z_start)});
+            }
+        }
+        above = level;
+    }
+    // The last pass along the boundary: what the levels left in steps comes off, the allowances
+    // stay.
+    const Vec2 b0 = op.boundary.start;
+    sink.emit(Rapid{turn_rough_at(b0.y, z_start)});
+    sink.emit(Linear{turn_rough_at(b0.y, b0.x), op.feed, Movement::lead_in});
+    for (const ProfileSegment& s : op.boundary.segments) {
+        if (s.centre)
+            sink.emit(Arc{turn_rough_at(s.end.y, s.end.x), turn_rough_at(s.centre->y, s.centre->x), s.direction, Plane::xz,
+                          op.feed, 0, Movement::cutting});
+        else
+            sink.emit(Linear{turn_rough_at(s.end.y, s.end.x), op.feed, Movement::cutting});
+    }
+    // Up the face at the profile's end to the bar, and off it.
+    const Vec2 end = op.boundary.segments.back().end;
+    if (end.y < op.stock_radius) sink.emit(Linear{turn_rough_at(op.stock_radius, end.x), op.feed, Movement::cutting});
+    sink.emit(Linear{turn_rough_at(std::max(end.y, op.stock_radius) + lift, end.x + lift), op.feed, Movement::lead_out});
+    sink.emit(Rapid{turn_rough_at(outside, end.x + lift)});
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+}
+
+std::string default_name(const TurnRoughOp& op) { return op.comment.empty() ? "turn rough" : op.comment; }
+
+}  // namespace camgen
