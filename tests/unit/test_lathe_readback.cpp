@@ -137,8 +137,11 @@ TEST_CASE("lathe plot: X labelled as the program writes it, the holes on the axi
 TEST_CASE("lathe plot: the job's bar drawn in the half-section, where it is and as large as it is") {
     const std::string dir = test::scratch("lathe-readback-bar").string();
     std::string job = test::read_file(shaft);
-    const auto brace = job.find('{');
-    job.insert(brace + 1, R"("stock": {"bar": {"diameter": 46, "length": 60, "faceZ": 1, "boreDiameter": 6}},)");
+    // The sample's own bar replaced by one of other sizes, with a bore.
+    const std::string own = R"("stock": {"bar": {"diameter": 44, "length": 70, "faceZ": 1}},)";
+    const auto at = job.find(own);
+    REQUIRE(at != std::string::npos);
+    job.replace(at, own.size(), R"("stock": {"bar": {"diameter": 46, "length": 60, "faceZ": 1, "boreDiameter": 6}},)");
     const std::string job_file = test::file_with(dir + "/bar.json", job);
     const test::Run r = test::run({job_file, "--machine", "fanuc-lathe", "-q", "-o", dir + "/b.nc", "--plot", dir + "/b.svg"});
     INFO(r.err);
