@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
 
@@ -58,21 +59,16 @@ std::vector<ObjectSpec> TurnFaceOp::objects() {
 
 TurnFaceOp TurnFaceOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, turn_face_keys);
-    const Tool& tool = in.tool(f);
+    const OutsideTurningHead head = read_outside_turning_head(f, in, "turn-face");
+    const Tool& tool = *head.tool;
     TurnFaceOp op;
     op.path = f.path();
     op.tool = tool.number;
     op.comment = f.optional_string("comment").value_or("");
-    if (tool.type != ToolType::turning_tool || tool.orientation != 2)
-        f.fail("tool", fmt::format("a turn-face needs a turning-tool of orientation 2 (the outside tool, its tip to -Z and "
-                                   "-X of its nose); tool {} is a {} of orientation {}",
-                                   tool.number, name_of(tool_types, tool.type), tool.orientation));
-    const XValues xv = f.choice("xValues", x_values, XValues::diameter);
+    const XValues xv = head.given_x;
     op.given_x = xv;
-    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
-    op.feed = in.length(f, "feed");
-    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
-    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
+    op.feed_mode = head.feed_mode;
+    op.feed = head.feed;
     const std::optional<Stock>& stock = in.header().stock;
     const bool bar = stock && stock->shape == StockShape::bar;
     if (f.has("outerX")) op.outer = turn_face_radius(in, f, "outerX", xv);

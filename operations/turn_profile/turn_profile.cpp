@@ -119,6 +119,22 @@ std::size_t first_crossing(const Profile& profile) {
 
 }  // namespace
 
+OutsideTurningHead read_outside_turning_head(Fields& f, const JobInput& in, std::string_view what) {
+    OutsideTurningHead head;
+    const Tool& tool = in.tool(f);
+    head.tool = &tool;
+    if (tool.type != ToolType::turning_tool || tool.orientation != 2)
+        f.fail("tool", fmt::format("a {} needs a turning-tool of orientation 2 (the outside tool, its tip to -Z and -X of its "
+                                   "nose); tool {} is a {} of orientation {}",
+                                   what, tool.number, name_of(tool_types, tool.type), tool.orientation));
+    head.given_x = f.choice("xValues", x_values, XValues::diameter);
+    head.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
+    head.feed = in.length(f, "feed");
+    if (!(head.feed > 0)) f.fail("feed", "feed must be > 0");
+    if (head.feed_mode == FeedMode::per_revolution) head.feed *= tool.rpm;
+    return head;
+}
+
 Profile read_turned_profile(json::Fields& f, const JobInput& in, XValues xv) {
     Profile profile;
     profile.plane = ProfilePlane::xz;

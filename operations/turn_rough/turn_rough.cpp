@@ -153,21 +153,16 @@ std::vector<ObjectSpec> TurnRoughOp::objects() {
 
 TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, turn_rough_keys);
-    const Tool& tool = in.tool(f);
+    const OutsideTurningHead head = read_outside_turning_head(f, in, "turn-rough");
+    const Tool& tool = *head.tool;
     TurnRoughOp op;
     op.path = f.path();
     op.tool = tool.number;
     op.comment = f.optional_string("comment").value_or("");
-    if (tool.type != ToolType::turning_tool || tool.orientation != 2)
-        f.fail("tool", fmt::format("a turn-rough needs a turning-tool of orientation 2 (the outside tool, its tip to -Z and "
-                                   "-X of its nose); tool {} is a {} of orientation {}",
-                                   tool.number, name_of(tool_types, tool.type), tool.orientation));
-    const XValues xv = f.choice("xValues", x_values, XValues::diameter);
+    const XValues xv = head.given_x;
     op.given_x = xv;
-    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
-    op.feed = in.length(f, "feed");
-    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
-    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool.rpm;
+    op.feed_mode = head.feed_mode;
+    op.feed = head.feed;
     const double scale = xv == XValues::diameter ? 0.5 : 1.0;
     op.profile = read_turned_profile(f, in, xv);
     for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {

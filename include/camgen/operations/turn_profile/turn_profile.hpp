@@ -51,6 +51,17 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
 // and a profile that crosses itself. (u, v) = (Z, radius), mm.
 Profile read_turned_profile(json::Fields& f, const JobInput& input, XValues xv);
 
+// What turn-face and turn-rough read first: their tool (an outside turning tool, orientation 2;
+// another is refused at "tool", naming `what`), how the job gives X ("xValues") and the cutting
+// feed ("feed" in "feedMode", returned per minute).
+struct OutsideTurningHead {
+    const Tool* tool = nullptr;
+    XValues given_x = XValues::diameter;
+    FeedMode feed_mode = FeedMode::per_minute;
+    double feed = 0.0;  // mm/min
+};
+OutsideTurningHead read_outside_turning_head(json::Fields& f, const JobInput& input, std::string_view what);
+
 // An element of a profile that a tool's insert cannot follow, and why (for the message).
 struct UnfollowableSegment {
     std::size_t index = 0;
