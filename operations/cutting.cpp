@@ -454,6 +454,27 @@ void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
         f.fail("tool", fmt::format("tool {} ({}) is a thread mill: {} cuts with an end mill, a ball mill or a bull-nose end "
                                    "mill; a thread mill's teeth cut only a thread's flanks (the thread-mill operation)",
                                    tool.number, tool.path, what));
+    // Tools whose side does not cut, or that do not turn about the spindle's axis as a mill
+    // does: along a profile their diameter would be offset as a cutter's and cut air or rub.
+    // (A plain drill, the type a tool without one has, stays allowed: jobs before tool types
+    // gave their end mills no type.)
+    switch (tool.type) {
+    case ToolType::centre_drill:
+    case ToolType::spot_drill:
+    case ToolType::tap:
+    case ToolType::reamer:
+    case ToolType::boring_bar:
+    case ToolType::turning_tool:
+    case ToolType::grooving_tool:
+    case ToolType::parting_tool:
+    case ToolType::threading_tool:
+        f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (its "
+                                   "side cuts along the profile; a {}'s does not)",
+                                   tool.number, tool_types[static_cast<int>(tool.type)].description, what,
+                                   tool_types[static_cast<int>(tool.type)].description));
+    default:
+        break;
+    }
     if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit) return;
     f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
                                "of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the "

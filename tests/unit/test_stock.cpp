@@ -372,7 +372,10 @@ TEST_CASE("tools: contour, pocket and face refuse a chamfer mill or V-bit; path 
     const std::string tools = R"({"number": 1, "type": "v-bit", "diameter": 6, "tipAngle": 60, "rpm": 18000},
       {"number": 2, "type": "chamfer-mill", "diameter": 10, "tipAngle": 90, "rpm": 6000},
       {"number": 3, "type": "bull-nose", "diameter": 10, "cornerRadius": 1, "rpm": 6000},
-      {"number": 4, "type": "ball-mill", "diameter": 6, "rpm": 6000})";
+      {"number": 4, "type": "ball-mill", "diameter": 6, "rpm": 6000},
+      {"number": 5, "type": "spot-drill", "diameter": 10, "tipAngle": 90, "rpm": 1500},
+      {"number": 6, "type": "reamer", "diameter": 8, "rpm": 300},
+      {"number": 7, "type": "tap", "diameter": 8, "rpm": 300})";
     const std::string square = R"("start": [0, 0], "path": [{"line": [40, 0]}, {"line": [40, 30]}, {"line": [0, 30]}, {"line": [0, 0]}])";
     const auto op = [&](const std::string& type, int tool) {
         std::string extra = type == "contour" ? R"("side": "outside", )" : "";
@@ -380,10 +383,16 @@ TEST_CASE("tools: contour, pocket and face refuse a chamfer mill or V-bit; path 
                                                "\"endDepth\": 1, \"feed\": 500, " + square + "}]"));
     };
     CHECK(op("contour", 1) ==
-          "test.json:6: /operations/0/tool: tool 1 is a V-bit: a contour cuts with an end mill, a ball mill or a bull-nose end mill "
+          "test.json:9: /operations/0/tool: tool 1 is a V-bit: a contour cuts with an end mill, a ball mill or a bull-nose end mill "
           "(the side of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the chamfer operation");
     CHECK(op("pocket", 2).find("/operations/0/tool: tool 2 is a chamfer mill: a pocket cuts with") != std::string::npos);
     CHECK(op("face", 1).find("/operations/0/tool: tool 1 is a V-bit: a face cuts with") != std::string::npos);
+    // The issue's spot drill along a contour (it was offset by its full diameter and cut air), a reamer, a tap.
+    CHECK(op("contour", 5) ==
+          "test.json:9: /operations/0/tool: tool 5 is a spot drill: a contour cuts with an end mill, a ball mill or a bull-nose "
+          "end mill (its side cuts along the profile; a spot drill's does not)");
+    CHECK(op("pocket", 6).find("/operations/0/tool: tool 6 is a reamer: a pocket cuts with") != std::string::npos);
+    CHECK(op("face", 7).find("/operations/0/tool: tool 7 is a tap: a face cuts with") != std::string::npos);
     for (const char* type : {"contour", "pocket", "face"})
         for (int tool : {3, 4}) {
             CAPTURE(type);
