@@ -5,6 +5,8 @@
 #include <numbers>
 #include <sstream>
 
+#include <doctest/doctest.h>
+
 #include "camgen/analysis/trace.hpp"
 #include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
@@ -101,5 +103,25 @@ std::vector<Step> normalised(const Trace& trace) {
 }
 
 }  // namespace
+
+void check_read_as_run(const std::vector<Step>& theirs, const std::string& program, const Machine& machine) {
+    auto from_first_feed = [](const std::vector<Step>& steps) {
+        auto it = std::find_if(steps.begin(), steps.end(),
+                               [](const Step& s) { return s.kind == Step::Kind::feed || s.kind == Step::Kind::arc; });
+        return std::vector<Step>(it, steps.end());
+    };
+    const std::vector<Step> ours = from_first_feed(read_with_camgen(program, machine));
+    const std::vector<Step> theirs_fed = from_first_feed(theirs);
+    REQUIRE(theirs_fed.size() == ours.size());
+    for (std::size_t i = 0; i < ours.size(); ++i) {
+        const Step& a = theirs_fed[i];
+        INFO("step " << i << ": rs274 " << describe(a) << ", camgen " << describe(ours[i]));
+        CHECK(a.kind == ours[i].kind);
+        CHECK(std::abs(a.to.x - ours[i].to.x) <= 1e-6);
+        CHECK(std::abs(a.to.y - ours[i].to.y) <= 1e-6);
+        CHECK(std::abs(a.to.z - ours[i].to.z) <= 1e-6);
+        CHECK(a.rotation == ours[i].rotation);
+    }
+}
 
 }  // namespace camgen::oracle

@@ -29,4 +29,9 @@ struct CompensatedRead {
 };
 CompensatedRead read_with_camgen(const std::string& program, const Machine& machine, const std::map<int, double>& radii);
 
+// Checks (doctest CHECKs) that camgen reads `program` as rs274 ran it (`theirs`), step for step
+// from the first feed on (before it the two know the start differently: rs274 from its origin,
+// camgen from the tool change): the same kinds, end points within 1e-6 mm, arcs' turns.
+void check_read_as_run(const std::vector<Step>& theirs, const std::string& program, const Machine& machine);
+
 }  // namespace camgen::oracle

@@ -88,21 +88,8 @@ TEST_CASE("chamfer: rs274 runs samples/chamfer.json for linuxcnc and fanuc; the 
         const std::string program = oracle::posted_program(job, machine);
         std::vector<OStep> theirs;
         REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274, program));
-        auto from_first_feed = [](const std::vector<OStep>& steps) {
-            auto it = std::find_if(steps.begin(), steps.end(),
-                                   [](const OStep& s) { return s.kind == OStep::Kind::feed || s.kind == OStep::Kind::arc; });
-            return std::vector<OStep>(it, steps.end());
-        };
-        const std::vector<OStep> ours = from_first_feed(oracle::read_with_camgen(program, machine));
-        const std::vector<OStep> theirs_fed = from_first_feed(theirs);
-        REQUIRE(theirs_fed.size() == ours.size());
-        for (std::size_t i = 0; i < ours.size(); ++i) {
-            INFO("step " << i << ": rs274 " << oracle::describe(theirs_fed[i]) << ", camgen " << oracle::describe(ours[i]));
-            CHECK(theirs_fed[i].kind == ours[i].kind);
-            CHECK(std::abs(theirs_fed[i].to.x - ours[i].to.x) <= 1e-6);
-            CHECK(std::abs(theirs_fed[i].to.y - ours[i].to.y) <= 1e-6);
-            CHECK(std::abs(theirs_fed[i].to.z - ours[i].to.z) <= 1e-6);
-        }
+        // camgen reads the program as rs274 runs it (from the first feed on).
+        oracle::check_read_as_run(theirs, program, machine);
 
         // The outline: the V-bit (10000 rpm, pointed, 90 degrees). At its lowest the tool centre
         // nearest the outline sets the chamfer: the cone reaches (0 - tip Z) tan 45 from the axis at

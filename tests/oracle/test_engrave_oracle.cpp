@@ -131,21 +131,8 @@ TEST_CASE("engraving: rs274 runs samples/engrave.json for linuxcnc and fanuc; th
         const std::string program = oracle::posted_program(job, machine);
         std::vector<OStep> theirs;
         REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274, program));
-        // camgen reads the program as rs274 runs it, from the first feed on.
-        auto from_first_feed = [](const std::vector<OStep>& steps) {
-            auto it = std::find_if(steps.begin(), steps.end(),
-                                   [](const OStep& s) { return s.kind == OStep::Kind::feed || s.kind == OStep::Kind::arc; });
-            return std::vector<OStep>(it, steps.end());
-        };
-        const std::vector<OStep> ours = from_first_feed(oracle::read_with_camgen(program, machine));
-        const std::vector<OStep> theirs_fed = from_first_feed(theirs);
-        REQUIRE(theirs_fed.size() == ours.size());
-        for (std::size_t i = 0; i < ours.size(); ++i) {
-            INFO("step " << i << ": rs274 " << oracle::describe(theirs_fed[i]) << ", camgen " << oracle::describe(ours[i]));
-            CHECK(theirs_fed[i].kind == ours[i].kind);
-            CHECK(std::hypot(theirs_fed[i].to.x - ours[i].to.x, theirs_fed[i].to.y - ours[i].to.y) <= 1e-6);
-            CHECK(std::abs(theirs_fed[i].to.z - ours[i].to.z) <= 1e-6);
-        }
+        // camgen reads the program as rs274 runs it (from the first feed on).
+        oracle::check_read_as_run(theirs, program, machine);
         // The part number is the only cut at Z-0.2 that runs along +X only (the arc's text is at
         // Z-0.2 too): its runs are those within its band of Y.
         std::vector<Line> runs;

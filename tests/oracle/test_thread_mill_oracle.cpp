@@ -104,26 +104,8 @@ TEST_CASE("thread milling: rs274 runs samples/thread.json for linuxcnc and fanuc
         const std::string program = oracle::posted_program(job, machine);
         std::vector<OStep> theirs;
         REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274, program));
-        // camgen reads the program as rs274 runs it, and the program is the job (verify --job).
-        // From the first feed on: before it the two know the start differently (rs274 from its
-        // origin, camgen from the tool change).
-        auto from_first_feed = [](const std::vector<OStep>& steps) {
-            auto it = std::find_if(steps.begin(), steps.end(),
-                                   [](const OStep& s) { return s.kind == OStep::Kind::feed || s.kind == OStep::Kind::arc; });
-            return std::vector<OStep>(it, steps.end());
-        };
-        const std::vector<OStep> ours = from_first_feed(oracle::read_with_camgen(program, machine));
-        const std::vector<OStep> theirs_fed = from_first_feed(theirs);
-        REQUIRE(theirs_fed.size() == ours.size());
-        for (std::size_t i = 0; i < ours.size(); ++i) {
-            const OStep& a = theirs_fed[i];
-            INFO("step " << i << ": rs274 " << oracle::describe(a) << ", camgen " << oracle::describe(ours[i]));
-            CHECK(a.kind == ours[i].kind);
-            CHECK(std::abs(a.to.x - ours[i].to.x) <= 1e-6);
-            CHECK(std::abs(a.to.y - ours[i].to.y) <= 1e-6);
-            CHECK(std::abs(a.to.z - ours[i].to.z) <= 1e-6);
-            CHECK(a.rotation == ours[i].rotation);
-        }
+        // camgen reads the program as rs274 runs it (from the first feed on).
+        oracle::check_read_as_run(theirs, program, machine);
         const Trace read = trace_program(read_program(program, machine, "thread.ngc"), machine);
         const auto mismatch = compare_traces(trace_expected(expand_job(job), machine), read, compare_tolerance(machine, 0.0));
         CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
