@@ -456,9 +456,12 @@ void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
                                    tool.number, tool.path, what));
     // Tools whose side does not cut, or that do not turn about the spindle's axis as a mill
     // does: along a profile their diameter would be offset as a cutter's and cut air or rub.
-    // (A plain drill, the type a tool without one has, stays allowed: jobs before tool types
-    // gave their end mills no type.)
+    // A tool typed "drill" is refused too; one without a type (a drill by default) stays
+    // allowed: jobs before tool types gave their end mills none (untyped_milling_note).
     switch (tool.type) {
+    case ToolType::drill:
+        if (!tool.type_given) break;
+        [[fallthrough]];
     case ToolType::centre_drill:
     case ToolType::spot_drill:
     case ToolType::tap:
@@ -469,17 +472,26 @@ void check_cutting_tool(Fields& f, const Tool& tool, std::string_view what) {
     case ToolType::parting_tool:
     case ToolType::threading_tool:
         f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (its "
-                                   "side cuts along the profile; a {}'s does not)",
+                                   "side cuts along the profile; a {}'s does not){}",
                                    tool.number, tool_types[static_cast<int>(tool.type)].description, what,
-                                   tool_types[static_cast<int>(tool.type)].description));
+                                   tool_types[static_cast<int>(tool.type)].description,
+                                   tool.type == ToolType::drill ? "; give an end mill \"type\": \"end-mill\"" : ""));
     default:
         break;
     }
-    if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit) return;
-    f.fail("tool", fmt::format("tool {} is a {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
+    if (!is_pointed_cutter(tool.type)) return;
+    const std::string_view kind = tool_types[static_cast<int>(tool.type)].description;
+    f.fail("tool", fmt::format("tool {} is {} {}: {} cuts with an end mill, a ball mill or a bull-nose end mill (the side "
                                "of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the "
                                "chamfer operation",
-                               tool.number, tool_types[static_cast<int>(tool.type)].description, what));
+                               tool.number, kind.front() == 'e' ? "an" : "a", kind, what));
+}
+
+std::optional<std::string> untyped_milling_note(const Tool& tool) {
+    if (tool.type != ToolType::drill || tool.type_given) return std::nullopt;
+    return fmt::format("tool {} has no type: it mills as an end mill (a tool without a type is a drill, whose side does not "
+                       "cut; give \"type\": \"end-mill\")",
+                       tool.number);
 }
 
 Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::string_view start_key, std::string_view path_key,

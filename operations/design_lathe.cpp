@@ -158,9 +158,10 @@ void design_turn_drill(const TurnDrillOp& op, const Job& job, LatheDesign& desig
     case ToolType::centre_drill:
     case ToolType::spot_drill:
     case ToolType::chamfer_mill:
-    case ToolType::v_bit: {
+    case ToolType::v_bit:
+    case ToolType::engraver: {
         const double angle = tool->tip_angle.value_or(tool->type == ToolType::drill ? 118.0 : 90.0);
-        if (tool->type == ToolType::chamfer_mill || tool->type == ToolType::v_bit)
+        if (is_pointed_cutter(tool->type))
             hole.flat = std::min(tool->tip_diameter / 2, hole.radius);
         hole.slope = 1.0 / std::tan(angle / 2 * rad_per_deg);
         break;

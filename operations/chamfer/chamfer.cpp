@@ -26,7 +26,7 @@ constexpr double chamfer_angle_match = 1e-6;
 constexpr KeySpec chamfer_head_keys[] = {
     {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
     {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
-     .description = "a tool number from tools: a chamfer-mill or v-bit whose half tip angle is the chamfer's angle"},
+     .description = "a tool number from tools: a chamfer-mill, v-bit or engraver whose half tip angle is the chamfer's angle"},
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
      .description = "written as a comment before the operation"},
 };
@@ -187,9 +187,9 @@ std::vector<ObjectSpec> ChamferOp::objects() {
 ChamferOp ChamferOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, all_chamfer_keys());
     const Tool& tool = in.tool(f);
-    if (tool.type != ToolType::chamfer_mill && tool.type != ToolType::v_bit)
-        f.fail("tool", fmt::format("tool {} ({}) is a {}: a chamfer is cut with the cone of a tool of type \"chamfer-mill\" "
-                                   "or \"v-bit\" (its tipAngle and tipDiameter give the chamfer's depth and offset)",
+    if (!is_pointed_cutter(tool.type))
+        f.fail("tool", fmt::format("tool {} ({}) is a {}: a chamfer is cut with the cone of a tool of type \"chamfer-mill\", "
+                                   "\"v-bit\" or \"engraver\" (its tipAngle and tipDiameter give the chamfer's depth and offset)",
                                    tool.number, tool.path, tool_types[static_cast<int>(tool.type)].description));
     ChamferOp op;
     op.path = f.path();

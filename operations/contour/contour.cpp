@@ -134,6 +134,7 @@ ContourOp ContourOp::read(Fields& f, const JobInput& in) {
     ContourOp op;
     op.path = f.path();
     op.tool = tool.number;
+    if (std::optional<std::string> note = untyped_milling_note(tool)) op.notes.push_back(std::move(*note));
     op.comment = f.optional_string("comment").value_or("");
     if (!(tool.diameter > 0)) f.fail("tool", fmt::format("tool {} has no diameter: a contour offsets by its radius", tool.number));
     op.tool_radius = tool.diameter / 2;

@@ -35,7 +35,7 @@ constexpr double engrave_least_step = 0.001;
 constexpr KeySpec engrave_keys[] = {
     {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
     {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
-     .description = "a tool number from tools: a v-bit or chamfer-mill (the line as wide as its V at the depth), a "
+     .description = "a tool number from tools: a v-bit, engraver or chamfer-mill (the line as wide as its V at the depth), a "
                     "ball-mill, bull-nose or end-mill"},
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
      .description = "written as a comment before the operation"},
@@ -281,13 +281,14 @@ EngraveOp EngraveOp::read(Fields& f, const JobInput& in) {
     const std::string_view tool_type = name_of(tool_types, tool.type);
     switch (tool.type) {
     case ToolType::v_bit:
+    case ToolType::engraver:
     case ToolType::chamfer_mill:
     case ToolType::ball_mill:
     case ToolType::bull_nose:
     case ToolType::end_mill: break;
     default:
-        f.fail("tool", fmt::format("tool {} ({}) is a {}: an engrave operation needs a v-bit, chamfer-mill, ball-mill, "
-                                   "bull-nose or end-mill",
+        f.fail("tool", fmt::format("tool {} ({}) is a {}: an engrave operation needs a v-bit, engraver, chamfer-mill, "
+                                   "ball-mill, bull-nose or end-mill",
                                    tool.number, tool.path, tool_type));
     }
     if (!tool.centre_cutting)
@@ -313,7 +314,7 @@ EngraveOp EngraveOp::read(Fields& f, const JobInput& in) {
     op.width = *width;
     // What the width follows from, in mm (the note is camgen's, not the job's units).
     auto mm = [](double v) { return number_text(v, 4); };
-    if (tool.type == ToolType::v_bit || tool.type == ToolType::chamfer_mill) {
+    if (is_pointed_cutter(tool.type)) {
         const double cone = (tool.diameter - tool.tip_diameter) / 2.0 / std::tan(*tool.tip_angle / 2.0 * rad_per_deg);
         op.notes.push_back(fmt::format("the lines are {} mm wide at the top: tool {}'s {}-degree V{}, {} mm deep{}", mm(op.width),
                                        tool.number, mm(*tool.tip_angle),

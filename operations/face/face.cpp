@@ -113,6 +113,7 @@ FaceOp FaceOp::read(Fields& f, const JobInput& in) {
     FaceOp op;
     op.path = f.path();
     op.tool = tool.number;
+    if (std::optional<std::string> note = untyped_milling_note(tool)) op.notes.push_back(std::move(*note));
     op.comment = f.optional_string("comment").value_or("");
     if (!(tool.diameter > 0)) f.fail("tool", fmt::format("tool {} has no diameter", tool.number));
     op.tool_radius = tool.diameter / 2;

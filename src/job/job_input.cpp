@@ -66,13 +66,13 @@ constexpr KeySpec tool_keys[] = {
     {.key = "diameter", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "cutting diameter (required unless the tool comes from the library)"},
     {.key = "tipAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
-     .description = "included point angle: a drill's (30 or more; needed by drillTip), a chamfer mill's or V-bit's "
-                    "(required for them)"},
+     .description = "included point angle: a drill's (30 or more; needed by drillTip), a chamfer mill's, V-bit's or "
+                    "engraver's (required for them)"},
     {.key = "cornerRadius", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "a bull-nose end mill's corner radius, at most half the diameter (required for bull-nose, refused "
                     "for other types)"},
     {.key = "tipDiameter", .quantity = Quantity::length, .min = Bound{0, true},
-     .description = "a chamfer mill's or V-bit's diameter at its point, less than diameter (default: 0, a sharp "
+     .description = "a chamfer mill's, V-bit's or engraver's diameter at its point, less than diameter (default: 0, a sharp "
                     "point; refused for other types)"},
     {.key = "noseRadius", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "a turning-tool's or threading-tool's nose radius (diameter may then be left out: it is twice the "
@@ -131,7 +131,7 @@ std::vector<ObjectSpec> JobInput::objects() {
         not_threading;
     for (const auto& t : tool_types) {
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
-        if (t.value != ToolType::chamfer_mill && t.value != ToolType::v_bit) not_pointed.emplace_back(t.name);
+        if (!is_pointed_cutter(t.value)) not_pointed.emplace_back(t.name);
         if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
         if (t.value != ToolType::turning_tool && t.value != ToolType::threading_tool) not_nosed.emplace_back(t.name);
         if (!is_lathe_insert(t.value)) not_lathe.emplace_back(t.name);
@@ -153,7 +153,7 @@ std::vector<ObjectSpec> JobInput::objects() {
                      .description = "a library tool by `library` (its name) or by `libraryNumber`, not both"}},
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
                    {.when_key = "type", .values = not_bull_nose, .forbid = {"cornerRadius"}},
-                   {.when_key = "type", .values = {"chamfer-mill", "v-bit"}, .require = {"tipAngle"}},
+                   {.when_key = "type", .values = {"chamfer-mill", "v-bit", "engraver"}, .require = {"tipAngle"}},
                    {.when_key = "type", .values = not_pointed, .forbid = {"tipDiameter"}},
                    {.when_key = "type", .values = not_thread_mill, .forbid = {"pitch", "minPitch", "maxPitch"}},
                    {.when_key = "type", .values = not_nosed, .forbid = {"noseRadius"}},
@@ -361,6 +361,7 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
     // A key of the object, else the base's value (a library tool's).
     const auto from_base = [&](std::string_view key) { return base && !f.has(key); };
     tool.type = from_base("type") ? base->type : f.choice("type", tool_types, ToolType::drill);
+    tool.type_given = from_base("type") ? base->type_given : f.has("type");
     const std::string_view type_name = name_of(tool_types, tool.type);
     const bool nosed = tool.type == ToolType::turning_tool || tool.type == ToolType::threading_tool;
     const bool grooving = tool.type == ToolType::grooving_tool || tool.type == ToolType::parting_tool;
@@ -429,7 +430,7 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
         f.fail("profileAngle", fmt::format("profileAngle {} degrees must be more than 0 and less than 180", *tool.profile_angle));
     if (tool.type == ToolType::threading_tool && !tool.profile_angle)
         f.fail("profileAngle", "a threading-tool needs its profileAngle (60 for metric and unified threads)");
-    const bool pointed = tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit;
+    const bool pointed = is_pointed_cutter(tool.type);
     tool.tip_angle = from_base("tipAngle") ? base->tip_angle : f.optional_number("tipAngle");
     if (pointed) {
         // Engraving V-bits go down to 10 degrees, chamfer mills are 60 to 120.
@@ -462,7 +463,7 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
                                                          : optional_length(f, "tipDiameter");
     if (tip) {
         if (!pointed)
-            f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill or v-bit, not {}", job_input_with_article(type_name)));
+            f.fail("tipDiameter", fmt::format("tipDiameter is for a chamfer-mill, v-bit or engraver, not {}", job_input_with_article(type_name)));
         if (!(*tip >= 0 && *tip < tool.diameter))
             f.fail("tipDiameter", fmt::format("tipDiameter {} must be at least 0 and less than the diameter ({})", show(*tip),
                                               show(tool.diameter)));

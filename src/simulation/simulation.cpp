@@ -916,6 +916,7 @@ ToolShape tool_shape(const Tool& tool) {
         break;
     case ToolType::chamfer_mill:
     case ToolType::v_bit:
+    case ToolType::engraver:
         s.form = ToolForm::cone;
         s.tip_angle = tool.tip_angle.value_or(90.0);
         s.tip_diameter = tool.tip_diameter;

@@ -391,6 +391,17 @@ TEST_CASE("engrave: strokes ordered nearest first, each entered from above, pass
     vee.tip_angle = 90;
     CHECK(*cut_width_at_depth(vee, 10) == 6);  // above the cone: the tool's diameter
     CHECK(*cut_width_at_depth(vee, 1) == doctest::Approx(2));
+    // An engraver (a single-flute engraving cutter) is a V by its geometry: the same width and
+    // note as the V-bit's, and the same cone in the simulation and the chamfer.
+    const std::string engraver_job = engrave_job(R"("text": "HI", "height": 5, "at": [10, 10], "depth": 0.3)",
+                                                 R"("type": "engraver", "diameter": 3, "tipAngle": 60, "tipDiameter": 0.1)");
+    const Job ej = read_job(engraver_job, "e.json");
+    const auto& eop = std::get<EngraveOp>(ej.operations.at(0));
+    CHECK(eop.width == op.width);
+    CHECK(eop.notes.at(0) == op.notes.at(0));
+    vee.type = ToolType::engraver;
+    CHECK(*cut_width_at_depth(vee, 1) == doctest::Approx(2));
+    CHECK(is_cone_tool(vee));
 }
 
 TEST_CASE("engrave: a path and a profile engraved on their line") {
@@ -445,7 +456,7 @@ TEST_CASE("engrave: refusals name the JSON path: a character the font lacks, a b
         const std::string e = error_of(engrave_job(R"("text": "A", "height": 5, "at": [0, 0], "depth": 0.2)", type));
         CAPTURE(e);
         CHECK(e.find("/operations/0/tool: tool 1 (/tools/0) is a ") != std::string::npos);
-        CHECK(e.find(": an engrave operation needs a v-bit, chamfer-mill, ball-mill, bull-nose or end-mill") != std::string::npos);
+        CHECK(e.find(": an engrave operation needs a v-bit, engraver, chamfer-mill, ball-mill, bull-nose or end-mill") != std::string::npos);
     }
     CHECK(error_of(engrave_job(R"("text": "A", "height": 5, "at": [0, 0], "depth": 0.5)", R"("type": "v-bit", "diameter": 3, "tipAngle": 60, "fluteLength": 0.4)")) ==
           "e.json:4: /operations/0/depth: the lines are 0.500 mm deep, but tool 1 (/tools/0) has a fluteLength of 0.400 mm");

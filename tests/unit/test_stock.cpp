@@ -360,7 +360,7 @@ TEST_CASE("tools: the shape keys' errors name their path and line") {
     CHECK(error(R"({"number": 1, "type": "v-bit", "diameter": 6, "tipAngle": 60, "tipDiameter": 6, "rpm": 5000})") ==
           "test.json:2: /tools/0/tipDiameter: tipDiameter 6.000 mm must be at least 0 and less than the diameter (6.000 mm)");
     CHECK(error(R"({"number": 1, "type": "drill", "diameter": 6, "tipDiameter": 1, "rpm": 5000})") ==
-          "test.json:2: /tools/0/tipDiameter: tipDiameter is for a chamfer-mill or v-bit, not a drill");
+          "test.json:2: /tools/0/tipDiameter: tipDiameter is for a chamfer-mill, v-bit or engraver, not a drill");
     // A drill's point keeps its bounds; a V-bit may be finer.
     CHECK(error(R"({"number": 1, "type": "drill", "diameter": 6, "tipAngle": 20, "rpm": 5000})").find("is not a drill point") !=
           std::string::npos);
@@ -375,7 +375,10 @@ TEST_CASE("tools: contour, pocket and face refuse a chamfer mill or V-bit; path 
       {"number": 4, "type": "ball-mill", "diameter": 6, "rpm": 6000},
       {"number": 5, "type": "spot-drill", "diameter": 10, "tipAngle": 90, "rpm": 1500},
       {"number": 6, "type": "reamer", "diameter": 8, "rpm": 300},
-      {"number": 7, "type": "tap", "diameter": 8, "rpm": 300})";
+      {"number": 7, "type": "tap", "diameter": 8, "rpm": 300},
+      {"number": 8, "type": "drill", "diameter": 8, "rpm": 800},
+      {"number": 9, "diameter": 8, "rpm": 800},
+      {"number": 10, "type": "engraver", "diameter": 3, "tipAngle": 30, "tipDiameter": 0.2, "rpm": 18000})";
     const std::string square = R"("start": [0, 0], "path": [{"line": [40, 0]}, {"line": [40, 30]}, {"line": [0, 30]}, {"line": [0, 0]}])";
     const auto op = [&](const std::string& type, int tool) {
         std::string extra = type == "contour" ? R"("side": "outside", )" : "";
@@ -383,21 +386,45 @@ TEST_CASE("tools: contour, pocket and face refuse a chamfer mill or V-bit; path 
                                                "\"endDepth\": 1, \"feed\": 500, " + square + "}]"));
     };
     CHECK(op("contour", 1) ==
-          "test.json:9: /operations/0/tool: tool 1 is a V-bit: a contour cuts with an end mill, a ball mill or a bull-nose end mill "
+          "test.json:12: /operations/0/tool: tool 1 is a V-bit: a contour cuts with an end mill, a ball mill or a bull-nose end mill "
           "(the side of a pointed tool is not its diameter); a chamfer mill or a V-bit cuts chamfers with the chamfer operation");
     CHECK(op("pocket", 2).find("/operations/0/tool: tool 2 is a chamfer mill: a pocket cuts with") != std::string::npos);
     CHECK(op("face", 1).find("/operations/0/tool: tool 1 is a V-bit: a face cuts with") != std::string::npos);
     // The issue's spot drill along a contour (it was offset by its full diameter and cut air), a reamer, a tap.
     CHECK(op("contour", 5) ==
-          "test.json:9: /operations/0/tool: tool 5 is a spot drill: a contour cuts with an end mill, a ball mill or a bull-nose "
+          "test.json:12: /operations/0/tool: tool 5 is a spot drill: a contour cuts with an end mill, a ball mill or a bull-nose "
           "end mill (its side cuts along the profile; a spot drill's does not)");
     CHECK(op("pocket", 6).find("/operations/0/tool: tool 6 is a reamer: a pocket cuts with") != std::string::npos);
     CHECK(op("face", 7).find("/operations/0/tool: tool 7 is a tap: a face cuts with") != std::string::npos);
+    CHECK(op("contour", 10).find("/operations/0/tool: tool 10 is an engraver: a contour cuts with") != std::string::npos);
+    // A tool typed drill is refused, with the way out; one given no type (a drill by default)
+    // mills, with a note that says so.
+    CHECK(op("contour", 8) ==
+          "test.json:12: /operations/0/tool: tool 8 is a drill: a contour cuts with an end mill, a ball mill or a bull-nose "
+          "end mill (its side cuts along the profile; a drill's does not); give an end mill \"type\": \"end-mill\"");
+    CHECK(op("pocket", 8).find("/operations/0/tool: tool 8 is a drill: a pocket cuts with") != std::string::npos);
+    CHECK(op("face", 8).find("/operations/0/tool: tool 8 is a drill: a face cuts with") != std::string::npos);
     for (const char* type : {"contour", "pocket", "face"})
-        for (int tool : {3, 4}) {
+        for (int tool : {3, 4, 9}) {
             CAPTURE(type);
             CAPTURE(tool);
             CHECK(op(type, tool).empty());
+        }
+    for (const char* type : {"contour", "pocket", "face"})
+        for (int tool : {3, 9}) {
+            CAPTURE(type);
+            std::string extra = std::string(type) == "contour" ? R"("side": "outside", )" : "";
+            const Job job = read_job(tool_job(tools, "[{\"type\": \"" + std::string(type) + "\", \"tool\": " + std::to_string(tool) +
+                                                         ", " + extra + "\"endDepth\": 1, \"feed\": 500, " + square + "}]"),
+                                     "test.json");
+            std::vector<std::string> notes;
+            if (const auto* c = std::get_if<ContourOp>(&job.operations.at(0))) notes = c->notes;
+            if (const auto* c = std::get_if<PocketOp>(&job.operations.at(0))) notes = c->notes;
+            if (const auto* c = std::get_if<FaceOp>(&job.operations.at(0))) notes = c->notes;
+            const bool noted = std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+                return n.find("has no type: it mills as an end mill (a tool without a type is a drill") != std::string::npos;
+            });
+            CHECK(noted == (tool == 9));
         }
     // An engraving line with a V-bit is a path.
     CHECK_NOTHROW(read_job(tool_job(tools, R"([{"type": "path", "tool": 1, "z": -0.3, "start": [0, 0],

@@ -28,6 +28,10 @@ struct ToolCutting {
 struct Tool {
     int number = 0;
     ToolType type = ToolType::drill;
+    // Whether the job (or its library tool) gave the type: a tool without one is a drill, and
+    // jobs from before tool types gave their end mills none, so milling takes such a tool as
+    // an end mill (with a note) while refusing one typed "drill".
+    bool type_given = false;
     double diameter = 0.0;                 // mm
     std::optional<double> tip_angle;       // degrees, included angle of the point (drills, chamfer mill, V-bit)
     std::optional<double> corner_radius;   // mm, a bull-nose end mill's corner radius (0 < r <= diameter / 2)

@@ -16,7 +16,7 @@ namespace camgen {
 
 // Whether the tool cuts with a cone (a chamfer mill or a V-bit with its tip angle).
 inline bool is_cone_tool(const Tool& tool) {
-    return (tool.type == ToolType::chamfer_mill || tool.type == ToolType::v_bit) && tool.tip_angle && *tool.tip_angle > 0 &&
+    return is_pointed_cutter(tool.type) && tool.tip_angle && *tool.tip_angle > 0 &&
            *tool.tip_angle < 180;
 }
 
@@ -43,6 +43,7 @@ inline double cone_height_for(const Tool& tool, double diameter) {
 inline std::optional<double> cut_width_at_depth(const Tool& tool, double depth) {
     switch (tool.type) {
     case ToolType::v_bit:
+    case ToolType::engraver:
     case ToolType::chamfer_mill:
         if (!is_cone_tool(tool)) return std::nullopt;
         return cone_diameter_at(tool, depth);

@@ -122,6 +122,9 @@ std::vector<ObjectSpec> cutting_objects();
 // at its diameter (contour, pocket, face; `what` names it: "a contour"): an error at "tool".
 // Other tool types are accepted as they always were.
 void check_cutting_tool(json::Fields& f, const Tool& tool, std::string_view what);
+// The note for a tool given no type (a drill by default) that contour, pocket or face mill
+// with, as with an end mill; none for a typed tool.
+std::optional<std::string> untyped_milling_note(const Tool& tool);
 
 // A profile from `start_key` and `path_key` (lines and arcs; packed lines read straight into
 // numbers), refused when an element is shorter than min_profile_segment or the profile crosses

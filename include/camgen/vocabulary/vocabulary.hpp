@@ -116,7 +116,7 @@ inline constexpr Named<SpindleDirection> spindle_directions[] = {
 
 enum class ToolType {
     drill, centre_drill, spot_drill, tap, reamer, boring_bar, end_mill, ball_mill, bull_nose, chamfer_mill, v_bit,
-    thread_mill, turning_tool, grooving_tool, parting_tool, threading_tool
+    engraver, thread_mill, turning_tool, grooving_tool, parting_tool, threading_tool
 };
 // `description` is how a tool comment names the type ("10 mm spot drill").
 inline constexpr Named<ToolType> tool_types[] = {
@@ -131,12 +131,19 @@ inline constexpr Named<ToolType> tool_types[] = {
     {ToolType::bull_nose, "bull-nose", "bull-nose end mill"},
     {ToolType::chamfer_mill, "chamfer-mill", "chamfer mill"},
     {ToolType::v_bit, "v-bit", "V-bit"},
+    {ToolType::engraver, "engraver", "engraver"},
     {ToolType::thread_mill, "thread-mill", "thread mill"},
     {ToolType::turning_tool, "turning-tool", "turning tool"},
     {ToolType::grooving_tool, "grooving-tool", "grooving tool"},
     {ToolType::parting_tool, "parting-tool", "parting tool"},
     {ToolType::threading_tool, "threading-tool", "threading tool"},
 };
+// Whether a tool type cuts with a cone of its tipAngle (with a flat of its tipDiameter at the
+// point): a chamfer mill, a V-bit, an engraver (a single-flute engraving cutter: geometrically a
+// V-bit, named as the shop names it).
+constexpr bool is_pointed_cutter(ToolType t) {
+    return t == ToolType::chamfer_mill || t == ToolType::v_bit || t == ToolType::engraver;
+}
 // Whether a tool type is a lathe's tool in the turret (turning, grooving, parting, threading),
 // with a nose or a width and a tip orientation, rather than one turning on the spindle's axis.
 constexpr bool is_lathe_insert(ToolType t) {
