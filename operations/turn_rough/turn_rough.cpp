@@ -46,14 +46,18 @@ constexpr KeySpec turn_rough_keys[] = {
                     "G71 U): the profile is moved out by it"},
     {.key = "allowanceZ", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
      .description = "material left for finishing on faces, mm: the profile is moved towards +Z by it"},
+    {.key = "direction", .type = JsonType::string, .default_json = "\"z\"", .choices = &choices_of<rough_directions>,
+     .description = "which way the passes run: \"z\" along -Z towards the chuck (turning), \"x\" along -X towards the "
+                    "axis (facing)"},
     {.key = "depthOfCut", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
-     .description = "the most material one pass takes, radial (per side), mm; the passes are equal"},
+     .description = "the most material one pass takes, mm: radial (per side) along Z, axial along X; the passes are "
+                    "equal"},
     {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
      .description = "how far beyond the profile's start (in Z) each pass begins, and how far outside the bar the tool "
                     "rapids, mm"},
     {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
      .description = "how far each pass lifts off at 45 degrees (in Z and in X) before it rapids back, mm; at most half "
-                    "the depth of a pass"},
+                    "the depth of a pass (along X, steeper than the profile's steepest fall towards the chuck)"},
 };
 
 // The Z range of a segment of a profile (an arc's may reach beyond its ends).
@@ -117,6 +121,30 @@ double turn_rough_radius_on(const Profile& p, std::size_t k, double z) {
     return std::sin(mid) >= 0 ? c.y + dv : c.y - dv;
 }
 
+// The steepest fall towards the chuck along a profile, degrees from -Z (0: it never falls). An
+// arc's direction of travel turns one way along it, so its steepest fall is at an end.
+double turn_rough_steepest_fall(const Profile& p) {
+    double worst = 0.0;
+    auto fall_of = [&](double dz, double dr) {
+        // A direction of travel with Z never rising: falling where the radius shrinks.
+        if (dr < 0) worst = std::max(worst, std::atan2(-dr, std::max(0.0, -dz)) * deg_per_rad);
+    };
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+        const ProfileSegment& s = p.segments[k];
+        const Vec2 a = segment_start(p, k);
+        if (!s.centre) {
+            fall_of(s.end.x - a.x, s.end.y - a.y);
+            continue;
+        }
+        const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+        for (const Vec2 q : {a, s.end}) {
+            const Vec2 r = q - *s.centre;
+            fall_of(-sign * r.y, sign * r.x);
+        }
+    }
+    return worst;
+}
+
 }  // namespace
 
 double turn_rough_boundary_at(const TurnRoughOp& op, double z) {
@@ -147,7 +175,7 @@ std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double v) {
 
 std::vector<ObjectSpec> TurnRoughOp::objects() {
     return {{.name = "turn-rough",
-             .description = "roughing the outside of a bar on a lathe to a profile plus allowances, in passes along Z",
+             .description = "roughing the outside of a bar on a lathe to a profile plus allowances, in passes along Z or along X",
              .keys = {std::begin(turn_rough_keys), std::end(turn_rough_keys)}}};
 }
 
@@ -208,6 +236,11 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
         f.fail("path", fmt::format("the profile (with allowanceX) reaches X {}, beyond the bar's X {}: a turn-rough cuts "
                                    "within the bar",
                                    in.show(top / scale), in.show(op.stock_radius / scale)));
+    op.direction = f.choice("direction", rough_directions, RoughDirection::z);
+    if (op.direction == RoughDirection::x && op.boundary.start.x - op.boundary.segments.back().end.x < 1e-3)
+        f.fail("direction", "along X the passes step down in Z from the profile's start to its end, and this profile "
+                            "ends at the Z it starts at: rough it along Z");
+    op.steepest_fall = turn_rough_steepest_fall(op.boundary);
     op.depth_of_cut = in.length(f, "depthOfCut");
     if (!(op.depth_of_cut > 0)) f.fail("depthOfCut", "depthOfCut must be > 0");
     op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
@@ -236,7 +269,9 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
         return b;
     }();
     op.bottom = bottom;
-    const int count = static_cast<int>(std::ceil((op.stock_radius - bottom) / op.depth_of_cut - 1e-9));
+    const double extent = op.direction == RoughDirection::x ? op.boundary.start.x - op.boundary.segments.back().end.x
+                                                            : op.stock_radius - bottom;
+    const int count = static_cast<int>(std::ceil(extent / op.depth_of_cut - 1e-9));
     if (count > 100000)
         f.fail("depthOfCut", fmt::format("depthOfCut {} makes {} passes: more than 100000", in.show(op.depth_of_cut), count));
     return op;
@@ -244,9 +279,70 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
 
 namespace {
 Vec3 turn_rough_at(double r, double z) { return {r, 0.0, z}; }
+
+// Feeds along the boundary of `op` from its end back to its start (arcs turned round).
+void turn_rough_boundary_backwards(const TurnRoughOp& op, EventSink& sink) {
+    const std::vector<ProfileSegment>& segs = op.boundary.segments;
+    for (std::size_t k = segs.size(); k-- > 0;) {
+        const Vec2 to = segment_start(op.boundary, k);
+        const ProfileSegment& s = segs[k];
+        if (s.centre)
+            sink.emit(Arc{turn_rough_at(to.y, to.x), turn_rough_at(s.centre->y, s.centre->x),
+                          s.direction == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw, Plane::xz, op.feed, 0,
+                          Movement::cutting});
+        else
+            sink.emit(Linear{turn_rough_at(to.y, to.x), op.feed, Movement::cutting});
+    }
+}
+
+// Passes along -X at Z levels; then down the end face and along the boundary back to its start.
+void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
+    const double z_hi = op.boundary.start.x;
+    const Vec2 end = op.boundary.segments.back().end;
+    const double outside = op.stock_radius + op.approach;
+    const std::vector<double> levels = turn_rough_x_levels(op);
+    const double step = (z_hi - end.x) / static_cast<double>(levels.size() + 1);
+    const double lift = std::min(op.lift, step / 2);
+    // Off the face a pass leaves, steeper than any fall of the boundary towards the chuck, so
+    // that the lift stays outside the boundary above the pass: the boundary rises at most at the
+    // steepest fall from the pass's end towards +Z. 45 degrees where it falls less.
+    const double angle = std::max(45.0, (op.steepest_fall + 90.0) / 2.0) / deg_per_rad;
+    const double dz = std::sqrt(2.0) * lift * std::cos(angle), dr = std::sqrt(2.0) * lift * std::sin(angle);
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+    for (double level : levels) {
+        const double r_end = turn_rough_boundary_at(op, level);
+        if (!(r_end < op.stock_radius - 1e-6)) continue;  // the boundary is at the bar here: nothing to take
+        sink.emit(Rapid{turn_rough_at(outside, level)});
+        sink.emit(Linear{turn_rough_at(r_end, level), op.feed, Movement::cutting});
+        sink.emit(Linear{turn_rough_at(r_end + dr, level + dz), op.feed, Movement::lead_out});
+        sink.emit(Rapid{turn_rough_at(std::max(outside, r_end + dr), level + dz)});
+    }
+    // The last pass: down the end face from outside the bar, along the boundary to its start.
+    sink.emit(Rapid{turn_rough_at(outside, end.x)});
+    sink.emit(Linear{turn_rough_at(end.y, end.x), op.feed, end.y < op.stock_radius ? Movement::cutting : Movement::lead_in});
+    turn_rough_boundary_backwards(op, sink);
+    // Off the start: above it is air (the passes begin there along Z too).
+    const Vec2 b0 = op.boundary.start;
+    sink.emit(Linear{turn_rough_at(b0.y + lift, z_hi + lift), op.feed, Movement::lead_out});
+    sink.emit(Rapid{turn_rough_at(outside, z_hi + lift)});
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+}
 }  // namespace
 
+std::vector<double> turn_rough_x_levels(const TurnRoughOp& op) {
+    const double z_hi = op.boundary.start.x, z_lo = op.boundary.segments.back().end.x;
+    const int count = std::max(1, static_cast<int>(std::ceil((z_hi - z_lo) / op.depth_of_cut - 1e-9)));
+    const double step = (z_hi - z_lo) / count;
+    std::vector<double> levels;
+    for (int k = 1; k < count; ++k) levels.push_back(z_hi - step * k);
+    return levels;
+}
+
 void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
+    if (op.direction == RoughDirection::x) {
+        expand_along_x(op, ctx, sink);
+        return;
+    }
     const double z_start = op.boundary.start.x + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
     // The levels: equal steps from the bar down to the boundary's lowest point; the pass along

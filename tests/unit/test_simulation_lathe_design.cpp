@@ -275,4 +275,21 @@ TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z 
                   s.run.out);
 }
 
+TEST_CASE("camgen simulate: the shaft's roughing along X leaves the part as designed on the three lathes") {
+    // The facing and the roughing with "direction": "x": the same boundary, roughed in passes
+    // along -X; simulated as each lathe's program reads back, the part is as designed.
+    const fs::path dir = test::scratch("simulate-lathe-rough-x");
+    nlohmann::json job = nlohmann::json::parse(test::read_file(samples + "shaft.json"));
+    job["operations"][3]["direction"] = "x";
+    job["operations"] = nlohmann::json::array({job["operations"][0], job["operations"][3]});
+    const std::string file = (dir / "rough-x.json").string();
+    std::ofstream(file) << job.dump(1);
+    for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+        const Simulated s = simulate(file, machine, "rough-x-" + machine + ".nc", [](const std::string& t) { return t; });
+        const std::string said = machine + "\n" + s.run.out;
+        CHECK_MESSAGE(s.run.code == 0, said);
+        CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), said);
+    }
+}
+
 }  // namespace test_simulation_lathe_design

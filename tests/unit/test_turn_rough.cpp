@@ -96,14 +96,15 @@ double boundary_at(const Points& p, double z, double ax, double az) {
 }
 
 // The job text of a turn-rough of `p` (radii) from a bar of radius `bar`.
-std::string rough_job(const Points& p, double bar, double ax, double az, double doc, const std::string& tool_extra = "") {
+std::string rough_job(const Points& p, double bar, double ax, double az, double doc, const std::string& tool_extra = "",
+                      const std::string& op_extra = "") {
     std::string path;
     for (std::size_t i = 1; i < p.size(); ++i)
         path += fmt::format("{}{{\"line\": [{}, {}]}}", i > 1 ? ", " : "", p[i].y, p[i].x);
     return fmt::format(R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000{}}}],
   "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
-                  "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]}}]}})",
-                       tool_extra, bar, ax, az, doc, p[0].y, p[0].x, path);
+                  "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]{}}}]}})",
+                       tool_extra, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
 }
 
 // A random profile from Z0 towards -Z: `undercuts` lets the radius fall.
@@ -179,6 +180,71 @@ RoughCheck check_rough(const Points& p, double bar, double ax, double az, const 
         const double z = z_of(i);
         if (z <= z_lo + 0.02 || z >= z_hi - 0.02) continue;
         c.most_left = std::max(c.most_left, reached[i] - boundary_at(p, z, ax, az));
+    }
+    return c;
+}
+
+// The checks of a roughing along X, on the material as rows of radius: a feed along -X at a Z
+// takes what lies above it (towards +Z) on the rows it crosses, as the insert's body stands
+// there; each row keeps its top Z. The boundary's top at a row is worked out from the points:
+// the highest Z where the boundary (moved by the allowances) stands above the row, the end face
+// below.
+RoughCheck check_rough_x(const Points& p, double bar, double ax, double az, const std::vector<TipMove>& moves) {
+    RoughCheck c;
+    const double z_hi = p.front().x + az, z_lo = p.back().x + az, dr = 0.01;
+    const int rows = static_cast<int>(bar / dr);  // rows beyond the bar hold no material
+    auto r_of = [&](int i) { return (i + 0.5) * dr; };
+    std::vector<double> top(rows, z_hi);
+    // The highest Z at which the kept part reaches the row's radius.
+    auto keep_top = [&](double r) {
+        if (r < boundary_at(p, z_hi, ax, az)) return z_hi;
+        double best = z_lo;
+        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+            const double r0 = p[i].y + ax, r1 = p[i + 1].y + ax;
+            if ((r0 - r) * (r1 - r) > 0 || std::abs(r1 - r0) < 1e-12) continue;
+            best = std::max(best, p[i].x + az + (r - r0) / (r1 - r0) * (p[i + 1].x - p[i].x));
+        }
+        return best;
+    };
+    for (std::size_t m = 0; m < moves.size(); ++m) {
+        const TipMove& mv = moves[m];
+        const double lo = std::min(mv.from.y, mv.to.y), hi = std::max(mv.from.y, mv.to.y);
+        if (!mv.rapid) {
+            // The tip against the boundary, every 0.005 mm along the move.
+            const double len = std::hypot(mv.to.x - mv.from.x, mv.to.y - mv.from.y);
+            const int n = std::max(1, static_cast<int>(len / 0.005));
+            for (int k = 0; k <= n; ++k) {
+                const double t = static_cast<double>(k) / n;
+                const double z = mv.from.x + t * (mv.to.x - mv.from.x), r = mv.from.y + t * (mv.to.y - mv.from.y);
+                const double b = z < z_lo - 1e-9 ? bar : z > z_hi + 1e-9 ? 0.0 : boundary_at(p, z, ax, az);
+                c.deepest_gouge = std::max(c.deepest_gouge, b - r);
+            }
+        }
+        if (hi - lo < 1e-12) {
+            if (mv.rapid) {
+                // Straight along Z: against the rows either side of its radius.
+                const int i = static_cast<int>(std::floor(mv.to.y / dr - 0.5));
+                if (i >= 0 && i + 1 < rows)
+                    c.rapid_in_material =
+                        std::max(c.rapid_in_material, std::min(top[i], top[i + 1]) - std::min(mv.from.x, mv.to.x));
+            }
+        } else {
+            const int i0 = std::max(0, static_cast<int>(std::ceil(lo / dr - 0.5)));
+            const int i1 = std::min(rows - 1, static_cast<int>(std::floor(hi / dr - 0.5)));
+            for (int i = i0; i <= i1; ++i) {
+                const double z = mv.from.x + (r_of(i) - mv.from.y) / (mv.to.y - mv.from.y) * (mv.to.x - mv.from.x);
+                if (mv.rapid) c.rapid_in_material = std::max(c.rapid_in_material, top[i] - z);
+                else top[i] = std::min(top[i], z);
+            }
+        }
+        if (mv.rapid && m > 0 && !moves[m - 1].rapid && moves[m - 1].movement != Movement::lead_out) ++c.rapids_without_lift;
+    }
+    double least = INFINITY;
+    for (double z = z_lo; z <= z_hi; z += 0.01) least = std::min(least, boundary_at(p, z, ax, az));
+    for (int i = 0; i < rows; ++i) {
+        const double r = r_of(i);
+        if (r <= least + 0.02 || r >= bar - 0.02) continue;
+        c.most_left = std::max(c.most_left, top[i] - keep_top(r));
     }
     return c;
 }
@@ -427,6 +493,101 @@ TEST_CASE("turn-profile: a slope the insert cannot follow is refused at its elem
   "operations": [{"type": "turn-profile", "tool": 1, "feed": 100, "start": [20, 0], "retractX": 30,
   "path": [{"line": [20, -5]}, {"line": [12, -7]}, {"line": [12, -10]}]}]})")
               .empty());
+}
+
+TEST_CASE("turn-rough along X: random rising profiles and profiles with undercuts are roughed to exactly the allowances") {
+    std::mt19937 rng(72);
+    const double bar = 15.0;
+    int cases = 0, passes = 0;
+    double worst_gouge = 0, worst_left = 0, worst_rapid = 0;
+    for (int n = 0; n < 120; ++n) {
+        const bool undercuts = n % 2 == 1;
+        const Points p = random_profile(rng, undercuts, bar - 0.5);
+        const double ax = (n % 3) * 0.2, az = (n % 4) * 0.05, doc = 0.7 + (n % 5) * 0.4;
+        const std::string text = rough_job(p, bar, ax, az, doc, undercuts ? R"(, "insertAngle": 35, "approachAngle": 93)" : "",
+                                           R"(, "direction": "x")");
+        INFO(text);
+        Job job;
+        REQUIRE_NOTHROW(job = read_job(text, "rough.json"));
+        const std::vector<TipMove> moves = tip_moves(job);
+        const RoughCheck c = check_rough_x(p, bar, ax, az, moves);
+        CHECK(c.deepest_gouge <= 1e-9);
+        CHECK(c.most_left <= 1e-6);
+        CHECK(c.rapid_in_material <= 1e-9);
+        CHECK(c.rapids_without_lift == 0);
+        // Every pass feeds along -X at one Z, the levels at most depthOfCut apart from the start.
+        double above = p.front().x + az;
+        for (const TipMove& m : moves) {
+            if (m.rapid || m.movement != Movement::cutting || std::abs(m.from.x - m.to.x) > 1e-12 || m.from.y < bar) continue;
+            CHECK(m.to.y < m.from.y);
+            CHECK(above - m.to.x <= doc + 1e-9);
+            above = m.to.x;
+            ++passes;
+        }
+        CHECK(above - (p.back().x + az) <= doc + 1e-9);
+        worst_gouge = std::max(worst_gouge, c.deepest_gouge);
+        worst_left = std::max(worst_left, c.most_left);
+        worst_rapid = std::max(worst_rapid, c.rapid_in_material);
+        ++cases;
+    }
+    MESSAGE("turn-rough along X: " << cases << " random profiles, " << passes << " passes; worst gouge " << worst_gouge
+                                   << " mm, worst left beyond the allowance " << worst_left << " mm, worst rapid into material "
+                                   << worst_rapid << " mm");
+}
+
+TEST_CASE("turn-rough along X: the check finds a pass 0.1 mm into the allowance, a low return and a pass left out") {
+    const Points p{{0, 5}, {-10, 5}, {-10, 10}, {-20, 10}};
+    const std::string dir = R"(, "direction": "x")";
+    const Job job = read_job(rough_job(p, 15, 0.3, 0.1, 1.0, "", dir), "rough.json");
+    const std::vector<TipMove> moves = tip_moves(job);
+    REQUIRE(check_rough_x(p, 15, 0.3, 0.1, moves).deepest_gouge <= 1e-9);
+    REQUIRE(check_rough_x(p, 15, 0.3, 0.1, moves).rapid_in_material <= 1e-9);
+    // The levels: 20 mm in 20 steps of 1 from Z 0.1, the last left to the pass along the boundary.
+    std::vector<double> levels;
+    for (const TipMove& m : moves)
+        if (!m.rapid && m.movement == Movement::cutting && m.from.y > 15 && std::abs(m.from.x - m.to.x) < 1e-12)
+            levels.push_back(m.to.x);
+    REQUIRE(levels.size() == 20);  // 19 levels and the end face
+    CHECK(levels[0] == doctest::Approx(-0.9));
+    CHECK(levels[18] == doctest::Approx(-18.9));
+    CHECK(levels[19] == doctest::Approx(-19.9));
+    // A pass 0.1 mm further in: found.
+    std::vector<TipMove> deeper = moves;
+    for (TipMove& m : deeper)
+        if (!m.rapid && m.movement == Movement::cutting && std::abs(m.to.x + 4.9) < 1e-9) {
+            m.to.y -= 0.1;
+            break;
+        }
+    CHECK(check_rough_x(p, 15, 0.3, 0.1, deeper).deepest_gouge == doctest::Approx(0.1));
+    // The return made 1 mm below the pass's lift: through the layer below it.
+    std::vector<TipMove> low = moves;
+    for (std::size_t i = 1; i < low.size(); ++i)
+        if (low[i].rapid && low[i - 1].movement == Movement::lead_out) {
+            low[i].from.x -= 1.0, low[i].to.x -= 1.0;
+            break;
+        }
+    CHECK(check_rough_x(p, 15, 0.3, 0.1, low).rapid_in_material > 0.4);
+    // Without the pass along the boundary the steps stay.
+    std::vector<TipMove> no_last(moves.begin(), moves.end() - 8);
+    CHECK(check_rough_x(p, 15, 0.3, 0.1, no_last).most_left > 0.5);
+    // A lift at 45 degrees off a pass under a 50-degree fall would enter the part: the lift
+    // is steeper than the fall.
+    const Points fall{{0, 12}, {-5, 12}, {-7, 9.6164}, {-15, 9.6164}};
+    const Job steep = read_job(rough_job(fall, 15, 0, 0, 0.8, R"(, "insertAngle": 35, "approachAngle": 93)", dir), "fall.json");
+    const std::vector<TipMove> sm = tip_moves(steep);
+    CHECK(check_rough_x(fall, 15, 0, 0, sm).deepest_gouge <= 1e-9);
+    for (std::size_t i = 1; i < sm.size(); ++i)
+        if (sm[i].movement == Movement::lead_out && !sm[i].rapid && sm[i].from.x > -7 && sm[i].from.x < -5) {
+            const double dz = sm[i].to.x - sm[i].from.x, dr = sm[i].to.y - sm[i].from.y;
+            CHECK(std::atan2(dr, dz) * 180 / M_PI > 50.0);
+        }
+}
+
+TEST_CASE("turn-rough along X: refusals") {
+    CHECK(refusal(rough_job({{0, 5}, {0, 10}}, 15, 0, 0, 1.0, "", R"(, "direction": "x")"))
+              .find("/operations/0/direction: along X the passes step down in Z") != std::string::npos);
+    CHECK(refusal(rough_job({{0, 5}, {-5, 10}}, 15, 0, 0, 1.0, "", R"(, "direction": "y")"))
+              .find("/operations/0/direction:") != std::string::npos);
 }
 
 }  // namespace test_turn_rough

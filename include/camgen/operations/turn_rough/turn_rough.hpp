@@ -5,7 +5,10 @@
 // G71 U W move the finishing shape), closed at the profile's end by a face up to the bar. Passes
 // at levels depthOfCut apart (radial) each feed along -Z wherever the boundary lies below their
 // level, lift off at 45 degrees and return in air; a last pass follows the boundary, so that
-// the allowances are all that is left. Written longhand on every lathe. (Z, radius), mm.
+// the allowances are all that is left. With direction "x" the passes run along -X instead (the
+// facing direction, as Fanuc's G72), at Z levels depthOfCut apart, each from outside the bar in
+// to the boundary, lifted off away from it; the last pass follows the boundary from the end face
+// back to the start. Written longhand on every lathe. (Z, radius), mm.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +19,13 @@
 #include "camgen/operations/context.hpp"
 
 namespace camgen {
+
+// Which way a turn-rough's passes run: along -Z (turning, as G71) or along -X (facing, as G72).
+enum class RoughDirection { z, x };
+inline constexpr Named<RoughDirection> rough_directions[] = {
+    {RoughDirection::z, "z", "passes along -Z towards the chuck, at radial levels depthOfCut apart (turning, as G71)"},
+    {RoughDirection::x, "x", "passes along -X towards the axis, at Z levels depthOfCut apart (facing, as G72)"},
+};
 
 struct TurnRoughOp {
     static constexpr std::string_view type = "turn-rough";
@@ -36,7 +46,9 @@ struct TurnRoughOp {
     double allowance_z = 0.0;       // mm
     double stock_radius = 0.0;      // the bar's radius it roughs from, mm
     double bottom = 0.0;            // the boundary's least radius, mm
-    double depth_of_cut = 0.0;      // radial, mm, the most per pass
+    RoughDirection direction = RoughDirection::z;
+    double depth_of_cut = 0.0;      // the most per pass, mm: radial along Z, axial along X
+    double steepest_fall = 0.0;     // degrees: the boundary's steepest fall towards the chuck (0: none)
     double approach = 1.0;          // mm beyond the boundary's start where passes start, and outside the bar
     double lift = 0.5;              // mm of the 45-degree lift off each pass's end
     std::vector<std::string> notes;
@@ -54,10 +66,17 @@ std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double radius
 // The boundary's radius at Z z (the least where a face stands at z), for z within it.
 double turn_rough_boundary_at(const TurnRoughOp& op, double z);
 
+// The Z levels of the passes along X: equal steps from the boundary's start down to its end,
+// the last step left to the pass along the boundary.
+std::vector<double> turn_rough_x_levels(const TurnRoughOp& op);
+
 // Rapid outside the bar to approachDistance beyond the boundary's start; for each level, for each
 // span: rapid down in air (beyond the start, or down the column the levels above have cleared),
 // feed along -Z to the span's end, lift at 45 degrees, rapid back in air; then feed along the
-// boundary, up the face at its end to the bar, lift off, rapid back to the clearance.
+// boundary, up the face at its end to the bar, lift off, rapid back to the clearance. Along X:
+// for each Z level, rapid down outside the bar, feed in along -X to the boundary, lift off
+// (+Z, and +X steeper than the boundary's steepest fall) and rapid back out; then feed down the
+// end face, along the boundary to its start, lift off it and rapid to the clearance.
 void expand(const TurnRoughOp& op, const Context& context, EventSink& sink);
 
 // The operation's name for comments: its comment, else "turn rough".
