@@ -219,6 +219,12 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
     } else {
         (void)f.optional_number("finishAllowance");
     }
+    if (bar && op.z_right > stock->face_z + 1e-9)
+        f.fail("z", fmt::format("z {} is beyond the bar's face (Z {}): the groove is cut into the bar", in.show(op.z_right),
+                                in.show(stock->face_z)));
+    if (bar && op.z_left - op.chamfer < stock->face_z - stock->length - 1e-9)
+        f.fail("z", fmt::format("the groove at z {} (width {}, chamfer {}) reaches beyond the bar's end (Z {})",
+                                in.show(op.z_right), in.show(width), in.show(op.chamfer), in.show(stock->face_z - stock->length)));
     const double clearance = in.header().clearance;
     if (op.z_right + op.chamfer + op.approach >= clearance)
         f.fail("z", fmt::format("the groove (with its chamfer and approachDistance) reaches Z {}, at or above the clearance "

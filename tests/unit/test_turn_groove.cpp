@@ -259,6 +259,8 @@ TEST_CASE("turn-groove and turn-part refuse what they cannot cut") {
               .find("reaches the spindle axis") != std::string::npos);
     CHECK(refusal(groove_job(tool, R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 3, "depth": 14})"))
               .find("more than tool 1's fluteLength 12") != std::string::npos);
+    CHECK(refusal(groove_job(tool, R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": 2, "width": 3, "depth": 2})"))
+              .find("/operations/0/z: z 2.000 mm is beyond the bar's face") != std::string::npos);
     CHECK(refusal(groove_job(tool, R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 3})"))
               .find("give the groove's depth or its bottomX") != std::string::npos);
     CHECK(refusal(groove_job(R"({"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 800})",
