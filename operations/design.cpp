@@ -109,6 +109,8 @@ public:
                                  [&](const TurnProfileOp& o) { design_turn_profile(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnFaceOp& o) { design_turn_face(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnRoughOp& o) { design_turn_rough(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnGrooveOp& o) { design_turn_groove(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnPartOp& o) { design_turn_part(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);

@@ -126,6 +126,25 @@ std::optional<std::pair<double, double>> LatheTurnDesign::radius_range(double a,
 
 double LatheTurnDesign::left_radius(double z) const {
     double best = std::numeric_limits<double>::infinity();
+    if (blade_hi > blade_lo) {
+        // The stretch of each move whose point lies in [z - blade_hi, z - blade_lo]: its edge
+        // covers z there; the radius is linear along it, least at an end of the stretch.
+        const double lo = z - blade_hi, hi = z - blade_lo;
+        for (const LatheTipMove& m : tip) {
+            const double du = m.to.x - m.from.x, dv = m.to.y - m.from.y;
+            double t0 = 0, t1 = 1;
+            if (std::abs(du) < 1e-15) {
+                if (m.from.x < lo || m.from.x > hi) continue;
+            } else {
+                double s0 = (lo - m.from.x) / du, s1 = (hi - m.from.x) / du;
+                if (s0 > s1) std::swap(s0, s1);
+                t0 = std::max(0.0, s0), t1 = std::min(1.0, s1);
+                if (t0 > t1) continue;
+            }
+            best = std::min({best, m.from.y + t0 * dv, m.from.y + t1 * dv});
+        }
+        return best;
+    }
     for (const LatheTipMove& m : tip) {
         if (std::min(m.from.x, m.to.x) > z) continue;  // all of it above z: it clears nothing there
         best = std::min(best, lathe_design_reach(m.from, m.to, nose, z));
@@ -301,6 +320,51 @@ void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& desig
         const LatheDesignArc arc = lathe_design_arc(op.boundary, k);
         if (lathe_design_on_arc(arc, pi)) d.z_lo = std::min(d.z_lo, arc.centre.x - arc.radius);
     }
+    design.profiles.push_back(std::move(d));
+}
+
+namespace {
+
+// The design of a blade's cut: `outline` (Z falling) kept below, the blade's path.
+void lathe_design_blade(const Job& job, LatheTurnDesign& d, const GrooveBlade& blade, std::vector<Vec2> outline) {
+    d.nose = 0.0;
+    d.blade_lo = blade.right_point ? -blade.width : 0.0;
+    d.blade_hi = d.blade_lo + blade.width;
+    (void)job;
+    d.profile.start = outline.front();
+    for (std::size_t k = 1; k < outline.size(); ++k) d.profile.segments.push_back({outline[k], std::nullopt, ArcDirection::ccw});
+    d.z_hi = outline.front().x;
+    d.z_lo = outline.back().x;
+}
+
+}  // namespace
+
+void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    const double c = op.chamfer, R = op.surface;
+    std::vector<Vec2> outline;
+    outline.push_back({op.z_right + c, R});
+    if (c > 0) outline.push_back({op.z_right, R - c});
+    outline.push_back({op.z_right, op.bottom});
+    outline.push_back({op.z_left, op.bottom});
+    if (c > 0) outline.push_back({op.z_left, R - c});
+    outline.push_back({op.z_left - c, R});
+    lathe_design_blade(job, d, op.blade, std::move(outline));
+    design.profiles.push_back(std::move(d));
+}
+
+void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    const double c = op.chamfer, R = op.surface, left = op.z - op.blade.width;
+    std::vector<Vec2> outline;
+    outline.push_back({op.z + c, R});
+    if (c > 0) outline.push_back({op.z, R - c});
+    outline.push_back({op.z, op.end});
+    outline.push_back({left, op.end});
+    outline.push_back({left, R});
+    lathe_design_blade(job, d, op.blade, std::move(outline));
     design.profiles.push_back(std::move(d));
 }
 

@@ -39,7 +39,8 @@ struct SimProfile {
         switch (form) {
         case ToolForm::flat:
         case ToolForm::cylinder:
-        case ToolForm::turning: return 0.0;
+        case ToolForm::turning:
+        case ToolForm::blade: return 0.0;
         case ToolForm::ball: return radius - std::sqrt(std::max(0.0, radius * radius - r * r));
         case ToolForm::bull_nose: {
             if (r <= flat) return 0.0;
@@ -695,6 +696,8 @@ private:
             const double n = tool.nose_radius;
             if (tool.form == ToolForm::turning)
                 lathe_turn({std::abs(p.x) + n, p.y, p.z + n}, {std::abs(q.x) + n, q.y, q.z + n}, n, acc);
+            else if (tool.form == ToolForm::blade)
+                lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
             else lathe_axial(s, p, q, tool, acc);
         }
         acc.volume *= result_.lathe.dz;
@@ -734,6 +737,40 @@ private:
             const double r = turn_reach(a, b, nose, result_.lathe_sections.z[i]);
             if (std::isfinite(r)) section_cut(i, r, 0.0);
         });
+    }
+
+    // A blade: its edge from the point's Z + lo to + hi, its body straight out in +X.
+    void lathe_blade(const Vec3& a, const Vec3& b, double lo, double hi, SimMoveAcc& acc) {
+        const LatheProfile& p = result_.lathe;
+        const double zlo = std::min(a.z, b.z) + lo, zhi = std::max(a.z, b.z) + hi;
+        int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
+        for (int k = k0; k < p.nz && p.z(k) <= zhi + p.dz; ++k) {
+            const double r = blade_reach(a, b, lo, hi, p.z(k));
+            if (!std::isfinite(r)) continue;
+            if (r < p.outside[k] && p.outside[k] > p.bore[k])
+                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+        }
+        sections_above(zlo, [&](std::size_t i) {
+            const double r = blade_reach(a, b, lo, hi, result_.lathe_sections.z[i]);
+            if (std::isfinite(r)) section_cut(i, r, 0.0);
+        });
+    }
+
+    // The least radius a blade moving from a to b clears at Z z: where its point's Z lies in
+    // [z - hi, z - lo] its edge covers z; the radius is linear along the move, least at an end
+    // of that stretch (infinity: it never covers z).
+    static double blade_reach(const Vec3& a, const Vec3& b, double lo, double hi, double z) {
+        const double xa = std::abs(a.x), xb = std::abs(b.x), dz = b.z - a.z;
+        double t0 = 0, t1 = 1;
+        if (std::abs(dz) < sim_tiny) {
+            if (a.z < z - hi || a.z > z - lo) return std::numeric_limits<double>::infinity();
+        } else {
+            double s0 = (z - hi - a.z) / dz, s1 = (z - lo - a.z) / dz;
+            if (s0 > s1) std::swap(s0, s1);
+            t0 = std::max(0.0, s0), t1 = std::min(1.0, s1);
+            if (t0 > t1) return std::numeric_limits<double>::infinity();
+        }
+        return std::min(xa + t0 * (xb - xa), xa + t1 * (xb - xa));
     }
 
     // The least radius the move clears at Z z (infinity: none there).
@@ -935,8 +972,12 @@ ToolShape tool_shape(const Tool& tool) {
         s.form = ToolForm::turning;
         s.nose_radius = tool.diameter / 2;
         break;
-    case ToolType::grooving_tool:  // swept as a tip at their programmed point (their width is not swept yet)
+    case ToolType::grooving_tool:  // a blade of its width, programmed at its left corner (orientation 1: right)
     case ToolType::parting_tool:
+        s.form = ToolForm::blade;
+        s.diameter = tool.width > 0 ? tool.width : tool.diameter;
+        s.blade_lo = tool.orientation == 1 ? -s.diameter : 0.0;
+        break;
     case ToolType::threading_tool:
         s.form = ToolForm::turning;
         s.nose_radius = tool.nose_radius;

@@ -105,6 +105,8 @@ TEST_CASE("docs: the contour, path, bore-mill, thread-mill, engrave, stop, custo
     objects.push_back(EngraveOp::objects().front());
     objects.push_back(ChamferOp::objects().front());
     objects.push_back(StopOp::objects().front());
+    objects.push_back(TurnGrooveOp::objects().front());
+    objects.push_back(TurnPartOp::objects().front());
     objects.push_back(CustomOp::objects().front());
     // pocket's and face's own objects (their leads, ramps and finishing are contour's).
     for (const ObjectSpec& o : PocketOp::objects())

@@ -71,8 +71,9 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     const PartDesign design = part_design(job);
     CHECK(design.unchecked.empty());
     CHECK(design.cuts.empty());
-    // The face, the rough (designed in design_turn_face, design_turn_rough) and the finish.
-    REQUIRE(design.lathe.profiles.size() == 3);
+    // The face, the rough (designed in design_turn_face, design_turn_rough), the finish, the
+    // groove and the parting (test_turn_groove.cpp).
+    REQUIRE(design.lathe.profiles.size() == 5);
     REQUIRE(design.lathe.holes.size() == 2);
     CHECK(design.lathe.profiles[0].path == "/operations/0");
     CHECK(design.lathe.profiles[1].path == "/operations/3");
@@ -159,7 +160,7 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
                          "fanuc-lathe cannot tap)\n"));
     // The shaft's nose leaves material on the chamfer and in the fillet, which is said.
     const Simulated shaft = simulate(samples + "shaft.json", "linuxcnc-lathe", "shaft.nc", [](const std::string& t) { return t; });
-    CHECK(has(shaft.run, "design check   lathe: 3 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 28 "
+    CHECK(has(shaft.run, "design check   lathe: 5 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 38 "
                          "sections 0.0088 mm beside the designed corners\n"));
     CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
 }

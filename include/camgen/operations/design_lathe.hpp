@@ -33,6 +33,8 @@ struct TurnDrillOp;
 struct TurnProfileOp;
 struct TurnFaceOp;
 struct TurnRoughOp;
+struct TurnGrooveOp;
+struct TurnPartOp;
 
 // A straight stretch of a tool tip's path in (Z, radius), mm.
 struct LatheTipMove {
@@ -48,6 +50,10 @@ struct LatheTurnDesign {
     double nose = 0.0;       // the tool's nose radius, mm (its program point is the imaginary tip)
     double chord = 0.0;      // mm: the chords of arcs in `tip` stay within this of the arcs
     double z_lo = 0.0, z_hi = 0.0;  // the Z it designs: the profile's lowest Z up to the clearance
+    // A grooving or parting tool's blade (blade_hi > blade_lo): `tip` is its programmed point,
+    // its flat edge covers Z from the point's Z + blade_lo to + blade_hi (nose 0), its body
+    // straight out in +X: it clears only the Z it covers.
+    double blade_lo = 0.0, blade_hi = 0.0;
 
     // The least and the greatest radius of `profile` at Z in [a, b] (none where it has no point
     // there): exact for lines and arcs.
@@ -95,5 +101,12 @@ void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design,
 // the face at its end up to the bar): kept there, removed beyond, down to what its tool leaves;
 // its tip's whole path as the passes make it.
 void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// A turn-groove designs its groove (walls, bottom, 45-degree chamfers on its edges): removed
+// down to it over its Z, kept below; its blade's whole path as the plunges make it.
+void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// A turn-part designs the slot its blade parts through (down to the remainder radius) and the
+// chamfer on the part's edge; the part and the bar either side are kept (the simulation keeps
+// the parted part where it was).
+void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

@@ -26,7 +26,9 @@
 #include "camgen/operations/thread_mill/thread_mill.hpp"
 #include "camgen/operations/turn_drill/turn_drill.hpp"
 #include "camgen/operations/turn_face/turn_face.hpp"
+#include "camgen/operations/turn_groove/turn_groove.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
+#include "camgen/operations/turn_part/turn_part.hpp"
 #include "camgen/operations/turn_rough/turn_rough.hpp"
 
 namespace camgen {
@@ -64,7 +66,8 @@ constexpr bool uses_tool() {
 
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, TurnFaceOp, TurnRoughOp, StopOp,
-                               CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp>;
+                               CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp, TurnGrooveOp,
+                               TurnPartOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

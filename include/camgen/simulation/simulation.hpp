@@ -46,6 +46,8 @@ enum class ToolForm {
                 // tip diameter, the flat at the point)
     cylinder,   // tap, reamer: its diameter, flat at the end
     turning,    // a lathe's tool: its tip point, or a circle of its nose radius
+    blade,      // a grooving or parting tool: a flat edge `diameter` wide (its width) along Z, its body
+                // straight out in +X; its programmed point at the edge's Z + blade_lo
 };
 
 // A tool as the simulation sweeps it, mm and degrees.
@@ -57,6 +59,8 @@ struct ToolShape {
     double tip_diameter = 0.0;            // cone: the flat at the point, mm (0: a sharp point)
     double nose_radius = 0.0;             // turning: mm (0: the tip point); the program's point is the
                                           // imaginary tip (the nose tangent to its X and Z)
+    double blade_lo = 0.0;                // blade: the edge's -Z end from the programmed point, mm (0: the
+                                          // left corner is programmed; -diameter: the right one)
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error
 };
 

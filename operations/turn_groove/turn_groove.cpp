@@ -1,0 +1,288 @@
+#include "camgen/operations/turn_groove/turn_groove.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "camgen/common/error.hpp"
+
+namespace camgen {
+
+namespace {
+
+using Fields = json::Fields;
+
+constexpr KeySpec turn_groove_keys[] = {
+    {.key = "type", .type = JsonType::string, .required = true, .description = "the kind of operation"},
+    {.key = "tool", .type = JsonType::integer, .quantity = Quantity::count, .required = true, .min = Bound{1, true},
+     .description = "a tool number from tools: a grooving-tool or parting-tool (orientation none or 2: its programmed "
+                    "point is its left corner; 1: its right corner)"},
+    {.key = "comment", .type = JsonType::string, .default_json = "\"\"",
+     .description = "written as a comment before the operation"},
+    {.key = "xValues", .type = JsonType::string, .default_json = "\"diameter\"", .choices = &choices_of<x_values>,
+     .description = "startX and bottomX as diameters or as radii"},
+    {.key = "feed", .quantity = Quantity::feed, .required = true, .min = Bound{0, false},
+     .description = "cutting feed of the plunges and the pass along the bottom, per minute or per revolution (feedMode)"},
+    {.key = "feedMode", .type = JsonType::string, .default_json = "\"per-minute\"", .choices = &choices_of<feed_modes>,
+     .description = "feed in mm/min or mm/rev; the program feeds the same way (G94/G95, Fanuc T G98/G99)"},
+    {.key = "z", .quantity = Quantity::length, .required = true,
+     .description = "Z of the groove's wall on the +Z side (towards the bar's face); the groove runs width towards the chuck"},
+    {.key = "width", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
+     .description = "the groove's width along Z, mm: at least the tool's width"},
+    {.key = "depth", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "the groove's depth below startX, radial (per side), mm (give depth or bottomX)"},
+    {.key = "bottomX", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "X (as xValues) of the groove's bottom (give depth or bottomX)"},
+    {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "X (as xValues) of the surface the groove is cut into, which must be the largest over the groove, its "
+                    "chamfers and approachDistance either side (default: the stock bar's diameter; required without a bar)"},
+    {.key = "chamfer", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
+     .description = "a 45-degree chamfer on each edge of the groove, mm along Z and along the radius: the +Z edge's cut "
+                    "by the blade's right corner, the -Z edge's by its left corner"},
+    {.key = "stepover", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "the most distance between neighbouring plunges of a groove wider than the tool, mm, at most the "
+                    "tool's width (default: 0.75 of it); the plunges are equally spaced"},
+    {.key = "finishAllowance", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0.1",
+     .description = "radial material the plunges of a groove wider than the tool leave on the bottom for the finishing "
+                    "pass along it, mm"},
+    {.key = "peckDepth", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "radial depth of each peck, mm (default: no pecks, one feed to the bottom)"},
+    {.key = "peckRetract", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.3",
+     .description = "how far the blade backs off (rapid) between pecks to break the chip, mm; with fullRetract, how far "
+                    "above the depth reached it comes back down at rapid"},
+    {.key = "fullRetract", .type = JsonType::boolean, .default_json = "false",
+     .description = "between pecks, rapid out to approachDistance above the surface (clears the chips) instead of "
+                    "backing off by peckRetract"},
+    {.key = "dwell", .quantity = Quantity::time, .min = Bound{0, true}, .default_json = "0",
+     .description = "seconds at the bottom of each plunge that reaches it and at the end of the pass along it"},
+    {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
+     .description = "how far above the surface (radial) the feeds start, and outside the bar the tool moves along Z, mm"},
+};
+
+}  // namespace
+
+GrooveBlade read_groove_blade(Fields& f, const JobInput& in, std::string_view what, const Tool*& out) {
+    const Tool& tool = in.tool(f);
+    out = &tool;
+    if (tool.type != ToolType::grooving_tool && tool.type != ToolType::parting_tool)
+        f.fail("tool", fmt::format("a {} needs a grooving-tool or parting-tool (a blade of a width); tool {} is a {}", what,
+                                   tool.number, name_of(tool_types, tool.type)));
+    if (tool.orientation != 0 && tool.orientation != 1 && tool.orientation != 2)
+        f.fail("tool", fmt::format("tool {} has orientation {}: a {}'s programmed point is a corner of its blade's edge, the "
+                                   "left one (orientation 2, or none) or the right one (orientation 1)",
+                                   tool.number, tool.orientation, what));
+    GrooveBlade b;
+    b.width = tool.width;
+    b.right_point = tool.orientation == 1;
+    return b;
+}
+
+GroovePecks read_groove_pecks(Fields& f, const JobInput& in) {
+    GroovePecks p;
+    if (auto q = in.optional_length(f, "peckDepth")) {
+        if (!(*q > 0)) f.fail("peckDepth", "peckDepth must be > 0");
+        p.peck = *q;
+    }
+    p.retract = in.optional_length(f, "peckRetract").value_or(0.3);
+    if (!(p.retract > 0)) f.fail("peckRetract", "peckRetract must be > 0");
+    p.full = f.boolean("fullRetract", false);
+    if (p.peck == 0 && (f.has("peckRetract") || f.has("fullRetract")))
+        f.fail(f.has("peckRetract") ? "peckRetract" : "fullRetract", "peckRetract and fullRetract go with peckDepth: without it "
+                                                                      "the plunge is one feed");
+    return p;
+}
+
+void emit_groove_plunge(const GrooveBlade& blade, const GroovePlunge& p, const GroovePecks& pecks, EventSink& sink) {
+    auto at = [&](double r) { return blade.at(r, p.left_z); };
+    // A feed from radius a down to b, split where the reduced feed begins.
+    auto feed_down = [&](double a, double b) {
+        if (p.slow_below > b && p.slow_below < a) {
+            sink.emit(Linear{at(p.slow_below), p.feed, Movement::plunge});
+            sink.emit(Linear{at(b), p.slow_feed, Movement::plunge});
+        } else {
+            sink.emit(Linear{at(b), b < p.slow_below ? p.slow_feed : p.feed, Movement::plunge});
+        }
+    };
+    // The depths reached: pecks from the surface down, the last at the end.
+    std::vector<double> depths;
+    if (pecks.peck > 0) {
+        const int n = std::max(1, static_cast<int>(std::ceil((p.top - p.end) / pecks.peck - 1e-9)));
+        for (int k = 1; k < n; ++k) depths.push_back(p.top - pecks.peck * k);
+    }
+    depths.push_back(p.end);
+    double from = p.start;
+    for (std::size_t k = 0; k < depths.size(); ++k) {
+        if (k > 0) {
+            // Back off from the depth reached, then come back to just above it at rapid.
+            const double back = depths[k - 1] + pecks.retract;
+            if (pecks.full) {
+                sink.emit(Rapid{at(p.air)});
+                sink.emit(Rapid{at(std::min(back, p.air))});
+            } else {
+                sink.emit(Rapid{at(std::min(back, p.air))});
+            }
+            from = std::min(back, p.air);
+        }
+        feed_down(from, depths[k]);
+        from = depths[k];
+    }
+    if (p.dwell > 0) sink.emit(Dwell{p.dwell});
+}
+
+std::vector<ObjectSpec> TurnGrooveOp::objects() {
+    return {{.name = "turn-groove",
+             .description = "an external groove on a lathe: plunges of a grooving tool, pecked or not, a pass along its "
+                            "bottom, chamfered edges",
+             .keys = {std::begin(turn_groove_keys), std::end(turn_groove_keys)}}};
+}
+
+TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
+    JobInput::known_keys(f, turn_groove_keys);
+    const Tool* tool = nullptr;
+    TurnGrooveOp op;
+    op.blade = read_groove_blade(f, in, "turn-groove", tool);
+    op.path = f.path();
+    op.tool = tool->number;
+    op.comment = f.optional_string("comment").value_or("");
+    op.given_x = f.choice("xValues", x_values, XValues::diameter);
+    op.feed_mode = f.choice("feedMode", feed_modes, FeedMode::per_minute);
+    op.feed = in.length(f, "feed");
+    if (!(op.feed > 0)) f.fail("feed", "feed must be > 0");
+    if (op.feed_mode == FeedMode::per_revolution) op.feed *= tool->rpm;
+    const double scale = op.given_x == XValues::diameter ? 0.5 : 1.0;
+    auto x_text = [&](double r) { return in.show(r / scale); };
+    const std::optional<Stock>& stock = in.header().stock;
+    const bool bar = stock && stock->shape == StockShape::bar;
+    if (f.has("startX")) op.surface = in.length(f, "startX") * scale;
+    else if (bar) op.surface = stock->diameter / 2;
+    else f.fail("startX", "give startX (the X of the surface the groove is cut into), or a stock bar whose diameter it is");
+    if (!(op.surface > 0)) f.fail("startX", "startX must be > 0");
+    op.outside = bar ? std::max(stock->diameter / 2, op.surface) : op.surface;
+    if (bar && op.surface > stock->diameter / 2 + 1e-9)
+        f.fail("startX", fmt::format("startX {} is beyond the bar's X {}: a groove is cut into the bar", x_text(op.surface),
+                                     x_text(stock->diameter / 2)));
+    op.z_right = in.length(f, "z");
+    const double width = in.length(f, "width");
+    if (!(width > 0)) f.fail("width", "width must be > 0");
+    if (width < op.blade.width - 1e-9)
+        f.fail("width", fmt::format("the groove's width {} is narrower than tool {}'s width {}: a groove is at least as "
+                                    "wide as its tool",
+                                    in.show(width), tool->number, in.show(op.blade.width)));
+    op.z_left = op.z_right - width;
+    if (f.has("depth") == f.has("bottomX")) f.fail("depth", "give the groove's depth or its bottomX (one of them)");
+    if (f.has("depth")) {
+        const double depth = in.length(f, "depth");
+        if (!(depth > 0)) f.fail("depth", "depth must be > 0");
+        op.bottom = op.surface - depth;
+        if (!(op.bottom > 0))
+            f.fail("depth", fmt::format("depth {} reaches the spindle axis from X {} (radius {}): a groove keeps a core; "
+                                        "turn-part parts off",
+                                        in.show(depth), x_text(op.surface), in.show(op.surface)));
+    } else {
+        op.bottom = in.length(f, "bottomX") * scale;
+        if (!(op.bottom > 0)) f.fail("bottomX", "bottomX must be > 0: a groove keeps a core; turn-part parts off");
+        if (!(op.bottom < op.surface))
+            f.fail("bottomX", fmt::format("bottomX {} is not below startX {}: there is no groove to cut", x_text(op.bottom),
+                                          x_text(op.surface)));
+    }
+    const double depth = op.surface - op.bottom;
+    if (tool->flute_length && *tool->flute_length < depth - 1e-9)
+        f.fail(f.has("depth") ? "depth" : "bottomX",
+               fmt::format("the groove is {} deep, more than tool {}'s fluteLength {} (how deep its blade reaches)",
+                           in.show(depth), tool->number, in.show(*tool->flute_length)));
+    op.chamfer = in.optional_length(f, "chamfer").value_or(0.0);
+    if (op.chamfer < 0) f.fail("chamfer", "chamfer must be 0 or more");
+    if (op.chamfer >= depth)
+        f.fail("chamfer", fmt::format("chamfer {} is not less than the groove's depth {}", in.show(op.chamfer), in.show(depth)));
+    op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
+    if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
+    op.dwell = f.optional_number("dwell").value_or(0.0);
+    if (op.dwell < 0) f.fail("dwell", "dwell must be 0 or more");
+    op.pecks = read_groove_pecks(f, in);
+    const double stepover = in.optional_length(f, "stepover").value_or(0.75 * op.blade.width);
+    if (!(stepover > 0) || stepover > op.blade.width + 1e-9)
+        f.fail("stepover", fmt::format("stepover {} must be more than 0 and at most tool {}'s width {} (the plunges overlap)",
+                                       in.show(stepover), tool->number, in.show(op.blade.width)));
+    const double spread = width - op.blade.width;  // the left corner's travel from the +Z wall to the -Z wall
+    const int count = spread < 1e-9 ? 1 : static_cast<int>(std::ceil(spread / stepover - 1e-9)) + 1;
+    if (count > 10000) f.fail("stepover", fmt::format("stepover {} makes {} plunges: more than 10000", in.show(stepover), count));
+    for (int k = 0; k < count; ++k)
+        op.plunges.push_back(k == count - 1 ? op.z_left : op.z_right - op.blade.width - (count == 1 ? 0.0 : spread * k / (count - 1)));
+    if (count > 1) {
+        op.finish = in.optional_length(f, "finishAllowance").value_or(0.1);
+        if (op.finish < 0) f.fail("finishAllowance", "finishAllowance must be 0 or more");
+        if (op.finish >= depth)
+            f.fail("finishAllowance", fmt::format("finishAllowance {} is not less than the groove's depth {}", in.show(op.finish),
+                                                  in.show(depth)));
+    } else {
+        (void)f.optional_number("finishAllowance");
+    }
+    if (bar && op.z_right > stock->face_z + 1e-9)
+        f.fail("z", fmt::format("z {} is beyond the bar's face (Z {}): the groove is cut into the bar", in.show(op.z_right),
+                                in.show(stock->face_z)));
+    if (bar && op.z_left - op.chamfer < stock->face_z - stock->length - 1e-9)
+        f.fail("z", fmt::format("the groove at z {} (width {}, chamfer {}) reaches beyond the bar's end (Z {})",
+                                in.show(op.z_right), in.show(width), in.show(op.chamfer), in.show(stock->face_z - stock->length)));
+    const double clearance = in.header().clearance;
+    if (op.z_right + op.chamfer + op.approach >= clearance)
+        f.fail("z", fmt::format("the groove (with its chamfer and approachDistance) reaches Z {}, at or above the clearance "
+                                "(Z {})",
+                                in.show(op.z_right + op.chamfer + op.approach), in.show(clearance)));
+    return op;
+}
+
+void expand(const TurnGrooveOp& op, const Context& ctx, EventSink& sink) {
+    const GrooveBlade& b = op.blade;
+    const double out = op.outside + op.approach;   // outside the bar: Z moves elsewhere
+    const double air = op.surface + op.approach;   // above the surface: Z moves over the groove
+    const double clearance = ctx.job.clearance;
+    const double first = op.plunges.front();
+    sink.emit(Rapid{{out, 0.0, clearance}});
+    sink.emit(Rapid{b.at(out, first)});
+    sink.emit(Rapid{b.at(air, first)});
+    const bool one = op.plunges.size() == 1;
+    double at_z = first;  // the left corner's Z
+    for (std::size_t k = 0; k < op.plunges.size(); ++k) {
+        const double z = op.plunges[k];
+        if (k > 0) sink.emit(Rapid{b.at(air, z)});
+        GroovePlunge p;
+        p.left_z = z, p.start = air, p.air = air, p.top = op.surface, p.end = op.bottom + op.finish;
+        p.feed = op.feed, p.slow_feed = op.feed;
+        p.dwell = one ? op.dwell : 0.0;
+        emit_groove_plunge(b, p, op.pecks, sink);
+        if (k + 1 < op.plunges.size()) sink.emit(Rapid{b.at(air, z)});
+    }
+    if (!one) {
+        // The last plunge stands at the -Z wall: on to the bottom and along it to the +Z wall.
+        if (op.finish > 0) sink.emit(Linear{b.at(op.bottom, op.z_left), op.feed, Movement::plunge});
+        if (op.dwell > 0) sink.emit(Dwell{op.dwell});
+        sink.emit(Linear{b.at(op.bottom, op.z_right - b.width), op.feed, Movement::cutting});
+        if (op.dwell > 0) sink.emit(Dwell{op.dwell});
+        sink.emit(Rapid{b.at(air, op.z_right - b.width)});
+        at_z = op.z_right - b.width;
+    } else {
+        sink.emit(Rapid{b.at(air, op.plunges.back())});
+        at_z = op.plunges.back();
+    }
+    if (op.chamfer > 0) {
+        const double c = op.chamfer, a = op.approach;
+        // The +Z edge: the right corner from the chamfer's line extended to the air level down
+        // to its foot on the wall.
+        sink.emit(Rapid{b.at(air, op.z_right + c + a - b.width)});
+        sink.emit(Linear{b.at(op.surface - c, op.z_right - b.width), op.feed, Movement::cutting});
+        sink.emit(Rapid{b.at(air, op.z_right - b.width)});
+        // The -Z edge: the left corner likewise.
+        sink.emit(Rapid{b.at(air, op.z_left - c - a)});
+        sink.emit(Linear{b.at(op.surface - c, op.z_left), op.feed, Movement::cutting});
+        sink.emit(Rapid{b.at(air, op.z_left)});
+        at_z = op.z_left;
+    }
+    sink.emit(Rapid{b.at(out, at_z)});
+    sink.emit(Rapid{{out, 0.0, clearance}});
+}
+
+std::string default_name(const TurnGrooveOp& op) { return op.comment.empty() ? "turn groove" : op.comment; }
+
+}  // namespace camgen
