@@ -109,6 +109,7 @@ public:
                                  [&](const TurnProfileOp& o) { design_turn_profile(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnFaceOp& o) { design_turn_face(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnRoughOp& o) { design_turn_rough(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnThreadOp& o) { design_turn_thread(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);

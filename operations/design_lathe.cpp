@@ -234,6 +234,7 @@ public:
         if (const auto* r = std::get_if<Rapid>(&e)) to({r->to.z, r->to.x});
         else if (const auto* l = std::get_if<Linear>(&e)) to({l->to.z, l->to.x});
         else if (const auto* a = std::get_if<Arc>(&e)) arc(*a);
+        else if (const auto* t = std::get_if<ThreadFeed>(&e)) to({t->to.z, t->to.x});
     }
 
 private:
@@ -300,6 +301,19 @@ void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& desig
         const LatheDesignArc arc = lathe_design_arc(op.boundary, k);
         if (lathe_design_on_arc(arc, pi)) d.z_lo = std::min(d.z_lo, arc.centre.x - arc.radius);
     }
+    design.profiles.push_back(std::move(d));
+}
+
+void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    if (op.side == ThreadSide::internal)
+        return unchecked.push_back(op.path + ": an internal thread (the turned part's design has no bore side yet)");
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    d.profile.start = {op.start_z, op.root_radius()};
+    d.profile.segments.push_back({{op.end_z, op.root_radius()}, std::nullopt, ArcDirection::ccw});
+    d.profile.segments.push_back({{op.end_z, op.surface_radius()}, std::nullopt, ArcDirection::ccw});
+    d.z_lo = op.end_z;
+    d.z_hi = op.start_z;
     design.profiles.push_back(std::move(d));
 }
 

@@ -33,6 +33,7 @@ struct TurnDrillOp;
 struct TurnProfileOp;
 struct TurnFaceOp;
 struct TurnRoughOp;
+struct TurnThreadOp;
 
 // A straight stretch of a tool tip's path in (Z, radius), mm.
 struct LatheTipMove {
@@ -95,5 +96,11 @@ void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design,
 // the face at its end up to the bar): kept there, removed beyond, down to what its tool leaves;
 // its tip's whole path as the passes make it.
 void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// An external turn-thread designs its minor diameter over its length (from startZ down to endZ,
+// then up its end to the major diameter): a turned part is round, and the passes remove all
+// around what lies beyond the thread's root, as the simulation sweeps them (the helix and its
+// flanks are not designed); its tip's whole path as the passes make it. An internal thread is
+// left unchecked (the turned design has no bore side yet).
+void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

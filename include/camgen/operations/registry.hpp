@@ -28,6 +28,7 @@
 #include "camgen/operations/turn_face/turn_face.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 #include "camgen/operations/turn_rough/turn_rough.hpp"
+#include "camgen/operations/turn_thread/turn_thread.hpp"
 
 namespace camgen {
 
@@ -64,7 +65,7 @@ constexpr bool uses_tool() {
 
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, TurnFaceOp, TurnRoughOp, StopOp,
-                               CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp>;
+                               CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp, TurnThreadOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {
