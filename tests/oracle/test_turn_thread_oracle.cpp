@@ -123,7 +123,7 @@ std::string job_text(const Case& c) {
                                                  c.major, c.minor, c.pitch)
                                    : fmt::format(R"("thread": "{}")", c.thread);
     return fmt::format(
-        R"({{"clearance": 15, "stock": {{"bar": {{"diameter": 60, "length": 80, "faceZ": 0}}}},
+        R"({{"clearance": 40, "stock": {{"bar": {{"diameter": 60, "length": 80, "faceZ": 0}}}},
   "tools": [{{"number": 7, "type": "threading-tool", "noseRadius": 0.05, "profileAngle": 60, "rpm": 300,
               "direction": "{}"}}],
   "operations": [{{"type": "turn-thread", "tool": 7, {}, "side": "{}", "hand": "{}", "starts": {},
@@ -189,7 +189,7 @@ double check_case(const Case& c) {
     // Each pass starts (its rapid in) beyond the thread and its returns stay outside (inside) it.
     for (std::size_t i = 1; i < theirs.size(); ++i) {
         const Move& mv = theirs[i];
-        if (!mv.rapid || mv.z >= 15 - 1e-9) continue;
+        if (!mv.rapid || mv.z >= 40 - 1e-9) continue;
         if (std::abs(mv.x - mv.from_x) > 1e-9 && std::abs(mv.z - mv.from_z) < 1e-9 && mv.z > -12.5 + 1e-9) {
             // A rapid in X at a pass's start: beyond startZ.
             CHECK(mv.z > 0.0);
@@ -243,8 +243,9 @@ TEST_CASE("linuxcnc-lathe: random threads (metric and unified, internal and exte
         }
         c.constant_area = u(rng) < 0.6;
         const double total = (c.major - c.minor) / 2;
-        c.first = std::max(0.05, total * (0.1 + 0.4 * u(rng)));
-        c.least = u(rng) < 0.5 ? 0.0 : 0.02 + 0.05 * u(rng);
+        // (rounded as the job writes them)
+        c.first = std::round(std::max(0.05, total * (0.1 + 0.4 * u(rng))) * 1000) / 1000;
+        c.least = u(rng) < 0.5 ? 0.0 : std::round((0.02 + 0.05 * u(rng)) * 1000) / 1000;
         c.spring = static_cast<int>(rng() % 3);
         c.starts = n % 5 == 4 ? 2 : 1;
         c.angle = u(rng) < 0.3 ? 0.0 : 25 + 4.5 * u(rng);

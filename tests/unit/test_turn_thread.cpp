@@ -21,7 +21,6 @@
 #include "camgen/operations/registry.hpp"
 #include "camgen/reader/reader.hpp"
 #include "camgen/vocabulary/threads.hpp"
-#include "reader_support.hpp"
 #include "support.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
@@ -61,17 +60,19 @@ TEST_CASE("turn-thread: the depths follow the infeed rule, the last is the threa
     CHECK(op.depths[14] == doctest::Approx(total).epsilon(1e-6));
     CHECK(op.depths[15] == doctest::Approx(total).epsilon(1e-6));
     // A least depth: each step at least 0.15 mm.
-    const auto& least = std::get<TurnThreadOp>(
+    const Job least_job =
         read_job(job(R"("thread": "M20x2.5", "startZ": 0, "endZ": -20, "firstDepth": 0.4, "minDepth": 0.15, "springPasses": 0)"),
-                 "t.json")
-            .operations.front());
-    for (std::size_t n = 1; n < least.depths.size(); ++n) CHECK(least.depths[n] - least.depths[n - 1] >= 0.15 - 1e-9);
+                 "t.json");
+    const auto& least = std::get<TurnThreadOp>(least_job.operations.front());
+    // (the last step takes what is left to the full depth, which may be less)
+    for (std::size_t n = 1; n + 1 < least.depths.size(); ++n) CHECK(least.depths[n] - least.depths[n - 1] >= 0.15 - 1e-9);
+    CHECK(least.depths.back() == doctest::Approx(total).epsilon(1e-6));
     CHECK(least.depths.size() < 15);
     // Constant depth: equal steps of at most firstDepth.
-    const auto& equal = std::get<TurnThreadOp>(
+    const Job equal_job =
         read_job(job(R"("thread": "M12", "side": "internal", "startZ": 0, "endZ": -10, "infeed": "constant-depth", "firstDepth": 0.2, "springPasses": 0)"),
-                 "t.json")
-            .operations.front());
+                 "t.json");
+    const auto& equal = std::get<TurnThreadOp>(equal_job.operations.front());
     const double internal_total = (12 - internal_minor_diameter(12, 1.75)) / 2;  // 5/8 H
     CHECK(internal_total == doctest::Approx(0.541266 * 1.75).epsilon(1e-6));
     const int n = static_cast<int>(std::ceil(internal_total / 0.2));
@@ -88,7 +89,7 @@ TEST_CASE("turn-thread: each pass rapids in air, cuts one synchronised move alon
         const int starts = n % 4 == 3 ? 3 : 1;
         const double angle = n % 3 == 0 ? 0.0 : 29.5;
         const Job j = read_job(job(fmt::format(R"("thread": "{}", "side": "{}", "startZ": -2, "endZ": -15, "starts": {},
-                                                "firstDepth": 0.25, "infeedAngle": {})",
+                                                "firstDepth": 0.25, "infeedAngle": {}, "approachDistance": 4)",
                                                size, internal ? "internal" : "external", starts, angle)),
                                "t.json");
         const auto& op = std::get<TurnThreadOp>(j.operations.front());
@@ -139,14 +140,18 @@ TEST_CASE("turn-thread: the three lathes write G33 Z K, G32 Z F, G33 Z K and rea
         INFO(name);
         const Machine machine = load_machine(name);
         const std::string program = test::post_program(j, machine);
-        const std::string word = std::string(name) == "fanuc-lathe" ? "G32 Z-18. F2." : std::string(name) == "linuxcnc-lathe" ? "G33 Z-18 K2" : "G33 Z-18.000 K2";
+        const bool fanuc = std::string(name) == "fanuc-lathe", lcnc = std::string(name) == "linuxcnc-lathe";
+        const std::string word = fanuc ? "G32 Z-18.000 F2.0000" : lcnc ? "G33 Z-18 K2\n" : "G33 Z-18.000 K2\n";
+        const std::string broken = fanuc ? "G32 Z-18.000 F2.5000" : lcnc ? "G33 Z-18 K2.5\n" : "G33 Z-18.000 K2.5\n";
         CHECK_MESSAGE(program.find(word) != std::string::npos, program);
         const Trace read = trace_program(read_program(program, machine, "t.nc"), machine);
         const auto mismatch = compare_traces(trace_expected(expand_job(j), machine), read, compare_tolerance(machine, 0.0));
         CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
-        // Broken: a lead one step off is a mismatch.
-        const std::string wrong = test::replace_once(program, word, word + "1");
-        if (wrong != program) {
+        // Broken: another lead in one pass is a mismatch.
+        std::string wrong = program;
+        if (const std::size_t at = wrong.find(word); at != std::string::npos) wrong.replace(at, word.size(), broken);
+        REQUIRE(wrong != program);
+        {
             const Trace bad = trace_program(read_program(wrong, machine, "t.nc"), machine);
             CHECK(compare_traces(trace_expected(expand_job(j), machine), bad, compare_tolerance(machine, 0.0)));
         }
@@ -163,7 +168,7 @@ TEST_CASE("turn-thread: refusals name their key") {
     CHECK(refusal(job(R"("majorDiameter": 20, "minorDiameter": 18, "pitch": -1, "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
               .find("/operations/0/pitch") != std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -80, "firstDepth": 0.2)"))
-              .find("/operations/0/endZ: the thread ends at Z -80, beyond the bar's far end (Z -70)") != std::string::npos);
+              .find("/operations/0/endZ: the thread ends at Z -80.000 mm, beyond the bar's far end (Z -70.000 mm)") != std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)",
                       R"({"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 55, "rpm": 500})"))
               .find("/operations/0/tool: tool 5 has a profileAngle of 55 degrees; M20x2.5 has the 60-degree profile") !=
@@ -180,15 +185,21 @@ TEST_CASE("turn-thread: refusals name their key") {
           std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 3)")).find("/operations/0/firstDepth") !=
           std::string::npos);
-    CHECK(refusal(job(R"("thread": "M50", "startZ": 0, "endZ": -10, "firstDepth": 0.2)")).find("/operations/0/thread: M50x5 has a major diameter of 50, more than the bar's 44") !=
+    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.5)")).find("/operations/0/thread: M48x5 has a major diameter of 48") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.05)")).find("/operations/0/firstDepth: firstDepth 0.050 mm makes more than 200 passes") !=
           std::string::npos);
     // A thread on a mill: the operation is for lathes.
     const Job j = read_job(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"), "t.json");
+    const Job no_bar = read_job(R"({"clearance": 20, "tools": [)" + std::string(thread_tool) +
+                                    R"(], "operations": [{"type": "turn-thread", "tool": 5, "thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2}]})",
+                                "t.json");
     try {
-        check_machine_kind(j, MachineKind::mill, "linuxcnc");
+        check_machine_kind(no_bar, MachineKind::mill, "linuxcnc");
         FAIL("a turn-thread on a mill was not refused");
     } catch (const InputError& e) {
-        CHECK(std::string(e.what()).find("/operations/0") != std::string::npos);
+        CHECK(e.path() == "/operations/0/type");
+        CHECK(e.detail().find("is made for a lathe, and machine linuxcnc is a mill") != std::string::npos);
     }
     // A machine that cuts no threads: the post refuses, naming the operation.
     const Machine mill_lathe = load_machine("linuxcnc-lathe");
