@@ -237,6 +237,11 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
                                                "along Z ({}: the depth x tan(infeedAngle)): that pass would start in the "
                                                "thread",
                                                in.show(op.approach), in.show(shift)));
+    if (op.side == ThreadSide::internal)
+        op.notes.push_back(fmt::format("an internal thread: the bore (D1 {}) must be there before it, made by an earlier "
+                                       "operation or the stock's boreDiameter; the passes rapid inside it at X {} (camgen "
+                                       "simulate checks what the program cuts)",
+                                       in.show(op.minor), in.show(2 * (op.surface_radius() - op.retract))));
     op.notes.push_back(fmt::format("{}: {} passes of depths {} mm (radial){}", what, op.depths.size(),
                                    [&] {
                                        std::string s;
