@@ -111,6 +111,7 @@ public:
                                  [&](const TurnRoughOp& o) { design_turn_rough(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnGrooveOp& o) { design_turn_groove(o, job_, design_.lathe, design_.unchecked); },
                                  [&](const TurnPartOp& o) { design_turn_part(o, job_, design_.lathe, design_.unchecked); },
+                                 [&](const TurnThreadOp& o) { design_turn_thread(o, job_, design_.lathe, design_.unchecked); },
                              },
                              op);
         return std::move(design_);

@@ -254,6 +254,7 @@ public:
         if (const auto* r = std::get_if<Rapid>(&e)) to({r->to.z, r->to.x});
         else if (const auto* l = std::get_if<Linear>(&e)) to({l->to.z, l->to.x});
         else if (const auto* a = std::get_if<Arc>(&e)) arc(*a);
+        else if (const auto* t = std::get_if<ThreadFeed>(&e)) to({t->to.z, t->to.x});
     }
 
 private:
@@ -365,6 +366,19 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
     outline.push_back({left, op.end});
     outline.push_back({left, R});
     lathe_design_blade(job, d, op.blade, std::move(outline));
+    design.profiles.push_back(std::move(d));
+}
+
+void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    if (op.side == ThreadSide::internal)
+        return unchecked.push_back(op.path + ": an internal thread (the turned part's design has no bore side yet)");
+    LatheTurnDesign d;
+    if (!lathe_design_turned(op, job, d, unchecked)) return;
+    d.profile.start = {op.start_z, op.root_radius()};
+    d.profile.segments.push_back({{op.end_z, op.root_radius()}, std::nullopt, ArcDirection::ccw});
+    d.profile.segments.push_back({{op.end_z, op.surface_radius()}, std::nullopt, ArcDirection::ccw});
+    d.z_lo = op.end_z;
+    d.z_hi = op.start_z;
     design.profiles.push_back(std::move(d));
 }
 

@@ -79,6 +79,12 @@ void PartGuard::emit(const Event& event) {
                              m.source = tag(l.movement, false);
                              refused(comp_.move(m));
                          },
+                         [&](const ThreadFeed& t) {
+                             CompMove m;
+                             m.end = t.to;
+                             m.source = tag(Movement::cutting, false);
+                             refused(comp_.move(m));
+                         },
                          [&](const Arc& a) {
                              CompMove m{CompMove::Kind::arc, a.to, {a.centre.x, a.centre.y}, a.direction, a.turns};
                              m.source = tag(a.movement, false);

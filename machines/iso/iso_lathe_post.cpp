@@ -90,6 +90,18 @@ void IsoLathePost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpe
     on_rapid({at.x, at.y, c.retract_z});
 }
 
+void IsoLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
+    if (std::abs(t.to.x - from.x) > 1e-9 || std::abs(t.to.y - from.y) > 1e-9)
+        fail("", "a thread-cutting move that is not along Z: camgen cuts straight threads only");
+    const bool g32 = lathe_.thread_move == iso::LatheThreadMove::g32_f;
+    const std::string lead = lead_word(g32 ? "F" : "K", t.lead);
+    writer().add(g(g32 ? iso::thread_g32_code : iso::thread_g33_code)).add(force_z(t.to.z)).add(lead).end();
+    // The synchronised move is not a mode the next feed move continues, and G32's F was the
+    // lead, not a feed: the next move writes its motion word and its feed.
+    forget_motion();
+    if (g32) forget_feed();
+}
+
 bool IsoLathePost::writes_return_level() const {
     for (const auto& [mode, code] : machine().frame.feed_modes)
         if (code == "G98" || code == "G99") return false;

@@ -18,6 +18,8 @@ protected:
     void on_open() override;
     void on_tool_change(const ToolChange& tool) override;
     void on_spindle(const Spindle& spindle) override;
+    // G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), the threadMove setting; along Z only.
+    void on_thread_feed(const Vec3& from, const ThreadFeed& move) override;
     std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_point(const DrillCycle& cycle, const DrillingCycleSpec& spec, Vec2 at, bool first) override;

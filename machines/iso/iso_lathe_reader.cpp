@@ -26,9 +26,15 @@ protected:
     bool variant_tool_call(const Word& t) override;
     bool variant_cycle(const DrillingCycleSpec& spec, BlockWords& w) override;
     void check_cycle_plane(const std::string& name) const override;
+    bool variant_motion(int mode, BlockWords& w) override;
+    bool f_is_lead(int mode) const override;
 
 private:
     void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
+    // The code of the thread-cutting move this machine writes (threadMove): 33 or 32.
+    double thread_code() const {
+        return lathe_.thread_move == iso::LatheThreadMove::g32_f ? iso::thread_g32_code : iso::thread_g33_code;
+    }
 
     const iso::LatheSettings& lathe_;
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
@@ -40,7 +46,31 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
         set_group(codes.spindle_mode, c);
         return true;
     }
+    if (c.value == code(thread_code())) {
+        set_group(codes.motion, c);
+        return true;
+    }
     return false;
+}
+
+bool IsoLatheReader::f_is_lead(int mode) const {
+    return mode == code(thread_code()) && lathe_.thread_move == iso::LatheThreadMove::g32_f;
+}
+
+bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
+    if (mode != code(thread_code())) return false;
+    // The thread-cutting move: G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), along Z from where the
+    // tool stands, the lead K or F mm per revolution.
+    const bool g32 = lathe_.thread_move == iso::LatheThreadMove::g32_f;
+    const std::string name = g32 ? "G32" : "G33";
+    for (char letter : {'X', 'Y', 'I', 'J', 'R', 'Q', 'P'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on {}: camgen cuts threads along Z only, each pass positioned with G0", x->text, name));
+    const Word* zw = w.take('Z');
+    const Word* lw = w.take(g32 ? 'F' : 'K');
+    if (!zw || !lw) fail(fmt::format("{} needs the end Z and the lead {}", name, g32 ? 'F' : 'K'));
+    thread_to(name, length(*zw), *lw);
+    return true;
 }
 
 void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {

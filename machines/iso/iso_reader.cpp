@@ -199,7 +199,8 @@ void IsoReader::block(const Block& b) {
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.
     if (k.feed_mode && feed_mode_of(*k.feed_mode->word)) set_feed_mode(*feed_mode_of(*k.feed_mode->word));
-    if (const Word* f = w.take('F')) set_feed(*f);
+    if (!f_is_lead(k.motion ? k.motion->value : motion_))
+        if (const Word* f = w.take('F')) set_feed(*f);
     variant_words(k, w);
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), k.m.spindle ? k.m.spindle->word : nullptr);
     const Word* t = w.take('T');
@@ -306,6 +307,7 @@ void IsoReader::motion_block(int mode, BlockWords& w) {
         return;
     }
     drill_end();
+    if (variant_motion(mode, w)) return;
     initial_z_.reset();
     if (std::optional<ArcWords> a = move_or_arc(mode, plane_, w)) {
         a->r = w.length('R');
@@ -411,6 +413,10 @@ void IsoReader::rigid_tap(BlockWords& w) {
 }
 
 bool IsoReader::variant_code(BlockCodes&, const Word&, Code) { return false; }
+
+bool IsoReader::variant_motion(int, BlockWords&) { return false; }
+
+bool IsoReader::f_is_lead(int) const { return false; }
 
 void IsoReader::variant_words(const BlockCodes&, BlockWords&) {}
 

@@ -56,6 +56,10 @@ protected:
     // Refuses a canned cycle that would drill along another axis than Z in the current plane (on
     // a lathe: one not under G17; a variant whose post writes no plane word lets it be).
     virtual void check_cycle_plane(const std::string& name) const;
+    // A motion mode only the variant has (a lathe's thread-cutting G33/G32): its block read, true.
+    virtual bool variant_motion(int mode, BlockWords& w);
+    // Whether a block in motion mode `mode` takes F as its lead, not as a feed (Fanuc T's G32).
+    virtual bool f_is_lead(int mode) const;
 
     void set_group(std::optional<Code>& group, Code c) const { NcReader::set_group(group, c, "modal group"); }
     Plane plane() const { return plane_; }

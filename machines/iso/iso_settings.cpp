@@ -28,6 +28,11 @@ constexpr Named<LatheToolCall> lathe_tool_calls[] = {
     {LatheToolCall::turret, "turret", "T0101: the tool and its offset number (Fanuc T)"},
 };
 
+constexpr Named<LatheThreadMove> lathe_thread_moves[] = {
+    {LatheThreadMove::g33_k, "g33-k", "G33 Z K: K the lead (LinuxCNC)"},
+    {LatheThreadMove::g32_f, "g32-f", "G32 Z F: F the lead (Fanuc T)"},
+};
+
 constexpr KeySpec iso_keys[] = {
     {.key = "programNumber", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{0, true},
      .max = Bound{max_program_number, true}, .default_json = "1000",
@@ -58,6 +63,9 @@ constexpr KeySpec lathe_only_keys[] = {
     {.key = "spindleLimit", .type = JsonType::boolean, .default_json = "false",
      .description = "G50 S (limits.maxRpm) before the first spindle start, and the speed as G97 S.. M3 "
                     "(Fanuc T); needs limits.maxRpm"},
+    {.key = "threadMove", .type = JsonType::string, .default_json = "\"g33-k\"", .choices = &choices_of<lathe_thread_moves>,
+     .description = "the move synchronised with the spindle that cuts a thread: g33-k (G33 Z K, K the lead: LinuxCNC) "
+                    "or g32-f (G32 Z F, F the lead: Fanuc T)"},
 };
 
 // The ISO keys, then the lathe's.
@@ -104,6 +112,7 @@ std::shared_ptr<const DialectSettings> read_lathe_settings(json::Fields& f, cons
     s->drilling_plane = f.boolean("drillingPlane", s->drilling_plane);
     s->tool_call = f.choice("toolCall", lathe_tool_calls, s->tool_call);
     s->spindle_limit = f.boolean("spindleLimit", s->spindle_limit);
+    s->thread_move = f.choice("threadMove", lathe_thread_moves, s->thread_move);
     if (s->spindle_limit && !(machine.limits.max_rpm > 0))
         f.fail("spindleLimit", "spindleLimit writes G50 S<maxRpm>: the machine needs limits.maxRpm");
     if (machine.kind != MachineKind::lathe)

@@ -28,6 +28,7 @@ struct LatheSettings : Settings {
     bool drilling_plane = true;  // a canned cycle drills under G17 (LinuxCNC); false: no plane word (Fanuc T)
     LatheToolCall tool_call = LatheToolCall::m6;
     bool spindle_limit = false;  // G50 S<maxRpm> before the first spindle start, then G97 S.. M3
+    LatheThreadMove thread_move = LatheThreadMove::g33_k;  // the thread-cutting move's words
 };
 
 // The keys of each dialect's settings (iso-lathe's: the ISO keys, then its own).

@@ -31,6 +31,13 @@ constexpr double cycle_code(CycleKind kind) {
 // (T.. M6), or a turret's T0101 (tool 01 with offset 01, Fanuc T).
 enum class LatheToolCall { m6, turret };
 
+// Lathes: the move synchronised with the spindle that cuts a thread (the iso-lathe setting
+// "threadMove"): LinuxCNC's G33 Z K (K the lead, mm per revolution; LinuxCNC G-code docs, G33)
+// or Fanuc T's G32 Z F (F the lead; Fanuc 0i-TF operator's manual, "Thread cutting (G32)").
+enum class LatheThreadMove { g33_k, g32_f };
+inline constexpr double thread_g33_code = 33;
+inline constexpr double thread_g32_code = 32;
+
 // The maximum spindle speed code of Fanuc T (system A): G50 S<rpm>.
 inline constexpr double spindle_limit_code = 50;
 // Constant spindle speed (rpm), Fanuc T and LinuxCNC: G97.

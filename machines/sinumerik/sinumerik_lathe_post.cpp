@@ -1,6 +1,7 @@
 #include "machines/sinumerik/sinumerik_lathe_post.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "camgen/common/error.hpp"
 
@@ -17,6 +18,14 @@ void SinumerikLathePost::on_open() {
     SinumerikPost::on_open();
     const auto& b = machine().frame.start_block;
     if (std::find(b.begin(), b.end(), "G18") != b.end()) assume_plane(18);
+}
+
+void SinumerikLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
+    if (std::abs(t.to.x - from.x) > 1e-9 || std::abs(t.to.y - from.y) > 1e-9)
+        fail("", "a thread-cutting move that is not along Z: camgen cuts straight threads only");
+    const std::string lead = lead_word("K", t.lead);
+    writer().add(g(33)).add(force_z(t.to.z)).add(lead).end();
+    forget_motion();
 }
 
 std::optional<std::string> SinumerikLathePost::canned_limit(const DrillCycle& c, const DrillingCycleSpec& spec) const {

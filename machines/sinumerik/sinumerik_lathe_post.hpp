@@ -12,6 +12,9 @@ public:
 
 protected:
     void on_open() override;
+    // G33 Z K: K the lead along Z (Siemens 840D sl programming manual, fundamentals: "Thread
+    // cutting with constant lead (G33)"); along Z only.
+    void on_thread_feed(const Vec3& from, const ThreadFeed& move) override;
     void on_drilling_header(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     // CYCLE83's full retract comes back by the machine's _DIS1: another peckClearance cannot be written.

@@ -359,6 +359,11 @@ void SinumerikReader::block(const Block& b) {
             }
             switch (c.value) {
                 case code(0): case code(1): case code(2): case code(3): set_group(motion, c); break;
+                case code(33):
+                    // Thread cutting with constant lead, G33 Z K: on a lathe only.
+                    if (machine_.kind != MachineKind::lathe) fail(fmt::format("unknown code {}", x.text));
+                    set_group(motion, c);
+                    break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
                 case code(70): case code(71): set_group(units, c); break;
                 case code(90): break;
@@ -433,6 +438,16 @@ void SinumerikReader::block(const Block& b) {
             if (!current_cycle() || !(*current_cycle() == c)) drill_cycle(c);
             Vec3 here = position();
             drill_point({here.x, here.y});
+        } else if (motion_ == code(33)) {
+            // G33 Z K: along Z from where the tool stands, K mm per revolution.
+            for (char letter : {'X', 'Y', 'I', 'J'})
+                if (const Word* x = w.find(letter))
+                    fail(fmt::format("{} on G33: camgen cuts threads along Z only, each pass positioned with G0", x->text));
+            if (cr) fail("CR= on G33");
+            const Word* zw = w.take('Z');
+            const Word* kw = w.take('K');
+            if (!zw || !kw) fail("G33 needs the end Z and the lead K");
+            thread_to("G33", length(*zw), *kw);
         } else if (std::optional<ArcWords> a = move_or_arc(motion_, plane_, w)) {
             if (cr) a->r = length(*cr);
             arc(*a);

@@ -105,6 +105,7 @@ public:
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;
                            s.rpm = sp.rpm;
+                           thread_rpm_ = sp.state == SpindleState::off ? 0.0 : sp.rpm;
                            emit_in_order(s);
                        },
                        [&](const Rapid& r) {
@@ -173,6 +174,13 @@ public:
                            ++summary_.stop_count;
                        },
                        [&](const CustomBlock&) {},  // comments and dwells only, which the program reads back as such
+                       [&](const ThreadFeed& t) {
+                           // A feed of lead x rpm; like a tap's it carries the lead, so that a
+                           // comparison allows for the speed the program could write.
+                           Programmed p = programmed(StepKind::feed, t.lead * thread_rpm_, Movement::cutting, t.lead, false);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, t.to), p);
+                           straight(t.to, p);
+                       },
                    },
                    e.event);
     }
@@ -408,6 +416,7 @@ private:
     int line_ = 0;
     double uncertainty_ = 0.0;
     double pitch_ = 0.0;  // while a tap is expanded
+    double thread_rpm_ = 0.0;  // the spindle speed a thread-cutting move feeds by (lead x rpm)
     std::optional<DrillCycle> cycle_;
     std::string operation_path_;  // of a job's events: the operation's JSON path, for a refusal
     std::optional<CutterCompensation> comp_;  // from G41/G42 to the move after G40

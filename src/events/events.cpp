@@ -80,6 +80,7 @@ std::string event_to_json(const Event& event) {
                        j = {{"event", "stop"}, {"optional", e.kind == StopKind::optional}, {"message", e.message}};
                        if (e.spin_up > 0) j["spinUp"] = e.spin_up;
                    },
+                   [&](const ThreadFeed& e) { j = {{"event", "thread-feed"}, {"to", xyz(e.to)}, {"lead", e.lead}}; },
                    [&](const CustomBlock& e) {
                        j = {{"event", "custom"}, {"path", e.path}};
                        nlohmann::ordered_json texts = nlohmann::ordered_json::object();

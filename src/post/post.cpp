@@ -123,6 +123,23 @@ std::string_view Post::feed_word(double mm_per_min) {
     return feed_.format(f);
 }
 
+void Post::on_thread_feed(const Vec3&, const ThreadFeed&) {
+    fail("", fmt::format("machine {} cuts no threads: its dialect writes no move synchronised with the spindle", machine_.name));
+}
+
+std::string Post::lead_word(std::string_view letter, double lead) {
+    if (!(spindle_rpm_ > 0)) fail("", "a thread-cutting move while the spindle stands still");
+    if (!(lead > 0) || feed_rev_fmt_.is_zero(lead))
+        fail("", fmt::format("lead {} mm would be written as 0 on machine {}", number_text(lead), machine_.name));
+    const double feed = lead * spindle_rpm_;
+    if (machine_.limits.max_feed > 0 && feed > machine_.limits.max_feed + 1e-9)
+        fail("", fmt::format("a thread of lead {} mm at {} rpm feeds {} mm/min, beyond the maxFeed of machine {} ({} "
+                             "mm/min): lower the threading tool's rpm",
+                             number_text(lead), number_text(spindle_rpm_), number_text(feed), machine_.name,
+                             number_text(machine_.limits.max_feed)));
+    return feed_rev_fmt_.word(letter, lead);
+}
+
 double Post::clamped_feed(double mm_per_min) {
     const MachineLimits& lim = machine_.limits;
     double f = mm_per_min;
@@ -233,6 +250,7 @@ std::string what_it_does(const Event& e) {
                                                        "stops the spindle and the coolant first)");
                                 },
                                 [](const CustomBlock&) { return std::string("custom"); },
+                                [](const ThreadFeed&) { return std::string("move the tool (a thread-cutting move)"); },
                             },
                             e);
 }
@@ -939,6 +957,11 @@ void Post::handle(const Event& event) {
                        arc_actual_end_.reset();
                    },
                    [&](const CustomBlock& c) { handle_custom(c); },
+                   [&](const ThreadFeed& t) {
+                       if (!pos_known_) throw std::logic_error("thread-cutting move from an unknown position");
+                       on_thread_feed(pos_, t);
+                       pos_ = t.to;
+                   },
                },
                event);
 }

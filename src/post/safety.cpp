@@ -238,6 +238,7 @@ void SafetyCheck::emit(const Event& event) {
             [&](const Spindle&) {},
             [&](const Rapid& r) { move(r.to, false); },
             [&](const Linear& l) { move(l.to, true); },
+            [&](const ThreadFeed& t) { move(t.to, true); },
             [&](const Arc& a) {
                 // An arc in XY (or a helix) is lowest at an end; one in XZ or YZ may dip between.
                 reach(a.to.z);

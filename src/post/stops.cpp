@@ -184,6 +184,11 @@ void OperatorStops::emit(const Event& event) {
                              pos_ = a.to;
                              next_.emit(event);
                          },
+                         [&](const ThreadFeed& t) {
+                             resume();
+                             pos_ = t.to;
+                             next_.emit(event);
+                         },
                          [&](const Dwell&) {
                              resume();
                              next_.emit(event);

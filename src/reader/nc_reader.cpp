@@ -528,6 +528,18 @@ void NcReader::linear_to(std::optional<double> x, std::optional<double> y, std::
     emit(Linear{p, *feed_}, false, xy_uncertainty_);
 }
 
+void NcReader::thread_to(const std::string& name, double z, const Word& lead) {
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (spindle_ == SpindleState::off || !(rpm_ > 0))
+        fail(fmt::format("{} with the spindle off: a thread-cutting move follows the spindle", name));
+    const double l = lead.value / feed_rev_fmt_.spec().scale;
+    if (!(l > 0)) fail(fmt::format("{}: the lead must be > 0", lead.text));
+    Vec3 p = position();
+    p.z = z;
+    pos_ = {p.x, p.y, p.z};
+    emit(ThreadFeed{p, l});
+}
+
 void NcReader::arc(const ArcWords& a) {
     const ArcSettings& s = machine_.arcs;
     if (std::find(s.planes.begin(), s.planes.end(), a.plane) == s.planes.end()) {

@@ -190,6 +190,10 @@ protected:
     void rapid_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
     // A feed move. Fails from an unknown position or without a feed.
     void linear_to(std::optional<double> x, std::optional<double> y, std::optional<double> z);
+    // A thread-cutting move (G33 Z K, G32 Z F) named `name` along Z to `z`, its lead the word
+    // `lead` (in the machine's feed-per-revolution format). Fails from an unknown position, with
+    // the spindle off, or for a lead not above 0.
+    void thread_to(const std::string& name, double z, const Word& lead);
 
     // The words of an arc block in internal units (nullopt: not written).
     struct ArcWords {

@@ -70,6 +70,8 @@ TEST_CASE("linuxcnc-lathe and fanuc-lathe: the sample shaft's groove and parting
     nlohmann::json doc = nlohmann::json::parse(text.str());
     auto& ops = doc["operations"];
     ops.erase(ops.begin(), ops.begin() + 5);
+    // (the thread between them is test_turn_thread_oracle.cpp's)
+    for (auto it = ops.begin(); it != ops.end();) it = (*it)["type"] == "turn-thread" ? ops.erase(it) : it + 1;
     const Job job = read_job(doc.dump(), "shaft.json");
     bool groove = false, part = false;
     for (const Operation& op : job.operations) groove |= std::holds_alternative<TurnGrooveOp>(op), part |= std::holds_alternative<TurnPartOp>(op);

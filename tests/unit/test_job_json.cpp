@@ -492,7 +492,7 @@ TEST_CASE("operation errors: type, tool, unknown keys") {
   ]
 })",
                 "/operations/1/type", 6,
-                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"bore-mill\", \"turn-drill\", \"turn-profile\", \"turn-face\", \"turn-rough\", \"stop\", \"custom\", \"pocket\", \"face\", \"thread-mill\", \"engrave\", \"chamfer\", \"turn-groove\" or \"turn-part\"");
+                "\"mill\" is not one of \"drill\", \"contour\", \"path\", \"bore-mill\", \"turn-drill\", \"turn-profile\", \"turn-face\", \"turn-rough\", \"stop\", \"custom\", \"pocket\", \"face\", \"thread-mill\", \"engrave\", \"chamfer\", \"turn-groove\", \"turn-part\" or \"turn-thread\"");
     check_error(R"({
   "clearance": 5,
   "tools": [{"number": 1, "diameter": 5, "rpm": 1000}],

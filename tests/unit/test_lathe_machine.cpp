@@ -160,8 +160,8 @@ TEST_CASE("lathe: read back, a feed along Z turns the work; only a drill on the 
         const ProgramStats stats = compute_stats(trace, m);
         const auto length = [&](Movement kind) { return stats.movement_length[static_cast<std::size_t>(kind)]; };
         // The shaft: a centre drill and a drill on the axis (tools 1 and 2), turning tools 4 (face,
-        // rough) and 3 (finish), the grooving tool 5 and the parting tool 6 (their plunges in X turn).
-        REQUIRE(stats.tools.size() == 6);
+        // rough) and 3 (finish), the grooving tool 5, the parting tool 6 (their plunges in X turn) and the threading tool 7.
+        REQUIRE(stats.tools.size() == 7);
         double drills = 0, turning = 0;
         for (const ToolStats& t : stats.tools) (t.tool <= 2 ? drills : turning) += t.feed_length;
         CHECK(length(Movement::plunge) == doctest::Approx(drills));

@@ -165,7 +165,7 @@ TEST_CASE("fanuc-lathe with G83 X0 Z R Q F instead of G74 (the machine-file alte
     const Job j = read_job(job(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.1, "firstPeckDepth": 6)"), "t.json");
     const std::string text = test::post_program(j, m);
     INFO(text);
-    CHECK(has(text, " G83 X0.000 Z-20.000 R2.000 Q6.000 F0.1\n"));
+    CHECK(has(text, " G83 X0.000 Z-20.000 R2.000 Q6.000 F0.1000\n"));
     CHECK(text.find("G98 G83") == std::string::npos);
     CHECK(text.find("G99 G83") == std::string::npos);
     // It reads back as the job (the cycle returns to the retract plane it started from).

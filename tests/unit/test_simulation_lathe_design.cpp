@@ -72,8 +72,8 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     CHECK(design.unchecked.empty());
     CHECK(design.cuts.empty());
     // The face, the rough (designed in design_turn_face, design_turn_rough), the finish, the
-    // groove and the parting (test_turn_groove.cpp).
-    REQUIRE(design.lathe.profiles.size() == 5);
+    // groove, the thread (design_turn_thread) and the parting (test_turn_groove.cpp).
+    REQUIRE(design.lathe.profiles.size() == 6);
     REQUIRE(design.lathe.holes.size() == 2);
     CHECK(design.lathe.profiles[0].path == "/operations/0");
     CHECK(design.lathe.profiles[1].path == "/operations/3");
@@ -98,6 +98,14 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     CHECK(range(-22.5, -22.5).first == doctest::Approx(20 - std::sqrt(25 - 6.25)).epsilon(1e-12));
     CHECK(range(-25.5, -24.5).first == doctest::Approx(20 - std::sqrt(25 - 4.5 * 4.5)).epsilon(1e-12));
     CHECK(range(-25.5, -24.5).second == doctest::Approx(20));
+    // The thread M30x2 from Z0 to Z-11: its minor diameter d3 = 30 - 1.226869 x 2 over its length.
+    const LatheTurnDesign& t = design.lathe.profiles[4];
+    CHECK(t.path == "/operations/6");
+    CHECK(t.z_lo == doctest::Approx(-11));
+    CHECK(t.z_hi == doctest::Approx(0));
+    const auto thread = t.radius_range(-10, -10);
+    REQUIRE(thread);
+    CHECK(thread->first == doctest::Approx((30 - 1.226869 * 2) / 2).epsilon(1e-6));
     CHECK_FALSE(p.radius_range(-45, -41));
     // What the R0.4 nose leaves: on the cylinder the profile; on the 45 degree chamfer
     // n (2 - sqrt 2) beyond it in radius (its circle touches the chamfer's line n sqrt 2 from the
@@ -160,7 +168,7 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
                          "fanuc-lathe cannot tap)\n"));
     // The shaft's nose leaves material on the chamfer and in the fillet, which is said.
     const Simulated shaft = simulate(samples + "shaft.json", "linuxcnc-lathe", "shaft.nc", [](const std::string& t) { return t; });
-    CHECK(has(shaft.run, "design check   lathe: 5 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 38 "
+    CHECK(has(shaft.run, "design check   lathe: 6 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 40 "
                          "sections 0.0088 mm beside the designed corners\n"));
     CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
 }
@@ -168,8 +176,8 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
         CAPTURE(machine);
-        // The finishing pass along D30 (to Z-20) stops at Z-10, feeds in to X29.9 and out again
-        // (with decimal points: a Fanuc reads X30 as 0.03 mm).
+        // The finishing pass along D30 (to Z-20) stops at Z-19 (beyond the thread, which ends at
+        // Z-18), feeds in to X29.9 and out again (with decimal points: a Fanuc reads X30 as 0.03 mm).
         std::size_t dig = 0;
         const Simulated s = simulate(samples + "shaft.json", machine, "gouge.nc", [&](const std::string& t) {
             const std::vector<std::string> lines = test::lines_of(t);
@@ -177,7 +185,7 @@ TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a go
             for (const std::string& l : lines)
                 if (std::regex_search(l, std::regex(R"((^|\s)Z-20(\.0+)?$)"))) pass = l;
             REQUIRE(!pass.empty());
-            auto [text, at] = replace_line(t, "finish the outside", pass, "G1 Z-10.0\nX29.9\nX30.0\n" + pass);
+            auto [text, at] = replace_line(t, "finish the outside", pass, "G1 Z-19.0\nX29.9\nX30.0\n" + pass);
             dig = at + 1;
             return text;
         });
@@ -271,7 +279,8 @@ TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z 
         },
         "0.01");
     CHECK(s.run.code == 1);
-    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/4 (the part inside the profile): material removed ")), s.run.out);
+    // (the thread M30x2 from Z0 designs its minor radius 13.773 there: the deepest design at that Z)
+    CHECK_MESSAGE(has(s.run, fmt::format("error: gouge: /operations/6 (the part inside the profile): material removed ")), s.run.out);
     CHECK_MESSAGE(has(s.run, fmt::format("at Z-0.0088 (radius 13.35), by line {} (cut at 0 samples and 1 section beside corners)", line)),
                   s.run.out);
 }

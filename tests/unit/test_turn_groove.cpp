@@ -289,7 +289,7 @@ TEST_CASE("lathe design: the shaft's groove and parting are cuts of their blade;
     const Job job = read_job(test::read_file(shaft), "shaft.json");
     const PartDesign design = part_design(job);
     CHECK(design.unchecked.empty());
-    REQUIRE(design.lathe.profiles.size() == 5);
+    REQUIRE(design.lathe.profiles.size() == 6);
     // The groove: D30 (radius 15), walls Z-12 and Z-16, bottom D27, chamfers 0.5.
     const LatheTurnDesign& g = design.lathe.profiles[3];
     CHECK(g.path == "/operations/5");
@@ -301,8 +301,8 @@ TEST_CASE("lathe design: the shaft's groove and parting are cuts of their blade;
     // The blade clears the bottom, and nothing beyond its reach.
     CHECK(g.left_radius(-14) == doctest::Approx(13.5));
     // The parting: the slot Z-45..-42 through, the chamfer on the part's edge.
-    const LatheTurnDesign& p = design.lathe.profiles[4];
-    CHECK(p.path == "/operations/6");
+    const LatheTurnDesign& p = design.lathe.profiles[5];
+    CHECK(p.path == "/operations/7");
     CHECK(p.radius_range(-43.5, -43.5)->first == doctest::Approx(0));
     CHECK(p.radius_range(-41.75, -41.75)->first == doctest::Approx(21.75));
     const fs::path dir = test::scratch("simulate-groove");

@@ -191,8 +191,19 @@ struct CustomBlock {
     friend bool operator==(const CustomBlock&, const CustomBlock&) = default;
 };
 
+// A straight move synchronised with the spindle (thread cutting: LinuxCNC and Sinumerik G33 K,
+// Fanuc G32 F): the tool advances `lead` mm along Z per spindle revolution, from where it stands
+// to `to`. Its feed is the lead times the spindle's rpm; the control waits for the spindle's
+// index before it starts, so that every pass of a thread runs in the same groove.
+struct ThreadFeed {
+    Vec3 to;
+    double lead = 0.0;  // mm per revolution along Z
+    friend bool operator==(const ThreadFeed&, const ThreadFeed&) = default;
+};
+
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
-                           Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock>;
+                           Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
+                           ThreadFeed>;
 
 // Receives events one at a time (a post, a recorder, the event printer).
 class EventSink {

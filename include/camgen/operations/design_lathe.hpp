@@ -35,6 +35,7 @@ struct TurnFaceOp;
 struct TurnRoughOp;
 struct TurnGrooveOp;
 struct TurnPartOp;
+struct TurnThreadOp;
 
 // A straight stretch of a tool tip's path in (Z, radius), mm.
 struct LatheTipMove {
@@ -108,5 +109,11 @@ void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& des
 // chamfer on the part's edge; the part and the bar either side are kept (the simulation keeps
 // the parted part where it was).
 void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
+// An external turn-thread designs its minor diameter over its length (from startZ down to endZ,
+// then up its end to the major diameter): a turned part is round, and the passes remove all
+// around what lies beyond the thread's root, as the simulation sweeps them (the helix and its
+// flanks are not designed); its tip's whole path as the passes make it. An internal thread is
+// left unchecked (the turned design has no bore side yet).
+void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

@@ -30,6 +30,7 @@
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 #include "camgen/operations/turn_part/turn_part.hpp"
 #include "camgen/operations/turn_rough/turn_rough.hpp"
+#include "camgen/operations/turn_thread/turn_thread.hpp"
 
 namespace camgen {
 
@@ -67,7 +68,7 @@ constexpr bool uses_tool() {
 // Every operation type: the registration line.
 using Operation = std::variant<DrillOp, ContourOp, PathOp, BoreMillOp, TurnDrillOp, TurnProfileOp, TurnFaceOp, TurnRoughOp, StopOp,
                                CustomOp, PocketOp, FaceOp, ThreadMillOp, EngraveOp, ChamferOp, TurnGrooveOp,
-                               TurnPartOp>;
+                               TurnPartOp, TurnThreadOp>;
 
 // A whole job: header, tools and operations in order.
 struct Job : JobHeader {

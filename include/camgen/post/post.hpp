@@ -123,6 +123,9 @@ protected:
     // A feed move; the base writes the block linear_layout() describes: pending compensation,
     // the motion word, axis words and F.
     virtual void on_linear(const Vec3& to, double feed);
+    // A move synchronised with the spindle from `from` (thread cutting). The base refuses it: a
+    // dialect that cuts threads writes its block (G33 Z K, G32 Z F).
+    virtual void on_thread_feed(const Vec3& from, const ThreadFeed& move);
     // One arc block, already split to the machine's maximum sweep and in a supported plane,
     // fitted to the rounded words (fit_arc_block): arc.start is where the control stands,
     // arc.centre / arc.radius / arc.sweep are what the I/J/K, R or D words must say.
@@ -189,6 +192,10 @@ protected:
     // The spindle speed as the machine writes it, without a letter (for a message to the
     // operator), checked as speed_word checks it.
     std::string speed_text(double rpm) const;
+    // The lead of a thread-cutting move as `letter` and the machine's feed-per-revolution format
+    // ("K2.5"); fails where it would be written as 0, the spindle stands still, or the lead
+    // times the spindle speed is beyond the machine's maxFeed (the axis could not follow).
+    std::string lead_word(std::string_view letter, double lead);
     // The G word for motion mode `code` (0, 1, 2, 3, 81, ...), modal.
     std::string_view motion_word(double code);
     // Forget modal state that the control may have changed (after a cycle, a tool change).

@@ -1,0 +1,209 @@
+// turn-thread (issue 30): the passes' depths by the infeed rule, worked out here on their own;
+// each pass as rapids in air and one synchronised move along Z; the programs of the three lathes
+// (LinuxCNC G33 Z K, Fanuc G32 Z F, Sinumerik G33 Z K) read back to the job's moves; refusals
+// with their JSON paths.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "camgen/analysis/compare.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/operations/registry.hpp"
+#include "camgen/reader/reader.hpp"
+#include "camgen/vocabulary/threads.hpp"
+#include "support.hpp"
+
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_turn_thread {
+
+using namespace camgen;
+
+namespace {
+
+std::string refusal(const std::string& text) {
+    try {
+        (void)read_job(text, "thread.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const char* const thread_tool =
+    R"({"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 500})";
+
+std::string job(const std::string& op, const std::string& tool = thread_tool) {
+    return R"({"clearance": 20, "stock": {"bar": {"diameter": 44, "length": 70, "faceZ": 0}}, "tools": [)" + tool +
+           R"(], "operations": [{"type": "turn-thread", "tool": 5, )" + op + "}]}";
+}
+
+}  // namespace
+
+TEST_CASE("turn-thread: the depths follow the infeed rule, the last is the thread's depth") {
+    // Constant area: first x sqrt(n) below the total (0.613435 x 2.5 = 1.533588 for M20x2.5).
+    const Job j = read_job(job(R"("thread": "M20x2.5", "startZ": 0, "endZ": -20, "firstDepth": 0.4, "springPasses": 1)"),
+                           "t.json");
+    const auto& op = std::get<TurnThreadOp>(j.operations.front());
+    const double total = 0.613435 * 2.5;
+    REQUIRE(op.depths.size() == 16);  // ceil((1.533588 / 0.4)^2) = 15 passes, then a spring pass
+    for (std::size_t n = 1; n < 15; ++n) CHECK(op.depths[n - 1] == doctest::Approx(0.4 * std::sqrt(double(n))).epsilon(1e-9));
+    CHECK(op.depths[14] == doctest::Approx(total).epsilon(1e-6));
+    CHECK(op.depths[15] == doctest::Approx(total).epsilon(1e-6));
+    // A least depth: each step at least 0.15 mm.
+    const Job least_job =
+        read_job(job(R"("thread": "M20x2.5", "startZ": 0, "endZ": -20, "firstDepth": 0.4, "minDepth": 0.15, "springPasses": 0)"),
+                 "t.json");
+    const auto& least = std::get<TurnThreadOp>(least_job.operations.front());
+    // (the last step takes what is left to the full depth, which may be less)
+    for (std::size_t n = 1; n + 1 < least.depths.size(); ++n) CHECK(least.depths[n] - least.depths[n - 1] >= 0.15 - 1e-9);
+    CHECK(least.depths.back() == doctest::Approx(total).epsilon(1e-6));
+    CHECK(least.depths.size() < 15);
+    // Constant depth: equal steps of at most firstDepth.
+    const Job equal_job =
+        read_job(job(R"("thread": "M12", "side": "internal", "startZ": 0, "endZ": -10, "infeed": "constant-depth", "firstDepth": 0.2, "springPasses": 0)"),
+                 "t.json");
+    const auto& equal = std::get<TurnThreadOp>(equal_job.operations.front());
+    const double internal_total = (12 - internal_minor_diameter(12, 1.75)) / 2;  // 5/8 H
+    CHECK(internal_total == doctest::Approx(0.541266 * 1.75).epsilon(1e-6));
+    const int n = static_cast<int>(std::ceil(internal_total / 0.2));
+    REQUIRE(equal.depths.size() == static_cast<std::size_t>(n));
+    for (int k = 1; k <= n; ++k) CHECK(equal.depths[k - 1] == doctest::Approx(internal_total * k / n));
+}
+
+TEST_CASE("turn-thread: each pass rapids in air, cuts one synchronised move along Z, rapids out and back") {
+    std::mt19937 rng(30);
+    for (int n = 0; n < 40; ++n) {
+        const bool internal = n % 2 == 1;
+        const char* sizes[] = {"M8", "M10", "M16x1.5", "M20x2.5", "M24", "1/2-13 UNC", "3/4-16 UNF"};
+        const std::string size = sizes[rng() % 7];
+        const int starts = n % 4 == 3 ? 3 : 1;
+        const double angle = n % 3 == 0 ? 0.0 : 29.5;
+        const Job j = read_job(job(fmt::format(R"("thread": "{}", "side": "{}", "startZ": -2, "endZ": -15, "starts": {},
+                                                "firstDepth": 0.25, "infeedAngle": {}, "approachDistance": 4)",
+                                               size, internal ? "internal" : "external", starts, angle)),
+                               "t.json");
+        const auto& op = std::get<TurnThreadOp>(j.operations.front());
+        INFO(size << (internal ? " internal" : " external"));
+        const double surface = op.surface_radius(), out = internal ? -1.0 : 1.0;
+        Vec3 at{0, 0, 20};
+        bool known = false;
+        int threads = 0;
+        for (const Event& e : expand_job(j)) {
+            if (const auto* r = std::get_if<Rapid>(&e)) {
+                if (known) {
+                    // Along Z only outside the thread (inside the bore); in X only beyond startZ
+                    // or out at endZ.
+                    if (std::abs(r->to.z - at.z) > 1e-9) CHECK(out * (r->to.x - surface) > 0);
+                    if (std::abs(r->to.x - at.x) > 1e-9 && out * (r->to.x - at.x) < 0) CHECK(r->to.z > op.start_z);
+                }
+                at = r->to;
+                known = true;
+            } else if (const auto* t = std::get_if<ThreadFeed>(&e)) {
+                REQUIRE(known);
+                ++threads;
+                CHECK(t->lead == doctest::Approx(op.pitch * starts));
+                CHECK(t->to.x == at.x);
+                CHECK(t->to.z == op.end_z);
+                CHECK(at.z > op.start_z);  // every pass starts beyond the thread
+                // The flank infeed: the start moves by -depth x tan(angle) (and one pitch a start).
+                const double depth = out * (surface - t->to.x);
+                const int start = (threads - 1) / static_cast<int>(op.depths.size());
+                CHECK(at.z == doctest::Approx(op.start_z + op.approach + start * op.pitch -
+                                              depth * std::tan(angle * std::numbers::pi / 180)));
+                at = t->to;
+            } else {
+                CHECK(!std::holds_alternative<Linear>(e));
+                CHECK(!std::holds_alternative<Arc>(e));
+            }
+        }
+        CHECK(threads == static_cast<int>(op.depths.size()) * starts);
+        CHECK(at.z == 20.0);
+    }
+}
+
+TEST_CASE("turn-thread: the three lathes write G33 Z K, G32 Z F, G33 Z K and read them back as the job's moves") {
+    std::ifstream f(CAMGEN_SOURCE_DIR "/samples/shaft.json");
+    std::stringstream text;
+    text << f.rdbuf();
+    const Job j = read_job(text.str(), "shaft.json");
+    for (const char* name : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+        INFO(name);
+        const Machine machine = load_machine(name);
+        const std::string program = test::post_program(j, machine);
+        const bool fanuc = std::string(name) == "fanuc-lathe", lcnc = std::string(name) == "linuxcnc-lathe";
+        const std::string word = fanuc ? "G32 Z-11.000 F2.0000" : lcnc ? "G33 Z-11 K2\n" : "G33 Z-11.000 K2\n";
+        const std::string broken = fanuc ? "G32 Z-11.000 F2.5000" : lcnc ? "G33 Z-11 K2.5\n" : "G33 Z-11.000 K2.5\n";
+        CHECK_MESSAGE(program.find(word) != std::string::npos, program);
+        const Trace read = trace_program(read_program(program, machine, "t.nc"), machine);
+        const auto mismatch = compare_traces(trace_expected(expand_job(j), machine), read, compare_tolerance(machine, 0.0));
+        CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
+        // Broken: another lead in one pass is a mismatch.
+        std::string wrong = program;
+        if (const std::size_t at = wrong.find(word); at != std::string::npos) wrong.replace(at, word.size(), broken);
+        REQUIRE(wrong != program);
+        {
+            const Trace bad = trace_program(read_program(wrong, machine, "t.nc"), machine);
+            CHECK(compare_traces(trace_expected(expand_job(j), machine), bad, compare_tolerance(machine, 0.0)));
+        }
+    }
+}
+
+TEST_CASE("turn-thread: refusals name their key") {
+    CHECK(refusal(job(R"("thread": "M21", "startZ": 0, "endZ": -10, "firstDepth": 0.2)")).find("/operations/0/thread:") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20x1.25", "startZ": 0, "endZ": -10, "firstDepth": 0.2)")).find("/operations/0/thread:") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("majorDiameter": 20, "minorDiameter": 18, "pitch": 0, "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
+              .find("/operations/0/pitch") != std::string::npos);
+    CHECK(refusal(job(R"("majorDiameter": 20, "minorDiameter": 18, "pitch": -1, "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
+              .find("/operations/0/pitch") != std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -80, "firstDepth": 0.2)"))
+              .find("/operations/0/endZ: the thread ends at Z -80.000 mm, beyond the bar's far end (Z -70.000 mm)") != std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)",
+                      R"({"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 55, "rpm": 500})"))
+              .find("/operations/0/tool: tool 5 has a profileAngle of 55 degrees; M20x2.5 has the 60-degree profile") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)",
+                      R"({"number": 5, "type": "turning-tool", "noseRadius": 0.4, "rpm": 500})"))
+              .find("/operations/0/tool: a turn-thread needs a threading-tool") != std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "hand": "left", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
+              .find("/operations/0/hand: a left-hand thread is cut towards the chuck with the spindle turning ccw") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "runout": "chamfered", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
+              .find("/operations/0/runout: a chamfered runout is not written yet") != std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": 5, "firstDepth": 0.2)")).find("/operations/0/endZ") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 3)")).find("/operations/0/firstDepth") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.5)")).find("/operations/0/thread: M48x5 has a major diameter of 48") !=
+          std::string::npos);
+    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.05)")).find("/operations/0/firstDepth: firstDepth 0.050 mm makes more than 200 passes") !=
+          std::string::npos);
+    // A thread on a mill: the operation is for lathes.
+    const Job j = read_job(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"), "t.json");
+    const Job no_bar = read_job(R"({"clearance": 20, "tools": [)" + std::string(thread_tool) +
+                                    R"(], "operations": [{"type": "turn-thread", "tool": 5, "thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2}]})",
+                                "t.json");
+    try {
+        check_machine_kind(no_bar, MachineKind::mill, "linuxcnc");
+        FAIL("a turn-thread on a mill was not refused");
+    } catch (const InputError& e) {
+        CHECK(e.path() == "/operations/0/type");
+        CHECK(e.detail().find("is made for a lathe, and machine linuxcnc is a mill") != std::string::npos);
+    }
+    // A machine that cuts no threads: the post refuses, naming the operation.
+    const Machine mill_lathe = load_machine("linuxcnc-lathe");
+    CHECK_NOTHROW((void)test::post_program(j, mill_lathe));
+}
+
+}  // namespace test_turn_thread
