@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/number_text.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace camgen {
@@ -690,11 +691,12 @@ private:
             pieces.emplace_back(a, b);
         }
         for (const auto& [p, q] : pieces) {
-            // The program's point is the imaginary tip: the nose circle's centre is a nose
-            // radius above it in X and Z.
+            // The program's point is the imaginary tip: the nose circle's centre lies from it
+            // as the tool's orientation says (2: a nose radius above it in X and Z).
             const double n = tool.nose_radius;
+            const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
             if (tool.form == ToolForm::turning)
-                lathe_turn({std::abs(p.x) + n, p.y, p.z + n}, {std::abs(q.x) + n, q.y, q.z + n}, n, acc);
+                lathe_turn({std::abs(p.x) - tip.y, p.y, p.z - tip.x}, {std::abs(q.x) - tip.y, q.y, q.z - tip.x}, n, acc);
             else lathe_axial(s, p, q, tool, acc);
         }
         acc.volume *= result_.lathe.dz;
@@ -933,12 +935,14 @@ ToolShape tool_shape(const Tool& tool) {
     case ToolType::turning_tool:
         s.form = ToolForm::turning;
         s.nose_radius = tool.diameter / 2;
+        s.orientation = tool.orientation;
         break;
     case ToolType::grooving_tool:  // swept as a tip at their programmed point (their width is not swept yet)
     case ToolType::parting_tool:
     case ToolType::threading_tool:
         s.form = ToolForm::turning;
         s.nose_radius = tool.nose_radius;
+        s.orientation = tool.orientation;
         break;
     }
     return s;
