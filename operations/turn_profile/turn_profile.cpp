@@ -492,20 +492,22 @@ Vec3 position_of(Vec2 p) { return {p.y, 0.0, p.x}; }
 }  // namespace
 
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
-    const Vec3 start = position_of(op.tip_path.start);
+    // An op built by hand (a library user, a test) may leave tip_path empty: the profile is then the tip's path.
+    const Profile& tip_path = op.tip_path.segments.empty() ? op.profile : op.tip_path;
+    const Vec3 start = position_of(tip_path.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
     // Rapid to the approach distance before the start, feed the rest.
     if (start.z + op.approach < ctx.job.clearance) sink.emit(Rapid{{start.x, 0.0, start.z + op.approach}});
     sink.emit(Linear{start, op.feed, Movement::lead_in});
     // The profile is a finishing pass.
-    for (const ProfileSegment& s : op.tip_path.segments) {
+    for (const ProfileSegment& s : tip_path.segments) {
         if (s.centre)
             sink.emit(Arc{position_of(s.end), position_of(*s.centre), s.direction, Plane::xz, op.feed, 0, Movement::finishing});
         else
             sink.emit(Linear{position_of(s.end), op.feed, Movement::finishing});
     }
     // Off the finished surface first, then out and back at rapid.
-    const Vec2 lifted = op.tip_path.segments.back().end + op.lift_direction * op.lift;
+    const Vec2 lifted = tip_path.segments.back().end + op.lift_direction * op.lift;
     sink.emit(Linear{position_of(lifted), op.feed, Movement::lead_out});
     sink.emit(Rapid{{op.retract_x, 0.0, lifted.x}});
     sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
@@ -647,7 +649,8 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         auto x = [&](double radius) { return in.show(x_as_given(radius, xv)); };
         // The tool's path (the tip's: the nose lies nose_low and more above it), from the
         // profile's designed end's Z.
-        const Vec2 start = op->tip_path.start, end = op->profile.segments.back().end;
+        const Vec2 start = op->tip_path.segments.empty() ? op->profile.start : op->tip_path.start;
+        const Vec2 end = op->profile.segments.back().end;
         // The approach: before this profile cuts, the material above it is still there.
         if (auto hit = first_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))
             json::fail(in.source(), op->path + "/start",

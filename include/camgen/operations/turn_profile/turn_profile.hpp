@@ -77,7 +77,7 @@ struct TurnProfileOp {
     Vec2 lift_direction{0.70710678118654752, 0.70710678118654752};  // unit, (Z, radius): away from the finished surface (turned_lift_direction)
     NoseCompensation compensation = NoseCompensation::computer;
     double nose_radius = 0.0;     // the tool's, mm (0: a sharp tip)
-    Profile tip_path;             // what the program follows: nose_path's tip, or the profile itself
+    Profile tip_path;             // what the program follows: nose_path's tip, or the profile itself (empty: the profile)
     double nose_low = 0.0;        // the nose's least radius less the programmed point's, mm (<= 0)
     std::vector<std::string> notes;  // what camgen decided that the job did not ask for
 };
