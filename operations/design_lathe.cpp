@@ -200,9 +200,10 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     d.path = op.path;
     d.tool = tool->number;
     d.nose = tool->diameter / 2;  // as the simulation's tool_shape
+    d.nose_compensated = op.compensation == NoseCompensation::computer && op.nose_radius > 0;
     d.chord = lathe_design_chord;
     const double clearance = job.clearance;
-    const Vec2 start = op.profile.start, end = op.profile.segments.back().end;
+    const Vec2 start = op.profile.start;
     // The kept profile: the approach (down along Z at the start's radius), then the profile.
     d.profile.plane = ProfilePlane::xz;
     d.profile.start = {clearance, start.y};
@@ -211,15 +212,17 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     d.z_hi = clearance;
     // The tip's path as expand() makes it: the approach, the profile, the lift off its end, the
     // rapid out to retractX and the return along Z to the clearance.
-    d.tip.push_back({d.profile.start, start});
-    for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
-        const Vec2 a = segment_start(op.profile, k);
-        const ProfileSegment& s = op.profile.segments[k];
+    // The tip's path is the compensated one where camgen compensates the nose (tip_path).
+    const Profile& tp = op.tip_path.segments.empty() ? op.profile : op.tip_path;
+    d.tip.push_back({{clearance, tp.start.y}, tp.start});
+    for (std::size_t k = 0; k < tp.segments.size(); ++k) {
+        const Vec2 a = segment_start(tp, k);
+        const ProfileSegment& s = tp.segments[k];
         if (!s.centre) {
             d.tip.push_back({a, s.end});
             continue;
         }
-        const LatheDesignArc arc = lathe_design_arc(op.profile, k);
+        const LatheDesignArc arc = lathe_design_arc(tp, k);
         const int n = std::min(lathe_design_max_chords,
                                std::max(1, segments_for_tolerance(arc.radius, std::abs(arc.sweep), lathe_design_chord)));
         Vec2 from = a;
@@ -229,8 +232,9 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
             from = to;
         }
     }
-    const Vec2 lifted = end + op.lift_direction * op.lift;
-    d.tip.push_back({end, lifted});
+    const Vec2 tip_end = tp.segments.back().end;
+    const Vec2 lifted = tip_end + op.lift_direction * op.lift;
+    d.tip.push_back({tip_end, lifted});
     d.tip.push_back({lifted, {lifted.x, op.retract_x}});
     d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}});
     // The lowest Z of the profile (an arc may reach below its ends).
@@ -309,6 +313,7 @@ void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design,
 void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
     LatheTurnDesign d;
     if (!lathe_design_turned(op, job, d, unchecked)) return;
+    d.nose_compensated = op.compensation == NoseCompensation::computer && op.nose_radius > 0;
     d.profile.start = op.boundary.start;
     d.profile.segments = op.boundary.segments;
     const Vec2 end = op.boundary.segments.back().end;

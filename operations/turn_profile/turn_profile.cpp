@@ -10,6 +10,8 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/compensation.hpp"
+#include "camgen/geometry/offset.hpp"
 
 namespace camgen {
 
@@ -48,6 +50,9 @@ constexpr KeySpec turn_profile_keys[] = {
                     "back to the clearance"},
     {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
      .description = "how far before the start the approach along Z turns from rapid to feed, mm"},
+    {.key = "compensation", .type = JsonType::string, .default_json = "\"computer\"", .choices = &choices_of<nose_compensation_modes>,
+     .description = "who makes up for the tool's nose radius: computer (the program runs the nose circle along the "
+                    "profile, for the tool's orientation) or none (the profile is the imaginary tip's path)"},
     {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
      .description = "how far the tool feeds off the profile's end, away from the finished surface along its tip "
                     "orientation (orientation 2: +Z and +X at 45 degrees, steeper after a falling slope), before it "
@@ -271,6 +276,140 @@ std::optional<UnfollowableSegment> first_unfollowable(const Profile& profile, co
     return std::nullopt;
 }
 
+
+namespace {
+// The direction (degrees from +Z towards +X, in [0, 360)) of a vector in (Z, radius).
+double degrees_of(Vec2 v) {
+    double a = std::atan2(v.y, v.x) * deg_per_rad;
+    if (a < 0) a += 360.0;
+    return a;
+}
+// Where a nose of `orientation` touches the material, as a direction from its centre: a
+// material direction `c` (degrees) within `half` degrees of the tip's.
+bool nose_reaches(int orientation, double c, double half) {
+    const Vec2 t = lathe_tip_offset(orientation, 1.0);
+    double d = std::fmod(c - degrees_of(t) + 540.0, 360.0) - 180.0;
+    return std::abs(d) <= half + 1e-6;
+}
+// A direction in words, for messages.
+std::string direction_words(double deg) {
+    static constexpr const char* names[] = {"+Z", "+Z and +X", "+X", "-Z and +X", "-Z", "-Z and -X", "-X", "+Z and -X"};
+    const int k = static_cast<int>(std::lround(deg / 45.0)) % 8;
+    return names[k];
+}
+}  // namespace
+
+std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number) {
+    if (orientation < 1 || orientation > 8) return std::nullopt;
+    constexpr double half = 90.0;
+    const Vec2 t = lathe_tip_offset(orientation, 1.0);
+    const double lo = degrees_of(t) - half, hi = degrees_of(t) + half;
+    auto refuse = [&](std::size_t k, double c) {
+        return UnfollowableSegment{
+            k, fmt::format("the nose touches this element's surface from {} (its material lies {:.1f} degrees from +Z "
+                           "towards +X of the nose centre), and tool {} of orientation {} (its tip towards {}) cuts only "
+                           "between {:.0f} and {:.0f} degrees: the insert cannot reach it; use a tool of another "
+                           "orientation",
+                           direction_words(std::fmod(c + 180.0, 360.0)), c, tool_number, orientation,
+                           direction_words(degrees_of(t)), std::fmod(lo + 360.0, 360.0), std::fmod(hi + 360.0, 360.0))};
+    };
+    // The material directions are the left normals of travel, turning with an arc's sweep and
+    // about a convex corner; each sweep is checked at its ends and every 1 degree between
+    // (reach is an interval of less than 180 degrees, so the ends decide: the steps are a
+    // guard against a sweep that wraps past it).
+    auto check = [&](std::size_t k, double from, double sweep) -> std::optional<UnfollowableSegment> {
+        const int n = std::max(1, static_cast<int>(std::ceil(std::abs(sweep))));
+        for (int i = 0; i <= n; ++i) {
+            const double c = std::fmod(from + sweep * i / n + 720.0, 360.0);
+            if (!nose_reaches(orientation, c, half)) return refuse(k, c);
+        }
+        return std::nullopt;
+    };
+    std::optional<double> before;  // the material direction at the end of the element before
+    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
+        const ProfileSegment& s = profile.segments[k];
+        const Vec2 a = segment_start(profile, k);
+        double from = 0.0, sweep = 0.0;
+        if (!s.centre) {
+            if (distance(a, s.end) <= profile_same_point) continue;
+            from = degrees_of(left_of(s.end - a));
+        } else {
+            const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+            const Vec2 r = a - *s.centre;
+            // The left normal of travel: towards the centre of a ccw arc, away from a cw one's.
+            from = degrees_of(r * -sign);
+            sweep = sign * segment_sweep(profile, k) * deg_per_rad;
+        }
+        if (before) {
+            // A convex corner (a left turn): the nose rolls about it from one normal to the next.
+            const double turn = std::fmod(from - *before + 540.0, 360.0) - 180.0;
+            if (turn > 1e-9)
+                if (auto bad = check(k, *before, turn)) return bad;
+        }
+        if (auto bad = check(k, from, sweep)) return bad;
+        before = std::fmod(from + sweep + 720.0, 360.0);
+    }
+    return std::nullopt;
+}
+
+NosePath nose_path(const Profile& profile, double r, int orientation) {
+    NosePath out;
+    const OffsetResult off = offset_profile(profile, r, OffsetSide::right);
+    for (const OffsetNote& n : off.notes) {
+        std::string why;
+        switch (n.kind) {
+        case OffsetNoteKind::arc_too_tight: why = "a concave arc tighter than the nose radius {}: the nose cannot follow it"; break;
+        case OffsetNoteKind::element_removed: why = "the nose (radius {}) cannot reach this element: its neighbours are closer together than the nose is wide"; break;
+        case OffsetNoteKind::split: why = "the nose (radius {}) cannot pass a neck of the profile narrower than itself"; break;
+        case OffsetNoteKind::consumed: why = "the profile is smaller than the nose (radius {})"; break;
+        }
+        out.refusal = UnfollowableSegment{n.segment.value_or(0), fmt::format(fmt::runtime(why), fmt::format("{:.3f} mm", r))};
+        return out;
+    }
+    out.centre = off.profile;
+    // The nose must start and end square to the profile's ends: an offset trimmed there means
+    // the nose cannot reach the profile's first or last element whole.
+    const ProfilePoint first = point_at(profile, 0.0), last = point_at(profile, profile_length(profile));
+    const Vec2 want_start = first.point - left_of(first.tangent) * r, want_end = last.point - left_of(last.tangent) * r;
+    if (distance(out.centre.start, want_start) > 1e-6) {
+        out.refusal = UnfollowableSegment{0, fmt::format("the nose (radius {:.3f} mm) cannot start on this element: the "
+                                                         "elements after it come closer to its start than the nose is wide",
+                                                         r)};
+        return out;
+    }
+    if (distance(out.centre.segments.back().end, want_end) > 1e-6) {
+        out.refusal = UnfollowableSegment{profile.segments.size() - 1,
+                                          fmt::format("the nose (radius {:.3f} mm) cannot end on this element: the elements "
+                                                      "before it come closer to its end than the nose is wide",
+                                                      r)};
+        return out;
+    }
+    const Vec2 tip = lathe_tip_offset(orientation, r);
+    out.tip = out.centre;
+    out.tip.start = out.tip.start + tip;
+    for (ProfileSegment& s : out.tip.segments) {
+        s.end = s.end + tip;
+        if (s.centre) s.centre = *s.centre + tip;
+    }
+    // Sharp concave corners (a right turn between two elements' tangents).
+    for (std::size_t k = 1; k < profile.segments.size(); ++k) {
+        auto tangent_at = [&](std::size_t i, bool at_end) {
+            const ProfileSegment& s = profile.segments[i];
+            const Vec2 a = segment_start(profile, i);
+            if (!s.centre) return (s.end - a) * (1.0 / norm(s.end - a));
+            const Vec2 p = at_end ? s.end : a;
+            const Vec2 rr = (p - *s.centre) * (1.0 / norm(p - *s.centre));
+            return s.direction == ArcDirection::ccw ? left_of(rr) : Vec2{rr.y, -rr.x};
+        };
+        if (distance(segment_start(profile, k - 1), profile.segments[k - 1].end) <= profile_same_point ||
+            distance(segment_start(profile, k), profile.segments[k].end) <= profile_same_point)
+            continue;
+        const Vec2 din = tangent_at(k - 1, true), dout = tangent_at(k, false);
+        if (cross(din, dout) < -1e-9) out.concave_corners.push_back(k);
+    }
+    return out;
+}
+
 std::vector<ObjectSpec> TurnProfileOp::objects() {
     return {
         {.name = "turn-profile",
@@ -308,6 +447,33 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     op.lift_direction = turned_lift_direction(tool.orientation, op.profile);
     if (auto bad = first_unfollowable(op.profile, tool))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
+    op.nose_radius = tool.nose_radius;
+    op.compensation = f.choice("compensation", nose_compensation_modes, NoseCompensation::computer);
+    op.tip_path = op.profile;
+    if (op.compensation == NoseCompensation::computer && op.nose_radius > 0) {
+        // An insert with angles is checked by first_unfollowable (orientation 2); any other
+        // nose by the directions its orientation reaches.
+        if (!(tool.insert_angle && tool.orientation == 2))
+            if (auto bad = first_unreachable(op.profile, tool.orientation, tool.number))
+                json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
+        const NosePath nose = nose_path(op.profile, op.nose_radius, tool.orientation);
+        if (nose.refusal)
+            json::fail(in.source(), f.path_of("path") + "/" + std::to_string(nose.refusal->index), nose.refusal->why);
+        // The nose stops a radius short of the profile's end along it: its leading point at the
+        // end, never beyond it into what lies past the profile (the bar a later cut parts or a
+        // shoulder the profile does not give).
+        const double length = profile_length(nose.tip);
+        op.tip_path = length > op.nose_radius + profile_same_point ? sub_profile(nose.tip, 0.0, length - op.nose_radius) : nose.tip;
+        op.nose_low = -lathe_tip_offset(tool.orientation, op.nose_radius).y - op.nose_radius;
+        for (std::size_t k : nose.concave_corners)
+            op.notes.push_back(fmt::format("{}/{}: the sharp concave corner before this element keeps the nose's radius "
+                                           "({}): give the profile a fillet of at least that radius to cut it as drawn",
+                                           f.path_of("path"), k, in.show(op.nose_radius)));
+        if (op.tip_path.start.x >= in.header().clearance)
+            f.fail("start", fmt::format("the compensated start (the tip of the nose on the profile's start) is at Z {}, at or "
+                                        "above the clearance (Z {})",
+                                        in.show(op.tip_path.start.x), in.show(in.header().clearance)));
+    }
     if (!tool.insert_angle && tool.type == ToolType::turning_tool)
         op.notes.push_back(fmt::format("tool {} gives no insertAngle and approachAngle: camgen does not check that its "
                                        "insert can follow the profile's slopes",
@@ -326,20 +492,22 @@ Vec3 position_of(Vec2 p) { return {p.y, 0.0, p.x}; }
 }  // namespace
 
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
-    const Vec3 start = position_of(op.profile.start);
+    // An op built by hand (a library user, a test) may leave tip_path empty: the profile is then the tip's path.
+    const Profile& tip_path = op.tip_path.segments.empty() ? op.profile : op.tip_path;
+    const Vec3 start = position_of(tip_path.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
     // Rapid to the approach distance before the start, feed the rest.
     if (start.z + op.approach < ctx.job.clearance) sink.emit(Rapid{{start.x, 0.0, start.z + op.approach}});
     sink.emit(Linear{start, op.feed, Movement::lead_in});
     // The profile is a finishing pass.
-    for (const ProfileSegment& s : op.profile.segments) {
+    for (const ProfileSegment& s : tip_path.segments) {
         if (s.centre)
             sink.emit(Arc{position_of(s.end), position_of(*s.centre), s.direction, Plane::xz, op.feed, 0, Movement::finishing});
         else
             sink.emit(Linear{position_of(s.end), op.feed, Movement::finishing});
     }
     // Off the finished surface first, then out and back at rapid.
-    const Vec2 lifted = op.profile.segments.back().end + op.lift_direction * op.lift;
+    const Vec2 lifted = tip_path.segments.back().end + op.lift_direction * op.lift;
     sink.emit(Linear{position_of(lifted), op.feed, Movement::lead_out});
     sink.emit(Rapid{{op.retract_x, 0.0, lifted.x}});
     sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
@@ -479,16 +647,19 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         kept.push_back(kept_by(*op));
         const XValues xv = op->given_x;
         auto x = [&](double radius) { return in.show(x_as_given(radius, xv)); };
-        const Vec2 start = op->profile.start, end = op->profile.segments.back().end;
+        // The tool's path (the tip's: the nose lies nose_low and more above it), from the
+        // profile's designed end's Z.
+        const Vec2 start = op->tip_path.segments.empty() ? op->profile.start : op->tip_path.start;
+        const Vec2 end = op->profile.segments.back().end;
         // The approach: before this profile cuts, the material above it is still there.
-        if (auto hit = first_hit(kept, kept.size() - 1, start.y, start.x, clearance, true))
+        if (auto hit = first_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))
             json::fail(in.source(), op->path + "/start",
                              fmt::format("the approach runs along Z at X {} from the clearance (Z {}) down to the start "
                                          "(Z {}) through the material that {} keeps: X up to {} between Z {} and Z {}",
                                          x(start.y), in.show(clearance), in.show(start.x), whose(*hit->kept, *op),
                                          x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
                                          in.show(hit->span.hi)));
-        if (auto hit = first_hit(kept, kept.size(), op->retract_x, end.x, clearance, false))
+        if (auto hit = first_hit(kept, kept.size(), op->retract_x + op->nose_low, end.x, clearance, false))
             json::fail(in.source(), op->path + "/retractX",
                              fmt::format("retractX {} is inside the part: the return along Z from the profile's end (Z {}) "
                                          "to the clearance (Z {}) runs through the material that {} keeps, up to X {} "

@@ -11,6 +11,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
@@ -55,6 +56,9 @@ constexpr KeySpec turn_rough_keys[] = {
     {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
      .description = "how far beyond the profile's start (in Z) each pass begins, and how far outside the bar the tool "
                     "rapids, mm"},
+    {.key = "compensation", .type = JsonType::string, .default_json = "\"computer\"", .choices = &choices_of<nose_compensation_modes>,
+     .description = "who makes up for the tool's nose radius in the passes and the last pass along the boundary: "
+                    "computer (the nose circle stays on the boundary) or none (the tip does)"},
     {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
      .description = "how far each pass lifts off at 45 degrees (in Z and in X) before it rapids back, mm; at most half "
                     "the depth of a pass (along X, steeper than the profile's steepest fall towards the chuck)"},
@@ -149,18 +153,19 @@ double turn_rough_steepest_fall(const Profile& p) {
 
 double turn_rough_boundary_at(const TurnRoughOp& op, double z) {
     double best = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
-        const auto [lo, hi] = turn_rough_z_range(op.boundary, k);
+    for (std::size_t k = 0; k < op.tip_boundary.segments.size(); ++k) {
+        const auto [lo, hi] = turn_rough_z_range(op.tip_boundary, k);
         if (z < lo - turn_rough_same || z > hi + turn_rough_same) continue;
-        best = std::min(best, turn_rough_radius_on(op.boundary, k, std::clamp(z, lo, hi)));
+        best = std::min(best, turn_rough_radius_on(op.tip_boundary, k, std::clamp(z, lo, hi)));
     }
     return best;
 }
 
 std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double v) {
-    const double z_hi = op.boundary.start.x, z_lo = op.boundary.segments.back().end.x;
+    const Profile& b = op.tip_boundary;
+    const double z_hi = b.start.x, z_lo = b.segments.back().end.x;
     std::vector<double> zs{z_lo, z_hi};
-    for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) turn_rough_crossings(op.boundary, k, v, zs);
+    for (std::size_t k = 0; k < b.segments.size(); ++k) turn_rough_crossings(b, k, v, zs);
     std::sort(zs.begin(), zs.end(), std::greater<>());
     std::vector<TurnRoughSpan> out;
     for (std::size_t i = 0; i + 1 < zs.size(); ++i) {
@@ -251,15 +256,46 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
         f.fail("start", fmt::format("the passes begin at Z {} (the start, allowanceZ and approachDistance), at or above the "
                                     "clearance (Z {})",
                                     in.show(op.boundary.start.x + op.approach), in.show(in.header().clearance)));
+    op.nose_radius = tool.nose_radius;
+    op.compensation = f.choice("compensation", nose_compensation_modes, NoseCompensation::computer);
+    op.tip_boundary = op.boundary;
+    if (op.compensation == NoseCompensation::computer && op.nose_radius > 0 && op.direction == RoughDirection::x)
+        // Along X the passes keep the tip on the boundary, as without compensation: the nose
+        // stays outside it (its circle lies on the tip's air side for an outside tool) and leaves
+        // material on slopes and arcs, which the finishing pass takes.
+        op.notes.push_back(fmt::format("along X the tool tip follows the boundary (nose-radius compensation is made along Z "
+                                       "only so far): the nose of radius {} leaves more than the allowances on slopes and arcs",
+                                       in.show(op.nose_radius)));
+    else if (op.compensation == NoseCompensation::computer && op.nose_radius > 0) {
+        // The nose along the boundary and up the face at its end to the bar (the face stands
+        // at the end's Z: the nose must not pass it).
+        Profile closed = op.boundary;
+        const Vec2 end = closed.segments.back().end;
+        if (end.y < op.stock_radius) closed.segments.push_back({Vec2{end.x, op.stock_radius}, std::nullopt, ArcDirection::ccw});
+        const NosePath nose = nose_path(closed, op.nose_radius, tool.orientation);
+        if (nose.refusal) {
+            if (nose.refusal->index < op.boundary.segments.size())
+                json::fail(in.source(), f.path_of("path") + "/" + std::to_string(nose.refusal->index),
+                           nose.refusal->why + " (the profile with its allowances)");
+            f.fail("path", "the face from the profile's end up to the bar: " + nose.refusal->why);
+        }
+        op.tip_boundary = nose.tip;
+        for (std::size_t k : nose.concave_corners)
+            if (k < op.boundary.segments.size())  // the corner at the end face: where the roughing stops anyway
+                op.notes.push_back(fmt::format("{}/{}: the sharp concave corner before this element keeps the nose's radius ({}) "
+                                               "beyond the allowances",
+                                           f.path_of("path"), k, in.show(op.nose_radius)));
+    }
     const double bottom = [&] {
+        const Profile& tb = op.tip_boundary;
         double b = op.stock_radius;
-        for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
-            const Vec2 a = segment_start(op.boundary, k);
-            b = std::min({b, a.y, op.boundary.segments[k].end.y});
-            const ProfileSegment& s = op.boundary.segments[k];
+        for (std::size_t k = 0; k < tb.segments.size(); ++k) {
+            const Vec2 a = segment_start(tb, k);
+            b = std::min({b, a.y, tb.segments[k].end.y});
+            const ProfileSegment& s = tb.segments[k];
             if (s.centre) {
                 const double r = distance(a, *s.centre);
-                const double a0 = std::atan2(a.y - s.centre->y, a.x - s.centre->x), sw = segment_sweep(op.boundary, k);
+                const double a0 = std::atan2(a.y - s.centre->y, a.x - s.centre->x), sw = segment_sweep(tb, k);
                 double d = s.direction == ArcDirection::ccw ? -pi / 2 - a0 : a0 + pi / 2;
                 d = std::fmod(d, two_pi);
                 if (d < 0) d += two_pi;
@@ -343,7 +379,8 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
         expand_along_x(op, ctx, sink);
         return;
     }
-    const double z_start = op.boundary.start.x + op.approach;  // where passes begin, beyond the part
+    const Profile& path = op.tip_boundary;
+    const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
     // The levels: equal steps from the bar down to the boundary's lowest point; the pass along
     // the boundary takes the last step.
@@ -358,7 +395,7 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     for (double level : levels) {
         const std::vector<TurnRoughSpan> spans = turn_rough_spans(op, level);
         for (const TurnRoughSpan& s : spans) {
-            const bool open = s.hi >= op.boundary.start.x - 1e-9;
+            const bool open = s.hi >= path.start.x - 1e-9;
             if (open) {
                 // From beyond the part's start, down in air to the level.
                 sink.emit(Rapid{turn_rough_at(level, z_start)});
@@ -385,10 +422,10 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     }
     // The last pass along the boundary: what the levels left in steps comes off, the allowances
     // stay.
-    const Vec2 b0 = op.boundary.start;
+    const Vec2 b0 = path.start;
     sink.emit(Rapid{turn_rough_at(b0.y, z_start)});
     sink.emit(Linear{turn_rough_at(b0.y, b0.x), op.feed, Movement::lead_in});
-    for (const ProfileSegment& s : op.boundary.segments) {
+    for (const ProfileSegment& s : path.segments) {
         if (s.centre)
             sink.emit(Arc{turn_rough_at(s.end.y, s.end.x), turn_rough_at(s.centre->y, s.centre->x), s.direction, Plane::xz,
                           op.feed, 0, Movement::cutting});
@@ -396,7 +433,7 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
             sink.emit(Linear{turn_rough_at(s.end.y, s.end.x), op.feed, Movement::cutting});
     }
     // Up the face at the profile's end to the bar, and off it.
-    const Vec2 end = op.boundary.segments.back().end;
+    const Vec2 end = path.segments.back().end;
     if (end.y < op.stock_radius) sink.emit(Linear{turn_rough_at(op.stock_radius, end.x), op.feed, Movement::cutting});
     sink.emit(Linear{turn_rough_at(std::max(end.y, op.stock_radius) + lift, end.x + lift), op.feed, Movement::lead_out});
     sink.emit(Rapid{turn_rough_at(outside, end.x + lift)});

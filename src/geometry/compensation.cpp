@@ -321,4 +321,13 @@ std::optional<CompError> CutterCompensation::arc(const CompMove& p) {
     return std::nullopt;
 }
 
+Vec2 lathe_tip_offset(int orientation, double radius) {
+    Vec2 d{0.0, 0.0};
+    if (orientation == 2 || orientation == 6 || orientation == 1) d.y = -radius;
+    if (orientation == 3 || orientation == 8 || orientation == 4) d.y = radius;
+    if (orientation == 2 || orientation == 7 || orientation == 3) d.x = -radius;
+    if (orientation == 1 || orientation == 5 || orientation == 4) d.x = radius;
+    return d;
+}
+
 }  // namespace camgen

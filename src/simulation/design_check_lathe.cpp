@@ -123,9 +123,12 @@ public:
             const LatheTurnDesign& p = d_.profiles[i];
             if (nose_excess_[i] > tol_)
                 out_.notes.push_back(fmt::format(
-                    "{}: the nose of tool {} (radius {} mm) leaves up to {} mm beyond the profile (in radius, at Z{}): the "
-                    "profile is the tip's path, without nose compensation; material left is judged beyond what the nose leaves",
-                    p.path, p.tool, number_text(p.nose), number_text(nose_excess_[i], 3), number_text(nose_at_[i], 3)));
+                    "{}: the nose of tool {} (radius {} mm) leaves up to {} mm beyond the profile (in radius, at Z{}): {}; "
+                    "material left is judged beyond what the nose leaves",
+                    p.path, p.tool, number_text(p.nose), number_text(nose_excess_[i], 3), number_text(nose_at_[i], 3),
+                    p.nose_compensated ? "the nose runs along the profile but cannot reach into a sharp concave corner or "
+                                         "past the profile's ends"
+                                       : "the profile is the tip's path, without nose compensation"));
         }
         return std::move(out_);
     }

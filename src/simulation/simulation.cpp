@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/number_text.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace camgen {
@@ -691,11 +692,12 @@ private:
             pieces.emplace_back(a, b);
         }
         for (const auto& [p, q] : pieces) {
-            // The program's point is the imaginary tip: the nose circle's centre is a nose
-            // radius above it in X and Z.
+            // The program's point is the imaginary tip: the nose circle's centre lies from it
+            // as the tool's orientation says (2: a nose radius above it in X and Z).
             const double n = tool.nose_radius;
+            const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
             if (tool.form == ToolForm::turning)
-                lathe_turn({std::abs(p.x) + n, p.y, p.z + n}, {std::abs(q.x) + n, q.y, q.z + n}, n, acc);
+                lathe_turn({std::abs(p.x) - tip.y, p.y, p.z - tip.x}, {std::abs(q.x) - tip.y, q.y, q.z - tip.x}, n, acc);
             else if (tool.form == ToolForm::blade)
                 lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
             else lathe_axial(s, p, q, tool, acc);
@@ -971,6 +973,7 @@ ToolShape tool_shape(const Tool& tool) {
     case ToolType::turning_tool:
         s.form = ToolForm::turning;
         s.nose_radius = tool.diameter / 2;
+        s.orientation = tool.orientation;
         break;
     case ToolType::grooving_tool:  // a blade of its width, programmed at its left corner (orientation 1: right)
     case ToolType::parting_tool:
@@ -981,6 +984,9 @@ ToolShape tool_shape(const Tool& tool) {
     case ToolType::threading_tool:
         s.form = ToolForm::turning;
         s.nose_radius = tool.nose_radius;
+        // A threading tool given no orientation: programmed at its nose's lowest point in X and
+        // its -Z side (the root of an external thread), as orientation 2 is.
+        s.orientation = tool.orientation > 0 ? tool.orientation : 2;
         break;
     }
     return s;

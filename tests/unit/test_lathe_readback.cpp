@@ -110,7 +110,7 @@ TEST_CASE("lathe plot: X labelled as the program writes it, the holes on the axi
     REQUIRE(r.code == 0);
     const std::string svg = test::read_file(dir + "/s.svg");
     CHECK(has(svg, ">X mm (diameter)</text>"));
-    CHECK(has(svg, "X (diameter) 24 .. 44, Z -40 .. 20"));
+    CHECK(has(svg, "X (diameter) 23.2 .. 44, Z -40 .. 20"));  // the finishing tool: its compensated tip starts at 23.2
     CHECK_FALSE(has(svg, ", Y 0.0 .. 0.0"));
     // The grid's X labels are diameters: the Ø44 retract is inside the labelled range, so a
     // label of 40 (a radius of 20) is there; a radius label would stop at 20.

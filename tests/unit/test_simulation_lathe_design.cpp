@@ -107,14 +107,13 @@ TEST_CASE("lathe design: a turn-profile keeps its profile and is judged by what 
     REQUIRE(thread);
     CHECK(thread->first == doctest::Approx((30 - 1.226869 * 2) / 2).epsilon(1e-6));
     CHECK_FALSE(p.radius_range(-45, -41));
-    // What the R0.4 nose leaves: on the cylinder the profile; on the 45 degree chamfer
-    // n (2 - sqrt 2) beyond it in radius (its circle touches the chamfer's line n sqrt 2 from the
-    // imaginary tip's); in the fillet the circle 5 + 0.4 about the fillet's centre moved by the
-    // nose (-19.6, 20.4).
+    // What the R0.4 nose leaves, its path compensated (the sample's default): the profile itself,
+    // on the cylinder, on the 45 degree chamfer and in the fillet (within the chords of the tip
+    // path's arcs, 0.0001 mm).
     CHECK(p.left_radius(-10) == doctest::Approx(15).epsilon(1e-12));
-    CHECK(p.left_radius(-0.5) == doctest::Approx(14.5 + 0.4 * (2 - std::sqrt(2.0))).epsilon(1e-9));
-    const double z = -22.5, fillet = 20.4 - std::sqrt(5.4 * 5.4 - (z + 19.6) * (z + 19.6));
-    CHECK(std::abs(p.left_radius(z) - fillet) <= 1e-4);  // the tip path's chords of the arc: within 0.0001 mm
+    CHECK(std::abs(p.left_radius(-0.5) - 14.5) <= 1e-4);
+    const double z = -22.5, fillet = 20 - std::sqrt(25 - (z + 20) * (z + 20));
+    CHECK(std::abs(p.left_radius(z) - fillet) <= 1e-4);
     // The centre drill: D4, 60 degrees, to Z-4; the drill: D10, 118 degrees, its tip below Z-30.
     const LatheHoleDesign& centre = design.lathe.holes[0];
     CHECK(centre.bottom_z == doctest::Approx(-4));
@@ -176,14 +175,15 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
         CAPTURE(machine);
-        // The finishing pass along D30 (to Z-20) stops at Z-19 (beyond the thread, which ends at
-        // Z-18), feeds in to X29.9 and out again (with decimal points: a Fanuc reads X30 as 0.03 mm).
+        // The finishing pass along D30 (to Z-20.4, the tip of the compensated nose) stops at Z-19
+        // (beyond the thread, which ends at Z-11, and the groove at Z-12 to Z-16), feeds in to X29.9
+        // and out again (with decimal points: a Fanuc reads X30 as 0.03 mm).
         std::size_t dig = 0;
         const Simulated s = simulate(samples + "shaft.json", machine, "gouge.nc", [&](const std::string& t) {
             const std::vector<std::string> lines = test::lines_of(t);
             std::string pass;
             for (const std::string& l : lines)
-                if (std::regex_search(l, std::regex(R"((^|\s)Z-20(\.0+)?$)"))) pass = l;
+                if (std::regex_search(l, std::regex(R"((^|\s)Z-20\.40*$)"))) pass = l;
             REQUIRE(!pass.empty());
             auto [text, at] = replace_line(t, "finish the outside", pass, "G1 Z-19.0\nX29.9\nX30.0\n" + pass);
             dig = at + 1;
@@ -254,7 +254,7 @@ TEST_CASE("camgen simulate: a roughing pass 0.1 mm into its allowance is a gouge
     // Its last pass along D30.4 (radius 15.2) run at D30.2 instead.
     std::size_t line = 0;
     const Simulated s = simulate(file, "linuxcnc-lathe", "gouge.ngc", [&](const std::string& t) {
-        auto [text, at] = replace_line(t, "rough the outside", "Z-19.9", "X30.2\nZ-19.9\nX30.4");
+        auto [text, at] = replace_line(t, "rough the outside", "G1 Z-20.7", "G1 X30.2\nZ-20.7\nX30.4");
         line = at + 1;
         return text;
     });
@@ -273,7 +273,7 @@ TEST_CASE("camgen simulate: a lathe tool 0.012 mm into a shoulder between two Z 
     const Simulated s = simulate(
         samples + "shaft.json", "linuxcnc-lathe", "shoulder.nc",
         [&](const std::string& t) {
-            auto [text, at] = replace_line(t, "finish the outside", "X28", "X26.0\nZ-0.012\nZ0.0\nX28");
+            auto [text, at] = replace_line(t, "finish the outside", "X27.2", "X26.0\nZ-0.012\nZ0.0\nX27.2");
             line = at + 1;
             return text;
         },

@@ -23,7 +23,7 @@ std::string job(const std::string& x_values = "diameter", const std::string& sta
                 const std::string& path = R"({"arc": {"end": [20, -10], "centre": [20, 0], "direction": "cw"}})",
                 const std::string& retract = "44") {
     return R"({"clearance": 15, "tools": [{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}],
-  "operations": [{"type": "turn-profile", "tool": 1, "xValues": ")" +
+  "operations": [{"type": "turn-profile", "tool": 1, "compensation": "none", "xValues": ")" +
            x_values + R"(", "feed": 100, "start": )" + start + R"(, "retractX": )" + retract + R"(, "path": [)" + path +
            "]}]}";
 }
@@ -129,7 +129,7 @@ namespace {
 std::string profiles_job(const std::vector<std::string>& ops, const std::string& clearance = "20") {
     std::string list;
     for (const std::string& op : ops)
-        list += (list.empty() ? "" : ", ") + std::string(R"({"type": "turn-profile", "tool": 1, "feed": 100, )") + op + "}";
+        list += (list.empty() ? "" : ", ") + std::string(R"({"type": "turn-profile", "tool": 1, "compensation": "none", "feed": 100, )") + op + "}";
     return R"({"clearance": )" + clearance +
            R"(, "tools": [{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}], "operations": [)" + list +
            "]}";
@@ -234,7 +234,7 @@ TEST_CASE("turn-profile: an arc under minRadius is one straight move on every la
     // refuses the program of the same profile 0.05 mm further along Z.
     auto profile = [](double r, double at_z) {
         return fmt::format(R"({{"clearance": 5, "tools": [{{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}}],
-  "operations": [{{"type": "turn-profile", "tool": 1, "xValues": "radius", "feed": 100, "start": [20, 0], "retractX": 22,
+  "operations": [{{"type": "turn-profile", "tool": 1, "compensation": "none", "xValues": "radius", "feed": 100, "start": [20, 0], "retractX": 22,
     "path": [{{"line": [20, {}]}}, {{"arc": {{"end": [20, {}], "centre": [20, {}], "direction": "cw"}}}}, {{"line": [15, -10]}}]}}]}})",
                            at_z, at_z - 2 * r, at_z - r);
     };

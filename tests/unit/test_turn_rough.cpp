@@ -102,7 +102,7 @@ std::string rough_job(const Points& p, double bar, double ax, double az, double 
     for (std::size_t i = 1; i < p.size(); ++i)
         path += fmt::format("{}{{\"line\": [{}, {}]}}", i > 1 ? ", " : "", p[i].y, p[i].x);
     return fmt::format(R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000{}}}],
-  "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
+  "operations": [{{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
                   "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]{}}}]}})",
                        tool_extra, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
 }
@@ -381,7 +381,7 @@ TEST_CASE("turn-rough: the check finds a pass 0.1 mm into the allowance and a ra
 TEST_CASE("turn-rough: the sample shaft's profile with an arc, allowances on the diameter; refusals") {
     const Job job = read_job(R"({"clearance": 20, "stock": {"bar": {"diameter": 44, "length": 70}},
   "tools": [{"number": 1, "type": "turning-tool", "noseRadius": 0.8, "insertAngle": 80, "approachAngle": 95, "rpm": 1000}],
-  "operations": [{"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": 1.5, "allowanceX": 0.4, "allowanceZ": 0.1,
+  "operations": [{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "depthOfCut": 1.5, "allowanceX": 0.4, "allowanceZ": 0.1,
                   "start": [24, 0], "path": [{"line": [28, 0]}, {"line": [30, -1]}, {"line": [30, -20]},
                   {"arc": {"end": [40, -25], "centre": [40, -20], "direction": "cw"}}, {"line": [40, -40]}]}]})",
                              "shaft.json");
@@ -443,7 +443,7 @@ TEST_CASE("turn-rough: the sample shaft's profile with an arc, allowances on the
 
 TEST_CASE("turn-profile: rapids to approachDistance before the start, lifts off the end before it rapids") {
     const Job job = read_job(R"({"clearance": 20, "tools": [{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}],
-  "operations": [{"type": "turn-profile", "tool": 1, "feed": 100, "start": [24, 0], "retractX": 44,
+  "operations": [{"type": "turn-profile", "tool": 1, "compensation": "none", "feed": 100, "start": [24, 0], "retractX": 44,
                   "path": [{"line": [28, 0]}, {"line": [30, -1]}, {"line": [30, -20]}, {"line": [40, -20]}, {"line": [40, -40]}]}]})",
                              "finish.json");
     const std::vector<TipMove> moves = tip_moves(job);
@@ -467,7 +467,7 @@ TEST_CASE("turn-profile: rapids to approachDistance before the start, lifts off 
     // A facing profile (the issue's: Z0 in to the axis) no longer returns across the face at
     // feed: it lifts off (+Z) and rapids.
     const Job face = read_job(R"({"clearance": 20, "tools": [{"number": 1, "type": "turning-tool", "diameter": 0.8, "rpm": 1000}],
-  "operations": [{"type": "turn-profile", "tool": 1, "feed": 100, "start": [34, 0], "retractX": 34, "path": [{"line": [0, 0]}]}]})",
+  "operations": [{"type": "turn-profile", "tool": 1, "compensation": "none", "feed": 100, "start": [34, 0], "retractX": 34, "path": [{"line": [0, 0]}]}]})",
                               "face.json");
     const std::vector<TipMove> f = tip_moves(face);
     REQUIRE(f.size() >= 3);
@@ -484,13 +484,13 @@ TEST_CASE("turn-profile: rapids to approachDistance before the start, lifts off 
 
 TEST_CASE("turn-profile: a slope the insert cannot follow is refused at its element") {
     CHECK(refusal(R"({"clearance": 20, "tools": [{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "insertAngle": 55,
-  "approachAngle": 93, "rpm": 1000}], "operations": [{"type": "turn-profile", "tool": 1, "feed": 100, "start": [20, 0],
+  "approachAngle": 93, "rpm": 1000}], "operations": [{"type": "turn-profile", "tool": 1, "compensation": "none", "feed": 100, "start": [20, 0],
   "retractX": 30, "path": [{"line": [20, -5]}, {"line": [12, -7]}, {"line": [12, -10]}]}]})")
               .find("/operations/0/path/1: this element falls towards the chuck at 63.4 degrees, and tool 1's insert (55 "
                     "degrees in a 93 degree holder) clears only 32.0") != std::string::npos);
     // Without insert angles nothing is checked, and a note says so.
     CHECK(refusal(R"({"clearance": 20, "tools": [{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000}],
-  "operations": [{"type": "turn-profile", "tool": 1, "feed": 100, "start": [20, 0], "retractX": 30,
+  "operations": [{"type": "turn-profile", "tool": 1, "compensation": "none", "feed": 100, "start": [20, 0], "retractX": 30,
   "path": [{"line": [20, -5]}, {"line": [12, -7]}, {"line": [12, -10]}]}]})")
               .empty());
 }

@@ -100,4 +100,10 @@ private:
 // extra full turns; a full circle when the ends coincide.
 double arc_sweep(Vec2 from, Vec2 centre, ArcDirection direction, int turns, Vec2 to);
 
+// Where a lathe tool's imaginary tip lies from its nose centre, (Z, radius) in mm, for tip
+// orientation `orientation` (LinuxCNC's codes, rs274ngc interp_queue.cc latheorigin_x/z: the tip
+// lies -X of the centre for 1, 2, 6, +X for 3, 4, 8, +Z for 1, 4, 5, -Z for 2, 3, 7, each by
+// the radius; 9 and 0: at the centre) and nose radius `radius`.
+Vec2 lathe_tip_offset(int orientation, double radius);
+
 }  // namespace camgen

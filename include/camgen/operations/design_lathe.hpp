@@ -7,8 +7,9 @@
 // - a turn-profile keeps the material between the spindle axis and its profile, over the Z its
 //   profile covers and above it up to the clearance at the radius of its start (the tool feeds
 //   down along Z to the start); it removes what lies beyond, down to what its tool leaves as the
-//   tip follows the path (the profile is the path of the tip, no nose compensation: a nose leaves
-//   material on slopes, on arcs and in concave corners, `left_radius`);
+//   tip follows its path (the compensated tip_path, whose nose runs along the profile, or with
+//   "compensation": "none" the profile itself, where a nose leaves material on slopes, on arcs
+//   and in concave corners, `left_radius`; the nose is swept as orientation 2's);
 // - a turn-face removes the bar's end beyond its Z, a turn-rough the material beyond the
 //   profile moved by its allowances (design_turn_face, design_turn_rough);
 // - a turn-drill removes a bore of its drill's radius on the axis, down to its depth with the
@@ -49,6 +50,7 @@ struct LatheTurnDesign {
     Profile profile;         // (Z, radius): the approach along Z from the clearance, then the operation's profile
     std::vector<LatheTipMove> tip;  // the tip's whole path (approach, profile with arcs as chords, feed out, return)
     double nose = 0.0;       // the tool's nose radius, mm (its program point is the imaginary tip)
+    bool nose_compensated = false;  // camgen ran the nose along the profile (NoseCompensation::computer)
     double chord = 0.0;      // mm: the chords of arcs in `tip` stay within this of the arcs
     double z_lo = 0.0, z_hi = 0.0;  // the Z it designs: the profile's lowest Z up to the clearance
     // A grooving or parting tool's blade (blade_hi > blade_lo): `tip` is its programmed point,

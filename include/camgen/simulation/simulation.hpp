@@ -58,7 +58,9 @@ struct ToolShape {
     double tip_angle = 118.0;             // cone: included angle, degrees (0 < angle < 180)
     double tip_diameter = 0.0;            // cone: the flat at the point, mm (0: a sharp point)
     double nose_radius = 0.0;             // turning: mm (0: the tip point); the program's point is the
-                                          // imaginary tip (the nose tangent to its X and Z)
+                                          // imaginary tip of `orientation`
+    int orientation = 2;                  // turning: LinuxCNC's tip code (1-9): the nose centre is the
+                                          // program's point less lathe_tip_offset (2: a radius above in X and Z)
     double blade_lo = 0.0;                // blade: the edge's -Z end from the programmed point, mm (0: the
                                           // left corner is programmed; -diameter: the right one)
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error

@@ -1,8 +1,9 @@
 #pragma once
 // The turn-profile operation: a finishing pass of a lathe's tool tip along a 2D profile of
 // lines and arcs in XZ (the shared geometry layer's Profile, ProfilePlane::xz), X given as the
-// job states it (radius or diameter). No nose-radius compensation: the profile is the path of
-// the tool tip. An outside profile: the material it keeps lies between the spindle axis and the
+// job states it (radius or diameter). With a nose radius the program is, by default, the path of
+// the imaginary tip that runs the nose circle along the profile (computer compensation,
+// nose_path); "compensation": "none" makes the profile the tip's path. An outside profile: the material it keeps lies between the spindle axis and the
 // profile, and the tool comes and goes on the air side of it.
 #include <optional>
 #include <string>
@@ -15,6 +16,46 @@
 #include "camgen/operations/context.hpp"
 
 namespace camgen {
+
+// Who makes up for a turning tool's nose radius on a turn-profile and on turn-rough's last pass.
+enum class NoseCompensation { computer, none };
+inline constexpr Named<NoseCompensation> nose_compensation_modes[] = {
+    {NoseCompensation::computer, "computer",
+     "camgen moves the path so that the nose circle runs along the profile: the program is the path of the "
+     "imaginary tip of the tool's orientation (no G41/G42)"},
+    {NoseCompensation::none, "none",
+     "the profile is the path of the imaginary tip: a nose radius leaves material on tapers, chamfers and arcs"},
+};
+
+// An element of a profile that a tool cannot follow or reach, and why (for the message).
+struct UnfollowableSegment {
+    std::size_t index = 0;
+    std::string why;
+};
+
+// The paths of a nose of radius `nose_radius` (> 0) whose circle runs along `profile` on its
+// air side (the right of travel in (Z, radius): the material lies on the left, towards the
+// spindle axis): the nose centre's (the profile offset by the radius, lines parallel, arcs about
+// their centres, an arc about each convex corner; offset_profile) and the programmed point's
+// (the centre's moved by lathe_tip_offset for `orientation`: the same lines and arcs).
+// `refusal`: an element the nose cannot follow (a concave arc tighter than the nose, an element
+// its neighbours' offsets cut away, a neck it cannot pass); `concave_corners`: the elements
+// that begin at a sharp concave corner, where the nose leaves its own radius.
+struct NosePath {
+    Profile centre;
+    Profile tip;
+    std::optional<UnfollowableSegment> refusal;
+    std::vector<std::size_t> concave_corners;
+};
+NosePath nose_path(const Profile& profile, double nose_radius, int orientation);
+
+// The first element of `profile` that a nose of tip orientation `orientation` cannot reach: the
+// directions from the nose centre to where it touches the profile (the left normal of travel,
+// turning about each convex corner) must lie on the tip's half of the nose, within 90 degrees
+// of the direction from the centre to the imaginary tip (the insert's body lies on the other
+// half); 9 and 0 (no tip given) reach every direction. A necessary condition only: an insert's
+// angles narrow it (first_unfollowable, orientation 2).
+std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number);
 
 struct TurnProfileOp {
     static constexpr std::string_view type = "turn-profile";
@@ -34,6 +75,10 @@ struct TurnProfileOp {
     double approach = 1.0;        // mm before the start where the approach along Z turns from rapid to feed
     double lift = 0.5;            // mm the tool feeds off the profile's end before it rapids
     Vec2 lift_direction{0.70710678118654752, 0.70710678118654752};  // unit, (Z, radius): away from the finished surface (turned_lift_direction)
+    NoseCompensation compensation = NoseCompensation::computer;
+    double nose_radius = 0.0;     // the tool's, mm (0: a sharp tip)
+    Profile tip_path;             // what the program follows: nose_path's tip, or the profile itself (empty: the profile)
+    double nose_low = 0.0;        // the nose's least radius less the programmed point's, mm (<= 0)
     std::vector<std::string> notes;  // what camgen decided that the job did not ask for
 };
 
@@ -62,11 +107,6 @@ struct OutsideTurningHead {
 };
 OutsideTurningHead read_outside_turning_head(json::Fields& f, const JobInput& input, std::string_view what);
 
-// An element of a profile that a tool's insert cannot follow, and why (for the message).
-struct UnfollowableSegment {
-    std::size_t index = 0;
-    std::string why;
-};
 // The first element of `profile` (travelled from its start) whose direction leaves the range
 // the tool's insert can follow without rubbing (a turning tool of orientation 2 with its
 // insertAngle and approachAngle: rising up to approachAngle from the direction of feed, -Z;
@@ -80,8 +120,8 @@ std::optional<UnfollowableSegment> first_unfollowable(const Profile& profile, co
 // the end and +X where that is steeper than 45 degrees.
 Vec2 turned_lift_direction(int orientation, const Profile& profile);
 
-// Rapid to the profile's X at the clearance, rapid along Z to approachDistance before its start,
-// feed to the start, feed along the profile, feed off its end by lift (turned_lift_direction),
+// Rapid to the start's X at the clearance, rapid along Z to approachDistance before its start,
+// feed to the start, feed along the profile (the tip path), feed off its end by lift (turned_lift_direction),
 // rapid out to retractX and back to the clearance.
 void expand(const TurnProfileOp& op, const Context& context, EventSink& sink);
 

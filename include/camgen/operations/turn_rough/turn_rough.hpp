@@ -17,6 +17,7 @@
 #include "camgen/geometry/profile.hpp"
 #include "camgen/job/job_input.hpp"
 #include "camgen/operations/context.hpp"
+#include "camgen/operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
 
@@ -42,6 +43,13 @@ struct TurnRoughOp {
     double feed = 0.0;              // mm/min
     Profile profile;                // the finished profile, (Z, radius), Z never rising along it
     Profile boundary;               // the profile moved by the allowances: what the roughing leaves
+    // What the tool tip follows to leave the boundary: with a nose radius and computer
+    // compensation the tip path of nose_path along the boundary closed by its end face up to
+    // the bar (so its end is that face's), else the boundary itself. The levels' spans and
+    // the last pass are this path's.
+    Profile tip_boundary;
+    NoseCompensation compensation = NoseCompensation::computer;
+    double nose_radius = 0.0;       // mm
     double allowance_x = 0.0;       // radial, mm
     double allowance_z = 0.0;       // mm
     double stock_radius = 0.0;      // the bar's radius it roughs from, mm
@@ -59,11 +67,11 @@ struct TurnRoughSpan {
     double lo = 0.0, hi = 0.0;
 };
 
-// Where the level `radius` runs above the boundary of `op` between its start's Z and its end's:
-// the spans from +Z to -Z.
+// Where the tip at level `radius` runs above the tip boundary of `op` (the nose above the
+// boundary) between its start's Z and its end's: the spans from +Z to -Z.
 std::vector<TurnRoughSpan> turn_rough_spans(const TurnRoughOp& op, double radius);
 
-// The boundary's radius at Z z (the least where a face stands at z), for z within it.
+// The tip boundary's radius at Z z (the least where a face stands at z), for z within it.
 double turn_rough_boundary_at(const TurnRoughOp& op, double z);
 
 // The Z levels of the passes along X: equal steps from the boundary's start down to its end,
