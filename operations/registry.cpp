@@ -1,6 +1,7 @@
 #include "camgen/operations/registry.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -151,6 +152,52 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     for (const Operation& op : job.operations)
         if (const auto* t = std::get_if<TurnProfileOp>(&op)) turned.push_back(t);
     check_turned_material(turned, in);
+    const auto path_of = [](const Operation& op) { return visit_exhaustive([]<OperationType Op>(const Op& o) { return o.path; }, op); };
+    // Turning operations come in along Z to their first X beyond the bar's face: the stock's
+    // faceZ, or the Z an earlier turn-face faced it to. A start inside it (a bar not faced
+    // yet) would rapid in X into the stub (the safety check leaves turning moves to the
+    // operations and the simulation).
+    if (const std::optional<Stock>& stock = in.header().stock; stock && stock->shape == StockShape::bar) {
+        double face = stock->face_z;
+        for (const Operation& op : job.operations) {
+            std::optional<double> entry;
+            std::string what;
+            if (const auto* f = std::get_if<TurnFaceOp>(&op)) face = std::min(face, f->z);
+            if (const auto* r = std::get_if<TurnRoughOp>(&op); r && r->direction == RoughDirection::z) {
+                const double tip = r->tip_boundary.segments.empty() ? r->boundary.start.x : r->tip_boundary.start.x;
+                entry = std::max(r->boundary.start.x, tip) + r->approach, what = "its passes come in";
+            }
+            if (const auto* t = std::get_if<TurnProfileOp>(&op)) {
+                const Profile& tip = t->tip_path.segments.empty() ? t->profile : t->tip_path;
+                entry = tip.start.x + t->approach, what = "it rapids along Z to its start";
+            }
+            if (const auto* t = std::get_if<TurnThreadOp>(&op)) {
+                const double deepest = t->depths.empty() ? 0.0 : t->depths.back();
+                entry = t->start_z + t->approach - deepest * std::tan(t->infeed_angle * rad_per_deg),
+                what = "its passes come in";
+            }
+            if (entry && *entry < face - 1e-9)
+                json::fail(in.source(), path_of(op),
+                           fmt::format("{} at Z {}, inside the bar, whose face is at Z {} ({}): face the bar first "
+                                       "(turn-face) or start beyond its face",
+                                       what, in.show(*entry), in.show(face),
+                                       face < stock->face_z ? "as an earlier turn-face left it" : "the stock's faceZ"));
+        }
+    }
+    // After a part-off through the centre the part has fallen off (into a catcher or the chips):
+    // an operation after it would cut where the part no longer is, or was caught.
+    for (std::size_t i = 0; i + 1 < job.operations.size(); ++i) {
+        const auto* part = std::get_if<TurnPartOp>(&job.operations[i]);
+        if (!part || part->end > 0) continue;
+        for (std::size_t k = i + 1; k < job.operations.size(); ++k)
+            if (!std::holds_alternative<StopOp>(job.operations[k]) && !std::holds_alternative<CustomOp>(job.operations[k]))
+                json::fail(in.source(), path_of(job.operations[k]),
+                           fmt::format("{} parts the part off through the centre before this operation, which would cut "
+                                       "where the part has fallen off: part off last (or leave a pip with toX, and the "
+                                       "program stops for it)",
+                                       part->path));
+        break;
+    }
     // Every operation is read and its size claimed: only now do patterns make their holes.
     for (Operation& op : job.operations)
         visit_exhaustive(

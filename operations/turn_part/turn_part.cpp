@@ -126,7 +126,7 @@ TurnPartOp TurnPartOp::read(Fields& f, const JobInput& in) {
                                    number_text(tool->rpm)));
     if (op.end > 0)
         op.notes.push_back(fmt::format("the plunge stops at X {} and leaves a pip of that X: the part stays on until it is "
-                                       "broken off",
+                                       "broken off: the program stops (M0) after the plunge for that",
                                        x_text(op.end)));
     return op;
 }
@@ -137,9 +137,8 @@ void expand(const TurnPartOp& op, const Context& ctx, EventSink& sink) {
     const double air = op.surface + op.approach;
     const double clearance = ctx.job.clearance;
     const double left = op.z - b.width;  // the blade's left corner
-    sink.emit(Comment{op.end > 0 ? "the part stays on a pip: break it off; support it or catch it, by hand"
-                                 : "the part falls off at the end of the plunge: a part catcher or a stop is left to the "
-                                   "operator"});
+    sink.emit(Comment{op.end > 0 ? "the part stays on a pip: the program stops (M0) for it to be broken off"
+                                 : "the part falls off at the end of the plunge: set up a part catcher"});
     sink.emit(Rapid{{out, 0.0, clearance}});
     sink.emit(Rapid{b.at(out, left)});
     sink.emit(Rapid{b.at(air, left)});
@@ -163,6 +162,9 @@ void expand(const TurnPartOp& op, const Context& ctx, EventSink& sink) {
     sink.emit(Rapid{b.at(air, left)});
     sink.emit(Rapid{b.at(out, left)});
     sink.emit(Rapid{{out, 0.0, clearance}});
+    // A part left on a pip is broken off by hand: the machine stops (spindle and coolant off,
+    // OperatorStops) before anything else moves.
+    if (op.end > 0) sink.emit(Stop{StopKind::mandatory, "break off the parted part (it hangs on a pip)", 0.0});
 }
 
 std::string default_name(const TurnPartOp& op) { return op.comment.empty() ? "turn part" : op.comment; }

@@ -341,3 +341,87 @@ TEST_CASE("lathe design: the shaft's groove and parting are cuts of their blade;
 }
 
 }  // namespace test_turn_groove
+
+namespace test_turn_groove {
+
+TEST_CASE("turn-part: nothing cuts after a part-off through the centre; a pip stops the program for the operator") {
+    const std::string tools = R"({"number": 1, "type": "parting-tool", "width": 3, "rpm": 500},
+      {"number": 2, "type": "grooving-tool", "width": 3, "rpm": 700})";
+    const std::string part = R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -42})";
+    const std::string groove = R"({"type": "turn-groove", "tool": 2, "feed": 30, "z": -12, "width": 3, "depth": 1})";
+    // Through the centre, then a groove on the part that has fallen off: refused at the groove.
+    const std::string after = refusal(groove_job(tools, part + ", " + groove));
+    CHECK(after.find("/operations/1: /operations/0 parts the part off through the centre before this operation") !=
+          std::string::npos);
+    // A stop after it (to take the part out) is no cut; nor is parting off last.
+    CHECK(refusal(groove_job(tools, part + R"(, {"type": "stop", "message": "take the part"})")).empty());
+    CHECK(refusal(groove_job(tools, groove + ", " + part)).empty());
+    // On a pip: the program stops after the plunge (and its retract) for the part to be broken
+    // off, before the next operation's tool moves; without a pip it does not stop.
+    const std::string pip = R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -42, "toX": 1})";
+    for (const bool with_pip : {true, false}) {
+        CAPTURE(with_pip);
+        const Job job = read_job(groove_job(tools, (with_pip ? pip : part) + (with_pip ? ", " + groove : std::string())), "p.json");
+        const std::vector<Event> events = expand_job(job);
+        std::size_t stop = events.size(), last_part_move = 0, first_groove_move = events.size();
+        int op = -1;
+        for (std::size_t i = 0; i < events.size(); ++i) {
+            if (std::holds_alternative<OperationStart>(events[i])) ++op;
+            if (const auto* s = std::get_if<Stop>(&events[i])) {
+                stop = i;
+                CHECK(s->kind == StopKind::mandatory);
+                CHECK(s->message.find("break off the parted part") != std::string::npos);
+            }
+            const bool move = std::holds_alternative<Rapid>(events[i]) || std::holds_alternative<Linear>(events[i]);
+            if (move && op == 0) last_part_move = i;
+            if (move && op == 1 && first_groove_move == events.size()) first_groove_move = i;
+        }
+        if (with_pip) {
+            REQUIRE(stop < events.size());
+            CHECK(stop > last_part_move);
+            CHECK(stop < first_groove_move);
+        } else {
+            CHECK(stop == events.size());
+        }
+    }
+}
+
+}  // namespace test_turn_groove
+
+namespace test_turn_groove {
+
+TEST_CASE("turning operations come in beyond the bar's face: the stock's faceZ, or where an earlier turn-face left it") {
+    const std::string tools = R"({"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 800},
+      {"number": 2, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 500})";
+    const std::string face = R"({"type": "turn-face", "tool": 1, "z": 0, "stepdown": 1, "feed": 100})";
+    const std::string rough = R"({"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": 2, "allowanceX": 0.2,
+      "allowanceZ": 0.1, "start": [24, 0], "path": [{"line": [30, 0]}, {"line": [30, -20]}, {"line": [38, -20]}]})";
+    const std::string profile = R"({"type": "turn-profile", "tool": 1, "feed": 100, "start": [24, 0], "retractX": 44,
+      "path": [{"line": [30, 0]}, {"line": [30, -20]}, {"line": [40, -20]}]})";
+    const std::string thread = R"({"type": "turn-thread", "tool": 2, "thread": "M30x2", "startZ": 0, "endZ": -10,
+      "firstDepth": 0.3})";
+    const auto job = [&](double face_z, const std::string& ops) {
+        return fmt::format(R"({{"clearance": 20, "stock": {{"bar": {{"diameter": 40, "length": 80, "faceZ": {}}}}},
+  "tools": [{}], "operations": [{}]}})",
+                           face_z, tools, ops);
+    };
+    // The bar's face at Z5, not faced: each of them would rapid in X into the stub.
+    CHECK(refusal(job(5, rough)).find("/operations/0: its passes come in at Z 1.100 mm, inside the bar, whose face is at Z "
+                                      "5.000 mm (the stock's faceZ): face the bar first") != std::string::npos);
+    CHECK(refusal(job(5, profile)).find("/operations/0: it rapids along Z to its start at Z 1.000 mm, inside the bar") !=
+          std::string::npos);
+    // The thread's passes start approachDistance (3 leads, 6 mm) beyond startZ 0: in air beyond a face at Z5, inside one at Z8.
+    CHECK(refusal(job(5, thread)).empty());
+    CHECK(refusal(job(8, thread)).find("/operations/0: its passes come in at Z ") != std::string::npos);
+    // Faced to Z0 first (or a bar whose face is at Z0): they come in beyond it.
+    for (const std::string& op : {rough, profile, thread}) {
+        CHECK(refusal(job(5, face + ", " + op)).empty());
+        CHECK(refusal(job(0, op)).empty());
+    }
+    // Faced to Z3 only: still inside.
+    const std::string shallow = R"({"type": "turn-face", "tool": 1, "z": 3, "stepdown": 1, "feed": 100})";
+    CHECK(refusal(job(5, shallow + ", " + rough)).find("whose face is at Z 3.000 mm (as an earlier turn-face left it)") !=
+          std::string::npos);
+}
+
+}  // namespace test_turn_groove

@@ -242,7 +242,7 @@ N1120 G99
 N1125 T0606
 N1130 G97 S500 M3
 N1135 M8
-(the part falls off at the end of the plunge: a part catcher or a stop is left to the operator)
+(the part falls off at the end of the plunge: set up a part catcher)
 N1140 G0 Z20.000
 N1145 X46.000
 N1150 Z-45.000
