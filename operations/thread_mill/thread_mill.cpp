@@ -8,6 +8,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/operations/cutting.hpp"
+#include "camgen/operations/thread_size.hpp"
 #include "camgen/geometry/vec.hpp"
 
 namespace camgen {
@@ -145,41 +146,8 @@ ThreadMillOp ThreadMillOp::read(Fields& f, const JobInput& in) {
     op.hand = f.choice("hand", thread_hands, ThreadHand::right);
 
     // The thread: a designation from the tables, or its diameters and pitch.
-    if (f.has("thread")) {
-        for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
-            if (f.has(key))
-                f.fail(key, fmt::format("give the thread by its designation or by majorDiameter, minorDiameter and pitch, "
-                                        "not both (a fine pitch is part of the designation: M10x1.25)"));
-        op.thread = f.optional_string("thread").value_or("");
-        std::string why;
-        const std::optional<ThreadDesignation> t = find_thread(op.thread, why);
-        if (!t) f.fail("thread", why);
-        op.thread = t->name;
-        op.major = t->major;
-        op.pitch = t->pitch;
-        op.minor = op.side == ThreadSide::internal ? internal_minor_diameter(t->major, t->pitch)
-                                                    : external_minor_diameter(t->major, t->pitch);
-    } else {
-        for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
-            if (!f.has(key))
-                f.fail(key, "a thread-mill needs thread (a designation such as M10x1.5), or majorDiameter, minorDiameter "
-                            "and pitch");
-        op.major = in.length(f, "majorDiameter");
-        op.minor = in.length(f, "minorDiameter");
-        op.pitch = in.length(f, "pitch");
-        if (!(op.pitch > 0)) f.fail("pitch", "pitch must be > 0");
-        if (!(op.minor > 0)) f.fail("minorDiameter", "minorDiameter must be > 0");
-        if (!(op.major > op.minor))
-            f.fail("minorDiameter", fmt::format("minorDiameter ({}) must be less than majorDiameter ({})", in.show(op.minor),
-                                                in.show(op.major)));
-        // More than a 60-degree profile's full depth (the triangle H) is no thread.
-        if ((op.major - op.minor) / 2.0 > thread_triangle_height(op.pitch) + 1e-9)
-            f.fail("minorDiameter",
-                   fmt::format("the thread is {} deep ((majorDiameter - minorDiameter) / 2), deeper than a 60-degree "
-                               "thread of pitch {} can be ({}, its fundamental triangle)",
-                               in.show((op.major - op.minor) / 2.0), in.show(op.pitch),
-                               in.show(thread_triangle_height(op.pitch))));
-    }
+    const ThreadSize size = read_thread_size(f, in, op.side, "a thread-mill", "M10x1.5", "M10x1.25");
+    op.thread = size.name, op.major = size.major, op.minor = size.minor, op.pitch = size.pitch;
     const std::string what = op.thread.empty() ? fmt::format("the thread (pitch {})", in.show(op.pitch)) : op.thread;
     if (op.pitch < tool.min_pitch - 1e-6 || op.pitch > tool.max_pitch + 1e-6)
         f.fail(f.has("thread") ? "thread" : "pitch",
@@ -362,6 +330,48 @@ std::string default_name(const ThreadMillOp& op) {
     const std::string thread = op.thread.empty() ? fmt::format("{:g} x {:g}", op.major, op.pitch) : op.thread;
     return fmt::format("thread {} {}{}, {} hole{}", thread, name_of(thread_sides, op.side),
                        op.hand == ThreadHand::left ? " left-hand" : "", op.holes.size(), op.holes.size() == 1 ? "" : "s");
+}
+
+
+ThreadSize read_thread_size(json::Fields& f, const JobInput& in, ThreadSide side, std::string_view what,
+                            std::string_view example, std::string_view fine) {
+    ThreadSize size;
+    if (f.has("thread")) {
+        for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
+            if (f.has(key))
+                f.fail(key, fmt::format("give the thread by its designation or by majorDiameter, minorDiameter and pitch, "
+                                        "not both (a fine pitch is part of the designation: {})",
+                                        fine));
+        std::string why;
+        const std::optional<ThreadDesignation> t = find_thread(f.optional_string("thread").value_or(""), why);
+        if (!t) f.fail("thread", why);
+        size.name = t->name;
+        size.major = t->major;
+        size.pitch = t->pitch;
+        size.minor = side == ThreadSide::internal ? internal_minor_diameter(t->major, t->pitch)
+                                                  : external_minor_diameter(t->major, t->pitch);
+        return size;
+    }
+    for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
+        if (!f.has(key))
+            f.fail(key, fmt::format("{} needs thread (a designation such as {}), or majorDiameter, minorDiameter and pitch",
+                                    what, example));
+    size.major = in.length(f, "majorDiameter");
+    size.minor = in.length(f, "minorDiameter");
+    size.pitch = in.length(f, "pitch");
+    if (!(size.pitch > 0)) f.fail("pitch", "pitch must be > 0");
+    if (!(size.minor > 0)) f.fail("minorDiameter", "minorDiameter must be > 0");
+    if (!(size.major > size.minor))
+        f.fail("minorDiameter", fmt::format("minorDiameter ({}) must be less than majorDiameter ({})", in.show(size.minor),
+                                            in.show(size.major)));
+    // More than a 60-degree profile's full depth (the triangle H) is no thread.
+    if ((size.major - size.minor) / 2.0 > thread_triangle_height(size.pitch) + 1e-9)
+        f.fail("minorDiameter",
+               fmt::format("the thread is {} deep ((majorDiameter - minorDiameter) / 2), deeper than a 60-degree "
+                           "thread of pitch {} can be ({}, its fundamental triangle)",
+                           in.show((size.major - size.minor) / 2.0), in.show(size.pitch),
+                           in.show(thread_triangle_height(size.pitch))));
+    return size;
 }
 
 }  // namespace camgen

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/operations/thread_size.hpp"
 #include "camgen/common/number_text.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/vocabulary/threads.hpp"
@@ -120,39 +121,8 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
         f.fail("tool", fmt::format("a turn-thread needs a threading-tool; tool {} is a {}", tool.number,
                                    name_of(tool_types, tool.type)));
     // The thread: a designation from the tables, or its diameters and pitch.
-    if (f.has("thread")) {
-        for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
-            if (f.has(key))
-                f.fail(key, "give the thread by its designation or by majorDiameter, minorDiameter and pitch, not both "
-                            "(a fine pitch is part of the designation: M20x1.5)");
-        std::string why;
-        const std::optional<ThreadDesignation> t = find_thread(f.optional_string("thread").value_or(""), why);
-        if (!t) f.fail("thread", why);
-        op.thread = t->name;
-        op.major = t->major;
-        op.pitch = t->pitch;
-        op.minor = op.side == ThreadSide::internal ? internal_minor_diameter(t->major, t->pitch)
-                                                   : external_minor_diameter(t->major, t->pitch);
-    } else {
-        for (std::string_view key : {"majorDiameter", "minorDiameter", "pitch"})
-            if (!f.has(key))
-                f.fail(key, "a turn-thread needs thread (a designation such as M20x2.5), or majorDiameter, minorDiameter "
-                            "and pitch");
-        op.major = in.length(f, "majorDiameter");
-        op.minor = in.length(f, "minorDiameter");
-        op.pitch = in.length(f, "pitch");
-        if (!(op.pitch > 0)) f.fail("pitch", "pitch must be > 0");
-        if (!(op.minor > 0)) f.fail("minorDiameter", "minorDiameter must be > 0");
-        if (!(op.major > op.minor))
-            f.fail("minorDiameter", fmt::format("minorDiameter ({}) must be less than majorDiameter ({})", in.show(op.minor),
-                                                in.show(op.major)));
-        if ((op.major - op.minor) / 2.0 > thread_triangle_height(op.pitch) + 1e-9)
-            f.fail("minorDiameter",
-                   fmt::format("the thread is {} deep ((majorDiameter - minorDiameter) / 2), deeper than a 60-degree "
-                               "thread of pitch {} can be ({}, its fundamental triangle)",
-                               in.show((op.major - op.minor) / 2.0), in.show(op.pitch),
-                               in.show(thread_triangle_height(op.pitch))));
-    }
+    const ThreadSize size = read_thread_size(f, in, op.side, "a turn-thread", "M20x2.5", "M20x1.5");
+    op.thread = size.name, op.major = size.major, op.minor = size.minor, op.pitch = size.pitch;
     const std::string what = op.thread.empty() ? fmt::format("the thread (pitch {})", in.show(op.pitch)) : op.thread;
     const double profile = tool.profile_angle.value_or(0.0);
     if (std::abs(profile - turn_thread_profile) > turn_thread_profile_slack)
