@@ -8,6 +8,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -52,6 +54,24 @@ extern "C" void remove_pending_and_die(int sig) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
+
+// Holds SIGINT and SIGTERM back for its lifetime (they are delivered when it ends).
+class SignalsHeld {
+public:
+    SignalsHeld() {
+        sigset_t set;
+        sigemptyset(&set);
+        sigaddset(&set, SIGINT);
+        sigaddset(&set, SIGTERM);
+        ::pthread_sigmask(SIG_BLOCK, &set, &old_);
+    }
+    ~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+    SignalsHeld(const SignalsHeld&) = delete;
+    SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+private:
+    sigset_t old_{};
+};
 
 [[noreturn]] void fail(const std::string& path, int error) {
     throw IoError(fmt::format("cannot write {}: {}", path, std::strerror(error)));
@@ -121,11 +141,19 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     remove_stale_temporaries(target);
     std::string templ = (target.has_parent_path() ? target.parent_path() / "" : fs::path()).string() +
                         temp_prefix(target) + std::to_string(::getpid()) + ".XXXXXX";
-    const int fd = ::mkstemp(templ.data());
-    if (fd < 0) fail(path_, errno);
+    // SIGINT and SIGTERM wait while the temporary is created and its slot claimed: a signal
+    // between the two would leave a temporary the handler does not know of.
+    int fd = -1;
+    int create_error = 0;
+    {
+        const SignalsHeld held;
+        fd = ::mkstemp(templ.data());
+        create_error = errno;
+        if (fd >= 0) claim_slot(templ);
+    }
+    if (fd < 0) fail(path_, create_error);
     ::close(fd);
     temp_ = templ;
-    claim_slot(temp_);
     out_.open(temp_, std::ios::binary | std::ios::trunc);
     if (!out_) {
         const int error = errno;
