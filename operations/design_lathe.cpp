@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/operations/registry.hpp"
 
 namespace camgen {
@@ -375,8 +376,19 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
 }
 
 void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
-    if (op.side == ThreadSide::internal)
-        return unchecked.push_back(op.path + ": an internal thread (the turned part's design has no bore side yet)");
+    if (op.side == ThreadSide::internal) {
+        const Tool* tool = lathe_design_tool(job, op.tool);
+        LatheHoleDesign h;
+        h.path = op.path;
+        h.tool = op.tool;
+        h.top_z = op.start_z;
+        h.bottom_z = op.end_z;
+        h.radius = op.root_radius();
+        h.nose = tool ? tool->nose_radius : 0.0;
+        h.nose_above = -lathe_tip_offset(tool && tool->orientation > 0 ? tool->orientation : 3, h.nose).x;
+        design.holes.push_back(std::move(h));
+        return;
+    }
     LatheTurnDesign d;
     if (!lathe_design_turned(op, job, d, unchecked)) return;
     d.profile.start = {op.start_z, op.root_radius()};

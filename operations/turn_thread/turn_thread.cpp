@@ -124,6 +124,20 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
     const ThreadSize size = read_thread_size(f, in, op.side, "a turn-thread", "M20x2.5", "M20x1.5");
     op.thread = size.name, op.major = size.major, op.minor = size.minor, op.pitch = size.pitch;
     const std::string what = op.thread.empty() ? fmt::format("the thread (pitch {})", in.show(op.pitch)) : op.thread;
+    // The tool's tip must point at the thread's root: -X of its nose for an external thread
+    // (orientations 1, 2, 6), +X for an internal one (3, 4, 8); none: the tip is the nose's point
+    // towards the root (the simulation sweeps it as 2 outside, 3 inside).
+    if (tool.orientation > 0) {
+        const bool inward = tool.orientation == 1 || tool.orientation == 2 || tool.orientation == 6;
+        const bool outward = tool.orientation == 3 || tool.orientation == 4 || tool.orientation == 8;
+        if (op.side == ThreadSide::external ? !inward : !outward)
+            f.fail("tool", fmt::format("an {} thread needs a threading-tool whose tip points {} (orientation {}); tool {} has "
+                                       "orientation {}",
+                                       op.side == ThreadSide::external ? "external" : "internal",
+                                       op.side == ThreadSide::external ? "to -X, at the axis" : "to +X, at the bore's wall",
+                                       op.side == ThreadSide::external ? "1, 2 or 6" : "3, 4 or 8", tool.number,
+                                       tool.orientation));
+    }
     const double profile = tool.profile_angle.value_or(0.0);
     if (std::abs(profile - turn_thread_profile) > turn_thread_profile_slack)
         f.fail("tool", fmt::format("tool {} has a profileAngle of {} degrees; {} has the 60-degree profile of ISO 68-1 "

@@ -833,7 +833,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     options.operations = ops.spans;
     std::optional<Simulator> sim;
     try {
-        sim.emplace(machine, stock, tool_shapes(job->tools), options);
+        sim.emplace(machine, stock, job_tool_shapes(*job), options);
     } catch (const SimInputError& e) {
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }

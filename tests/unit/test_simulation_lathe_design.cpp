@@ -302,4 +302,59 @@ TEST_CASE("camgen simulate: the shaft's roughing along X leaves the part as desi
     }
 }
 
+TEST_CASE("camgen simulate: an internal thread opens the bore to its major diameter, as designed; deeper is a gouge, shallower material left") {
+    // A D20.4 bore drilled 25 deep, threaded M22x1.5 inside down to Z-15: the threading tool
+    // (none, or an orientation whose tip points to +X) is swept as a boring tool, which opens the
+    // bore and leaves the outside alone; its nose rounds the thread's end.
+    const fs::path dir = test::scratch("simulate-internal-thread");
+    for (const std::string orientation : {"", ", \"orientation\": 3", ", \"orientation\": 8", ", \"orientation\": 4"}) {
+        CAPTURE(orientation);
+        const std::string job = (dir / "inside.json").string();
+        std::ofstream(job) << R"({"clearance": 20, "stock": {"bar": {"diameter": 40, "length": 50, "faceZ": 0}}, "tools": [
+ {"number": 2, "type": "drill", "diameter": 20.4, "tipAngle": 118, "rpm": 500},
+ {"number": 8, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 400)" + orientation + R"(}],
+ "operations": [
+  {"type": "turn-drill", "tool": 2, "startDepth": 0, "endDepth": -25, "safeDistance": 2, "retractDistance": 5,
+   "feedMode": "per-revolution", "plungingFeedrate": 0.1},
+  {"type": "turn-thread", "tool": 8, "thread": "M22x1.5", "side": "internal", "startZ": 0, "endZ": -15, "firstDepth": 0.2}]})";
+        const Job parsed = read_job(test::read_file(job), "inside.json");
+        const PartDesign design = part_design(parsed);
+        CHECK(design.unchecked.empty());
+        REQUIRE(design.lathe.holes.size() == 2);
+        const LatheHoleDesign& h = design.lathe.holes[1];
+        CHECK(h.path == "/operations/1");
+        CHECK(h.radius_at(-10) == doctest::Approx(11));
+        CHECK(h.radius_at(-15 + h.nose_above + 1e-9) == doctest::Approx(11));
+        CHECK(h.radius_at(-15 + h.nose_above - 0.1 - 1e-6) == 0.0);
+        CHECK(h.radius_at(-15 + h.nose_above - 0.05) == doctest::Approx(10.9 + std::sqrt(0.01 - 0.0025)));
+        for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+            CAPTURE(machine);
+            const Simulated s = simulate(job, machine, "inside.nc", [](const std::string& t) { return t; }, "", "40,50,0");
+            CHECK_MESSAGE(s.run.code == 0, s.run.out << s.run.err);
+            CHECK_MESSAGE(has(s.run, "the part is as designed"), s.run.out);
+            CHECK_MESSAGE(has(s.run, "simulation: no errors"), s.run.out);
+            // The thread removes the ring from the minor bore of the drill (D20.4) to D22 over 15
+            // mm (and a little more at the thread's start, beyond the drill's): the outside stays.
+            const std::regex removed(R"(tool T8: removed ([0-9.]+) mm\^3)");
+            std::smatch m;
+            REQUIRE(std::regex_search(s.run.out, m, removed));
+            const double ring = pi_ * (11.0 * 11.0 - 10.2 * 10.2) * 15.0;
+            CHECK(std::stod(m[1]) == doctest::Approx(ring).epsilon(0.02));
+        }
+    }
+    // linuxcnc-lathe: the passes' X is the tip's diameter; the last passes at X22 (D22).
+    const std::string job = (dir / "inside.json").string();
+    auto edit_last = [](const std::string& to) {
+        return [to](const std::string& t) { return std::regex_replace(t, std::regex("\nX22\n"), "\n" + to + "\n"); };
+    };
+    const Simulated deeper = simulate(job, "linuxcnc-lathe", "deeper.nc", edit_last("X22.4"), "", "40,50,0");
+    CHECK(deeper.run.code == 1);
+    CHECK_MESSAGE(has(deeper.run, "error: gouge: /operations/1 (the part around the hole): material removed 0.2 mm beyond the designed "
+                                  "bore radius 11"),
+                  deeper.run.out);
+    const Simulated shallower = simulate(job, "linuxcnc-lathe", "shallower.nc", edit_last("X21.8"), "", "40,50,0");
+    CHECK_MESSAGE(has(shallower.run, "warning: /operations/1 (the hole): material left 0.012 mm inside the radius its tool cuts (11)"),
+                  shallower.run.out);
+}
+
 }  // namespace test_simulation_lathe_design

@@ -206,4 +206,27 @@ TEST_CASE("turn-thread: refusals name their key") {
     CHECK_NOTHROW((void)test::post_program(j, mill_lathe));
 }
 
+TEST_CASE("turn-thread: the tool's tip must point at the thread's root (-X outside, +X inside), or have no orientation") {
+    auto tool = [](int orientation) {
+        return fmt::format(R"({{"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 500, "orientation": {}}})",
+                           orientation);
+    };
+    const std::string outside = R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)";
+    const std::string inside = R"("thread": "M20", "side": "internal", "startZ": 0, "endZ": -10, "firstDepth": 0.2)";
+    for (int o = 1; o <= 9; ++o) {
+        CAPTURE(o);
+        const bool in = o == 3 || o == 4 || o == 8, out = o == 1 || o == 2 || o == 6;
+        CHECK(refusal(job(outside, tool(o))).empty() == out);
+        CHECK(refusal(job(inside, tool(o))).empty() == in);
+    }
+    CHECK(refusal(job(inside, tool(6))).find("/operations/0/tool: an internal thread needs a threading-tool whose tip points to "
+                                             "+X, at the bore's wall (orientation 3, 4 or 8); tool 5 has orientation 6") !=
+          std::string::npos);
+    CHECK(refusal(job(outside, tool(8))).find("/operations/0/tool: an external thread needs a threading-tool whose tip points "
+                                              "to -X, at the axis (orientation 1, 2 or 6); tool 5 has orientation 8") !=
+          std::string::npos);
+    CHECK(refusal(job(inside)).empty());
+    CHECK(refusal(job(outside)).empty());
+}
+
 }  // namespace test_turn_thread
