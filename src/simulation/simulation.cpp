@@ -693,13 +693,14 @@ private:
         }
         for (const auto& [p, q] : pieces) {
             // The program's point is the imaginary tip: the nose circle's centre lies from it
-            // as the tool's orientation says (2: a nose radius above it in X and Z).
+            // as the tool's orientation says (2: a nose radius above it in X and Z); a tip
+            // past the axis (X < 0) has its centre there too, its radius |X - offset|.
             const double n = tool.nose_radius;
             const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
             if (tool.form == ToolForm::turning && tip.y > 0)  // tip +X of the nose: a boring tool
-                lathe_bore({std::abs(p.x) - tip.y, p.y, p.z - tip.x}, {std::abs(q.x) - tip.y, q.y, q.z - tip.x}, n, acc);
+                lathe_bore({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
             else if (tool.form == ToolForm::turning)
-                lathe_turn({std::abs(p.x) - tip.y, p.y, p.z - tip.x}, {std::abs(q.x) - tip.y, q.y, q.z - tip.x}, n, acc);
+                lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
             else if (tool.form == ToolForm::blade)
                 lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
             else lathe_axial(s, p, q, tool, acc);

@@ -357,4 +357,23 @@ TEST_CASE("camgen simulate: an internal thread opens the bore to its major diame
                   shallower.run.out);
 }
 
+TEST_CASE("camgen simulate: a turning tool's tip past the axis has its nose centred there (a profile that faces from the centre)") {
+    // The tip at X-0.8 (diameter) of an R0.4 nose of orientation 2: the nose's centre is on the
+    // axis. Swept with the centre mirrored from the tip's |X|, it read 0.718 mm of material
+    // left at the face's centre.
+    const fs::path dir = test::scratch("simulate-past-axis");
+    const std::string job = (dir / "stub.json").string();
+    std::ofstream(job) << R"({"clearance": 20, "stock": {"bar": {"diameter": 40, "length": 50, "faceZ": 1}},
+ "tools": [{"number": 3, "type": "turning-tool", "noseRadius": 0.4, "rpm": 800}],
+ "operations": [{"type": "turn-profile", "tool": 3, "xValues": "diameter", "feedMode": "per-revolution", "feed": 0.1,
+   "start": [0, 0], "retractX": 44, "path": [{"line": [30, 0]}, {"line": [30, -10]}, {"line": [40, -10]}]}]})";
+    for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const Simulated s = simulate(job, machine, "stub.nc", [](const std::string& t) { return t; }, "", "40,50,1");
+        CHECK_MESSAGE(s.run.code == 0, s.run.out << s.run.err);
+        CHECK_MESSAGE(has(s.run, "the part is as designed"), s.run.out);
+        CHECK_MESSAGE(!has(s.run, "warning:"), s.run.out);
+    }
+}
+
 }  // namespace test_simulation_lathe_design
