@@ -95,7 +95,7 @@ TEST_CASE("fanuc-lathe: G50 S<limit> then G96 S<vc> M3; the drill's G50 S<maxRpm
     CHECK(has(text, " G96 S200 M3\n"));
     CHECK(text.find("G50 S2500") < text.find("G96 S200"));
     // The feed per revolution the job gives, exactly.
-    CHECK(has(text, " F0.2\n"));
+    CHECK(has(text, " G1 X0.000 F0.2000\n"));
     // Back to rpm: G97; 1200 rpm is within the G50 S2500 in effect, which stays.
     CHECK(has(text, " G97 S1200 M3\n"));
     CHECK(text.find("G96 S200") < text.find("G97 S1200"));
@@ -118,7 +118,7 @@ TEST_CASE("linuxcnc-lathe: G96 D<limit> S<vc> M3 and G95; G97 S before the drill
     CHECK(has(text, "G96 D2500 S200 M3\n"));
     CHECK(has(text, "G95\n"));
     CHECK(has(text, "G97 S1200 M3\n"));
-    CHECK(has(text, " F0.2\n"));
+    CHECK(has(text, "G1 X0 F0.2\n"));
     CHECK(test::round_trip(job(), text, "linuxcnc-lathe").empty());
     const std::vector<Spindle> back = spindles(text, "linuxcnc-lathe");
     REQUIRE(back.size() >= 2);
@@ -131,7 +131,7 @@ TEST_CASE("linuxcnc-lathe: G96 D<limit> S<vc> M3 and G95; G97 S before the drill
     CHECK(test::round_trip(job(), other, "linuxcnc-lathe").find("2000") != std::string::npos);
     CHECK(spindles(test::replace_once(text, "G96 D2500", "G96"), "linuxcnc-lathe")[0] == Spindle{SpindleState::cw, 3000, 200});
     // A changed surface speed is a difference.
-    CHECK(test::round_trip(job(), test::replace_once(text, "S200 M3", "S180 M3"), "linuxcnc-lathe").find("180 m/min") !=
+    CHECK(test::round_trip(job(), test::replace_once(text, "S200 M3", "S180 M3"), "linuxcnc-lathe").find("180.000 m/min") !=
           std::string::npos);
 }
 
@@ -201,7 +201,7 @@ TEST_CASE("the time of a facing pass under G96 is the integral by hand; the stat
 
     // A program's facing pass, read back: its feed time is the integral, not 20 mm at 500 mm/min.
     const Machine m = load_machine("linuxcnc-lathe");
-    const std::string program = "%\nG18 G7 G40 G80 G90 G94 G21\nT1 M6 G43\nG95\nG96 D2500 S200 M3\nG0 X40 Z0\nG1 X0 F0.2\nM5\nM30\n%\n";
+    const std::string program = "G18 G7 G40 G80 G90 G94 G21\nG95\nT1 M6\nG96 D2500 S200 M3\nG0 G43 Z20 H1\nX40\nZ0\nG1 X0 F0.2\nM5\nM2\n";
     const ProgramStats st = compute_stats(trace_program(read_program(program, m, "t.ngc"), m), m);
     CHECK(st.feed_time == doctest::Approx(by_hand).epsilon(1e-9));
     REQUIRE(st.tools.size() == 1);
