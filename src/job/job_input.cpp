@@ -135,8 +135,10 @@ std::vector<ObjectSpec> JobInput::objects() {
     // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
     // for chamfer mills and V-bits only, which need a tipAngle.
     std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill, not_nosed, not_lathe, not_turning, not_grooving,
-        not_threading;
+        not_threading, not_surface_speed;
     for (const auto& t : tool_types) {
+        if (t.value != ToolType::turning_tool && t.value != ToolType::grooving_tool && t.value != ToolType::parting_tool)
+            not_surface_speed.emplace_back(t.name);
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
         if (!is_pointed_cutter(t.value)) not_pointed.emplace_back(t.name);
         if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
@@ -153,7 +155,7 @@ std::vector<ObjectSpec> JobInput::objects() {
          .groups = {{.keys = {"diameter", "library", "libraryNumber", "noseRadius", "width"}, .min = 1, .max = 5,
                      .description = "`diameter`, or `library` or `libraryNumber` (the library tool's), or a lathe tool's "
                                     "`noseRadius` or `width`"},
-                    {.keys = {"rpm", "surfaceSpeed", "library", "libraryNumber"}, .min = 1, .max = 3,
+                    {.keys = {"rpm", "surfaceSpeed", "library", "libraryNumber"}, .min = 1, .max = 4,
                      .description = "`rpm` or a lathe tool's `surfaceSpeed`, or `library` or `libraryNumber` (the "
                                     "library tool's, or computed from its cutting data)"},
                     {.keys = {"rpm", "surfaceSpeed"}, .min = 0, .max = 1,
@@ -171,7 +173,8 @@ std::vector<ObjectSpec> JobInput::objects() {
                    {.when_key = "type", .values = {"grooving-tool", "parting-tool"}, .require = {"width"}},
                    {.when_key = "type", .values = not_grooving, .forbid = {"width"}},
                    {.when_key = "type", .values = {"threading-tool"}, .require = {"profileAngle"}},
-                   {.when_key = "type", .values = not_threading, .forbid = {"profileAngle"}}}},
+                   {.when_key = "type", .values = not_threading, .forbid = {"profileAngle"}},
+                   {.when_key = "type", .values = not_surface_speed, .forbid = {"surfaceSpeed", "maxRpm"}}}},
     };
 }
 
@@ -525,7 +528,8 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
     } else if (base && !f.has("rpm") && base->type == tool.type) {
         tool.max_rpm = base->max_rpm;
     }
-    if (f.has("maxRpm") && !(tool.surface_speed > 0))
+    // (Without rpm either, the missing rpm is the error, below.)
+    if (f.has("maxRpm") && !(tool.surface_speed > 0) && (f.has("rpm") || library_tool || base))
         f.fail("maxRpm", "maxRpm is the spindle's limit under a constant surface speed: give surfaceSpeed too (with rpm "
                          "the spindle turns at that rpm)");
     if (tool.surface_speed > 0) {
