@@ -34,16 +34,44 @@ void IsoLathePost::on_tool_change(const ToolChange& tool) {
 }
 
 void IsoLathePost::on_spindle(const Spindle& s) {
-    if (s.state == SpindleState::off || !lathe_.spindle_limit) {
+    if (s.state == SpindleState::off) {
         IsoPost::on_spindle(s);
         return;
     }
-    // Fanuc T: the speed limit first (it also caps constant surface speed), then the speed in rpm.
-    if (!limit_written_) {
-        writer().add(g(iso::spindle_limit_code)).add(rpm_format().word("S", machine().limits.max_rpm)).end();
-        limit_written_ = true;
+    const std::string on = m(s.state == SpindleState::cw ? 3 : 4);
+    if (s.surface_speed > 0) {
+        // Constant surface speed: S in m/min (ft/min in inch), the spindle held to its limit.
+        const std::string limit = speed_text(s.rpm);
+        const double vc = machine().units == Units::inch ? s.surface_speed / 0.3048 : s.surface_speed;
+        if (rpm_format().is_zero(vc))
+            fail("", fmt::format("surface speed {} m/min would be written as S0 on machine {}", number_text(s.surface_speed),
+                                 machine().name));
+        if (lathe_.spindle_limit) {
+            // Fanuc T: G50 S clamps the speed G96 computes.
+            if (limit_written_ != s.rpm) writer().add(g(iso::spindle_limit_code)).add("S" + limit).end();
+            limit_written_ = s.rpm;
+            writer().add(g(iso::surface_speed_code)).add(rpm_format().word("S", vc)).add(on).end();
+        } else {
+            writer().add(g(iso::surface_speed_code)).add("D" + limit).add(rpm_format().word("S", vc)).add(on).end();
+        }
+        surface_mode_ = true;
+        return;
     }
-    writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+    if (!lathe_.spindle_limit) {
+        // LinuxCNC: after a G96, a bare S would be a surface speed.
+        if (surface_mode_) writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(on).end();
+        else IsoPost::on_spindle(s);
+        surface_mode_ = false;
+        return;
+    }
+    // Fanuc T: the speed limit first (it also caps constant surface speed), then the speed in
+    // rpm; a limit a G96 left below this speed is raised to the machine's again.
+    if (limit_written_ == 0 || s.rpm > limit_written_) {
+        writer().add(g(iso::spindle_limit_code)).add(rpm_format().word("S", machine().limits.max_rpm)).end();
+        limit_written_ = machine().limits.max_rpm;
+    }
+    writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(on).end();
+    surface_mode_ = false;
 }
 
 std::optional<std::string> IsoLathePost::canned_limit(const DrillCycle& c, const DrillingCycleSpec& spec) const {

@@ -17,7 +17,10 @@ public:
 protected:
     void on_open() override;
     void on_tool_change(const ToolChange& tool) override;
+    // G97 S.. M3 (Fanuc T after G50 S<maxRpm>; LinuxCNC's G97 only after a G96), or constant
+    // surface speed: G50 S<limit> G96 S<vc> M3 (Fanuc T), G96 D<limit> S<vc> M3 (LinuxCNC).
     void on_spindle(const Spindle& spindle) override;
+    std::optional<std::string> surface_speed_refusal() const override { return std::nullopt; }
     // G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), the threadMove setting; along Z only.
     void on_thread_feed(const Vec3& from, const ThreadFeed& move) override;
     std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
@@ -30,7 +33,8 @@ protected:
 
 private:
     const iso::LatheSettings& lathe_;
-    bool limit_written_ = false;  // G50 S was written
+    double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
+    bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97
 };
 
 }  // namespace camgen

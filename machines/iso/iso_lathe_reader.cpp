@@ -38,11 +38,14 @@ private:
 
     const iso::LatheSettings& lathe_;
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
+    std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
 };
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
-    if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code)) {
-        // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
+    if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code) ||
+        c.value == code(iso::surface_speed_code)) {
+        // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed, G96 [D<max rpm>]
+        // S<m/min> constant surface speed.
         set_group(codes.spindle_mode, c);
         return true;
     }
@@ -74,13 +77,45 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
 }
 
 void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {
-    if (!codes.spindle_mode || codes.spindle_mode->value != code(iso::spindle_limit_code)) return;
+    if (!codes.spindle_mode) return;
+    const std::string& name = codes.spindle_mode->word->text;
+    auto within_machine = [&](const Word& s) {
+        if (machine_.limits.max_rpm > 0 && rpm(s) > machine_.limits.max_rpm)
+            fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s.text, machine_.name, machine_.limits.max_rpm));
+        return rpm(s);
+    };
+    if (codes.spindle_mode->value == code(iso::constant_rpm_code)) {
+        // G97 S: the S that follows is rpm (without it the control would turn at the number
+        // the surface speed was).
+        if (!w.has('S')) fail(fmt::format("{} without S: camgen writes {} S<rpm>", name, name));
+        constant_rpm();
+        return;
+    }
+    if (codes.spindle_mode->value == code(iso::surface_speed_code)) {
+        // G96 S<m/min>, held to LinuxCNC's D or Fanuc T's G50 S (else the machine's limit).
+        if (!w.has('S')) fail(fmt::format("{} without S, the surface speed", name));
+        double limit = 0.0;
+        if (const Word* d = w.take('D')) {
+            if (lathe_.spindle_limit)
+                fail(fmt::format("{} on {}: machine {} limits the spindle with G50 S", d->text, name, machine_.name));
+            limit = within_machine(*d);
+        } else if (g50_limit_) {
+            limit = *g50_limit_;
+        } else if (machine_.limits.max_rpm > 0) {
+            limit = machine_.limits.max_rpm;
+        } else {
+            fail(fmt::format("{} without a spindle limit (D, or G50 S before it), and machine {} has no maxRpm", name,
+                             machine_.name));
+        }
+        constant_surface_speed(limit);
+        return;
+    }
     // G50 S: the highest speed the spindle may turn, not a speed.
     const Word* s = w.take('S');
-    const std::string& g50 = codes.spindle_mode->word->text;
-    if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", g50, g50));
-    if (machine_.limits.max_rpm > 0 && rpm(*s) > machine_.limits.max_rpm)
-        fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s->text, machine_.name, machine_.limits.max_rpm));
+    if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", name, name));
+    g50_limit_ = within_machine(*s);
+    if (!(*g50_limit_ > 0)) fail(fmt::format("{}: a speed limit must be > 0", s->text));
+    spindle_limit(*g50_limit_);
 }
 
 bool IsoLatheReader::variant_tool_call(const Word& t) {

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 
 namespace camgen {
 
@@ -18,6 +21,31 @@ void SinumerikLathePost::on_open() {
     SinumerikPost::on_open();
     const auto& b = machine().frame.start_block;
     if (std::find(b.begin(), b.end(), "G18") != b.end()) assume_plane(18);
+}
+
+void SinumerikLathePost::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off || (s.surface_speed == 0 && !surface_mode_)) {
+        SinumerikPost::on_spindle(s);
+        return;
+    }
+    const std::string on = m(s.state == SpindleState::cw ? 3 : 4);
+    if (s.surface_speed == 0) {
+        writer().add(g(97)).add(speed_word(s.rpm)).add(on).end();
+        surface_mode_ = false;
+        return;
+    }
+    // G96 S in m/min (ft/min under G70), the spindle held to LIMS= (SINUMERIK programming
+    // manual, "Constant cutting rate"); G96 switches G95 on, which camgen's operations under
+    // it use already.
+    const std::string limit = speed_text(s.rpm);
+    const double vc = machine().units == Units::inch ? s.surface_speed / 0.3048 : s.surface_speed;
+    if (rpm_format().is_zero(vc))
+        fail("", fmt::format("surface speed {} m/min would be written as S0 on machine {}", number_text(s.surface_speed),
+                             machine().name));
+    if (limit_written_ != s.rpm) writer().add("LIMS=" + limit).end();
+    limit_written_ = s.rpm;
+    writer().add(g(96)).add(rpm_format().word("S", vc)).add(on).end();
+    surface_mode_ = true;
 }
 
 void SinumerikLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {

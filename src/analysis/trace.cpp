@@ -105,6 +105,7 @@ public:
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;
                            s.rpm = sp.rpm;
+                           s.surface_speed = sp.state == SpindleState::off ? 0.0 : sp.surface_speed;
                            thread_rpm_ = sp.state == SpindleState::off ? 0.0 : sp.rpm;
                            emit_in_order(s);
                        },

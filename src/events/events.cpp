@@ -37,6 +37,7 @@ std::string event_to_json(const Event& event) {
                        j = {{"event", "spindle"},
                             {"state", e.state == SpindleState::cw ? "cw" : e.state == SpindleState::ccw ? "ccw" : "off"},
                             {"rpm", e.rpm}};
+                       if (e.surface_speed > 0) j["surfaceSpeed"] = e.surface_speed;
                    },
                    [&](const Coolant& e) { j = {{"event", "coolant"}, {"mode", name_of(coolant_modes, e.mode)}}; },
                    [&](const Rapid& e) { j = {{"event", "rapid"}, {"to", xyz(e.to)}}; },

@@ -445,6 +445,12 @@ std::string Post::speed_text(double rpm) const {
     return rpm_fmt_.format(rpm);
 }
 
+std::optional<std::string> Post::surface_speed_refusal() const {
+    return fmt::format("machine {} turns its spindle at a constant rpm only: a constant surface speed (surfaceSpeed, "
+                       "G96) is for the lathe dialects",
+                       machine_.name);
+}
+
 void Post::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::off) {
         out_.add(m(5)).end();
@@ -929,6 +935,8 @@ void Post::handle(const Event& event) {
                        reset_modal_axes();
                    },
                    [&](const Spindle& s) {
+                       if (s.state != SpindleState::off && s.surface_speed > 0)
+                           if (auto why = surface_speed_refusal()) fail("", *why);
                        spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
                        spindle_ = s;
                        on_spindle(s);

@@ -35,7 +35,8 @@ struct Step {
     double seconds = 0.0;            // dwell
     int tool = 0;                    // the tool in the spindle (tool_change: the new one)
     SpindleState spindle = SpindleState::off;  // spindle
-    double rpm = 0.0;                // spindle
+    double rpm = 0.0;                // spindle; under a constant surface speed its limit
+    double surface_speed = 0.0;      // spindle: m/min under G96 (the rpm follows the radius |x|), else 0
     StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
     int line = 0;                    // program line (0: from a job)
     double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty

@@ -52,10 +52,12 @@ struct ToolChange {
     friend bool operator==(const ToolChange&, const ToolChange&) = default;
 };
 
-// Spindle on (direction, rpm) or off.
+// Spindle on (direction, rpm) or off. `surface_speed`: constant surface speed (G96), m/min at
+// the work's diameter; then `rpm` is the spindle's limit (G50 S, D, LIMS=). 0: a constant rpm.
 struct Spindle {
     SpindleState state = SpindleState::off;
     double rpm = 0.0;
+    double surface_speed = 0.0;
     friend bool operator==(const Spindle&, const Spindle&) = default;
 };
 

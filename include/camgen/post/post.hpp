@@ -95,6 +95,9 @@ public:
     // Why the spindle cannot run counter-clockwise (a tool's "direction": "ccw"), as the
     // message says it; nullopt where it can.
     virtual std::optional<std::string> ccw_spindle_refusal() const { return std::nullopt; }
+    // Why the spindle cannot turn at a constant surface speed (a lathe tool's surfaceSpeed,
+    // G96), as the message says it; nullopt where it can (the lathe dialects).
+    virtual std::optional<std::string> surface_speed_refusal() const;
     // Why a job's programNumber is refused (the dialect writes none: takes_program_number), as
     // the message says it; nullopt where it is written.
     std::optional<std::string> program_number_refusal() const;

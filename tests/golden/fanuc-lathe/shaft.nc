@@ -5,8 +5,8 @@ N10 G18 G40 G80 G98 G21
 N15 G99
 (T4 1.6 mm turning tool - roughing insert CNMG R0.8, PCLNR holder)
 N20 T0404
-N25 G50 S3000
-N30 G97 S1000 M3
+N25 G50 S2500
+N30 G96 S180 M3
 N35 M8
 N40 G0 Z20.000
 N45 X46.000
@@ -55,7 +55,7 @@ N235 M5
 (rough the outside, 0.4 on the diameter and 0.1 on faces left)
 (T4 1.6 mm turning tool - roughing insert CNMG R0.8, PCLNR holder)
 N240 T0404
-N245 G97 S1000 M3
+N245 G96 S180 M3
 N250 M8
 N255 G0 Z20.000
 N260 X46.000
@@ -110,7 +110,7 @@ N500 M5
 (finish the outside: chamfer, D30, R5 fillet, D40)
 (T3 0.8 mm turning tool - finishing insert, R0.4 nose)
 N505 T0303
-N510 G97 S1200 M3
+N510 G96 S220 M3
 N515 M8
 N520 G0 Z20.000
 N525 X23.200
