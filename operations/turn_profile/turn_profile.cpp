@@ -735,7 +735,9 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         auto x = [&](double radius) { return in.show(x_as_given(radius, xv)); };
         // The tool's path (the tip's: the nose lies nose_low and more above it), from the
         // profile's designed end's Z.
-        const Vec2 start = op->tip_path.segments.empty() ? op->profile.start : op->tip_path.start;
+        // (Under control compensation the tip approaches the designed start itself.)
+        const bool control = op->compensation == NoseCompensation::control && !op->control_path.segments.empty();
+        const Vec2 start = op->tip_path.segments.empty() || control ? op->profile.start : op->tip_path.start;
         const Vec2 end = op->profile.segments.back().end;
         // The approach: before this profile cuts, the material above it is still there.
         if (auto hit = first_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))

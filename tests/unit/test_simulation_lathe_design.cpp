@@ -150,7 +150,7 @@ TEST_CASE("lathe design check: where no operation designs the bar, a cut into it
 TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its job designs") {
     int simulated = 0;
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"})
-        for (const char* file : {"shaft.json", "shaft-stops.json"}) {
+        for (const char* file : {"shaft.json", "shaft-stops.json", "shaft-control.json"}) {
             CAPTURE(machine);
             CAPTURE(file);
             const Simulated s = simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; });
@@ -160,7 +160,7 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
             CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), s.run.out);
             ++simulated;
         }
-    CHECK(simulated == 6);
+    CHECK(simulated == 9);
     // Where the machine cannot tap, the tap is the operator's: not checked (its bore is not cut).
     const Simulated stops = simulate(samples + "shaft-stops.json", "fanuc-lathe", "stops.nc", [](const std::string& t) { return t; });
     CHECK(has(stops.run, "  not checked: /operations/5: the program leaves its cycle to the operator at a stop (machine "
