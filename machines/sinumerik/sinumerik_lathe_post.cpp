@@ -20,7 +20,7 @@ SinumerikLathePost::SinumerikLathePost(const Machine& machine, std::ostream& out
 
 void SinumerikLathePost::on_compensation(const Compensation& c) {
     if (c.side != CompensationSide::off)
-        writer().comment(fmt::format("{} nose comp: T{} D1 radius {}, cutting edge position {} {} (LinuxCNC numbering)",
+        writer().comment(fmt::format("{} nose comp: T{} D1 radius {}, cutting edge position {}, {} (LinuxCNC numbering)",
                                      c.side == CompensationSide::left ? "G41" : "G42", current_tool(), number_text(c.radius),
                                      c.orientation, lathe_tip_words(c.orientation)));
     SinumerikPost::on_compensation(c);

@@ -78,7 +78,7 @@ TEST_CASE("control nose compensation: the three lathes write G42 on the entry, G
     CHECK(fanuc.find("G42 G1") != std::string::npos);
     CHECK(fanuc.find("G40 X") != std::string::npos);
     const std::string sinumerik = posted(text, "sinumerik-lathe");
-    CHECK(sinumerik.find("; G42 nose comp: T3 D1 radius 0.4, cutting edge position 2 tip at -X -Z of the nose centre") !=
+    CHECK(sinumerik.find("; G42 nose comp: T3 D1 radius 0.4, cutting edge position 2, tip at -X -Z of the nose centre") !=
           std::string::npos);
     CHECK(sinumerik.find("G42 G1") != std::string::npos);
     CHECK(sinumerik.find("G40 X") != std::string::npos);
