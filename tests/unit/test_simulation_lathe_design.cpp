@@ -175,6 +175,19 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
     CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
 }
 
+TEST_CASE("camgen simulate: control compensation on the wrong side (G41 for G42) gouges the part; none leaves material") {
+    // The simulation sees the nose where the control puts it: G41 offsets it into the part.
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const Simulated wrong = simulate(
+            samples + "shaft-control.json", machine, "g41.nc",
+            [](std::string t) { return t.replace(t.find("G42 G1"), 3, "G41"); }, "", "44,70,0");
+        CHECK(wrong.run.code == 1);
+        CHECK(wrong.run.out.find("error: gouge: /operations/0 (the part inside the profile): material removed") !=
+              std::string::npos);
+    }
+}
+
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
         CAPTURE(machine);
