@@ -5,6 +5,8 @@
 #include <numbers>
 #include <deque>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -82,7 +84,7 @@ public:
                            op_tolerance_ = o.tolerance;
                        },
                        [&](const OperationEnd&) {},
-                       [&](const Comment&) {},
+                       [&](const Comment& c) { comment_orientation(c.text); },
                        // No motion of its own: the moves after it are offset as the control
                        // offsets them (comp_move), so the steps are the tool centre's path.
                        [&](const Compensation& c) { compensation(c, job); },
@@ -329,11 +331,27 @@ private:
         const int reg = c.d_register != 0 ? c.d_register : tool_;
         if (auto it = trace_options_.compensation_orientations.find(reg); it != trace_options_.compensation_orientations.end())
             return it->second;
+        if (comment_orientation_ && comment_orientation_->first == tool_) return comment_orientation_->second;
         if (radius > 0)
             note_once(-1 - reg, fmt::format("line {}: nose radius compensation with tool {}, whose tip orientation camgen does "
                                             "not know: the programmed point is taken as the nose centre",
                                             line_, reg));
         return 0;
+    }
+
+    // camgen's comment before a lathe's G41/G42 names the orientation the control's table must
+    // hold (the lathe posts' on_compensation): "... Q2 tip ..." (LinuxCNC), "... T2 tip ..."
+    // (Fanuc T), "... cutting edge position 2, tip ..." (Sinumerik). A program read without a
+    // job takes it from there.
+    void comment_orientation(const std::string& text) {
+        if (!lathe_ || text.find("nose comp: ") == std::string::npos) return;
+        for (const char* key : {", Q", ", T", "cutting edge position "}) {
+            const std::size_t at = text.find(key);
+            if (at == std::string::npos) continue;
+            const std::size_t d = at + std::string_view(key).size();
+            if (d < text.size() && text[d] >= '1' && text[d] <= '9') comment_orientation_ = std::pair{tool_, text[d] - '0'};
+            return;
+        }
     }
 
     // The plane the control compensates in, and a point's coordinates in it as CutterCompensation
@@ -454,6 +472,7 @@ private:
     std::optional<DrillCycle> cycle_;
     std::string operation_path_;  // of a job's events: the operation's JSON path, for a refusal
     std::optional<CutterCompensation> comp_;  // from G41/G42 to the move after G40
+    std::optional<std::pair<int, int>> comment_orientation_;  // tool, orientation: from camgen's comment
     Vec2 tip_;  // a lathe's: the imaginary tip from the nose centre under the G41/G42 in force (Z, radius)
     std::deque<Programmed> programmed_;       // the moves comp_ may still make steps of
     std::vector<std::pair<std::size_t, Step>> held_;  // steps without motion, after the programmed move tagged first
