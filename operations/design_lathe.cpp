@@ -201,7 +201,7 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     d.path = op.path;
     d.tool = tool->number;
     d.nose = tool->diameter / 2;  // as the simulation's tool_shape
-    d.nose_compensated = op.compensation == NoseCompensation::computer && op.nose_radius > 0;
+    d.nose_compensated = op.compensation != NoseCompensation::none && op.nose_radius > 0;
     d.chord = lathe_design_chord;
     const double clearance = job.clearance;
     const Vec2 start = op.profile.start;
@@ -234,7 +234,9 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
         }
     }
     const Vec2 tip_end = tp.segments.back().end;
-    const Vec2 lifted = tip_end + op.lift_direction * op.lift;
+    // Under control compensation the G40 move lifts the tip from where the control left it.
+    const bool control = op.compensation == NoseCompensation::control && !op.control_path.segments.empty();
+    const Vec2 lifted = control ? op.control_exit : tip_end + op.lift_direction * op.lift;
     d.tip.push_back({tip_end, lifted});
     d.tip.push_back({lifted, {lifted.x, op.retract_x}});
     d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}});

@@ -168,7 +168,9 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                 entry = std::max(r->boundary.start.x, tip) + r->approach, what = "its passes come in";
             }
             if (const auto* t = std::get_if<TurnProfileOp>(&op)) {
-                const Profile& tip = t->tip_path.segments.empty() ? t->profile : t->tip_path;
+                // Under control compensation the tip rapids to the designed start itself.
+                const bool control = t->compensation == NoseCompensation::control && !t->control_path.segments.empty();
+                const Profile& tip = t->tip_path.segments.empty() || control ? t->profile : t->tip_path;
                 entry = tip.start.x + t->approach, what = "it rapids along Z to its start";
             }
             if (const auto* t = std::get_if<TurnThreadOp>(&op)) {

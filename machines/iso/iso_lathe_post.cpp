@@ -1,6 +1,7 @@
 // The ISO lathe dialect: the ISO post in the XZ plane; canned drilling on the spindle axis
 // under G17 (LinuxCNC) or in Fanuc T's G74; T0101 turret calls; G50 S / G97 S spindle.
 #include "machines/iso/iso_lathe_post.hpp"
+#include "camgen/geometry/compensation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,25 @@ void IsoLathePost::on_tool_change(const ToolChange& tool) {
     if (!tool.description.empty()) writer().comment(fmt::format("T{} {}", tool.number, tool.description));
     writer().add(fmt::format("T{:02}{:02}", tool.number, tool.number)).end();
     length_offset_pending_ = false;
+}
+
+void IsoLathePost::on_compensation(const Compensation& c) {
+    if (c.side != CompensationSide::off) {
+        const char* code = c.side == CompensationSide::left ? "G41" : "G42";
+        if (lathe_.tool_call == iso::LatheToolCall::turret)
+            writer().comment(fmt::format("{} nose comp: offset {:02} R{} nose radius, T{} {} (LinuxCNC numbering)", code,
+                                         current_tool(), number_text(c.radius), c.orientation, lathe_tip_words(c.orientation)));
+        else
+            writer().comment(fmt::format("{} nose comp: tool table T{} D{} nose diameter, Q{} {}", code, current_tool(),
+                                         number_text(2 * c.radius), c.orientation, lathe_tip_words(c.orientation)));
+    }
+    IsoPost::on_compensation(c);
+}
+
+// G41/G42 without D: the control takes the tool's own entry (LinuxCNC's tool table, Fanuc T's
+// offset of T0101).
+std::string IsoLathePost::compensation_words(const Compensation& c) const {
+    return g(c.side == CompensationSide::off ? 40 : c.side == CompensationSide::left ? 41 : 42);
 }
 
 void IsoLathePost::on_spindle(const Spindle& s) {

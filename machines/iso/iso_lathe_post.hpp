@@ -30,6 +30,11 @@ protected:
     // Fanuc T system A: G98/G99 are the feed modes, and a drilling cycle returns to the Z it
     // started from (the retract plane, where the header put the tool).
     bool writes_return_level() const override;
+    // Nose-radius compensation (G41/G42 in G18): a comment naming what the control's table must
+    // hold (LinuxCNC: the tool table's D, the nose diameter, and Q, the orientation; Fanuc T: the
+    // offset's R and imaginary tip T), then G41/G42 without a D word on the next feed move.
+    void on_compensation(const Compensation& compensation) override;
+    std::string compensation_words(const Compensation& compensation) const override;
 
 private:
     const iso::LatheSettings& lathe_;

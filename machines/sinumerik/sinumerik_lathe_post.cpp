@@ -7,6 +7,7 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/common/number_text.hpp"
+#include "camgen/geometry/compensation.hpp"
 
 namespace camgen {
 
@@ -15,6 +16,14 @@ SinumerikLathePost::SinumerikLathePost(const Machine& machine, std::ostream& out
     if (machine.kind != MachineKind::lathe)
         throw InputError("/dialect", "the sinumerik-lathe dialect writes for lathes: set \"kind\": \"lathe\"", 0,
                          machine.source);
+}
+
+void SinumerikLathePost::on_compensation(const Compensation& c) {
+    if (c.side != CompensationSide::off)
+        writer().comment(fmt::format("{} nose comp: T{} D1 radius {}, cutting edge position {}, {} (LinuxCNC numbering)",
+                                     c.side == CompensationSide::left ? "G41" : "G42", current_tool(), number_text(c.radius),
+                                     c.orientation, lathe_tip_words(c.orientation)));
+    SinumerikPost::on_compensation(c);
 }
 
 void SinumerikLathePost::on_open() {

@@ -23,6 +23,9 @@ protected:
     void on_drilling_footer(const DrillCycle& cycle, const DrillingCycleSpec& spec) override;
     // CYCLE83's full retract comes back by the machine's _DIS1: another peckClearance cannot be written.
     std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
+    // Nose-radius compensation: a comment naming the radius and cutting edge position D1 must
+    // hold, then G41/G42 (the edge selected with the tool).
+    void on_compensation(const Compensation& compensation) override;
 
 private:
     double limit_written_ = 0.0;  // the LIMS= written last (rpm), 0: none

@@ -58,6 +58,7 @@ std::string event_to_json(const Event& event) {
                             {"side", e.side == CompensationSide::off ? "off" : e.side == CompensationSide::left ? "left" : "right"}};
                        if (e.d_register) j["d"] = e.d_register;
                        if (e.radius > 0) j["radius"] = e.radius;
+                       if (e.orientation != 0) j["orientation"] = e.orientation;
                    },
                    [&](const DrillCycle& e) {
                        j = {{"event", "drill-cycle"},  {"cycle", name_of(cycle_kinds, e.kind)}, {"path", e.path},

@@ -526,11 +526,13 @@ std::optional<std::string> Post::program_number_refusal() const {
 std::optional<std::string> Post::control_compensation_refusal() const {
     if (!machine_.cutter_compensation)
         return fmt::format("machine {} has no cutter radius compensation (G41/G42): use compensation computer", machine_.name);
-    if (!writes_arcs_in(machine_.arcs, Plane::xy))
-        return fmt::format("machine {} writes arcs in XY as straight moves (its arcs.planes has no \"xy\"): with the "
+    // A lathe compensates the nose in G18 (XZ), a mill the cutter in G17 (XY).
+    const bool lathe = machine_.kind == MachineKind::lathe;
+    if (!writes_arcs_in(machine_.arcs, lathe ? Plane::xz : Plane::xy))
+        return fmt::format("machine {} writes arcs in {} as straight moves (its arcs.planes has no \"{}\"): with the "
                            "control compensating, every chord is a corner the control offsets on its own; use "
                            "compensation computer",
-                           machine_.name);
+                           machine_.name, lathe ? "XZ" : "XY", lathe ? "xz" : "xy");
     return std::nullopt;
 }
 

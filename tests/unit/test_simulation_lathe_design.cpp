@@ -150,17 +150,20 @@ TEST_CASE("lathe design check: where no operation designs the bar, a cut into it
 TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its job designs") {
     int simulated = 0;
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"})
-        for (const char* file : {"shaft.json", "shaft-stops.json"}) {
+        for (const char* file : {"shaft.json", "shaft-stops.json", "shaft-control.json"}) {
             CAPTURE(machine);
             CAPTURE(file);
-            const Simulated s = simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; });
+            // shaft-control's bar starts at its profile's face (no turn-face): faceZ 0, as its stock says.
+            const std::string bar = std::string(file) == "shaft-control.json" ? "44,70,0" : "44,70,1";
+            const Simulated s =
+                simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; }, "", bar);
             CHECK_MESSAGE(s.run.code == 0, std::string(s.run.out + s.run.err));
             CHECK(has(s.run, "simulation: no errors\n"));
             CHECK(has(s.run, "design check   lathe: "));
             CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), s.run.out);
             ++simulated;
         }
-    CHECK(simulated == 6);
+    CHECK(simulated == 9);
     // Where the machine cannot tap, the tap is the operator's: not checked (its bore is not cut).
     const Simulated stops = simulate(samples + "shaft-stops.json", "fanuc-lathe", "stops.nc", [](const std::string& t) { return t; });
     CHECK(has(stops.run, "  not checked: /operations/5: the program leaves its cycle to the operator at a stop (machine "
@@ -170,6 +173,19 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
     CHECK(has(shaft.run, "design check   lathe: 6 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 40 "
                          "sections 0.0088 mm beside the designed corners\n"));
     CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
+}
+
+TEST_CASE("camgen simulate: control compensation on the wrong side (G41 for G42) gouges the part; none leaves material") {
+    // The simulation sees the nose where the control puts it: G41 offsets it into the part.
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const Simulated wrong = simulate(
+            samples + "shaft-control.json", machine, "g41.nc",
+            [](std::string t) { return t.replace(t.find("G42 G1"), 3, "G41"); }, "", "44,70,0");
+        CHECK(wrong.run.code == 1);
+        CHECK(wrong.run.out.find("error: gouge: /operations/0 (the part inside the profile): material removed") !=
+              std::string::npos);
+    }
 }
 
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {

@@ -104,6 +104,10 @@ struct TraceSummary {
 struct TraceOptions {
     std::map<int, double> compensation_radii;
     double rounding = 0.0;  // mm
+    // A lathe's G41/G42 (G18): the tip orientation (LinuxCNC's codes) of the tool of that number,
+    // as the control's table holds it; a tool missing here is taken as orientation 0 (the
+    // programmed point the nose centre), with a note.
+    std::map<int, int> compensation_orientations;
 };
 
 // The control refuses the program: cutter compensation it cannot apply without gouging, a

@@ -117,6 +117,10 @@ struct Compensation {
     CompensationSide side = CompensationSide::off;
     int d_register = 0;    // 0: the tool's number
     double radius = 0.0;   // mm; 0: unknown (only the control's tool table knows it)
+    // A lathe's nose-radius compensation (G41/G42 in G18): the tool's tip orientation
+    // (LinuxCNC's codes 1-8, lathe_tip_offset), the point the program moves being the imaginary
+    // tip of that orientation; 0: a mill's cutter, or unknown (only the control's table knows it).
+    int orientation = 0;
     friend bool operator==(const Compensation&, const Compensation&) = default;
 };
 
