@@ -149,9 +149,10 @@ IsoLathePost::G76Words IsoLathePost::g76_words(const ThreadCycle& c) const {
     return w;
 }
 
-std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c, const ThreadingCycleSpec&) const {
+std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c, const ThreadingCycleSpec& spec) const {
     // G76 cuts every pass by its own depth rule from the rounded words: the moves it makes must
     // be the cycle's within 0.001 mm.
+    if (spec.style != ThreadCycleStyle::linuxcnc_g76) return IsoPost::thread_cycle_limit(c, spec);
     if (c.min_depth > 0) return std::string("it takes no least depth of cut");
     const G76Words w = g76_words(c);
     const std::vector<Event> control = iso::linuxcnc_g76_moves(w.read);

@@ -113,7 +113,10 @@ void IsoLatheReader::g76(BlockWords& w) {
     g.p = pw->value;  // the lead is read by thread_to, through the feed-per-revolution format
     if (const Word* r = w.take('R')) g.r = r->value;
     if (const Word* q = w.take('Q')) g.q = q->value;
-    if (const Word* h = w.take('H')) g.h = static_cast<int>(h->value);
+    if (const Word* h = w.take('H')) {
+        if (h->value != std::floor(h->value)) fail(fmt::format("{} on G76: the spring passes are a whole number", h->text));
+        g.h = static_cast<int>(std::clamp(h->value, -1.0, 101.0));
+    }
     if (!(g.z < g.drive_z)) fail(fmt::format("G76 {}: camgen cuts threads towards the chuck, below the drive point", zw->text));
     if (g.i == 0) fail(fmt::format("G76 {}: the thread's crest must lie off the drive line", iw->text));
     if (!(g.j > 0) || !(g.k > 0)) fail("G76: J and K must be > 0");

@@ -515,8 +515,9 @@ void Post::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpec& spec)
     throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write {}", machine_.name, spec.name));
 }
 
-std::optional<std::string> Post::thread_cycle_limit(const ThreadCycle&, const ThreadingCycleSpec&) const {
-    return std::nullopt;
+std::optional<std::string> Post::thread_cycle_limit(const ThreadCycle&, const ThreadingCycleSpec& spec) const {
+    // A dialect that writes threading cycles overrides this; the others write the passes.
+    return fmt::format("camgen writes {} only on the iso-lathe dialect", spec.name);
 }
 
 void Post::handle_thread_cycle(const ThreadCycle& c) {

@@ -146,7 +146,8 @@ protected:
     virtual void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec);
     // Why the canned threading cycle `spec` would not cut the cycle's passes although it carries
     // every field (the control's own arithmetic on the rounded words gives other passes), or
-    // nullopt. The cycle is then written longhand (output "auto") or refused.
+    // nullopt. The cycle is then written longhand (output "auto") or refused. The base: a
+    // dialect that writes no threading cycle says so.
     virtual std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const;
     // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
     // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
