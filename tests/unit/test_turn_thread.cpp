@@ -281,6 +281,30 @@ TEST_CASE("turn-thread output: G76 on linuxcnc-lathe where it carries the thread
     }
 }
 
+TEST_CASE("turn-thread: the linuxcnc-lathe reader refuses a G76 it cannot read, naming the word") {
+    const Machine lcnc = load_machine("linuxcnc-lathe");
+    auto refusal_of = [&](const std::string& g76) {
+        const std::string program = "G18 G7 G90 G21\nT5 M6\nS500 M3\nG0 X22 Z6\n" + g76 + "\nG0 Z20\nM5\nM2\n";
+        try {
+            (void)read_program(program, lcnc, "t.ngc");
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 R2 Q29.5 H1").empty());
+    CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 R2 Q29.5 H1.5").find("H1.5 on G76: the spring passes are a whole number") !=
+          std::string::npos);
+    // (the ISO reader knows no E word: "unknown word E1")
+    CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 E1 L2").find("E1") != std::string::npos);
+    CHECK(refusal_of("G76 P2.5 Z10 I-2 J0.8 K3.0672").find("towards the chuck") != std::string::npos);
+    CHECK(refusal_of("G76 P2.5 Z-20 I-2 K3.0672").find("G76 needs P, Z, I, J and K") != std::string::npos);
+    // A machine without the cycle does not know G76.
+    CHECK_THROWS_AS((void)read_program("G18 G90 G21\nT5 M6\nS500 M3\nG0 X22 Z6\nG76 P2.5 Z-20 I-2 J0.8 K3.0672\nM2\n",
+                                       load_machine("fanuc-lathe"), "t.nc"),
+                    InputError);
+}
+
 TEST_CASE("turn-thread: machine files' threadingCycles are checked with their paths") {
     std::ifstream f(CAMGEN_SOURCE_DIR "/machines/linuxcnc-lathe.json");
     std::stringstream buf;
