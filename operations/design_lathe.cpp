@@ -262,6 +262,8 @@ public:
         else if (const auto* l = std::get_if<Linear>(&e)) to({l->to.z, l->to.x});
         else if (const auto* a = std::get_if<Arc>(&e)) arc(*a);
         else if (const auto* t = std::get_if<ThreadFeed>(&e)) to({t->to.z, t->to.x});
+        else if (const auto* c = std::get_if<ThreadCycle>(&e))
+            for (const Event& m : thread_cycle_moves(*c)) emit(m);
     }
 
 private:

@@ -150,6 +150,88 @@ void IsoLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
     if (g32) forget_feed();
 }
 
+IsoLathePost::G76Words IsoLathePost::g76_words(const ThreadCycle& c) const {
+    G76Words w;
+    // The control reads back what the text says: each value through its format, rounded.
+    auto put = [&](const nc::Format& f, std::string_view letter, double v) {
+        w.text.push_back(f.word(letter, v));
+        return f.rounded(v);
+    };
+    const nc::Format x = machine().format("x");  // I, J, K are diameters under G7, as X
+    const nc::Format z = machine().format("z");
+    const nc::Format p = machine().format("feedPerRev");
+    w.read.drive_x = x.rounded(c.start.x);
+    w.read.drive_y = c.start.y;
+    w.read.drive_z = z.rounded(c.start.z);
+    w.read.p = put(p, "P", c.lead);
+    w.read.z = put(z, "Z", c.end_z);
+    w.read.i = put(x, "I", c.crest_x - c.start.x);
+    // Equal steps (R1): the control cuts J, 2J, ... while below K, then K; a J rounded down
+    // would leave a sliver of a pass before K, so the step is the least written value that
+    // gives the cycle's count of passes.
+    double j = c.first_depth;
+    if (c.degression == 1.0) {
+        const std::size_t cutting = c.depths.size() - static_cast<std::size_t>(std::max(c.spring_passes, 0));
+        iso::LinuxcncG76 probe;
+        probe.k = x.rounded(c.depth);
+        probe.r = 1.0;
+        for (int step = 0; step <= 40; ++step) {
+            probe.j = x.rounded(c.first_depth + step * 1e-5);
+            if (probe.j < c.first_depth - 1e-9) continue;
+            if (iso::linuxcnc_g76_depths(probe).size() == cutting) {
+                j = probe.j;
+                break;
+            }
+        }
+    }
+    w.read.j = put(x, "J", j);
+    w.read.k = put(x, "K", c.depth);
+    w.read.r = c.degression;
+    w.text.push_back(fmt::format("R{}", number_text(c.degression)));
+    if (c.infeed_angle > 0) {
+        w.read.q = std::round(c.infeed_angle * 1e4) / 1e4;
+        w.text.push_back(fmt::format("Q{}", number_text(w.read.q, 4)));
+    }
+    w.read.h = c.spring_passes;
+    if (c.spring_passes > 0) w.text.push_back(fmt::format("H{}", c.spring_passes));
+    return w;
+}
+
+std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c, const ThreadingCycleSpec& spec) const {
+    // G76 cuts every pass by its own depth rule from the rounded words: the moves it makes must
+    // be the cycle's within 0.001 mm.
+    if (spec.style != ThreadCycleStyle::linuxcnc_g76) return IsoPost::thread_cycle_limit(c, spec);
+    if (c.min_depth > 0) return std::string("it takes no least depth of cut");
+    const G76Words w = g76_words(c);
+    const std::vector<Event> control = iso::linuxcnc_g76_moves(w.read);
+    const std::vector<Event> wanted = thread_cycle_moves(c);
+    if (control.size() != wanted.size())
+        return fmt::format("its rounded words make {} passes, not {}", control.size() / 4, wanted.size() / 4);
+    auto at = [](const Event& e) {
+        if (const auto* r = std::get_if<Rapid>(&e)) return r->to;
+        return std::get<ThreadFeed>(e).to;
+    };
+    for (size_t n = 0; n < control.size(); ++n) {
+        const Vec3 a = at(control[n]), b = at(wanted[n]);
+        const double off = std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
+        if (off > 0.001)
+            return fmt::format("its pass {} would run {} mm from camgen's", n / 4 + 1, number_text(off, 4));
+    }
+    return std::nullopt;
+}
+
+void IsoLathePost::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpec& spec) {
+    if (spec.style != ThreadCycleStyle::linuxcnc_g76) IsoPost::on_thread_cycle(c, spec);
+    const G76Words w = g76_words(c);
+    (void)lead_word("P", c.lead);  // the checks of a synchronised move: spindle on, within maxFeed
+    writer().add(spec.name);
+    for (const std::string& t : w.text) writer().add(t);
+    writer().end();
+    // G76 leaves the tool at the drive X and the end Z, in no motion mode camgen writes.
+    assume_z(c.end_z);
+    forget_motion();
+}
+
 bool IsoLathePost::writes_return_level() const {
     for (const auto& [mode, code] : machine().frame.feed_modes)
         if (code == "G98" || code == "G99") return false;

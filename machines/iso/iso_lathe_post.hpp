@@ -6,7 +6,10 @@
 // ISO tool change; "turret": T0101, tool and offset number), spindleLimit (true: G50 S<maxRpm>
 // before the first spindle start, and G97 S.. M3). A cycle of style "fanuc-g74" is Fanuc T's
 // two-block peck drilling G74 R(e) / G74 Z Q(least increments) F.
+#include <vector>
+
 #include "machines/iso/iso_post.hpp"
+#include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen {
 
@@ -35,8 +38,17 @@ protected:
     // offset's R and imaginary tip T), then G41/G42 without a D word on the next feed move.
     void on_compensation(const Compensation& compensation) override;
     std::string compensation_words(const Compensation& compensation) const override;
+    // LinuxCNC's G76 P Z I J K R Q H from the drive point (linuxcnc_g76.hpp).
+    void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) override;
+    std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const override;
 
 private:
+    // The G76 words of a cycle, as text, and the values the control reads from them.
+    struct G76Words {
+        std::vector<std::string> text;
+        iso::LinuxcncG76 read;
+    };
+    G76Words g76_words(const ThreadCycle& cycle) const;
     const iso::LatheSettings& lathe_;
     double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
     bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97

@@ -10,6 +10,7 @@
 
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
+#include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen::reader {
 
@@ -31,6 +32,13 @@ protected:
 
 private:
     void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
+    void g76(BlockWords& w);
+    // The machine's G76 (threadingCycles of style linuxcnc-g76), if it has one.
+    const ThreadingCycleSpec* g76_spec() const {
+        for (const ThreadingCycleSpec& s : machine_.threading)
+            if (s.style == ThreadCycleStyle::linuxcnc_g76) return &s;
+        return nullptr;
+    }
     // The code of the thread-cutting move this machine writes (threadMove): 33 or 32.
     double thread_code() const {
         return lathe_.thread_move == iso::LatheThreadMove::g32_f ? iso::thread_g32_code : iso::thread_g33_code;
@@ -49,7 +57,7 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
         set_group(codes.spindle_mode, c);
         return true;
     }
-    if (c.value == code(thread_code())) {
+    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec())) {
         set_group(codes.motion, c);
         return true;
     }
@@ -61,6 +69,10 @@ bool IsoLatheReader::f_is_lead(int mode) const {
 }
 
 bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
+    if (mode == code(76) && g76_spec()) {
+        g76(w);
+        return true;
+    }
     if (mode != code(thread_code())) return false;
     // The thread-cutting move: G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), along Z from where the
     // tool stands, the lead K or F mm per revolution.
@@ -74,6 +86,53 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
     if (!zw || !lw) fail(fmt::format("{} needs the end Z and the lead {}", name, g32 ? 'F' : 'K'));
     thread_to(name, length(*zw), *lw);
     return true;
+}
+
+void IsoLatheReader::g76(BlockWords& w) {
+    // LinuxCNC's G76 P Z I J K [R Q H]: from where the tool stands (the drive point) the passes
+    // the control makes (linuxcnc_g76.hpp); I, J and K are read as X is (diameters under G7).
+    for (char letter : {'X', 'Y', 'E', 'L', 'F'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G76: camgen reads straight threads along Z from the drive point only", x->text));
+    const Word* pw = w.take('P');
+    const Word* zw = w.take('Z');
+    const Word* iw = w.take('I');
+    const Word* jw = w.take('J');
+    const Word* kw = w.take('K');
+    if (!pw || !zw || !iw || !jw || !kw) fail("G76 needs P, Z, I, J and K");
+    if (!position_known()) fail("G76 from an unknown position");
+    auto as_x = [&](const Word* word) {
+        Word x = *word;
+        x.letter = 'X';
+        return length(x);
+    };
+    iso::LinuxcncG76 g;
+    const Vec3 here = position();
+    g.drive_x = here.x, g.drive_y = here.y, g.drive_z = here.z;
+    g.z = length(*zw);
+    g.i = as_x(iw);
+    g.j = as_x(jw);
+    g.k = as_x(kw);
+    g.p = pw->value;  // the lead is read by thread_to, through the feed-per-revolution format
+    if (const Word* r = w.take('R')) g.r = r->value;
+    if (const Word* q = w.take('Q')) g.q = q->value;
+    if (const Word* h = w.take('H')) {
+        if (h->value != std::floor(h->value)) fail(fmt::format("{} on G76: the spring passes are a whole number", h->text));
+        g.h = static_cast<int>(std::clamp(h->value, -1.0, 101.0));
+    }
+    if (!(g.z < g.drive_z)) fail(fmt::format("G76 {}: camgen cuts threads towards the chuck, below the drive point", zw->text));
+    if (g.i == 0) fail(fmt::format("G76 {}: the thread's crest must lie off the drive line", iw->text));
+    if (!(g.j > 0) || !(g.k > 0)) fail("G76: J and K must be > 0");
+    if (!(g.r >= 1.0)) fail("G76: R must be 1 or more");
+    if (!(g.q >= 0 && g.q < 90)) fail("G76: Q must be from 0 to below 90 degrees");
+    if (g.h < 0 || g.h > 100) fail("G76: H must be from 0 to 100");
+    if (g.j * std::pow(10000.0, 1.0 / g.r) < g.k) fail("G76: J is too small for K: more than 10000 passes");
+    for (const Event& e : iso::linuxcnc_g76_moves(g)) {
+        if (const auto* r = std::get_if<Rapid>(&e))
+            rapid_to(r->to.x, std::nullopt, r->to.z);
+        else
+            thread_to("G76", std::get<ThreadFeed>(e).to.z, *pw);
+    }
 }
 
 void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {

@@ -171,6 +171,12 @@ public:
                            pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
+                       [&](const ThreadCycle& c) {
+                           for (const Event& m : thread_cycle_moves(c))
+                               add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
+                                             .per_revolution = e.per_revolution},
+                                   job);
+                       },
                        [&](const Stop& st) {
                            Step s = base(StepKind::stop);
                            s.stop = st.kind;

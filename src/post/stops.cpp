@@ -191,6 +191,11 @@ void OperatorStops::emit(const Event& event) {
                              pos_ = t.to;
                              next_.emit(event);
                          },
+                         [&](const ThreadCycle& c) {
+                             resume();
+                             pos_ = Vec3{c.start.x, c.start.y, c.end_z};
+                             next_.emit(event);
+                         },
                          [&](const Dwell&) {
                              resume();
                              next_.emit(event);
