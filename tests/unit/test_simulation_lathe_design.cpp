@@ -358,8 +358,16 @@ TEST_CASE("camgen simulate: an internal thread opens the bore to its major diame
             CHECK(std::stod(m[1]) == doctest::Approx(ring).epsilon(0.02));
         }
     }
-    // linuxcnc-lathe: the passes' X is the tip's diameter; the last passes at X22 (D22).
-    const std::string job = (dir / "inside.json").string();
+    // Written longhand on linuxcnc-lathe (not its G76): the passes' X is the tip's diameter; the
+    // last passes at X22 (D22).
+    const std::string job = (dir / "inside-longhand.json").string();
+    {
+        std::string text = test::read_file((dir / "inside.json").string());
+        const std::string key = R"("side": "internal",)";
+        REQUIRE(text.find(key) != std::string::npos);
+        text.replace(text.find(key), key.size(), key + R"( "output": "longhand",)");
+        std::ofstream(job) << text;
+    }
     auto edit_last = [](const std::string& to) {
         return [to](const std::string& t) { return std::regex_replace(t, std::regex("\nX22\n"), "\n" + to + "\n"); };
     };
