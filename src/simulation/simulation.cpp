@@ -697,10 +697,9 @@ private:
             // past the axis (X < 0) has its centre there too, its radius |X - offset|.
             const double n = tool.nose_radius;
             const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
-            if (tool.form == ToolForm::turning && tip.y > 0)  // tip +X of the nose: a boring tool
-                lathe_bore({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
-            else if (tool.form == ToolForm::turning)
-                lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
+            if (tool.form == ToolForm::turning)  // tip +X of the nose: a boring tool
+                lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n,
+                           tip.y > 0 ? -1.0 : 1.0, acc);
             else if (tool.form == ToolForm::blade)
                 lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
             else lathe_axial(s, p, q, tool, acc);
@@ -725,41 +724,28 @@ private:
         for (; it != section_order_.end(); ++it) f(static_cast<std::size_t>(*it));
     }
 
-    // A turning tool: its nose circle's centre at P (its tip where the nose is 0), its body
-    // toward +X and +Z (cutting toward the chuck, -Z, and facing toward the axis): it clears
-    // r >= x - nose at z >= Pz, and the nose's lower quarter below.
-    void lathe_turn(const Vec3& a, const Vec3& b, double nose, SimMoveAcc& acc) {
+    // A turning tool: its nose circle's centre at P (its tip where the nose is 0). Turning
+    // (side +1, tip -X of the nose): its body toward +X and +Z (cutting toward the chuck, -Z,
+    // and facing toward the axis), it clears r >= x - nose at z >= Pz, and the nose's lower
+    // quarter below. Boring (side -1, orientations 3, 4 and 8: the tip +X of the nose): the
+    // same mirrored in X, its body toward the axis and +Z, it opens the bore to r <= x + nose
+    // at z >= Pz, and to the nose's upper quarter below.
+    void lathe_turn(const Vec3& a, const Vec3& b, double nose, double side, SimMoveAcc& acc) {
         const LatheProfile& p = result_.lathe;
+        constexpr double none = std::numeric_limits<double>::infinity();
         const double zlo = std::min(a.z, b.z) - nose;
         int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
         for (int k = k0; k < p.nz; ++k) {
-            const double r = turn_reach(a, b, nose, p.z(k));
-            if (!std::isfinite(r)) continue;
-            if (r < p.outside[k] && p.outside[k] > p.bore[k])
+            const double r = side * turn_reach(a, b, nose, p.z(k), side);
+            if (!std::isfinite(r) || p.outside[k] <= p.bore[k]) continue;
+            if (side > 0 && r < p.outside[k])
                 acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+            else if (side < 0 && r > p.bore[k])
+                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, r, acc));
         }
         sections_above(zlo, [&](std::size_t i) {
-            const double r = turn_reach(a, b, nose, result_.lathe_sections.z[i]);
-            if (std::isfinite(r)) section_cut(i, r, 0.0);
-        });
-    }
-
-    // A boring tool (orientations 3, 4 and 8: its tip +X of its nose): lathe_turn mirrored in X,
-    // its body toward the axis and +Z: it opens the bore to r <= x + nose at z >= Pz, and to the
-    // nose's upper quarter below.
-    void lathe_bore(const Vec3& a, const Vec3& b, double nose, SimMoveAcc& acc) {
-        const LatheProfile& p = result_.lathe;
-        const double zlo = std::min(a.z, b.z) - nose;
-        int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
-        for (int k = k0; k < p.nz; ++k) {
-            const double r = -turn_reach(a, b, nose, p.z(k), -1.0);
-            if (!std::isfinite(r)) continue;
-            if (r > p.bore[k] && p.outside[k] > p.bore[k])
-                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, std::numeric_limits<double>::infinity(), r, acc));
-        }
-        sections_above(zlo, [&](std::size_t i) {
-            const double r = -turn_reach(a, b, nose, result_.lathe_sections.z[i], -1.0);
-            if (std::isfinite(r)) section_cut(i, std::numeric_limits<double>::infinity(), r);
+            const double r = side * turn_reach(a, b, nose, result_.lathe_sections.z[i], side);
+            if (std::isfinite(r)) side > 0 ? section_cut(i, r, 0.0) : section_cut(i, none, r);
         });
     }
 
