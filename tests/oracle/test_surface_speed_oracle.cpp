@@ -35,22 +35,17 @@ struct Start {
     bool operator==(const Start&) const = default;
 };
 
-}  // namespace
-
-TEST_CASE("rs274 reads linuxcnc-lathe's G96 D S and G97 S as camgen's reader does; F stays per revolution") {
-    auto rs274 = oracle::find_rs274();
-    if (!rs274) FAIL("rs274 (LinuxCNC's standalone interpreter) was not found: install linuxcnc-uspace");
-    const Machine m = load_machine("linuxcnc-lathe");
+std::string post_for(const Machine& m) {
     std::ostringstream out;
     auto p = make_post(m, out, PostOptions{});
     p->open();
     expand_job(read_job(job_text, "oracle.json"), *p);
     p->close();
-    const std::string program = out.str();
-    const std::string canon = oracle::run_rs274_canon(*rs274, program);
-    INFO(program << "\nrs274:\n" << canon);
+    return out.str();
+}
 
-    // rs274's spindle starts: the mode (its limit under G96, 0 for rpm) and the speed before each.
+// rs274's spindle starts: the mode (its limit under G96, 0 for rpm) and the speed before each.
+std::vector<Start> rs274_starts(const std::string& canon) {
     std::vector<Start> interpreted;
     double mode = 0.0, speed = 0.0;
     const std::regex mode_call(R"(SET_SPINDLE_MODE\(0 ([0-9.]+)\))"), speed_call(R"(SET_SPINDLE_SPEED\(0, ([0-9.]+)\))");
@@ -62,6 +57,19 @@ TEST_CASE("rs274 reads linuxcnc-lathe's G96 D S and G97 S as camgen's reader doe
         if (line.find("START_SPINDLE_CLOCKWISE") != std::string::npos)
             interpreted.push_back(mode > 0 ? Start{mode, speed} : Start{speed, 0.0});
     }
+    return interpreted;
+}
+
+}  // namespace
+
+TEST_CASE("rs274 reads linuxcnc-lathe's G96 D S and G97 S as camgen's reader does; F stays per revolution") {
+    auto rs274 = oracle::find_rs274();
+    if (!rs274) FAIL("rs274 (LinuxCNC's standalone interpreter) was not found: install linuxcnc-uspace");
+    const Machine m = load_machine("linuxcnc-lathe");
+    const std::string program = post_for(m);
+    const std::string canon = oracle::run_rs274_canon(*rs274, program);
+    INFO(program << "\nrs274:\n" << canon);
+    const std::vector<Start> interpreted = rs274_starts(canon);
     CHECK(canon.find("SET_FEED_MODE(0, 1)") != std::string::npos);
     CHECK(canon.find("SET_FEED_RATE(0.2000)") != std::string::npos);
 
@@ -76,6 +84,27 @@ TEST_CASE("rs274 reads linuxcnc-lathe's G96 D S and G97 S as camgen's reader doe
     const std::vector<Start> expected{{2500, 200}, {1200, 0}};
     CHECK(interpreted == expected);
     CHECK(read_back == expected);
+}
+
+TEST_CASE("an inch linuxcnc-lathe: rs274 turns at 656 ft/min for the job's 200 m/min, as camgen reads it back") {
+    auto rs274 = oracle::find_rs274();
+    if (!rs274) FAIL("rs274 (LinuxCNC's standalone interpreter) was not found: install linuxcnc-uspace");
+    Machine m = load_machine("linuxcnc-lathe");
+    m.units = Units::inch;
+    const std::string program = post_for(m);
+    const std::string canon = oracle::run_rs274_canon(*rs274, program);
+    INFO(program << "\nrs274:\n" << canon);
+    CHECK(canon.find("USE_LENGTH_UNITS(CANON_UNITS_INCHES)") != std::string::npos);
+    const std::vector<Start> expected{{2500, 656}, {1200, 0}};
+    CHECK(rs274_starts(canon) == expected);
+    std::vector<Start> read_back;
+    for (const ReadEvent& e : read_program(program, m, "oracle.ngc"))
+        if (const auto* s = std::get_if<Spindle>(&e.event); s && s->state != SpindleState::off)
+            read_back.push_back({s->rpm, s->surface_speed / 0.3048});  // m/min back to the ft/min written
+    REQUIRE(read_back.size() == 2);
+    CHECK(read_back[0].rpm == 2500);
+    CHECK(read_back[0].surface_speed == doctest::Approx(656).epsilon(1e-12));
+    CHECK(read_back[1] == Start{1200, 0});
 }
 
 }  // namespace test_surface_speed_oracle

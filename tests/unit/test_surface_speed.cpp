@@ -148,6 +148,26 @@ TEST_CASE("sinumerik-lathe: LIMS=<limit>, then G96 S<vc> M3; G97 S before the dr
     CHECK(back[0] == Spindle{SpindleState::cw, 2500, 200});
 }
 
+TEST_CASE("an inch lathe writes the surface speed in feet per minute and reads it back in m/min") {
+    // 200 m/min = 656.17 ft/min; the three lathes write S as an rpm (a whole number): S656, which
+    // reads back as 656 x 0.3048 = 199.949 m/min; the limit stays in rpm.
+    for (const char* name : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        Machine m = load_machine(name);
+        m.units = Units::inch;
+        const std::string text = test::post_program(read_job(job(), "t.json"), m);
+        INFO(name << "\n" << text);
+        CHECK(has(text, "G96 S656 M3\n") != has(text, "G96 D2500 S656 M3\n"));
+        CHECK_FALSE(has(text, "S200"));
+        std::vector<Spindle> back;
+        for (const ReadEvent& e : read_program(text, m, "t.nc"))
+            if (const auto* s = std::get_if<Spindle>(&e.event); s && s->state != SpindleState::off) back.push_back(*s);
+        REQUIRE(back.size() == 2);
+        CHECK(back[0].rpm == 2500);
+        CHECK(back[0].surface_speed == doctest::Approx(656 * 0.3048).epsilon(1e-12));
+        CHECK(back[1] == Spindle{SpindleState::cw, 1200, 0});
+    }
+}
+
 TEST_CASE("a mill refuses a constant surface speed") {
     const std::vector<Event> events{ToolChange{1, 10, ""}, Spindle{SpindleState::cw, 2500, 200}};
     for (const char* mill : {"fanuc", "linuxcnc", "sinumerik", "heidenhain"})
