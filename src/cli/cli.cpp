@@ -718,6 +718,7 @@ std::optional<SimDesignCheck> prepare_design_check(const Job& job, const Machine
     const HeightField& f = r.field;
     SimDesignCheck c;
     c.design = part_design(job);
+    leave_out_operator_cycles(c.design, job, machine);
     HeightGridView& g = c.grid;
     g.x0 = f.x0, g.y0 = f.y0, g.cell = f.cell, g.nx = static_cast<std::size_t>(f.nx), g.ny = static_cast<std::size_t>(f.ny);
     g.top = f.top;

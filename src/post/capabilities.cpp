@@ -52,6 +52,7 @@ MachineCapabilities machine_capabilities(const Machine& machine) {
     }
     c.ccw_spindle = capability(post->ccw_spindle_refusal());
     c.program_number = capability(post->program_number_refusal());
+    c.surface_speed = capability(post->surface_speed_refusal());
     return c;
 }
 
@@ -82,6 +83,7 @@ nlohmann::json capabilities_json(const MachineCapabilities& c) {
     j["drilling"] = drilling;
     j["counterClockwiseSpindle"] = capability_json(c.ccw_spindle);
     j["programNumber"] = capability_json(c.program_number);
+    j["constantSurfaceSpeed"] = capability_json(c.surface_speed);
     return j;
 }
 

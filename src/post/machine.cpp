@@ -936,6 +936,7 @@ std::string describe_machine(const Machine& m) {
     line("maxFeed", fmt::format("{} mm/min", m.limits.max_feed));
     line("minFeed", fmt::format("{} mm/min", m.limits.min_feed));
     line("rapidRate", fmt::format("{} mm/min", m.limits.rapid_rate));
+    line("maxRpm", m.limits.max_rpm > 0 ? fmt::format("{} rpm", m.limits.max_rpm) : std::string("none"));
     line("peckClearance", fmt::format("{} mm", m.peck_clearance));
     line("boreDwellFeedOut", m.bore_dwell_feed_out == BoreDwellFeedOut::to_safe ? "to the feed-start plane R"
                                                                                  : "to the retract level");
@@ -978,6 +979,7 @@ std::string describe_machine(const Machine& m) {
     if (can.helices) line("helices", *can.helices ? "helical arc blocks" : "straight moves");
     line("spindle ccw", verdict(can.ccw_spindle, "yes"));
     line("programNumber", verdict(can.program_number, "yes"));
+    line("surface speed", verdict(can.surface_speed, "yes: G96 for a tool's surfaceSpeed, within its maxRpm (else maxRpm above)"));
     return s;
 }
 

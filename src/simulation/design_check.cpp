@@ -15,6 +15,8 @@
 #include "camgen/common/number_text.hpp"
 #include "camgen/geometry/clearance.hpp"
 #include "camgen/geometry/region.hpp"
+#include "camgen/operations/drill/drill.hpp"
+#include "camgen/post/stops.hpp"
 
 namespace camgen {
 
@@ -550,6 +552,27 @@ std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGr
             out.push_back(finding(k, group->at(k), group == &gouges ? DesignFinding::Kind::gouge : DesignFinding::Kind::left));
     }
     return out;
+}
+
+void leave_out_operator_cycles(PartDesign& design, const Job& job, const Machine& machine) {
+    auto left_out = [&](const std::string& path, const std::string& why) {
+        design.unchecked.push_back(fmt::format("{}: the program leaves its cycle to the operator at a stop ({})", path, why));
+    };
+    for (const Operation& op : job.operations) {
+        if (const auto* drill = std::get_if<DrillOp>(&op)) {
+            const auto tool = job.tools.find(drill->tool);
+            if (tool == job.tools.end()) continue;
+            const std::optional<std::string> why = impossible_cycle(machine, resolve_cycle(*drill, tool->second));
+            if (!why) continue;
+            std::erase_if(design.cuts, [&](const DesignCut& c) { return c.path == drill->path; });
+            left_out(drill->path, *why);
+        } else if (const auto* turn = std::get_if<TurnDrillOp>(&op)) {
+            const std::optional<std::string> why = impossible_cycle(machine, turn->cycle);
+            if (!why) continue;
+            std::erase_if(design.lathe.holes, [&](const LatheHoleDesign& h) { return h.path == turn->path; });
+            left_out(turn->path, *why);
+        }
+    }
 }
 
 }  // namespace camgen

@@ -1,6 +1,8 @@
 // A simulated turned part against the job's lathe design (design_check_lathe.hpp).
 #include "camgen/simulation/design_check_lathe.hpp"
 
+#include "camgen/simulation/design_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -243,16 +245,7 @@ std::map<int, ToolShape> job_tool_shapes(const Job& job) {
 LatheDesignCheck prepare_lathe_design_check(const Job& job, const Machine& machine, const SimStock& bar, Simulator& sim) {
     LatheDesignCheck c;
     c.design = part_design(job);
-    // A cycle the machine cannot make, left to the operator at a stop (OperatorStops), makes
-    // nothing the program cuts.
-    for (const Operation& op : job.operations) {
-        const TurnDrillOp* drill = std::get_if<TurnDrillOp>(&op);
-        if (!drill) continue;
-        const std::optional<std::string> why = impossible_cycle(machine, drill->cycle);
-        if (!why) continue;
-        std::erase_if(c.design.lathe.holes, [&](const LatheHoleDesign& h) { return h.path == drill->path; });
-        c.design.unchecked.push_back(fmt::format("{}: the program leaves its cycle to the operator at a stop ({})", drill->path, *why));
-    }
+    leave_out_operator_cycles(c.design, job, machine);
     c.bar = bar;
     // As verify compares, and as the mill's check judges: the machine's tolerance and its chords.
     c.tolerance = compare_tolerance(machine).path;

@@ -124,4 +124,13 @@ void check_read_as_run(const std::vector<Step>& theirs, const std::string& progr
     }
 }
 
+std::vector<XzMove> camgen_xz_moves(const std::string& program, const Machine& machine) {
+    std::vector<XzMove> out;
+    for (const Step& s : read_with_camgen(program, machine)) {
+        if (s.kind != Step::Kind::traverse && s.kind != Step::Kind::feed && s.kind != Step::Kind::arc) continue;
+        out.push_back({.rapid = s.kind == Step::Kind::traverse, .arc = s.kind == Step::Kind::arc, .x = s.to.x, .z = s.to.z});
+    }
+    return out;
+}
+
 }  // namespace camgen::oracle

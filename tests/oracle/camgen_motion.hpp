@@ -19,6 +19,11 @@ std::string posted_program(const Job& job, const Machine& machine);
 // dropped, feeds and arcs with their rate, spindle entries on changes.
 std::vector<Step> read_with_camgen(const std::string& program, const Machine& machine);
 
+// A lathe program's moves as camgen reads them, as xz_moves gives rs274's: traverses, feeds and
+// arcs, their ends in (X radius, Z) (the lead of a synchronised feed and where a move began are
+// left 0).
+std::vector<XzMove> camgen_xz_moves(const std::string& program, const Machine& machine);
+
 // The same with G41/G42 applied as the control applies them, offset register -> radius from
 // `radii` (mm): the tool centre's moves, or where the control refuses the program, camgen's
 // line and message (the ControlRefusal's detail without "the control refuses this: ").

@@ -206,4 +206,40 @@ std::string run_rs274_canon(const std::string& rs274, const std::string& program
     return canon;
 }
 
+std::vector<XzMove> xz_moves(const std::string& canon, double unit, double min_step) {
+    std::vector<XzMove> out;
+    double x = 0, z = 0, sync = 0;
+    std::istringstream lines(canon);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t open = line.find('('), close = line.rfind(')');
+        if (open == std::string::npos || close == std::string::npos || close < open) continue;
+        const std::vector<double> a = arguments(line.substr(open + 1, close - open - 1));
+        auto called = [&](const char* name) { return line.find(name) != std::string::npos; };
+        XzMove m;
+        if (called("START_SPEED_FEED_SYNC")) {
+            sync = a.at(0) * unit;
+            continue;
+        } else if (called("STOP_SPEED_FEED_SYNC")) {
+            sync = 0;
+            continue;
+        } else if (called("STRAIGHT_TRAVERSE") || called("STRAIGHT_FEED")) {
+            if (a.size() < 3) throw std::runtime_error("cannot read rs274 line: " + line);
+            m.rapid = called("STRAIGHT_TRAVERSE");
+            m.x = a[0] * unit, m.z = a[2] * unit;
+            m.sync = m.rapid ? 0.0 : sync;
+            if (std::abs(m.x - x) < min_step && std::abs(m.z - z) < min_step) continue;
+        } else if (called("ARC_FEED")) {
+            if (a.size() < 5) throw std::runtime_error("cannot read rs274 line: " + line);
+            m.arc = true;
+            m.z = a[0] * unit, m.x = a[1] * unit, m.cz = a[2] * unit, m.cx = a[3] * unit;
+        } else {
+            continue;
+        }
+        m.from_x = x, m.from_z = z;
+        x = m.x, z = m.z;
+        out.push_back(m);
+    }
+    return out;
+}
+
 }  // namespace camgen::oracle

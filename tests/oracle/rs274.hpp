@@ -51,4 +51,20 @@ std::string run_rs274_canon(const std::string& rs274, const std::string& program
 // Normalises rs274's canonical output (exposed for tests of the parser itself).
 std::vector<Step> parse_canon(const std::string& canon);
 
+// One move rs274 made in a lathe's XZ plane, X as it prints it (a radius), from where the last
+// one ended: a traverse or a feed (one synchronised with the spindle, G33/G76, carries its lead
+// from START_SPEED_FEED_SYNC), or an arc (G18: ARC_FEED(Z end, X end, Z centre, X centre, ...)).
+struct XzMove {
+    bool rapid = false, arc = false;
+    double x = 0, z = 0;            // the end
+    double cx = 0, cz = 0;          // an arc's centre
+    double sync = 0;                // a synchronised feed's lead (mm or inch per revolution), else 0
+    double from_x = 0, from_z = 0;  // where it began
+};
+
+// rs274's moves in XZ from its canonical calls, lengths times `unit` (25.4: a program in
+// inches, into mm). A straight move shorter than `min_step` along both axes is left out (a
+// move that goes nowhere, or one within the 4 decimals rs274 prints); arcs are all kept.
+std::vector<XzMove> xz_moves(const std::string& canon, double unit = 1.0, double min_step = 1e-9);
+
 }  // namespace camgen::oracle

@@ -33,35 +33,9 @@ std::string g7x_rs274() {
 }
 
 // One move rs274 made in XZ: its end (X as a radius), a rapid or a feed, an arc (centre).
-struct G7xMove {
-    bool rapid = false, arc = false;
-    double x = 0, z = 0, cx = 0, cz = 0;
-};
+using G7xMove = oracle::XzMove;
 
-std::vector<G7xMove> g7x_moves(const std::string& canon) {
-    std::vector<G7xMove> out;
-    std::istringstream lines(canon);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t open = line.find('('), close = line.rfind(')');
-        if (open == std::string::npos || close == std::string::npos) continue;
-        std::vector<double> a;
-        std::istringstream args(line.substr(open + 1, close - open - 1));
-        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
-        G7xMove m;
-        if (line.find("STRAIGHT_TRAVERSE") != std::string::npos || line.find("STRAIGHT_FEED") != std::string::npos) {
-            m.rapid = line.find("STRAIGHT_TRAVERSE") != std::string::npos;
-            m.x = a.at(0), m.z = a.at(2);
-        } else if (line.find("ARC_FEED") != std::string::npos) {
-            m.arc = true;
-            m.z = a.at(0), m.x = a.at(1), m.cz = a.at(2), m.cx = a.at(3);
-        } else {
-            continue;
-        }
-        if (!out.empty() && std::abs(out.back().x - m.x) < 1e-9 && std::abs(out.back().z - m.z) < 1e-9) continue;
-        out.push_back(m);
-    }
-    return out;
-}
+std::vector<G7xMove> g7x_moves(const std::string& canon) { return oracle::xz_moves(canon); }
 
 const std::string g7x_head = "G18 G7 G21 G90\nT1 M6\nS1000 M3\nG95\n";
 

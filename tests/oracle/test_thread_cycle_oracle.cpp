@@ -35,55 +35,9 @@ std::string rs274() {
     return *p;
 }
 
-// A straight move in (X radius, Z) from where the last one ended; a synchronised feed carries its lead.
-struct Move {
-    bool rapid = false;
-    double x = 0, z = 0;
-    double sync = 0;
-    double from_x = 0, from_z = 0;
-};
-
-// rs274 prints 4 decimals in the program's units: a move shorter than that print's step is its
-// rounding (G76's last return to the drive line), left out.
-std::vector<Move> rs274_moves(const std::string& canon, double unit) {
-    const double step = 0.0002 * unit;
-    std::vector<Move> out;
-    double x = 0, z = 0, sync = 0;
-    std::istringstream lines(canon);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t open = line.find('('), close = line.rfind(')');
-        if (open == std::string::npos || close == std::string::npos) continue;
-        std::vector<double> a;
-        std::istringstream args(line.substr(open + 1, close - open - 1));
-        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
-        if (line.find("START_SPEED_FEED_SYNC") != std::string::npos) {
-            REQUIRE(!a.empty());
-            sync = a[0] * unit;
-            continue;
-        }
-        if (line.find("STOP_SPEED_FEED_SYNC") != std::string::npos) {
-            sync = 0;
-            continue;
-        }
-        const bool traverse = line.find("STRAIGHT_TRAVERSE") != std::string::npos;
-        if (!traverse && line.find("STRAIGHT_FEED") == std::string::npos) continue;
-        REQUIRE(a.size() >= 3);
-        const double nx = a[0] * unit, nz = a[2] * unit;
-        if (std::abs(nx - x) < step && std::abs(nz - z) < step) continue;
-        out.push_back(Move{traverse, nx, nz, traverse ? 0.0 : sync, x, z});
-        x = nx, z = nz;
-    }
-    return out;
-}
-
-std::vector<Move> camgen_moves(const std::string& program, const Machine& m) {
-    std::vector<Move> out;
-    for (const oracle::Step& s : oracle::read_with_camgen(program, m)) {
-        if (s.kind != oracle::Step::Kind::traverse && s.kind != oracle::Step::Kind::feed) continue;
-        out.push_back({s.kind == oracle::Step::Kind::traverse, s.to.x, s.to.z});
-    }
-    return out;
-}
+// A straight move in (X radius, Z) from where the last one ended; a synchronised feed carries its lead
+// (rs274's moves: oracle::xz_moves).
+using Move = oracle::XzMove;
 
 // The job's synchronised passes (from, to), from its ThreadCycle events.
 std::vector<Move> design_passes(const Job& job) {
@@ -97,7 +51,7 @@ std::vector<Move> design_passes(const Job& job) {
             if (const auto* r = std::get_if<Rapid>(&m)) {
                 at = r->to;
             } else if (const auto* t = std::get_if<ThreadFeed>(&m)) {
-                out.push_back(Move{false, t->to.x, t->to.z, t->lead, at.x, at.z});
+                out.push_back(Move{.x = t->to.x, .z = t->to.z, .sync = t->lead, .from_x = at.x, .from_z = at.z});
                 at = t->to;
             }
         }
@@ -166,8 +120,11 @@ double check_case(const Case& c) {
     CHECK(program.find("G33") == std::string::npos);
     std::string canon;
     REQUIRE_NOTHROW(canon = oracle::run_rs274_canon(rs274(), program));
-    const std::vector<Move> theirs = rs274_moves(canon, c.inch ? 25.4 : 1.0);
-    const std::vector<Move> ours = camgen_moves(program, m);
+    // rs274 prints 4 decimals in the program's units: a move shorter than that print's step is
+    // its rounding (G76's last return to the drive line), left out.
+    const double unit = c.inch ? 25.4 : 1.0;
+    const std::vector<Move> theirs = oracle::xz_moves(canon, unit, 0.0002 * unit);
+    const std::vector<Move> ours = oracle::camgen_xz_moves(program, m);
     // rs274 prints 4 decimals: in inch its own rounding is up to 0.00127 mm.
     const double print = c.inch ? 0.00005 * 25.4 : 0.00005;
     REQUIRE(theirs.size() >= ours.size());

@@ -30,53 +30,8 @@ std::string rs274() {
     return *p;
 }
 
-// A move's end in (X radius, Z), and whether it was a rapid.
-struct EndPoint {
-    bool rapid = false;
-    bool arc = false;
-    double x = 0, z = 0;
-};
-
-// rs274's moves from its canonical calls: STRAIGHT_TRAVERSE/FEED (x, y, z, ...) and, under
-// G18, ARC_FEED (Z end, X end, Z centre, X centre, rotation, ...); moves that go nowhere dropped.
-std::vector<EndPoint> rs274_moves(const std::string& canon) {
-    std::vector<EndPoint> out;
-    double x = 0, z = 0;
-    std::istringstream lines(canon);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t open = line.find('('), close = line.rfind(')');
-        if (open == std::string::npos || close == std::string::npos) continue;
-        std::vector<double> a;
-        std::istringstream args(line.substr(open + 1, close - open - 1));
-        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
-        EndPoint e;
-        if (line.find("STRAIGHT_TRAVERSE") != std::string::npos || line.find("STRAIGHT_FEED") != std::string::npos) {
-            if (a.size() < 3) continue;
-            e.rapid = line.find("STRAIGHT_TRAVERSE") != std::string::npos;
-            e.x = a[0], e.z = a[2];
-        } else if (line.find("ARC_FEED") != std::string::npos) {
-            if (a.size() < 5) continue;
-            e.arc = true;
-            e.z = a[0], e.x = a[1];
-        } else {
-            continue;
-        }
-        if (std::abs(e.x - x) < 1e-9 && std::abs(e.z - z) < 1e-9 && !e.arc) continue;
-        x = e.x, z = e.z;
-        out.push_back(e);
-    }
-    return out;
-}
-
-std::vector<EndPoint> camgen_moves(const std::string& program, const Machine& m) {
-    std::vector<EndPoint> out;
-    for (const oracle::Step& s : oracle::read_with_camgen(program, m)) {
-        if (s.kind != oracle::Step::Kind::traverse && s.kind != oracle::Step::Kind::feed && s.kind != oracle::Step::Kind::arc)
-            continue;
-        out.push_back({s.kind == oracle::Step::Kind::traverse, s.kind == oracle::Step::Kind::arc, s.to.x, s.to.z});
-    }
-    return out;
-}
+// A move's end in (X radius, Z), whether it was a rapid or an arc (rs274's moves: oracle::xz_moves).
+using EndPoint = oracle::XzMove;
 
 // Runs the job's linuxcnc-lathe program through rs274 and compares its moves with camgen's
 // reading; the worst difference, mm.
@@ -91,7 +46,7 @@ double run_and_compare(const Job& job) {
         const auto it = std::find_if(v.begin(), v.end(), [](const EndPoint& e) { return !e.rapid; });
         return std::vector<EndPoint>(it, v.end());
     };
-    const std::vector<EndPoint> theirs = from_first_feed(rs274_moves(canon)), ours = from_first_feed(camgen_moves(program, m));
+    const std::vector<EndPoint> theirs = from_first_feed(oracle::xz_moves(canon)), ours = from_first_feed(oracle::camgen_xz_moves(program, m));
     REQUIRE(theirs.size() == ours.size());
     double worst = 0;
     for (std::size_t i = 0; i < ours.size(); ++i) {

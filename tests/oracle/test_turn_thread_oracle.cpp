@@ -34,56 +34,8 @@ std::string rs274() {
     return *p;
 }
 
-// A move's end in (X radius, Z); a synchronised feed carries its K.
-struct Move {
-    bool rapid = false;
-    double x = 0, z = 0;
-    double sync = 0;       // the lead K of a synchronised feed, else 0
-    double from_x = 0, from_z = 0;
-};
-
-// rs274's straight moves, with START_SPEED_FEED_SYNC(K, ...) marking the feed that follows it.
-std::vector<Move> rs274_moves(const std::string& canon) {
-    std::vector<Move> out;
-    double x = 0, z = 0, sync = 0;
-    std::istringstream lines(canon);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t open = line.find('('), close = line.rfind(')');
-        if (open == std::string::npos || close == std::string::npos) continue;
-        std::vector<double> a;
-        std::istringstream args(line.substr(open + 1, close - open - 1));
-        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
-        if (line.find("START_SPEED_FEED_SYNC") != std::string::npos) {
-            REQUIRE(!a.empty());
-            sync = a[0];
-            continue;
-        }
-        if (line.find("STOP_SPEED_FEED_SYNC") != std::string::npos) {
-            sync = 0;
-            continue;
-        }
-        const bool traverse = line.find("STRAIGHT_TRAVERSE") != std::string::npos;
-        if (!traverse && line.find("STRAIGHT_FEED") == std::string::npos) {
-            CHECK_MESSAGE(line.find("ARC_FEED") == std::string::npos, line);
-            continue;
-        }
-        REQUIRE(a.size() >= 3);
-        if (std::abs(a[0] - x) < 1e-9 && std::abs(a[2] - z) < 1e-9) continue;
-        Move m{traverse, a[0], a[2], traverse ? 0.0 : sync, x, z};
-        x = a[0], z = a[2];
-        out.push_back(m);
-    }
-    return out;
-}
-
-std::vector<Move> camgen_moves(const std::string& program, const Machine& m) {
-    std::vector<Move> out;
-    for (const oracle::Step& s : oracle::read_with_camgen(program, m)) {
-        if (s.kind != oracle::Step::Kind::traverse && s.kind != oracle::Step::Kind::feed) continue;
-        out.push_back({s.kind == oracle::Step::Kind::traverse, s.to.x, s.to.z});
-    }
-    return out;
-}
+// A move in (X radius, Z); a synchronised feed carries its K (rs274's moves: oracle::xz_moves).
+using Move = oracle::XzMove;
 
 // The cumulative depths of the infeed rule, computed here on its own: constant depth, the
 // fewest equal steps of at most `first`; constant area, first x sqrt(n) below the total, each
@@ -147,8 +99,9 @@ double check_case(const Case& c) {
     INFO(program);
     std::string canon;
     REQUIRE_NOTHROW(canon = oracle::run_rs274_canon(rs274(), program));
-    const std::vector<Move> theirs = rs274_moves(canon);
-    std::vector<Move> ours = camgen_moves(program, m);
+    const std::vector<Move> theirs = oracle::xz_moves(canon);
+    for (const Move& mv : theirs) CHECK_MESSAGE(!mv.arc, "an arc in a threading program");
+    std::vector<Move> ours = oracle::camgen_xz_moves(program, m);
     // rs274 starts at its origin, camgen's reading at the first rapid that sets every axis.
     REQUIRE(theirs.size() >= ours.size());
     const std::vector<Move> tail(theirs.end() - static_cast<std::ptrdiff_t>(ours.size()), theirs.end());

@@ -234,6 +234,31 @@ TEST_CASE("describe: a counter-clockwise spindle and a program number post as --
     }
 }
 
+TEST_CASE("describe: a constant surface speed posts as --describe-machine --json says") {
+    for (const auto& [machine, description] : list_machines()) {
+        INFO(machine);
+        const Json caps = capabilities_of(machine);
+        const Machine m = load_machine(machine);
+        // A lathe job's turning tool at 200 m/min (a mill refuses it before its tools could be
+        // read for it, at the post: the same Spindle event).
+        const std::vector<Event> events{ToolChange{1, 0.8, ""}, Spindle{SpindleState::cw, 2500, 200}};
+        if (caps["constantSurfaceSpeed"]["supported"].get<bool>()) {
+            CHECK(m.kind == MachineKind::lathe);
+            const std::string op = R"({"type": "turn-face", "tool": 6, "z": 0, "stepdown": 1, "outerX": 40, "startZ": 1,
+                                       "feedMode": "per-revolution", "feed": 0.2})";
+            const std::string tools = lathe_tools + R"(, {"number": 6, "type": "turning-tool", "diameter": 0.8,
+                                                         "surfaceSpeed": 200, "maxRpm": 2500})";
+            const Posted p = post("g96", machine, job_of(tools, op));
+            REQUIRE_MESSAGE(p.run.code == 0, p.run.err);
+            CHECK(test::read_file(p.program).find("G96") != std::string::npos);
+            CHECK(test::post_events(m, events).find("G96") != std::string::npos);
+        } else {
+            const std::string refused = caps["constantSurfaceSpeed"]["refused"].get<std::string>();
+            CHECK_THROWS_WITH_AS(test::post_events(m, events), doctest::Contains(refused.c_str()), InputError);
+        }
+    }
+}
+
 TEST_CASE("describe: the text description says what the --json capabilities say") {
     for (const auto& [machine, description] : list_machines()) {
         INFO(machine);
@@ -255,6 +280,8 @@ TEST_CASE("describe: the text description says what the --json capabilities say"
         if (caps.contains("helices")) has_line("helices", caps["helices"] == "arcs" ? "helical arc blocks" : "straight moves");
         has_line("spindle ccw", verdict(caps["counterClockwiseSpindle"], "yes"));
         has_line("programNumber", verdict(caps["programNumber"], "yes"));
+        has_line("surface speed",
+                 verdict(caps["constantSurfaceSpeed"], "yes: G96 for a tool's surfaceSpeed, within its maxRpm (else maxRpm above)"));
         for (const auto& [kind, cycle] : caps["drilling"].items()) {
             std::string text = "longhand";
             if (!cycle["supported"].get<bool>()) text = "refused: " + cycle["refused"].get<std::string>();

@@ -62,6 +62,30 @@ TEST_CASE("camgen simulate: every mill sample on every mill machine makes the pa
     CHECK(simulated >= 69);
 }
 
+TEST_CASE("camgen simulate: a tap the machine leaves to the operator at a stop is not checked; where it taps, it is") {
+    const fs::path dir = test::scratch("simulate-operator-tap");
+    const std::string job = (dir / "tap.json").string();
+    std::ofstream(job) << R"({"clearance": 20, "stock": {"box": {"min": [0, 0, -20], "max": [40, 40, 0]}},
+      "tools": [{"number": 1, "type": "drill", "diameter": 6.8, "tipAngle": 118, "rpm": 1200},
+                {"number": 7, "type": "tap", "diameter": 8, "rpm": 300}],
+      "operations": [{"type": "drill", "tool": 1, "retractPlane": 5, "safeDistance": 2, "endDepth": 15,
+                      "plungingFeedrate": 120, "holes": [[10, 10], [30, 30]]},
+                     {"type": "drill", "tool": 7, "cycle": "tap", "unsupported": "stop", "retractPlane": 5,
+                      "safeDistance": 3, "endDepth": 12, "pitch": 1.25, "holes": [[10, 10], [30, 30]]}]})";
+    for (const char* machine : {"wabeco", "linuxcnc"}) {
+        CAPTURE(machine);
+        const std::string program = (dir / (std::string(machine) + ".nc")).string();
+        REQUIRE(test::run({job, "--machine", machine, "-q", "-o", program}).code == 0);
+        const test::Run r = test::run({"simulate", program, "--machine", machine, "--job", job, "--resolution", "0.2"});
+        CHECK_MESSAGE(r.code == 0, std::string(r.out + r.err));
+        const bool stop = std::string(machine) == "wabeco";  // nccad's spindle cannot reverse
+        CHECK(stop == (r.out.find("  not checked: /operations/1: the program leaves its cycle to the operator at a stop (machine "
+                                  "wabeco cannot tap)\n") != std::string::npos));
+        // Before, wabeco's simulation read the tap's ring from 6.8 to 8 mm as material left.
+        CHECK_MESSAGE(r.out.find("  the part is as designed\n") != std::string::npos, r.out);
+    }
+}
+
 TEST_CASE("camgen simulate: a pocket's floor cut too deep is a gouge at its line; a floor left high is material left") {
     const fs::path dir = test::scratch("simulate-gouge");
     const std::string job = samples + "pocket.json";

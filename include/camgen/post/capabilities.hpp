@@ -35,6 +35,7 @@ struct MachineCapabilities {
     std::vector<CycleCapability> cycles;              // each cycle kind the operations ask for
     Capability ccw_spindle;
     Capability program_number;
+    Capability surface_speed;                         // G96 constant surface speed (a tool's surfaceSpeed)
 };
 
 // The capabilities of `machine`, asked of its dialect's post. Throws InputError where no post
@@ -45,7 +46,7 @@ MachineCapabilities machine_capabilities(const Machine& machine);
 // {"controlCompensation": {"supported": false, "refused": "..."}, "arcs": {"xy": "arcs", "xz":
 // "lines", ...}, "helices": "arcs", "drilling": {"drill": {"supported": true, "canned": "G81",
 // "fields": [...], "longhand": true}, ...}, "counterClockwiseSpindle": {...},
-// "programNumber": {...}} (mill-only members left out for a lathe). Drilling fields are named
+// "programNumber": {...}, "constantSurfaceSpeed": {...}} (mill-only members left out for a lathe). Drilling fields are named
 // as the machine file names them (TurnDrillingFields on a lathe).
 nlohmann::json capabilities_json(const MachineCapabilities& capabilities);
 

@@ -15,6 +15,8 @@
 #include "camgen/geometry/region.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/design.hpp"
+#include "camgen/operations/registry.hpp"
+#include "camgen/post/machine.hpp"
 
 namespace camgen {
 
@@ -75,5 +77,10 @@ struct ProbeHeights {
 // judged centre keeps from a region's edge (at least half a cell's diagonal plus the tolerance).
 std::vector<DesignFinding> check_design(const PartDesign& design, const HeightGridView& grid, double tolerance, double margin,
                                         const ProbeHeights& probes = {});
+
+// A cycle the machine cannot make, left to the operator at a stop (OperatorStops: a tap where
+// the machine cannot tap), makes nothing the program cuts: its cuts (a mill's drill) or bore (a
+// lathe's turn-drill) leave the design, and `design.unchecked` says why.
+void leave_out_operator_cycles(PartDesign& design, const Job& job, const Machine& machine);
 
 }  // namespace camgen
