@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "camgen/geometry/vec.hpp"
@@ -20,6 +21,16 @@ struct G71Element {
 };
 
 double g71_cross(Vec2 u, Vec2 v) { return u.x * v.y - u.y * v.x; }
+
+// A length for a message: at most 4 decimals, no trailing zeros, no -0.
+std::string g71_number(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4f", v);
+    std::string s = text;
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+    return s == "-0" ? "0" : s;
+}
 
 // Where an element meets the level (radius) x: the Z of the meeting points in the order the
 // control finds them (a level element gives both its ends).
@@ -234,7 +245,7 @@ LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, d
         bool hit = through(p0.y);
         for (const ProfileSegment& s : profile.segments) hit = hit || through(s.end.y);
         if (hit)
-            return refuse("a level of the cycle (radius " + std::to_string(x) +
+            return refuse("a level of the cycle (radius " + g71_number(x) +
                           ") runs through a corner of the profile: the control's cycle is not modelled there");
     }
     if (pe.y < start.y) el.push_back({pe, Vec2{pe.x, start.y}});

@@ -14,7 +14,10 @@
 
 #include <fmt/format.h>
 
+#include "camgen/common/error.hpp"
 #include "camgen/geometry/lathe_cycle.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/reader/reader.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "rs274.hpp"
 
@@ -190,7 +193,110 @@ void g71m_compare(const G71mCase& c, const std::string& rs274) {
     CHECK_MESSAGE(diff.empty(), diff);
 }
 
+// The moves from the one ending at `start` on (the cycle's own), dropping what comes before.
+std::vector<G71mMove> g71m_from(const std::vector<G71mMove>& all, Vec2 start) {
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (std::abs(all[i].z - start.x) < 1e-4 && std::abs(all[i].x - start.y) < 1e-4)
+            return {all.begin() + static_cast<std::ptrdiff_t>(i), all.end()};
+    return {};
+}
+
+// camgen's linuxcnc-lathe reader on the same program: its Rapid, Linear and Arc events.
+std::vector<G71mMove> g71m_read(const std::string& program) {
+    const Machine machine = load_machine("linuxcnc-lathe");
+    std::vector<G71mMove> out;
+    for (const ReadEvent& e : read_program(program, machine, "g71.ngc")) {
+        G71mMove m;
+        if (const auto* r = std::get_if<Rapid>(&e.event)) {
+            m.kind = 'r', m.x = r->to.x, m.z = r->to.z;
+        } else if (const auto* l = std::get_if<Linear>(&e.event)) {
+            m.kind = 'f', m.x = l->to.x, m.z = l->to.z;
+        } else if (const auto* a = std::get_if<Arc>(&e.event)) {
+            m.kind = 'a', m.x = a->to.x, m.z = a->to.z, m.cx = a->centre.x, m.cz = a->centre.z;
+            m.rot = a->direction == ArcDirection::ccw ? 1 : -1;
+        } else {
+            continue;
+        }
+        out.push_back(m);
+    }
+    return g71m_normalise(out);
+}
+
+std::string g71m_diff(const std::vector<G71mMove>& want, const std::vector<G71mMove>& got) {
+    if (want.size() != got.size()) return fmt::format("rs274 made {} moves, camgen {}", want.size(), got.size());
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        const G71mMove& w = want[i];
+        const G71mMove& g = got[i];
+        bool same = w.kind == g.kind && std::abs(w.z - g.z) < 1e-3 && std::abs(w.x - g.x) < 1e-3;
+        if (same && w.kind == 'a') same = std::abs(w.cz - g.cz) < 1e-3 && std::abs(w.cx - g.cx) < 1e-3 && w.rot == g.rot;
+        if (!same)
+            return fmt::format("move {}: rs274 {} Z{:.4f} X{:.4f}, camgen {} Z{:.4f} X{:.4f}", i, w.kind, w.z, w.x, g.kind, g.z, g.x);
+    }
+    return {};
+}
+
+// A linuxcnc-lathe program as camgen's reader takes it, running G71 on the case's profile.
+std::string g71m_lathe_program(const G71mCase& c) {
+    return "G18 G7 G40 G80 G90 G94 G21\nT1 M6\nS1000 M3\nG0 G43 Z20 H1\nX" + g71m_num(2 * c.start.y) + " Z" +
+           g71m_num(c.start.x) + "\nO100 sub\n" + c.sub + "O100 endsub\nG71 Q100 D0 I" + g71m_num(c.depth) + " R" +
+           g71m_num(c.retract) + " F100\nG0 Z20\nM5\nM2\n";
+}
+
 }  // namespace
+
+TEST_CASE("linuxcnc-lathe reader: G71 with its profile subroutine is read as the moves rs274 makes") {
+    const std::string rs274 = g71m_rs274();
+    std::mt19937 rng(7);
+    int compared = 0;
+    for (int k = 0; k < 60; ++k) {
+        const G71mCase c = g71m_generate(rng);
+        if (linuxcnc_g71(c.start, c.profile, c.depth, c.retract).refusal) continue;
+        const std::string program = g71m_lathe_program(c);
+        CAPTURE(k);
+        INFO(program);
+        const std::vector<G71mMove> want = g71m_from(g71m_canon(oracle::run_rs274_canon(rs274, program)), c.start);
+        const std::vector<G71mMove> got = g71m_from(g71m_read(program), c.start);
+        REQUIRE(want.size() > 3);
+        const std::string diff = g71m_diff(want, got);
+        CHECK_MESSAGE(diff.empty(), diff);
+        ++compared;
+    }
+    CHECK(compared >= 40);
+}
+
+TEST_CASE("linuxcnc-lathe reader: what it refuses of G71 and its subroutine") {
+    const Machine machine = load_machine("linuxcnc-lathe");
+    const std::string head = "G18 G7 G40 G80 G90 G94 G21\nT1 M6\nS1000 M3\nG0 G43 Z20 H1\nX41 Z2\n";
+    const std::string sub = "O100 sub\nG1 X20 Z0\nG1 Z-20\nG1 X30.5\nO100 endsub\n";
+    auto refusal = [&](const std::string& body) -> std::string {
+        try {
+            (void)read_program(head + body + "M5\nM2\n", machine, "g71.ngc");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    CHECK(refusal(sub + "G71 Q100 D0 I1 R0.5 F100\n").empty());
+    CHECK(refusal(sub + "G71 Q100 D1 I1 R0.5 F100\n").find("D0 only") != std::string::npos);
+    CHECK(refusal(sub + "G71 Q200 D0 I1 F100\n").find("no subroutine o200") != std::string::npos);
+    CHECK(refusal(sub + "G71 Q100 X40 Z2 I1 F100\n").find("from where the tool stands") != std::string::npos);
+    CHECK(refusal("O100 sub\nG1 X20 Z0\nG1 Z-20\nG1 X18 Z-25\nG1 X30 Z-30\nO100 endsub\nG71 Q100 I1 F100\n")
+              .find("element 1 falls in radius (a pocket)") != std::string::npos);
+    CHECK(refusal(sub + "G0 X40 Z2\nG71 Q100 D0 I1 F100\n").find("runs through a corner of the profile") != std::string::npos);
+    CHECK(refusal("O100 sub\nG1 X20 Z0\nM3\nO100 endsub\n").find("G0/G1/G2/G3 X Z I K only") != std::string::npos);
+    // The program's end read into a subroutine left open.
+    CHECK(refusal("O100 sub\nG1 X20 Z0\nG1 Z-20\n").find("M5 in subroutine o100") != std::string::npos);
+    try {
+        (void)read_program(head + "O100 sub\nG1 X20 Z0\nG1 Z-20\n", machine, "g71.ngc");
+        FAIL("a subroutine without its end was read");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("has no o100 endsub") != std::string::npos);
+    }
+    CHECK(refusal("O100 endsub\n").find("without o100 sub") != std::string::npos);
+    // fanuc-lathe has no such cycle: its reader does not take G71.
+    const Machine fanuc = load_machine("fanuc-lathe");
+    CHECK_THROWS(read_program("G71 Q100 I1\nM30\n", fanuc, "g71.nc"));
+}
 
 TEST_CASE("G71 model: the reference run R_g71_rough_sub's profile with D0 moves as rs274 moves") {
     G71mCase c;
