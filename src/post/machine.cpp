@@ -800,6 +800,7 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             c.name = cf.string("name");
             check_program_text(c.name, cf.path_of("name"), source);
             c.kind = cf.choice("kind", roughing_cycle_kinds, RoughingCycleKind::rough_z);
+            (void)cf.string("style");  // required: what the control makes of the cycle has no default
             c.style = cf.choice("style", roughing_cycle_styles, RoughingCycleStyle::linuxcnc);
             if (c.kind != RoughingCycleKind::rough_z)
                 cf.fail("kind", "camgen writes and reads only rough-z (G71) roughing cycles so far");
