@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/operations/registry.hpp"
 
 namespace camgen {
@@ -200,7 +201,7 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     d.path = op.path;
     d.tool = tool->number;
     d.nose = tool->diameter / 2;  // as the simulation's tool_shape
-    d.nose_compensated = op.compensation == NoseCompensation::computer && op.nose_radius > 0;
+    d.nose_compensated = op.compensation != NoseCompensation::none && op.nose_radius > 0;
     d.chord = lathe_design_chord;
     const double clearance = job.clearance;
     const Vec2 start = op.profile.start;
@@ -233,7 +234,9 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
         }
     }
     const Vec2 tip_end = tp.segments.back().end;
-    const Vec2 lifted = tip_end + op.lift_direction * op.lift;
+    // Under control compensation the G40 move lifts the tip from where the control left it.
+    const bool control = op.compensation == NoseCompensation::control && !op.control_path.segments.empty();
+    const Vec2 lifted = control ? op.control_exit : tip_end + op.lift_direction * op.lift;
     d.tip.push_back({tip_end, lifted});
     d.tip.push_back({lifted, {lifted.x, op.retract_x}});
     d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}});
@@ -259,6 +262,8 @@ public:
         else if (const auto* l = std::get_if<Linear>(&e)) to({l->to.z, l->to.x});
         else if (const auto* a = std::get_if<Arc>(&e)) arc(*a);
         else if (const auto* t = std::get_if<ThreadFeed>(&e)) to({t->to.z, t->to.x});
+        else if (const auto* c = std::get_if<ThreadCycle>(&e))
+            for (const Event& m : thread_cycle_moves(*c)) emit(m);
     }
 
 private:
@@ -375,8 +380,19 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
 }
 
 void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
-    if (op.side == ThreadSide::internal)
-        return unchecked.push_back(op.path + ": an internal thread (the turned part's design has no bore side yet)");
+    if (op.side == ThreadSide::internal) {
+        const Tool* tool = lathe_design_tool(job, op.tool);
+        LatheHoleDesign h;
+        h.path = op.path;
+        h.tool = op.tool;
+        h.top_z = op.start_z;
+        h.bottom_z = op.end_z;
+        h.radius = op.root_radius();
+        h.nose = tool ? tool->nose_radius : 0.0;
+        h.nose_above = -lathe_tip_offset(tool && tool->orientation > 0 ? tool->orientation : 3, h.nose).x;
+        design.holes.push_back(std::move(h));
+        return;
+    }
     LatheTurnDesign d;
     if (!lathe_design_turned(op, job, d, unchecked)) return;
     d.profile.start = {op.start_z, op.root_radius()};

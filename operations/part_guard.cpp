@@ -79,6 +79,9 @@ void PartGuard::emit(const Event& event) {
                              m.source = tag(l.movement, false);
                              refused(comp_.move(m));
                          },
+                         [&](const ThreadCycle& c) {
+                             for (const Event& m : thread_cycle_moves(c)) emit(m);
+                         },
                          [&](const ThreadFeed& t) {
                              CompMove m;
                              m.end = t.to;

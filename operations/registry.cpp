@@ -168,7 +168,9 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                 entry = std::max(r->boundary.start.x, tip) + r->approach, what = "its passes come in";
             }
             if (const auto* t = std::get_if<TurnProfileOp>(&op)) {
-                const Profile& tip = t->tip_path.segments.empty() ? t->profile : t->tip_path;
+                // Under control compensation the tip rapids to the designed start itself.
+                const bool control = t->compensation == NoseCompensation::control && !t->control_path.segments.empty();
+                const Profile& tip = t->tip_path.segments.empty() || control ? t->profile : t->tip_path;
                 entry = tip.start.x + t->approach, what = "it rapids along Z to its start";
             }
             if (const auto* t = std::get_if<TurnThreadOp>(&op)) {
@@ -198,6 +200,23 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                                        part->path));
         break;
     }
+    // Under a constant surface speed the spindle's speed follows the diameter: its operations
+    // feed per revolution, so that the chip stays what the job says (and Sinumerik's G96
+    // switches G95 on by itself).
+    for (const Operation& op : job.operations)
+        visit_exhaustive(
+            [&]<OperationType Op>(const Op& o) {
+                if constexpr (uses_tool<Op>() && requires { o.feed_mode; }) {
+                    const auto tool = in.header().tools.find(o.tool);
+                    if (tool == in.header().tools.end() || !(tool->second.surface_speed > 0)) return;
+                    if (o.feed_mode != FeedMode::per_revolution)
+                        json::fail(in.source(), o.path + (in.root().contains(nlohmann::json::json_pointer(o.path + "/feedMode")) ? "/feedMode" : ""),
+                                   fmt::format("tool {} turns at a constant surface speed (surfaceSpeed, G96): the "
+                                               "operation must feed per revolution (feedMode \"per-revolution\")",
+                                               o.tool));
+                }
+            },
+            op);
     // Every operation is read and its size claimed: only now do patterns make their holes.
     for (Operation& op : job.operations)
         visit_exhaustive(
@@ -244,6 +263,7 @@ Job read_job_file(const std::string& filename) {
 void expand_job(const Job& job, EventSink& sink) {
     int current = 0;
     double rpm = 0.0;
+    double surface_speed = 0.0;  // m/min, 0: constant rpm
     FeedMode feed_mode = FeedMode::per_minute;  // of the operation before
     SpindleState state = SpindleState::off;
     CoolantMode coolant = CoolantMode::off;
@@ -297,10 +317,11 @@ void expand_job(const Job& job, EventSink& sink) {
                     current = tool.number;
                     state = SpindleState::off;
                 }
-                if (state != want || rpm != tool.rpm) {
-                    sink.emit(Spindle{want, tool.rpm});
+                if (state != want || rpm != tool.rpm || surface_speed != tool.surface_speed) {
+                    sink.emit(Spindle{want, tool.rpm, tool.surface_speed});
                     state = want;
                     rpm = tool.rpm;
+                    surface_speed = tool.surface_speed;
                 }
                 // The tool's coolant, once the spindle runs.
                 if (tool.coolant != coolant) {

@@ -1,6 +1,7 @@
 // The ISO lathe dialect: the ISO post in the XZ plane; canned drilling on the spindle axis
 // under G17 (LinuxCNC) or in Fanuc T's G74; T0101 turret calls; G50 S / G97 S spindle.
 #include "machines/iso/iso_lathe_post.hpp"
+#include "camgen/geometry/compensation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,17 +34,64 @@ void IsoLathePost::on_tool_change(const ToolChange& tool) {
     length_offset_pending_ = false;
 }
 
+void IsoLathePost::on_compensation(const Compensation& c) {
+    if (c.side != CompensationSide::off) {
+        const char* code = c.side == CompensationSide::left ? "G41" : "G42";
+        if (lathe_.tool_call == iso::LatheToolCall::turret)
+            writer().comment(fmt::format("{} nose comp: offset {:02} R{} nose radius, T{} {} (LinuxCNC numbering)", code,
+                                         current_tool(), number_text(c.radius), c.orientation, lathe_tip_words(c.orientation)));
+        else
+            writer().comment(fmt::format("{} nose comp: tool table T{} D{} nose diameter, Q{} {}", code, current_tool(),
+                                         number_text(2 * c.radius), c.orientation, lathe_tip_words(c.orientation)));
+    }
+    IsoPost::on_compensation(c);
+}
+
+// G41/G42 without D: the control takes the tool's own entry (LinuxCNC's tool table, Fanuc T's
+// offset of T0101).
+std::string IsoLathePost::compensation_words(const Compensation& c) const {
+    return g(c.side == CompensationSide::off ? 40 : c.side == CompensationSide::left ? 41 : 42);
+}
+
 void IsoLathePost::on_spindle(const Spindle& s) {
-    if (s.state == SpindleState::off || !lathe_.spindle_limit) {
+    if (s.state == SpindleState::off) {
         IsoPost::on_spindle(s);
         return;
     }
-    // Fanuc T: the speed limit first (it also caps constant surface speed), then the speed in rpm.
-    if (!limit_written_) {
-        writer().add(g(iso::spindle_limit_code)).add(rpm_format().word("S", machine().limits.max_rpm)).end();
-        limit_written_ = true;
+    const std::string on = m(s.state == SpindleState::cw ? 3 : 4);
+    if (s.surface_speed > 0) {
+        // Constant surface speed: S in m/min (ft/min in inch), the spindle held to its limit.
+        const std::string limit = speed_text(s.rpm);
+        const double vc = machine().units == Units::inch ? s.surface_speed / 0.3048 : s.surface_speed;
+        if (rpm_format().is_zero(vc))
+            fail("", fmt::format("surface speed {} m/min would be written as S0 on machine {}", number_text(s.surface_speed),
+                                 machine().name));
+        if (lathe_.spindle_limit) {
+            // Fanuc T: G50 S clamps the speed G96 computes.
+            if (limit_written_ != s.rpm) writer().add(g(iso::spindle_limit_code)).add("S" + limit).end();
+            limit_written_ = s.rpm;
+            writer().add(g(iso::surface_speed_code)).add(rpm_format().word("S", vc)).add(on).end();
+        } else {
+            writer().add(g(iso::surface_speed_code)).add("D" + limit).add(rpm_format().word("S", vc)).add(on).end();
+        }
+        surface_mode_ = true;
+        return;
     }
-    writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(m(s.state == SpindleState::cw ? 3 : 4)).end();
+    if (!lathe_.spindle_limit) {
+        // LinuxCNC: after a G96, a bare S would be a surface speed.
+        if (surface_mode_) writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(on).end();
+        else IsoPost::on_spindle(s);
+        surface_mode_ = false;
+        return;
+    }
+    // Fanuc T: the speed limit first (it also caps constant surface speed), then the speed in
+    // rpm; a limit a G96 left below this speed is raised to the machine's again.
+    if (limit_written_ == 0 || s.rpm > limit_written_) {
+        writer().add(g(iso::spindle_limit_code)).add(rpm_format().word("S", machine().limits.max_rpm)).end();
+        limit_written_ = machine().limits.max_rpm;
+    }
+    writer().add(g(iso::constant_rpm_code)).add(speed_word(s.rpm)).add(on).end();
+    surface_mode_ = false;
 }
 
 std::optional<std::string> IsoLathePost::canned_limit(const DrillCycle& c, const DrillingCycleSpec& spec) const {
@@ -100,6 +148,88 @@ void IsoLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
     // lead, not a feed: the next move writes its motion word and its feed.
     forget_motion();
     if (g32) forget_feed();
+}
+
+IsoLathePost::G76Words IsoLathePost::g76_words(const ThreadCycle& c) const {
+    G76Words w;
+    // The control reads back what the text says: each value through its format, rounded.
+    auto put = [&](const nc::Format& f, std::string_view letter, double v) {
+        w.text.push_back(f.word(letter, v));
+        return f.rounded(v);
+    };
+    const nc::Format x = machine().format("x");  // I, J, K are diameters under G7, as X
+    const nc::Format z = machine().format("z");
+    const nc::Format p = machine().format("feedPerRev");
+    w.read.drive_x = x.rounded(c.start.x);
+    w.read.drive_y = c.start.y;
+    w.read.drive_z = z.rounded(c.start.z);
+    w.read.p = put(p, "P", c.lead);
+    w.read.z = put(z, "Z", c.end_z);
+    w.read.i = put(x, "I", c.crest_x - c.start.x);
+    // Equal steps (R1): the control cuts J, 2J, ... while below K, then K; a J rounded down
+    // would leave a sliver of a pass before K, so the step is the least written value that
+    // gives the cycle's count of passes.
+    double j = c.first_depth;
+    if (c.degression == 1.0) {
+        const std::size_t cutting = c.depths.size() - static_cast<std::size_t>(std::max(c.spring_passes, 0));
+        iso::LinuxcncG76 probe;
+        probe.k = x.rounded(c.depth);
+        probe.r = 1.0;
+        for (int step = 0; step <= 40; ++step) {
+            probe.j = x.rounded(c.first_depth + step * 1e-5);
+            if (probe.j < c.first_depth - 1e-9) continue;
+            if (iso::linuxcnc_g76_depths(probe).size() == cutting) {
+                j = probe.j;
+                break;
+            }
+        }
+    }
+    w.read.j = put(x, "J", j);
+    w.read.k = put(x, "K", c.depth);
+    w.read.r = c.degression;
+    w.text.push_back(fmt::format("R{}", number_text(c.degression)));
+    if (c.infeed_angle > 0) {
+        w.read.q = std::round(c.infeed_angle * 1e4) / 1e4;
+        w.text.push_back(fmt::format("Q{}", number_text(w.read.q, 4)));
+    }
+    w.read.h = c.spring_passes;
+    if (c.spring_passes > 0) w.text.push_back(fmt::format("H{}", c.spring_passes));
+    return w;
+}
+
+std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c, const ThreadingCycleSpec& spec) const {
+    // G76 cuts every pass by its own depth rule from the rounded words: the moves it makes must
+    // be the cycle's within 0.001 mm.
+    if (spec.style != ThreadCycleStyle::linuxcnc_g76) return IsoPost::thread_cycle_limit(c, spec);
+    if (c.min_depth > 0) return std::string("it takes no least depth of cut");
+    const G76Words w = g76_words(c);
+    const std::vector<Event> control = iso::linuxcnc_g76_moves(w.read);
+    const std::vector<Event> wanted = thread_cycle_moves(c);
+    if (control.size() != wanted.size())
+        return fmt::format("its rounded words make {} passes, not {}", control.size() / 4, wanted.size() / 4);
+    auto at = [](const Event& e) {
+        if (const auto* r = std::get_if<Rapid>(&e)) return r->to;
+        return std::get<ThreadFeed>(e).to;
+    };
+    for (size_t n = 0; n < control.size(); ++n) {
+        const Vec3 a = at(control[n]), b = at(wanted[n]);
+        const double off = std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
+        if (off > 0.001)
+            return fmt::format("its pass {} would run {} mm from camgen's", n / 4 + 1, number_text(off, 4));
+    }
+    return std::nullopt;
+}
+
+void IsoLathePost::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpec& spec) {
+    if (spec.style != ThreadCycleStyle::linuxcnc_g76) IsoPost::on_thread_cycle(c, spec);
+    const G76Words w = g76_words(c);
+    (void)lead_word("P", c.lead);  // the checks of a synchronised move: spindle on, within maxFeed
+    writer().add(spec.name);
+    for (const std::string& t : w.text) writer().add(t);
+    writer().end();
+    // G76 leaves the tool at the drive X and the end Z, in no motion mode camgen writes.
+    assume_z(c.end_z);
+    forget_motion();
 }
 
 bool IsoLathePost::writes_return_level() const {

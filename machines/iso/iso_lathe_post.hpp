@@ -6,7 +6,10 @@
 // ISO tool change; "turret": T0101, tool and offset number), spindleLimit (true: G50 S<maxRpm>
 // before the first spindle start, and G97 S.. M3). A cycle of style "fanuc-g74" is Fanuc T's
 // two-block peck drilling G74 R(e) / G74 Z Q(least increments) F.
+#include <vector>
+
 #include "machines/iso/iso_post.hpp"
+#include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen {
 
@@ -17,7 +20,10 @@ public:
 protected:
     void on_open() override;
     void on_tool_change(const ToolChange& tool) override;
+    // G97 S.. M3 (Fanuc T after G50 S<maxRpm>; LinuxCNC's G97 only after a G96), or constant
+    // surface speed: G50 S<limit> G96 S<vc> M3 (Fanuc T), G96 D<limit> S<vc> M3 (LinuxCNC).
     void on_spindle(const Spindle& spindle) override;
+    std::optional<std::string> surface_speed_refusal() const override { return std::nullopt; }
     // G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), the threadMove setting; along Z only.
     void on_thread_feed(const Vec3& from, const ThreadFeed& move) override;
     std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const override;
@@ -27,10 +33,25 @@ protected:
     // Fanuc T system A: G98/G99 are the feed modes, and a drilling cycle returns to the Z it
     // started from (the retract plane, where the header put the tool).
     bool writes_return_level() const override;
+    // Nose-radius compensation (G41/G42 in G18): a comment naming what the control's table must
+    // hold (LinuxCNC: the tool table's D, the nose diameter, and Q, the orientation; Fanuc T: the
+    // offset's R and imaginary tip T), then G41/G42 without a D word on the next feed move.
+    void on_compensation(const Compensation& compensation) override;
+    std::string compensation_words(const Compensation& compensation) const override;
+    // LinuxCNC's G76 P Z I J K R Q H from the drive point (linuxcnc_g76.hpp).
+    void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) override;
+    std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const override;
 
 private:
+    // The G76 words of a cycle, as text, and the values the control reads from them.
+    struct G76Words {
+        std::vector<std::string> text;
+        iso::LinuxcncG76 read;
+    };
+    G76Words g76_words(const ThreadCycle& cycle) const;
     const iso::LatheSettings& lathe_;
-    bool limit_written_ = false;  // G50 S was written
+    double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
+    bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97
 };
 
 }  // namespace camgen

@@ -17,6 +17,7 @@
 #include "camgen/geometry/vec.hpp"
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
+#include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen::reader {
 
@@ -71,6 +72,13 @@ private:
     bool sub_started_ = false;  // its first point is set
     int sub_motion_ = -1;       // the modal motion code inside it (tenths)
     std::map<int, Profile> subs_;
+    void g76(BlockWords& w);
+    // The machine's G76 (threadingCycles of style linuxcnc-g76), if it has one.
+    const ThreadingCycleSpec* g76_spec() const {
+        for (const ThreadingCycleSpec& s : machine_.threading)
+            if (s.style == ThreadCycleStyle::linuxcnc_g76) return &s;
+        return nullptr;
+    }
     // The code of the thread-cutting move this machine writes (threadMove): 33 or 32.
     double thread_code() const {
         return lathe_.thread_move == iso::LatheThreadMove::g32_f ? iso::thread_g32_code : iso::thread_g33_code;
@@ -78,6 +86,7 @@ private:
 
     const iso::LatheSettings& lathe_;
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
+    std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
 };
 
 std::optional<int> IsoLatheReader::sub_line(std::string_view text, std::string_view keyword) {
@@ -231,12 +240,14 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
         set_group(codes.motion, c);
         return true;
     }
-    if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code)) {
-        // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed.
+    if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code) ||
+        c.value == code(iso::surface_speed_code)) {
+        // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed, G96 [D<max rpm>]
+        // S<m/min> constant surface speed.
         set_group(codes.spindle_mode, c);
         return true;
     }
-    if (c.value == code(thread_code())) {
+    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec())) {
         set_group(codes.motion, c);
         return true;
     }
@@ -250,6 +261,10 @@ bool IsoLatheReader::f_is_lead(int mode) const {
 bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
     if (mode == code(71) && linuxcnc_g71_spec()) {
         roughing_cycle(w);
+        return true;
+    }
+    if (mode == code(76) && g76_spec()) {
+        g76(w);
         return true;
     }
     if (mode != code(thread_code())) return false;
@@ -267,14 +282,93 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
     return true;
 }
 
+void IsoLatheReader::g76(BlockWords& w) {
+    // LinuxCNC's G76 P Z I J K [R Q H]: from where the tool stands (the drive point) the passes
+    // the control makes (linuxcnc_g76.hpp); I, J and K are read as X is (diameters under G7).
+    for (char letter : {'X', 'Y', 'E', 'L', 'F'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G76: camgen reads straight threads along Z from the drive point only", x->text));
+    const Word* pw = w.take('P');
+    const Word* zw = w.take('Z');
+    const Word* iw = w.take('I');
+    const Word* jw = w.take('J');
+    const Word* kw = w.take('K');
+    if (!pw || !zw || !iw || !jw || !kw) fail("G76 needs P, Z, I, J and K");
+    if (!position_known()) fail("G76 from an unknown position");
+    auto as_x = [&](const Word* word) {
+        Word x = *word;
+        x.letter = 'X';
+        return length(x);
+    };
+    iso::LinuxcncG76 g;
+    const Vec3 here = position();
+    g.drive_x = here.x, g.drive_y = here.y, g.drive_z = here.z;
+    g.z = length(*zw);
+    g.i = as_x(iw);
+    g.j = as_x(jw);
+    g.k = as_x(kw);
+    g.p = pw->value;  // the lead is read by thread_to, through the feed-per-revolution format
+    if (const Word* r = w.take('R')) g.r = r->value;
+    if (const Word* q = w.take('Q')) g.q = q->value;
+    if (const Word* h = w.take('H')) {
+        if (h->value != std::floor(h->value)) fail(fmt::format("{} on G76: the spring passes are a whole number", h->text));
+        g.h = static_cast<int>(std::clamp(h->value, -1.0, 101.0));
+    }
+    if (!(g.z < g.drive_z)) fail(fmt::format("G76 {}: camgen cuts threads towards the chuck, below the drive point", zw->text));
+    if (g.i == 0) fail(fmt::format("G76 {}: the thread's crest must lie off the drive line", iw->text));
+    if (!(g.j > 0) || !(g.k > 0)) fail("G76: J and K must be > 0");
+    if (!(g.r >= 1.0)) fail("G76: R must be 1 or more");
+    if (!(g.q >= 0 && g.q < 90)) fail("G76: Q must be from 0 to below 90 degrees");
+    if (g.h < 0 || g.h > 100) fail("G76: H must be from 0 to 100");
+    if (g.j * std::pow(10000.0, 1.0 / g.r) < g.k) fail("G76: J is too small for K: more than 10000 passes");
+    for (const Event& e : iso::linuxcnc_g76_moves(g)) {
+        if (const auto* r = std::get_if<Rapid>(&e))
+            rapid_to(r->to.x, std::nullopt, r->to.z);
+        else
+            thread_to("G76", std::get<ThreadFeed>(e).to.z, *pw);
+    }
+}
+
 void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {
-    if (!codes.spindle_mode || codes.spindle_mode->value != code(iso::spindle_limit_code)) return;
+    if (!codes.spindle_mode) return;
+    const std::string& name = codes.spindle_mode->word->text;
+    auto within_machine = [&](const Word& s) {
+        if (machine_.limits.max_rpm > 0 && rpm(s) > machine_.limits.max_rpm)
+            fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s.text, machine_.name, machine_.limits.max_rpm));
+        return rpm(s);
+    };
+    if (codes.spindle_mode->value == code(iso::constant_rpm_code)) {
+        // G97 S: the S that follows is rpm (without it the control would turn at the number
+        // the surface speed was).
+        if (!w.has('S')) fail(fmt::format("{} without S: camgen writes {} S<rpm>", name, name));
+        constant_rpm();
+        return;
+    }
+    if (codes.spindle_mode->value == code(iso::surface_speed_code)) {
+        // G96 S<m/min>, held to LinuxCNC's D or Fanuc T's G50 S (else the machine's limit).
+        if (!w.has('S')) fail(fmt::format("{} without S, the surface speed", name));
+        double limit = 0.0;
+        if (const Word* d = w.take('D')) {
+            if (lathe_.spindle_limit)
+                fail(fmt::format("{} on {}: machine {} limits the spindle with G50 S", d->text, name, machine_.name));
+            limit = within_machine(*d);
+        } else if (g50_limit_) {
+            limit = *g50_limit_;
+        } else if (machine_.limits.max_rpm > 0) {
+            limit = machine_.limits.max_rpm;
+        } else {
+            fail(fmt::format("{} without a spindle limit (D, or G50 S before it), and machine {} has no maxRpm", name,
+                             machine_.name));
+        }
+        constant_surface_speed(limit);
+        return;
+    }
     // G50 S: the highest speed the spindle may turn, not a speed.
     const Word* s = w.take('S');
-    const std::string& g50 = codes.spindle_mode->word->text;
-    if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", g50, g50));
-    if (machine_.limits.max_rpm > 0 && rpm(*s) > machine_.limits.max_rpm)
-        fail(fmt::format("{}: above the limit of machine {} ({} rpm)", s->text, machine_.name, machine_.limits.max_rpm));
+    if (!s || w.has('X') || w.has('Z')) fail(fmt::format("{}: camgen writes it only as the speed limit {} S", name, name));
+    g50_limit_ = within_machine(*s);
+    if (!(*g50_limit_ > 0)) fail(fmt::format("{}: a speed limit must be > 0", s->text));
+    spindle_limit(*g50_limit_);
 }
 
 bool IsoLatheReader::variant_tool_call(const Word& t) {

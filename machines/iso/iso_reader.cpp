@@ -233,9 +233,14 @@ void IsoReader::block(const Block& b) {
             emit(Compensation{CompensationSide::off});
         } else {
             const Word* d = w.take('D');
-            if (!d) fail(fmt::format("{} without its offset number D", k.comp->word->text));
+            const CompensationSide side = k.comp->value == code(41) ? CompensationSide::left : CompensationSide::right;
+            // A lathe's G41/G42 (nose-radius compensation) take the tool's own table entry or
+            // offset (LinuxCNC: the tool table's D and Q; Fanuc T: the offset of T0101 with its
+            // R and T): no D word, register 0 = the tool's number.
+            if (!d && machine_.kind == MachineKind::lathe) emit(Compensation{side, 0});
+            else if (!d) fail(fmt::format("{} without its offset number D", k.comp->word->text));
             // The radius is the control's, in its offset register D (trace_program applies it).
-            emit(Compensation{k.comp->value == code(41) ? CompensationSide::left : CompensationSide::right, integer_of(*d)});
+            else emit(Compensation{side, integer_of(*d)});
         }
     }
     if (k.length_offset && k.length_offset->value == code(43)) {

@@ -42,6 +42,9 @@ inline constexpr double thread_g32_code = 32;
 inline constexpr double spindle_limit_code = 50;
 // Constant spindle speed (rpm), Fanuc T and LinuxCNC: G97.
 inline constexpr double constant_rpm_code = 97;
+// Constant surface speed (S in m/min, ft/min under G20), Fanuc T and LinuxCNC: G96 (LinuxCNC's
+// D: the spindle's limit; Fanuc T's limit is G50 S).
+inline constexpr double surface_speed_code = 96;
 // Fanuc T's end-face peck drilling cycle: G74 R(e) / G74 Z Q F.
 inline constexpr double face_peck_code = 74;
 

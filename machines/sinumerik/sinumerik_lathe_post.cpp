@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
+#include "camgen/geometry/compensation.hpp"
 
 namespace camgen {
 
@@ -14,10 +18,43 @@ SinumerikLathePost::SinumerikLathePost(const Machine& machine, std::ostream& out
                          machine.source);
 }
 
+void SinumerikLathePost::on_compensation(const Compensation& c) {
+    if (c.side != CompensationSide::off)
+        writer().comment(fmt::format("{} nose comp: T{} D1 radius {}, cutting edge position {}, {} (LinuxCNC numbering)",
+                                     c.side == CompensationSide::left ? "G41" : "G42", current_tool(), number_text(c.radius),
+                                     c.orientation, lathe_tip_words(c.orientation)));
+    SinumerikPost::on_compensation(c);
+}
+
 void SinumerikLathePost::on_open() {
     SinumerikPost::on_open();
     const auto& b = machine().frame.start_block;
     if (std::find(b.begin(), b.end(), "G18") != b.end()) assume_plane(18);
+}
+
+void SinumerikLathePost::on_spindle(const Spindle& s) {
+    if (s.state == SpindleState::off || (s.surface_speed == 0 && !surface_mode_)) {
+        SinumerikPost::on_spindle(s);
+        return;
+    }
+    const std::string on = m(s.state == SpindleState::cw ? 3 : 4);
+    if (s.surface_speed == 0) {
+        writer().add(g(97)).add(speed_word(s.rpm)).add(on).end();
+        surface_mode_ = false;
+        return;
+    }
+    // G96 S in m/min (ft/min under G70), the spindle held to LIMS= (SINUMERIK programming
+    // manual, "Constant cutting rate"); G96 switches G95 on, which camgen's operations under
+    // it use already.
+    const std::string limit = speed_text(s.rpm);
+    const double vc = machine().units == Units::inch ? s.surface_speed / 0.3048 : s.surface_speed;
+    if (rpm_format().is_zero(vc))
+        fail("", fmt::format("surface speed {} m/min would be written as S0 on machine {}", number_text(s.surface_speed),
+                             machine().name));
+    if (limit_written_ != s.rpm) writer().add("LIMS=" + limit).end();
+    limit_written_ = s.rpm;
+    writer().add(g(96)).add(rpm_format().word("S", vc)).add(on).end();
+    surface_mode_ = true;
 }
 
 void SinumerikLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {

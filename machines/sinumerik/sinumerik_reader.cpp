@@ -33,7 +33,7 @@ public:
 
 protected:
     bool frame_line(std::string_view) override { return false; }
-    bool named_word(std::string_view name) const override { return name == "CR"; }
+    bool named_word(std::string_view name) const override { return name == "CR" || name == "LIMS"; }
     void line(std::string_view text) override;
     void block(const Block& b) override;
     void finish() override;
@@ -52,6 +52,7 @@ private:
     int motion_ = -1;
     Plane plane_ = Plane::xy;
     std::optional<int> selected_tool_;
+    std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
 
@@ -341,15 +342,21 @@ DrillCycle SinumerikReader::cycle_now() const {
 
 void SinumerikReader::block(const Block& b) {
     if (ended_) fail("a block after the end of the program");
-    std::optional<Code> motion, plane, units, comp, dwell, work_offset, coolant;
+    std::optional<Code> motion, plane, units, comp, dwell, work_offset, coolant, speed_mode;
     MCodes m;
     BlockWords w(*this, "XYZIJKFSTD");
     const Word* cr = nullptr;
+    const Word* lims = nullptr;
     auto set_group = [&](std::optional<Code>& group, Code c) { NcReader::set_group(group, c, "group"); };
     for (const Word& x : b.words) {
         if (x.name == "CR") {
             if (cr) fail("two CR= words in one block");
             cr = &x;
+        } else if (x.name == "LIMS") {
+            // A lathe's spindle limit under constant surface speed (G96).
+            if (machine_.kind != MachineKind::lathe) fail(fmt::format("{}: a lathe's spindle limit", x.text));
+            if (lims) fail("two LIMS= words in one block");
+            lims = &x;
         } else if (x.letter == 'G') {
             Code c{code_of(x), &x};
             // A lathe's feed modes (frame feedModes: G94, G95 per revolution).
@@ -363,6 +370,11 @@ void SinumerikReader::block(const Block& b) {
                     // Thread cutting with constant lead, G33 Z K: on a lathe only.
                     if (machine_.kind != MachineKind::lathe) fail(fmt::format("unknown code {}", x.text));
                     set_group(motion, c);
+                    break;
+                case code(96): case code(97):
+                    // Constant surface speed (G96 S in m/min, within LIMS=) or constant rpm (G97 S).
+                    if (machine_.kind != MachineKind::lathe) fail(fmt::format("unknown code {}", x.text));
+                    set_group(speed_mode, c);
                     break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
                 case code(70): case code(71): set_group(units, c); break;
@@ -396,6 +408,27 @@ void SinumerikReader::block(const Block& b) {
         emit(Dwell{seconds(*f)});
     }
     if (const Word* f = dwell ? nullptr : w.take('F')) set_feed(*f);
+    if (lims) {
+        const double limit = rpm(*lims);
+        if (!(limit > 0)) fail(fmt::format("{}: a speed limit must be > 0", lims->text));
+        if (machine_.limits.max_rpm > 0 && limit > machine_.limits.max_rpm)
+            fail(fmt::format("{}: above the limit of machine {} ({} rpm)", lims->text, machine_.name, machine_.limits.max_rpm));
+        lims_ = limit;
+        spindle_limit(limit);
+    }
+    if (speed_mode) {
+        const std::string& name = speed_mode->word->text;
+        if (!w.has('S')) fail(fmt::format("{} without S: camgen writes {} S", name, name));
+        if (speed_mode->value == code(97)) {
+            constant_rpm();
+        } else {
+            if (!lims_ && !(machine_.limits.max_rpm > 0))
+                fail(fmt::format("{} without a spindle limit LIMS= before it, and machine {} has no maxRpm", name, machine_.name));
+            constant_surface_speed(lims_.value_or(machine_.limits.max_rpm));
+            // G96 switches feed per revolution (G95) on.
+            set_feed_mode(FeedMode::per_revolution);
+        }
+    }
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
     if (const Word* t = w.take('T')) {
         selected_tool_ = integer_of(*t);

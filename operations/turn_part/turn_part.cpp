@@ -121,9 +121,14 @@ TurnPartOp TurnPartOp::read(Fields& f, const JobInput& in) {
     if (bar && op.z - op.blade.width < stock->face_z - stock->length)
         f.fail("z", fmt::format("the blade at z {} reaches beyond the bar's end (Z {})", in.show(op.z),
                                 in.show(stock->face_z - stock->length)));
-    op.notes.push_back(fmt::format("parting at a constant {} rpm: the surface speed falls towards the centre; where the "
-                                   "spindle runs at constant surface speed, limit its rpm (G50 S, LIMS, G96 D)",
-                                   number_text(tool->rpm)));
+    if (tool->surface_speed > 0)
+        op.notes.push_back(fmt::format("parting at a constant surface speed of {} m/min: towards the centre the spindle "
+                                       "speeds up to its limit, {} rpm",
+                                       number_text(tool->surface_speed), number_text(tool->rpm)));
+    else
+        op.notes.push_back(fmt::format("parting at a constant {} rpm: the surface speed falls towards the centre; where the "
+                                       "spindle runs at constant surface speed, limit its rpm (G50 S, LIMS, G96 D)",
+                                       number_text(tool->rpm)));
     if (op.end > 0)
         op.notes.push_back(fmt::format("the plunge stops at X {} and leaves a pip of that X: the part stays on until it is "
                                        "broken off: the program stops (M0) after the plunge for that",

@@ -52,7 +52,9 @@ constexpr KeySpec turn_profile_keys[] = {
      .description = "how far before the start the approach along Z turns from rapid to feed, mm"},
     {.key = "compensation", .type = JsonType::string, .default_json = "\"computer\"", .choices = &choices_of<nose_compensation_modes>,
      .description = "who makes up for the tool's nose radius: computer (the program runs the nose circle along the "
-                    "profile, for the tool's orientation) or none (the profile is the imaginary tip's path)"},
+                    "profile, for the tool's orientation), control (the program runs the profile with G42 and the "
+                    "control offsets the nose by its tool table's radius and orientation) or none (the profile is the "
+                    "imaginary tip's path)"},
     {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
      .description = "how far the tool feeds off the profile's end, away from the finished surface along its tip "
                     "orientation (orientation 2: +Z and +X at 45 degrees, steeper after a falling slope), before it "
@@ -423,6 +425,47 @@ std::vector<ObjectSpec> TurnProfileOp::objects() {
     };
 }
 
+namespace {
+
+// The program of control compensation, checked as the control runs it (CutterCompensation in
+// (Z, radius), LinuxCNC's rules): the entry along Z under G42, the designed profile up to a nose
+// radius before its end, G40 on the lift. A move the control refuses is refused at its element
+// ("path/N"; the entry at "approachDistance"); the lift goes from where the control leaves the
+// tip, along the lift direction.
+void plan_control_compensation(TurnProfileOp& op, Fields& f, const JobInput& in) {
+    const double r = op.nose_radius;
+    const double length = profile_length(op.profile);
+    if (!(length > r + profile_same_point))
+        f.fail("path", fmt::format("the profile ({} long) is not longer than the nose radius {}: under control compensation "
+                                   "the nose stops a radius before the profile's end, so nothing would be cut",
+                                   in.show(length), in.show(r)));
+    op.control_path = sub_profile(op.profile, 0.0, length - r);
+    CutterCompensation comp([](const CompMove&) {});
+    auto at = [](Vec2 p) { return Vec3{p.x, p.y, 0.0}; };
+    auto check = [&](std::optional<CompError> e) {
+        if (!e) return;
+        if (e->source == 0)
+            f.fail("approachDistance", "the entry move under G42 to the profile's start: the control refuses it: " + e->message);
+        json::fail(in.source(), f.path_of("path") + "/" + std::to_string(e->source - 1),
+                   "under control compensation the control refuses this element: " + e->message);
+    };
+    const Vec2 start = op.profile.start;
+    comp.set_position(at({start.x + op.approach, start.y}));
+    check(comp.on(CompSide::right, r, 0));
+    check(comp.move(CompMove{CompMove::Kind::feed, at(start), {}, ArcDirection::ccw, 0, 0}));
+    for (std::size_t k = 0; k < op.control_path.segments.size(); ++k) {
+        const ProfileSegment& s = op.control_path.segments[k];
+        CompMove m{s.centre ? CompMove::Kind::arc : CompMove::Kind::feed, at(s.end), s.centre.value_or(Vec2{}), s.direction,
+                   0, std::min(k, op.profile.segments.size() - 1) + 1};
+        check(comp.move(m));
+    }
+    check(comp.off(op.control_path.segments.size()));
+    const Vec3 centre = comp.position().value_or(Vec3{});
+    op.control_exit = Vec2{centre.x, centre.y} + lathe_tip_offset(op.orientation, r) + op.lift_direction * op.lift;
+}
+
+}  // namespace
+
 TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     JobInput::known_keys(f, turn_profile_keys);
     const Tool& tool = in.tool(f);
@@ -450,7 +493,25 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     op.nose_radius = tool.nose_radius;
     op.compensation = f.choice("compensation", nose_compensation_modes, NoseCompensation::computer);
     op.tip_path = op.profile;
-    if (op.compensation == NoseCompensation::computer && op.nose_radius > 0) {
+    op.orientation = tool.orientation;
+    if (op.compensation == NoseCompensation::control) {
+        if (!(op.nose_radius > 0))
+            f.fail("compensation", fmt::format("control compensation needs the tool's nose radius: tool {} gives no noseRadius",
+                                               tool.number));
+        if (tool.orientation < 1 || tool.orientation > 8)
+            f.fail("compensation", fmt::format("control compensation needs the tool's tip orientation 1 to 8 (the control "
+                                               "moves that imaginary tip); tool {} has orientation {}{}",
+                                               tool.number, tool.orientation,
+                                               tool.orientation == 9 || tool.orientation == 0
+                                                   ? " (the nose centre: use compensation computer or none)"
+                                                   : ""));
+        if (!(op.approach > op.nose_radius))
+            f.fail("approachDistance",
+                   fmt::format("the entry move under G42 (the feed along Z to the start, approachDistance {}) must be longer "
+                               "than the nose radius {}: the control refuses a shorter one",
+                               in.show(op.approach), in.show(op.nose_radius)));
+    }
+    if (op.compensation != NoseCompensation::none && op.nose_radius > 0) {
         // An insert with angles is checked by first_unfollowable (orientation 2); any other
         // nose by the directions its orientation reaches.
         if (!(tool.insert_angle && tool.orientation == 2))
@@ -474,6 +535,7 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
                                         "above the clearance (Z {})",
                                         in.show(op.tip_path.start.x), in.show(in.header().clearance)));
     }
+    if (op.compensation == NoseCompensation::control) plan_control_compensation(op, f, in);
     if (!tool.insert_angle && tool.type == ToolType::turning_tool)
         op.notes.push_back(fmt::format("tool {} gives no insertAngle and approachAngle: camgen does not check that its "
                                        "insert can follow the profile's slopes",
@@ -491,8 +553,32 @@ namespace {
 Vec3 position_of(Vec2 p) { return {p.y, 0.0, p.x}; }
 }  // namespace
 
+namespace {
+// Control compensation: the designed profile under G42, the control's table giving the nose.
+void expand_control(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
+    const Vec3 start = position_of(op.profile.start);
+    sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
+    if (start.z + op.approach < ctx.job.clearance) sink.emit(Rapid{{start.x, 0.0, start.z + op.approach}});
+    // The outside profile's material lies left of travel in (Z, X): the nose on its right, G42.
+    sink.emit(Compensation{CompensationSide::right, 0, op.nose_radius, op.orientation});
+    sink.emit(Linear{start, op.feed, Movement::lead_in});
+    for (const ProfileSegment& s : op.control_path.segments) {
+        if (s.centre)
+            sink.emit(Arc{position_of(s.end), position_of(*s.centre), s.direction, Plane::xz, op.feed, 0, Movement::finishing});
+        else
+            sink.emit(Linear{position_of(s.end), op.feed, Movement::finishing});
+    }
+    // G40 on the lift: from where the control leaves the tip, away from the finished surface.
+    sink.emit(Compensation{CompensationSide::off, 0, 0.0, 0});
+    sink.emit(Linear{position_of(op.control_exit), op.feed, Movement::lead_out});
+    sink.emit(Rapid{{op.retract_x, 0.0, op.control_exit.x}});
+    sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
+}
+}  // namespace
+
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
     // An op built by hand (a library user, a test) may leave tip_path empty: the profile is then the tip's path.
+    if (op.compensation == NoseCompensation::control && !op.control_path.segments.empty()) return expand_control(op, ctx, sink);
     const Profile& tip_path = op.tip_path.segments.empty() ? op.profile : op.tip_path;
     const Vec3 start = position_of(tip_path.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
@@ -649,7 +735,9 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         auto x = [&](double radius) { return in.show(x_as_given(radius, xv)); };
         // The tool's path (the tip's: the nose lies nose_low and more above it), from the
         // profile's designed end's Z.
-        const Vec2 start = op->tip_path.segments.empty() ? op->profile.start : op->tip_path.start;
+        // (Under control compensation the tip approaches the designed start itself.)
+        const bool control = op->compensation == NoseCompensation::control && !op->control_path.segments.empty();
+        const Vec2 start = op->tip_path.segments.empty() || control ? op->profile.start : op->tip_path.start;
         const Vec2 end = op->profile.segments.back().end;
         // The approach: before this profile cuts, the material above it is still there.
         if (auto hit = first_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))

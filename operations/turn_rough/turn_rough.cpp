@@ -258,6 +258,10 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
                                     in.show(op.boundary.start.x + op.approach), in.show(in.header().clearance)));
     op.nose_radius = tool.nose_radius;
     op.compensation = f.choice("compensation", nose_compensation_modes, NoseCompensation::computer);
+    if (op.compensation == NoseCompensation::control)
+        f.fail("compensation", "turn-rough does not write control compensation (G41/G42): its passes and last pass are "
+                               "compensated by camgen (computer) or not at all (none); finish the profile with a turn-profile "
+                               "whose compensation is control");
     op.tip_boundary = op.boundary;
     if (op.compensation == NoseCompensation::computer && op.nose_radius > 0 && op.direction == RoughDirection::x)
         // Along X the passes keep the tip on the boundary, as without compensation: the nose

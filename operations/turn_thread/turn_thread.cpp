@@ -76,6 +76,10 @@ constexpr KeySpec turn_thread_keys[] = {
                     "3 x the lead)"},
     {.key = "retract", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
      .description = "radial distance outside the thread (inside the bore) at which the tool returns, mm"},
+    {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
+     .description = "auto: the machine's threading cycle (LinuxCNC G76) where it carries the thread's infeed rule, "
+                    "minDepth, infeedAngle and springPasses and cuts camgen's passes, else longhand with a note; "
+                    "canned: the cycle or an error; longhand: passes of G0 and G33/G32"},
 };
 
 }  // namespace
@@ -124,6 +128,20 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
     const ThreadSize size = read_thread_size(f, in, op.side, "a turn-thread", "M20x2.5", "M20x1.5");
     op.thread = size.name, op.major = size.major, op.minor = size.minor, op.pitch = size.pitch;
     const std::string what = op.thread.empty() ? fmt::format("the thread (pitch {})", in.show(op.pitch)) : op.thread;
+    // The tool's tip must point at the thread's root: -X of its nose for an external thread
+    // (orientations 1, 2, 6), +X for an internal one (3, 4, 8); none: the tip is the nose's point
+    // towards the root (the simulation sweeps it as 2 outside, 3 inside).
+    if (tool.orientation > 0) {
+        const bool inward = tool.orientation == 1 || tool.orientation == 2 || tool.orientation == 6;
+        const bool outward = tool.orientation == 3 || tool.orientation == 4 || tool.orientation == 8;
+        if (op.side == ThreadSide::external ? !inward : !outward)
+            f.fail("tool", fmt::format("an {} thread needs a threading-tool whose tip points {} (orientation {}); tool {} has "
+                                       "orientation {}",
+                                       op.side == ThreadSide::external ? "external" : "internal",
+                                       op.side == ThreadSide::external ? "to -X, at the axis" : "to +X, at the bore's wall",
+                                       op.side == ThreadSide::external ? "1, 2 or 6" : "3, 4 or 8", tool.number,
+                                       tool.orientation));
+    }
     const double profile = tool.profile_angle.value_or(0.0);
     if (std::abs(profile - turn_thread_profile) > turn_thread_profile_slack)
         f.fail("tool", fmt::format("tool {} has a profileAngle of {} degrees; {} has the 60-degree profile of ISO 68-1 "
@@ -164,6 +182,7 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
     if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
     op.retract = in.optional_length(f, "retract").value_or(1.0);
     if (!(op.retract > 0)) f.fail("retract", "retract must be > 0");
+    op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
 
     const double total = op.root_radius() > op.surface_radius() ? op.root_radius() - op.surface_radius()
                                                                 : op.surface_radius() - op.root_radius();
@@ -228,12 +247,60 @@ namespace {
 Vec3 turn_thread_at(double r, double z) { return {r, 0.0, z}; }
 }  // namespace
 
+
+
+ThreadCycle thread_cycle(const TurnThreadOp& op, int start) {
+    const double out = op.side == ThreadSide::external ? 1.0 : -1.0;
+    const double total = std::abs(op.root_radius() - op.surface_radius());
+    ThreadCycle c;
+    c.path = op.path;
+    c.output = op.output;
+    c.start = turn_thread_at(op.surface_radius() + out * op.retract, op.start_z + op.approach + start * op.pitch);
+    c.end_z = op.end_z;
+    c.lead = op.lead();
+    c.crest_x = op.surface_radius();
+    c.depth = total;
+    const int cutting = static_cast<int>(op.depths.size()) - op.spring_passes;
+    if (op.infeed == ThreadInfeed::constant_depth) {
+        // Equal steps: the first is the step, the cycle's J.
+        c.degression = 1.0;
+        c.first_depth = total / cutting;
+        c.fields.emplace_back("constant-depth");
+    } else {
+        c.degression = 2.0;
+        c.first_depth = std::min(op.first_depth, total);
+        c.fields.emplace_back("constant-area");
+    }
+    // A least depth that changes the passes is the cycle's to carry; one that does not is not used.
+    if (op.min_depth > 0 && thread_pass_depths(op.infeed, total, op.first_depth, 0.0) !=
+                                thread_pass_depths(op.infeed, total, op.first_depth, op.min_depth)) {
+        c.min_depth = op.min_depth;
+        c.fields.emplace_back("minDepth");
+    }
+    c.infeed_angle = op.infeed_angle;
+    if (op.infeed_angle > 0) c.fields.emplace_back("infeedAngle");
+    c.spring_passes = op.spring_passes;
+    if (op.spring_passes > 0) c.fields.emplace_back("springPasses");
+    c.depths = op.depths;
+    return c;
+}
+
 void expand(const TurnThreadOp& op, const Context& ctx, EventSink& sink) {
     const double out = op.side == ThreadSide::external ? 1.0 : -1.0;  // the direction out of the material, in X
     const double surface = op.surface_radius();
     const double away = surface + out * op.retract;                      // the returns' X
     const double tan_a = std::tan(op.infeed_angle * pi / 180.0);
     sink.emit(Rapid{turn_thread_at(away, ctx.job.clearance)});
+    if (op.output != CycleOutput::longhand) {
+        // A cycle per start from its drive point; the post writes it canned or its moves.
+        for (int s = 0; s < op.starts; ++s) {
+            const ThreadCycle c = thread_cycle(op, s);
+            sink.emit(Rapid{c.start});
+            sink.emit(c);
+        }
+        sink.emit(Rapid{turn_thread_at(away, ctx.job.clearance)});
+        return;
+    }
     for (int s = 0; s < op.starts; ++s) {
         for (double depth : op.depths) {
             // Flank infeed: the pass starts earlier along the feed by depth x tan(angle), so that

@@ -143,9 +143,11 @@ public:
 private:
     void flush_spindle() {
         if (!pending_) return;
-        bool same = pending_->spindle == state_ && (state_ == SpindleState::off || pending_->rpm == rpm_);
+        bool same = pending_->spindle == state_ &&
+                    (state_ == SpindleState::off || (pending_->rpm == rpm_ && pending_->surface_speed == surface_speed_));
         state_ = pending_->spindle;
         rpm_ = pending_->rpm;
+        surface_speed_ = pending_->surface_speed;
         if (!same) made({Item::Kind::spindle, *pending_, {}});
         pending_.reset();
     }
@@ -195,6 +197,7 @@ private:
     std::optional<Step> pending_;  // a spindle step not yet in effect
     SpindleState state_ = SpindleState::off;
     double rpm_ = 0.0;
+    double surface_speed_ = 0.0;
     std::optional<Item> open_;  // the path being made
     std::optional<Item> last_;  // the last item kept
 };
@@ -351,6 +354,9 @@ std::string describe_step(const Step& s) {
     switch (s.kind) {
         case StepKind::tool_change: return fmt::format("a change to tool {}", s.tool);
         case StepKind::spindle:
+            if (s.spindle != SpindleState::off && s.surface_speed > 0)
+                return fmt::format("spindle {} at {} m/min (G96) up to {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw",
+                                   num3(s.surface_speed), num3(s.rpm));
             return s.spindle == SpindleState::off ? std::string("spindle off")
                                                   : fmt::format("spindle {} at {} rpm", s.spindle == SpindleState::cw ? "cw" : "ccw", num3(s.rpm));
         case StepKind::dwell: return fmt::format("a dwell of {} s", num3(s.seconds));
@@ -475,7 +481,9 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
                 return Mismatch{b.line(), fmt::format("the program changes to tool {}, the job to tool {}", b.step.tool, a.step.tool)};
             break;
         case Item::Kind::spindle:
-            if (a.step.spindle != b.step.spindle || std::abs(a.step.rpm - b.step.rpm) > tol.rpm + tiny)
+            // A surface speed is written in the rpm's format: its tolerance too.
+            if (a.step.spindle != b.step.spindle || std::abs(a.step.rpm - b.step.rpm) > tol.rpm + tiny ||
+                std::abs(a.step.surface_speed - b.step.surface_speed) > tol.rpm + tiny)
                 return Mismatch{b.line(), fmt::format("the program sets {}, the job {}", describe_step(b.step), describe_step(a.step))};
             break;
         case Item::Kind::dwell:

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -89,6 +91,49 @@ Box box_of(const Step& s) {
     return b;
 }
 
+double surface_speed_rpm(double surface_speed, double limit, double radius) {
+    const double r = std::abs(radius);
+    if (!(r > 0)) return limit;
+    return std::min(limit, 1000.0 * surface_speed / (two_pi * r));
+}
+
+double surface_speed_feed_time(const SurfaceSpeedFeed& c, double x0, double x1, double length, bool* clamped) {
+    if (!(length > 0)) return 0.0;
+    // Minutes per mm at radius r: 1 / (f x rpm(r)) = max(1 / (f limit), 2 pi r / (1000 vc f)),
+    // clamped to [1 / max_feed, 1 / min_feed]; linear in r between the breakpoints below.
+    const double slope = two_pi / (1000.0 * c.surface_speed * c.per_rev);  // min/mm per mm of radius
+    const double floor_at_limit = 1.0 / (c.per_rev * c.limit);
+    const double fastest = c.max_feed > 0 ? 1.0 / c.max_feed : 0.0;
+    const double slowest = c.min_feed > 0 ? 1.0 / c.min_feed : std::numeric_limits<double>::infinity();
+    bool was_clamped = false;
+    auto inverse = [&](double r) {
+        const double v = std::max(floor_at_limit, slope * r);
+        if (v < fastest || v > slowest) was_clamped = true;
+        return std::clamp(v, fastest, slowest);
+    };
+    std::vector<double> ts{0.0, 1.0};
+    const double dx = x1 - x0;
+    auto crossing = [&](double x) {
+        if (dx == 0) return;
+        const double t = (x - x0) / dx;
+        if (t > 0 && t < 1) ts.push_back(t);
+    };
+    crossing(0.0);
+    for (double v : {floor_at_limit, fastest, slowest})
+        if (std::isfinite(v) && v > 0) {
+            crossing(v / slope);
+            crossing(-v / slope);
+        }
+    std::sort(ts.begin(), ts.end());
+    double minutes = 0.0;
+    for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+        const double a = ts[i], b = ts[i + 1];
+        minutes += (b - a) * length * 0.5 * (inverse(std::abs(x0 + a * dx)) + inverse(std::abs(x0 + b * dx)));
+    }
+    if (clamped) *clamped = was_clamped;
+    return minutes * 60.0;
+}
+
 StatsAccumulator::StatsAccumulator(const Machine& machine) : limits_(machine.limits) {
     stats_.rapid_rate = limits_.rapid_rate;
     stats_.kind = machine.kind;
@@ -109,7 +154,10 @@ void StatsAccumulator::step(const Step& s) {
     const MachineLimits& lim = limits_;
     switch (s.kind) {
         case StepKind::tool_change: (void)tool_stats(s.tool); break;
-        case StepKind::spindle: break;
+        case StepKind::spindle:
+            spindle_rpm_ = s.spindle == SpindleState::off ? 0.0 : s.rpm;
+            surface_speed_ = s.spindle == SpindleState::off ? 0.0 : s.surface_speed;
+            break;
         case StepKind::stop:
             ++st.stops;
             if (s.stop == StopKind::optional) ++st.optional_stops;
@@ -136,6 +184,43 @@ void StatsAccumulator::step(const Step& s) {
                 time = len / lim.rapid_rate * 60.0;
                 st.rapid_time += time;
             } else {
+                if (surface_speed_ > 0 && spindle_rpm_ > 0 && s.pitch > 0 && s.from_known) {
+                    // A feed per revolution under G96: the spindle's speed, and so the feed,
+                    // follows the radius (exactly along a straight move, in 256 chords along an arc).
+                    const SurfaceSpeedFeed c{surface_speed_, spindle_rpm_, s.pitch, lim.min_feed, lim.max_feed};
+                    bool clamped = false;
+                    if (!s.arc) {
+                        time = surface_speed_feed_time(c, s.from.x, s.to.x, len, &clamped);
+                    } else {
+                        constexpr int chords = 256;
+                        time = 0.0;
+                        double x = s.from.x;
+                        for (int i = 1; i <= chords; ++i) {
+                            const double next = point_on_arc(*s.arc, static_cast<double>(i) / chords).x;
+                            bool c_clamped = false;
+                            time += surface_speed_feed_time(c, x, next, len / chords, &c_clamped);
+                            clamped = clamped || c_clamped;
+                            x = next;
+                        }
+                    }
+                    if (clamped) ++st.clamped_feeds;
+                    const double r_far = std::max(std::abs(b.min.x), std::abs(b.max.x));
+                    const double r_near = b.min.x <= 0 && b.max.x >= 0 ? 0.0 : std::min(std::abs(b.min.x), std::abs(b.max.x));
+                    const double slow = surface_speed_rpm(surface_speed_, spindle_rpm_, r_far);
+                    const double fast = surface_speed_rpm(surface_speed_, spindle_rpm_, r_near);
+                    const bool first = t.surface_speed_max == 0;
+                    t.surface_speed_min = first ? surface_speed_ : std::min(t.surface_speed_min, surface_speed_);
+                    t.surface_speed_max = std::max(t.surface_speed_max, surface_speed_);
+                    t.rpm_min = first ? slow : std::min(t.rpm_min, slow);
+                    t.rpm_max = std::max(t.rpm_max, fast);
+                    st.feed_length += len;
+                    t.feed_length += len;
+                    st.feed_time += time;
+                    st.movement_length[static_cast<std::size_t>(s.movement)] += len;
+                    st.movement_time[static_cast<std::size_t>(s.movement)] += time;
+                    t.time += time;
+                    break;
+                }
                 double f = std::clamp(s.feed, lim.min_feed, lim.max_feed);
                 if (f != s.feed) ++st.clamped_feeds;
                 st.feed_length += len;
@@ -226,6 +311,12 @@ std::string format_stats(const ProgramStats& st) {
             line("", fmt::format("X {}  Y {}  Z {}", range(t.box, 0), range(t.box, 1), range(t.box, 2)));
         line("", fmt::format("{} hole{}, feed {} mm, rapid {} mm, {}", t.holes, t.holes == 1 ? "" : "s", num(t.feed_length),
                              num(t.rapid_length), format_duration(t.time)));
+        if (t.surface_speed_max > 0)
+            line("", fmt::format("surface speed {} m/min (G96), {} .. {} rpm",
+                                 t.surface_speed_min == t.surface_speed_max
+                                     ? num(t.surface_speed_max, 0)
+                                     : fmt::format("{} .. {}", num(t.surface_speed_min, 0), num(t.surface_speed_max, 0)),
+                                 num(t.rpm_min, 0), num(t.rpm_max, 0)));
     }
     return out;
 }

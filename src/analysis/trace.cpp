@@ -5,6 +5,8 @@
 #include <numbers>
 #include <deque>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -82,7 +84,7 @@ public:
                            op_tolerance_ = o.tolerance;
                        },
                        [&](const OperationEnd&) {},
-                       [&](const Comment&) {},
+                       [&](const Comment& c) { comment_orientation(c.text); },
                        // No motion of its own: the moves after it are offset as the control
                        // offsets them (comp_move), so the steps are the tool centre's path.
                        [&](const Compensation& c) { compensation(c, job); },
@@ -105,36 +107,41 @@ public:
                            Step s = base(StepKind::spindle);
                            s.spindle = sp.state;
                            s.rpm = sp.rpm;
+                           s.surface_speed = sp.state == SpindleState::off ? 0.0 : sp.surface_speed;
                            thread_rpm_ = sp.state == SpindleState::off ? 0.0 : sp.rpm;
                            emit_in_order(s);
                        },
                        [&](const Rapid& r) {
                            Programmed p = programmed(StepKind::rapid, 0.0, Movement::cutting, 0.0, e.from_unknown);
-                           if (comp_) return comp_move(comp_straight(CompMove::Kind::rapid, r.to), p);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::rapid, to_plane(r.to)), p);
                            straight(r.to, p);
                        },
                        [&](const Linear& l) {
                            Programmed p = programmed(StepKind::feed, l.feed, l.movement,
                                                      e.per_revolution > 0 ? e.per_revolution : pitch_, false);
-                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, l.to), p);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, to_plane(l.to)), p);
                            straight(l.to, p);
                        },
                        [&](const Arc& a) {
                            Programmed p = programmed(StepKind::feed, a.feed, a.movement, e.per_revolution, false);
                            p.centre_z = a.centre.z;
-                           if (comp_ && a.plane == Plane::xy) {
+                           if (comp_ && a.plane == comp_plane()) {
                                if (job && as_written_lines(a, p)) return;
                                CompMove m;
                                m.kind = CompMove::Kind::arc;
-                               m.end = a.to;
-                               m.centre = {a.centre.x, a.centre.y};
+                               m.end = to_plane(a.to);
+                               const Vec3 c = to_plane(a.centre);
+                               m.centre = {c.x, c.y};
                                m.direction = a.direction;
                                m.turns = a.turns;
                                return comp_move(m, p);
                            }
                            if (comp_ && comp_->radius() > 0)
-                               refuse(CompError{"an arc outside the XY plane under cutter radius compensation (camgen "
-                                                "interprets G41/G42 in the XY plane only)", 0});
+                               refuse(CompError{lathe_ ? "an arc outside the XZ plane under nose radius compensation (camgen "
+                                                         "interprets a lathe's G41/G42 in G18 only)"
+                                                       : "an arc outside the XY plane under cutter radius compensation (camgen "
+                                                         "interprets G41/G42 in the XY plane only)",
+                                                0});
                            end_compensation();
                            if (!known_) throw std::logic_error("arc from an unknown position");
                            arc(resolve_arc(pos_, a), a.to, p);
@@ -164,6 +171,12 @@ public:
                            pitch_ = 0.0;
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
+                       [&](const ThreadCycle& c) {
+                           for (const Event& m : thread_cycle_moves(c))
+                               add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
+                                             .per_revolution = e.per_revolution},
+                                   job);
+                       },
                        [&](const Stop& st) {
                            Step s = base(StepKind::stop);
                            s.stop = st.kind;
@@ -178,7 +191,7 @@ public:
                            // A feed of lead x rpm; like a tap's it carries the lead, so that a
                            // comparison allows for the speed the program could write.
                            Programmed p = programmed(StepKind::feed, t.lead * thread_rpm_, Movement::cutting, t.lead, false);
-                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, t.to), p);
+                           if (comp_) return comp_move(comp_straight(CompMove::Kind::feed, to_plane(t.to)), p);
                            straight(t.to, p);
                        },
                    },
@@ -207,10 +220,13 @@ private:
         int line = 0;
         double uncertainty = 0.0;
         std::optional<double> centre_z;  // an arc's centre Z as programmed
+        // A lathe's move under nose-radius compensation: the controlled point is the imaginary
+        // tip, this far from the nose centre the control offsets (Z, radius), mm.
+        std::optional<Vec2> tip;
     };
 
     Programmed programmed(StepKind kind, double feed, Movement movement, double pitch, bool from_unknown) const {
-        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt};
+        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt, std::nullopt};
     }
 
     Step base(StepKind kind) const {
@@ -287,16 +303,14 @@ private:
                 if (auto err = comp_->off(0)) refuse(*err);
             return;
         }
-        if (lathe_) {
-            note_once(-1, fmt::format("line {}: tool nose radius compensation (G41/G42) on a lathe is not interpreted: "
-                                      "the moves are taken as programmed",
-                                      line_));
-            return;
-        }
         const double radius = job ? c.radius : radius_of(c);
+        // A lathe (G18): the nose centre offset by the radius from the programmed path, the
+        // point the control moves the imaginary tip of the tool's orientation (LinuxCNC's lathe
+        // compensation, interp_queue.cc latheorigin_x/z).
+        tip_ = lathe_ ? lathe_tip_offset(job ? c.orientation : orientation_of(c, radius), radius) : Vec2{0, 0};
         if (!comp_) {
             comp_.emplace([this](const CompMove& m) { tool_move(m); });
-            if (known_) comp_->set_position(pos_);
+            if (known_) comp_->set_position(to_plane(pos_));
         }
         if (auto err = comp_->on(c.side == CompensationSide::left ? CompSide::left : CompSide::right, radius, 0))
             refuse(*err);
@@ -317,6 +331,42 @@ private:
         return 0.0;
     }
 
+    // The tip orientation of a lathe program's G41/G42 (0 where unknown, with a note: the
+    // programmed point taken as the nose centre).
+    int orientation_of(const Compensation& c, double radius) {
+        if (c.orientation != 0) return c.orientation;
+        const int reg = c.d_register != 0 ? c.d_register : tool_;
+        if (auto it = trace_options_.compensation_orientations.find(reg); it != trace_options_.compensation_orientations.end())
+            return it->second;
+        if (comment_orientation_ && comment_orientation_->first == tool_) return comment_orientation_->second;
+        if (radius > 0)
+            note_once(-1 - reg, fmt::format("line {}: nose radius compensation with tool {}, whose tip orientation camgen does "
+                                            "not know: the programmed point is taken as the nose centre",
+                                            line_, reg));
+        return 0;
+    }
+
+    // camgen's comment before a lathe's G41/G42 names the orientation the control's table must
+    // hold (the lathe posts' on_compensation): "... Q2 tip ..." (LinuxCNC), "... T2 tip ..."
+    // (Fanuc T), "... cutting edge position 2, tip ..." (Sinumerik). A program read without a
+    // job takes it from there.
+    void comment_orientation(const std::string& text) {
+        if (!lathe_ || text.find("nose comp: ") == std::string::npos) return;
+        for (const char* key : {", Q", ", T", "cutting edge position "}) {
+            const std::size_t at = text.find(key);
+            if (at == std::string::npos) continue;
+            const std::size_t d = at + std::string_view(key).size();
+            if (d < text.size() && text[d] >= '1' && text[d] <= '9') comment_orientation_ = std::pair{tool_, text[d] - '0'};
+            return;
+        }
+    }
+
+    // The plane the control compensates in, and a point's coordinates in it as CutterCompensation
+    // takes them ((Z, X, Y) in G18: ARC_FEED's first and second axes) and back.
+    Plane comp_plane() const { return lathe_ ? Plane::xz : Plane::xy; }
+    Vec3 to_plane(const Vec3& p) const { return lathe_ ? Vec3{p.z, p.x, p.y} : p; }
+    Vec3 from_plane(const Vec3& q) const { return lathe_ ? Vec3{q.y, q.z, q.x} : q; }
+
     void note_once(int key, std::string text) {
         if (noted_.insert(key).second) notes_.push_back(std::move(text));
     }
@@ -330,15 +380,16 @@ private:
     bool as_written_lines(const Arc& a, const Programmed& p) {
         const std::optional<Vec3> start = comp_->programmed_position();
         if (!start) return false;
-        const ArcGeometry geo = resolve_arc(*start, a);
+        const ArcGeometry geo = resolve_arc(from_plane(*start), a);
         const ArcPlan plan = plan_arc(geo, arcs_, effective_chord_tolerance(arcs_, op_tolerance_));
         if (plan.treatment == ArcTreatment::arcs || plan.count > max_arc_chords) return false;
         const std::int64_t n = plan.treatment == ArcTreatment::one_line ? 1 : std::max<std::int64_t>(plan.count, 1);
         for (std::int64_t k = 1; k <= n; ++k)
-            comp_move(comp_straight(CompMove::Kind::feed, k < n ? point_on_arc(geo, double(k) / double(n)) : a.to), p);
+            comp_move(comp_straight(CompMove::Kind::feed, to_plane(k < n ? point_on_arc(geo, double(k) / double(n)) : a.to)), p);
         return true;
     }
 
+    // A straight move to `to` (the plane's coordinates: to_plane).
     static CompMove comp_straight(CompMove::Kind kind, const Vec3& to) {
         CompMove m;
         m.kind = kind;
@@ -352,6 +403,7 @@ private:
             m.end.x = std::round(m.end.x / unit) * unit;
             m.end.y = std::round(m.end.y / unit) * unit;
         }
+        if (lathe_ && comp_->active() && comp_->radius() > 0) p.tip = tip_;
         programmed_.push_back(p);
         if (auto err = comp_->move(m)) refuse(*err);
         // The move after G40 was the last the control offsets: the rest is as programmed.
@@ -365,15 +417,22 @@ private:
         if (programmed_.empty() || programmed_.front().source != m.source)
             throw std::logic_error("a tool-centre move of no programmed move");
         const Programmed& p = programmed_.front();
+        // The point the control moves: the tool centre's, or a lathe's imaginary tip beside it.
+        const Vec2 tip = p.tip.value_or(Vec2{0, 0});
+        const auto moved = [&](Vec2 q, double normal) {
+            return from_plane({q.x + tip.x, q.y + tip.y, normal});
+        };
+        const Vec3 end = moved({m.end.x, m.end.y}, m.end.z);
         if (m.kind != CompMove::Kind::arc) {
             Programmed q = p;
             q.kind = m.kind == CompMove::Kind::rapid ? StepKind::rapid : StepKind::feed;
-            return straight(m.end, q);
+            return straight(end, q);
         }
         if (!known_) throw std::logic_error("arc from an unknown position");
         // A corner the control adds turns at the height of the move before it.
-        const ArcSpec spec{m.end, {m.centre.x, m.centre.y, p.centre_z.value_or(pos_.z)}, m.direction, Plane::xy, m.turns};
-        arc(resolve_arc(pos_, spec), m.end, p);
+        const Vec3 centre = lathe_ ? moved(m.centre, pos_.y) : Vec3{m.centre.x, m.centre.y, p.centre_z.value_or(pos_.z)};
+        const ArcSpec spec{end, centre, m.direction, comp_plane(), m.turns};
+        arc(resolve_arc(pos_, spec), end, p);
     }
 
     // The steps without motion that wait for the moves programmed before them.
@@ -420,11 +479,13 @@ private:
     std::optional<DrillCycle> cycle_;
     std::string operation_path_;  // of a job's events: the operation's JSON path, for a refusal
     std::optional<CutterCompensation> comp_;  // from G41/G42 to the move after G40
+    std::optional<std::pair<int, int>> comment_orientation_;  // tool, orientation: from camgen's comment
+    Vec2 tip_;  // a lathe's: the imaginary tip from the nose centre under the G41/G42 in force (Z, radius)
     std::deque<Programmed> programmed_;       // the moves comp_ may still make steps of
     std::vector<std::pair<std::size_t, Step>> held_;  // steps without motion, after the programmed move tagged first
     std::size_t next_source_ = 1;
     std::vector<std::string> notes_;
-    std::set<int> noted_;  // the registers (and -1: the lathe) noted
+    std::set<int> noted_;  // the registers (and -1 - tool: a lathe tool's orientation) noted
 };
 
 TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)

@@ -569,6 +569,21 @@ std::map<int, double> job_compensation_radii(const Job& job) {
     return radii;
 }
 
+// The tip orientation of each lathe tool of `job` that has one (a program's G41/G42 in G18: the
+// point the control moves is that tip).
+std::map<int, int> job_compensation_orientations(const Job& job) {
+    std::map<int, int> out;
+    for (const auto& [number, tool] : job.tools)
+        if (tool.orientation != 0) out[number] = tool.orientation;
+    return out;
+}
+
+TraceOptions job_trace_options(const Job& job) {
+    TraceOptions options{job_compensation_radii(job)};
+    options.compensation_orientations = job_compensation_orientations(job);
+    return options;
+}
+
 // Where a program's G41/G42 radii come from: verify --tool-table (its text), else the job's.
 TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, const std::string& tool_table) {
     TraceOptions options;
@@ -581,6 +596,7 @@ TraceOptions program_trace_options(const VerifyOptions& v, const Job* job, const
     } else if (job) {
         options.compensation_radii = job_compensation_radii(*job);
     }
+    if (job) options.compensation_orientations = job_compensation_orientations(*job);
     return options;
 }
 
@@ -833,7 +849,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
     options.operations = ops.spans;
     std::optional<Simulator> sim;
     try {
-        sim.emplace(machine, stock, tool_shapes(job->tools), options);
+        sim.emplace(machine, stock, job_tool_shapes(*job), options);
     } catch (const SimInputError& e) {
         throw UsageError(fmt::format("cannot simulate: {}", e.what()));
     }
@@ -849,7 +865,7 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         sim->observe(&*history);
     }
     try {
-        TraceBuilder trace(machine, *sim, TraceOptions{job_compensation_radii(*job)});
+        TraceBuilder trace(machine, *sim, job_trace_options(*job));
         ProgramReader reader(program.open(), machine, source, trace);
         reader.read_all();
     } catch (const ControlRefusal& e) {
@@ -910,7 +926,7 @@ void read_back(std::string_view program, const Job& job, const Options& o, const
                 read_program(program, machine, name, sink, &resolution);
                 return resolution;
             },
-            TraceOptions{job_compensation_radii(job)});
+            job_trace_options(job));
     } catch (const ControlRefusal& e) {
         throw e.located(name, e.line());
     }

@@ -1,5 +1,6 @@
 #include "camgen/events/events.hpp"
 
+#include <cmath>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
@@ -37,6 +38,7 @@ std::string event_to_json(const Event& event) {
                        j = {{"event", "spindle"},
                             {"state", e.state == SpindleState::cw ? "cw" : e.state == SpindleState::ccw ? "ccw" : "off"},
                             {"rpm", e.rpm}};
+                       if (e.surface_speed > 0) j["surfaceSpeed"] = e.surface_speed;
                    },
                    [&](const Coolant& e) { j = {{"event", "coolant"}, {"mode", name_of(coolant_modes, e.mode)}}; },
                    [&](const Rapid& e) { j = {{"event", "rapid"}, {"to", xyz(e.to)}}; },
@@ -57,6 +59,7 @@ std::string event_to_json(const Event& event) {
                             {"side", e.side == CompensationSide::off ? "off" : e.side == CompensationSide::left ? "left" : "right"}};
                        if (e.d_register) j["d"] = e.d_register;
                        if (e.radius > 0) j["radius"] = e.radius;
+                       if (e.orientation != 0) j["orientation"] = e.orientation;
                    },
                    [&](const DrillCycle& e) {
                        j = {{"event", "drill-cycle"},  {"cycle", name_of(cycle_kinds, e.kind)}, {"path", e.path},
@@ -81,6 +84,16 @@ std::string event_to_json(const Event& event) {
                        if (e.spin_up > 0) j["spinUp"] = e.spin_up;
                    },
                    [&](const ThreadFeed& e) { j = {{"event", "thread-feed"}, {"to", xyz(e.to)}, {"lead", e.lead}}; },
+                   [&](const ThreadCycle& e) {
+                       j = {{"event", "thread-cycle"},   {"path", e.path},
+                            {"output", name_of(cycle_outputs, e.output)},
+                            {"start", xyz(e.start)},     {"endZ", e.end_z},
+                            {"lead", e.lead},            {"crestX", e.crest_x},
+                            {"firstDepth", e.first_depth}, {"depth", e.depth},
+                            {"degression", e.degression}, {"minDepth", e.min_depth},
+                            {"infeedAngle", e.infeed_angle}, {"springPasses", e.spring_passes},
+                            {"fields", e.fields},        {"depths", e.depths}};
+                   },
                    [&](const CustomBlock& e) {
                        j = {{"event", "custom"}, {"path", e.path}};
                        nlohmann::ordered_json texts = nlohmann::ordered_json::object();
@@ -90,6 +103,25 @@ std::string event_to_json(const Event& event) {
                },
                event);
     return j.dump();
+}
+
+std::vector<Event> thread_cycle_moves(const ThreadCycle& c) {
+    std::vector<Event> out;
+    // Out of the material: +X outside an external thread, -X inside an internal one.
+    const double out_dir = c.start.x >= c.crest_x ? 1.0 : -1.0;
+    const double t = std::tan(c.infeed_angle * 3.14159265358979323846 / 180.0);
+    out.reserve(4 * c.depths.size());
+    for (double d : c.depths) {
+        const double back = c.start.x + out_dir * (c.depth - d);
+        const double z0 = c.start.z - d * t;
+        const double z1 = c.end_z + (c.depth - d) * t;
+        const double r = c.crest_x - out_dir * d;
+        out.emplace_back(Rapid{{back, c.start.y, z0}});
+        out.emplace_back(Rapid{{r, c.start.y, z0}});
+        out.emplace_back(ThreadFeed{{r, c.start.y, z1}, c.lead});
+        out.emplace_back(Rapid{{back, c.start.y, z1}});
+    }
+    return out;
 }
 
 void EventPrinter::emit(const Event& event) { out_ << event_to_json(event) << '\n'; }

@@ -330,4 +330,13 @@ Vec2 lathe_tip_offset(int orientation, double radius) {
     return d;
 }
 
+std::string lathe_tip_words(int orientation) {
+    const Vec2 d = lathe_tip_offset(orientation, 1.0);
+    if (d.x == 0.0 && d.y == 0.0) return "tip at the nose centre";
+    std::string s = "tip at";
+    if (d.y != 0.0) s += d.y > 0 ? " +X" : " -X";
+    if (d.x != 0.0) s += d.x > 0 ? " +Z" : " -Z";
+    return s + " of the nose centre";
+}
+
 }  // namespace camgen

@@ -115,6 +115,13 @@ constexpr KeySpec tool_keys[] = {
     {.key = "rpm", .quantity = Quantity::speed, .min = Bound{0, false},
      .description = "spindle speed (also the tapping speed unless tappingSpeed is given); required unless the tool "
                     "comes from the library, which gives it or computes it from its cutting data for the job's material"},
+    {.key = "surfaceSpeed", .min = Bound{0, false}, .max = Bound{10000, true},
+     .description = "a turning-tool's, grooving-tool's or parting-tool's constant surface speed (G96) instead of rpm: "
+                    "m/min at the work's diameter (ft/min when units is inch); the spindle turns at 1000 x "
+                    "surfaceSpeed / (pi x diameter), at most maxRpm; its operations feed per revolution"},
+    {.key = "maxRpm", .quantity = Quantity::speed, .min = Bound{0, false},
+     .description = "the spindle's limit under surfaceSpeed (G50 S, G96 D, LIMS=), rpm (default: the machine's "
+                    "limits.maxRpm; refused above it)"},
     {.key = "direction", .type = JsonType::string, .default_json = "\"cw\"",
      .choices = &choices_of<spindle_directions>, .description = "spindle direction: cw (M3) or ccw (M4)"},
     {.key = "comment", .type = JsonType::string, .default_json = "\"\"", .description = "free text for the tool list"},
@@ -128,8 +135,10 @@ std::vector<ObjectSpec> JobInput::objects() {
     // The shape keys each tool type takes: cornerRadius for a bull-nose end mill only, tipDiameter
     // for chamfer mills and V-bits only, which need a tipAngle.
     std::vector<std::string> not_bull_nose, not_pointed, not_thread_mill, not_nosed, not_lathe, not_turning, not_grooving,
-        not_threading;
+        not_threading, not_surface_speed;
     for (const auto& t : tool_types) {
+        if (t.value != ToolType::turning_tool && t.value != ToolType::grooving_tool && t.value != ToolType::parting_tool)
+            not_surface_speed.emplace_back(t.name);
         if (t.value != ToolType::bull_nose) not_bull_nose.emplace_back(t.name);
         if (!is_pointed_cutter(t.value)) not_pointed.emplace_back(t.name);
         if (t.value != ToolType::thread_mill) not_thread_mill.emplace_back(t.name);
@@ -146,9 +155,11 @@ std::vector<ObjectSpec> JobInput::objects() {
          .groups = {{.keys = {"diameter", "library", "libraryNumber", "noseRadius", "width"}, .min = 1, .max = 5,
                      .description = "`diameter`, or `library` or `libraryNumber` (the library tool's), or a lathe tool's "
                                     "`noseRadius` or `width`"},
-                    {.keys = {"rpm", "library", "libraryNumber"}, .min = 1, .max = 3,
-                     .description = "`rpm`, or `library` or `libraryNumber` (the library tool's, or computed from its "
-                                    "cutting data)"},
+                    {.keys = {"rpm", "surfaceSpeed", "library", "libraryNumber"}, .min = 1, .max = 4,
+                     .description = "`rpm` or a lathe tool's `surfaceSpeed`, or `library` or `libraryNumber` (the "
+                                    "library tool's, or computed from its cutting data)"},
+                    {.keys = {"rpm", "surfaceSpeed"}, .min = 0, .max = 1,
+                     .description = "`rpm` or `surfaceSpeed`, not both"},
                     {.keys = {"library", "libraryNumber"}, .min = 0, .max = 1,
                      .description = "a library tool by `library` (its name) or by `libraryNumber`, not both"}},
          .rules = {{.when_key = "type", .values = {"bull-nose"}, .require = {"cornerRadius"}},
@@ -162,7 +173,8 @@ std::vector<ObjectSpec> JobInput::objects() {
                    {.when_key = "type", .values = {"grooving-tool", "parting-tool"}, .require = {"width"}},
                    {.when_key = "type", .values = not_grooving, .forbid = {"width"}},
                    {.when_key = "type", .values = {"threading-tool"}, .require = {"profileAngle"}},
-                   {.when_key = "type", .values = not_threading, .forbid = {"profileAngle"}}}},
+                   {.when_key = "type", .values = not_threading, .forbid = {"profileAngle"}},
+                   {.when_key = "type", .values = not_surface_speed, .forbid = {"surfaceSpeed", "maxRpm"}}}},
     };
 }
 
@@ -490,7 +502,42 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
                                                                           tool.type != ToolType::chamfer_mill &&
                                                                           tool.type != ToolType::boring_bar &&
                                                                           tool.type != ToolType::thread_mill;
-    if (library_tool || base) {
+    // Constant surface speed (G96): a lathe tool that cuts at the work's diameter, not its own.
+    const bool css_type = tool.type == ToolType::turning_tool || grooving;
+    for (std::string_view key : {"surfaceSpeed", "maxRpm"})
+        if (f.has(key) && !css_type)
+            f.fail(key, fmt::format("{} is for a turning-tool, grooving-tool or parting-tool (constant surface speed, G96), "
+                                    "not a {}{}",
+                                    key, type_name,
+                                    tool.type == ToolType::threading_tool ? ": a thread is cut at a constant rpm" : ""));
+    if (f.has("surfaceSpeed") && f.has("rpm"))
+        f.fail("surfaceSpeed", "give rpm (a constant spindle speed, G97) or surfaceSpeed (a constant surface speed, G96), "
+                               "not both");
+    if (auto vc = f.optional_number("surfaceSpeed")) {
+        if (!(*vc > 0 && *vc <= 10000))
+            f.fail("surfaceSpeed", fmt::format("surfaceSpeed {} must be more than 0 and at most 10000 m/min (ft/min when "
+                                               "units is inch)",
+                                               number_text(*vc)));
+        tool.surface_speed = scale_ != 1.0 ? *vc * 0.3048 : *vc;
+    } else if (base && !f.has("rpm") && base->type == tool.type) {
+        tool.surface_speed = base->surface_speed;
+    }
+    if (auto limit = f.optional_number("maxRpm")) {
+        if (!(*limit > 0)) f.fail("maxRpm", "maxRpm must be > 0");
+        tool.max_rpm = *limit;
+    } else if (base && !f.has("rpm") && base->type == tool.type) {
+        tool.max_rpm = base->max_rpm;
+    }
+    // (Without rpm either, the missing rpm is the error, below.)
+    if (f.has("maxRpm") && !(tool.surface_speed > 0) && (f.has("rpm") || library_tool || base))
+        f.fail("maxRpm", "maxRpm is the spindle's limit under a constant surface speed: give surfaceSpeed too (with rpm "
+                         "the spindle turns at that rpm)");
+    if (tool.surface_speed > 0) {
+        // The spindle's limit stands for the rpm: the operations' feeds per revolution are
+        // carried as mm/min at it, and the post divides by it again.
+        tool.rpm = 0.0;
+        if (!library_tool) resolve_surface_speed_limit(f, tool);
+    } else if (library_tool || base) {
         // A library tool may leave its rpm to its cutting data; a job's tool from the library
         // takes the library's (apply_cutting_data).
         tool.rpm = from_base("rpm") ? base->rpm : f.optional_number("rpm").value_or(0.0);
@@ -502,6 +549,18 @@ void JobInput::read_tool_keys(Fields& f, Tool& tool, const Tool* base, bool libr
     tool.direction = from_base("direction") ? base->direction : f.choice("direction", spindle_directions, SpindleDirection::cw);
     tool.comment = from_base("comment") ? base->comment : f.optional_string("comment").value_or("");
     tool.coolant = from_base("coolant") ? base->coolant : f.choice("coolant", coolant_modes, CoolantMode::off);
+}
+
+void JobInput::resolve_surface_speed_limit(Fields& f, Tool& tool) const {
+    const double machine_limit = library_options_.max_rpm;
+    const std::string_view key = f.has("maxRpm") ? "maxRpm" : f.has("surfaceSpeed") ? "surfaceSpeed" : f.has("library") ? "library" : "libraryNumber";
+    if (tool.max_rpm > 0 && machine_limit > 0 && tool.max_rpm > machine_limit)
+        f.fail(key, fmt::format("maxRpm {} rpm is above the limit of machine {} ({} rpm)", number_text(tool.max_rpm),
+                                library_options_.machine, number_text(machine_limit)));
+    tool.rpm = tool.max_rpm > 0 ? tool.max_rpm : machine_limit;
+    if (!(tool.rpm > 0))
+        f.fail(key, "a surfaceSpeed needs the spindle's limit: give maxRpm (there is no machine here whose "
+                    "limits.maxRpm it could be)");
 }
 
 std::span<const KeySpec> JobInput::tool_key_table() { return tool_keys; }
@@ -603,14 +662,14 @@ void JobInput::apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entr
         cut.path = where;
         if (cut.feed_per_tooth && !tool.flutes)
             f.fail(key, fmt::format("{} gives a feedPerTooth for {} but not its flutes: give flutes", where, cut.material));
-        if (!rpm_given && tool.type == ToolType::turning_tool)
+        if (!rpm_given && tool.surface_speed == 0 && tool.type == ToolType::turning_tool) {
             // A turning tool cuts at the work's diameter, not its own: its surface speed is a
-            // constant surface speed (G96) of the lathe operations, which camgen does not write yet.
-            f.fail(key, fmt::format("{} is a turning tool: its surfaceSpeed ({} m/min for {}) sets the work's surface "
-                                    "speed, not an rpm of the tool's diameter, and camgen does not compute a lathe's rpm "
-                                    "from it yet: give this tool's rpm",
-                                    where, number_text(cut.surface_speed), cut.material));
-        if (!rpm_given) {
+            // constant surface speed (G96), within the spindle's limit.
+            tool.surface_speed = cut.surface_speed;
+            resolve_surface_speed_limit(f, tool);
+            tool.computed.push_back(fmt::format("constant surface speed {} m/min for {} (G96), at most {} rpm",
+                                                number_text(cut.surface_speed), cut.material, number_text(tool.rpm)));
+        } else if (!rpm_given && tool.surface_speed == 0) {
             const double wanted = rpm_for_surface_speed(cut.surface_speed, tool.diameter);
             tool.rpm = wanted;
             std::string text = fmt::format("{} rpm from vc {} m/min for {}", number_text(wanted),

@@ -118,6 +118,8 @@ constexpr KeySpec machine_keys[] = {
      .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
     {.key = "roughingCycles", .type = JsonType::array, .ref = "roughingCycle",
      .description = "the machine's canned roughing cycles (a lathe's turn-rough); a kind not listed is written longhand"},
+    {.key = "threadingCycles", .type = JsonType::array, .ref = "threadingCycle",
+     .description = "the canned threading cycles of a lathe (turn-thread's output); none: threads are written longhand"},
     {.key = "frame", .type = JsonType::object, .ref = "frame",
      .description = "the program frame: safe-start words, work offsets, coolant codes"},
     {.key = "settings", .type = JsonType::object, .ref = "settings",
@@ -298,6 +300,30 @@ constexpr KeySpec roughing_cycle_keys[] = {
      .description = "how it is written and what the control makes of it"},
     {.key = "fields", .type = JsonType::array, .choices = &choices_of<roughing_fields>,
      .description = "the values of a turn-rough the cycle carries"},
+};
+
+constexpr Named<ThreadCycleStyle> thread_cycle_styles[] = {
+    {ThreadCycleStyle::linuxcnc_g76, "linuxcnc-g76",
+     "LinuxCNC's G76 P Z I J K R Q H from the drive point (I, J, K diameters under G7)"},
+};
+
+constexpr Named<int> thread_cycle_kinds[] = {{0, "thread", "a straight thread cut in passes (turn-thread)"}};
+
+// The names a threading cycle's "fields" may hold.
+std::vector<std::string> thread_cycle_field_list() {
+    return {std::begin(thread_cycle_field_names), std::end(thread_cycle_field_names)};
+}
+
+// The keys of one threading cycle.
+constexpr KeySpec thread_cycle_keys[] = {
+    {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G76)"},
+    {.key = "kind", .type = JsonType::string, .required = true, .choices = &choices_of<thread_cycle_kinds>,
+     .description = "what it cuts"},
+    {.key = "style", .type = JsonType::string, .required = true, .choices = &choices_of<thread_cycle_styles>,
+     .description = "how the canned cycle is written and read"},
+    {.key = "fields", .type = JsonType::array, .choices = &thread_cycle_field_list,
+     .description = "what it carries of a turn-thread: its infeed rules (constant-depth, constant-area), minDepth, "
+                    "infeedAngle (flank infeed), springPasses"},
 };
 
 // Refuses machine-file text that is written into programs (prefixes, separators, codes, cycle
@@ -490,6 +516,7 @@ std::vector<ObjectSpec> machine_objects() {
         spec("drilling", "drilling cycles and longhand settings", drilling_keys),
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
         spec("roughingCycle", "one canned roughing cycle of a lathe", roughing_cycle_keys),
+        spec("threadingCycle", "one threading cycle of a lathe", thread_cycle_keys),
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
         spec("feedModeCodes", "the code of each feed mode", feed_mode_keys),
@@ -822,6 +849,38 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             m.roughing_cycles.push_back(std::move(c));
         }
     }
+    if (const auto* tc = f.member("threadingCycles")) {
+        if (!tc->is_array()) f.fail("threadingCycles", "expected an array");
+        if (m.kind != MachineKind::lathe) f.fail("threadingCycles", "threading cycles are a lathe's: set kind lathe");
+        for (size_t i = 0; i < tc->size(); ++i) {
+            const std::string path = fmt::format("/threadingCycles/{}", i);
+            json::Fields cf((*tc)[i], path, source);
+            ThreadingCycleSpec c;
+            c.name = cf.string("name");
+            check_program_text(c.name, cf.path_of("name"), source);
+            cf.choice("kind", thread_cycle_kinds, 0);
+            if (!cf.has("kind")) cf.fail("kind", "a threading cycle needs its kind (\"thread\")");
+            if (!cf.has("style")) cf.fail("style", "a threading cycle needs its style");
+            c.style = cf.choice("style", thread_cycle_styles, ThreadCycleStyle::linuxcnc_g76);
+            if (const auto* fields = cf.member("fields")) {
+                if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
+                const std::vector<std::string> known = thread_cycle_field_list();
+                for (size_t j = 0; j < fields->size(); ++j) {
+                    std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
+                    if (std::find(known.begin(), known.end(), fn) == known.end()) {
+                        auto hint = json::did_you_mean(fn, known);
+                        json::fail(source, fmt::format("{}/fields/{}", path, j),
+                                   fmt::format("unknown threading field \"{}\"{}; fields: {}", fn,
+                                               hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                                               fmt::join(known, ", ")));
+                    }
+                    c.fields.push_back(std::move(fn));
+                }
+            }
+            cf.finish(thread_cycle_keys);
+            m.threading.push_back(std::move(c));
+        }
+    }
     if (const auto* fr = f.member("frame")) {
         json::Fields ff(*fr, "/frame", source);
         if (const auto* sb = ff.member("startBlock")) m.frame.start_block = strings_at(*sb, "/frame/startBlock", source);
@@ -949,6 +1008,13 @@ std::string describe_machine(const Machine& m) {
     const bool lathe = m.kind == MachineKind::lathe;
     s += lathe ? "drilling cycles (TurnDrillingFields; the feed-start plane always)\n" : "drilling cycles (MillDrillingFields)\n";
     for (const CycleCapability& c : can.cycles) line(name_of(cycle_kinds, c.kind), cycle_capability_text(c, m.kind));
+    if (lathe) {
+        s += "threading cycles (turn-thread)\n";
+        if (m.threading.empty()) line("thread", "longhand");
+        for (const ThreadingCycleSpec& t : m.threading)
+            line("thread", fmt::format("{} ({}){}", t.name, name_of(thread_cycle_styles, t.style),
+                                       t.fields.empty() ? std::string() : fmt::format(": {}", fmt::join(t.fields, ", "))));
+    }
     s += "capabilities (what a job may ask; a refusal is the post's own message)\n";
     auto verdict = [](const Capability& c, const std::string& yes) { return c.refused ? "refused: " + *c.refused : yes; };
     if (can.control_compensation)

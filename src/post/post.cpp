@@ -251,6 +251,7 @@ std::string what_it_does(const Event& e) {
                                 },
                                 [](const CustomBlock&) { return std::string("custom"); },
                                 [](const ThreadFeed&) { return std::string("move the tool (a thread-cutting move)"); },
+                                [](const ThreadCycle&) { return std::string("cut a thread in a cycle"); },
                             },
                             e);
 }
@@ -445,6 +446,12 @@ std::string Post::speed_text(double rpm) const {
     return rpm_fmt_.format(rpm);
 }
 
+std::optional<std::string> Post::surface_speed_refusal() const {
+    return fmt::format("machine {} turns its spindle at a constant rpm only: a constant surface speed (surfaceSpeed, "
+                       "G96) is for the lathe dialects",
+                       machine_.name);
+}
+
 void Post::on_spindle(const Spindle& s) {
     if (s.state == SpindleState::off) {
         out_.add(m(5)).end();
@@ -509,6 +516,45 @@ void Post::on_drilling_header(const DrillCycle&, const DrillingCycleSpec& spec) 
 }
 void Post::on_drilling_point(const DrillCycle&, const DrillingCycleSpec&, Vec2, bool) {}
 std::optional<std::string> Post::canned_limit(const DrillCycle&, const DrillingCycleSpec&) const { return std::nullopt; }
+
+void Post::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpec& spec) {
+    throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write {}", machine_.name, spec.name));
+}
+
+std::optional<std::string> Post::thread_cycle_limit(const ThreadCycle&, const ThreadingCycleSpec& spec) const {
+    // A dialect that writes threading cycles overrides this; the others write the passes.
+    return fmt::format("camgen writes {} only on the iso-lathe dialect", spec.name);
+}
+
+void Post::handle_thread_cycle(const ThreadCycle& c) {
+    if (!pos_known_) throw std::logic_error("threading cycle from an unknown position");
+    if (c.output != CycleOutput::longhand) {
+        const ThreadingCycleSpec* spec = machine_.threading.empty() ? nullptr : &machine_.threading.front();
+        std::string reason;
+        if (!spec) {
+            reason = fmt::format("machine {} has no canned threading cycle", machine_.name);
+        } else {
+            std::vector<std::string> missing;
+            for (const std::string& f : c.fields)
+                if (std::find(spec->fields.begin(), spec->fields.end(), f) == spec->fields.end()) missing.push_back(f);
+            if (!missing.empty())
+                reason = fmt::format("machine {}'s {} cannot carry {}", machine_.name, spec->name, fmt::join(missing, ", "));
+            else if (auto limit = thread_cycle_limit(c, *spec))
+                reason = fmt::format("machine {}'s {} cannot carry this thread: {}", machine_.name, spec->name, *limit);
+        }
+        if (reason.empty()) {
+            on_thread_cycle(c, *spec);
+            pos_ = Vec3{c.start.x, c.start.y, c.end_z};
+            return;
+        }
+        if (c.output == CycleOutput::canned)
+            throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
+        if (spec)
+            note(fmt::format("{}{}: the thread is written longhand because {}", c.path,
+                             op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+    }
+    for (const Event& e : thread_cycle_moves(c)) handle(e);
+}
 std::optional<std::string> Post::tapping_impossible(CycleKind) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
@@ -520,11 +566,13 @@ std::optional<std::string> Post::program_number_refusal() const {
 std::optional<std::string> Post::control_compensation_refusal() const {
     if (!machine_.cutter_compensation)
         return fmt::format("machine {} has no cutter radius compensation (G41/G42): use compensation computer", machine_.name);
-    if (!writes_arcs_in(machine_.arcs, Plane::xy))
-        return fmt::format("machine {} writes arcs in XY as straight moves (its arcs.planes has no \"xy\"): with the "
+    // A lathe compensates the nose in G18 (XZ), a mill the cutter in G17 (XY).
+    const bool lathe = machine_.kind == MachineKind::lathe;
+    if (!writes_arcs_in(machine_.arcs, lathe ? Plane::xz : Plane::xy))
+        return fmt::format("machine {} writes arcs in {} as straight moves (its arcs.planes has no \"{}\"): with the "
                            "control compensating, every chord is a corner the control offsets on its own; use "
                            "compensation computer",
-                           machine_.name);
+                           machine_.name, lathe ? "XZ" : "XY", lathe ? "xz" : "xy");
     return std::nullopt;
 }
 
@@ -929,6 +977,8 @@ void Post::handle(const Event& event) {
                        reset_modal_axes();
                    },
                    [&](const Spindle& s) {
+                       if (s.state != SpindleState::off && s.surface_speed > 0)
+                           if (auto why = surface_speed_refusal()) fail("", *why);
                        spindle_rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
                        spindle_ = s;
                        on_spindle(s);
@@ -962,6 +1012,7 @@ void Post::handle(const Event& event) {
                        on_thread_feed(pos_, t);
                        pos_ = t.to;
                    },
+                   [&](const ThreadCycle& c) { handle_thread_cycle(c); },
                },
                event);
 }

@@ -239,6 +239,9 @@ void SafetyCheck::emit(const Event& event) {
             [&](const Rapid& r) { move(r.to, false); },
             [&](const Linear& l) { move(l.to, true); },
             [&](const ThreadFeed& t) { move(t.to, true); },
+            [&](const ThreadCycle& c) {
+                for (const Event& m : thread_cycle_moves(c)) emit(m);
+            },
             [&](const Arc& a) {
                 // An arc in XY (or a helix) is lowest at an end; one in XZ or YZ may dip between.
                 reach(a.to.z);

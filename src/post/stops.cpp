@@ -63,7 +63,7 @@ void OperatorStops::stop(const Stop& s) {
         coolant_ = Coolant{CoolantMode::off, ""};
     }
     if (spindle_ != SpindleState::off) {
-        r.spindle = Spindle{spindle_, rpm_};
+        r.spindle = Spindle{spindle_, rpm_, surface_speed_};
         next_.emit(Spindle{SpindleState::off, 0.0});
         spindle_ = SpindleState::off;
     }
@@ -81,6 +81,7 @@ void OperatorStops::resume() {
     if (r.spindle) {
         spindle_ = r.spindle->state;
         rpm_ = r.spindle->rpm;
+        surface_speed_ = r.spindle->surface_speed;
         next_.emit(*r.spindle);
         if (r.spin_up > 0) next_.emit(Dwell{r.spin_up});
     }
@@ -157,6 +158,7 @@ void OperatorStops::emit(const Event& event) {
                              }
                              spindle_ = s.state;
                              rpm_ = s.state == SpindleState::off ? 0.0 : s.rpm;
+                             surface_speed_ = s.state == SpindleState::off ? 0.0 : s.surface_speed;
                              next_.emit(event);
                          },
                          [&](const Coolant& c) {
@@ -187,6 +189,11 @@ void OperatorStops::emit(const Event& event) {
                          [&](const ThreadFeed& t) {
                              resume();
                              pos_ = t.to;
+                             next_.emit(event);
+                         },
+                         [&](const ThreadCycle& c) {
+                             resume();
+                             pos_ = Vec3{c.start.x, c.start.y, c.end_z};
                              next_.emit(event);
                          },
                          [&](const Dwell&) {

@@ -257,7 +257,7 @@ std::vector<std::pair<std::string, std::string>> NcReader::modal_state() const {
     std::string known;
     for (int i = 0; i < 3; ++i)
         if (known_[static_cast<std::size_t>(i)]) known += axes[i];
-    return {{"units", std::string(name_of(unit_names, machine_.units))},
+    std::vector<std::pair<std::string, std::string>> s{{"units", std::string(name_of(unit_names, machine_.units))},
             {"feed mode", std::string(name_of(feed_modes, feed_mode_))},
             {"work offset", work_offset_.empty() ? "none" : work_offset_},
             {"spindle speed", number(rpm_) + " rpm"},
@@ -266,6 +266,9 @@ std::vector<std::pair<std::string, std::string>> NcReader::modal_state() const {
             {"axes whose position is known", known.empty() ? "none" : known},
             {"safe height", at_top_ ? "at the machine's safe height" : "-"},
             {"drilling cycle", cycle_ ? std::string(name_of(cycle_kinds, cycle_->kind)) : "none"}};
+    // Only under G96, so that the state of every other program reads as before.
+    if (surface_mode_) s.emplace_back("surface speed", number(surface_speed_) + " m/min (G96)");
+    return s;
 }
 
 void NcReader::change_tool(int tool, const std::string& description) {
@@ -276,9 +279,31 @@ void NcReader::change_tool(int tool, const std::string& description) {
 }
 
 void NcReader::spindle_speed(double rpm, const Word* switch_code) {
-    rpm_ = rpm;
+    if (surface_mode_) {
+        // Under G96 S is the surface speed: m/min, or ft/min in inch.
+        surface_speed_ = machine_.units == Units::inch ? rpm * 0.3048 : rpm;
+        if (!(surface_speed_ > 0)) fail("a surface speed S under G96 must be > 0");
+    } else {
+        rpm_ = rpm;
+    }
     if (feed_per_rev_) feed_ = *feed_per_rev_ * rpm_;
-    if (!switch_code && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_});
+    if (!switch_code && spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_, surface_mode_ ? surface_speed_ : 0.0});
+}
+
+void NcReader::constant_surface_speed(double limit) {
+    if (!(limit > 0)) fail("a spindle limit under G96 must be > 0");
+    surface_mode_ = true;
+    rpm_ = limit;
+    if (feed_per_rev_) feed_ = *feed_per_rev_ * rpm_;
+}
+
+void NcReader::constant_rpm() { surface_mode_ = false; }
+
+void NcReader::spindle_limit(double limit) {
+    if (!surface_mode_) return;
+    rpm_ = limit;
+    if (feed_per_rev_) feed_ = *feed_per_rev_ * rpm_;
+    if (spindle_ != SpindleState::off) emit(Spindle{spindle_, rpm_, surface_speed_});
 }
 
 void NcReader::switch_spindle(const Word& m, std::string_view speed_word) {
@@ -289,8 +314,9 @@ void NcReader::switch_spindle(const Word& m, std::string_view speed_word) {
         return;
     }
     if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed {}", m.text, speed_word));
+    if (surface_mode_ && !(surface_speed_ > 0)) fail(fmt::format("{} under G96 without a surface speed {}", m.text, speed_word));
     spindle_ = c == code(3) ? SpindleState::cw : SpindleState::ccw;
-    emit(Spindle{spindle_, rpm_});
+    emit(Spindle{spindle_, rpm_, surface_mode_ ? surface_speed_ : 0.0});
 }
 
 // ---- block words ----

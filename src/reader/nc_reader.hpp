@@ -262,12 +262,23 @@ protected:
     // M3/M4/M5: the spindle on clockwise or counter-clockwise at the speed set before, or off.
     // `speed_word` says where the speed is written, for the message ("S").
     void switch_spindle(const Word& m, std::string_view speed_word);
+    // Constant surface speed (G96) held to `limit` rpm: the S words that follow are the surface
+    // speed (m/min; ft/min in inch), and the Spindle events carry it with the limit as rpm.
+    void constant_surface_speed(double limit);
+    // Constant rpm (G97): the S words that follow are rpm again.
+    void constant_rpm();
+    // A new limit of the spindle (Fanuc T's G50 S, Sinumerik's LIMS=): under G96 the spindle's
+    // rpm, taken at once by a running spindle.
+    void spindle_limit(double limit);
+    bool surface_mode() const { return surface_mode_; }
 
     // The last comment read (camgen writes "T1 10 mm drill" before a tool change).
     std::string last_comment_;
     // Current feed (mm/min) if any was programmed; FeedUnit and scale already applied.
     std::optional<double> feed_;
-    double rpm_ = 0.0;
+    double rpm_ = 0.0;              // rev/min; under G96 the spindle's limit
+    double surface_speed_ = 0.0;    // m/min under G96 (surface_mode_), the last S
+    bool surface_mode_ = false;     // G96 is in effect
     SpindleState spindle_ = SpindleState::off;
     int tool_ = 0;
 

@@ -195,7 +195,7 @@ std::string LatheFinding::message() const {
                            z_text, outside ? "radius" : "bore radius", number_text(radius, 3),
                            line > 0 ? fmt::format(", by line {}", line) : std::string(), where);
     return fmt::format("{}: material left {} mm {} ({}) at Z{}: {} {} (at {})", who, number_text(amount, 3),
-                       outside ? "above the radius its tool leaves" : "inside its drill's radius", number_text(designed, 3),
+                       outside ? "above the radius its tool leaves" : "inside the radius its tool cuts", number_text(designed, 3),
                        z_text, outside ? "radius" : "bore radius", number_text(radius, 3), where);
 }
 
@@ -229,6 +229,15 @@ LatheCheck check_lathe_design(const LatheDesign& design, const SimStock& bar, co
         checker.judge({sections.z[i], sections.outside[i], sections.bore[i], line(sections.outside_lines, i),
                        line(sections.bore_lines, i), true});
     return checker.take();
+}
+
+std::map<int, ToolShape> job_tool_shapes(const Job& job) {
+    std::map<int, ToolShape> shapes = tool_shapes(job.tools);
+    for (const Operation& op : job.operations)
+        if (const TurnThreadOp* t = std::get_if<TurnThreadOp>(&op); t && t->side == ThreadSide::internal)
+            if (const auto it = job.tools.find(t->tool); it != job.tools.end() && it->second.orientation == 0)
+                shapes[t->tool].orientation = 3;
+    return shapes;
 }
 
 LatheDesignCheck prepare_lathe_design_check(const Job& job, const Machine& machine, const SimStock& bar, Simulator& sim) {

@@ -693,11 +693,14 @@ private:
         }
         for (const auto& [p, q] : pieces) {
             // The program's point is the imaginary tip: the nose circle's centre lies from it
-            // as the tool's orientation says (2: a nose radius above it in X and Z).
+            // as the tool's orientation says (2: a nose radius above it in X and Z); a tip
+            // past the axis (X < 0) has its centre there too, its radius |X - offset|.
             const double n = tool.nose_radius;
             const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
-            if (tool.form == ToolForm::turning)
-                lathe_turn({std::abs(p.x) - tip.y, p.y, p.z - tip.x}, {std::abs(q.x) - tip.y, q.y, q.z - tip.x}, n, acc);
+            if (tool.form == ToolForm::turning && tip.y > 0)  // tip +X of the nose: a boring tool
+                lathe_bore({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
+            else if (tool.form == ToolForm::turning)
+                lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n, acc);
             else if (tool.form == ToolForm::blade)
                 lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
             else lathe_axial(s, p, q, tool, acc);
@@ -741,6 +744,25 @@ private:
         });
     }
 
+    // A boring tool (orientations 3, 4 and 8: its tip +X of its nose): lathe_turn mirrored in X,
+    // its body toward the axis and +Z: it opens the bore to r <= x + nose at z >= Pz, and to the
+    // nose's upper quarter below.
+    void lathe_bore(const Vec3& a, const Vec3& b, double nose, SimMoveAcc& acc) {
+        const LatheProfile& p = result_.lathe;
+        const double zlo = std::min(a.z, b.z) - nose;
+        int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
+        for (int k = k0; k < p.nz; ++k) {
+            const double r = -turn_reach(a, b, nose, p.z(k), -1.0);
+            if (!std::isfinite(r)) continue;
+            if (r > p.bore[k] && p.outside[k] > p.bore[k])
+                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, std::numeric_limits<double>::infinity(), r, acc));
+        }
+        sections_above(zlo, [&](std::size_t i) {
+            const double r = -turn_reach(a, b, nose, result_.lathe_sections.z[i], -1.0);
+            if (std::isfinite(r)) section_cut(i, std::numeric_limits<double>::infinity(), r);
+        });
+    }
+
     // A blade: its edge from the point's Z + lo to + hi, its body straight out in +X.
     void lathe_blade(const Vec3& a, const Vec3& b, double lo, double hi, SimMoveAcc& acc) {
         const LatheProfile& p = result_.lathe;
@@ -775,9 +797,10 @@ private:
         return std::min(xa + t0 * (xb - xa), xa + t1 * (xb - xa));
     }
 
-    // The least radius the move clears at Z z (infinity: none there).
-    static double turn_reach(const Vec3& a, const Vec3& b, double nose, double z) {
-        const double xa = std::abs(a.x), xb = std::abs(b.x);
+    // The least radius the move clears at Z z (infinity: none there). With `side` -1 the radii
+    // are taken negative: minus the greatest radius a boring tool's nose reaches.
+    static double turn_reach(const Vec3& a, const Vec3& b, double nose, double z, double side = 1.0) {
+        const double xa = side * std::abs(a.x), xb = side * std::abs(b.x);
         // Positions at or below z: the part of the segment with Pz <= z.
         double r = std::numeric_limits<double>::infinity();
         if (a.z <= z) r = std::min(r, xa);

@@ -157,6 +157,11 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
 
 std::string run_rs274_canon(const std::string& rs274, const std::string& program,
                             const std::map<int, double>& tool_diameters) {
+    return run_rs274_canon(rs274, program, tool_diameters, {});
+}
+
+std::string run_rs274_canon(const std::string& rs274, const std::string& program, const std::map<int, double>& tool_diameters,
+                            const std::map<int, int>& orientations) {
     namespace fs = std::filesystem;
     fs::path dir = fs::temp_directory_path() / fmt::format("camgen-oracle-{}", ::getpid());
     fs::create_directories(dir);
@@ -173,7 +178,12 @@ std::string run_rs274_canon(const std::string& rs274, const std::string& program
         // Its table is in inches (the standalone interpreter's machine units).
         for (int i = 1; i < 100; ++i) {
             const auto d = tool_diameters.find(i);
-            t << fmt::format("T{} P{} Z0 D{:.9f} ;tool {}\n", i, i, d == tool_diameters.end() ? 1.0 : d->second / 25.4, i);
+            const auto q = orientations.find(i);
+            if (q != orientations.end())
+                t << fmt::format("T{} P{} X0 Z0 D{:.9f} Q{} ;tool {}\n", i, i,
+                                 d == tool_diameters.end() ? 1.0 : d->second / 25.4, q->second, i);
+            else
+                t << fmt::format("T{} P{} Z0 D{:.9f} ;tool {}\n", i, i, d == tool_diameters.end() ? 1.0 : d->second / 25.4, i);
         }
     }
     // rs274 keeps its tool table in $HOME/.tool.mmap, truncated at every start: two rs274 at

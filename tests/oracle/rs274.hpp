@@ -43,6 +43,11 @@ std::vector<Step> run_rs274(const std::string& rs274, const std::string& program
 std::string run_rs274_canon(const std::string& rs274, const std::string& program,
                             const std::map<int, double>& tool_diameters = {});
 
+// The same with lathe tools: `orientations` gives a tool its tip orientation (the table's Q,
+// LinuxCNC's codes), which G41/G42 in G18 move the imaginary tip of.
+std::string run_rs274_canon(const std::string& rs274, const std::string& program, const std::map<int, double>& tool_diameters,
+                            const std::map<int, int>& orientations);
+
 // Normalises rs274's canonical output (exposed for tests of the parser itself).
 std::vector<Step> parse_canon(const std::string& canon);
 

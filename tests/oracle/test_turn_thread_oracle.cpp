@@ -1,4 +1,5 @@
-// LinuxCNC oracle for turn-thread (issue 30): linuxcnc-lathe programs of external and internal
+// LinuxCNC oracle for turn-thread's longhand passes (issue 30; output "longhand": G76 is
+// test_thread_cycle_oracle.cpp's): linuxcnc-lathe programs of external and internal
 // threads (metric and unified sizes, both infeed rules, radial and flank infeed, spring passes,
 // several starts) run through rs274 in lathe mode to their end; every move rs274 makes ends
 // where camgen's own reading of the program says within 0.001 mm; each thread pass is a
@@ -128,7 +129,7 @@ std::string job_text(const Case& c) {
               "direction": "{}"}}],
   "operations": [{{"type": "turn-thread", "tool": 7, {}, "side": "{}", "hand": "{}", "starts": {},
                    "startZ": 0, "endZ": -12.5, "infeed": "{}", "firstDepth": {:.3f}, "minDepth": {:.3f},
-                   "springPasses": {}, "infeedAngle": {:.2f}}}]}})",
+                   "springPasses": {}, "infeedAngle": {:.2f}, "output": "longhand"}}]}})",
         c.left ? "ccw" : "cw", thread, c.internal ? "internal" : "external", c.left ? "left" : "right", c.starts,
         c.constant_area ? "constant-area" : "constant-depth", c.first, c.least, c.spring, c.angle);
 }

@@ -109,6 +109,10 @@ TEST_CASE("lathe machines describe their TurnDrillingFields") {
     CHECK(has(d, "feedModes               per-minute G98, per-revolution G99"));
     const std::string l = describe_machine(load_machine("linuxcnc-lathe"));
     CHECK(has(l, "canned G83; fields: plungingFeedrate, firstPeckDepth, peckClearance"));
+    // Their threading cycles (turn-thread's output).
+    CHECK(has(l, "threading cycles (turn-thread)\n"));
+    CHECK(has(l, "G76 (linuxcnc-g76): constant-depth, constant-area, infeedAngle, springPasses\n"));
+    CHECK(has(d, "longhand\n"));
 }
 
 TEST_CASE("sinumerik-lathe: DIAMON and G18; axial drilling as G17, MCALL CYCLE83 at X0, MCALL, G18") {

@@ -150,17 +150,20 @@ TEST_CASE("lathe design check: where no operation designs the bar, a cut into it
 TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its job designs") {
     int simulated = 0;
     for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"})
-        for (const char* file : {"shaft.json", "shaft-stops.json"}) {
+        for (const char* file : {"shaft.json", "shaft-stops.json", "shaft-control.json"}) {
             CAPTURE(machine);
             CAPTURE(file);
-            const Simulated s = simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; });
+            // shaft-control's bar starts at its profile's face (no turn-face): faceZ 0, as its stock says.
+            const std::string bar = std::string(file) == "shaft-control.json" ? "44,70,0" : "44,70,1";
+            const Simulated s =
+                simulate(samples + file, machine, "sample.nc", [](const std::string& t) { return t; }, "", bar);
             CHECK_MESSAGE(s.run.code == 0, std::string(s.run.out + s.run.err));
             CHECK(has(s.run, "simulation: no errors\n"));
             CHECK(has(s.run, "design check   lathe: "));
             CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), s.run.out);
             ++simulated;
         }
-    CHECK(simulated == 6);
+    CHECK(simulated == 9);
     // Where the machine cannot tap, the tap is the operator's: not checked (its bore is not cut).
     const Simulated stops = simulate(samples + "shaft-stops.json", "fanuc-lathe", "stops.nc", [](const std::string& t) { return t; });
     CHECK(has(stops.run, "  not checked: /operations/5: the program leaves its cycle to the operator at a stop (machine "
@@ -170,6 +173,19 @@ TEST_CASE("camgen simulate: every lathe sample on every lathe makes the part its
     CHECK(has(shaft.run, "design check   lathe: 6 profiles, 2 holes, within 0.008 mm in radius and in Z, 70000 samples and 40 "
                          "sections 0.0088 mm beside the designed corners\n"));
     CHECK(has(shaft.run, "  note: /operations/4: the nose of tool 3 (radius 0.4 mm) leaves up to "));
+}
+
+TEST_CASE("camgen simulate: control compensation on the wrong side (G41 for G42) gouges the part; none leaves material") {
+    // The simulation sees the nose where the control puts it: G41 offsets it into the part.
+    for (const std::string machine : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const Simulated wrong = simulate(
+            samples + "shaft-control.json", machine, "g41.nc",
+            [](std::string t) { return t.replace(t.find("G42 G1"), 3, "G41"); }, "", "44,70,0");
+        CHECK(wrong.run.code == 1);
+        CHECK(wrong.run.out.find("error: gouge: /operations/0 (the part inside the profile): material removed") !=
+              std::string::npos);
+    }
 }
 
 TEST_CASE("camgen simulate: a tool 0.05 mm into the shaft's finished D30 is a gouge at its line, on every lathe") {
@@ -299,6 +315,88 @@ TEST_CASE("camgen simulate: the shaft's roughing along X leaves the part as desi
         const std::string said = machine + "\n" + s.run.out;
         CHECK_MESSAGE(s.run.code == 0, said);
         CHECK_MESSAGE(has(s.run, "  the part is as designed\n"), said);
+    }
+}
+
+TEST_CASE("camgen simulate: an internal thread opens the bore to its major diameter, as designed; deeper is a gouge, shallower material left") {
+    // A D20.4 bore drilled 25 deep, threaded M22x1.5 inside down to Z-15: the threading tool
+    // (none, or an orientation whose tip points to +X) is swept as a boring tool, which opens the
+    // bore and leaves the outside alone; its nose rounds the thread's end.
+    const fs::path dir = test::scratch("simulate-internal-thread");
+    for (const std::string orientation : {"", ", \"orientation\": 3", ", \"orientation\": 8", ", \"orientation\": 4"}) {
+        CAPTURE(orientation);
+        const std::string job = (dir / "inside.json").string();
+        std::ofstream(job) << R"({"clearance": 20, "stock": {"bar": {"diameter": 40, "length": 50, "faceZ": 0}}, "tools": [
+ {"number": 2, "type": "drill", "diameter": 20.4, "tipAngle": 118, "rpm": 500},
+ {"number": 8, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 400)" + orientation + R"(}],
+ "operations": [
+  {"type": "turn-drill", "tool": 2, "startDepth": 0, "endDepth": -25, "safeDistance": 2, "retractDistance": 5,
+   "feedMode": "per-revolution", "plungingFeedrate": 0.1},
+  {"type": "turn-thread", "tool": 8, "thread": "M22x1.5", "side": "internal", "startZ": 0, "endZ": -15, "firstDepth": 0.2}]})";
+        const Job parsed = read_job(test::read_file(job), "inside.json");
+        const PartDesign design = part_design(parsed);
+        CHECK(design.unchecked.empty());
+        REQUIRE(design.lathe.holes.size() == 2);
+        const LatheHoleDesign& h = design.lathe.holes[1];
+        CHECK(h.path == "/operations/1");
+        CHECK(h.radius_at(-10) == doctest::Approx(11));
+        CHECK(h.radius_at(-15 + h.nose_above + 1e-9) == doctest::Approx(11));
+        CHECK(h.radius_at(-15 + h.nose_above - 0.1 - 1e-6) == 0.0);
+        CHECK(h.radius_at(-15 + h.nose_above - 0.05) == doctest::Approx(10.9 + std::sqrt(0.01 - 0.0025)));
+        for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+            CAPTURE(machine);
+            const Simulated s = simulate(job, machine, "inside.nc", [](const std::string& t) { return t; }, "", "40,50,0");
+            CHECK_MESSAGE(s.run.code == 0, s.run.out << s.run.err);
+            CHECK_MESSAGE(has(s.run, "the part is as designed"), s.run.out);
+            CHECK_MESSAGE(has(s.run, "simulation: no errors"), s.run.out);
+            // The thread removes the ring from the minor bore of the drill (D20.4) to D22 over 15
+            // mm (and a little more at the thread's start, beyond the drill's): the outside stays.
+            const std::regex removed(R"(tool T8: removed ([0-9.]+) mm\^3)");
+            std::smatch m;
+            REQUIRE(std::regex_search(s.run.out, m, removed));
+            const double ring = pi_ * (11.0 * 11.0 - 10.2 * 10.2) * 15.0;
+            CHECK(std::stod(m[1]) == doctest::Approx(ring).epsilon(0.02));
+        }
+    }
+    // Written longhand on linuxcnc-lathe (not its G76): the passes' X is the tip's diameter; the
+    // last passes at X22 (D22).
+    const std::string job = (dir / "inside-longhand.json").string();
+    {
+        std::string text = test::read_file((dir / "inside.json").string());
+        const std::string key = R"("side": "internal",)";
+        REQUIRE(text.find(key) != std::string::npos);
+        text.replace(text.find(key), key.size(), key + R"( "output": "longhand",)");
+        std::ofstream(job) << text;
+    }
+    auto edit_last = [](const std::string& to) {
+        return [to](const std::string& t) { return std::regex_replace(t, std::regex("\nX22\n"), "\n" + to + "\n"); };
+    };
+    const Simulated deeper = simulate(job, "linuxcnc-lathe", "deeper.nc", edit_last("X22.4"), "", "40,50,0");
+    CHECK(deeper.run.code == 1);
+    CHECK_MESSAGE(has(deeper.run, "error: gouge: /operations/1 (the part around the hole): material removed 0.2 mm beyond the designed "
+                                  "bore radius 11"),
+                  deeper.run.out);
+    const Simulated shallower = simulate(job, "linuxcnc-lathe", "shallower.nc", edit_last("X21.8"), "", "40,50,0");
+    CHECK_MESSAGE(has(shallower.run, "warning: /operations/1 (the hole): material left 0.012 mm inside the radius its tool cuts (11)"),
+                  shallower.run.out);
+}
+
+TEST_CASE("camgen simulate: a turning tool's tip past the axis has its nose centred there (a profile that faces from the centre)") {
+    // The tip at X-0.8 (diameter) of an R0.4 nose of orientation 2: the nose's centre is on the
+    // axis. Swept with the centre mirrored from the tip's |X|, it read 0.718 mm of material
+    // left at the face's centre.
+    const fs::path dir = test::scratch("simulate-past-axis");
+    const std::string job = (dir / "stub.json").string();
+    std::ofstream(job) << R"({"clearance": 20, "stock": {"bar": {"diameter": 40, "length": 50, "faceZ": 1}},
+ "tools": [{"number": 3, "type": "turning-tool", "noseRadius": 0.4, "rpm": 800}],
+ "operations": [{"type": "turn-profile", "tool": 3, "xValues": "diameter", "feedMode": "per-revolution", "feed": 0.1,
+   "start": [0, 0], "retractX": 44, "path": [{"line": [30, 0]}, {"line": [30, -10]}, {"line": [40, -10]}]}]})";
+    for (const std::string machine : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(machine);
+        const Simulated s = simulate(job, machine, "stub.nc", [](const std::string& t) { return t; }, "", "40,50,1");
+        CHECK_MESSAGE(s.run.code == 0, s.run.out << s.run.err);
+        CHECK_MESSAGE(has(s.run, "the part is as designed"), s.run.out);
+        CHECK_MESSAGE(!has(s.run, "warning:"), s.run.out);
     }
 }
 

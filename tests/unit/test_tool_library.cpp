@@ -495,21 +495,24 @@ TEST_CASE("path, bore-mill and thread-mill feeds are computed from the library, 
     CHECK(missing.err.find("/operations/0/feed: required key \"feed\" is missing") != std::string::npos);
 }
 
-TEST_CASE("a library turning tool's surface speed is not made an rpm of the tool's own diameter") {
+TEST_CASE("a library turning tool's surface speed is a constant surface speed (G96), not an rpm of its own diameter") {
     const fs::path dir = scratch("toollib-turning");
     const std::string tools = write_to(dir, "tools.json", R"({"tools": [
   {"name": "cnmg", "type": "turning-tool", "diameter": 12,
    "cuttingData": [{"material": "steel", "surfaceSpeed": 200, "feedPerRev": 0.2}]}]})");
-    const std::string job = R"({"clearance": 10, "material": "steel",
-  "tools": [{"number": 1, "library": "cnmg"}], "operations": []})";
+    const std::string job = R"({"clearance": 10, "material": "steel", "stock": {"bar": {"diameter": 40, "length": 50, "faceZ": 1}},
+  "tools": [{"number": 1, "library": "cnmg"}],
+  "operations": [{"type": "turn-face", "tool": 1, "z": 0, "stepdown": 1, "feedMode": "per-revolution", "feed": 0.2}]})";
     const Run r = run({"-", "--machine", "fanuc-lathe", "--tools", tools}, job);
-    CHECK(r.code == 1);
-    CHECK(r.out.empty());
-    CHECK(r.err.find("/tools/0/library: library tool \"cnmg\"") != std::string::npos);
-    CHECK(r.err.find("is a turning tool: its surfaceSpeed (200 m/min for steel) sets the work's surface speed") !=
-          std::string::npos);
+    CHECK(r.code == 0);
+    // Within the machine's limit, 3000 rpm.
+    CHECK(r.out.find(" G50 S3000\n") != std::string::npos);
+    CHECK(r.out.find(" G96 S200 M3\n") != std::string::npos);
+    CHECK(r.err.find("constant surface speed 200 m/min for steel (G96), at most 3000 rpm computed") != std::string::npos);
     // With the job's rpm it is used.
     std::string with_rpm = job;
     with_rpm.replace(with_rpm.find("\"library\": \"cnmg\""), 17, "\"library\": \"cnmg\", \"rpm\": 900");
-    CHECK(run({"-", "--machine", "fanuc-lathe", "--tools", tools}, with_rpm).code == 0);
+    const Run at_rpm = run({"-", "--machine", "fanuc-lathe", "--tools", tools}, with_rpm);
+    CHECK(at_rpm.code == 0);
+    CHECK(at_rpm.out.find(" G97 S900 M3\n") != std::string::npos);
 }

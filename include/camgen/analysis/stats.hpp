@@ -32,7 +32,31 @@ struct ToolStats {
     double rapid_length = 0.0; // mm
     double time = 0.0;         // s
     int holes = 0;
+    // Constant surface speed (G96) while the tool fed: the surface speeds (m/min) and the rpm
+    // the spindle turned at over the feed moves, min(limit, 1000 vc / (pi d)); 0: none.
+    double surface_speed_min = 0.0, surface_speed_max = 0.0;
+    double rpm_min = 0.0, rpm_max = 0.0;
 };
+
+// A feed per revolution under a constant surface speed: vc m/min at the work's diameter, the
+// spindle held to `limit` rpm, `per_rev` mm a turn, the feed clamped to the machine's
+// [min_feed, max_feed] mm/min.
+struct SurfaceSpeedFeed {
+    double surface_speed = 0.0;  // m/min
+    double limit = 0.0;          // rpm
+    double per_rev = 0.0;        // mm/rev
+    double min_feed = 0.0;       // mm/min (0: none)
+    double max_feed = 0.0;       // mm/min (0: none)
+};
+
+// The spindle's rpm at radius r (mm) under a constant surface speed: min(limit, 1000 vc / (2 pi r)).
+double surface_speed_rpm(double surface_speed, double limit, double radius);
+
+// The time (s) a straight feed move of `length` mm takes from radius-signed X x0 to x1 (the
+// lathe's X, radius; the spindle's speed follows |x|) under `feed`. Exact: the inverse of the
+// feed is piecewise linear in |x| (the limit, the clamps), integrated between its breakpoints.
+// `clamped`: set when the feed reached the machine's limits on the way.
+double surface_speed_feed_time(const SurfaceSpeedFeed& feed, double x0, double x1, double length, bool* clamped = nullptr);
 
 // Numbers for a whole program.
 struct ProgramStats {
@@ -79,6 +103,8 @@ private:
     ToolStats& tool_stats(int tool);
     MachineLimits limits_;
     ProgramStats stats_;
+    double surface_speed_ = 0.0;  // m/min under G96, else 0
+    double spindle_rpm_ = 0.0;    // rpm, under G96 the limit
 };
 
 // Measures a trace. Feeds are clamped to machine.limits, rapids run at limits.rapid_rate.

@@ -35,7 +35,8 @@ struct Step {
     double seconds = 0.0;            // dwell
     int tool = 0;                    // the tool in the spindle (tool_change: the new one)
     SpindleState spindle = SpindleState::off;  // spindle
-    double rpm = 0.0;                // spindle
+    double rpm = 0.0;                // spindle; under a constant surface speed its limit
+    double surface_speed = 0.0;      // spindle: m/min under G96 (the rpm follows the radius |x|), else 0
     StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
     int line = 0;                    // program line (0: from a job)
     double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
@@ -103,6 +104,10 @@ struct TraceSummary {
 struct TraceOptions {
     std::map<int, double> compensation_radii;
     double rounding = 0.0;  // mm
+    // A lathe's G41/G42 (G18): the tip orientation (LinuxCNC's codes) of the tool of that number,
+    // as the control's table holds it; a tool missing here is taken as orientation 0 (the
+    // programmed point the nose centre), with a note.
+    std::map<int, int> compensation_orientations;
 };
 
 // The control refuses the program: cutter compensation it cannot apply without gouging, a

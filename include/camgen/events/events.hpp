@@ -52,10 +52,12 @@ struct ToolChange {
     friend bool operator==(const ToolChange&, const ToolChange&) = default;
 };
 
-// Spindle on (direction, rpm) or off.
+// Spindle on (direction, rpm) or off. `surface_speed`: constant surface speed (G96), m/min at
+// the work's diameter; then `rpm` is the spindle's limit (G50 S, D, LIMS=). 0: a constant rpm.
 struct Spindle {
     SpindleState state = SpindleState::off;
     double rpm = 0.0;
+    double surface_speed = 0.0;
     friend bool operator==(const Spindle&, const Spindle&) = default;
 };
 
@@ -115,6 +117,10 @@ struct Compensation {
     CompensationSide side = CompensationSide::off;
     int d_register = 0;    // 0: the tool's number
     double radius = 0.0;   // mm; 0: unknown (only the control's tool table knows it)
+    // A lathe's nose-radius compensation (G41/G42 in G18): the tool's tip orientation
+    // (LinuxCNC's codes 1-8, lathe_tip_offset), the point the program moves being the imaginary
+    // tip of that orientation; 0: a mill's cutter, or unknown (only the control's table knows it).
+    int orientation = 0;
     friend bool operator==(const Compensation&, const Compensation&) = default;
 };
 
@@ -201,9 +207,38 @@ struct ThreadFeed {
     friend bool operator==(const ThreadFeed&, const ThreadFeed&) = default;
 };
 
+// A threading cycle (LinuxCNC G76, Fanuc's two-block G76, Sinumerik CYCLE97), resolved to
+// absolute values (mm, radius). Before it the tool stands at `start`, the drive point: X the
+// radius the last pass returns to, outside the thread (inside the bore), Z where the passes begin
+// before the flank infeed moves them. Each pass of depth d (radial, from the crest) comes in at
+// Z start.z - d tan(infeed_angle), cuts synchronised with the spindle to end_z + (depth - d)
+// tan(infeed_angle) (the flank ends where the last pass does) and returns to the radius
+// start.x + (depth - d) outward; after the last pass the tool stands at (start.x, end_z). Cut
+// along -Z. `thread_cycle_moves` gives the moves, which posts without the cycle write longhand.
+struct ThreadCycle {
+    std::string path;                   // JSON path of the operation, for messages
+    CycleOutput output = CycleOutput::automatic;
+    Vec3 start;
+    double end_z = 0.0;
+    double lead = 0.0;                  // mm per revolution along Z
+    double crest_x = 0.0;               // radius of the thread's crest (an internal thread's: the bore's)
+    double first_depth = 0.0;           // radial depth of the first pass
+    double depth = 0.0;                 // radial depth of the thread
+    double degression = 2.0;            // the infeed rule: depth after pass n = first_depth x n^(1/degression)
+    double min_depth = 0.0;             // the least radial depth of a pass, 0: none
+    double infeed_angle = 0.0;          // degrees from radial
+    int spring_passes = 0;
+    std::vector<std::string> fields;    // what the canned cycle must carry ("constant-area", "infeedAngle", ...)
+    std::vector<double> depths;         // each pass's cumulative radial depth, the spring passes included
+    friend bool operator==(const ThreadCycle&, const ThreadCycle&) = default;
+};
+
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
-                           ThreadFeed>;
+                           ThreadFeed, ThreadCycle>;
+
+// The moves of a threading cycle (Rapid and ThreadFeed events), from its drive point.
+std::vector<Event> thread_cycle_moves(const ThreadCycle& cycle);
 
 // Receives events one at a time (a post, a recorder, the event printer).
 class EventSink {

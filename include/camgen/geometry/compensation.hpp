@@ -106,4 +106,8 @@ double arc_sweep(Vec2 from, Vec2 centre, ArcDirection direction, int turns, Vec2
 // the radius; 9 and 0: at the centre) and nose radius `radius`.
 Vec2 lathe_tip_offset(int orientation, double radius);
 
+// Where the imaginary tip of `orientation` lies from the nose centre, in words for an operator's
+// comment: "tip at -X -Z of the nose centre" (9, 0: "tip at the nose centre").
+std::string lathe_tip_words(int orientation);
+
 }  // namespace camgen

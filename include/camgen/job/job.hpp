@@ -55,7 +55,11 @@ struct Tool {
     double width = 0.0;
     std::optional<double> profile_angle;
     bool centre_cutting = true;            // cuts at its centre: may plunge into material
-    double rpm = 0.0;                      // rev/min, > 0
+    double rpm = 0.0;                      // rev/min, > 0; with surface_speed the spindle's limit (maxRpm)
+    // Constant surface speed (G96) of a turning, grooving or parting tool, m/min at the work's
+    // diameter (job key surfaceSpeed); 0: the constant rpm.
+    double surface_speed = 0.0;
+    double max_rpm = 0.0;                  // job key maxRpm, the limit under surface_speed; 0: the machine's
     SpindleDirection direction = SpindleDirection::cw;
     std::string comment;
     CoolantMode coolant = CoolantMode::off;  // while the tool cuts

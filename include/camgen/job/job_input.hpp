@@ -143,6 +143,9 @@ private:
                                     std::optional<std::int64_t> number);
     // rpm and cutting data of a tool from the library tool `entry` for the job's material.
     void apply_cutting_data(Fields& f, Tool& tool, const LibraryTool& entry, bool rpm_given);
+    // A constant surface speed's limit into tool.rpm: its maxRpm, else the machine's; refused
+    // above the machine's, or with neither.
+    void resolve_surface_speed_limit(Fields& f, Tool& tool) const;
 
     JobLimits limits_;
     mutable json::Document doc_;  // mutable: array() unpacks a packed array for a reader that wants JSON

@@ -19,6 +19,7 @@
 // In (u, v) = (Z, radius), mm, as a turn-profile's Profile is. A turn-profile has no inside
 // (bore) side and no stock-to-leave key yet: neither is designed.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -78,9 +79,20 @@ struct LatheHoleDesign {
     double radius = 0.0;     // the drill's radius, mm
     double flat = 0.0;       // the radius of the flat at its point (a drill's: 0), mm
     double slope = 0.0;      // mm of Z per mm of radius along the point (0: a flat end)
+    // An internal thread's tool nose (radius > 0): its centre `nose_above` mm above bottom_z
+    // (the tip's Z) and a nose radius inside `radius` (the tip's radius): the bore's end is
+    // what the nose leaves, rounded, not a flat.
+    double nose = 0.0;
+    double nose_above = 0.0;
 
-    // The designed bore's radius at Z z: 0 below the point, the point's cone, the radius above.
+    // The designed bore's radius at Z z: 0 below the point, the point's cone (or the nose's
+    // round), the radius above.
     double radius_at(double z) const {
+        if (nose > 0) {
+            const double e = bottom_z + nose_above - z;
+            if (e <= 0) return radius;
+            return e > nose ? 0.0 : radius - nose + std::sqrt(nose * nose - e * e);
+        }
         if (z < bottom_z) return 0.0;
         if (!(slope > 0)) return radius;
         return std::min(radius, flat + (z - bottom_z) / slope);
@@ -114,8 +126,9 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
 // An external turn-thread designs its minor diameter over its length (from startZ down to endZ,
 // then up its end to the major diameter): a turned part is round, and the passes remove all
 // around what lies beyond the thread's root, as the simulation sweeps them (the helix and its
-// flanks are not designed); its tip's whole path as the passes make it. An internal thread is
-// left unchecked (the turned design has no bore side yet).
+// flanks are not designed); its tip's whole path as the passes make it. An internal thread
+// designs a bore of its major diameter down to endZ (a LatheHoleDesign whose end is the tool's
+// nose, swept as orientation 3 where the tool has none), the part kept around it.
 void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

@@ -77,6 +77,20 @@ struct RoughingCycleSpec {
     std::vector<RoughingField> fields;  // what it carries
 };
 
+// How a canned threading cycle is written: LinuxCNC's G76 P Z I J K R Q H.
+enum class ThreadCycleStyle { linuxcnc_g76 };
+
+// What a turn-thread may ask of a threading cycle (machine file threadingCycles[].fields).
+inline constexpr const char* thread_cycle_field_names[] = {"constant-depth", "constant-area", "minDepth", "infeedAngle",
+                                                           "springPasses"};
+
+// One threading cycle the machine offers (machine file threadingCycles).
+struct ThreadingCycleSpec {
+    std::string name;                  // "G76"
+    ThreadCycleStyle style = ThreadCycleStyle::linuxcnc_g76;
+    std::vector<std::string> fields;   // what it carries: thread_cycle_field_names
+};
+
 // Limits of the machine. Feeds mm/min, speeds rpm.
 struct MachineLimits {
     double max_feed = 10000.0;
@@ -153,6 +167,7 @@ struct Machine {
     TappingMode tapping = TappingMode::none;  // machine file drilling.tapping
     std::vector<DrillingCycleSpec> drilling;
     std::vector<RoughingCycleSpec> roughing_cycles;  // machine file "roughingCycles"
+    std::vector<ThreadingCycleSpec> threading;  // machine file threadingCycles
     FrameSettings frame;
     // The dialect's settings (machine file "settings"), read by parse_machine; null for a machine
     // made in code, whose dialect takes its defaults (settings_of).

@@ -95,6 +95,9 @@ public:
     // Why the spindle cannot run counter-clockwise (a tool's "direction": "ccw"), as the
     // message says it; nullopt where it can.
     virtual std::optional<std::string> ccw_spindle_refusal() const { return std::nullopt; }
+    // Why the spindle cannot turn at a constant surface speed (a lathe tool's surfaceSpeed,
+    // G96), as the message says it; nullopt where it can (the lathe dialects).
+    virtual std::optional<std::string> surface_speed_refusal() const;
     // Why a job's programNumber is refused (the dialect writes none: takes_program_number), as
     // the message says it; nullopt where it is written.
     std::optional<std::string> program_number_refusal() const;
@@ -141,6 +144,14 @@ protected:
     // uses (a value the control cannot express, e.g. a degression factor where it takes only
     // a value), or nullopt. The cycle is then written longhand (output "auto") or refused.
     virtual std::optional<std::string> canned_limit(const DrillCycle& cycle, const DrillingCycleSpec& spec) const;
+    // A canned threading cycle, called only when it is written canned (from the cycle's drive
+    // point, where the tool stands). The base refuses it: a dialect with threadingCycles writes it.
+    virtual void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec);
+    // Why the canned threading cycle `spec` would not cut the cycle's passes although it carries
+    // every field (the control's own arithmetic on the rounded words gives other passes), or
+    // nullopt. The cycle is then written longhand (output "auto") or refused. The base: a
+    // dialect that writes no threading cycle says so.
+    virtual std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const;
     // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
     // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
     // tap: ". Asked through cycle_capability.
@@ -313,6 +324,9 @@ private:
     // Where the control stands at the start of an arc block (see arc_actual_end_).
     Vec3 arc_control_start(const Vec3& start) const;
     void handle_drill_cycle(const DrillCycle& cycle);
+    // A threading cycle: canned where the machine's cycle carries it (thread_cycle_limit),
+    // else its moves longhand with a note (output "auto") or refused (output "canned").
+    void handle_thread_cycle(const ThreadCycle& cycle);
     // The cycle as this machine can run it: feeds clamped to its limits (every dialect writes
     // the same clamped values, canned or longhand); refused when a value would be written as 0
     // or below the machine's resolution (speeds, pecks, dwells), when it needs more pecks than

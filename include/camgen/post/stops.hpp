@@ -63,6 +63,7 @@ private:
     EventSink& next_;
     SpindleState spindle_ = SpindleState::off;
     double rpm_ = 0.0;
+    double surface_speed_ = 0.0;  // m/min under G96 (rpm_ its limit), else 0
     Coolant coolant_{CoolantMode::off, ""};
     int tool_ = 0;
     std::string tool_description_;

@@ -13,6 +13,7 @@
 // corner of the designed profiles and every hole's point, judged as the samples are. Between
 // samples on a slope a gouge reads up to its slope x the Z step less deep than it is.
 #include <cstddef>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -59,6 +60,11 @@ std::vector<double> lathe_check_sections(const LatheDesign& design, const SimSto
 LatheCheck check_lathe_design(const LatheDesign& design, const SimStock& bar, const LatheProfile& part,
                               const LatheSections& sections, double tolerance,
                               const std::vector<OperationSpan>& operations = {});
+
+// The shapes of a job's tools (tool_shapes), a threading tool given no orientation swept as
+// its turn-thread programs it: orientation 2 on the outside, 3 for an internal thread (its tip
+// +X of its nose, at the bore's wall).
+std::map<int, ToolShape> job_tool_shapes(const Job& job);
 
 // `camgen simulate`'s lathe design check: made before the sweep (it gives the simulator its
 // sections), reported after it.

@@ -18,13 +18,16 @@
 namespace camgen {
 
 // Who makes up for a turning tool's nose radius on a turn-profile and on turn-rough's last pass.
-enum class NoseCompensation { computer, none };
+enum class NoseCompensation { computer, none, control };
 inline constexpr Named<NoseCompensation> nose_compensation_modes[] = {
     {NoseCompensation::computer, "computer",
      "camgen moves the path so that the nose circle runs along the profile: the program is the path of the "
      "imaginary tip of the tool's orientation (no G41/G42)"},
     {NoseCompensation::none, "none",
      "the profile is the path of the imaginary tip: a nose radius leaves material on tapers, chamfers and arcs"},
+    {NoseCompensation::control, "control",
+     "the program runs the designed profile with G41/G42 in G18 and the control offsets the nose by the radius and "
+     "orientation in its tool table (turn-profile only; turn-rough refuses it)"},
 };
 
 // An element of a profile that a tool cannot follow or reach, and why (for the message).
@@ -77,7 +80,13 @@ struct TurnProfileOp {
     Vec2 lift_direction{0.70710678118654752, 0.70710678118654752};  // unit, (Z, radius): away from the finished surface (turned_lift_direction)
     NoseCompensation compensation = NoseCompensation::computer;
     double nose_radius = 0.0;     // the tool's, mm (0: a sharp tip)
-    Profile tip_path;             // what the program follows: nose_path's tip, or the profile itself (empty: the profile)
+    Profile tip_path;             // where the tip goes: nose_path's tip, or the profile itself (empty: the profile)
+    // Control compensation: the tool's tip orientation, the profile the program writes under
+    // G42 (the designed one, ending a nose radius short of its end, where the nose's leading
+    // point reaches it) and the point the G40 move lifts the tip to (Z, radius).
+    int orientation = 0;
+    Profile control_path;
+    Vec2 control_exit;
     double nose_low = 0.0;        // the nose's least radius less the programmed point's, mm (<= 0)
     std::vector<std::string> notes;  // what camgen decided that the job did not ask for
 };

@@ -66,6 +66,7 @@ struct TurnThreadOp {
     double infeed_angle = 0.0;          // degrees from the radial direction
     double approach = 0.0;              // mm beyond startZ where each pass starts
     double retract = 1.0;               // radial mm outside the surface (inside the bore) for the returns
+    CycleOutput output = CycleOutput::automatic;  // a threading cycle (ThreadCycle) or longhand passes
     std::vector<double> depths;         // the cumulative radial depth of each pass, the spring passes included
     std::vector<std::string> notes;
     // The lead, mm per revolution.
@@ -80,8 +81,14 @@ struct TurnThreadOp {
 // while below total; a step below `min_depth` made min_depth; the last pass at total.
 std::vector<double> thread_pass_depths(ThreadInfeed infeed, double total, double first, double min_depth);
 
-// For each start, for each pass: rapid in air to the pass's start, in to its depth, a ThreadFeed
-// to endZ, out to the retract X, back along Z; then back to the clearance.
+// The threading cycle of one start (0, 1, ...): the drive point approachDistance beyond startZ
+// (one pitch further per start) at the retract X; the passes' depths; the fields it uses.
+ThreadCycle thread_cycle(const TurnThreadOp& op, int start);
+
+// Output longhand: for each start, for each pass: rapid in air to the pass's start, in to its
+// depth, a ThreadFeed to endZ, out to the retract X, back along Z; then back to the clearance.
+// Otherwise a ThreadCycle per start from its drive point (its passes end short of endZ by
+// (depth - d) tan(infeedAngle), the flank's shadow of the last pass, as G76 cuts them).
 void expand(const TurnThreadOp& op, const Context& context, EventSink& sink);
 
 // The operation's name for comments: its comment, else "turn thread <designation>".
