@@ -2,8 +2,8 @@
 // What LinuxCNC 2.9's G71 roughing cycle makes of a profile: the moves the control makes, as a
 // model camgen computes itself (held to rs274 by tests/oracle/test_g71_model_oracle.cpp). The
 // linuxcnc-lathe reader expands a G71 it reads back into these moves, so that verify, stats and
-// the simulation see what the control will cut. (turn-rough does not write G71 yet; a canned
-// turn-rough is meant to carry these moves as the longhand it equals.)
+// the simulation see what the control will cut; a canned turn-rough carries them (TurnCycle) as
+// the longhand it equals.
 //
 // The model covers the profiles camgen writes as a G71 (the rest are refused with a reason):
 // the profile's Z never rises and its radius never falls (no pocket), lines and arcs that keep
@@ -36,6 +36,7 @@ struct LatheCycleMove {
     Vec2 end;                     // (Z, radius)
     Vec2 centre;                  // an arc's
     ArcDirection direction = ArcDirection::ccw;  // an arc's, in (Z, radius): ccw is G3 in G18
+    friend bool operator==(const LatheCycleMove&, const LatheCycleMove&) = default;
 };
 
 struct LatheCycleModel {
