@@ -159,10 +159,11 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     // operations and the simulation).
     if (const std::optional<Stock>& stock = in.header().stock; stock && stock->shape == StockShape::bar) {
         double face = stock->face_z;
-        for (const Operation& op : job.operations) {
+        for (Operation& op : job.operations) {
             std::optional<double> entry;
             std::string what;
             if (const auto* f = std::get_if<TurnFaceOp>(&op)) face = std::min(face, f->z);
+            if (auto* r = std::get_if<TurnRoughOp>(&op)) r->bar_face = face;  // where its cycle may come down
             if (const auto* r = std::get_if<TurnRoughOp>(&op); r && r->direction == RoughDirection::z) {
                 const double tip = r->tip_boundary.segments.empty() ? r->boundary.start.x : r->tip_boundary.start.x;
                 entry = std::max(r->boundary.start.x, tip) + r->approach, what = "its passes come in";

@@ -2,6 +2,8 @@
 // under G17 (LinuxCNC) or in Fanuc T's G74; T0101 turret calls; G50 S / G97 S spindle.
 #include "machines/iso/iso_lathe_post.hpp"
 #include "camgen/geometry/compensation.hpp"
+#include "camgen/geometry/lathe_cycle.hpp"
+#include "camgen/geometry/vec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -229,6 +231,70 @@ void IsoLathePost::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpe
     writer().end();
     // G76 leaves the tool at the drive X and the end Z, in no motion mode camgen writes.
     assume_z(c.end_z);
+    forget_motion();
+}
+
+IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
+    G71Words w;
+    const nc::Format x = machine().format("x");  // diameters under G7
+    const nc::Format z = machine().format("z");
+    const nc::Format& len = xyz_format();       // I, K of the arcs, I and R of G71: radial mm
+    auto point = [&](Vec2 p) { return Vec2{z.rounded(p.x), x.rounded(p.y)}; };
+    w.start = point(Vec2{c.start.z, c.start.x});
+    w.profile.plane = ProfilePlane::xz;
+    w.profile.start = point(c.profile.start);
+    w.sub.push_back(fmt::format("{} {} {}", g(1), x.word("X", c.profile.start.y), z.word("Z", c.profile.start.x)));
+    Vec2 at = w.profile.start;
+    for (const ProfileSegment& s : c.profile.segments) {
+        const Vec2 end = point(s.end);
+        if (!s.centre) {
+            w.sub.push_back(fmt::format("{} {} {}", g(1), x.word("X", s.end.y), z.word("Z", s.end.x)));
+            w.profile.segments.push_back({end, std::nullopt, ArcDirection::ccw});
+        } else {
+            const double i = len.rounded(s.centre->y - at.y), k = len.rounded(s.centre->x - at.x);
+            w.sub.push_back(fmt::format("{} {} {} {} {}", g(s.direction == ArcDirection::ccw ? 3 : 2), x.word("X", s.end.y),
+                                        z.word("Z", s.end.x), len.word("I", s.centre->y - at.y), len.word("K", s.centre->x - at.x)));
+            w.profile.segments.push_back({end, Vec2{at.x + k, at.y + i}, s.direction});
+        }
+        at = end;
+    }
+    w.depth = len.rounded(c.depth);
+    w.retract = len.rounded(c.retract);
+    w.i = len.word("I", c.depth);
+    w.r = len.word("R", c.retract);
+    return w;
+}
+
+std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, const RoughingCycleSpec& spec) const {
+    if (spec.style != RoughingCycleStyle::linuxcnc || spec.kind != RoughingCycleKind::rough_z)
+        return IsoPost::turn_cycle_limit(c, spec);
+    const G71Words w = g71_words(c);
+    const LatheCycleModel control = linuxcnc_g71(w.start, w.profile, w.depth, w.retract);
+    if (control.refusal) return "from its rounded words: " + *control.refusal;
+    if (control.moves.size() != c.moves.size())
+        return fmt::format("its rounded words make {} moves, not {}", control.moves.size(), c.moves.size());
+    for (std::size_t n = 0; n < c.moves.size(); ++n) {
+        const LatheCycleMove& a = control.moves[n];
+        const LatheCycleMove& b = c.moves[n];
+        double off = distance(a.end, b.end);
+        if (a.kind == LatheCycleMove::Kind::arc) off = std::max(off, distance(a.centre, b.centre));
+        if (a.kind != b.kind || off > 0.001)
+            return fmt::format("its move {} would run {} mm from camgen's", n + 1, number_text(off, 4));
+    }
+    return std::nullopt;
+}
+
+void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
+    if (spec.style != RoughingCycleStyle::linuxcnc || spec.kind != RoughingCycleKind::rough_z) IsoPost::on_turn_cycle(c, spec);
+    const G71Words w = g71_words(c);
+    const int n = next_sub_++;
+    // The profile: defined where it is used, before the cycle (the control skips a definition).
+    writer().add(fmt::format("o{}", n)).add("sub").end();
+    for (const std::string& line : w.sub) writer().add(line).end();
+    writer().add(fmt::format("o{}", n)).add("endsub").end();
+    writer().add(spec.name).add(fmt::format("Q{}", n)).add("D0").add(w.i).add(w.r).add(feed_word(c.feed)).end();
+    // The control leaves the tool where its last pass ends, in no motion mode camgen writes.
+    reset_modal_axes();
     forget_motion();
 }
 

@@ -41,6 +41,11 @@ protected:
     // LinuxCNC's G76 P Z I J K R Q H from the drive point (linuxcnc_g76.hpp).
     void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) override;
     std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const override;
+    // LinuxCNC's G71: the profile as a subroutine o<n> sub ... o<n> endsub just before it, then
+    // G71 Q<n> D0 I R F from the start point. Its limit: the control's moves from the rounded
+    // words (linuxcnc_g71) must be the cycle's within 0.001 mm.
+    void on_turn_cycle(const TurnCycle& cycle, const RoughingCycleSpec& spec) override;
+    std::optional<std::string> turn_cycle_limit(const TurnCycle& cycle, const RoughingCycleSpec& spec) const override;
 
 private:
     // The G76 words of a cycle, as text, and the values the control reads from them.
@@ -49,6 +54,16 @@ private:
         iso::LinuxcncG76 read;
     };
     G76Words g76_words(const ThreadCycle& cycle) const;
+    // The G71 subroutine's lines and the cycle as the control reads them back (rounded).
+    struct G71Words {
+        std::vector<std::string> sub;   // the profile's blocks
+        Profile profile;                // as read back, (Z, radius)
+        Vec2 start;
+        double depth = 0.0, retract = 0.0;
+        std::string i, r;               // the I and R words
+    };
+    G71Words g71_words(const TurnCycle& cycle) const;
+    int next_sub_ = 100;          // the number of the next profile subroutine
     const iso::LatheSettings& lathe_;
     double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
     bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97

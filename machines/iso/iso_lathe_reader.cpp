@@ -2,12 +2,19 @@
 // what lathes write differently, by its hooks: Fanuc T's spindle limit G50 S and constant speed G97,
 // turret calls T0101 (setting toolCall "turret"), canned cycles in any plane where the post
 // writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
-// end-face peck drilling G74 R(e) / G74 Z Q F.
+// end-face peck drilling G74 R(e) / G74 Z Q F, and LinuxCNC's G71 roughing from a profile
+// subroutine (o<n> sub ... o<n> endsub, then G71 Q<n> D0 I R F), expanded into the moves the
+// control makes (geometry/lathe_cycle.hpp).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
+#include "camgen/geometry/lathe_cycle.hpp"
+#include "camgen/geometry/profile.hpp"
+#include "camgen/geometry/vec.hpp"
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
 #include "machines/iso/linuxcnc_g76.hpp"
@@ -30,8 +37,41 @@ protected:
     bool variant_motion(int mode, BlockWords& w) override;
     bool f_is_lead(int mode) const override;
 
+    void line(std::string_view text) override;
+    void finish() override;
+
+public:
+    // The base's, and the profile subroutines read (a custom block may not define one).
+    std::vector<std::pair<std::string, std::string>> modal_state() const override {
+        auto s = IsoReader::modal_state();
+        if (linuxcnc_g71_spec()) {
+            s.emplace_back("profile subroutines", std::to_string(subs_.size()));
+            s.emplace_back("subroutine being read", reading_sub_ ? std::to_string(*reading_sub_) : std::string("none"));
+        }
+        return s;
+    }
+
+protected:
+
 private:
     void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
+    // The machine's LinuxCNC-style G71, if it has one (roughingCycles).
+    const RoughingCycleSpec* linuxcnc_g71_spec() const {
+        for (const RoughingCycleSpec& c : machine_.roughing_cycles)
+            if (c.style == RoughingCycleStyle::linuxcnc && c.kind == RoughingCycleKind::rough_z) return &c;
+        return nullptr;
+    }
+    // "o<n> sub" / "o<n> endsub": n, or nullopt when the line is not that.
+    static std::optional<int> sub_line(std::string_view text, std::string_view keyword);
+    void sub_body_line(std::string_view text);
+    void roughing_cycle(BlockWords& w);
+
+    // A profile subroutine being read (its number) and those read, by number: (Z, radius).
+    std::optional<int> reading_sub_;
+    Profile sub_profile_;
+    bool sub_started_ = false;  // its first point is set
+    int sub_motion_ = -1;       // the modal motion code inside it (tenths)
+    std::map<int, Profile> subs_;
     void g76(BlockWords& w);
     // The machine's G76 (threadingCycles of style linuxcnc-g76), if it has one.
     const ThreadingCycleSpec* g76_spec() const {
@@ -49,7 +89,157 @@ private:
     std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
 };
 
+std::optional<int> IsoLatheReader::sub_line(std::string_view text, std::string_view keyword) {
+    std::size_t i = 0;
+    if (text.empty() || (text[0] != 'o' && text[0] != 'O')) return std::nullopt;
+    ++i;
+    const std::size_t digits = i;
+    while (i < text.size() && is_digit(text[i])) ++i;
+    if (i == digits || i - digits > 5) return std::nullopt;
+    const int n = std::stoi(std::string(text.substr(digits, i - digits)));
+    if (i == text.size() || !is_blank(text[i])) return std::nullopt;
+    while (i < text.size() && is_blank(text[i])) ++i;
+    std::string rest(text.substr(i));
+    while (!rest.empty() && is_blank(rest.back())) rest.pop_back();
+    for (char& c : rest) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (rest != keyword) return std::nullopt;
+    return n;
+}
+
+void IsoLatheReader::line(std::string_view text) {
+    if (!linuxcnc_g71_spec()) {
+        IsoReader::line(text);
+        return;
+    }
+    if (auto n = sub_line(text, "sub")) {
+        if (reading_sub_) fail(fmt::format("o{} sub inside o{} sub: a subroutine ends (endsub) before the next", *n, *reading_sub_));
+        if (subs_.count(*n)) fail(fmt::format("o{} sub: subroutine {} is defined already", *n, *n));
+        reading_sub_ = *n;
+        sub_profile_ = Profile{ProfilePlane::xz, {}, {}};
+        sub_started_ = false;
+        sub_motion_ = -1;
+        return;
+    }
+    if (auto n = sub_line(text, "endsub")) {
+        if (!reading_sub_ || *reading_sub_ != *n) fail(fmt::format("o{} endsub without o{} sub", *n, *n));
+        if (sub_profile_.segments.empty())
+            fail(fmt::format("o{} endsub: camgen reads a subroutine as a G71 profile, and this one has no element", *n));
+        subs_[*n] = std::move(sub_profile_);
+        reading_sub_.reset();
+        return;
+    }
+    if (reading_sub_) {
+        sub_body_line(text);
+        return;
+    }
+    IsoReader::line(text);
+}
+
+void IsoLatheReader::sub_body_line(std::string_view text) {
+    // A profile for G71: G0/G1/G2/G3 X Z (I K for arcs, I a radius, from the arc's start), the
+    // first block to the profile's start with both X and Z.
+    Block b = split_line(text);
+    if (b.words.empty()) return;  // a comment
+    std::optional<int> motion;
+    std::optional<double> x, z, i, k;
+    for (const Word& w : b.words) {
+        if (w.letter == 'G') {
+            const int g = code_of(w);
+            if (g != code(0) && g != code(1) && g != code(2) && g != code(3))
+                fail(fmt::format("{} in subroutine o{}: camgen reads a G71 profile of G0, G1, G2 and G3 only", w.text, *reading_sub_));
+            if (motion) fail(fmt::format("{}: two motion codes in one block", w.text));
+            motion = g;
+        } else if (w.letter == 'X' && !x) {
+            x = length(w);
+        } else if (w.letter == 'Z' && !z) {
+            z = length(w);
+        } else if (w.letter == 'I' && !i) {
+            i = offset(w);
+        } else if (w.letter == 'K' && !k) {
+            k = offset(w);
+        } else {
+            fail(fmt::format("{} in subroutine o{}: camgen reads a G71 profile of G0/G1/G2/G3 X Z I K only", w.text, *reading_sub_));
+        }
+    }
+    if (motion) sub_motion_ = *motion;
+    if (sub_motion_ < 0) fail(fmt::format("subroutine o{}: its first block has no motion code", *reading_sub_));
+    const bool arc = sub_motion_ == code(2) || sub_motion_ == code(3);
+    if (!arc && (i || k)) fail(fmt::format("I/K on a straight move in subroutine o{}", *reading_sub_));
+    if (!sub_started_) {
+        if (!x || !z || arc)
+            fail(fmt::format("subroutine o{}: its first block is a straight move to the profile's start with X and Z", *reading_sub_));
+        sub_profile_.start = Vec2{*z, *x};
+        sub_started_ = true;
+        return;
+    }
+    if (sub_profile_.segments.size() >= 100000) fail(fmt::format("subroutine o{}: more than 100000 elements", *reading_sub_));
+    const Vec2 from = sub_profile_.segments.empty() ? sub_profile_.start : sub_profile_.segments.back().end;
+    const Vec2 to{z.value_or(from.x), x.value_or(from.y)};
+    if (to == from) return;  // the control skips it
+    if (!arc) {
+        sub_profile_.segments.push_back({to, std::nullopt, ArcDirection::ccw});
+        return;
+    }
+    if (!i && !k) fail(fmt::format("an arc without its centre I/K in subroutine o{}", *reading_sub_));
+    const Vec2 centre{from.x + k.value_or(0.0), from.y + i.value_or(0.0)};
+    if (std::abs(distance(from, centre) - distance(to, centre)) > machine_.tolerance)
+        fail(fmt::format("an arc in subroutine o{} whose start and end are not equally far from its centre", *reading_sub_));
+    sub_profile_.segments.push_back({to, centre, sub_motion_ == code(3) ? ArcDirection::ccw : ArcDirection::cw});
+}
+
+void IsoLatheReader::finish() {
+    if (reading_sub_) fail(fmt::format("subroutine o{} has no o{} endsub", *reading_sub_, *reading_sub_));
+    IsoReader::finish();
+}
+
+void IsoLatheReader::roughing_cycle(BlockWords& w) {
+    // G71 Q<n> D0 I<depth> R<retract> (F) from where the tool stands: the moves the control makes.
+    for (char letter : {'X', 'Y', 'Z', 'J', 'K', 'P'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G71: camgen reads it as G71 Q D I R F from where the tool stands", x->text));
+    const Word* q = w.take('Q');
+    if (!q) fail("G71 without the profile's subroutine Q");
+    const int n = integer_of(*q);
+    const auto sub = subs_.find(n);
+    if (sub == subs_.end()) fail(fmt::format("G71 {}: no subroutine o{} sub before it", q->text, n));
+    if (const Word* d = w.take('D'))
+        if (offset(*d) != 0.0)
+            fail(fmt::format("{} on G71: camgen reads G71 with D0 only (the control's finishing offset of the profile is not "
+                             "modelled)",
+                             d->text));
+    const Word* iw = w.take('I');
+    const Word* rw = w.take('R');
+    const double depth = iw ? offset(*iw) : 1.0, retract = rw ? length(*rw) : 0.5;  // LinuxCNC's defaults
+    if (!position_known()) fail("G71 from an unknown position");
+    if (!feed_) fail("G71 without a feed (F)");
+    const Vec3 here = position();
+    const LatheCycleModel model = linuxcnc_g71(Vec2{here.z, here.x}, sub->second, depth, retract);
+    if (model.refusal) fail("G71: " + *model.refusal);
+    for (const LatheCycleMove& m : model.moves) {
+        const Vec3 at = position();
+        if (std::abs(at.x - m.end.y) < 1e-12 && std::abs(at.z - m.end.x) < 1e-12) continue;
+        switch (m.kind) {
+            case LatheCycleMove::Kind::rapid: rapid_to(m.end.y, std::nullopt, m.end.x); break;
+            case LatheCycleMove::Kind::feed: linear_to(m.end.y, std::nullopt, m.end.x); break;
+            case LatheCycleMove::Kind::arc: {
+                ArcWords a;
+                a.direction = m.direction;
+                a.plane = Plane::xz;
+                a.x = m.end.y;
+                a.z = m.end.x;
+                a.i = m.centre.y - at.x;
+                a.k = m.centre.x - at.z;
+                arc(a);
+            } break;
+        }
+    }
+}
+
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
+    if (c.value == code(71) && linuxcnc_g71_spec()) {
+        set_group(codes.motion, c);
+        return true;
+    }
     if (c.value == code(iso::spindle_limit_code) || c.value == code(iso::constant_rpm_code) ||
         c.value == code(iso::surface_speed_code)) {
         // A lathe's spindle: G50 S<max rpm> (Fanuc T), G97 S<rpm> constant speed, G96 [D<max rpm>]
@@ -69,6 +259,10 @@ bool IsoLatheReader::f_is_lead(int mode) const {
 }
 
 bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
+    if (mode == code(71) && linuxcnc_g71_spec()) {
+        roughing_cycle(w);
+        return true;
+    }
     if (mode == code(76) && g76_spec()) {
         g76(w);
         return true;

@@ -10,8 +10,10 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 #include "camgen/geometry/arc.hpp"
 #include "camgen/geometry/compensation.hpp"
+#include "camgen/geometry/lathe_cycle.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
@@ -62,6 +64,10 @@ constexpr KeySpec turn_rough_keys[] = {
     {.key = "lift", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.5",
      .description = "how far each pass lifts off at 45 degrees (in Z and in X) before it rapids back, mm; at most half "
                     "the depth of a pass (along X, steeper than the profile's steepest fall towards the chuck)"},
+    {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
+     .description = "along Z: auto: the machine's roughing cycle (LinuxCNC G71 with the boundary as a subroutine) where "
+                    "it makes passes that leave the allowances, else longhand with a note; canned: the cycle or an error; "
+                    "longhand: passes of G0 and G1. Along X always longhand"},
 };
 
 // The Z range of a segment of a profile (an arc's may reach beyond its ends).
@@ -252,6 +258,9 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
     if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
     op.lift = in.optional_length(f, "lift").value_or(0.5);
     if (!(op.lift > 0)) f.fail("lift", "lift must be > 0");
+    op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
+    if (op.direction == RoughDirection::x && op.output == CycleOutput::canned)
+        f.fail("output", "camgen writes no canned roughing cycle along X (G72) yet: use \"auto\" or \"longhand\"");
     if (op.boundary.start.x + op.approach >= in.header().clearance)
         f.fail("start", fmt::format("the passes begin at Z {} (the start, allowanceZ and approachDistance), at or above the "
                                     "clearance (Z {})",
@@ -378,6 +387,64 @@ std::vector<double> turn_rough_x_levels(const TurnRoughOp& op) {
     return levels;
 }
 
+TurnCycle turn_cycle(const TurnRoughOp& op) {
+    const Profile& path = op.tip_boundary;
+    TurnCycle c;
+    c.path = op.path;
+    c.output = op.output;
+    c.profile = path;
+    c.feed = op.feed;
+    const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;
+    const Vec2 p0 = path.start;
+    auto show = [](double v) { return number_text(v, 4); };
+    if (op.bar_face && p0.x < *op.bar_face - 1e-9) {
+        c.refusal = fmt::format("the boundary starts at Z {}, inside the bar whose face is at Z {}: the cycle comes down "
+                                "to it in one line from its start point",
+                                show(p0.x), show(*op.bar_face));
+        return c;
+    }
+    // The start S beyond the part, at or below the bar's radius (in air: beyond the face), so
+    // that the first level, S's radius, cuts no more than a pass; the levels go down from it
+    // by I (at most depthOfCut). A level within 0.005 mm of a corner of the boundary is where the
+    // control's cycle turns on its tolerances: another S (and I) is taken.
+    std::vector<double> corners{p0.y};
+    for (const ProfileSegment& s : path.segments) corners.push_back(s.end.y);
+    const double room = op.stock_radius - p0.y;
+    if (!(room > 0.02)) {
+        c.refusal = "the bar is less than 0.02 mm above the boundary's start";
+        return c;
+    }
+    std::optional<std::string> last_refusal;
+    for (int i = 0; i <= 8; ++i) {
+        const double depth = std::round(op.depth_of_cut * (1.0 - i / 40.0) * 1e4) / 1e4;
+        if (!(depth > 0.0001)) break;
+        for (int j = 0; j < 32; ++j) {
+            const double below = std::min(depth, room - 0.01) * (1.0 - j / 64.0);
+            const double level0 = std::round((op.stock_radius - below) * 1e4) / 1e4;
+            if (!(level0 > p0.y + 0.005)) continue;
+            bool near = false;
+            for (double x = level0; x > p0.y - 0.01 && !near; x -= depth)
+                for (double r : corners) near = near || std::abs(x - r) < 0.005;
+            if (near) continue;
+            const double retract = std::round(std::min(op.lift, depth / 2) * 1e4) / 1e4;
+            LatheCycleModel model = linuxcnc_g71(Vec2{z_start, level0}, path, depth, retract);
+            if (model.refusal) {
+                last_refusal = model.refusal;
+                if (model.refusal->find("runs through a corner") != std::string::npos) continue;
+                c.refusal = *model.refusal;
+                return c;
+            }
+            c.start = turn_rough_at(level0, z_start);
+            c.depth = depth;
+            c.retract = retract;
+            c.moves = std::move(model.moves);
+            return c;
+        }
+    }
+    c.refusal = last_refusal.value_or("every start and depth of cut tried puts a level within 0.005 mm of a corner of the boundary");
+    return c;
+}
+
 void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     if (op.direction == RoughDirection::x) {
         expand_along_x(op, ctx, sink);
@@ -386,6 +453,29 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     const Profile& path = op.tip_boundary;
     const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
+    if (op.output != CycleOutput::longhand) {
+        const TurnCycle c = turn_cycle(op);
+        sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+        sink.emit(Rapid{turn_rough_at(outside, z_start)});
+        if (!c.refusal) {
+            // The cycle, then off the end of its last pass at 45 degrees (above it the levels or
+            // the pass along the boundary have cut) and out of the bar.
+            sink.emit(Rapid{c.start});
+            sink.emit(c);
+            const Vec2 end = c.moves.back().end;
+            const double lift = std::min(op.lift, c.depth / 2);
+            sink.emit(Linear{turn_rough_at(end.y + lift, end.x + lift), op.feed, Movement::lead_out});
+            sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), end.x + lift)});
+            sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), ctx.job.clearance)});
+            return;
+        }
+        // Why the cycle is not used: a note where the machine has one (or an error under
+        // "canned"), then the passes longhand.
+        sink.emit(c);
+    } else {
+        sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+        sink.emit(Rapid{turn_rough_at(outside, z_start)});
+    }
     // The levels: equal steps from the bar down to the boundary's lowest point; the pass along
     // the boundary takes the last step.
     const int count = std::max(1, static_cast<int>(std::ceil((op.stock_radius - op.bottom) / op.depth_of_cut - 1e-9)));
@@ -393,8 +483,6 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     std::vector<double> levels;
     for (int k = 1; k < count; ++k) levels.push_back(op.stock_radius - step * k);
     const double lift = std::min(op.lift, step / 2);
-    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
-    sink.emit(Rapid{turn_rough_at(outside, z_start)});
     double above = op.stock_radius;  // the level before (the bar's surface at first)
     for (double level : levels) {
         const std::vector<TurnRoughSpan> spans = turn_rough_spans(op, level);

@@ -94,6 +94,22 @@ std::string event_to_json(const Event& event) {
                             {"infeedAngle", e.infeed_angle}, {"springPasses", e.spring_passes},
                             {"fields", e.fields},        {"depths", e.depths}};
                    },
+                   [&](const TurnCycle& e) {
+                       j = {{"event", "turn-cycle"}, {"path", e.path}, {"output", name_of(cycle_outputs, e.output)},
+                            {"start", xyz(e.start)}, {"depth", e.depth}, {"retract", e.retract}, {"feed", e.feed}};
+                       nlohmann::ordered_json profile = nlohmann::ordered_json::array();
+                       profile.push_back({e.profile.start.x, e.profile.start.y});
+                       for (const ProfileSegment& s : e.profile.segments) {
+                           nlohmann::ordered_json seg = {{"to", {s.end.x, s.end.y}}};
+                           if (s.centre)
+                               seg["centre"] = {s.centre->x, s.centre->y},
+                               seg["direction"] = s.direction == ArcDirection::cw ? "cw" : "ccw";
+                           profile.push_back(seg);
+                       }
+                       j["profile"] = profile;
+                       j["moves"] = e.moves.size();
+                       if (e.refusal) j["refusal"] = *e.refusal;
+                   },
                    [&](const CustomBlock& e) {
                        j = {{"event", "custom"}, {"path", e.path}};
                        nlohmann::ordered_json texts = nlohmann::ordered_json::object();
@@ -120,6 +136,26 @@ std::vector<Event> thread_cycle_moves(const ThreadCycle& c) {
         out.emplace_back(Rapid{{r, c.start.y, z0}});
         out.emplace_back(ThreadFeed{{r, c.start.y, z1}, c.lead});
         out.emplace_back(Rapid{{back, c.start.y, z1}});
+    }
+    return out;
+}
+
+std::vector<Event> turn_cycle_moves(const TurnCycle& c) {
+    std::vector<Event> out;
+    out.reserve(c.moves.size());
+    const double y = c.start.y;
+    Vec3 at = c.start;
+    for (const LatheCycleMove& m : c.moves) {
+        const Vec3 to{m.end.y, y, m.end.x};
+        if (to == at) continue;  // the cycle's first move, to where it starts
+        at = to;
+        switch (m.kind) {
+            case LatheCycleMove::Kind::rapid: out.emplace_back(Rapid{to}); break;
+            case LatheCycleMove::Kind::feed: out.emplace_back(Linear{to, c.feed, Movement::cutting}); break;
+            case LatheCycleMove::Kind::arc:
+                out.emplace_back(Arc{to, Vec3{m.centre.y, y, m.centre.x}, m.direction, Plane::xz, c.feed, 0, Movement::cutting});
+                break;
+        }
     }
     return out;
 }

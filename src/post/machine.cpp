@@ -116,6 +116,8 @@ constexpr KeySpec machine_keys[] = {
      .description = "free text about the machine's choices, shown by --describe-machine"},
     {.key = "drilling", .type = JsonType::object, .ref = "drilling",
      .description = "the canned drilling cycles (MillDrillingFields) and longhand settings"},
+    {.key = "roughingCycles", .type = JsonType::array, .ref = "roughingCycle",
+     .description = "the machine's canned roughing cycles (a lathe's turn-rough); a kind not listed is written longhand"},
     {.key = "threadingCycles", .type = JsonType::array, .ref = "threadingCycle",
      .description = "the canned threading cycles of a lathe (turn-thread's output); none: threads are written longhand"},
     {.key = "frame", .type = JsonType::object, .ref = "frame",
@@ -287,6 +289,17 @@ constexpr KeySpec cycle_keys[] = {
     {.key = "fields", .type = JsonType::array, .choices = &cycle_field_names,
      .description = "the drilling fields the canned cycle carries: MillDrillingFields names on a mill (safeDistance, "
                     "firstDepth, ...), TurnDrillingFields names on a lathe (firstPeckDepth, peckRetract, ...)"},
+};
+
+// The keys of one roughing cycle.
+constexpr KeySpec roughing_cycle_keys[] = {
+    {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G71)"},
+    {.key = "kind", .type = JsonType::string, .required = true, .choices = &choices_of<roughing_cycle_kinds>,
+     .description = "which way its passes run"},
+    {.key = "style", .type = JsonType::string, .required = true, .choices = &choices_of<roughing_cycle_styles>,
+     .description = "how it is written and what the control makes of it"},
+    {.key = "fields", .type = JsonType::array, .choices = &choices_of<roughing_fields>,
+     .description = "the values of a turn-rough the cycle carries"},
 };
 
 constexpr Named<ThreadCycleStyle> thread_cycle_styles[] = {
@@ -502,6 +515,7 @@ std::vector<ObjectSpec> machine_objects() {
         spec("arcs", "arc output and arc breaking", arcs_keys),
         spec("drilling", "drilling cycles and longhand settings", drilling_keys),
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
+        spec("roughingCycle", "one canned roughing cycle of a lathe", roughing_cycle_keys),
         spec("threadingCycle", "one threading cycle of a lathe", thread_cycle_keys),
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
@@ -802,6 +816,38 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             }
         }
         df.finish(drilling_keys);
+    }
+    if (const auto* rc = f.member("roughingCycles")) {
+        if (!rc->is_array()) f.fail("roughingCycles", "expected an array");
+        if (m.kind != MachineKind::lathe && rc->size() > 0) f.fail("roughingCycles", "roughing cycles are a lathe's");
+        for (size_t i = 0; i < rc->size(); ++i) {
+            const std::string path = fmt::format("/roughingCycles/{}", i);
+            json::Fields cf((*rc)[i], path, source);
+            RoughingCycleSpec c;
+            c.name = cf.string("name");
+            check_program_text(c.name, cf.path_of("name"), source);
+            c.kind = cf.choice("kind", roughing_cycle_kinds, RoughingCycleKind::rough_z);
+            (void)cf.string("style");  // required: what the control makes of the cycle has no default
+            c.style = cf.choice("style", roughing_cycle_styles, RoughingCycleStyle::linuxcnc);
+            if (c.kind != RoughingCycleKind::rough_z)
+                cf.fail("kind", "camgen writes and reads only rough-z (G71) roughing cycles so far");
+            if (const auto* fields = cf.member("fields")) {
+                if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
+                for (size_t j = 0; j < fields->size(); ++j) {
+                    const std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
+                    const auto field = value_named(roughing_fields, fn);
+                    if (!field)
+                        json::fail(source, fmt::format("{}/fields/{}", path, j),
+                                   fmt::format("unknown roughing field \"{}\"; fields: {}", fn,
+                                               fmt::join(names_of(roughing_fields), ", ")));
+                    c.fields.push_back(*field);
+                }
+            }
+            cf.finish(roughing_cycle_keys);
+            for (const RoughingCycleSpec& o : m.roughing_cycles)
+                if (o.kind == c.kind) json::fail(source, path, fmt::format("a second {} cycle", names_of(roughing_cycle_kinds)[static_cast<int>(c.kind)]));
+            m.roughing_cycles.push_back(std::move(c));
+        }
     }
     if (const auto* tc = f.member("threadingCycles")) {
         if (!tc->is_array()) f.fail("threadingCycles", "expected an array");

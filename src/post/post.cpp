@@ -252,6 +252,7 @@ std::string what_it_does(const Event& e) {
                                 [](const CustomBlock&) { return std::string("custom"); },
                                 [](const ThreadFeed&) { return std::string("move the tool (a thread-cutting move)"); },
                                 [](const ThreadCycle&) { return std::string("cut a thread in a cycle"); },
+                                [](const TurnCycle&) { return std::string("rough in a cycle"); },
                             },
                             e);
 }
@@ -555,6 +556,47 @@ void Post::handle_thread_cycle(const ThreadCycle& c) {
     }
     for (const Event& e : thread_cycle_moves(c)) handle(e);
 }
+void Post::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
+    throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write {}", machine_.name, spec.name));
+}
+
+std::optional<std::string> Post::turn_cycle_limit(const TurnCycle&, const RoughingCycleSpec& spec) const {
+    return fmt::format("camgen writes {} only on the iso-lathe dialect", spec.name);
+}
+
+void Post::handle_turn_cycle(const TurnCycle& c) {
+    if (!pos_known_) throw std::logic_error("roughing cycle from an unknown position");
+    if (c.output == CycleOutput::longhand) throw std::logic_error("a roughing cycle written longhand by its operation");
+    const RoughingCycleSpec* spec = nullptr;
+    for (const RoughingCycleSpec& r : machine_.roughing_cycles)
+        if (r.kind == RoughingCycleKind::rough_z) spec = &r;
+    std::string reason;
+    if (!spec) {
+        reason = fmt::format("machine {} has no canned roughing cycle along Z (roughingCycles)", machine_.name);
+    } else if (c.refusal) {
+        reason = fmt::format("machine {}'s {} would not cut these passes: {}", machine_.name, spec->name, *c.refusal);
+    } else {
+        std::vector<std::string> missing;
+        for (RoughingField f : {RoughingField::depth_of_cut, RoughingField::retract})
+            if (std::find(spec->fields.begin(), spec->fields.end(), f) == spec->fields.end())
+                missing.emplace_back(name_of(roughing_fields, f));
+        if (!missing.empty())
+            reason = fmt::format("machine {}'s {} cannot carry {}", machine_.name, spec->name, fmt::join(missing, ", "));
+        else if (auto limit = turn_cycle_limit(c, *spec))
+            reason = fmt::format("machine {}'s {} cannot carry these passes: {}", machine_.name, spec->name, *limit);
+    }
+    if (reason.empty()) {
+        on_turn_cycle(c, *spec);
+        if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
+        return;
+    }
+    if (c.output == CycleOutput::canned) throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
+    if (spec)
+        note(fmt::format("{}{}: the roughing is written longhand because {}", c.path,
+                         op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+    for (const Event& e : turn_cycle_moves(c)) handle(e);
+}
+
 std::optional<std::string> Post::tapping_impossible(CycleKind) const { return std::nullopt; }
 void Post::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
@@ -1013,6 +1055,7 @@ void Post::handle(const Event& event) {
                        pos_ = t.to;
                    },
                    [&](const ThreadCycle& c) { handle_thread_cycle(c); },
+                   [&](const TurnCycle& c) { handle_turn_cycle(c); },
                },
                event);
 }

@@ -196,6 +196,11 @@ void OperatorStops::emit(const Event& event) {
                              pos_ = Vec3{c.start.x, c.start.y, c.end_z};
                              next_.emit(event);
                          },
+                         [&](const TurnCycle& c) {
+                             resume();
+                             if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
+                             next_.emit(event);
+                         },
                          [&](const Dwell&) {
                              resume();
                              next_.emit(event);

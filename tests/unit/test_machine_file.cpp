@@ -136,6 +136,29 @@ TEST_CASE("machine file: limits are positive and below 1000000") {
     check_accepted("fanuc", limits, R"("limits": {"maxFeed": 10000, "minFeed": 1, "rapidRate": 15000})");
 }
 
+TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, checked key by key") {
+    const std::string g71 =
+        R"({"name": "G71", "kind": "rough-z", "style": "linuxcnc", "fields": ["depthOfCut", "retract", "allowance"]})";
+    check_accepted("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "linuxcnc"})");
+    check_refused("linuxcnc-lathe", g71,
+                  R"({"name": "G71", "kind": "rough-z", "style": "linuxcnc", "fields": ["depthOfCut", "finish"]})",
+                  "/roughingCycles/0/fields/1", "unknown roughing field \"finish\"; fields: depthOfCut, retract, allowance");
+    check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-x", "style": "linuxcnc"})",
+                  "/roughingCycles/0/kind", "only rough-z (G71)");
+    check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "fanuc"})",
+                  "/roughingCycles/0/style", "linuxcnc");
+    check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z"})", "/roughingCycles/0/style", "style");
+    check_refused("linuxcnc-lathe", g71, R"({"name": "G71(", "kind": "rough-z", "style": "linuxcnc"})",
+                  "/roughingCycles/0/name", "(");
+    check_refused("linuxcnc", R"("frame": {)", R"("roughingCycles": [{"name": "G71", "kind": "rough-z", "style": "linuxcnc"}], "frame": {)",
+                  "/roughingCycles", "roughing cycles are a lathe's");
+    const Machine m = load_machine("linuxcnc-lathe");
+    REQUIRE(m.roughing_cycles.size() == 1);
+    CHECK(m.roughing_cycles[0].name == "G71");
+    CHECK(m.roughing_cycles[0].fields.size() == 3);
+    CHECK(load_machine("fanuc-lathe").roughing_cycles.empty());
+}
+
 TEST_CASE("machine file: dialect settings are read with the machine, each error naming its line and key") {
     // A misspelt key, with the dialect's own keys to choose from.
     check_refused("fanuc", R"("percentLines": true)", R"("percentLine": true)", "/settings/percentLine",

@@ -263,6 +263,14 @@ TEST_CASE("camgen simulate: a roughing pass 0.1 mm into its allowance is a gouge
     const fs::path dir = test::scratch("simulate-lathe-rough");
     nlohmann::json job = nlohmann::json::parse(test::read_file(samples + "shaft.json"));
     job["operations"] = nlohmann::json::array({job["operations"][0], job["operations"][3]});
+    // As linuxcnc-lathe's G71 (the default output) it is made as designed too.
+    const std::string canned = (dir / "canned.json").string();
+    std::ofstream(canned) << job.dump(1);
+    const Simulated g71 = simulate(canned, "linuxcnc-lathe", "canned.ngc", [](const std::string& t) { return t; });
+    CHECK(g71.program.find("G71 Q100") != std::string::npos);
+    CHECK_MESSAGE(has(g71.run, "  the part is as designed\n"), g71.run.out);
+    // Longhand, whose last pass has a line of its own to edit.
+    job["operations"][1]["output"] = "longhand";
     const std::string file = (dir / "rough.json").string();
     std::ofstream(file) << job.dump(1);
     const Simulated clean = simulate(file, "linuxcnc-lathe", "rough.ngc", [](const std::string& t) { return t; });

@@ -51,7 +51,15 @@ std::vector<TipMove> tip_moves(const Job& job) {
     std::vector<TipMove> out;
     Vec2 at{job.clearance, 0.0};
     bool started = false;
+    std::vector<Event> events;
     for (const Event& e : expand_job(job)) {
+        if (const auto* c = std::get_if<TurnCycle>(&e)) {
+            for (const Event& m : turn_cycle_moves(*c)) events.push_back(m);
+        } else {
+            events.push_back(e);
+        }
+    }
+    for (const Event& e : events) {
         if (const auto* r = std::get_if<Rapid>(&e)) {
             const Vec2 to{r->to.z, r->to.x};
             if (started) out.push_back({at, to, true});
@@ -96,15 +104,16 @@ double boundary_at(const Points& p, double z, double ax, double az) {
 }
 
 // The job text of a turn-rough of `p` (radii) from a bar of radius `bar`.
+// Written longhand unless `output` says otherwise.
 std::string rough_job(const Points& p, double bar, double ax, double az, double doc, const std::string& tool_extra = "",
-                      const std::string& op_extra = "") {
+                      const std::string& op_extra = "", const std::string& output = "longhand") {
     std::string path;
     for (std::size_t i = 1; i < p.size(); ++i)
         path += fmt::format("{}{{\"line\": [{}, {}]}}", i > 1 ? ", " : "", p[i].y, p[i].x);
     return fmt::format(R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000{}}}],
-  "operations": [{{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
+  "operations": [{{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "output": "{}", "xValues": "radius", "startX": {}, "allowanceX": {},
                   "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]{}}}]}})",
-                       tool_extra, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
+                       tool_extra, output, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
 }
 
 // A random profile from Z0 towards -Z: `undercuts` lets the radius fall.
@@ -353,6 +362,39 @@ TEST_CASE("turn-rough: random rising profiles and profiles with undercuts are ro
     }
     MESSAGE("turn-rough: " << cases << " random profiles; worst gouge " << worst_gouge << " mm, worst left beyond the "
                            << "allowance " << worst_left << " mm, worst rapid into material " << worst_rapid << " mm");
+}
+
+TEST_CASE("turn-rough canned: the control's G71 passes on random rising profiles leave exactly the allowances, rapids in air") {
+    // The same checks on the moves of the roughing cycle (TurnCycle, LinuxCNC's G71 as camgen
+    // models it): its escapes off each pass are rapids at 45 degrees, not feeds, so only the
+    // rapids' air is checked, not a lift before them.
+    std::mt19937 rng(31);
+    const double bar = 15.0;
+    int canned = 0;
+    double worst_gouge = 0, worst_left = 0, worst_rapid = 0;
+    for (int n = 0; n < 120; ++n) {
+        const Points p = random_profile(rng, false, bar - 0.5);
+        const double ax = (n % 3) * 0.2, az = (n % 4) * 0.05, doc = 0.7 + (n % 5) * 0.4;
+        const std::string text = rough_job(p, bar, ax, az, doc, "", "", "auto");
+        INFO(text);
+        Job job;
+        REQUIRE_NOTHROW(job = read_job(text, "rough.json"));
+        bool cycle = false;
+        for (const Event& e : expand_job(job))
+            if (const auto* c = std::get_if<TurnCycle>(&e); c && !c->refusal) cycle = true;
+        canned += cycle ? 1 : 0;
+        const RoughCheck c = check_rough(p, bar, ax, az, tip_moves(job));
+        CHECK(c.deepest_gouge <= 1e-9);
+        CHECK(c.most_left <= 1e-6);
+        CHECK(c.rapid_in_material <= 1e-9);
+        worst_gouge = std::max(worst_gouge, c.deepest_gouge);
+        worst_left = std::max(worst_left, c.most_left);
+        worst_rapid = std::max(worst_rapid, c.rapid_in_material);
+    }
+    CHECK(canned >= 100);
+    MESSAGE("turn-rough canned: " << canned << " of 120 random rising profiles as a roughing cycle; worst gouge " << worst_gouge
+                                  << " mm, worst left beyond the allowance " << worst_left << " mm, worst rapid into material "
+                                  << worst_rapid << " mm");
 }
 
 TEST_CASE("turn-rough: the check finds a pass 0.1 mm into the allowance and a rapid through material") {

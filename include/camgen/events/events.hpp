@@ -9,6 +9,8 @@
 
 #include "camgen/geometry/arc.hpp"
 #include "camgen/geometry/geometry.hpp"
+#include "camgen/geometry/lathe_cycle.hpp"
+#include "camgen/geometry/profile.hpp"
 #include "camgen/vocabulary/vocabulary.hpp"
 
 namespace camgen {
@@ -233,9 +235,43 @@ struct ThreadCycle {
     friend bool operator==(const ThreadCycle&, const ThreadCycle&) = default;
 };
 
+// A canned roughing cycle along -Z (turn-rough's output: LinuxCNC's G71 with its profile as a
+// subroutine), resolved to absolute values (mm, radius). Before it the tool stands at `start`
+// (Z, radius in x); `profile` ((Z, radius)) is what the cycle roughs to: the finished profile
+// moved by the allowances, as the tool tip follows it (a nose's tip path where camgen makes up
+// for the nose), so that the control leaves no offset of its own (LinuxCNC D0). `moves` are
+// the moves the control makes of it (camgen's model of the cycle, lathe_cycle.hpp), which a
+// post without the cycle writes longhand, and which the safety check, the simulation and
+// verify see. `refusal`: why the control's cycle cannot make this roughing (then `moves` is
+// empty and the operation's own passes follow the event: a post notes the reason, or refuses
+// it under output "canned").
+struct TurnCycle {
+    std::string path;                   // JSON path of the operation, for messages
+    CycleOutput output = CycleOutput::automatic;
+    Vec3 start;
+    Profile profile;                    // (Z, radius)
+    double depth = 0.0;                 // radial depth between levels (LinuxCNC I)
+    double retract = 0.0;               // the 45-degree escape off each pass (LinuxCNC R)
+    double feed = 0.0;                  // mm/min
+    std::vector<LatheCycleMove> moves;  // what the control makes of it, from `start`
+    std::optional<std::string> refusal;
+    friend bool operator==(const TurnCycle& a, const TurnCycle& b) {
+        auto same_profile = [](const Profile& x, const Profile& y) {
+            return x.plane == y.plane && x.start == y.start && x.segments == y.segments;
+        };
+        return a.path == b.path && a.output == b.output && a.start == b.start && same_profile(a.profile, b.profile) &&
+               a.depth == b.depth && a.retract == b.retract && a.feed == b.feed && a.moves == b.moves &&
+               a.refusal == b.refusal;
+    }
+};
+
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
-                           ThreadFeed, ThreadCycle>;
+                           ThreadFeed, ThreadCycle, TurnCycle>;
+
+// The moves of a roughing cycle (Rapid, Linear and Arc events in XZ at the cycle's feed), from
+// its start: none where the cycle carries a refusal.
+std::vector<Event> turn_cycle_moves(const TurnCycle& cycle);
 
 // The moves of a threading cycle (Rapid and ThreadFeed events), from its drive point.
 std::vector<Event> thread_cycle_moves(const ThreadCycle& cycle);

@@ -44,6 +44,39 @@ struct DrillingCycleSpec {
     std::vector<DrillField> fields;    // the optional parameters the canned cycle carries
 };
 
+// Which way a canned roughing cycle's passes run: along -Z (turning: G71, CYCLE95 longitudinal)
+// or along -X (facing: G72, CYCLE95 face).
+enum class RoughingCycleKind { rough_z, rough_x };
+inline constexpr Named<RoughingCycleKind> roughing_cycle_kinds[] = {
+    {RoughingCycleKind::rough_z, "rough-z", "passes along -Z at radial levels (turning)"},
+    {RoughingCycleKind::rough_x, "rough-x", "passes along -X at Z levels (facing)"},
+};
+
+// How a canned roughing cycle is written and what the control makes of it.
+enum class RoughingCycleStyle { linuxcnc };
+inline constexpr Named<RoughingCycleStyle> roughing_cycle_styles[] = {
+    {RoughingCycleStyle::linuxcnc, "linuxcnc",
+     "LinuxCNC 2.9: the profile as a subroutine o<n> sub ... o<n> endsub, the cycle G71 Q<n> D I R F from the start "
+     "point (G72 alike)"},
+};
+
+// The values of a roughing operation a canned roughing cycle can carry.
+enum class RoughingField { depth_of_cut, retract, allowance };
+inline constexpr Named<RoughingField> roughing_fields[] = {
+    {RoughingField::depth_of_cut, "depthOfCut", "the depth of each pass (LinuxCNC I)"},
+    {RoughingField::retract, "retract", "how far each pass lifts off at 45 degrees (LinuxCNC R)"},
+    {RoughingField::allowance, "allowance",
+     "one finishing allowance offset all round the profile (LinuxCNC D), not separate X and Z allowances"},
+};
+
+// One canned roughing cycle the machine offers (machine file "roughingCycles").
+struct RoughingCycleSpec {
+    std::string name;                  // "G71"
+    RoughingCycleKind kind = RoughingCycleKind::rough_z;
+    RoughingCycleStyle style = RoughingCycleStyle::linuxcnc;
+    std::vector<RoughingField> fields;  // what it carries
+};
+
 // How a canned threading cycle is written: LinuxCNC's G76 P Z I J K R Q H.
 enum class ThreadCycleStyle { linuxcnc_g76 };
 
@@ -133,6 +166,7 @@ struct Machine {
     BoreDwellFeedOut bore_dwell_feed_out = BoreDwellFeedOut::to_safe;  // longhand G89 feed-out end
     TappingMode tapping = TappingMode::none;  // machine file drilling.tapping
     std::vector<DrillingCycleSpec> drilling;
+    std::vector<RoughingCycleSpec> roughing_cycles;  // machine file "roughingCycles"
     std::vector<ThreadingCycleSpec> threading;  // machine file threadingCycles
     FrameSettings frame;
     // The dialect's settings (machine file "settings"), read by parse_machine; null for a machine

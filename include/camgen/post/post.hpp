@@ -152,6 +152,13 @@ protected:
     // nullopt. The cycle is then written longhand (output "auto") or refused. The base: a
     // dialect that writes no threading cycle says so.
     virtual std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const;
+    // A canned roughing cycle, called only when it is written canned (from the cycle's start,
+    // where the tool stands). The base refuses it: a dialect with roughingCycles writes it.
+    virtual void on_turn_cycle(const TurnCycle& cycle, const RoughingCycleSpec& spec);
+    // Why the canned roughing cycle `spec` would not make the cycle's moves (the control's own
+    // arithmetic on the rounded words), or nullopt; then the moves are written longhand (output
+    // "auto") or refused. The base: a dialect that writes no roughing cycle says so.
+    virtual std::optional<std::string> turn_cycle_limit(const TurnCycle& cycle, const RoughingCycleSpec& spec) const;
     // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
     // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
     // tap: ". Asked through cycle_capability.
@@ -327,6 +334,10 @@ private:
     // A threading cycle: canned where the machine's cycle carries it (thread_cycle_limit),
     // else its moves longhand with a note (output "auto") or refused (output "canned").
     void handle_thread_cycle(const ThreadCycle& cycle);
+    // A roughing cycle: canned where the machine's cycle makes its moves (turn_cycle_limit),
+    // else its moves longhand with a note (output "auto") or refused (output "canned"); one
+    // carrying a refusal writes nothing but the note (the operation's passes follow it).
+    void handle_turn_cycle(const TurnCycle& cycle);
     // The cycle as this machine can run it: feeds clamped to its limits (every dialect writes
     // the same clamped values, canned or longhand); refused when a value would be written as 0
     // or below the machine's resolution (speeds, pecks, dwells), when it needs more pecks than

@@ -8,7 +8,10 @@
 // the allowances are all that is left. With direction "x" the passes run along -X instead (the
 // facing direction, as Fanuc's G72), at Z levels depthOfCut apart, each from outside the bar in
 // to the boundary, lifted off away from it; the last pass follows the boundary from the end face
-// back to the start. Written longhand on every lathe. (Z, radius), mm.
+// back to the start. Along Z, output "auto" or "canned" hands the passes to the machine's
+// roughing cycle (TurnCycle: LinuxCNC's G71 on linuxcnc-lathe, the profile as the tip follows
+// it in a subroutine, D0); along X they are longhand. (Z, radius), mm.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,6 +62,10 @@ struct TurnRoughOp {
     double steepest_fall = 0.0;     // degrees: the boundary's steepest fall towards the chuck (0: none)
     double approach = 1.0;          // mm beyond the boundary's start where passes start, and outside the bar
     double lift = 0.5;              // mm of the 45-degree lift off each pass's end
+    CycleOutput output = CycleOutput::automatic;  // along Z: a roughing cycle (TurnCycle) or longhand passes
+    // The Z of the bar's face when this operation runs (the stock's faceZ, or where an earlier
+    // turn-face left it; set after the operations are read), nullopt without a bar.
+    std::optional<double> bar_face;
     std::vector<std::string> notes;
 };
 
@@ -86,6 +93,12 @@ std::vector<double> turn_rough_x_levels(const TurnRoughOp& op);
 // (+Z, and +X steeper than the boundary's steepest fall) and rapid back out; then feed down the
 // end face, along the boundary to its start, lift off it and rapid to the clearance.
 void expand(const TurnRoughOp& op, const Context& context, EventSink& sink);
+
+// The roughing cycle of a turn-rough along Z: from its start beyond the part, levels depthOfCut
+// apart at most, the control's moves (linuxcnc_g71), or a refusal saying why the cycle would not
+// rough this boundary (a pocket, a profile starting inside the bar, a level through a corner
+// whatever the start).
+TurnCycle turn_cycle(const TurnRoughOp& op);
 
 // The operation's name for comments: its comment, else "turn rough".
 std::string default_name(const TurnRoughOp& op);

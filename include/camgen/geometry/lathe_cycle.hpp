@@ -1,0 +1,51 @@
+#pragma once
+// What LinuxCNC 2.9's G71 roughing cycle makes of a profile: the moves the control makes, as a
+// model camgen computes itself (held to rs274 by tests/oracle/test_g71_model_oracle.cpp). The
+// linuxcnc-lathe reader expands a G71 it reads back into these moves, so that verify, stats and
+// the simulation see what the control will cut; a canned turn-rough carries them (TurnCycle) as
+// the longhand it equals.
+//
+// The model covers the profiles camgen writes as a G71 (the rest are refused with a reason):
+// the profile's Z never rises and its radius never falls (no pocket), lines and arcs that keep
+// to one quarter of their circle, started from a point above the profile's start and not
+// before it in Z, and D0 (no finishing offset: camgen hands the control the boundary it
+// roughs to). Its moves, in (Z, radius):
+// - a rapid to the start point S; the profile is closed by a face from its end up to S's
+//   radius when it ends below it;
+// - levels x = S's radius, then x - I, x - 2I, ... (by repeated subtraction, as the control);
+//   while a level is at or above the profile's start radius: a rapid down the line from S to
+//   the profile's start to where it meets the level, a feed along -Z to the first element of
+//   the profile that reaches the level, a rapid escape of R (scaled down to half the pass's
+//   length where the pass is shorter than 2R) at 45 degrees (+Z, +X), a rapid back along the
+//   level to R (as scaled) before the pass's start, a rapid to the pass's start;
+// - a rapid to the profile's start (unless the last level met it there) and a feed along the
+//   whole profile and its closing face: the last pass. The control stays where it ends.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camgen/geometry/geometry.hpp"
+#include "camgen/geometry/profile.hpp"
+
+namespace camgen {
+
+// One move of a lathe cycle in (Z, radius): a rapid, a feed, or an arc (feed) around `centre`.
+struct LatheCycleMove {
+    enum class Kind { rapid, feed, arc };
+    Kind kind = Kind::rapid;
+    Vec2 end;                     // (Z, radius)
+    Vec2 centre;                  // an arc's
+    ArcDirection direction = ArcDirection::ccw;  // an arc's, in (Z, radius): ccw is G3 in G18
+    friend bool operator==(const LatheCycleMove&, const LatheCycleMove&) = default;
+};
+
+struct LatheCycleModel {
+    std::vector<LatheCycleMove> moves;
+    std::optional<std::string> refusal;  // why the model does not cover this profile (moves empty)
+};
+
+// LinuxCNC's `G71 Q<sub> D0 I<depth> R<retract>` from start (Z, radius) on `profile` ((Z,
+// radius), its start the sub's first point). depth and retract > 0.
+LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, double retract);
+
+}  // namespace camgen

@@ -1,0 +1,264 @@
+#include "camgen/geometry/lathe_cycle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "camgen/geometry/vec.hpp"
+
+namespace camgen {
+
+namespace {
+
+// One element of the cycle's path in (Z, radius): the line from the start point down to the
+// profile's start first, then the profile's, then the closing face.
+struct G71Element {
+    Vec2 a, b;
+    bool arc = false;
+    Vec2 c;
+    bool ccw = false;
+};
+
+double g71_cross(Vec2 u, Vec2 v) { return u.x * v.y - u.y * v.x; }
+
+// A length for a message: at most 4 decimals, no trailing zeros, no -0.
+std::string g71_number(double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4f", v);
+    std::string s = text;
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+    return s == "-0" ? "0" : s;
+}
+
+// Where an element meets the level (radius) x: the Z of the meeting points in the order the
+// control finds them (a level element gives both its ends).
+std::vector<double> g71_meets(const G71Element& e, double x) {
+    std::vector<double> out;
+    if (!e.arc) {
+        if (std::min(e.a.y, e.b.y) > x + 1e-6 || std::max(e.a.y, e.b.y) < x - 1e-6) return out;
+        if (std::abs(e.a.y - e.b.y) < 1e-6) {
+            out.push_back(e.a.x);
+            out.push_back(e.b.x);
+        } else {
+            out.push_back((x - e.a.y) / (e.b.y - e.a.y) * (e.b.x - e.a.x) + e.a.x);
+        }
+        return out;
+    }
+    const double r = distance(e.a, e.c);
+    double s = -(x - r - e.c.y) * (x + r - e.c.y);
+    if (s < -1e-6) return out;
+    s = std::sqrt(std::max(0.0, s));
+    // On the arc: not before its start nor beyond its end, turning its way (within 1e-6).
+    auto on = [&](Vec2 p) {
+        const double from_start = g71_cross(e.a - e.c, p - e.c), to_end = g71_cross(e.b - e.c, p - e.c);
+        return e.ccw ? from_start >= -1e-6 && to_end <= 1e-6 : from_start <= 1e-6 && to_end >= -1e-6;
+    };
+    if (on(Vec2{e.c.x + s, x})) out.push_back(e.c.x + s);
+    if (on(Vec2{e.c.x - s, x})) out.push_back(e.c.x - s);
+    return out;
+}
+
+class G71Run {
+public:
+    G71Run(std::vector<G71Element> elements, double start_level, double depth, double retract)
+        : el_(std::move(elements)), start_level_(start_level), depth_(depth), retract_(retract) {}
+
+    std::vector<LatheCycleMove> moves;
+    std::optional<std::string> refusal;
+
+    void to(LatheCycleMove::Kind kind, Vec2 end) {
+        if (++count_ > 2000000) throw std::string("the cycle makes more than 2000000 moves");
+        if (!moves.empty() && distance(moves.back().end, end) < 1e-9) return;
+        if (moves.empty() && distance(origin, end) < 1e-9) return;
+        moves.push_back({kind, end, {}, ArcDirection::ccw});
+    }
+    void arc_to(const G71Element& e, Vec2 end) {
+        if (++count_ > 2000000) throw std::string("the cycle makes more than 2000000 moves");
+        moves.push_back({LatheCycleMove::Kind::arc, end, e.c, e.ccw ? ArcDirection::ccw : ArcDirection::cw});
+    }
+    Vec2 origin;
+
+    // Down element p towards level x: false when it moved (or stays), true when p does not go
+    // down from where the tool is.
+    bool dive(std::size_t p, Vec2& at, double x, bool fast) {
+        const G71Element& e = el_[p];
+        const auto kind = fast ? LatheCycleMove::Kind::rapid : LatheCycleMove::Kind::feed;
+        if (!e.arc) {
+            if (e.a.y <= e.b.y) return true;
+            if (x < e.b.y) {
+                to(kind, e.b);
+                at = e.b;
+                return false;
+            }
+            const std::vector<double> m = g71_meets(e, x);
+            if (m.empty()) throw std::string("a level beyond the element it dives along");
+            at = Vec2{m.front(), x};
+            to(kind, at);
+            return false;
+        }
+        if (distance(at, e.b) < 1e-3) return false;
+        const std::vector<double> m = g71_meets(e, x);
+        if (e.ccw) {
+            if (at.x > e.c.x) return true;
+            if (m.empty() || m.back() > e.c.x) {
+                arc_to(e, e.b);
+                at = e.b;
+            } else {
+                const Vec2 end{m.back(), x};
+                if (distance(at, end) > 1e-3) arc_to(e, end);
+                at = end;
+            }
+            return false;
+        }
+        if (at.x <= e.c.x) return true;
+        if (m.empty() || m.front() < e.c.x) {
+            arc_to(e, e.b);
+            at = e.b;
+        } else {
+            const Vec2 end{m.front(), x};
+            if (distance(at, end) > 1e-3) arc_to(e, end);
+            at = end;
+        }
+        return false;
+    }
+
+    // Along element p where it rises: true when it does not (a pocket starts there).
+    bool climb(std::size_t p, Vec2& at) {
+        const G71Element& e = el_[p];
+        if (!e.arc) {
+            if (e.b.y < e.a.y) return true;
+            if (distance(at, e.a) > 1e-6) throw std::string("the path is not continuous");
+            to(LatheCycleMove::Kind::feed, e.b);
+            at = e.b;
+            return false;
+        }
+        if (!e.ccw) {
+            if (at.x > e.c.x) return true;
+            if (distance(at, e.b) > 1e-3) arc_to(e, e.b);
+            at = e.b;
+            return false;
+        }
+        if (at.x < e.c.x) return true;
+        Vec2 end = e.b;
+        if (e.b.x < e.c.x) end = Vec2{e.c.x, e.c.y + distance(e.a, e.c)};
+        if (distance(at, end) > 1e-3) arc_to(e, end);
+        at = end;
+        return true;  // the control looks for a pocket after every G3
+    }
+
+    void pocket(std::size_t p, Vec2 at, int depth_of_call) {
+        if (depth_of_call > 10000) throw std::string("too many pockets");
+        double x = start_level_;
+        int idle = 0;
+        while (p < el_.size()) {
+            if (++idle > 1000) throw std::string("the cycle does not progress");
+            while (x > at.y) x -= depth_;
+            if (dive(p, at, x, p == 0)) {
+                for (; p < el_.size(); ++p)
+                    if (climb(p, at)) {
+                        pocket(p, at, depth_of_call + 1);
+                        return;
+                    }
+                return;
+            }
+            if (at.y > x || std::abs(at.y - x) > 1e-6) {
+                ++p;
+                continue;
+            }
+            for (std::size_t ip = p; ip < el_.size(); ++ip) {
+                const std::vector<double> m = g71_meets(el_[ip], at.y);
+                if (m.empty()) continue;
+                const double z = ip != p ? m.front() : m.back();
+                const double length = std::abs(z - at.x);
+                if (length < 1e-6) {
+                    if (ip == p) continue;
+                    ++p;
+                    break;
+                }
+                to(LatheCycleMove::Kind::feed, Vec2{z, at.y});
+                const double e = std::min(1.0, length / 2 / retract_) * retract_;
+                to(LatheCycleMove::Kind::rapid, Vec2{z + e, at.y + e});
+                to(LatheCycleMove::Kind::rapid, Vec2{at.x - e, at.y + e});
+                to(p == 0 ? LatheCycleMove::Kind::rapid : LatheCycleMove::Kind::feed, at);
+                x -= depth_;
+                idle = 0;
+                break;
+            }
+        }
+    }
+
+private:
+    std::vector<G71Element> el_;
+    double start_level_, depth_, retract_;
+    long count_ = 0;
+};
+
+}  // namespace
+
+LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, double retract) {
+    LatheCycleModel out;
+    auto refuse = [&](std::string why) {
+        out.moves.clear();
+        out.refusal = std::move(why);
+        return out;
+    };
+    if (!(depth > 0) || !(retract > 0)) return refuse("the depth of cut and the retract must be above 0");
+    if (profile.segments.empty()) return refuse("the profile has no element");
+    const Vec2 p0 = profile.start, pe = profile.segments.back().end;
+    if (!(start.y > p0.y + 1e-6)) return refuse("the start point is not above the profile's start");
+    if (!(start.x > p0.x + 1e-3))
+        return refuse("the start point is not beyond the profile's start in Z (the control's cycle is not modelled down a "
+                      "line along X)");
+    if (!(p0.x - pe.x > 1e-3)) return refuse("the profile does not run towards -Z");
+    if (p0.y > pe.y) return refuse("the profile ends below its start");
+    std::vector<G71Element> el;
+    el.push_back({start, p0});
+    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
+        const ProfileSegment& s = profile.segments[k];
+        G71Element e{segment_start(profile, k), s.end};
+        if (s.centre) {
+            e.arc = true;
+            e.c = *s.centre;
+            e.ccw = s.direction == ArcDirection::ccw;
+        }
+        const std::string which = "element " + std::to_string(k);
+        if (e.b.y < e.a.y) return refuse(which + " falls in radius (a pocket)");
+        if (!e.arc) {
+            if (e.b.x - e.a.x > 1e-3) return refuse(which + " turns back towards +Z");
+        } else {
+            const double in = e.a.y - e.c.y, ex = e.b.y - e.c.y, dz = e.b.x - e.a.x;
+            // The control's own test, and no pocket: a G3 on the right of its top quarter, a G2 on
+            // the left of its bottom one.
+            const bool control = e.ccw ? in >= -1e-3 && ex >= -1e-3 && dz <= -1e-3 : in <= 1e-3 && ex <= 1e-3 && dz <= -1e-3;
+            if (!control) return refuse(which + " is an arc the control does not take (not within a half above or below its centre, towards -Z)");
+            const bool rising = e.ccw ? e.a.x >= e.c.x && e.b.x >= e.c.x : e.a.x <= e.c.x && e.b.x <= e.c.x;
+            if (!rising) return refuse(which + " is an arc that falls in radius (a pocket)");
+        }
+        el.push_back(e);
+    }
+    // A level through a corner of the profile: there the control's cycle turns on tolerances
+    // (rs274 runs some such profiles without end), and the model does not follow it.
+    for (double x = start.y; x > p0.y - 1e-4; x -= depth) {
+        auto through = [&](double r) { return std::abs(x - r) < 1e-4; };
+        bool hit = through(p0.y);
+        for (const ProfileSegment& s : profile.segments) hit = hit || through(s.end.y);
+        if (hit)
+            return refuse("a level of the cycle (radius " + g71_number(x) +
+                          ") runs through a corner of the profile: the control's cycle is not modelled there");
+    }
+    if (pe.y < start.y) el.push_back({pe, Vec2{pe.x, start.y}});
+    G71Run run(std::move(el), start.y, depth, retract);
+    run.origin = start;
+    try {
+        run.moves.push_back({LatheCycleMove::Kind::rapid, start, {}, ArcDirection::ccw});
+        run.pocket(0, start, 0);
+    } catch (const std::string& why) {
+        return refuse(why);
+    }
+    out.moves = std::move(run.moves);
+    return out;
+}
+
+}  // namespace camgen

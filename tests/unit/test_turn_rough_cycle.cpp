@@ -1,0 +1,177 @@
+// turn-rough's output (issue 30 item 2): a TurnCycle (LinuxCNC's G71 with the boundary as its
+// profile subroutine) where the control's cycle makes the roughing, longhand otherwise; the
+// linuxcnc-lathe program and its reading back; the notes and refusals with their JSON paths.
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "camgen/analysis/compare.hpp"
+#include "camgen/analysis/trace.hpp"
+#include "camgen/common/error.hpp"
+#include "camgen/operations/registry.hpp"
+#include "camgen/operations/turn_rough/turn_rough.hpp"
+#include "camgen/post/machine.hpp"
+#include "camgen/reader/reader.hpp"
+#include "support.hpp"
+
+// Unity builds compile several test files as one: each keeps its names in its own namespace.
+namespace test_turn_rough_cycle {
+
+using namespace camgen;
+
+namespace {
+
+// A bar of diameter 40 faced at Z0.5 to Z0, turned to a shaft with a face, a chamfer, a taper and
+// an arc (a face first: with the nose made up for, a chamfer first would start the tip's path
+// below the boundary's start, inside the faced bar, and the cycle would not be used).
+std::string rc_job(const std::string& op_extra, const std::string& path = "") {
+    const std::string p = path.empty() ? R"([{"line": [18, 0]}, {"line": [20, -1]}, {"line": [20, -15]}, {"line": [26, -20]},
+        {"arc": {"end": [32, -23], "centre": [26, -23], "direction": "ccw"}}, {"line": [32, -35]}])"
+                                       : path;
+    return fmt::format(R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0.5}}}},
+  "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000}}],
+  "operations": [{{"type": "turn-face", "tool": 1, "feed": 150, "z": 0, "stepdown": 0.5}},
+                 {{"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": 1.5, "allowanceX": 0.4, "allowanceZ": 0.1,
+                   "start": [16, 0], "path": {}{}}}]}})",
+                       p, op_extra);
+}
+
+test::Posted rc_posted(const std::string& text, const Machine& m) {
+    const Job j = read_job(text, "rc.json");
+    std::ostringstream out, notes;
+    PostOptions o;
+    o.notes = &notes;
+    auto post = make_post(m, out, o);
+    post->open();
+    expand_job(j, *post);
+    post->close();
+    return test::Posted{out.str(), notes.str()};
+}
+
+std::string rc_refusal(const std::string& text, const Machine& m) {
+    try {
+        (void)rc_posted(text, m);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("turn-rough output: G71 with its profile subroutine on linuxcnc-lathe, read back as the job's moves") {
+    const Machine lcnc = load_machine("linuxcnc-lathe");
+    for (const char* nose : {"", R"(, "compensation": "none")"}) {
+        CAPTURE(nose);
+        const std::string text = rc_job(nose);
+        const Job j = read_job(text, "rc.json");
+        const auto& op = std::get<TurnRoughOp>(j.operations.at(1));
+        CHECK(op.bar_face == 0.0);
+        const TurnCycle c = turn_cycle(op);
+        REQUIRE_FALSE(c.refusal);
+        // The start beyond the part, at most a pass below the bar; I at most depthOfCut.
+        CHECK(c.start.z > op.tip_boundary.start.x);
+        CHECK(c.start.x <= 20.0);
+        CHECK(c.start.x >= 20.0 - 1.5);
+        CHECK(c.depth <= 1.5);
+        CHECK(c.retract <= c.depth / 2 + 1e-9);
+        const auto p = rc_posted(text, lcnc);
+        CHECK_MESSAGE(p.text.find("o100 sub\nG1 X") != std::string::npos, p.text);
+        CHECK(p.text.find("o100 endsub\nG71 Q100 D0 I") != std::string::npos);
+        CHECK(p.warnings.find("longhand") == std::string::npos);
+        // Read back: the control's moves are the job's (verify --job, within its 0.001 mm: the
+        // control's moves are those of the rounded subroutine).
+        const Trace read = trace_program(read_program(p.text, lcnc, "t.ngc"), lcnc);
+        const auto mismatch = compare_traces(trace_expected(expand_job(j), lcnc), read, compare_tolerance(lcnc));
+        CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
+        // Another depth of cut in the G71 block is another roughing: found.
+        std::string wrong = p.text;
+        const std::size_t at = wrong.find("D0 I");
+        REQUIRE(at != std::string::npos);
+        const std::size_t end = wrong.find(' ', at + 3);
+        wrong.replace(at + 3, end - (at + 3), "I0.4");
+        CHECK(compare_traces(trace_expected(expand_job(j), lcnc), trace_program(read_program(wrong, lcnc, "t.ngc"), lcnc),
+                             compare_tolerance(lcnc)));
+        // fanuc-lathe and sinumerik-lathe have no roughing cycle: the control's moves longhand,
+        // read back as the job's, no note.
+        for (const char* name : {"fanuc-lathe", "sinumerik-lathe"}) {
+            CAPTURE(name);
+            const Machine m = load_machine(name);
+            const auto q = rc_posted(text, m);
+            CHECK(q.text.find("G71 Q") == std::string::npos);
+            CHECK(q.warnings.find("longhand") == std::string::npos);
+            const auto miss = compare_traces(trace_expected(expand_job(j), m),
+                                             trace_program(read_program(q.text, m, "t.nc"), m), compare_tolerance(m));
+            CHECK_MESSAGE(!miss, (miss ? miss->message : ""));
+        }
+    }
+}
+
+TEST_CASE("turn-rough output: longhand where the cycle would not make the roughing (a note), refused under canned") {
+    const Machine lcnc = load_machine("linuxcnc-lathe");
+    const Machine fanuc = load_machine("fanuc-lathe");
+    // An undercut: G71 (type I) does not rough a pocket.
+    const std::string under = R"([{"line": [18, 0]}, {"line": [20, -1]}, {"line": [20, -10]}, {"line": [17, -13]}, {"line": [17, -18]},
+        {"line": [26, -22]}, {"line": [26, -30]}])";
+    {
+        const auto p = rc_posted(rc_job(R"(, "compensation": "none")", under), lcnc);
+        CHECK(p.text.find("G71") == std::string::npos);
+        CHECK_MESSAGE(p.warnings.find("/operations/1 (turn rough): the roughing is written longhand because machine "
+                                      "linuxcnc-lathe's G71 would not cut these passes: element 3 falls in radius (a pocket)") !=
+                          std::string::npos,
+                      p.warnings);
+        CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "output": "canned")", under), lcnc)
+                  .find("/operations/1/output: machine linuxcnc-lathe's G71 would not cut these passes: element 3 falls in "
+                        "radius (a pocket); use \"auto\" or \"longhand\"") != std::string::npos);
+        // fanuc-lathe: longhand, no note; canned refused for want of a cycle.
+        CHECK(rc_posted(rc_job(R"(, "compensation": "none")", under), fanuc).warnings.find("longhand") == std::string::npos);
+    }
+    CHECK(rc_refusal(rc_job(R"(, "output": "canned")"), fanuc)
+              .find("/operations/1/output: machine fanuc-lathe has no canned roughing cycle along Z (roughingCycles)") !=
+          std::string::npos);
+    // longhand: no cycle, the passes as before.
+    CHECK(rc_posted(rc_job(R"(, "output": "longhand")"), lcnc).text.find("G71") == std::string::npos);
+    // Along X: longhand; canned refused when read.
+    const std::string along_x = rc_job(R"(, "direction": "x", "output": "canned")");
+    try {
+        (void)read_job(along_x, "rc.json");
+        FAIL("a canned roughing along X was read");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("/operations/1/output") != std::string::npos);
+    }
+    // A bar not faced to the profile's start: the cycle's line down to it would run through the
+    // stub, so it is refused, and the note says why.
+    const std::string unfaced = fmt::format(
+        R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0.05}}}},
+  "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000}}],
+  "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": 1.5, "compensation": "none",
+                   "start": [18, 0], "path": [{{"line": [20, -1]}}, {{"line": [20, -15]}}, {{"line": [32, -20]}}]}}]}})");
+    const auto u = rc_posted(unfaced, lcnc);
+    CHECK(u.text.find("G71") == std::string::npos);
+    CHECK_MESSAGE(u.warnings.find("inside the bar whose face is at Z 0.05") != std::string::npos, u.warnings);
+}
+
+TEST_CASE("turn-rough output: no level of the cycle within 0.005 mm of a corner of its boundary") {
+    // Depths that land a level from the bar on the profile's radii: another start or I is taken.
+    for (double doc : {1.0, 2.0, 0.5, 2.5}) {
+        CAPTURE(doc);
+        const std::string text = fmt::format(
+            R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0}}}},
+  "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000}}],
+  "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": {}, "compensation": "none",
+                   "start": [20, 0], "path": [{{"line": [20, -5]}}, {{"line": [30, -5]}}, {{"line": [30, -10]}}, {{"line": [36, -12]}}]}}]}})",
+            doc);
+        const Job j = read_job(text, "rc.json");
+        const auto& op = std::get<TurnRoughOp>(j.operations.at(0));
+        const TurnCycle c = turn_cycle(op);
+        REQUIRE_FALSE(c.refusal);
+        CHECK(c.depth <= doc);
+        for (double level = c.start.x; level > 10 - 0.01; level -= c.depth)
+            for (double corner : {10.0, 15.0, 18.0}) CHECK(std::abs(level - corner) >= 0.005 - 1e-9);
+    }
+}
+
+}  // namespace test_turn_rough_cycle
