@@ -38,50 +38,8 @@ std::string trc_rs274() {
     return *p;
 }
 
-struct TrcEnd {
-    bool rapid = false, arc = false;
-    double x = 0, z = 0;
-};
-
-// rs274's moves from its canonical calls (under G18, ARC_FEED gives Z end, X end first).
-std::vector<TrcEnd> trc_rs274_moves(const std::string& canon) {
-    std::vector<TrcEnd> out;
-    double x = 0, z = 0;
-    std::istringstream lines(canon);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t open = line.find('('), close = line.rfind(')');
-        if (open == std::string::npos || close == std::string::npos) continue;
-        std::vector<double> a;
-        std::istringstream args(line.substr(open + 1, close - open - 1));
-        for (std::string part; std::getline(args, part, ',');) a.push_back(std::strtod(part.c_str(), nullptr));
-        TrcEnd e;
-        if (line.find("STRAIGHT_TRAVERSE") != std::string::npos || line.find("STRAIGHT_FEED") != std::string::npos) {
-            if (a.size() < 3) continue;
-            e.rapid = line.find("STRAIGHT_TRAVERSE") != std::string::npos;
-            e.x = a[0], e.z = a[2];
-        } else if (line.find("ARC_FEED") != std::string::npos) {
-            if (a.size() < 5) continue;
-            e.arc = true;
-            e.z = a[0], e.x = a[1];
-        } else {
-            continue;
-        }
-        if (std::abs(e.x - x) < 1e-9 && std::abs(e.z - z) < 1e-9 && !e.arc) continue;
-        x = e.x, z = e.z;
-        out.push_back(e);
-    }
-    return out;
-}
-
-std::vector<TrcEnd> trc_camgen_moves(const std::string& program, const Machine& m) {
-    std::vector<TrcEnd> out;
-    for (const oracle::Step& s : oracle::read_with_camgen(program, m)) {
-        if (s.kind != oracle::Step::Kind::traverse && s.kind != oracle::Step::Kind::feed && s.kind != oracle::Step::Kind::arc)
-            continue;
-        out.push_back({s.kind == oracle::Step::Kind::traverse, s.kind == oracle::Step::Kind::arc, s.to.x, s.to.z});
-    }
-    return out;
-}
+// A move's end in (X radius, Z), a rapid or an arc (rs274's: oracle::xz_moves; camgen's: oracle::camgen_xz_moves).
+using TrcEnd = oracle::XzMove;
 
 // A generated monotone profile as job path elements (diameters), from (Z0, r0).
 std::string trc_path(std::mt19937& rng, double& r0) {
@@ -230,8 +188,8 @@ TEST_CASE("linuxcnc-lathe: generated turn-rough jobs as G71 run in rs274 as camg
             const auto it = std::find_if(v.begin(), v.end(), [](const TrcEnd& e) { return !e.rapid; });
             return std::vector<TrcEnd>(it, v.end());
         };
-        const std::vector<TrcEnd> theirs = from_first_feed(trc_rs274_moves(canon)),
-                                  ours = from_first_feed(trc_camgen_moves(program, m));
+        const std::vector<TrcEnd> theirs = from_first_feed(oracle::xz_moves(canon)),
+                                  ours = from_first_feed(oracle::camgen_xz_moves(program, m));
         REQUIRE(theirs.size() == ours.size());
         double here = 0;
         for (std::size_t i = 0; i < ours.size(); ++i) {
