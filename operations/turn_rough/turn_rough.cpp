@@ -481,7 +481,14 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     // The last pass along the boundary: what the levels left in steps comes off, the allowances
     // stay.
     const Vec2 b0 = path.start;
-    come_in(b0.y, from_material ? std::max(op.material.front(b0.y), b0.x) + op.approach : z_start);
+    // From the earlier material: approachDistance beyond it at the start's radius, or beyond the
+    // start where the material ends further in.
+    double e_last = z_start;
+    if (from_material) {
+        e_last = op.material.front(b0.y) + op.approach;
+        if (!(e_last > b0.x + 1e-6)) e_last = b0.x + op.approach;
+    }
+    come_in(b0.y, e_last);
     sink.emit(Linear{turn_rough_at(b0.y, b0.x), op.feed, Movement::lead_in});
     for (const ProfileSegment& s : path.segments) {
         if (s.centre)

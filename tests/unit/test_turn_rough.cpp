@@ -757,6 +757,10 @@ void check_after_earlier(bool along_x) {
         };
         const double now = cutting(operation_moves(job, "/operations/1")), before = cutting(operation_moves(whole, "/operations/1"));
         CHECK(now <= before + 1e-9);
+        // Less after a rough always (its passes begin where the first left more than their
+        // level, or outside what it left); after a face along Z (the passes begin 1 mm before
+        // the faced end), while along X the face leaves the whole bar below it.
+        if (!faced || !along_x) CHECK(now < before - 1e-6);
         fewer += now < before - 1e-6;
         worst_gouge = std::max(worst_gouge, c.deepest_gouge);
         worst_left = std::max(worst_left, c.most_left);
@@ -766,7 +770,7 @@ void check_after_earlier(bool along_x) {
     MESSAGE(std::string(along_x ? "turn-rough along X" : "turn-rough") << " after a face or a rough: " << cases << " random profiles ("
                          << fewer << " feeding less than from the whole bar); worst gouge " << worst_gouge
                          << " mm, worst left " << worst_left << " mm, worst rapid into material " << worst_rapid << " mm");
-    CHECK(fewer > cases / 2);
+    CHECK(fewer >= cases / 2);
 }
 
 TEST_CASE("turn-rough after a face or a rough, random profiles: no gouge, nothing left, no rapid into material") {
