@@ -123,7 +123,13 @@ void rough_from_earlier_material(Job& job, const JobInput& in) {
         std::string what;
     };
     std::vector<Cut> cuts;
-    for (Operation& op : job.operations) {
+    // Up to the last such turn-rough; only the operations before it are designed (each is
+    // expanded for it).
+    std::size_t end = 0;
+    for (std::size_t i = 0; i < job.operations.size(); ++i)
+        if (const auto* r = std::get_if<TurnRoughOp>(&job.operations[i]); r && r->stock == RoughStock::from_earlier) end = i + 1;
+    for (std::size_t i = 0; i < end; ++i) {
+        Operation& op = job.operations[i];
         if (auto* r = std::get_if<TurnRoughOp>(&op); r && r->stock == RoughStock::from_earlier && !cuts.empty()) {
             const double z_lo = std::min(r->boundary.segments.back().end.x, r->tip_boundary.segments.back().end.x) - 1.0;
             std::vector<double> breaks{bar.face_z};
@@ -145,6 +151,7 @@ void rough_from_earlier_material(Job& job, const JobInput& in) {
                 r->material = std::move(m);
             }
         }
+        if (i + 1 == end) break;
         LatheDesign d;
         std::vector<std::string> unchecked;
         std::string type;
