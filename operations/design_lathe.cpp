@@ -2,6 +2,7 @@
 // tool leaves, each turn-drill's bore.
 #include "camgen/operations/design_lathe.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -215,12 +216,12 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     // rapid out to retractX and the return along Z to the clearance.
     // The tip's path is the compensated one where camgen compensates the nose (tip_path).
     const Profile& tp = op.tip_path.segments.empty() ? op.profile : op.tip_path;
-    d.tip.push_back({{clearance, tp.start.y}, tp.start});
+    d.tip.push_back({{clearance, tp.start.y}, tp.start, false});
     for (std::size_t k = 0; k < tp.segments.size(); ++k) {
         const Vec2 a = segment_start(tp, k);
         const ProfileSegment& s = tp.segments[k];
         if (!s.centre) {
-            d.tip.push_back({a, s.end});
+            d.tip.push_back({a, s.end, false});
             continue;
         }
         const LatheDesignArc arc = lathe_design_arc(tp, k);
@@ -229,7 +230,7 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
         Vec2 from = a;
         for (int i = 1; i <= n; ++i) {
             const Vec2 to = i == n ? s.end : arc.centre + unit_at(arc.start + arc.sweep * i / n) * arc.radius;
-            d.tip.push_back({from, to});
+            d.tip.push_back({from, to, true});
             from = to;
         }
     }
@@ -237,9 +238,9 @@ void design_turn_profile(const TurnProfileOp& op, const Job& job, LatheDesign& d
     // Under control compensation the G40 move lifts the tip from where the control left it.
     const bool control = op.compensation == NoseCompensation::control && !op.control_path.segments.empty();
     const Vec2 lifted = control ? op.control_exit : tip_end + op.lift_direction * op.lift;
-    d.tip.push_back({tip_end, lifted});
-    d.tip.push_back({lifted, {lifted.x, op.retract_x}});
-    d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}});
+    d.tip.push_back({tip_end, lifted, false});
+    d.tip.push_back({lifted, {lifted.x, op.retract_x}, false});
+    d.tip.push_back({{lifted.x, op.retract_x}, {clearance, op.retract_x}, false});
     // The lowest Z of the profile (an arc may reach below its ends).
     d.z_lo = start.x;
     for (std::size_t k = 0; k < op.profile.segments.size(); ++k) {
@@ -269,8 +270,8 @@ public:
     }
 
 private:
-    void to(Vec2 p) {
-        if (distance(p, at_) > 0) out_.push_back({at_, p});
+    void to(Vec2 p, bool chord = false) {
+        if (distance(p, at_) > 0) out_.push_back({at_, p, chord});
         at_ = p;
     }
     void arc(const Arc& a) {
@@ -282,7 +283,7 @@ private:
         const LatheDesignArc g = lathe_design_arc(one, 0);
         const int n = std::min(lathe_design_max_chords,
                                std::max(1, segments_for_tolerance(g.radius, std::abs(g.sweep), lathe_design_chord)));
-        for (int i = 1; i <= n; ++i) to(i == n ? end : g.centre + unit_at(g.start + g.sweep * i / n) * g.radius);
+        for (int i = 1; i <= n; ++i) to(i == n ? end : g.centre + unit_at(g.start + g.sweep * i / n) * g.radius, true);
     }
     Vec2 at_;
     std::vector<LatheTipMove>& out_;
@@ -403,6 +404,112 @@ void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& des
     d.z_lo = op.end_z;
     d.z_hi = op.start_z;
     design.profiles.push_back(std::move(d));
+}
+
+
+LatheMaterial LatheMaterial::bar(double radius, double face_z, double z_lo, double step, std::vector<double> breaks) {
+    LatheMaterial m;
+    if (!(face_z > z_lo)) return m;
+    const int n = std::max(1, static_cast<int>(std::ceil((face_z - z_lo) / step)));
+    for (int i = 0; i <= n; ++i) breaks.push_back(i == n ? face_z : z_lo + (face_z - z_lo) * i / n);
+    std::sort(breaks.begin(), breaks.end());
+    for (double b : breaks) {
+        if (b < z_lo || b > face_z) continue;
+        if (!m.z.empty() && b - m.z.back() < 1e-9) {
+            if (b == face_z) m.z.back() = face_z;  // the face itself stays exact
+            continue;
+        }
+        m.z.push_back(b);
+    }
+    m.r.assign(m.z.size() - 1, radius);
+    return m;
+}
+
+double LatheMaterial::top(double a, double b) const {
+    double best = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i)
+        if (z[i + 1] > a && z[i] < b) best = std::max(best, r[i]);
+    return best;
+}
+
+double LatheMaterial::front(double v) const {
+    for (std::size_t i = r.size(); i-- > 0;)
+        if (r[i] > v) return z[i + 1];
+    return -std::numeric_limits<double>::infinity();
+}
+
+bool LatheMaterial::above(double a, double b, double v) const {
+    for (std::size_t i = 0; i < r.size(); ++i)
+        if (z[i + 1] > a && z[i] < b && r[i] > v) return true;
+    return false;
+}
+
+namespace {
+
+// The lowest radius a nose disc of radius n reaches at Z z while its centre moves from a to b
+// ((Z, radius)); infinity where the disc does not reach z. Along the move the disc's lowest
+// point at z is c.y - sqrt(n^2 - (c.x - z)^2), convex in the move's parameter: least at an end
+// of the stretch where |c.x - z| <= n, or where its derivative is 0.
+double lathe_material_disc_reach(Vec2 a, Vec2 b, double n, double z) {
+    const double du = b.x - a.x, dv = b.y - a.y;
+    double t0 = 0.0, t1 = 1.0;
+    if (std::abs(du) < 1e-15) {
+        if (std::abs(a.x - z) > n) return std::numeric_limits<double>::infinity();
+    } else {
+        double s0 = (z - n - a.x) / du, s1 = (z + n - a.x) / du;
+        if (s0 > s1) std::swap(s0, s1);
+        t0 = std::max(0.0, s0), t1 = std::min(1.0, s1);
+        if (t0 > t1) return std::numeric_limits<double>::infinity();
+    }
+    auto g = [&](double t) {
+        const double w = a.x + t * du - z;
+        return a.y + t * dv - std::sqrt(std::max(0.0, n * n - w * w));
+    };
+    double best = std::min(g(t0), g(t1));
+    if (std::abs(du) >= 1e-15 && n > 0) {
+        const double w = -n * dv * (du > 0 ? 1.0 : -1.0) / std::hypot(du, dv);
+        const double t = (z + w - a.x) / du;
+        if (t > t0 && t < t1) best = std::min(best, g(t));
+    }
+    return best;
+}
+
+// The lowest radius a flat edge reaches at Z z, covering Z from the tip's + lo to + hi, while the
+// tip moves from a to b; infinity where it does not cover z.
+double lathe_material_edge_reach(Vec2 a, Vec2 b, double lo, double hi, double z) {
+    const double du = b.x - a.x, dv = b.y - a.y;
+    double t0 = 0.0, t1 = 1.0;
+    if (std::abs(du) < 1e-15) {
+        if (a.x + lo > z || a.x + hi < z) return std::numeric_limits<double>::infinity();
+    } else {
+        double s0 = (z - hi - a.x) / du, s1 = (z - lo - a.x) / du;
+        if (s0 > s1) std::swap(s0, s1);
+        t0 = std::max(0.0, s0), t1 = std::min(1.0, s1);
+        if (t0 > t1) return std::numeric_limits<double>::infinity();
+    }
+    return std::min(a.y + t0 * dv, a.y + t1 * dv);
+}
+
+}  // namespace
+
+void lathe_material_cut(LatheMaterial& m, const LatheTurnDesign& d, Vec2 tip_offset) {
+    if (m.r.empty()) return;
+    const bool blade = d.blade_hi > d.blade_lo;
+    for (const LatheTipMove& mv : d.tip) {
+        // The move's shape in (Z, radius): the nose's centre, or the blade's tip.
+        const Vec2 a = blade ? mv.from : mv.from - tip_offset, b = blade ? mv.to : mv.to - tip_offset;
+        const double lo = blade ? std::min(a.x, b.x) + d.blade_lo : std::min(a.x, b.x) - d.nose;
+        const double hi = blade ? std::max(a.x, b.x) + d.blade_hi : std::max(a.x, b.x) + d.nose;
+        auto reach = [&](double z) {
+            return blade ? lathe_material_edge_reach(a, b, d.blade_lo, d.blade_hi, z) : lathe_material_disc_reach(a, b, d.nose, z);
+        };
+        // The intervals the move covers whole.
+        auto first = std::lower_bound(m.z.begin(), m.z.end(), lo);
+        for (std::size_t i = static_cast<std::size_t>(first - m.z.begin()); i + 1 < m.z.size() && m.z[i + 1] <= hi; ++i) {
+            const double bound = std::max(reach(m.z[i]), reach(m.z[i + 1]));
+            m.r[i] = std::min(m.r[i], std::max(0.0, bound + (mv.chord ? d.chord : 0.0)));
+        }
+    }
 }
 
 }  // namespace camgen

@@ -18,6 +18,8 @@
 #include "camgen/common/file_kind.hpp"
 #include "camgen/common/input_file.hpp"
 #include "camgen/events/visit.hpp"
+#include "camgen/geometry/compensation.hpp"
+#include "camgen/operations/design_lathe.hpp"
 #include "camgen/operations/stock.hpp"
 
 namespace camgen {
@@ -106,6 +108,76 @@ std::vector<std::string> operation_type_names() {
     }(std::make_index_sequence<std::variant_size_v<Operation>>());
 }
 
+namespace {
+
+// Each turn-rough with "stock": "auto" on a job with a bar roughs from what the outside operations
+// before it left of the bar (TurnRoughOp::material): the bar less each one's design as its tool
+// clears it (lathe_material_cut), in order, so that an earlier turn-rough's own passes are made
+// from what was before it. Drills cut inside only, threads leave their flanks: neither counts.
+void rough_from_earlier_material(Job& job, const JobInput& in) {
+    if (!job.stock || job.stock->shape != StockShape::bar) return;
+    const Stock& bar = *job.stock;
+    struct Cut {
+        LatheTurnDesign design;
+        Vec2 tip_offset;
+        std::string what;
+    };
+    std::vector<Cut> cuts;
+    // Up to the last such turn-rough; only the operations before it are designed (each is
+    // expanded for it).
+    std::size_t end = 0;
+    for (std::size_t i = 0; i < job.operations.size(); ++i)
+        if (const auto* r = std::get_if<TurnRoughOp>(&job.operations[i]); r && r->stock == RoughStock::from_earlier) end = i + 1;
+    for (std::size_t i = 0; i < end; ++i) {
+        Operation& op = job.operations[i];
+        if (auto* r = std::get_if<TurnRoughOp>(&op); r && r->stock == RoughStock::from_earlier && !cuts.empty()) {
+            const double z_lo = std::min(r->boundary.segments.back().end.x, r->tip_boundary.segments.back().end.x) - 1.0;
+            std::vector<double> breaks{bar.face_z};
+            for (const Cut& c : cuts)
+                for (double z : c.design.corners()) breaks.push_back(z);
+            const double step = std::max(0.05, (bar.face_z - z_lo) / 20000.0);
+            LatheMaterial m = LatheMaterial::bar(r->stock_radius, bar.face_z, z_lo, step, std::move(breaks));
+            if (!m.r.empty()) {
+                std::string whats;
+                for (const Cut& c : cuts) {
+                    lathe_material_cut(m, c.design, c.tip_offset);
+                    whats += (whats.empty() ? "" : ", ") + c.what;
+                }
+                const double scale = r->given_x == XValues::diameter ? 2.0 : 1.0;
+                const double top = std::min(r->stock_radius, m.top(z_lo + 1.0, std::numeric_limits<double>::infinity()));
+                r->material = std::move(m);
+                if (!r->whole_bar_over_boundary())
+                    r->notes.push_back(fmt::format("roughs from what {} left of the bar (\"stock\": \"auto\"): from X {} down, each "
+                                               "pass approachDistance before that material at its level, levels in air left out",
+                                               whats, in.show(top * scale)));
+            }
+        }
+        if (i + 1 == end) break;
+        LatheDesign d;
+        std::vector<std::string> unchecked;
+        std::string type;
+        visit_exhaustive(
+            [&]<OperationType Op>(const Op& o) {
+                type = std::string(Op::type);
+                if constexpr (std::is_same_v<Op, TurnFaceOp>) design_turn_face(o, job, d, unchecked);
+                else if constexpr (std::is_same_v<Op, TurnRoughOp>) design_turn_rough(o, job, d, unchecked);
+                else if constexpr (std::is_same_v<Op, TurnProfileOp>) design_turn_profile(o, job, d, unchecked);
+                else if constexpr (std::is_same_v<Op, TurnGrooveOp>) design_turn_groove(o, job, d, unchecked);
+                else if constexpr (std::is_same_v<Op, TurnPartOp>) design_turn_part(o, job, d, unchecked);
+            },
+            op);
+        for (LatheTurnDesign& t : d.profiles) {
+            const auto tool = job.tools.find(t.tool);
+            const int orientation = tool != job.tools.end() && tool->second.orientation > 0 ? tool->second.orientation : 2;
+            const std::string what = fmt::format("{} ({})", t.path, type);
+            cuts.push_back({std::move(t), lathe_tip_offset(orientation, 0.0), what});
+            cuts.back().tip_offset = lathe_tip_offset(orientation, cuts.back().design.nose);
+        }
+    }
+}
+
+}  // namespace
+
 Job read_job(std::string_view text, const std::string& source_name, JobLimits limits, const ToolLibraryOptions& tools) {
     // A syntax error ends reading here: the one error.
     JobInput in(text, source_name, limits);
@@ -159,12 +231,15 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     // operations and the simulation).
     if (const std::optional<Stock>& stock = in.header().stock; stock && stock->shape == StockShape::bar) {
         double face = stock->face_z;
+        bool cut_outside = false;  // an outside operation came before (rough_from_earlier_material)
         for (Operation& op : job.operations) {
             std::optional<double> entry;
             std::string what;
             if (const auto* f = std::get_if<TurnFaceOp>(&op)) face = std::min(face, f->z);
             if (auto* r = std::get_if<TurnRoughOp>(&op)) r->bar_face = face;  // where its cycle may come down
-            if (const auto* r = std::get_if<TurnRoughOp>(&op); r && r->direction == RoughDirection::z) {
+            // A turn-rough from the earlier material comes in beyond it at each level.
+            if (const auto* r = std::get_if<TurnRoughOp>(&op);
+                r && r->direction == RoughDirection::z && (r->stock == RoughStock::bar || !cut_outside)) {
                 const double tip = r->tip_boundary.segments.empty() ? r->boundary.start.x : r->tip_boundary.start.x;
                 entry = std::max(r->boundary.start.x, tip) + r->approach, what = "its passes come in";
             }
@@ -179,6 +254,9 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                 entry = t->start_z + t->approach - deepest * std::tan(t->infeed_angle * rad_per_deg),
                 what = "its passes come in";
             }
+            cut_outside = cut_outside || std::holds_alternative<TurnFaceOp>(op) || std::holds_alternative<TurnRoughOp>(op) ||
+                          std::holds_alternative<TurnProfileOp>(op) || std::holds_alternative<TurnGrooveOp>(op) ||
+                          std::holds_alternative<TurnPartOp>(op);
             if (entry && *entry < face - 1e-9)
                 json::fail(in.source(), path_of(op),
                            fmt::format("{} at Z {}, inside the bar, whose face is at Z {} ({}): face the bar first "
@@ -227,6 +305,7 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
             op);
     static_cast<JobHeader&>(job) = in.take_header();
     if (job.name.empty()) job.name = job_name(source_name);
+    rough_from_earlier_material(job, in);
     return job;
 }
 

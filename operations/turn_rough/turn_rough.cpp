@@ -44,6 +44,10 @@ constexpr KeySpec turn_rough_keys[] = {
      .description = "the finished profile's elements [x, z], Z never rising along it (X may fall: an undercut)"},
     {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "X (as xValues) of the bar roughed from (default: the stock bar's diameter; required without a bar)"},
+    {.key = "stock", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<rough_stocks>,
+     .description = "what it roughs from: \"auto\" what the operations before it left of the job's stock bar (each pass "
+                    "begins approachDistance before that material at its level, levels in air are left out), \"bar\" "
+                    "the whole bar of startX"},
     {.key = "allowanceX", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
      .description = "material left for finishing in X, as xValues gives X (on the diameter by default, like Fanuc's "
                     "G71 U): the profile is moved out by it"},
@@ -234,6 +238,7 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
     if (f.has("startX")) op.stock_radius = in.length(f, "startX") * scale;
     else if (bar) op.stock_radius = stock->diameter / 2;
     else f.fail("startX", "give startX (the X of the bar roughed from), or a stock bar whose diameter it is");
+    op.stock = f.choice("stock", rough_stocks, RoughStock::from_earlier);
     double top = 0.0;
     for (std::size_t k = 0; k < op.boundary.segments.size(); ++k) {
         const Vec2 a = segment_start(op.boundary, k);
@@ -358,16 +363,29 @@ void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) 
     const double angle = std::max(45.0, (op.steepest_fall + 90.0) / 2.0) / deg_per_rad;
     const double dz = std::sqrt(2.0) * lift * std::cos(angle), dr = std::sqrt(2.0) * lift * std::sin(angle);
     sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+    const bool from_material = !op.material.r.empty();
+    // Where a pass at Z z begins with the earlier material: approachDistance outside the most
+    // of it at z and above (the tool stands towards +Z of its tip).
+    auto begin_at = [&](double z) {
+        return from_material ? std::min(outside, op.material.top(z, std::numeric_limits<double>::infinity()) + op.approach)
+                             : outside;
+    };
+    double ran = std::numeric_limits<double>::infinity();  // the Z of the pass before that ran
     for (double level : levels) {
         const double r_end = turn_rough_boundary_at(op, level);
         if (!(r_end < op.stock_radius - 1e-6)) continue;  // the boundary is at the bar here: nothing to take
+        // A pass takes what lies above its end from its Z up to the pass before: none there, in air.
+        if (from_material && !op.material.above(level, ran, r_end)) continue;
+        ran = level;
         sink.emit(Rapid{turn_rough_at(outside, level)});
+        if (const double in = begin_at(level); in < outside && in > r_end) sink.emit(Rapid{turn_rough_at(in, level)});
         sink.emit(Linear{turn_rough_at(r_end, level), op.feed, Movement::cutting});
         sink.emit(Linear{turn_rough_at(r_end + dr, level + dz), op.feed, Movement::lead_out});
         sink.emit(Rapid{turn_rough_at(std::max(outside, r_end + dr), level + dz)});
     }
     // The last pass: down the end face from outside the bar, along the boundary to its start.
     sink.emit(Rapid{turn_rough_at(outside, end.x)});
+    if (const double in = begin_at(end.x); in < outside && in > end.y) sink.emit(Rapid{turn_rough_at(in, end.x)});
     sink.emit(Linear{turn_rough_at(end.y, end.x), op.feed, end.y < op.stock_radius ? Movement::cutting : Movement::lead_in});
     turn_rough_boundary_backwards(op, sink);
     // Off the start: above it is air (the passes begin there along Z too).
@@ -445,6 +463,15 @@ TurnCycle turn_cycle(const TurnRoughOp& op) {
     return c;
 }
 
+bool TurnRoughOp::whole_bar_over_boundary() const {
+    if (material.r.empty() || tip_boundary.segments.empty()) return true;
+    const double lo = std::min(tip_boundary.segments.back().end.x, boundary.segments.back().end.x);
+    const double hi = std::max(tip_boundary.start.x, boundary.start.x);
+    for (std::size_t i = 0; i < material.r.size(); ++i)
+        if (material.z[i + 1] > lo && material.z[i] < hi && material.r[i] < stock_radius - 1e-6) return false;
+    return true;
+}
+
 void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     if (op.direction == RoughDirection::x) {
         expand_along_x(op, ctx, sink);
@@ -454,10 +481,19 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
     if (op.output != CycleOutput::longhand) {
-        const TurnCycle c = turn_cycle(op);
-        sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
-        sink.emit(Rapid{turn_rough_at(outside, z_start)});
+        TurnCycle c = turn_cycle(op);
+        if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
+            // Passes from what the earlier operations left take less than the cycle, which
+            // roughs from the bar; "canned" writes the cycle anyway.
+            c.refusal = "the operations before it removed part of the bar over the profile, and the cycle roughs from the "
+                        "bar, in air there: camgen's passes start from what they left (\"output\": \"canned\" writes the cycle)";
+            c.moves.clear();
+        }
         if (!c.refusal) {
+            // The control roughs from its start point down, whatever earlier operations left
+            // (over what they removed it cuts air).
+            sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+            sink.emit(Rapid{turn_rough_at(outside, z_start)});
             // The cycle, then off the end of its last pass at 45 degrees (above it the levels or
             // the pass along the boundary have cut) and out of the bar.
             sink.emit(Rapid{c.start});
@@ -472,42 +508,77 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
         // Why the cycle is not used: a note where the machine has one (or an error under
         // "canned"), then the passes longhand.
         sink.emit(c);
-    } else {
-        sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
-        sink.emit(Rapid{turn_rough_at(outside, z_start)});
     }
-    // The levels: equal steps from the bar down to the boundary's lowest point; the pass along
+    const bool from_material = !op.material.r.empty();
+    const double inf = std::numeric_limits<double>::infinity();
+    // The most there is to rough: the bar, or the most the earlier operations left from the
+    // boundary's end up.
+    const double top = from_material ? std::min(op.stock_radius, op.material.top(path.segments.back().end.x, inf))
+                                     : op.stock_radius;
+    // The levels: equal steps from the top down to the boundary's lowest point; the pass along
     // the boundary takes the last step.
-    const int count = std::max(1, static_cast<int>(std::ceil((op.stock_radius - op.bottom) / op.depth_of_cut - 1e-9)));
-    const double step = (op.stock_radius - op.bottom) / count;
+    const int count = std::max(1, static_cast<int>(std::ceil((top - op.bottom) / op.depth_of_cut - 1e-9)));
+    const double step = (top - op.bottom) / count;
     std::vector<double> levels;
-    for (int k = 1; k < count; ++k) levels.push_back(op.stock_radius - step * k);
-    const double lift = std::min(op.lift, step / 2);
-    double above = op.stock_radius;  // the level before (the bar's surface at first)
+    for (int k = 1; k < count; ++k) levels.push_back(top - step * k);
+    const double lift = step > 1e-6 ? std::min(op.lift, step / 2) : op.lift;
+    // Where a pass at level v comes in from air: approachDistance beyond the profile's start, or
+    // beyond the earlier material at v (all of it above v lies below that Z).
+    auto entry = [&](double v) { return from_material ? op.material.front(v) + op.approach : z_start; };
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+    // Where the tip is between passes: outside the bar, or lifted off the last pass at the Z it
+    // came in at (air beyond it at that radius and above).
+    Vec2 at{ctx.job.clearance, outside};
+    auto rapid_to = [&](Vec2 p) {
+        if (distance(p, at) > 0) sink.emit(Rapid{turn_rough_at(p.y, p.x)});
+        at = p;
+    };
+    // In air to level v at Z e: along Z where the tip is (outside, or above what is left beyond
+    // the higher of the two Zs), then down.
+    auto come_in = [&](double v, double e) {
+        if (at.y >= outside - 1e-12 || e > at.x) rapid_to({e, at.y});
+        rapid_to({std::max(e, at.x), v});
+        rapid_to({e, v});
+    };
+    double above = top;  // the level before (the top at first)
     for (double level : levels) {
-        const std::vector<TurnRoughSpan> spans = turn_rough_spans(op, level);
+        std::vector<TurnRoughSpan> spans;
+        for (const TurnRoughSpan& s : turn_rough_spans(op, level)) {
+            const bool open = s.hi >= path.start.x - 1e-9;
+            // A span with nothing of the material above the level (or beyond the start, where
+            // it is open) is in air: left out.
+            if (!from_material || op.material.above(s.lo, open ? inf : s.hi, level)) spans.push_back(s);
+        }
         for (const TurnRoughSpan& s : spans) {
             const bool open = s.hi >= path.start.x - 1e-9;
-            if (open) {
-                // From beyond the part's start, down in air to the level.
-                sink.emit(Rapid{turn_rough_at(level, z_start)});
-                sink.emit(Linear{turn_rough_at(level, s.hi), op.feed, Movement::cutting});
+            const bool first = &s == &spans.front();
+            // From air along the level: beyond the start, or beyond the material where it ends
+            // within the span.
+            const bool from_air = first && (open || (from_material && op.material.front(level) <= s.hi + 1e-9));
+            double back_to = z_start;
+            if (from_air) {
+                const double e = entry(level);
+                come_in(level, e);
+                if (e > s.hi + 1e-9) sink.emit(Linear{turn_rough_at(level, s.hi), op.feed, Movement::cutting});
+                back_to = e;
             } else {
                 // A span between walls: over the part outside the bar, down the column the
                 // passes above have cleared, feed in.
-                sink.emit(Rapid{turn_rough_at(outside, s.hi)});
-                sink.emit(Rapid{turn_rough_at(above + lift, s.hi)});
+                if (at.y < outside - 1e-12) rapid_to({at.x, outside});
+                rapid_to({s.hi, outside});
+                rapid_to({s.hi, above + lift});
                 sink.emit(Linear{turn_rough_at(level, s.hi), op.feed, Movement::plunge});
             }
             sink.emit(Linear{turn_rough_at(level, s.lo), op.feed, Movement::cutting});
             const double back = std::min(lift, s.hi - s.lo);
             sink.emit(Linear{turn_rough_at(level + lift, s.lo + back), op.feed, Movement::lead_out});
-            // Back above what this level has left: along it to the start, or out of the bar.
-            if (open && &s == &spans.front() && spans.size() == 1) {
-                sink.emit(Rapid{turn_rough_at(level + lift, z_start)});
+            at = {s.lo + back, level + lift};
+            // Back above what this level has left: along it to where it came in, or out of the bar.
+            if (from_air && spans.size() == 1) {
+                rapid_to({back_to, level + lift});
             } else {
-                sink.emit(Rapid{turn_rough_at(outside, s.lo + back)});
-                sink.emit(Rapid{turn_rough_at(outside, z_start)});
+                rapid_to({s.lo + back, outside});
+                rapid_to({z_start, outside});
             }
         }
         above = level;
@@ -515,7 +586,14 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     // The last pass along the boundary: what the levels left in steps comes off, the allowances
     // stay.
     const Vec2 b0 = path.start;
-    sink.emit(Rapid{turn_rough_at(b0.y, z_start)});
+    // From the earlier material: approachDistance beyond it at the start's radius, or beyond the
+    // start where the material ends further in.
+    double e_last = z_start;
+    if (from_material) {
+        e_last = op.material.front(b0.y) + op.approach;
+        if (!(e_last > b0.x + 1e-6)) e_last = b0.x + op.approach;
+    }
+    come_in(b0.y, e_last);
     sink.emit(Linear{turn_rough_at(b0.y, b0.x), op.feed, Movement::lead_in});
     for (const ProfileSegment& s : path.segments) {
         if (s.centre)

@@ -418,10 +418,13 @@ TEST_CASE("turning operations come in beyond the bar's face: the stock's faceZ, 
         CHECK(refusal(job(5, face + ", " + op)).empty());
         CHECK(refusal(job(0, op)).empty());
     }
-    // Faced to Z3 only: still inside.
+    // Faced to Z3 only: still inside, for a roughing from the whole bar; one from what the face
+    // left ("stock": "auto", turn_rough.cpp) comes in 1 mm beyond Z3 at each level.
     const std::string shallow = R"({"type": "turn-face", "tool": 1, "z": 3, "stepdown": 1, "feed": 100})";
-    CHECK(refusal(job(5, shallow + ", " + rough)).find("whose face is at Z 3.000 mm (as an earlier turn-face left it)") !=
+    const std::string rough_bar = rough.substr(0, rough.size() - 1) + R"(, "stock": "bar"})";
+    CHECK(refusal(job(5, shallow + ", " + rough_bar)).find("whose face is at Z 3.000 mm (as an earlier turn-face left it)") !=
           std::string::npos);
+    CHECK(refusal(job(5, shallow + ", " + rough)).empty());
 }
 
 }  // namespace test_turn_groove

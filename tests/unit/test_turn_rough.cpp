@@ -116,6 +116,44 @@ std::string rough_job(const Points& p, double bar, double ax, double az, double 
                        tool_extra, output, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
 }
 
+// The JSON of a turn-rough of `p` (radii) with the tool of rough_job, without startX.
+std::string rough_op(const Points& p, double ax, double az, double doc, const std::string& extra = "") {
+    std::string path;
+    for (std::size_t i = 1; i < p.size(); ++i)
+        path += fmt::format("{}{{\"line\": [{}, {}]}}", i > 1 ? ", " : "", p[i].y, p[i].x);
+    return fmt::format(R"({{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "xValues": "radius",
+                  "allowanceX": {}, "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]{}}})",
+                       ax, az, doc, p[0].y, p[0].x, path, extra);
+}
+
+// A job on a bar of radius `bar` whose face is at face_z, with these operations.
+std::string bar_job(double bar, double face_z, const std::string& operations, const std::string& tool_extra = "") {
+    return fmt::format(R"({{"clearance": 20, "stock": {{"bar": {{"diameter": {}, "length": 80, "faceZ": {}}}}},
+  "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000{}}}],
+  "operations": [{}]}})",
+                       2 * bar, face_z, tool_extra, operations);
+}
+
+// The tip moves of the operation at `index` of a job (between its OperationStart and End).
+std::vector<TipMove> operation_moves(const Job& job, const std::string& path) {
+    std::vector<TipMove> out;
+    Vec2 at{job.clearance, 0.0};
+    bool in = false;
+    for (const Event& e : expand_job(job)) {
+        if (const auto* s = std::get_if<OperationStart>(&e)) in = s->path == path;
+        Vec2 to = at;
+        bool rapid = false;
+        Movement movement = Movement::cutting;
+        if (const auto* r = std::get_if<Rapid>(&e)) to = {r->to.z, r->to.x}, rapid = true;
+        else if (const auto* l = std::get_if<Linear>(&e)) to = {l->to.z, l->to.x}, movement = l->movement;
+        else if (const auto* a = std::get_if<Arc>(&e)) to = {a->to.z, a->to.x}, movement = a->movement;
+        else continue;
+        if (in) out.push_back({at, to, rapid, movement});
+        at = to;
+    }
+    return out;
+}
+
 // A random profile from Z0 towards -Z: `undercuts` lets the radius fall.
 Points random_profile(std::mt19937& rng, bool undercuts, double bar) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -148,14 +186,17 @@ struct RoughCheck {
     int rapids_without_lift = 0;  // rapids straight after a cutting feed, without a lift off it
 };
 
-RoughCheck check_rough(const Points& p, double bar, double ax, double az, const std::vector<TipMove>& moves) {
+// `bar_top`: the bar's face (default: the boundary's start).
+RoughCheck check_rough(const Points& p, double bar, double ax, double az, const std::vector<TipMove>& moves,
+                       double bar_top = NAN) {
     RoughCheck c;
     const double z_hi = p.front().x + az, z_lo = p.back().x + az;
-    // The material, as a radius every 0.01 mm of Z, the bar up to the boundary's start.
+    if (std::isnan(bar_top)) bar_top = z_hi;
+    // The material, as a radius every 0.01 mm of Z, the bar up to its face.
     const double g0 = z_lo - 5.0, dz = 0.01;
-    const int cells = static_cast<int>((z_hi + 5.0 - g0) / dz);
+    const int cells = static_cast<int>((std::max(z_hi, bar_top) + 5.0 - g0) / dz);
     std::vector<double> material(cells);
-    for (int i = 0; i < cells; ++i) material[i] = g0 + (i + 0.5) * dz <= z_hi ? bar : 0.0;
+    for (int i = 0; i < cells; ++i) material[i] = g0 + (i + 0.5) * dz <= bar_top ? bar : 0.0;
     auto z_of = [&](int i) { return g0 + (i + 0.5) * dz; };
     std::vector<double> reached(cells, INFINITY);
     for (std::size_t m = 0; m < moves.size(); ++m) {
@@ -198,12 +239,13 @@ RoughCheck check_rough(const Points& p, double bar, double ax, double az, const 
 // there; each row keeps its top Z. The boundary's top at a row is worked out from the points:
 // the highest Z where the boundary (moved by the allowances) stands above the row, the end face
 // below.
-RoughCheck check_rough_x(const Points& p, double bar, double ax, double az, const std::vector<TipMove>& moves) {
+RoughCheck check_rough_x(const Points& p, double bar, double ax, double az, const std::vector<TipMove>& moves,
+                         double bar_top = NAN) {
     RoughCheck c;
     const double z_hi = p.front().x + az, z_lo = p.back().x + az, dr = 0.01;
     const int rows = static_cast<int>(bar / dr);  // rows beyond the bar hold no material
     auto r_of = [&](int i) { return (i + 0.5) * dr; };
-    std::vector<double> top(rows, z_hi);
+    std::vector<double> top(rows, std::isnan(bar_top) ? z_hi : bar_top);
     // The highest Z at which the kept part reaches the row's radius.
     auto keep_top = [&](double r) {
         if (r < boundary_at(p, z_hi, ax, az)) return z_hi;
@@ -630,6 +672,155 @@ TEST_CASE("turn-rough along X: refusals") {
               .find("/operations/0/direction: along X the passes step down in Z") != std::string::npos);
     CHECK(refusal(rough_job({{0, 5}, {-5, 10}}, 15, 0, 0, 1.0, "", R"(, "direction": "y")"))
               .find("/operations/0/direction:") != std::string::npos);
+}
+
+TEST_CASE("turn-rough from what a turn-face left: the passes come in 1 mm before the faced Z0, not the bar's face") {
+    // A bar faced from Z3 to Z0; the profile given from Z1 (in air after the face).
+    const std::string face = R"({"type": "turn-face", "tool": 1, "feed": 150, "z": 0, "stepdown": 1})";
+    const Points p{{1, 12}, {-20, 12}};
+    for (const char* stock : {"auto", "bar"}) {
+        const Job job = read_job(bar_job(22, 3, std::string(face) + ", " +
+                                                    rough_op(p, 0, 0, 2.5, fmt::format(R"(, "stock": "{}")", stock))),
+                                 "faced.json");
+        const bool from_face = std::string(stock) == "auto";
+        const std::vector<TipMove> moves = operation_moves(job, "/operations/1");
+        // The cutting feeds along -Z at a level below the bar: each starts where the tip came in.
+        // The passes: a feed along -Z straight after a rapid.
+        std::vector<double> levels, starts;
+        for (std::size_t i = 1; i < moves.size(); ++i) {
+            const TipMove& m = moves[i];
+            if (moves[i - 1].rapid && !m.rapid && m.movement == Movement::cutting && std::abs(m.from.y - m.to.y) < 1e-12 &&
+                m.to.x < m.from.x)
+                levels.push_back(m.from.y), starts.push_back(m.from.x);
+        }
+        // 22 to 12 in 4 steps of 2.5, the last along the boundary.
+        REQUIRE(levels.size() == 3);
+        CHECK(levels[0] == doctest::Approx(19.5));
+        CHECK(levels[2] == doctest::Approx(14.5));
+        for (int k = 0; k < 3; ++k) CHECK(starts[k] == doctest::Approx(from_face ? 1.0 : 2.0));
+        // The pass along the boundary comes in 1 mm before its start (Z1) either way.
+        for (std::size_t i = 1; i < moves.size(); ++i)
+            if (moves[i].movement == Movement::lead_in) {
+                CHECK(moves[i].from.x == doctest::Approx(2.0));
+                CHECK(moves[i].to.x == doctest::Approx(1.0));
+            }
+        bool noted = false;
+        for (const Event& e : expand_job(job))
+            if (const auto* s = std::get_if<OperationStart>(&e); s && s->path == "/operations/1")
+                for (const std::string& n : s->notes) noted = noted || n.find("roughs from what /operations/0 (turn-face) left") == 0;
+        CHECK(noted == from_face);
+    }
+}
+
+TEST_CASE("turn-rough from what an earlier turn-rough left: the levels it removed are left out, passes start at its end") {
+    // First D30 from Z0 to Z-30, then D24 from Z0 to Z-40: over Z0..Z-30 only 15 down to 12 is
+    // left; below Z-30 the whole bar. Both with a nose of 0.4, compensation none.
+    const Points first{{0, 15}, {-30, 15}}, second{{0, 12}, {-40, 12}};
+    const Job job = read_job(bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(second, 0, 0, 1.5)), "twice.json");
+    const Job bar = read_job(bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(second, 0, 0, 1.5, R"(, "stock": "bar")")),
+                             "twice.json");
+    auto passes = [](const std::vector<TipMove>& moves) {
+        std::vector<Vec2> out;  // (start Z, level) of each feed along -Z straight after a rapid
+        for (std::size_t i = 1; i < moves.size(); ++i) {
+            const TipMove& m = moves[i];
+            if (moves[i - 1].rapid && !m.rapid && m.movement == Movement::cutting && std::abs(m.from.y - m.to.y) < 1e-12 &&
+                m.to.x < m.from.x)
+                out.push_back({m.from.x, m.from.y});
+        }
+        return out;
+    };
+    const std::vector<Vec2> p = passes(operation_moves(job, "/operations/1"));
+    const std::vector<Vec2> old = passes(operation_moves(bar, "/operations/1"));
+    // The same levels from the bar (22 to 12 in 7 steps of 10/7), each pass along -Z.
+    REQUIRE(old.size() == 6);
+    REQUIRE(p.size() == 6);
+    for (std::size_t k = 0; k < 6; ++k) {
+        CHECK(p[k].y == doctest::Approx(22 - 10.0 / 7 * (k + 1)));
+        CHECK(old[k].x == doctest::Approx(1.0));
+    }
+    // Above what the first left at its end (15.4: the nose's round in the corner at Z-30) the
+    // passes begin 1 mm before Z-30; below it, 1 mm before Z0.
+    for (std::size_t k = 0; k < 4; ++k) CHECK(p[k].x == doctest::Approx(-29.0));
+    CHECK(p[4].x == doctest::Approx(1.0));
+    CHECK(p[5].x == doctest::Approx(1.0));
+    // The same second roughing only over the first's Z: 15 down to 12, two levels of 1.5.
+    const Points inside{{0, 12}, {-20, 12}};
+    const Job short_job = read_job(bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(inside, 0, 0, 1.5)), "twice.json");
+    const std::vector<Vec2> q = passes(operation_moves(short_job, "/operations/1"));
+    REQUIRE(q.size() == 1);
+    CHECK(q[0].y == doctest::Approx(13.5));
+    CHECK(q[0].x == doctest::Approx(1.0));
+    // A second roughing to the first's own boundary has nothing to take: only the pass along it.
+    const Job same = read_job(bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(first, 0, 0, 1.5)), "twice.json");
+    CHECK(passes(operation_moves(same, "/operations/1")).empty());
+}
+
+// Random profiles roughed after an earlier face or rough: the checks of the whole job's moves
+// on the bar (the earlier operation's cuts included).
+void check_after_earlier(bool along_x) {
+    std::mt19937 rng(along_x ? 830 : 30);
+    const double bar = 15.0;
+    int cases = 0, fewer = 0;
+    double worst_gouge = 0, worst_left = 0, worst_rapid = 0;
+    const std::string dir = along_x ? R"(, "direction": "x")" : "";
+    for (int n = 0; n < 80; ++n) {
+        const bool undercuts = n % 2 == 1, faced = n % 4 < 2;
+        const Points p = random_profile(rng, undercuts, bar - 2.0);
+        const double ax = (n % 3) * 0.2, az = (n % 4) * 0.05, doc = 0.7 + (n % 5) * 0.4;
+        const double z_hi = p.front().x + az;
+        const std::string tool = undercuts ? R"(, "insertAngle": 35, "approachAngle": 93)" : "";
+        // Faced from 0.4 beyond the profile's start to 0.6 within it; or roughed first with 1.3 more
+        // on the radius and 0.2 more on faces.
+        const double face_z = faced ? z_hi + 0.4 : z_hi;
+        const std::string earlier =
+            faced ? fmt::format(R"({{"type": "turn-face", "tool": 1, "feed": 150, "z": {}, "stepdown": 0.5}})", z_hi - 0.6)
+                  : rough_op(p, ax + 1.3, az + 0.2, doc + 0.3, dir);
+        const std::string text = bar_job(bar, face_z, earlier + ", " + rough_op(p, ax, az, doc, dir), tool);
+        INFO(text);
+        Job job;
+        REQUIRE_NOTHROW(job = read_job(text, "after.json"));
+        // Faced: the rough's own moves on the bar as the face leaves it (nothing beyond its Z; the
+        // face takes some of the profile's length). Roughed first: the whole job's moves.
+        const std::vector<TipMove> moves = faced ? operation_moves(job, "/operations/1") : tip_moves(job);
+        const double top = faced ? z_hi - 0.6 : face_z;
+        const RoughCheck c = along_x ? check_rough_x(p, bar, ax, az, moves, top) : check_rough(p, bar, ax, az, moves, top);
+        CHECK(c.deepest_gouge <= 1e-9);
+        CHECK(c.most_left <= 1e-6);
+        CHECK(c.rapid_in_material <= 1e-9);
+        CHECK(c.rapids_without_lift == 0);
+        // No more feeding (mm of cutting feeds) than from the whole bar.
+        const Job whole = read_job(bar_job(bar, face_z, earlier + ", " + rough_op(p, ax, az, doc, dir + R"(, "stock": "bar")"), tool),
+                                   "after.json");
+        auto cutting = [](const std::vector<TipMove>& m) {
+            double mm = 0;
+            for (const TipMove& t : m)
+                if (!t.rapid && t.movement == Movement::cutting) mm += std::hypot(t.to.x - t.from.x, t.to.y - t.from.y);
+            return mm;
+        };
+        const double now = cutting(operation_moves(job, "/operations/1")), before = cutting(operation_moves(whole, "/operations/1"));
+        CHECK(now <= before + 1e-9);
+        // Less after a rough always (its passes begin where the first left more than their
+        // level, or outside what it left); after a face along Z (the passes begin 1 mm before
+        // the faced end), while along X the face leaves the whole bar below it.
+        if (!faced || !along_x) CHECK(now < before - 1e-6);
+        fewer += now < before - 1e-6;
+        worst_gouge = std::max(worst_gouge, c.deepest_gouge);
+        worst_left = std::max(worst_left, c.most_left);
+        worst_rapid = std::max(worst_rapid, c.rapid_in_material);
+        ++cases;
+    }
+    MESSAGE(std::string(along_x ? "turn-rough along X" : "turn-rough") << " after a face or a rough: " << cases << " random profiles ("
+                         << fewer << " feeding less than from the whole bar); worst gouge " << worst_gouge
+                         << " mm, worst left " << worst_left << " mm, worst rapid into material " << worst_rapid << " mm");
+    CHECK(fewer >= cases / 2);
+}
+
+TEST_CASE("turn-rough after a face or a rough, random profiles: no gouge, nothing left, no rapid into material") {
+    check_after_earlier(false);
+}
+
+TEST_CASE("turn-rough along X after a face or a rough, random profiles: no gouge, nothing left, no rapid into material") {
+    check_after_earlier(true);
 }
 
 }  // namespace test_turn_rough

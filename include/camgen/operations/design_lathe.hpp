@@ -42,6 +42,7 @@ struct TurnThreadOp;
 // A straight stretch of a tool tip's path in (Z, radius), mm.
 struct LatheTipMove {
     Vec2 from, to;
+    bool chord = false;  // a chord of an arc (within LatheTurnDesign::chord of it)
 };
 
 // A turn-profile's design.
@@ -69,6 +70,41 @@ struct LatheTurnDesign {
     // The Z of the profile's corners (its start and every element's end), in order.
     std::vector<double> corners() const;
 };
+
+// The outer radius of the material an outside operation's tool leaves at most, as radii over
+// intervals of Z (a conservative bound: never less than what the real cut leaves). Made from the
+// bar (its radius below its face, none above) and cut by the designs of the operations that turn
+// the outside, in order (lathe_material_cut). Within each interval [z[i], z[i+1]] at most r[i]
+// is left; below z[0] the bar, above z.back() nothing (the bar's face, or beyond the range
+// asked for). A turn-rough roughs from it (TurnRoughOp::material).
+//
+// Why it is a bound: a tool's nose is a disc of the nose radius (the insert contains it whole,
+// whatever its angles), whose centre is the tip less lathe_tip_offset; a blade's edge is flat
+// across its width. Along one straight tip move the lowest radius such a shape reaches at Z z is
+// a convex function of z where the move reaches z (the lower edge of the sum of a segment and a
+// convex shape), so its greatest on an interval the move covers whole is at the interval's ends:
+// the interval's radius is cut to that (plus the chord tolerance where the move is a chord of an arc), and
+// an interval a move covers only in part is left as it was. The threads' flanks stay (a thread
+// cuts a helix, not a round), so turn-thread cuts nothing of it.
+struct LatheMaterial {
+    std::vector<double> z;  // rising, z.size() == r.size() + 1
+    std::vector<double> r;
+
+    // The bar of `radius` from z_lo up to its face at face_z, intervals at most `step` long,
+    // with a bound at each of `breaks` in that range (the Z of corners: what is cut stays sharp).
+    static LatheMaterial bar(double radius, double face_z, double z_lo, double step, std::vector<double> breaks);
+    // The most left on any interval that meets (a, b) (0 where none does).
+    double top(double a, double b) const;
+    // The highest Z below which more than `v` may be left: the top of the highest interval whose
+    // radius is above v; -infinity where none is.
+    double front(double v) const;
+    // Whether more than `v` may be left somewhere in (a, b).
+    bool above(double a, double b, double v) const;
+};
+
+// `m` less what the tool of design `d` clears along its tip's path: a nose disc of d.nose whose
+// centre is the tip less `tip_offset` (lathe_tip_offset of the tool's orientation), or d's blade.
+void lathe_material_cut(LatheMaterial& m, const LatheTurnDesign& d, Vec2 tip_offset);
 
 // A turn-drill's design.
 struct LatheHoleDesign {

@@ -20,6 +20,7 @@
 #include "camgen/geometry/profile.hpp"
 #include "camgen/job/job_input.hpp"
 #include "camgen/operations/context.hpp"
+#include "camgen/operations/design_lathe.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
 namespace camgen {
@@ -29,6 +30,16 @@ enum class RoughDirection { z, x };
 inline constexpr Named<RoughDirection> rough_directions[] = {
     {RoughDirection::z, "z", "passes along -Z towards the chuck, at radial levels depthOfCut apart (turning, as G71)"},
     {RoughDirection::x, "x", "passes along -X towards the axis, at Z levels depthOfCut apart (facing, as G72)"},
+};
+
+// What a turn-rough roughs from (key "stock"): what the operations before it left of the job's
+// bar, or the whole bar (of startX).
+enum class RoughStock { from_earlier, bar };
+inline constexpr Named<RoughStock> rough_stocks[] = {
+    {RoughStock::from_earlier, "auto",
+     "with a stock bar, what the outside operations before it left of it (faces, roughs, profiles, grooves, "
+     "part-offs); without one the bar of startX"},
+    {RoughStock::bar, "bar", "the whole bar of startX (or the stock bar's diameter) over the profile, as if nothing had cut it"},
 };
 
 struct TurnRoughOp {
@@ -66,7 +77,19 @@ struct TurnRoughOp {
     // The Z of the bar's face when this operation runs (the stock's faceZ, or where an earlier
     // turn-face left it; set after the operations are read), nullopt without a bar.
     std::optional<double> bar_face;
+    RoughStock stock = RoughStock::from_earlier;
+    // What it roughs from where that is the earlier operations' result ("stock": "auto" with a
+    // bar): set by read_job once every operation is read (lathe_material_cut of each outside
+    // operation before it), empty otherwise (the whole bar of stock_radius). The levels start
+    // from its most over the profile, a pass begins approachDistance before it at its level, a
+    // level wholly in air is left out.
+    LatheMaterial material;
     std::vector<std::string> notes;
+
+    // Whether the operations before it left the whole bar over the boundary's length (material
+    // empty, or only the bar's face moved): a roughing cycle, which roughs from the bar, then
+    // cuts no more air than passes from that material.
+    bool whole_bar_over_boundary() const;
 };
 
 // A stretch of a roughing pass along Z at one level: from Z `hi` down to Z `lo`.
