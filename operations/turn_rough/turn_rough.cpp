@@ -466,7 +466,8 @@ TurnCycle turn_cycle(const TurnRoughOp& op) {
 bool TurnRoughOp::whole_bar_over_boundary() const {
     if (material.r.empty() || tip_boundary.segments.empty()) return true;
     const double lo = std::min(tip_boundary.segments.back().end.x, boundary.segments.back().end.x);
-    const double hi = std::max(tip_boundary.start.x, boundary.start.x);
+    // Up to the bar's face as the earlier operations left it (a face's stub is no level's).
+    const double hi = std::min(std::max(tip_boundary.start.x, boundary.start.x), material.front(0.0));
     for (std::size_t i = 0; i < material.r.size(); ++i)
         if (material.z[i + 1] > lo && material.z[i] < hi && material.r[i] < stock_radius - 1e-6) return false;
     return true;

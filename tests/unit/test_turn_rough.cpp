@@ -708,7 +708,10 @@ TEST_CASE("turn-rough from what a turn-face left: the passes come in 1 mm before
         for (const Event& e : expand_job(job))
             if (const auto* s = std::get_if<OperationStart>(&e); s && s->path == "/operations/1")
                 for (const std::string& n : s->notes) noted = noted || n.find("roughs from what /operations/0 (turn-face) left") == 0;
-        CHECK(noted == from_face);
+        // Only the face moved: the passes come in before it, and no note is said (the note is for
+        // earlier operations that took some of the bar over the profile, when "auto" roughs from
+        // what they left instead of a roughing cycle from the bar).
+        CHECK_FALSE(noted);
     }
 }
 

@@ -86,9 +86,9 @@ struct TurnRoughOp {
     LatheMaterial material;
     std::vector<std::string> notes;
 
-    // Whether the operations before it left the whole bar over the boundary's length (material
-    // empty, or only the bar's face moved): a roughing cycle, which roughs from the bar, then
-    // cuts no more air than passes from that material.
+    // Whether the operations before it left the whole bar over the boundary's length up to the
+    // bar's face (material empty, or only the face moved): a roughing cycle, which roughs from
+    // the bar, then cuts no more air than passes from that material.
     bool whole_bar_over_boundary() const;
 };
 
