@@ -235,6 +235,8 @@ IsoLathePost::FanucG76Words IsoLathePost::fanuc_g76_words(const ThreadCycle& c) 
         g.m = c.spring_passes;
         g.finish = 0.0;
     } else if (cutting >= 2) {
+        // (d rounded: the roughing must end at the pass before the last, not one pass later or
+        // earlier: the written d nearest to the depths, of three; the check below decides)
         g.m = 1;
         g.finish = z.rounded(c.depth - c.depths[cutting - 2]);
     } else {
@@ -259,6 +261,23 @@ IsoLathePost::FanucG76Words IsoLathePost::fanuc_g76_words(const ThreadCycle& c) 
     if (!(g.first > 0)) {
         w.refusal = "its first depth rounds to 0";
         return w;
+    }
+    if (c.spring_passes == 0) {
+        const double written = g.finish, step = 1.0 / z.spec().scale / std::pow(10.0, z.spec().decimals);
+        auto fits = [&](double finish) {
+            iso::FanucG76 probe = g;
+            probe.finish = finish;
+            const std::vector<double> d = iso::fanuc_g76_depths(probe);
+            if (d.size() != c.depths.size()) return false;
+            for (std::size_t n = 0; n < d.size(); ++n)
+                if (std::abs(d[n] - c.depths[n]) > 0.001) return false;
+            return true;
+        };
+        for (double f : {written, written + step, written - step})
+            if (f >= 0 && fits(f)) {
+                g.finish = z.rounded(f);
+                break;
+            }
     }
     w.first.push_back(fmt::format("P{:02}{:02}{:02}", g.m, 0, g.angle));
     w.first.push_back(inc.word("Q", g.least));
