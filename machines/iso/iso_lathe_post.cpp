@@ -199,16 +199,117 @@ IsoLathePost::G76Words IsoLathePost::g76_words(const ThreadCycle& c) const {
     return w;
 }
 
+IsoLathePost::FanucG76Words IsoLathePost::fanuc_g76_words(const ThreadCycle& c) const {
+    FanucG76Words w;
+    const nc::Format x = machine().format("x");  // the last pass's diameter
+    const nc::Format z = machine().format("z");
+    const nc::Format lead = machine().format("feedPerRev");
+    // P and Q: radial, in least input increments (the length format's last decimal), no point.
+    nc::FormatSpec inc_spec = z.spec();
+    inc_spec.scale *= std::pow(10.0, inc_spec.decimals);
+    inc_spec.decimals = 0;
+    inc_spec.force_decimal = false;
+    const nc::Format inc(inc_spec);
+    // The tool angle a: the flank infeed at a/2, one of the control's angles.
+    const double a = 2.0 * c.infeed_angle;
+    const int* angle = std::find_if(std::begin(iso::fanuc_g76_tool_angles), std::end(iso::fanuc_g76_tool_angles),
+                                    [&](int v) { return std::abs(v - a) < 1e-6; });
+    if (angle == std::end(iso::fanuc_g76_tool_angles)) {
+        w.refusal = fmt::format("its tool angle a (twice the infeedAngle, {} degrees) is not one of 80, 60, 55, 30, 29, 0",
+                                number_text(a, 4));
+        return w;
+    }
+    const std::size_t cutting = c.depths.size() - static_cast<std::size_t>(std::max(c.spring_passes, 0));
+    iso::FanucG76& g = w.read;
+    g.start_x = x.rounded(c.start.x);
+    g.start_y = c.start.y;
+    g.start_z = z.rounded(c.start.z);
+    g.angle = *angle;
+    const double out = c.start.x >= c.crest_x ? 1.0 : -1.0;
+    g.k = inc.rounded(c.depth);
+    g.x = x.rounded(c.crest_x - out * c.depth);
+    g.z = z.rounded(c.end_z);
+    g.lead = lead.rounded(c.lead);
+    // The finishing passes: the spring passes at the full height after a roughing that ends
+    // there (d = 0); without a spring pass, the last cutting pass is the one finishing pass and
+    // the roughing ends at the one before it (d = k - that depth).
+    if (c.spring_passes > 0) {
+        g.m = c.spring_passes;
+        g.finish = 0.0;
+    } else if (cutting >= 2) {
+        // (d rounded: the roughing must end at the pass before the last, not one pass later or
+        // earlier: the written d nearest to the depths, of three; the check below decides)
+        g.m = 1;
+        g.finish = z.rounded(c.depth - c.depths[cutting - 2]);
+    } else {
+        w.refusal = "it cuts one pass and no spring pass, and G76 cuts at least one finishing pass after its roughing";
+        return w;
+    }
+    if (g.m > 99) {
+        w.refusal = "G76 cuts at most 99 finishing passes";
+        return w;
+    }
+    if (c.degression == 1.0) {
+        // Equal steps: a least depth of the step makes sqrt's steps the step (first x n while
+        // first x sqrt(n) is less); a step rounded down would leave a sliver of a pass before the
+        // end, so the least increment up.
+        g.first = inc.rounded(c.first_depth);
+        if (g.first < c.first_depth - 1e-9) g.first = inc.rounded(g.first + 1.0 / inc_spec.scale);
+        g.least = g.first;
+    } else {
+        g.first = inc.rounded(c.first_depth);
+        g.least = inc.rounded(c.min_depth);
+    }
+    if (!(g.first > 0)) {
+        w.refusal = "its first depth rounds to 0";
+        return w;
+    }
+    if (c.spring_passes == 0) {
+        const double written = g.finish, step = 1.0 / z.spec().scale / std::pow(10.0, z.spec().decimals);
+        auto fits = [&](double finish) {
+            iso::FanucG76 probe = g;
+            probe.finish = finish;
+            const std::vector<double> d = iso::fanuc_g76_depths(probe);
+            if (d.size() != c.depths.size()) return false;
+            for (std::size_t n = 0; n < d.size(); ++n)
+                if (std::abs(d[n] - c.depths[n]) > 0.001) return false;
+            return true;
+        };
+        for (double f : {written, written + step, written - step})
+            if (f >= 0 && fits(f)) {
+                g.finish = z.rounded(f);
+                break;
+            }
+    }
+    w.first.push_back(fmt::format("P{:02}{:02}{:02}", g.m, 0, g.angle));
+    w.first.push_back(inc.word("Q", g.least));
+    w.first.push_back(z.word("R", g.finish));
+    w.second.push_back(x.word("X", c.crest_x - out * c.depth));
+    w.second.push_back(z.word("Z", c.end_z));
+    w.second.push_back(inc.word("P", c.depth));
+    w.second.push_back(inc.word("Q", g.first));
+    return w;
+}
+
 std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c, const ThreadingCycleSpec& spec) const {
     // G76 cuts every pass by its own depth rule from the rounded words: the moves it makes must
     // be the cycle's within 0.001 mm.
-    if (spec.style != ThreadCycleStyle::linuxcnc_g76) return IsoPost::thread_cycle_limit(c, spec);
-    if (c.min_depth > 0) return std::string("it takes no least depth of cut");
-    const G76Words w = g76_words(c);
-    const std::vector<Event> control = iso::linuxcnc_g76_moves(w.read);
-    const std::vector<Event> wanted = thread_cycle_moves(c);
+    std::vector<Event> control;
+    if (spec.style == ThreadCycleStyle::fanuc_g76) {
+        const FanucG76Words w = fanuc_g76_words(c);
+        if (!w.refusal.empty()) return w.refusal;
+        control = iso::fanuc_g76_moves(w.read);
+    } else if (spec.style == ThreadCycleStyle::linuxcnc_g76) {
+        if (c.min_depth > 0) return std::string("it takes no least depth of cut");
+        control = iso::linuxcnc_g76_moves(g76_words(c).read);
+    } else {
+        return IsoPost::thread_cycle_limit(c, spec);
+    }
+    const std::vector<Event> wanted = thread_cycle_moves(c, machine().thread_pattern());
+    // (moves a pass: Fanuc's five, four under a radial infeed; LinuxCNC's four)
+    const std::size_t per_pass = spec.style == ThreadCycleStyle::fanuc_g76 && c.infeed_angle != 0 ? 5 : 4;
     if (control.size() != wanted.size())
-        return fmt::format("its rounded words make {} passes, not {}", control.size() / 4, wanted.size() / 4);
+        return fmt::format("its rounded words make {} passes, not {}", control.size() / per_pass, wanted.size() / per_pass);
     auto at = [](const Event& e) {
         if (const auto* r = std::get_if<Rapid>(&e)) return r->to;
         return std::get<ThreadFeed>(e).to;
@@ -217,12 +318,27 @@ std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c
         const Vec3 a = at(control[n]), b = at(wanted[n]);
         const double off = std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
         if (off > 0.001)
-            return fmt::format("its pass {} would run {} mm from camgen's", n / 4 + 1, number_text(off, 4));
+            return fmt::format("its pass {} would run {} mm from camgen's", n / per_pass + 1, number_text(off, 4));
     }
     return std::nullopt;
 }
 
 void IsoLathePost::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpec& spec) {
+    if (spec.style == ThreadCycleStyle::fanuc_g76) {
+        const FanucG76Words w = fanuc_g76_words(c);
+        if (!w.refusal.empty()) throw std::logic_error("a Fanuc G76 written that cannot be: " + w.refusal);
+        const std::string lead = lead_word("F", c.lead);  // the checks of a synchronised move: spindle on, within maxFeed
+        writer().add(spec.name);
+        for (const std::string& t : w.first) writer().add(t);
+        writer().end();
+        writer().add(spec.name);
+        for (const std::string& t : w.second) writer().add(t);
+        writer().add(lead).end();
+        // The cycle ends at its start point, in no motion mode camgen writes; its F was the lead.
+        forget_motion();
+        forget_feed();
+        return;
+    }
     if (spec.style != ThreadCycleStyle::linuxcnc_g76) IsoPost::on_thread_cycle(c, spec);
     const G76Words w = g76_words(c);
     (void)lead_word("P", c.lead);  // the checks of a synchronised move: spindle on, within maxFeed

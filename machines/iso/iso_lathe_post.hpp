@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "machines/iso/iso_post.hpp"
+#include "machines/iso/fanuc_g76.hpp"
 #include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen {
@@ -38,7 +39,8 @@ protected:
     // offset's R and imaginary tip T), then G41/G42 without a D word on the next feed move.
     void on_compensation(const Compensation& compensation) override;
     std::string compensation_words(const Compensation& compensation) const override;
-    // LinuxCNC's G76 P Z I J K R Q H from the drive point (linuxcnc_g76.hpp).
+    // LinuxCNC's G76 P Z I J K R Q H from the drive point (linuxcnc_g76.hpp), or Fanuc T's
+    // two-block G76 from the start point (fanuc_g76.hpp).
     void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) override;
     std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const override;
     // LinuxCNC's G71: the profile as a subroutine o<n> sub ... o<n> endsub just before it, then
@@ -64,6 +66,13 @@ private:
     };
     G71Words g71_words(const TurnCycle& cycle) const;
     int next_sub_ = 100;          // the number of the next profile subroutine
+    // Fanuc T's two blocks, or why the cycle cannot be written so.
+    struct FanucG76Words {
+        std::vector<std::string> first, second;
+        iso::FanucG76 read;
+        std::string refusal;
+    };
+    FanucG76Words fanuc_g76_words(const ThreadCycle& cycle) const;
     const iso::LatheSettings& lathe_;
     double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
     bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97

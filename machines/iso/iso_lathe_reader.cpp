@@ -2,7 +2,9 @@
 // what lathes write differently, by its hooks: Fanuc T's spindle limit G50 S and constant speed G97,
 // turret calls T0101 (setting toolCall "turret"), canned cycles in any plane where the post
 // writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
-// end-face peck drilling G74 R(e) / G74 Z Q F, and LinuxCNC's G71 roughing from a profile
+// end-face peck drilling G74 R(e) / G74 Z Q F; threading cycles: LinuxCNC's G76 P Z I J K R Q H
+// and Fanuc T's two-block G76 P(m r a) Q R / G76 X Z P Q F, expanded into the passes of camgen's
+// models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); and LinuxCNC's G71 roughing from a profile
 // subroutine (o<n> sub ... o<n> endsub, then G71 Q<n> D0 I R F), expanded into the moves the
 // control makes (geometry/lathe_cycle.hpp).
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "camgen/geometry/vec.hpp"
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
+#include "machines/iso/fanuc_g76.hpp"
 #include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen::reader {
@@ -73,12 +76,14 @@ private:
     int sub_motion_ = -1;       // the modal motion code inside it (tenths)
     std::map<int, Profile> subs_;
     void g76(BlockWords& w);
-    // The machine's G76 (threadingCycles of style linuxcnc-g76), if it has one.
+    void fanuc_g76(BlockWords& w);
+    // The machine's G76 (threadingCycles of style linuxcnc-g76 or fanuc-g76), if it has one.
     const ThreadingCycleSpec* g76_spec() const {
         for (const ThreadingCycleSpec& s : machine_.threading)
-            if (s.style == ThreadCycleStyle::linuxcnc_g76) return &s;
+            if (s.style == ThreadCycleStyle::linuxcnc_g76 || s.style == ThreadCycleStyle::fanuc_g76) return &s;
         return nullptr;
     }
+    bool fanuc_g76_style() const { return g76_spec() && g76_spec()->style == ThreadCycleStyle::fanuc_g76; }
     // The code of the thread-cutting move this machine writes (threadMove): 33 or 32.
     double thread_code() const {
         return lathe_.thread_move == iso::LatheThreadMove::g32_f ? iso::thread_g32_code : iso::thread_g33_code;
@@ -87,6 +92,12 @@ private:
     const iso::LatheSettings& lathe_;
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
     std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
+    // Fanuc T G76's first block: m, r, a of P, the least depth Q and the finishing allowance R.
+    struct FanucG76First {
+        int m = 1, r = 0, a = 0;
+        double least = 0.0, finish = 0.0;
+    };
+    std::optional<FanucG76First> fanuc_g76_first_;
 };
 
 std::optional<int> IsoLatheReader::sub_line(std::string_view text, std::string_view keyword) {
@@ -255,6 +266,8 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
 }
 
 bool IsoLatheReader::f_is_lead(int mode) const {
+    // (G32 F and Fanuc T G76's F: the lead)
+    if (mode == code(76) && fanuc_g76_style()) return true;
     return mode == code(thread_code()) && lathe_.thread_move == iso::LatheThreadMove::g32_f;
 }
 
@@ -264,7 +277,10 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
         return true;
     }
     if (mode == code(76) && g76_spec()) {
-        g76(w);
+        if (fanuc_g76_style())
+            fanuc_g76(w);
+        else
+            g76(w);
         return true;
     }
     if (mode != code(thread_code())) return false;
@@ -326,6 +342,84 @@ void IsoLatheReader::g76(BlockWords& w) {
             rapid_to(r->to.x, std::nullopt, r->to.z);
         else
             thread_to("G76", std::get<ThreadFeed>(e).to.z, *pw);
+    }
+}
+
+void IsoLatheReader::fanuc_g76(BlockWords& w) {
+    // Fanuc T's G76 in two blocks (fanuc_g76.hpp): the first, P(m r a) Q(least depth) R(finishing
+    // allowance), sets the cycle's values; the second, X Z [R(taper)] P(height) Q(first depth) F(lead),
+    // cuts the passes from where the tool stands (the start point) and returns there. P and Q are
+    // radial, in least input increments without a decimal point.
+    for (char letter : {'Y', 'I', 'J', 'K', 'H', 'D'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G76: camgen reads Fanuc's two-block G76 from the start point only", x->text));
+    const double increments = std::pow(10.0, length_format('Z').spec().decimals);
+    auto increment_word = [&](const Word& q, double least) {
+        if (q.has_point) fail(fmt::format("{} on G76: in least input increments, without a decimal point", q.text));
+        const double v = length_value(q.value / increments);
+        if (v < least) fail(fmt::format("{} on G76: below {}", q.text, least == 0 ? "0" : "one increment"));
+        return v;
+    };
+    if (!w.has('X') && !w.has('Z')) {
+        // The first block.
+        if (w.has('F')) fail("F on the first G76 block (P Q R): the lead is the second block's");
+        FanucG76First first;
+        if (const Word* p = w.take('P')) {
+            if (p->has_point || p->value < 0 || p->value != std::floor(p->value) || p->value > 999999)
+                fail(fmt::format("{} on G76: P is six digits, m r a (finishing passes, chamfer, tool angle)", p->text));
+            const int v = static_cast<int>(p->value);
+            first.m = v / 10000, first.r = v / 100 % 100, first.a = v % 100;
+        } else {
+            fail("the first G76 block needs P(m r a)");
+        }
+        if (first.m < 1) fail("G76 P: m, the finishing passes, must be from 1 to 99");
+        if (first.r != 0)
+            fail(fmt::format("G76 P: a chamfer r of {} (0.1 leads): camgen reads threads with a straight runout only (r 00)",
+                             first.r));
+        if (std::find(std::begin(iso::fanuc_g76_tool_angles), std::end(iso::fanuc_g76_tool_angles), first.a) ==
+            std::end(iso::fanuc_g76_tool_angles))
+            fail(fmt::format("G76 P: the tool angle a {} is not one of 80, 60, 55, 30, 29, 0", first.a));
+        if (const Word* q = w.take('Q')) first.least = increment_word(*q, 0.0);
+        if (const Word* r = w.take('R')) {
+            first.finish = length(*r);
+            if (first.finish < 0) fail(fmt::format("{} on G76: the finishing allowance must be 0 or more", r->text));
+        }
+        fanuc_g76_first_ = first;
+        return;
+    }
+    const Word* xw = w.take('X');
+    const Word* zw = w.take('Z');
+    const Word* pw = w.take('P');
+    const Word* qw = w.take('Q');
+    const Word* fw = w.take('F');
+    if (!xw || !zw || !pw || !qw || !fw) fail("the second G76 block needs X, Z, P(height), Q(first depth) and F(lead)");
+    if (const Word* r = w.take('R'); r && r->value != 0)
+        fail(fmt::format("{} on G76: camgen reads straight threads only (no taper)", r->text));
+    if (!fanuc_g76_first_) fail("G76 X Z P Q F without its first block G76 P Q R");
+    if (!position_known()) fail("G76 from an unknown position");
+    iso::FanucG76 g;
+    const Vec3 here = position();
+    g.start_x = here.x, g.start_y = here.y, g.start_z = here.z;
+    g.x = length(*xw);
+    g.z = length(*zw);
+    g.k = increment_word(*pw, 1e-12);
+    g.first = increment_word(*qw, 1e-12);
+    g.least = fanuc_g76_first_->least;
+    g.finish = fanuc_g76_first_->finish;
+    g.m = fanuc_g76_first_->m;
+    g.angle = fanuc_g76_first_->a;
+    if (!(g.z < g.start_z)) fail(fmt::format("G76 {}: camgen cuts threads towards the chuck, below the start point", zw->text));
+    if (g.x == g.start_x) fail(fmt::format("G76 {}: the thread's last pass must lie off the start point's X", xw->text));
+    if (g.x < g.start_x ? g.x + g.k > g.start_x : g.x - g.k < g.start_x)
+        fail(fmt::format("G76 {} {}: the thread's crest lies beyond the start point", xw->text, pw->text));
+    if (!(g.finish < g.k)) fail("G76: the finishing allowance R must be below the height P");
+    if (g.first * std::sqrt(10000.0) < g.k - g.finish && g.least * 10000 < g.k - g.finish)
+        fail("G76: Q is too small for P: more than 10000 passes");
+    for (const Event& e : iso::fanuc_g76_moves(g)) {
+        if (const auto* r = std::get_if<Rapid>(&e))
+            rapid_to(r->to.x, std::nullopt, r->to.z);
+        else
+            thread_to("G76", std::get<ThreadFeed>(e).to.z, *fw);
     }
 }
 

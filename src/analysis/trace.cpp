@@ -71,8 +71,8 @@ private:
 class TraceBuilder::Impl {
 public:
     Impl(const Machine& machine, TraceSink& sink, TraceOptions options)
-        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), arcs_(machine.arcs), sink_(sink),
-          trace_options_(std::move(options)) {}
+        : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), arcs_(machine.arcs),
+          thread_pattern_(machine.thread_pattern()), sink_(sink), trace_options_(std::move(options)) {}
 
     // `job`: an event of a job (its Compensation carries the radius), not of a program.
     void add(const ReadEvent& e, bool job) {
@@ -172,7 +172,8 @@ public:
                        },
                        [&](const DrillEnd&) { cycle_.reset(); },
                        [&](const ThreadCycle& c) {
-                           for (const Event& m : thread_cycle_moves(c))
+                           // As the machine's cycle moves (canned) and its post writes it (longhand).
+                           for (const Event& m : thread_cycle_moves(c, thread_pattern_))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
                                              .per_revolution = e.per_revolution},
                                    job);
@@ -469,6 +470,7 @@ private:
     LonghandOptions options_;
     bool lathe_;  // Z is the spindle axis
     ArcSettings arcs_;  // the machine's: which of a job's arcs it writes as straight moves
+    ThreadCyclePattern thread_pattern_;  // how the machine's threading cycles move in air
     std::optional<double> op_tolerance_;  // the operation's chord tolerance (OperationStart)
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     TraceSink& sink_;

@@ -121,21 +121,24 @@ std::string event_to_json(const Event& event) {
     return j.dump();
 }
 
-std::vector<Event> thread_cycle_moves(const ThreadCycle& c) {
+std::vector<Event> thread_cycle_moves(const ThreadCycle& c, ThreadCyclePattern pattern) {
     std::vector<Event> out;
     // Out of the material: +X outside an external thread, -X inside an internal one.
     const double out_dir = c.start.x >= c.crest_x ? 1.0 : -1.0;
     const double t = std::tan(c.infeed_angle * 3.14159265358979323846 / 180.0);
-    out.reserve(4 * c.depths.size());
+    const bool fanuc = pattern == ThreadCyclePattern::fanuc_g76;
+    out.reserve(5 * c.depths.size());
     for (double d : c.depths) {
-        const double back = c.start.x + out_dir * (c.depth - d);
+        const double back = fanuc ? c.start.x : c.start.x + out_dir * (c.depth - d);
         const double z0 = c.start.z - d * t;
         const double z1 = c.end_z + (c.depth - d) * t;
         const double r = c.crest_x - out_dir * d;
-        out.emplace_back(Rapid{{back, c.start.y, z0}});
+        // (Fanuc: along Z at the start X to the pass's start, none under a radial infeed)
+        if (!fanuc || t != 0.0) out.emplace_back(Rapid{{back, c.start.y, z0}});
         out.emplace_back(Rapid{{r, c.start.y, z0}});
         out.emplace_back(ThreadFeed{{r, c.start.y, z1}, c.lead});
         out.emplace_back(Rapid{{back, c.start.y, z1}});
+        if (fanuc) out.emplace_back(Rapid{c.start});
     }
     return out;
 }
@@ -158,6 +161,11 @@ std::vector<Event> turn_cycle_moves(const TurnCycle& c) {
         }
     }
     return out;
+}
+
+Vec3 thread_cycle_end(const ThreadCycle& c, ThreadCyclePattern pattern) {
+    if (pattern == ThreadCyclePattern::fanuc_g76) return c.start;
+    return {c.start.x, c.start.y, c.end_z};
 }
 
 void EventPrinter::emit(const Event& event) { out_ << event_to_json(event) << '\n'; }

@@ -305,6 +305,9 @@ constexpr KeySpec roughing_cycle_keys[] = {
 constexpr Named<ThreadCycleStyle> thread_cycle_styles[] = {
     {ThreadCycleStyle::linuxcnc_g76, "linuxcnc-g76",
      "LinuxCNC's G76 P Z I J K R Q H from the drive point (I, J, K diameters under G7)"},
+    {ThreadCycleStyle::fanuc_g76, "fanuc-g76",
+     "Fanuc T's two-block G76 P(m r a) Q(least depth) R(finish) / G76 X Z P(height) Q(first depth) F(lead) from the "
+     "start point (P and Q in least input increments)"},
 };
 
 constexpr Named<int> thread_cycle_kinds[] = {{0, "thread", "a straight thread cut in passes (turn-thread)"}};

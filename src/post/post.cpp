@@ -545,7 +545,7 @@ void Post::handle_thread_cycle(const ThreadCycle& c) {
         }
         if (reason.empty()) {
             on_thread_cycle(c, *spec);
-            pos_ = Vec3{c.start.x, c.start.y, c.end_z};
+            pos_ = thread_cycle_end(c, machine_.thread_pattern());
             return;
         }
         if (c.output == CycleOutput::canned)
@@ -554,7 +554,9 @@ void Post::handle_thread_cycle(const ThreadCycle& c) {
             note(fmt::format("{}{}: the thread is written longhand because {}", c.path,
                              op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
     }
-    for (const Event& e : thread_cycle_moves(c)) handle(e);
+    // Longhand in the pattern of the machine's own cycle, so that canned or not the program
+    // moves as the job's events traced for this machine (trace_expected).
+    for (const Event& e : thread_cycle_moves(c, machine_.thread_pattern())) handle(e);
 }
 void Post::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
     throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write {}", machine_.name, spec.name));

@@ -193,7 +193,7 @@ void OperatorStops::emit(const Event& event) {
                          },
                          [&](const ThreadCycle& c) {
                              resume();
-                             pos_ = Vec3{c.start.x, c.start.y, c.end_z};
+                             pos_ = thread_cycle_end(c, machine_.thread_pattern());
                              next_.emit(event);
                          },
                          [&](const TurnCycle& c) {

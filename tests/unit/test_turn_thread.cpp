@@ -238,19 +238,19 @@ TEST_CASE("turn-thread output: G76 on linuxcnc-lathe where it carries the thread
         CHECK(posted(R"("thread": "M20x2.5", "startZ": 0, "endZ": -20, "firstDepth": 0.4, "minDepth": 0.01)", lcnc)
                   .text.find("G76") != std::string::npos);
     }
-    // output longhand: G33 passes to endZ; fanuc-lathe (no threading cycle yet): longhand, no note,
-    // and canned refused.
+    // output longhand: G33 passes to endZ; sinumerik-lathe (no threading cycle yet): longhand, no
+    // note, and canned refused (fanuc-lathe's G76: test_fanuc_g76.cpp).
     {
         const std::string op = R"("thread": "M20x2.5", "startZ": 0, "endZ": -20, "firstDepth": 0.4)";
         CHECK(posted(op + R"(, "output": "longhand")", lcnc).text.find("G76") == std::string::npos);
-        const auto fanuc = posted(op, load_machine("fanuc-lathe"));
-        CHECK(fanuc.text.find("G32") != std::string::npos);
-        CHECK(fanuc.warnings.find("longhand") == std::string::npos);
+        const auto sinumerik = posted(op, load_machine("sinumerik-lathe"));
+        CHECK(sinumerik.text.find("G33") != std::string::npos);
+        CHECK(sinumerik.warnings.find("longhand") == std::string::npos);
         try {
-            (void)posted(op + R"(, "output": "canned")", load_machine("fanuc-lathe"));
+            (void)posted(op + R"(, "output": "canned")", load_machine("sinumerik-lathe"));
             FAIL("a canned thread on a machine without a threading cycle was not refused");
         } catch (const InputError& e) {
-            CHECK(std::string(e.what()).find("/operations/0/output: machine fanuc-lathe has no canned threading cycle") !=
+            CHECK(std::string(e.what()).find("/operations/0/output: machine sinumerik-lathe has no canned threading cycle") !=
                   std::string::npos);
         }
     }
@@ -299,7 +299,10 @@ TEST_CASE("turn-thread: the linuxcnc-lathe reader refuses a G76 it cannot read, 
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 E1 L2").find("E1") != std::string::npos);
     CHECK(refusal_of("G76 P2.5 Z10 I-2 J0.8 K3.0672").find("towards the chuck") != std::string::npos);
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 K3.0672").find("G76 needs P, Z, I, J and K") != std::string::npos);
-    // A machine without the cycle does not know G76.
+    // A machine without the cycle does not know G76; fanuc-lathe's is another cycle.
+    CHECK_THROWS_AS((void)read_program("G18 G90 G21\nT5 M6\nS500 M3\nG0 X22 Z6\nG76 P2.5 Z-20 I-2 J0.8 K3.0672\nM2\n",
+                                       load_machine("sinumerik-lathe"), "t.nc"),
+                    InputError);
     CHECK_THROWS_AS((void)read_program("G18 G90 G21\nT5 M6\nS500 M3\nG0 X22 Z6\nG76 P2.5 Z-20 I-2 J0.8 K3.0672\nM2\n",
                                        load_machine("fanuc-lathe"), "t.nc"),
                     InputError);
@@ -326,7 +329,7 @@ TEST_CASE("turn-thread: machine files' threadingCycles are checked with their pa
     };
     CHECK(refused(R"({"name": "G76", "kind": "thread", "style": "linuxcnc-g76", "fields": ["minDepht"]})")
               .find("/threadingCycles/0/fields/0") != std::string::npos);
-    CHECK(refused(R"({"name": "G76", "kind": "thread", "style": "fanuc-g76"})").find("/threadingCycles/0/style") !=
+    CHECK(refused(R"({"name": "G76", "kind": "thread", "style": "haas-g76"})").find("/threadingCycles/0/style") !=
           std::string::npos);
     CHECK(refused(R"({"name": "G76", "style": "linuxcnc-g76"})").find("/threadingCycles/0") != std::string::npos);
 }

@@ -273,8 +273,17 @@ using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Co
 // its start: none where the cycle carries a refusal.
 std::vector<Event> turn_cycle_moves(const TurnCycle& cycle);
 
+// How a threading cycle's passes move in air: LinuxCNC's G76 (each pass returns out to the drive
+// line moved out by depth - d, the next pass starts from there; the tool ends at (start.x, end_z))
+// or Fanuc's two-block G76 (each pass from and back to the start point at start.x, Z the start;
+// the tool ends where it began). The cutting passes are the same.
+enum class ThreadCyclePattern { linuxcnc_g76, fanuc_g76 };
+
 // The moves of a threading cycle (Rapid and ThreadFeed events), from its drive point.
-std::vector<Event> thread_cycle_moves(const ThreadCycle& cycle);
+std::vector<Event> thread_cycle_moves(const ThreadCycle& cycle,
+                                      ThreadCyclePattern pattern = ThreadCyclePattern::linuxcnc_g76);
+// Where the tool stands after them.
+Vec3 thread_cycle_end(const ThreadCycle& cycle, ThreadCyclePattern pattern = ThreadCyclePattern::linuxcnc_g76);
 
 // Receives events one at a time (a post, a recorder, the event printer).
 class EventSink {

@@ -77,8 +77,9 @@ struct RoughingCycleSpec {
     std::vector<RoughingField> fields;  // what it carries
 };
 
-// How a canned threading cycle is written: LinuxCNC's G76 P Z I J K R Q H.
-enum class ThreadCycleStyle { linuxcnc_g76 };
+// How a canned threading cycle is written: LinuxCNC's G76 P Z I J K R Q H, Fanuc T's two-block
+// G76 P(m r a) Q R / G76 X Z P(k) Q(first depth) F.
+enum class ThreadCycleStyle { linuxcnc_g76, fanuc_g76 };
 
 // What a turn-thread may ask of a threading cycle (machine file threadingCycles[].fields).
 inline constexpr const char* thread_cycle_field_names[] = {"constant-depth", "constant-area", "minDepth", "infeedAngle",
@@ -190,6 +191,12 @@ struct Machine {
     const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
     // How longhand cycles move on this machine (so that they equal its canned cycles).
     LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
+    // How its threading cycles move in air (ThreadCycle events, canned or longhand): as its first
+    // threading cycle does, LinuxCNC's G76 where it has none.
+    ThreadCyclePattern thread_pattern() const {
+        return !threading.empty() && threading.front().style == ThreadCycleStyle::fanuc_g76 ? ThreadCyclePattern::fanuc_g76
+                                                                                               : ThreadCyclePattern::linuxcnc_g76;
+    }
 };
 
 // The machine's dialect settings as the dialect's struct S: the defaults of S for a machine
