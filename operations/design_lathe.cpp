@@ -264,6 +264,8 @@ public:
         else if (const auto* t = std::get_if<ThreadFeed>(&e)) to({t->to.z, t->to.x});
         else if (const auto* c = std::get_if<ThreadCycle>(&e))
             for (const Event& m : thread_cycle_moves(*c)) emit(m);
+        else if (const auto* g = std::get_if<GrooveCycle>(&e))
+            for (const Event& m : groove_cycle_moves(*g)) emit(m);
     }
 
 private:

@@ -82,6 +82,9 @@ void PartGuard::emit(const Event& event) {
                          [&](const ThreadCycle& c) {
                              for (const Event& m : thread_cycle_moves(c)) emit(m);
                          },
+                         [&](const GrooveCycle& c) {
+                             for (const Event& m : groove_cycle_moves(c)) emit(m);
+                         },
                          [&](const ThreadFeed& t) {
                              CompMove m;
                              m.end = t.to;

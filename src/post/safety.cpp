@@ -242,6 +242,9 @@ void SafetyCheck::emit(const Event& event) {
             [&](const ThreadCycle& c) {
                 for (const Event& m : thread_cycle_moves(c)) emit(m);
             },
+            [&](const GrooveCycle& c) {
+                for (const Event& m : groove_cycle_moves(c)) emit(m);
+            },
             [&](const Arc& a) {
                 // An arc in XY (or a helix) is lowest at an end; one in XZ or YZ may dip between.
                 reach(a.to.z);

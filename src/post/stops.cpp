@@ -196,6 +196,11 @@ void OperatorStops::emit(const Event& event) {
                              pos_ = Vec3{c.start.x, c.start.y, c.end_z};
                              next_.emit(event);
                          },
+                         [&](const GrooveCycle& c) {
+                             resume();
+                             pos_ = groove_cycle_end(c);
+                             next_.emit(event);
+                         },
                          [&](const Dwell&) {
                              resume();
                              next_.emit(event);
