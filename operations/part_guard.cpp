@@ -85,6 +85,9 @@ void PartGuard::emit(const Event& event) {
                          [&](const TurnCycle& c) {
                              for (const Event& m : turn_cycle_moves(c)) emit(m);
                          },
+                         [&](const GrooveCycle& c) {
+                             for (const Event& m : groove_cycle_moves(c)) emit(m);
+                         },
                          [&](const ThreadFeed& t) {
                              CompMove m;
                              m.end = t.to;

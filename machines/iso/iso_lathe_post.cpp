@@ -414,6 +414,75 @@ void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& sp
     forget_motion();
 }
 
+IsoLathePost::G75Words IsoLathePost::g75_words(const GrooveCycle& c) const {
+    G75Words w;
+    const nc::Format x = machine().format("x");
+    const nc::Format z = machine().format("z");
+    // P and Q: unsigned, in least input increments without a decimal point (as G74's Q).
+    nc::FormatSpec inc = xyz_format().spec();
+    inc.scale *= std::pow(10.0, inc.decimals);
+    inc.decimals = 0;
+    inc.force_decimal = false;
+    const nc::Format pq(inc);
+    const Vec3 start = c.start();
+    const Vec3 last = c.at(c.bottom + c.finish, c.last_z);
+    w.read.start_x = x.rounded(start.x);
+    w.read.start_y = start.y;
+    w.read.start_z = z.rounded(start.z);
+    w.back_off = xyz_format().word("R", c.retract);
+    w.read.e = xyz_format().rounded(c.retract);
+    w.text.push_back(x.word("X", last.x));
+    w.read.x = x.rounded(last.x);
+    w.text.push_back(z.word("Z", last.z));
+    w.read.z = z.rounded(last.z);
+    // Without pecks, one peck as deep as the plunge: the least written value at or beyond it.
+    double peck = c.peck;
+    if (!(peck > 0)) peck = std::ceil((w.read.start_x - w.read.x) * inc.scale - 1e-6) / inc.scale;
+    w.text.push_back(pq.word("P", peck));
+    w.read.peck = pq.rounded(peck);
+    if (c.plunges().size() > 1) {
+        w.text.push_back(pq.word("Q", c.z_step));
+        w.read.step = pq.rounded(c.z_step);
+    }
+    w.read.feed = c.feed;
+    return w;
+}
+
+std::optional<std::string> IsoLathePost::groove_cycle_limit(const GrooveCycle& c, const GroovingCycleSpec& spec) const {
+    // G75 makes its plunges from the rounded words: they must be the cycle's within 0.001 mm.
+    if (spec.style != GrooveCycleStyle::fanuc_g75) return IsoPost::groove_cycle_limit(c, spec);
+    if (!c.plain()) return std::string("G75 plunges only, pecks counted from its start, back to its start at the end");
+    const G75Words w = g75_words(c);
+    if (!(w.read.e > 0)) return std::string("its back-off R would be written as 0");
+    const std::vector<Event> control = iso::fanuc_g75_moves(w.read);
+    const std::vector<Event> wanted = groove_cycle_moves(c);
+    if (control.size() != wanted.size())
+        return fmt::format("its rounded words make {} moves, not {}", control.size(), wanted.size());
+    auto at = [](const Event& e) -> std::optional<Vec3> {
+        if (const auto* r = std::get_if<Rapid>(&e)) return r->to;
+        if (const auto* l = std::get_if<Linear>(&e)) return l->to;
+        return std::nullopt;
+    };
+    for (size_t n = 0; n < control.size(); ++n) {
+        const auto a = at(control[n]), b = at(wanted[n]);
+        if (!a || !b || control[n].index() != wanted[n].index()) return fmt::format("its move {} is of another kind", n + 1);
+        const double off = std::hypot(a->x - b->x, a->y - b->y, a->z - b->z);
+        if (off > 0.001) return fmt::format("its move {} would end {} mm from camgen's", n + 1, number_text(off, 4));
+    }
+    return std::nullopt;
+}
+
+void IsoLathePost::on_groove_cycle(const GrooveCycle& c, const GroovingCycleSpec& spec) {
+    if (spec.style != GrooveCycleStyle::fanuc_g75) IsoPost::on_groove_cycle(c, spec);
+    const G75Words w = g75_words(c);
+    writer().add(spec.name).add(w.back_off).end();
+    writer().add(spec.name);
+    for (const std::string& t : w.text) writer().add(t);
+    writer().add(feed_word(c.feed)).end();
+    // G75 returns the tool to its start point, in no motion mode camgen writes.
+    reset_modal_axes();
+}
+
 bool IsoLathePost::writes_return_level() const {
     for (const auto& [mode, code] : machine().frame.feed_modes)
         if (code == "G98" || code == "G99") return false;

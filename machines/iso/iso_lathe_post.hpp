@@ -10,6 +10,7 @@
 
 #include "machines/iso/iso_post.hpp"
 #include "machines/iso/fanuc_g76.hpp"
+#include "machines/iso/fanuc_g75.hpp"
 #include "machines/iso/linuxcnc_g76.hpp"
 
 namespace camgen {
@@ -48,6 +49,9 @@ protected:
     // words (linuxcnc_g71) must be the cycle's within 0.001 mm.
     void on_turn_cycle(const TurnCycle& cycle, const RoughingCycleSpec& spec) override;
     std::optional<std::string> turn_cycle_limit(const TurnCycle& cycle, const RoughingCycleSpec& spec) const override;
+    // Fanuc T's G75 R(e) / G75 X Z P Q F from the cycle's start (fanuc_g75.hpp).
+    void on_groove_cycle(const GrooveCycle& cycle, const GroovingCycleSpec& spec) override;
+    std::optional<std::string> groove_cycle_limit(const GrooveCycle& cycle, const GroovingCycleSpec& spec) const override;
 
 private:
     // The G76 words of a cycle, as text, and the values the control reads from them.
@@ -73,6 +77,14 @@ private:
         std::string refusal;
     };
     FanucG76Words fanuc_g76_words(const ThreadCycle& cycle) const;
+    // The G75 words of a grooving cycle: the first block's R(e), the second's words, and the
+    // values the control reads from them.
+    struct G75Words {
+        std::string back_off;
+        std::vector<std::string> text;
+        iso::FanucG75 read;
+    };
+    G75Words g75_words(const GrooveCycle& cycle) const;
     const iso::LatheSettings& lathe_;
     double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
     bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97

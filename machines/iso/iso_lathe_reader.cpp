@@ -19,6 +19,7 @@
 #include "camgen/geometry/vec.hpp"
 #include "machines/iso/iso_reader.hpp"
 #include "machines/iso/iso_words.hpp"
+#include "machines/iso/fanuc_g75.hpp"
 #include "machines/iso/fanuc_g76.hpp"
 #include "machines/iso/linuxcnc_g76.hpp"
 
@@ -76,6 +77,13 @@ private:
     int sub_motion_ = -1;       // the modal motion code inside it (tenths)
     std::map<int, Profile> subs_;
     void g76(BlockWords& w);
+    void g75(BlockWords& w);
+    // The machine's G75 (groovingCycles of style fanuc-g75), if it has one.
+    const GroovingCycleSpec* g75_spec() const {
+        for (const GroovingCycleSpec& s : machine_.grooving)
+            if (s.style == GrooveCycleStyle::fanuc_g75) return &s;
+        return nullptr;
+    }
     void fanuc_g76(BlockWords& w);
     // The machine's G76 (threadingCycles of style linuxcnc-g76 or fanuc-g76), if it has one.
     const ThreadingCycleSpec* g76_spec() const {
@@ -91,6 +99,7 @@ private:
 
     const iso::LatheSettings& lathe_;
     std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
+    std::optional<double> groove_back_off_;  // Fanuc T G75's first block R(e), mm
     std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
     // Fanuc T G76's first block: m, r, a of P, the least depth Q and the finishing allowance R.
     struct FanucG76First {
@@ -258,7 +267,7 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
         set_group(codes.spindle_mode, c);
         return true;
     }
-    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec())) {
+    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec()) || (c.value == code(75) && g75_spec())) {
         set_group(codes.motion, c);
         return true;
     }
@@ -281,6 +290,10 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
             fanuc_g76(w);
         else
             g76(w);
+        return true;
+    }
+    if (mode == code(75) && g75_spec()) {
+        g75(w);
         return true;
     }
     if (mode != code(thread_code())) return false;
@@ -420,6 +433,55 @@ void IsoLatheReader::fanuc_g76(BlockWords& w) {
             rapid_to(r->to.x, std::nullopt, r->to.z);
         else
             thread_to("G76", std::get<ThreadFeed>(e).to.z, *fw);
+    }
+}
+
+void IsoLatheReader::g75(BlockWords& w) {
+    // Fanuc T's G75 in two blocks: G75 R(e) sets the back-off; G75 X Z P Q F plunges from where
+    // the tool stands (the start point) as fanuc_g75.hpp models it. P and Q are in least input
+    // increments without a decimal point; X is read as X (a diameter on a diameter machine).
+    const std::string name = g75_spec()->name;
+    for (char letter : {'Y', 'I', 'J', 'K'})
+        if (const Word* x = w.find(letter)) fail(fmt::format("{} in a {} block: camgen grooves in X and Z only", x->text, name));
+    if (w.has('R') && !w.has('X') && !w.has('Z') && !w.has('P') && !w.has('Q')) {
+        const Word* r = w.take('R');
+        groove_back_off_ = length(*r);
+        if (!(*groove_back_off_ > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
+        return;
+    }
+    if (const Word* r = w.find('R'))
+        fail(fmt::format("{} in the second {} block: camgen reads no relief at the bottom (R(e) stands in the first block "
+                         "alone)",
+                         r->text, name));
+    const Word* xw = w.take('X');
+    const Word* zw = w.take('Z');
+    const Word* pw = w.take('P');
+    const Word* qw = w.take('Q');
+    if (!xw || !zw || !pw) fail(fmt::format("the second {} block needs X, Z and the peck P", name));
+    if (!groove_back_off_) fail(fmt::format("{} X Z P without the first block {} R(e)", name, name));
+    for (const Word* iw : {pw, qw})
+        if (iw && iw->has_point) fail(fmt::format("{}: P and Q are in least input increments, without a decimal point", iw->text));
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (!feed_) fail(fmt::format("{} without a feed F", name));
+    const Vec3 here = position();
+    const double increments = std::pow(10.0, length_format('Z').spec().decimals);
+    iso::FanucG75 g;
+    g.start_x = here.x, g.start_y = here.y, g.start_z = here.z;
+    g.x = length(*xw);
+    g.z = length(*zw);
+    g.peck = length_value(pw->value / increments);
+    g.step = qw ? length_value(qw->value / increments) : 0.0;
+    g.e = *groove_back_off_;
+    g.feed = *feed_;
+    if (!(g.x < g.start_x)) fail(fmt::format("{} {}: camgen reads external grooves, the bottom below the start point", name, xw->text));
+    if (!(g.peck > 0)) fail(fmt::format("{}: the peck P must be > 0", pw->text));
+    if (std::abs(g.z - g.start_z) > 1e-9 && !(g.step > 0))
+        fail(fmt::format("{} {}: a groove along Z needs its step Q > 0", name, zw->text));
+    if ((g.start_x - g.x) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", pw->text));
+    if (g.step > 0 && std::abs(g.z - g.start_z) / g.step > 10000) fail(fmt::format("{}: more than 10000 plunges", qw->text));
+    for (const Event& e : iso::fanuc_g75_moves(g)) {
+        if (const auto* r = std::get_if<Rapid>(&e)) rapid_to(r->to.x, std::nullopt, r->to.z);
+        else linear_to(std::get<Linear>(e).to.x, std::nullopt, std::get<Linear>(e).to.z);
     }
 }
 

@@ -59,6 +59,9 @@ constexpr KeySpec turn_groove_keys[] = {
      .description = "seconds at the bottom of each plunge that reaches it and at the end of the pass along it"},
     {.key = "approachDistance", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "1",
      .description = "how far above the surface (radial) the feeds start, and outside the bar the tool moves along Z, mm"},
+    {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
+     .description = "auto: the machine's grooving cycle (Fanuc T G75) where it carries the groove, else longhand with a "
+                    "note; canned: the cycle or an error; longhand: G0/G1 moves"},
 };
 
 }  // namespace
@@ -201,6 +204,7 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
     op.dwell = f.optional_number("dwell").value_or(0.0);
     if (op.dwell < 0) f.fail("dwell", "dwell must be 0 or more");
     op.pecks = read_groove_pecks(f, in);
+    op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     const double stepover = in.optional_length(f, "stepover").value_or(0.75 * op.blade.width);
     if (!(stepover > 0) || stepover > op.blade.width + 1e-9)
         f.fail("stepover", fmt::format("stepover {} must be more than 0 and at most tool {}'s width {} (the plunges overlap)",
@@ -233,6 +237,42 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
     return op;
 }
 
+GrooveCycle groove_cycle(const TurnGrooveOp& op) {
+    GrooveCycle c;
+    c.path = op.path;
+    c.output = op.output;
+    c.width = op.blade.width;
+    c.right_point = op.blade.right_point;
+    c.air = op.surface + op.approach;
+    c.surface = op.surface;
+    c.bottom = op.bottom;
+    c.first_z = op.plunges.front();
+    c.last_z = op.plunges.back();
+    c.chamfer = op.chamfer;
+    c.peck = op.pecks.peck;
+    c.retract = op.pecks.retract;
+    c.full_retract = op.pecks.full;
+    c.dwell = op.dwell;
+    c.feed = op.feed;
+    const std::size_t n = op.plunges.size();
+    c.finish = n > 1 ? op.finish : 0.0;
+    if (c.peck > 0) c.fields.push_back("pecks");
+    if (c.full_retract) c.fields.push_back("fullRetract");
+    if (c.dwell > 0) c.fields.push_back("dwell");
+    if (c.finish > 0) c.fields.push_back("finishPass");
+    if (c.chamfer > 0) c.fields.push_back("chamfer");
+    if (n > 1) {
+        const double spacing = (c.first_z - c.last_z) / static_cast<double>(n - 1);
+        c.z_step = spacing;
+        // G75's Z step is written in whole micrometres: a plain groove's plunges are spaced by
+        // the spacing rounded up to one (the last one shorter), where that stays within the
+        // blade's width.
+        const double whole = std::ceil(spacing * 1000.0 - 1e-6) / 1000.0;
+        if (c.plain() && whole <= c.width + 1e-9) c.z_step = whole;
+    }
+    return c;
+}
+
 void expand(const TurnGrooveOp& op, const Context& ctx, EventSink& sink) {
     const GrooveBlade& b = op.blade;
     const double out = op.outside + op.approach;   // outside the bar: Z moves elsewhere
@@ -242,44 +282,13 @@ void expand(const TurnGrooveOp& op, const Context& ctx, EventSink& sink) {
     sink.emit(Rapid{{out, 0.0, clearance}});
     sink.emit(Rapid{b.at(out, first)});
     sink.emit(Rapid{b.at(air, first)});
-    const bool one = op.plunges.size() == 1;
-    double at_z = first;  // the left corner's Z
-    for (std::size_t k = 0; k < op.plunges.size(); ++k) {
-        const double z = op.plunges[k];
-        if (k > 0) sink.emit(Rapid{b.at(air, z)});
-        GroovePlunge p;
-        p.left_z = z, p.start = air, p.air = air, p.top = op.surface, p.end = op.bottom + op.finish;
-        p.feed = op.feed, p.slow_feed = op.feed;
-        p.dwell = one ? op.dwell : 0.0;
-        emit_groove_plunge(b, p, op.pecks, sink);
-        if (k + 1 < op.plunges.size()) sink.emit(Rapid{b.at(air, z)});
-    }
-    if (!one) {
-        // The last plunge stands at the -Z wall: on to the bottom and along it to the +Z wall.
-        if (op.finish > 0) sink.emit(Linear{b.at(op.bottom, op.z_left), op.feed, Movement::plunge});
-        if (op.dwell > 0) sink.emit(Dwell{op.dwell});
-        sink.emit(Linear{b.at(op.bottom, op.z_right - b.width), op.feed, Movement::cutting});
-        if (op.dwell > 0) sink.emit(Dwell{op.dwell});
-        sink.emit(Rapid{b.at(air, op.z_right - b.width)});
-        at_z = op.z_right - b.width;
-    } else {
-        sink.emit(Rapid{b.at(air, op.plunges.back())});
-        at_z = op.plunges.back();
-    }
-    if (op.chamfer > 0) {
-        const double c = op.chamfer, a = op.approach;
-        // The +Z edge: the right corner from the chamfer's line extended to the air level down
-        // to its foot on the wall.
-        sink.emit(Rapid{b.at(air, op.z_right + c + a - b.width)});
-        sink.emit(Linear{b.at(op.surface - c, op.z_right - b.width), op.feed, Movement::cutting});
-        sink.emit(Rapid{b.at(air, op.z_right - b.width)});
-        // The -Z edge: the left corner likewise.
-        sink.emit(Rapid{b.at(air, op.z_left - c - a)});
-        sink.emit(Linear{b.at(op.surface - c, op.z_left), op.feed, Movement::cutting});
-        sink.emit(Rapid{b.at(air, op.z_left)});
-        at_z = op.z_left;
-    }
-    sink.emit(Rapid{b.at(out, at_z)});
+    const GrooveCycle c = groove_cycle(op);
+    if (op.output == CycleOutput::longhand)
+        for (const Event& e : groove_cycle_moves(c)) sink.emit(e);
+    else
+        sink.emit(c);
+    const Vec3 end = groove_cycle_end(c);
+    sink.emit(Rapid{{out, 0.0, end.z}});
     sink.emit(Rapid{{out, 0.0, clearance}});
 }
 

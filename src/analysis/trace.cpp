@@ -184,6 +184,12 @@ public:
                                              .per_revolution = e.per_revolution},
                                    job);
                        },
+                       [&](const GrooveCycle& c) {
+                           for (const Event& m : groove_cycle_moves(c))
+                               add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
+                                             .per_revolution = e.per_revolution},
+                                   job);
+                       },
                        [&](const Stop& st) {
                            Step s = base(StepKind::stop);
                            s.stop = st.kind;

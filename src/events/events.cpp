@@ -1,5 +1,6 @@
 #include "camgen/events/events.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <ostream>
 
@@ -110,6 +111,19 @@ std::string event_to_json(const Event& event) {
                        j["moves"] = e.moves.size();
                        if (e.refusal) j["refusal"] = *e.refusal;
                    },
+                   [&](const GrooveCycle& e) {
+                       j = {{"event", "groove-cycle"}, {"path", e.path},
+                            {"output", name_of(cycle_outputs, e.output)},
+                            {"start", xyz(e.start())}, {"width", e.width},
+                            {"rightPoint", e.right_point}, {"air", e.air},
+                            {"surface", e.surface}, {"bottom", e.bottom},
+                            {"finish", e.finish}, {"firstZ", e.first_z},
+                            {"lastZ", e.last_z}, {"zStep", e.z_step},
+                            {"chamfer", e.chamfer}, {"peck", e.peck},
+                            {"retract", e.retract}, {"fullRetract", e.full_retract},
+                            {"dwell", e.dwell}, {"feed", e.feed},
+                            {"fields", e.fields}};
+                   },
                    [&](const CustomBlock& e) {
                        j = {{"event", "custom"}, {"path", e.path}};
                        nlohmann::ordered_json texts = nlohmann::ordered_json::object();
@@ -163,9 +177,97 @@ std::vector<Event> turn_cycle_moves(const TurnCycle& c) {
     return out;
 }
 
+bool GrooveCycle::plain() const {
+    for (const std::string& f : fields)
+        if (f != "pecks") return false;
+    return true;
+}
+
+std::vector<double> GrooveCycle::plunges() const {
+    std::vector<double> out{first_z};
+    if (z_step > 0)
+        for (int k = 1; first_z - k * z_step > last_z + 1e-9 && out.size() < 100000; ++k) out.push_back(first_z - k * z_step);
+    if (first_z > last_z + 1e-9) out.push_back(last_z);
+    return out;
+}
+
+std::vector<Event> groove_cycle_moves(const GrooveCycle& c) {
+    std::vector<Event> out;
+    const std::vector<double> zs = c.plunges();
+    const bool plain = c.plain();
+    const double end = c.bottom + c.finish;  // where the plunges stop
+    // One plunge from the air level at left-corner Z z: pecks counted from `from_r` down to `to_r`.
+    auto plunge = [&](double z, double from_r, double to_r) {
+        std::vector<double> depths;
+        if (c.peck > 0)
+            for (int k = 1; from_r - k * c.peck > to_r + 1e-9 && depths.size() < 100000; ++k) depths.push_back(from_r - k * c.peck);
+        depths.push_back(to_r);
+        for (std::size_t k = 0; k < depths.size(); ++k) {
+            if (k > 0) {
+                const double back = std::min(depths[k - 1] + c.retract, c.air);
+                if (c.full_retract) out.emplace_back(Rapid{c.at(c.air, z)});
+                out.emplace_back(Rapid{c.at(back, z)});
+            }
+            out.emplace_back(Linear{c.at(depths[k], z), c.feed, Movement::plunge});
+        }
+    };
+    if (plain) {
+        for (std::size_t k = 0; k < zs.size(); ++k) {
+            if (k > 0) out.emplace_back(Rapid{c.at(c.air, zs[k])});
+            plunge(zs[k], c.air, end);
+            out.emplace_back(Rapid{c.at(c.air, zs[k])});
+        }
+        if (zs.size() > 1) out.emplace_back(Rapid{c.start()});
+        return out;
+    }
+    const bool one = zs.size() == 1;
+    for (std::size_t k = 0; k < zs.size(); ++k) {
+        if (k > 0) out.emplace_back(Rapid{c.at(c.air, zs[k])});
+        plunge(zs[k], c.surface, end);
+        if (one && c.dwell > 0) out.emplace_back(Dwell{c.dwell});
+        if (k + 1 < zs.size()) out.emplace_back(Rapid{c.at(c.air, zs[k])});
+    }
+    const double right_wall = c.first_z;  // the left corner at the +Z wall
+    if (!one) {
+        // The last plunge stands at the -Z wall: on to the bottom and along it to the +Z wall.
+        if (c.finish > 0) out.emplace_back(Linear{c.at(c.bottom, c.last_z), c.feed, Movement::plunge});
+        if (c.dwell > 0) out.emplace_back(Dwell{c.dwell});
+        out.emplace_back(Linear{c.at(c.bottom, right_wall), c.feed, Movement::cutting});
+        if (c.dwell > 0) out.emplace_back(Dwell{c.dwell});
+        out.emplace_back(Rapid{c.at(c.air, right_wall)});
+    } else {
+        out.emplace_back(Rapid{c.at(c.air, zs.back())});
+    }
+    if (c.chamfer > 0) {
+        const double ch = c.chamfer, a = c.air - c.surface;
+        const double z_right = right_wall + c.width;  // the +Z wall
+        // The +Z edge: the right corner from the chamfer's line extended to the air level down to
+        // its foot on the wall.
+        out.emplace_back(Rapid{c.at(c.air, z_right + ch + a - c.width)});
+        out.emplace_back(Linear{c.at(c.surface - ch, right_wall), c.feed, Movement::cutting});
+        out.emplace_back(Rapid{c.at(c.air, right_wall)});
+        // The -Z edge: the left corner likewise.
+        out.emplace_back(Rapid{c.at(c.air, c.last_z - ch - a)});
+        out.emplace_back(Linear{c.at(c.surface - ch, c.last_z), c.feed, Movement::cutting});
+        out.emplace_back(Rapid{c.at(c.air, c.last_z)});
+    }
+    return out;
+}
+
 Vec3 thread_cycle_end(const ThreadCycle& c, ThreadCyclePattern pattern) {
     if (pattern == ThreadCyclePattern::fanuc_g76) return c.start;
     return {c.start.x, c.start.y, c.end_z};
+    }
+    return out;
+}
+
+Vec3 groove_cycle_end(const GrooveCycle& c) {
+    const std::vector<Event> moves = groove_cycle_moves(c);
+    for (auto it = moves.rbegin(); it != moves.rend(); ++it) {
+        if (const auto* r = std::get_if<Rapid>(&*it)) return r->to;
+        if (const auto* l = std::get_if<Linear>(&*it)) return l->to;
+    }
+    return c.start();
 }
 
 void EventPrinter::emit(const Event& event) { out_ << event_to_json(event) << '\n'; }

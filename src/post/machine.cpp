@@ -120,6 +120,8 @@ constexpr KeySpec machine_keys[] = {
      .description = "the machine's canned roughing cycles (a lathe's turn-rough); a kind not listed is written longhand"},
     {.key = "threadingCycles", .type = JsonType::array, .ref = "threadingCycle",
      .description = "the canned threading cycles of a lathe (turn-thread's output); none: threads are written longhand"},
+    {.key = "groovingCycles", .type = JsonType::array, .ref = "groovingCycle",
+     .description = "the canned grooving cycles of a lathe (turn-groove's output); none: grooves are written longhand"},
     {.key = "frame", .type = JsonType::object, .ref = "frame",
      .description = "the program frame: safe-start words, work offsets, coolant codes"},
     {.key = "settings", .type = JsonType::object, .ref = "settings",
@@ -329,6 +331,30 @@ constexpr KeySpec thread_cycle_keys[] = {
                     "infeedAngle (flank infeed), springPasses"},
 };
 
+constexpr Named<GrooveCycleStyle> groove_cycle_styles[] = {
+    {GrooveCycleStyle::fanuc_g75, "fanuc-g75",
+     "Fanuc T's G75 R(back-off) / G75 X Z P(peck) Q(Z step, least increments) F from the start point, back to it"},
+};
+
+constexpr Named<int> groove_cycle_kinds[] = {{0, "groove", "an external groove cut in plunges (turn-groove)"}};
+
+// The names a grooving cycle's "fields" may hold.
+std::vector<std::string> groove_cycle_field_list() {
+    return {std::begin(groove_cycle_field_names), std::end(groove_cycle_field_names)};
+}
+
+// The keys of one grooving cycle.
+constexpr KeySpec groove_cycle_keys[] = {
+    {.key = "name", .type = JsonType::string, .required = true, .description = "the cycle's name (G75)"},
+    {.key = "kind", .type = JsonType::string, .required = true, .choices = &choices_of<groove_cycle_kinds>,
+     .description = "what it cuts"},
+    {.key = "style", .type = JsonType::string, .required = true, .choices = &choices_of<groove_cycle_styles>,
+     .description = "how the canned cycle is written and read"},
+    {.key = "fields", .type = JsonType::array, .choices = &groove_cycle_field_list,
+     .description = "what it carries of a turn-groove beyond plain plunges: pecks, fullRetract, dwell, finishPass (a "
+                    "finishing allowance and the pass along the bottom), chamfer"},
+};
+
 // Refuses machine-file text that is written into programs (prefixes, separators, codes, cycle
 // names, dialect settings) when a control would read it as more than the word it is: control
 // bytes and line breaks end or split a block, bytes outside printable ASCII are read
@@ -520,6 +546,7 @@ std::vector<ObjectSpec> machine_objects() {
         spec("drillingCycle", "one drilling cycle of the machine (a MillDrillingFields entry)", cycle_keys),
         spec("roughingCycle", "one canned roughing cycle of a lathe", roughing_cycle_keys),
         spec("threadingCycle", "one threading cycle of a lathe", thread_cycle_keys),
+        spec("groovingCycle", "one grooving cycle of a lathe", groove_cycle_keys),
         spec("frame", "the program frame: safe start, work offsets, coolant", frame_keys),
         spec("coolantCodes", "the code of each coolant mode", coolant_keys),
         spec("feedModeCodes", "the code of each feed mode", feed_mode_keys),
@@ -884,6 +911,38 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             m.threading.push_back(std::move(c));
         }
     }
+    if (const auto* gc = f.member("groovingCycles")) {
+        if (!gc->is_array()) f.fail("groovingCycles", "expected an array");
+        if (m.kind != MachineKind::lathe) f.fail("groovingCycles", "grooving cycles are a lathe's: set kind lathe");
+        for (size_t i = 0; i < gc->size(); ++i) {
+            const std::string path = fmt::format("/groovingCycles/{}", i);
+            json::Fields cf((*gc)[i], path, source);
+            GroovingCycleSpec c;
+            c.name = cf.string("name");
+            check_program_text(c.name, cf.path_of("name"), source);
+            cf.choice("kind", groove_cycle_kinds, 0);
+            if (!cf.has("kind")) cf.fail("kind", "a grooving cycle needs its kind (\"groove\")");
+            if (!cf.has("style")) cf.fail("style", "a grooving cycle needs its style");
+            c.style = cf.choice("style", groove_cycle_styles, GrooveCycleStyle::fanuc_g75);
+            if (const auto* fields = cf.member("fields")) {
+                if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
+                const std::vector<std::string> known = groove_cycle_field_list();
+                for (size_t j = 0; j < fields->size(); ++j) {
+                    std::string fn = (*fields)[j].is_string() ? (*fields)[j].get<std::string>() : "";
+                    if (std::find(known.begin(), known.end(), fn) == known.end()) {
+                        auto hint = json::did_you_mean(fn, known);
+                        json::fail(source, fmt::format("{}/fields/{}", path, j),
+                                   fmt::format("unknown grooving field \"{}\"{}; fields: {}", fn,
+                                               hint ? fmt::format(" (did you mean \"{}\"?)", *hint) : "",
+                                               fmt::join(known, ", ")));
+                    }
+                    c.fields.push_back(std::move(fn));
+                }
+            }
+            cf.finish(groove_cycle_keys);
+            m.grooving.push_back(std::move(c));
+        }
+    }
     if (const auto* fr = f.member("frame")) {
         json::Fields ff(*fr, "/frame", source);
         if (const auto* sb = ff.member("startBlock")) m.frame.start_block = strings_at(*sb, "/frame/startBlock", source);
@@ -1017,6 +1076,11 @@ std::string describe_machine(const Machine& m) {
         if (m.threading.empty()) line("thread", "longhand");
         for (const ThreadingCycleSpec& t : m.threading)
             line("thread", fmt::format("{} ({}){}", t.name, name_of(thread_cycle_styles, t.style),
+                                       t.fields.empty() ? std::string() : fmt::format(": {}", fmt::join(t.fields, ", "))));
+        s += "grooving cycles (turn-groove)\n";
+        if (m.grooving.empty()) line("groove", "longhand");
+        for (const GroovingCycleSpec& t : m.grooving)
+            line("groove", fmt::format("{} ({}){}", t.name, name_of(groove_cycle_styles, t.style),
                                        t.fields.empty() ? std::string() : fmt::format(": {}", fmt::join(t.fields, ", "))));
     }
     s += "capabilities (what a job may ask; a refusal is the post's own message)\n";

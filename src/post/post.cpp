@@ -253,6 +253,7 @@ std::string what_it_does(const Event& e) {
                                 [](const ThreadFeed&) { return std::string("move the tool (a thread-cutting move)"); },
                                 [](const ThreadCycle&) { return std::string("cut a thread in a cycle"); },
                                 [](const TurnCycle&) { return std::string("rough in a cycle"); },
+                                [](const GrooveCycle&) { return std::string("cut a groove in a cycle"); },
                             },
                             e);
 }
@@ -597,6 +598,44 @@ void Post::handle_turn_cycle(const TurnCycle& c) {
         note(fmt::format("{}{}: the roughing is written longhand because {}", c.path,
                          op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
     for (const Event& e : turn_cycle_moves(c)) handle(e);
+}
+
+void Post::on_groove_cycle(const GrooveCycle& c, const GroovingCycleSpec& spec) {
+    throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write {}", machine_.name, spec.name));
+}
+
+std::optional<std::string> Post::groove_cycle_limit(const GrooveCycle&, const GroovingCycleSpec& spec) const {
+    return fmt::format("camgen writes {} only on the dialect its style names", spec.name);
+}
+
+void Post::handle_groove_cycle(const GrooveCycle& c) {
+    if (!pos_known_) throw std::logic_error("grooving cycle from an unknown position");
+    if (c.output != CycleOutput::longhand) {
+        const GroovingCycleSpec* spec = machine_.grooving.empty() ? nullptr : &machine_.grooving.front();
+        std::string reason;
+        if (!spec) {
+            reason = fmt::format("machine {} has no canned grooving cycle", machine_.name);
+        } else {
+            std::vector<std::string> missing;
+            for (const std::string& f : c.fields)
+                if (std::find(spec->fields.begin(), spec->fields.end(), f) == spec->fields.end()) missing.push_back(f);
+            if (!missing.empty())
+                reason = fmt::format("machine {}'s {} cannot carry {}", machine_.name, spec->name, fmt::join(missing, ", "));
+            else if (auto limit = groove_cycle_limit(c, *spec))
+                reason = fmt::format("machine {}'s {} cannot carry this groove: {}", machine_.name, spec->name, *limit);
+        }
+        if (reason.empty()) {
+            on_groove_cycle(c, *spec);
+            pos_ = groove_cycle_end(c);
+            return;
+        }
+        if (c.output == CycleOutput::canned)
+            throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
+        if (spec)
+            note(fmt::format("{}{}: the groove is written longhand because {}", c.path,
+                             op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+    }
+    for (const Event& e : groove_cycle_moves(c)) handle(e);
 }
 
 std::optional<std::string> Post::tapping_impossible(CycleKind) const { return std::nullopt; }
@@ -1058,6 +1097,7 @@ void Post::handle(const Event& event) {
                    },
                    [&](const ThreadCycle& c) { handle_thread_cycle(c); },
                    [&](const TurnCycle& c) { handle_turn_cycle(c); },
+                   [&](const GrooveCycle& c) { handle_groove_cycle(c); },
                },
                event);
 }

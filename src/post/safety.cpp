@@ -245,6 +245,9 @@ void SafetyCheck::emit(const Event& event) {
             [&](const TurnCycle& c) {
                 for (const Event& m : turn_cycle_moves(c)) emit(m);
             },
+            [&](const GrooveCycle& c) {
+                for (const Event& m : groove_cycle_moves(c)) emit(m);
+            },
             [&](const Arc& a) {
                 // An arc in XY (or a helix) is lowest at an end; one in XZ or YZ may dip between.
                 reach(a.to.z);

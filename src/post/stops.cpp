@@ -201,6 +201,11 @@ void OperatorStops::emit(const Event& event) {
                              if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
                              next_.emit(event);
                          },
+                         [&](const GrooveCycle& c) {
+                             resume();
+                             pos_ = groove_cycle_end(c);
+                             next_.emit(event);
+                         },
                          [&](const Dwell&) {
                              resume();
                              next_.emit(event);

@@ -195,7 +195,7 @@ TEST_CASE("machine file: dialect settings are read with the machine, each error 
     const Refusal limit = refusal("fanuc-lathe", R"(, "maxRpm": 3000})", "}", line);
     CHECK(limit.path == "/settings/spindleLimit");
     CHECK(limit.detail == "spindleLimit writes G50 S<maxRpm>: the machine needs limits.maxRpm");
-    CHECK(limit.line == 55);
+    CHECK(limit.line == 59);
     // The lathe variant takes the ISO keys as well as its own.
     check_accepted("fanuc-lathe", R"("toolCall": "turret")", R"("toolCall": "m6", "optionalStop": false)");
 }

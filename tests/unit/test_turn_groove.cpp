@@ -49,7 +49,16 @@ std::vector<BladeMove> blade_moves(const Job& job) {
     std::vector<BladeMove> out;
     Vec2 at{job.clearance, 0.0};
     bool started = false;
+    std::vector<Event> events;
     for (const Event& e : expand_job(job)) {
+        if (const auto* c = std::get_if<GrooveCycle>(&e)) {
+            const std::vector<Event> moves = groove_cycle_moves(*c);
+            events.insert(events.end(), moves.begin(), moves.end());
+        } else {
+            events.push_back(e);
+        }
+    }
+    for (const Event& e : events) {
         if (const auto* r = std::get_if<Rapid>(&e)) {
             const Vec2 to{r->to.z, r->to.x};
             if (started) out.push_back({at, to, true});

@@ -265,9 +265,54 @@ struct TurnCycle {
     }
 };
 
+// A turn-groove's groove as a grooving cycle (Fanuc T's G75) would cut it, resolved (mm,
+// radius). The blade is `width` wide; its programmed point is its left corner, or its right one
+// (`right_point`); the Zs below are the left corner's. Before it the tool stands at `start()`:
+// the approach radius `air` over the first plunge. `fields` names what the groove asks beyond
+// plain plunges ("pecks", "fullRetract", "dwell", "finishPass", "chamfer"); a canned cycle must
+// carry each. The moves (`groove_cycle_moves`, which posts without the cycle write longhand):
+// - plain (fields within "pecks": no chamfer, dwell, full retract, and one plunge or no finishing
+//   allowance): G75's pattern: plunges at first_z, first_z - z_step, ... while above last_z, then
+//   at last_z; each fed down from `air` in pecks of `peck` counted from `air` (0: one feed), a
+//   rapid back-off of `retract` between them, to `bottom` + `finish`, then a rapid out to `air`,
+//   and along Z at `air` to the next; after the last, back along Z to the start.
+// - otherwise turn-groove's own: the same plunges but pecks counted from `surface` (a full
+//   retract out to `air` and back to `retract` above the depth reached), the last plunge on to
+//   the bottom and along it to the +Z wall (a dwell at both ends), or one plunge's dwell at the
+//   bottom; then the chamfers (the right corner down the +Z edge's, the left down the -Z edge's).
+// Cut along -Z, into an external diameter; every move along Z at `air`.
+struct GrooveCycle {
+    std::string path;                   // JSON path of the operation, for messages
+    CycleOutput output = CycleOutput::automatic;
+    double width = 0.0;                 // the blade's width
+    bool right_point = false;           // the programmed point is the blade's right (+Z) corner
+    double air = 0.0;                   // radius of the approach level, where the tool stands
+    double surface = 0.0;               // radius of the surface the groove is cut into
+    double bottom = 0.0;                // radius of the groove's bottom
+    double finish = 0.0;                // radial allowance the plunges leave for the pass along the bottom
+    double first_z = 0.0;               // the left corner's Z at the first plunge (the +Z wall less the width)
+    double last_z = 0.0;                // the left corner's Z at the last plunge (the -Z wall)
+    double z_step = 0.0;                // the distance between plunges (the last one shorter), 0: one plunge
+    double chamfer = 0.0;               // each edge's 45-degree chamfer
+    double peck = 0.0;                  // radial depth of each peck, 0: one feed
+    double retract = 0.0;               // back-off between pecks (full retract: how far above the depth it returns)
+    bool full_retract = false;
+    double dwell = 0.0;                 // s
+    double feed = 0.0;                  // mm/min
+    std::vector<std::string> fields;    // what the canned cycle must carry
+    // The programmed point of the blade whose left corner is at radius r, Z left_z.
+    Vec3 at(double r, double left_z) const { return {r, 0.0, left_z + (right_point ? width : 0.0)}; }
+    Vec3 start() const { return at(air, first_z); }
+    // The moves follow G75's pattern (see above).
+    bool plain() const;
+    // The left corner's Z of each plunge.
+    std::vector<double> plunges() const;
+    friend bool operator==(const GrooveCycle&, const GrooveCycle&) = default;
+};
+
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
-                           ThreadFeed, ThreadCycle, TurnCycle>;
+                           ThreadFeed, ThreadCycle, TurnCycle, GrooveCycle>;
 
 // The moves of a roughing cycle (Rapid, Linear and Arc events in XZ at the cycle's feed), from
 // its start: none where the cycle carries a refusal.
@@ -278,6 +323,11 @@ std::vector<Event> turn_cycle_moves(const TurnCycle& cycle);
 // or Fanuc's two-block G76 (each pass from and back to the start point at start.x, Z the start;
 // the tool ends where it began). The cutting passes are the same.
 enum class ThreadCyclePattern { linuxcnc_g76, fanuc_g76 };
+
+
+// The moves of a grooving cycle (Rapid, Linear, Dwell), from its start; and where they end.
+std::vector<Event> groove_cycle_moves(const GrooveCycle& cycle);
+Vec3 groove_cycle_end(const GrooveCycle& cycle);
 
 // The moves of a threading cycle (Rapid and ThreadFeed events), from its drive point.
 std::vector<Event> thread_cycle_moves(const ThreadCycle& cycle,

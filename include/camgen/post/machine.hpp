@@ -92,6 +92,20 @@ struct ThreadingCycleSpec {
     std::vector<std::string> fields;   // what it carries: thread_cycle_field_names
 };
 
+// How a canned grooving cycle is written: Fanuc T's two-block G75 R(e) / G75 X Z P Q F.
+enum class GrooveCycleStyle { fanuc_g75 };
+
+// What a turn-groove may ask of a grooving cycle beyond plain plunges (machine file
+// groovingCycles[].fields; GrooveCycle::fields).
+inline constexpr const char* groove_cycle_field_names[] = {"pecks", "fullRetract", "dwell", "finishPass", "chamfer"};
+
+// One grooving cycle the machine offers (machine file groovingCycles).
+struct GroovingCycleSpec {
+    std::string name;                  // "G75"
+    GrooveCycleStyle style = GrooveCycleStyle::fanuc_g75;
+    std::vector<std::string> fields;   // what it carries: groove_cycle_field_names
+};
+
 // Limits of the machine. Feeds mm/min, speeds rpm.
 struct MachineLimits {
     double max_feed = 10000.0;
@@ -169,6 +183,7 @@ struct Machine {
     std::vector<DrillingCycleSpec> drilling;
     std::vector<RoughingCycleSpec> roughing_cycles;  // machine file "roughingCycles"
     std::vector<ThreadingCycleSpec> threading;  // machine file threadingCycles
+    std::vector<GroovingCycleSpec> grooving;    // machine file groovingCycles
     FrameSettings frame;
     // The dialect's settings (machine file "settings"), read by parse_machine; null for a machine
     // made in code, whose dialect takes its defaults (settings_of).

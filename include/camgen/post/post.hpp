@@ -159,6 +159,13 @@ protected:
     // arithmetic on the rounded words), or nullopt; then the moves are written longhand (output
     // "auto") or refused. The base: a dialect that writes no roughing cycle says so.
     virtual std::optional<std::string> turn_cycle_limit(const TurnCycle& cycle, const RoughingCycleSpec& spec) const;
+    // A canned grooving cycle, called only when it is written canned (from its start, where the
+    // tool stands; it must leave the tool at groove_cycle_end). The base refuses it.
+    virtual void on_groove_cycle(const GrooveCycle& cycle, const GroovingCycleSpec& spec);
+    // Why the canned grooving cycle `spec` would not cut the cycle's moves although it carries
+    // every field (the control's own arithmetic on the rounded words), or nullopt. The base: the
+    // dialect writes no grooving cycle.
+    virtual std::optional<std::string> groove_cycle_limit(const GrooveCycle& cycle, const GroovingCycleSpec& spec) const;
     // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
     // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
     // tap: ". Asked through cycle_capability.
@@ -338,6 +345,9 @@ private:
     // else its moves longhand with a note (output "auto") or refused (output "canned"); one
     // carrying a refusal writes nothing but the note (the operation's passes follow it).
     void handle_turn_cycle(const TurnCycle& cycle);
+    // A grooving cycle: canned where the machine's cycle carries it (groove_cycle_limit), else
+    // its moves longhand with a note (output "auto") or refused (output "canned").
+    void handle_groove_cycle(const GrooveCycle& cycle);
     // The cycle as this machine can run it: feeds clamped to its limits (every dialect writes
     // the same clamped values, canned or longhand); refused when a value would be written as 0
     // or below the machine's resolution (speeds, pecks, dwells), when it needs more pecks than

@@ -80,12 +80,20 @@ struct TurnGrooveOp {
     GroovePecks pecks;
     double dwell = 0.0;           // s at the bottom
     double approach = 1.0;        // mm above the surface where the feeds start
+    CycleOutput output = CycleOutput::automatic;  // a grooving cycle (GrooveCycle) or longhand moves
     std::vector<std::string> notes;
 };
 
-// Rapid outside the bar along Z, down to approachDistance above the surface; each plunge (the
-// first at the +Z wall, the last at the -Z wall) fed from there, out at rapid; with more than
-// one plunge, the last goes on to the bottom and along it to the +Z wall; the chamfers (the
+// The operation's groove as a GrooveCycle, from the approach level over its first plunge: its
+// fields the keys that go beyond plain plunges; a plain groove's plunges G75's (pecks counted
+// from the approach level, a Z step whole in µm, back to the start at the end), another's the
+// operation's own.
+GrooveCycle groove_cycle(const TurnGrooveOp& op);
+
+// Rapid outside the bar along Z, down to approachDistance above the surface; then the groove
+// (groove_cycle: a GrooveCycle, or its moves with output "longhand"): each plunge (the first at
+// the +Z wall, the last at the -Z wall) fed from there, out at rapid; with more than one plunge
+// and not plain, the last goes on to the bottom and along it to the +Z wall; the chamfers (the
 // right corner down the +Z edge's, the left corner down the -Z edge's), each straight out; back
 // outside the bar and to the clearance.
 void expand(const TurnGrooveOp& op, const Context& context, EventSink& sink);
