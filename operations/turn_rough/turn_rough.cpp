@@ -466,8 +466,9 @@ TurnCycle turn_cycle(const TurnRoughOp& op) {
 bool TurnRoughOp::whole_bar_over_boundary() const {
     if (material.r.empty() || tip_boundary.segments.empty()) return true;
     const double lo = std::min(tip_boundary.segments.back().end.x, boundary.segments.back().end.x);
-    // Up to the bar's face as the earlier operations left it (a face's stub is no level's).
-    const double hi = std::min(std::max(tip_boundary.start.x, boundary.start.x), material.front(0.0));
+    // Up to the bar's face as the earlier turn-faces left it (a face's stub is no level's).
+    double hi = std::max(tip_boundary.start.x, boundary.start.x);
+    if (bar_face) hi = std::min(hi, *bar_face);
     for (std::size_t i = 0; i < material.r.size(); ++i)
         if (material.z[i + 1] > lo && material.z[i] < hi && material.r[i] < stock_radius - 1e-6) return false;
     return true;
@@ -481,6 +482,7 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     const Profile& path = op.tip_boundary;
     const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
+    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
     if (op.output != CycleOutput::longhand) {
         TurnCycle c = turn_cycle(op);
         if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
@@ -493,7 +495,6 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
         if (!c.refusal) {
             // The control roughs from its start point down, whatever earlier operations left
             // (over what they removed it cuts air).
-            sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
             sink.emit(Rapid{turn_rough_at(outside, z_start)});
             // The cycle, then off the end of its last pass at 45 degrees (above it the levels or
             // the pass along the boundary have cut) and out of the bar.
@@ -526,7 +527,6 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     // Where a pass at level v comes in from air: approachDistance beyond the profile's start, or
     // beyond the earlier material at v (all of it above v lies below that Z).
     auto entry = [&](double v) { return from_material ? op.material.front(v) + op.approach : z_start; };
-    sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
     // Where the tip is between passes: outside the bar, or lifted off the last pass at the Z it
     // came in at (air beyond it at that radius and above).
     Vec2 at{ctx.job.clearance, outside};

@@ -257,8 +257,6 @@ std::vector<Event> groove_cycle_moves(const GrooveCycle& c) {
 Vec3 thread_cycle_end(const ThreadCycle& c, ThreadCyclePattern pattern) {
     if (pattern == ThreadCyclePattern::fanuc_g76) return c.start;
     return {c.start.x, c.start.y, c.end_z};
-    }
-    return out;
 }
 
 Vec3 groove_cycle_end(const GrooveCycle& c) {

@@ -380,7 +380,7 @@ TEST_CASE("turn-rough: with a nose radius the last pass runs the nose along the 
         const double bar = top + ax + 2.0;
         const std::string text = fmt::format(
             R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": {}, "rpm": 1000}}],
-  "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
+  "operations": [{{"type": "turn-rough", "output": "longhand", "tool": 1, "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
                   "allowanceZ": {}, "depthOfCut": 1.5, {}}}]}})",
             r, bar, ax, az, json_of(p));
         INFO(text);

@@ -16,6 +16,8 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/operations/registry.hpp"
+#include "camgen/post/machine.hpp"
+#include "support.hpp"
 
 // Unity builds compile several test files as one: each keeps its names in its own namespace.
 namespace test_turn_rough {
@@ -116,14 +118,16 @@ std::string rough_job(const Points& p, double bar, double ax, double az, double 
                        tool_extra, output, bar, ax, az, doc, p[0].y, p[0].x, path, op_extra);
 }
 
-// The JSON of a turn-rough of `p` (radii) with the tool of rough_job, without startX.
+// The JSON of a turn-rough of `p` (radii) with the tool of rough_job, without startX: camgen's own
+// passes (longhand) unless `extra` gives another output.
 std::string rough_op(const Points& p, double ax, double az, double doc, const std::string& extra = "") {
     std::string path;
     for (std::size_t i = 1; i < p.size(); ++i)
         path += fmt::format("{}{{\"line\": [{}, {}]}}", i > 1 ? ", " : "", p[i].y, p[i].x);
-    return fmt::format(R"({{"type": "turn-rough", "tool": 1, "compensation": "none", "feed": 200, "xValues": "radius",
+    const std::string output = extra.find("\"output\"") == std::string::npos ? R"("output": "longhand", )" : "";
+    return fmt::format(R"({{"type": "turn-rough", "tool": 1, {}"compensation": "none", "feed": 200, "xValues": "radius",
                   "allowanceX": {}, "allowanceZ": {}, "depthOfCut": {}, "start": [{}, {}], "path": [{}]{}}})",
-                       ax, az, doc, p[0].y, p[0].x, path, extra);
+                       output, ax, az, doc, p[0].y, p[0].x, path, extra);
 }
 
 // A job on a bar of radius `bar` whose face is at face_z, with these operations.
@@ -713,6 +717,38 @@ TEST_CASE("turn-rough from what a turn-face left: the passes come in 1 mm before
         // what they left instead of a roughing cycle from the bar).
         CHECK_FALSE(noted);
     }
+}
+
+TEST_CASE("turn-rough \"output\": \"auto\" after earlier operations: a cycle after a face alone, passes from the material after a rough") {
+    // The cycle roughs from the bar: worth it where the earlier operations left the whole bar over
+    // the profile (a face moves only the face); after an earlier rough over the profile camgen's
+    // passes from what it left are written instead, the TurnCycle carrying why (a note where the
+    // machine has the cycle).
+    const Points first{{0, 15}, {-30, 15}}, second{{0, 12}, {-40, 12}};
+    const std::string face = R"({"type": "turn-face", "tool": 1, "feed": 150, "z": 0, "stepdown": 1})";
+    auto cycles = [](const Job& job) {
+        std::vector<TurnCycle> out;
+        for (const Event& e : expand_job(job))
+            if (const auto* c = std::get_if<TurnCycle>(&e)) out.push_back(*c);
+        return out;
+    };
+    const std::vector<TurnCycle> faced =
+        cycles(read_job(bar_job(22, 3, face + ", " + rough_op(second, 0, 0, 1.5, R"(, "output": "auto")")), "faced.json"));
+    REQUIRE(faced.size() == 1);
+    CHECK_FALSE(faced[0].refusal);
+    CHECK_FALSE(faced[0].moves.empty());
+    const std::vector<TurnCycle> twice = cycles(read_job(
+        bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(second, 0, 0, 1.5, R"(, "output": "auto")")), "twice.json"));
+    REQUIRE(twice.size() == 1);
+    REQUIRE(twice[0].refusal);
+    CHECK(twice[0].refusal->find("the operations before it removed part of the bar over the profile") == 0);
+    CHECK(twice[0].moves.empty());
+    // Posted for linuxcnc-lathe (which has G71) the note says so; "canned" writes G71 anyway.
+    const std::string program = test::post_program(
+        read_job(bar_job(22, 0, rough_op(first, 0, 0, 1.5) + ", " + rough_op(second, 0, 0, 1.5, R"(, "output": "canned")")),
+                 "canned.json"),
+        load_machine("linuxcnc-lathe"));
+    CHECK(program.find("G71 Q") != std::string::npos);
 }
 
 TEST_CASE("turn-rough from what an earlier turn-rough left: the levels it removed are left out, passes start at its end") {
