@@ -549,11 +549,7 @@ void Post::handle_thread_cycle(const ThreadCycle& c) {
             pos_ = thread_cycle_end(c, machine_.thread_pattern());
             return;
         }
-        if (c.output == CycleOutput::canned)
-            throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
-        if (spec)
-            note(fmt::format("{}{}: the thread is written longhand because {}", c.path,
-                             op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+        cycle_not_canned(c.path, c.output, spec != nullptr, "thread", reason);
     }
     // Longhand in the pattern of the machine's own cycle, so that canned or not the program
     // moves as the job's events traced for this machine (trace_expected).
@@ -593,11 +589,16 @@ void Post::handle_turn_cycle(const TurnCycle& c) {
         if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
         return;
     }
-    if (c.output == CycleOutput::canned) throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
-    if (spec)
-        note(fmt::format("{}{}: the roughing is written longhand because {}", c.path,
-                         op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+    cycle_not_canned(c.path, c.output, spec != nullptr, "roughing", reason);
     for (const Event& e : turn_cycle_moves(c)) handle(e);
+}
+
+void Post::cycle_not_canned(const std::string& path, CycleOutput output, bool has_cycle, std::string_view what,
+                            const std::string& reason) {
+    if (output == CycleOutput::canned) throw InputError(path + "/output", reason + "; use \"auto\" or \"longhand\"");
+    if (has_cycle)
+        note(fmt::format("{}{}: the {} is written longhand because {}", path, op_name_.empty() ? "" : " (" + op_name_ + ")",
+                         what, reason));
 }
 
 void Post::on_groove_cycle(const GrooveCycle& c, const GroovingCycleSpec& spec) {
@@ -629,11 +630,7 @@ void Post::handle_groove_cycle(const GrooveCycle& c) {
             pos_ = groove_cycle_end(c);
             return;
         }
-        if (c.output == CycleOutput::canned)
-            throw InputError(c.path + "/output", reason + "; use \"auto\" or \"longhand\"");
-        if (spec)
-            note(fmt::format("{}{}: the groove is written longhand because {}", c.path,
-                             op_name_.empty() ? "" : " (" + op_name_ + ")", reason));
+        cycle_not_canned(c.path, c.output, spec != nullptr, "groove", reason);
     }
     for (const Event& e : groove_cycle_moves(c)) handle(e);
 }

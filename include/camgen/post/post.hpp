@@ -348,6 +348,11 @@ private:
     // A grooving cycle: canned where the machine's cycle carries it (groove_cycle_limit), else
     // its moves longhand with a note (output "auto") or refused (output "canned").
     void handle_groove_cycle(const GrooveCycle& cycle);
+    // A lathe cycle (threading, roughing, grooving) not written canned, `reason` why: refused at
+    // its `/output` under "canned", else a note, where the machine has such a cycle, that its
+    // `what` ("thread", "roughing", "groove") is written longhand.
+    void cycle_not_canned(const std::string& path, CycleOutput output, bool has_cycle, std::string_view what,
+                          const std::string& reason);
     // The cycle as this machine can run it: feeds clamped to its limits (every dialect writes
     // the same clamped values, canned or longhand); refused when a value would be written as 0
     // or below the machine's resolution (speeds, pecks, dwells), when it needs more pecks than
