@@ -40,8 +40,10 @@ void IsoLathePost::on_compensation(const Compensation& c) {
     if (c.side != CompensationSide::off) {
         const char* code = c.side == CompensationSide::left ? "G41" : "G42";
         if (lathe_.tool_call == iso::LatheToolCall::turret)
-            writer().comment(fmt::format("{} nose comp: offset {:02} R{} nose radius, T{} {} (LinuxCNC numbering)", code,
-                                         current_tool(), number_text(c.radius), c.orientation, lathe_tip_words(c.orientation)));
+            // Fanuc's own tip number (LinuxCNC's mirrored in X), and the direction in words.
+            writer().comment(fmt::format("{} nose comp: offset {:02} R{} nose radius, Fanuc tip T{}: {}", code,
+                                         current_tool(), number_text(c.radius), fanuc_tip_number(c.orientation),
+                                         lathe_tip_words(c.orientation)));
         else
             writer().comment(fmt::format("{} nose comp: tool table T{} D{} nose diameter, Q{} {}", code, current_tool(),
                                          number_text(2 * c.radius), c.orientation, lathe_tip_words(c.orientation)));

@@ -360,16 +360,20 @@ private:
     }
 
     // camgen's comment before a lathe's G41/G42 names the orientation the control's table must
-    // hold (the lathe posts' on_compensation): "... Q2 tip ..." (LinuxCNC), "... T2 tip ..."
-    // (Fanuc T), "... cutting edge position 2, tip ..." (Sinumerik). A program read without a
-    // job takes it from there.
+    // hold (the lathe posts' on_compensation): "... Q2 tip ..." (LinuxCNC), "... Fanuc tip T3: tip
+    // ..." (Fanuc T, in Fanuc's numbering; camgen before it wrote "... T2 tip ... [LinuxCNC
+    // numbering]"), "... cutting edge position 2, tip ..." (Sinumerik, LinuxCNC's numbering). A
+    // program read without a job takes it from there, in LinuxCNC's numbering.
     void comment_orientation(const std::string& text) {
         if (!lathe_ || text.find("nose comp: ") == std::string::npos) return;
-        for (const char* key : {", Q", ", T", "cutting edge position "}) {
+        for (const char* key : {", Q", "Fanuc tip T", ", T", "cutting edge position "}) {
             const std::size_t at = text.find(key);
             if (at == std::string::npos) continue;
             const std::size_t d = at + std::string_view(key).size();
-            if (d < text.size() && text[d] >= '1' && text[d] <= '9') comment_orientation_ = std::pair{tool_, text[d] - '0'};
+            if (d < text.size() && text[d] >= '1' && text[d] <= '9') {
+                const int number = text[d] - '0';
+                comment_orientation_ = std::pair{tool_, key[0] == 'F' ? fanuc_tip_number(number) : number};
+            }
             return;
         }
     }

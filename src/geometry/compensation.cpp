@@ -339,4 +339,16 @@ std::string lathe_tip_words(int orientation) {
     return s + " of the nose centre";
 }
 
+int fanuc_tip_number(int orientation) {
+    switch (orientation) {
+        case 1: return 4;
+        case 2: return 3;
+        case 3: return 2;
+        case 4: return 1;
+        case 6: return 8;
+        case 8: return 6;
+        default: return orientation;
+    }
+}
+
 }  // namespace camgen

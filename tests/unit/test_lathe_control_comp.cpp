@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "camgen/analysis/trace.hpp"
 #include "camgen/common/error.hpp"
+#include "camgen/geometry/compensation.hpp"
 #include "camgen/operations/registry.hpp"
 #include "camgen/post/machine.hpp"
 #include "camgen/post/post.hpp"
@@ -73,7 +75,7 @@ TEST_CASE("control nose compensation: the three lathes write G42 on the entry, G
     // The designed profile itself: the chamfer's end and the D30 diameter as drawn.
     CHECK(linuxcnc.find("X30 Z-1") != std::string::npos);
     const std::string fanuc = posted(text, "fanuc-lathe");
-    CHECK(fanuc.find("(G42 nose comp: offset 03 R0.4 nose radius, T2 tip at -X -Z of the nose centre [LinuxCNC numbering])") !=
+    CHECK(fanuc.find("(G42 nose comp: offset 03 R0.4 nose radius, Fanuc tip T3: tip at -X -Z of the nose centre)") !=
           std::string::npos);
     CHECK(fanuc.find("G42 G1") != std::string::npos);
     CHECK(fanuc.find("G40 X") != std::string::npos);
@@ -143,6 +145,54 @@ TEST_CASE("control nose compensation: the trace applies G42 in G18 as LinuxCNC d
     bool noted = false;
     for (const std::string& n : u.notes) noted = noted || n.find("whose tip orientation camgen does not know") != std::string::npos;
     CHECK(noted);
+}
+
+TEST_CASE("control nose compensation: Fanuc's tip numbers are LinuxCNC's mirrored in X, and a program read alone takes them") {
+    // Haas's lathe operator's manual ("Imaginary Tool Tip and Direction", Fanuc-compatible):
+    // the direction from the nose centre to the tip for each number, typed here from its text.
+    const std::map<int, std::string> fanuc_words = {{1, "+X +Z"}, {2, "+X -Z"}, {3, "-X -Z"}, {4, "-X +Z"},
+                                                    {5, "+Z"},    {6, "+X"},    {7, "-Z"},    {8, "-X"}};
+    for (const auto& [number, words] : fanuc_words) {
+        CAPTURE(number);
+        CHECK(lathe_tip_words(fanuc_tip_number(number)) == "tip at " + words + " of the nose centre");
+        CHECK(fanuc_tip_number(fanuc_tip_number(number)) == number);
+    }
+    CHECK(fanuc_tip_number(9) == 9);
+    CHECK(fanuc_tip_number(0) == 0);
+
+    // A fanuc-lathe program read without its job: the comment's Fanuc T3 is orientation 2, and
+    // the trace is the one the job's orientation gives; an older program's "T2 ... [LinuxCNC
+    // numbering]" is read as it was meant; an edited T2 (Fanuc: tip at +X -Z) traces otherwise.
+    const std::string fanuc = posted(job_text(good_tool, ""), "fanuc-lathe");
+    const Machine machine = load_machine("fanuc-lathe");
+    auto feeds = [&](const std::string& program, bool give_orientation) {
+        TraceOptions o;
+        o.compensation_radii = {{3, 0.4}};
+        if (give_orientation) o.compensation_orientations = {{3, 2}};
+        std::vector<Vec3> to;
+        for (const Step& s : trace_program(read_program(program, machine, "a.nc"), machine, o).steps)
+            if (s.kind == StepKind::feed) to.push_back(s.to);
+        return to;
+    };
+    auto same = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+        if (a.size() != b.size()) return false;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (std::abs(a[i].x - b[i].x) > 1e-9 || std::abs(a[i].y - b[i].y) > 1e-9 || std::abs(a[i].z - b[i].z) > 1e-9) return false;
+        return true;
+    };
+    const std::vector<Vec3> with_job = feeds(fanuc, true);
+    REQUIRE(!with_job.empty());
+    CHECK(same(feeds(fanuc, false), with_job));
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = fanuc;
+        const std::size_t at = t.find(from);
+        REQUIRE(at != std::string::npos);
+        return t.replace(at, from.size(), to);
+    };
+    CHECK(same(feeds(replaced("Fanuc tip T3: tip at -X -Z of the nose centre", "T2 tip at -X -Z of the nose centre [LinuxCNC numbering]"),
+                     false),
+               with_job));
+    CHECK(!same(feeds(replaced("Fanuc tip T3", "Fanuc tip T2"), false), with_job));
 }
 
 }  // namespace test_lathe_control_comp

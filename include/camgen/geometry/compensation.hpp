@@ -110,4 +110,11 @@ Vec2 lathe_tip_offset(int orientation, double radius);
 // comment: "tip at -X -Z of the nose centre" (9, 0: "tip at the nose centre").
 std::string lathe_tip_words(int orientation);
 
+// Fanuc T's imaginary tip number for LinuxCNC's orientation `orientation`, and back (the map is
+// its own inverse). Fanuc (and Haas, whose operator's manual gives it in words) numbers the
+// direction from the nose centre to the tip: 1 +X+Z, 2 +X-Z, 3 -X-Z, 4 -X+Z, 5 +Z, 6 +X, 7 -Z,
+// 8 -X; LinuxCNC's codes are the same figure mirrored in X (its 2 is Fanuc's 3, the outside
+// turning tool): 1<->4, 2<->3, 6<->8, 5, 7, 9 and 0 alike. docs/reference.md, "Tip numbers".
+int fanuc_tip_number(int orientation);
+
 }  // namespace camgen

@@ -11,7 +11,7 @@ N35 M8
 N40 G0 Z20.000
 N45 X24.000
 N50 Z1.000
-(G42 nose comp: offset 03 R0.4 nose radius, T2 tip at -X -Z of the nose centre [LinuxCNC numbering])
+(G42 nose comp: offset 03 R0.4 nose radius, Fanuc tip T3: tip at -X -Z of the nose centre)
 N55 G42 G1 Z0.000 F0.1000
 N60 X28.000
 N65 X30.000 Z-1.000
