@@ -169,7 +169,11 @@ TrcCheck trc_check_x(const std::vector<ReadEvent>& events, const TurnRoughOp& op
             return;
         }
         if (p.x >= z_lo - 1e-9 && p.x <= z_hi + 1e-9) {
-            const double b = turn_rough_boundary_at(op, std::clamp(p.x, z_lo, z_hi));
+            // The boundary's least radius within 0.0001 mm of the point's Z (the program's Z
+            // carries 4 decimals, and where the tip path stands steep, a nose's round at a
+            // corner, its radius changes fast with Z).
+            double b = INFINITY;
+            for (double dz : {-1e-4, 0.0, 1e-4}) b = std::min(b, turn_rough_boundary_at(op, std::clamp(p.x + dz, z_lo, z_hi)));
             if (std::isfinite(b) && b - p.y > c.gouge) c.gouge = b - p.y, c.gouge_at = p;
         }
         top[i] = std::min(top[i], p.x);

@@ -443,7 +443,7 @@ TEST_CASE("turn-rough along X: with a nose radius no feed's nose enters the boun
         }
         double top = 0;
         for (const Vec2& q : samples(pieces_of(p), 0.05)) top = std::max(top, q.y);
-        const double bar = top + ax + 0.5 + 2.0 * u(rng);
+        const double bar = top + ax + 2.0 + u(rng);
         const double doc = 0.6 + 1.5 * u(rng);
         const std::string text = fmt::format(
             R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": {}, "rpm": 1000}}],
