@@ -384,10 +384,10 @@ IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
 }
 
 std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, const RoughingCycleSpec& spec) const {
-    if (spec.style != RoughingCycleStyle::linuxcnc || spec.kind != RoughingCycleKind::rough_z)
-        return IsoPost::turn_cycle_limit(c, spec);
+    if (spec.style != RoughingCycleStyle::linuxcnc) return IsoPost::turn_cycle_limit(c, spec);
     const G71Words w = g71_words(c);
-    const LatheCycleModel control = linuxcnc_g71(w.start, w.profile, w.depth, w.retract);
+    const LatheCycleModel control =
+        linuxcnc_g7x(c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z, w.start, w.profile, w.depth, w.retract);
     if (control.refusal) return "from its rounded words: " + *control.refusal;
     if (control.moves.size() != c.moves.size())
         return fmt::format("its rounded words make {} moves, not {}", control.moves.size(), c.moves.size());
@@ -403,7 +403,7 @@ std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, co
 }
 
 void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
-    if (spec.style != RoughingCycleStyle::linuxcnc || spec.kind != RoughingCycleKind::rough_z) IsoPost::on_turn_cycle(c, spec);
+    if (spec.style != RoughingCycleStyle::linuxcnc) IsoPost::on_turn_cycle(c, spec);
     const G71Words w = g71_words(c);
     const int n = next_sub_++;
     // The profile: defined where it is used, before the cycle (the control skips a definition).

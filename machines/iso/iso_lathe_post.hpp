@@ -44,9 +44,9 @@ protected:
     // two-block G76 from the start point (fanuc_g76.hpp).
     void on_thread_cycle(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) override;
     std::optional<std::string> thread_cycle_limit(const ThreadCycle& cycle, const ThreadingCycleSpec& spec) const override;
-    // LinuxCNC's G71: the profile as a subroutine o<n> sub ... o<n> endsub just before it, then
-    // G71 Q<n> D0 I R F from the start point. Its limit: the control's moves from the rounded
-    // words (linuxcnc_g71) must be the cycle's within 0.001 mm.
+    // LinuxCNC's G71 (G72 along X): the profile as a subroutine o<n> sub ... o<n> endsub just
+    // before it, then G71 (G72) Q<n> D0 I R F from the start point. Its limit: the control's moves
+    // from the rounded words (linuxcnc_g7x) must be the cycle's within 0.001 mm.
     void on_turn_cycle(const TurnCycle& cycle, const RoughingCycleSpec& spec) override;
     std::optional<std::string> turn_cycle_limit(const TurnCycle& cycle, const RoughingCycleSpec& spec) const override;
     // Fanuc T's G75 R(e) / G75 X Z P Q F from the cycle's start (fanuc_g75.hpp).

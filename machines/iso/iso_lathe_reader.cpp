@@ -4,9 +4,9 @@
 // writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
 // end-face peck drilling G74 R(e) / G74 Z Q F; threading cycles: LinuxCNC's G76 P Z I J K R Q H
 // and Fanuc T's two-block G76 P(m r a) Q R / G76 X Z P Q F, expanded into the passes of camgen's
-// models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); and LinuxCNC's G71 roughing from a profile
-// subroutine (o<n> sub ... o<n> endsub, then G71 Q<n> D0 I R F), expanded into the moves the
-// control makes (geometry/lathe_cycle.hpp).
+// models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); and LinuxCNC's G71 and G72 roughing from a
+// profile subroutine (o<n> sub ... o<n> endsub, then G71/G72 Q<n> D0 I R F), expanded into the
+// moves the control makes (geometry/lathe_cycle.hpp).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -59,16 +59,26 @@ protected:
 
 private:
     void face_peck(const DrillingCycleSpec& spec, BlockWords& w);
-    // The machine's LinuxCNC-style G71, if it has one (roughingCycles).
-    const RoughingCycleSpec* linuxcnc_g71_spec() const {
+    // The machine's LinuxCNC-style G71 (rough_z) or G72 (rough_x), if it has one (roughingCycles).
+    const RoughingCycleSpec* linuxcnc_rough_spec(RoughingCycleKind kind) const {
         for (const RoughingCycleSpec& c : machine_.roughing_cycles)
-            if (c.style == RoughingCycleStyle::linuxcnc && c.kind == RoughingCycleKind::rough_z) return &c;
+            if (c.style == RoughingCycleStyle::linuxcnc && c.kind == kind) return &c;
         return nullptr;
+    }
+    // Whether it reads profile subroutines: it has a LinuxCNC-style roughing cycle.
+    bool linuxcnc_g71_spec() const {
+        return linuxcnc_rough_spec(RoughingCycleKind::rough_z) || linuxcnc_rough_spec(RoughingCycleKind::rough_x);
+    }
+    // The G code of the LinuxCNC-style roughing cycle `mode` is, if it is one the machine has.
+    std::optional<LatheCycleAxis> rough_axis(int mode) const {
+        if (mode == code(71) && linuxcnc_rough_spec(RoughingCycleKind::rough_z)) return LatheCycleAxis::z;
+        if (mode == code(72) && linuxcnc_rough_spec(RoughingCycleKind::rough_x)) return LatheCycleAxis::x;
+        return std::nullopt;
     }
     // "o<n> sub" / "o<n> endsub": n, or nullopt when the line is not that.
     static std::optional<int> sub_line(std::string_view text, std::string_view keyword);
     void sub_body_line(std::string_view text);
-    void roughing_cycle(BlockWords& w);
+    void roughing_cycle(BlockWords& w, LatheCycleAxis axis);
 
     // A profile subroutine being read (its number) and those read, by number: (Z, radius).
     std::optional<int> reading_sub_;
@@ -212,29 +222,31 @@ void IsoLatheReader::finish() {
     IsoReader::finish();
 }
 
-void IsoLatheReader::roughing_cycle(BlockWords& w) {
-    // G71 Q<n> D0 I<depth> R<retract> (F) from where the tool stands: the moves the control makes.
+void IsoLatheReader::roughing_cycle(BlockWords& w, LatheCycleAxis axis) {
+    // G71 (G72) Q<n> D0 I<depth> R<retract> (F) from where the tool stands: the moves the control
+    // makes.
+    const char* name = axis == LatheCycleAxis::x ? "G72" : "G71";
     for (char letter : {'X', 'Y', 'Z', 'J', 'K', 'P'})
         if (const Word* x = w.find(letter))
-            fail(fmt::format("{} on G71: camgen reads it as G71 Q D I R F from where the tool stands", x->text));
+            fail(fmt::format("{} on {}: camgen reads it as {} Q D I R F from where the tool stands", x->text, name, name));
     const Word* q = w.take('Q');
-    if (!q) fail("G71 without the profile's subroutine Q");
+    if (!q) fail(fmt::format("{} without the profile's subroutine Q", name));
     const int n = integer_of(*q);
     const auto sub = subs_.find(n);
-    if (sub == subs_.end()) fail(fmt::format("G71 {}: no subroutine o{} sub before it", q->text, n));
+    if (sub == subs_.end()) fail(fmt::format("{} {}: no subroutine o{} sub before it", name, q->text, n));
     if (const Word* d = w.take('D'))
         if (offset(*d) != 0.0)
-            fail(fmt::format("{} on G71: camgen reads G71 with D0 only (the control's finishing offset of the profile is not "
+            fail(fmt::format("{} on {}: camgen reads {} with D0 only (the control's finishing offset of the profile is not "
                              "modelled)",
-                             d->text));
+                             d->text, name, name));
     const Word* iw = w.take('I');
     const Word* rw = w.take('R');
     const double depth = iw ? offset(*iw) : 1.0, retract = rw ? length(*rw) : 0.5;  // LinuxCNC's defaults
-    if (!position_known()) fail("G71 from an unknown position");
-    if (!feed_) fail("G71 without a feed (F)");
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (!feed_) fail(fmt::format("{} without a feed (F)", name));
     const Vec3 here = position();
-    const LatheCycleModel model = linuxcnc_g71(Vec2{here.z, here.x}, sub->second, depth, retract);
-    if (model.refusal) fail("G71: " + *model.refusal);
+    const LatheCycleModel model = linuxcnc_g7x(axis, Vec2{here.z, here.x}, sub->second, depth, retract);
+    if (model.refusal) fail(std::string(name) + ": " + *model.refusal);
     for (const LatheCycleMove& m : model.moves) {
         const Vec3 at = position();
         if (std::abs(at.x - m.end.y) < 1e-12 && std::abs(at.z - m.end.x) < 1e-12) continue;
@@ -256,7 +268,7 @@ void IsoLatheReader::roughing_cycle(BlockWords& w) {
 }
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
-    if (c.value == code(71) && linuxcnc_g71_spec()) {
+    if (rough_axis(c.value)) {
         set_group(codes.motion, c);
         return true;
     }
@@ -281,8 +293,8 @@ bool IsoLatheReader::f_is_lead(int mode) const {
 }
 
 bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
-    if (mode == code(71) && linuxcnc_g71_spec()) {
-        roughing_cycle(w);
+    if (const auto axis = rough_axis(mode)) {
+        roughing_cycle(w, *axis);
         return true;
     }
     if (mode == code(76) && g76_spec()) {

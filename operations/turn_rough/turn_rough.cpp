@@ -5,6 +5,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "camgen/geometry/arc.hpp"
 #include "camgen/geometry/compensation.hpp"
 #include "camgen/geometry/lathe_cycle.hpp"
+#include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/vec.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 
@@ -69,9 +71,9 @@ constexpr KeySpec turn_rough_keys[] = {
      .description = "how far each pass lifts off at 45 degrees (in Z and in X) before it rapids back, mm; at most half "
                     "the depth of a pass (along X, steeper than the profile's steepest fall towards the chuck)"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
-     .description = "along Z: auto: the machine's roughing cycle (LinuxCNC G71 with the boundary as a subroutine) where "
-                    "it makes passes that leave the allowances, else longhand with a note; canned: the cycle or an error; "
-                    "longhand: passes of G0 and G1. Along X always longhand"},
+     .description = "auto: the machine's roughing cycle (LinuxCNC G71 along Z, G72 along X, with the boundary as a "
+                    "subroutine) where it makes passes that leave the allowances, else longhand with a note; canned: the "
+                    "cycle or an error; longhand: passes of G0 and G1"},
 };
 
 // The Z range of a segment of a profile (an arc's may reach beyond its ends).
@@ -157,6 +159,52 @@ double turn_rough_steepest_fall(const Profile& p) {
         }
     }
     return worst;
+}
+
+// Computer compensation: the tip path that keeps the nose circle on the boundary, closed by the
+// face at its end up to the bar (the face stands at the end's Z: the nose must not pass it).
+// Along X the passes at Z levels just below the boundary's start stop where the nose meets its
+// start corner: unless the boundary starts up a face, a face of one nose radius is put before
+// it, round whose top the nose rolls onto the first element; the tip path keeps that roll and
+// leaves the face out (the last pass ends on the start corner, not below it).
+void turn_rough_compensate(TurnRoughOp& op, const Tool& tool, Fields& f, const JobInput& in) {
+    Profile closed = op.boundary;
+    const Vec2 end = closed.segments.back().end;
+    if (end.y < op.stock_radius) closed.segments.push_back({Vec2{end.x, op.stock_radius}, std::nullopt, ArcDirection::ccw});
+    bool lead = false;
+    if (op.direction == RoughDirection::x) {
+        const Vec2 t = point_at(closed, 0.0).tangent;
+        if (std::abs(t.x) > 1e-9 || !(t.y > 0)) {
+            lead = true;
+            const Vec2 b0 = closed.start;
+            closed.start = Vec2{b0.x, b0.y - op.nose_radius};
+            closed.segments.insert(closed.segments.begin(), ProfileSegment{b0, std::nullopt, ArcDirection::ccw});
+        }
+    }
+    const std::size_t first = lead ? 1 : 0;  // the boundary's element 0 in `closed`
+    const NosePath nose = nose_path(closed, op.nose_radius, tool.orientation);
+    if (nose.refusal) {
+        const std::size_t k = nose.refusal->index;
+        if (k >= first && k - first < op.boundary.segments.size())
+            json::fail(in.source(), f.path_of("path") + "/" + std::to_string(k - first),
+                       nose.refusal->why + " (the profile with its allowances)");
+        if (k < first) f.fail("start", "the nose round the start of the profile (with its allowances): " + nose.refusal->why);
+        f.fail("path", "the face from the profile's end up to the bar: " + nose.refusal->why);
+    }
+    op.tip_boundary = nose.tip;
+    if (lead) {
+        // The lead face's offset: a line at one Z, the first of the tip path.
+        const ProfileSegment& s = op.tip_boundary.segments.front();
+        if (s.centre || std::abs(s.end.x - op.tip_boundary.start.x) > 1e-9)
+            throw std::logic_error("turn-rough: the nose path does not begin with the lead face's offset");
+        op.tip_boundary.start = s.end;
+        op.tip_boundary.segments.erase(op.tip_boundary.segments.begin());
+    }
+    for (std::size_t k : nose.concave_corners)
+        if (k >= first && k - first < op.boundary.segments.size())  // the corner at the end face: where the roughing stops anyway
+            op.notes.push_back(fmt::format("{}/{}: the sharp concave corner before this element keeps the nose's radius ({}) "
+                                           "beyond the allowances",
+                                           f.path_of("path"), k - first, in.show(op.nose_radius)));
 }
 
 }  // namespace
@@ -264,8 +312,6 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
     op.lift = in.optional_length(f, "lift").value_or(0.5);
     if (!(op.lift > 0)) f.fail("lift", "lift must be > 0");
     op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
-    if (op.direction == RoughDirection::x && op.output == CycleOutput::canned)
-        f.fail("output", "camgen writes no canned roughing cycle along X (G72) yet: use \"auto\" or \"longhand\"");
     if (op.boundary.start.x + op.approach >= in.header().clearance)
         f.fail("start", fmt::format("the passes begin at Z {} (the start, allowanceZ and approachDistance), at or above the "
                                     "clearance (Z {})",
@@ -277,33 +323,8 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
                                "compensated by camgen (computer) or not at all (none); finish the profile with a turn-profile "
                                "whose compensation is control");
     op.tip_boundary = op.boundary;
-    if (op.compensation == NoseCompensation::computer && op.nose_radius > 0 && op.direction == RoughDirection::x)
-        // Along X the passes keep the tip on the boundary, as without compensation: the nose
-        // stays outside it (its circle lies on the tip's air side for an outside tool) and leaves
-        // material on slopes and arcs, which the finishing pass takes.
-        op.notes.push_back(fmt::format("along X the tool tip follows the boundary (nose-radius compensation is made along Z "
-                                       "only so far): the nose of radius {} leaves more than the allowances on slopes and arcs",
-                                       in.show(op.nose_radius)));
-    else if (op.compensation == NoseCompensation::computer && op.nose_radius > 0) {
-        // The nose along the boundary and up the face at its end to the bar (the face stands
-        // at the end's Z: the nose must not pass it).
-        Profile closed = op.boundary;
-        const Vec2 end = closed.segments.back().end;
-        if (end.y < op.stock_radius) closed.segments.push_back({Vec2{end.x, op.stock_radius}, std::nullopt, ArcDirection::ccw});
-        const NosePath nose = nose_path(closed, op.nose_radius, tool.orientation);
-        if (nose.refusal) {
-            if (nose.refusal->index < op.boundary.segments.size())
-                json::fail(in.source(), f.path_of("path") + "/" + std::to_string(nose.refusal->index),
-                           nose.refusal->why + " (the profile with its allowances)");
-            f.fail("path", "the face from the profile's end up to the bar: " + nose.refusal->why);
-        }
-        op.tip_boundary = nose.tip;
-        for (std::size_t k : nose.concave_corners)
-            if (k < op.boundary.segments.size())  // the corner at the end face: where the roughing stops anyway
-                op.notes.push_back(fmt::format("{}/{}: the sharp concave corner before this element keeps the nose's radius ({}) "
-                                               "beyond the allowances",
-                                           f.path_of("path"), k, in.show(op.nose_radius)));
-    }
+    if (op.compensation == NoseCompensation::computer && op.nose_radius > 0)
+        turn_rough_compensate(op, tool, f, in);
     const double bottom = [&] {
         const Profile& tb = op.tip_boundary;
         double b = op.stock_radius;
@@ -334,11 +355,11 @@ TurnRoughOp TurnRoughOp::read(Fields& f, const JobInput& in) {
 namespace {
 Vec3 turn_rough_at(double r, double z) { return {r, 0.0, z}; }
 
-// Feeds along the boundary of `op` from its end back to its start (arcs turned round).
-void turn_rough_boundary_backwards(const TurnRoughOp& op, EventSink& sink) {
-    const std::vector<ProfileSegment>& segs = op.boundary.segments;
+// Feeds along `path` from its end back to its start (arcs turned round).
+void turn_rough_backwards(const TurnRoughOp& op, const Profile& path, EventSink& sink) {
+    const std::vector<ProfileSegment>& segs = path.segments;
     for (std::size_t k = segs.size(); k-- > 0;) {
-        const Vec2 to = segment_start(op.boundary, k);
+        const Vec2 to = segment_start(path, k);
         const ProfileSegment& s = segs[k];
         if (s.centre)
             sink.emit(Arc{turn_rough_at(to.y, to.x), turn_rough_at(s.centre->y, s.centre->x),
@@ -363,6 +384,27 @@ void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) 
     const double angle = std::max(45.0, (op.steepest_fall + 90.0) / 2.0) / deg_per_rad;
     const double dz = std::sqrt(2.0) * lift * std::cos(angle), dr = std::sqrt(2.0) * lift * std::sin(angle);
     sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
+    if (op.output != CycleOutput::longhand) {
+        TurnCycle c = turn_cycle(op);
+        if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
+            c.refusal = "the operations before it removed part of the bar over the profile, and the cycle roughs from the "
+                        "bar, in air there: camgen's passes start from what they left (\"output\": \"canned\" writes the cycle)";
+            c.moves.clear();
+        }
+        if (!c.refusal) {
+            // Down outside the bar to the cycle's start, the cycle, then off the end of its last
+            // pass (the boundary's start) at 45 degrees and out of the bar.
+            sink.emit(Rapid{c.start});
+            sink.emit(c);
+            const Vec2 last = c.moves.back().end;
+            const double off = std::min(op.lift, c.depth / 2);
+            sink.emit(Linear{turn_rough_at(last.y + off, last.x + off), op.feed, Movement::lead_out});
+            sink.emit(Rapid{turn_rough_at(std::max(outside, last.y + off), last.x + off)});
+            sink.emit(Rapid{turn_rough_at(std::max(outside, last.y + off), ctx.job.clearance)});
+            return;
+        }
+        sink.emit(c);
+    }
     const bool from_material = !op.material.r.empty();
     // Where a pass at Z z begins with the earlier material: approachDistance outside the most
     // of it at z and above (the tool stands towards +Z of its tip).
@@ -383,15 +425,19 @@ void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) 
         sink.emit(Linear{turn_rough_at(r_end + dr, level + dz), op.feed, Movement::lead_out});
         sink.emit(Rapid{turn_rough_at(std::max(outside, r_end + dr), level + dz)});
     }
-    // The last pass: down the end face from outside the bar, along the boundary to its start.
-    sink.emit(Rapid{turn_rough_at(outside, end.x)});
-    if (const double in = begin_at(end.x); in < outside && in > end.y) sink.emit(Rapid{turn_rough_at(in, end.x)});
-    sink.emit(Linear{turn_rough_at(end.y, end.x), op.feed, end.y < op.stock_radius ? Movement::cutting : Movement::lead_in});
-    turn_rough_boundary_backwards(op, sink);
+    // The last pass: down the end face from outside the bar, along the tip boundary to its start
+    // (with compensation the tip boundary goes on up the end face to the bar: its end is there).
+    const Profile& tip = op.tip_boundary;
+    const Vec2 tip_end = tip.segments.back().end;
+    sink.emit(Rapid{turn_rough_at(outside, tip_end.x)});
+    if (const double in = begin_at(tip_end.x); in < outside && in > tip_end.y) sink.emit(Rapid{turn_rough_at(in, tip_end.x)});
+    sink.emit(Linear{turn_rough_at(tip_end.y, tip_end.x), op.feed,
+                     tip_end.y < op.stock_radius ? Movement::cutting : Movement::lead_in});
+    turn_rough_backwards(op, tip, sink);
     // Off the start: above it is air (the passes begin there along Z too).
-    const Vec2 b0 = op.boundary.start;
-    sink.emit(Linear{turn_rough_at(b0.y + lift, z_hi + lift), op.feed, Movement::lead_out});
-    sink.emit(Rapid{turn_rough_at(outside, z_hi + lift)});
+    const Vec2 b0 = tip.start;
+    sink.emit(Linear{turn_rough_at(b0.y + lift, b0.x + lift), op.feed, Movement::lead_out});
+    sink.emit(Rapid{turn_rough_at(outside, b0.x + lift)});
     sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
 }
 }  // namespace
@@ -405,7 +451,71 @@ std::vector<double> turn_rough_x_levels(const TurnRoughOp& op) {
     return levels;
 }
 
+namespace {
+// The roughing cycle along X: LinuxCNC's G72 on the tip boundary walked backwards from the top
+// of its end face (at the bar: the cycle comes in along the line from its start to there, which
+// stays outside the bar), from a start outside the bar whose Z is the first level.
+TurnCycle turn_cycle_along_x(const TurnRoughOp& op) {
+    TurnCycle c;
+    c.path = op.path;
+    c.output = op.output;
+    c.feed = op.feed;
+    c.along_x = true;
+    Profile sub = reversed(op.tip_boundary);
+    if (sub.start.y < op.stock_radius) {
+        ProfileSegment& first = sub.segments.front();
+        if (!first.centre && std::abs(first.end.x - sub.start.x) < 1e-9) sub.start.y = op.stock_radius;  // the end face, longer
+        else sub.segments.insert(sub.segments.begin(), ProfileSegment{sub.start, std::nullopt, ArcDirection::ccw}),
+             sub.start.y = op.stock_radius;
+    }
+    c.profile = sub;
+    const double outside = op.stock_radius + op.approach;
+    // The levels go down from the start's Z by I: the first within a pass of the material's
+    // face (the boundary's start, or the bar's face beyond it). A level within 0.005 mm of a
+    // corner's Z is where the control's cycle turns on its tolerances: another start (and I).
+    const double top = std::max(op.tip_boundary.start.x, op.bar_face.value_or(op.tip_boundary.start.x));
+    const double low = sub.start.x;  // the end face's Z: the lowest of the sub
+    std::vector<double> corners{sub.start.x};
+    for (const ProfileSegment& s : sub.segments) corners.push_back(s.end.x);
+    const double room = top - low;
+    if (!(room > 0.02)) {
+        c.refusal = "the boundary is less than 0.02 mm long in Z";
+        return c;
+    }
+    std::optional<std::string> last_refusal;
+    for (int i = 0; i <= 8; ++i) {
+        const double depth = std::round(op.depth_of_cut * (1.0 - i / 40.0) * 1e4) / 1e4;
+        if (!(depth > 0.0001)) break;
+        for (int j = 0; j < 32; ++j) {
+            const double below = std::min(depth, room - 0.01) * (1.0 - j / 64.0);
+            const double level0 = std::round((top - below) * 1e4) / 1e4;
+            if (!(level0 > low + 0.005)) continue;
+            bool near = false;
+            for (double z = level0; z > low - 0.01 && !near; z -= depth)
+                for (double k : corners) near = near || std::abs(z - k) < 0.005;
+            if (near) continue;
+            const double retract = std::round(std::min(op.lift, depth / 2) * 1e4) / 1e4;
+            LatheCycleModel model = linuxcnc_g72(Vec2{level0, outside}, sub, depth, retract);
+            if (model.refusal) {
+                last_refusal = model.refusal;
+                if (model.refusal->find("runs through a corner") != std::string::npos) continue;
+                c.refusal = *model.refusal;
+                return c;
+            }
+            c.start = turn_rough_at(outside, level0);
+            c.depth = depth;
+            c.retract = retract;
+            c.moves = std::move(model.moves);
+            return c;
+        }
+    }
+    c.refusal = last_refusal.value_or("every start and depth of cut tried puts a level within 0.005 mm of a corner of the boundary");
+    return c;
+}
+}  // namespace
+
 TurnCycle turn_cycle(const TurnRoughOp& op) {
+    if (op.direction == RoughDirection::x) return turn_cycle_along_x(op);
     const Profile& path = op.tip_boundary;
     TurnCycle c;
     c.path = op.path;

@@ -110,6 +110,7 @@ std::string event_to_json(const Event& event) {
                        j["profile"] = profile;
                        j["moves"] = e.moves.size();
                        if (e.refusal) j["refusal"] = *e.refusal;
+                       if (e.along_x) j["alongX"] = true;
                    },
                    [&](const GrooveCycle& e) {
                        j = {{"event", "groove-cycle"}, {"path", e.path},

@@ -195,9 +195,51 @@ private:
     long count_ = 0;
 };
 
-}  // namespace
+// What the model's refusals call the axes: G71's, or G72's (the model runs G72 with the axes
+// swapped, and says what that means on the lathe).
+struct G7xWords {
+    const char* start_above;   // S beyond the profile's start across the passes
+    const char* start_beyond;  // S beyond it along the passes
+    const char* not_towards;   // the profile does not run the passes' way
+    const char* ends_below;    // the profile ends nearer the levels' end than it starts
+    const char* falls;         // an element goes back up the levels
+    const char* turns_back;    // an element runs against the passes
+    const char* arc_half;      // an arc the control does not take
+    const char* level;         // what a level is
+    // G72 only: the profile does not rise across the passes (rs274 then turns it the other way).
+    const char* flat = nullptr;
+};
 
-LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, double retract) {
+constexpr G7xWords g7x_words_z{
+    "the start point is not above the profile's start",
+    "the start point is not beyond the profile's start in Z (the control's cycle is not modelled down a line along X)",
+    "the profile does not run towards -Z",
+    "the profile ends below its start",
+    " falls in radius (a pocket)",
+    " turns back towards +Z",
+    " is an arc the control does not take (not within a half above or below its centre, towards -Z)",
+    "radius",
+};
+
+constexpr G7xWords g7x_words_x{
+    "the start point is not beyond the profile's start in Z",
+    "the start point is not outside the profile's start in X (the control's cycle is not modelled down a line along Z)",
+    "the profile does not run towards -X",
+    "the profile ends on the -Z side of its start",
+    " falls in Z (a pocket)",
+    " turns back towards +X",
+    " is an arc the control does not take (not within a half on the +Z or -Z side of its centre, towards -X)",
+    "Z",
+    "the profile ends at the Z it starts at (LinuxCNC's G72 turns such a profile the other way)",
+};
+
+// The (Z, radius) point with its coordinates swapped: G72's frame, in which it is G71.
+Vec2 g7x_swapped(Vec2 p) { return Vec2{p.y, p.x}; }
+
+ArcDirection g7x_reversed(ArcDirection d) { return d == ArcDirection::ccw ? ArcDirection::cw : ArcDirection::ccw; }
+
+// G71 in its own frame (Z along the passes, radius across them), its refusals in `words`.
+LatheCycleModel g7x_model(Vec2 start, const Profile& profile, double depth, double retract, const G7xWords& words) {
     LatheCycleModel out;
     auto refuse = [&](std::string why) {
         out.moves.clear();
@@ -207,12 +249,14 @@ LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, d
     if (!(depth > 0) || !(retract > 0)) return refuse("the depth of cut and the retract must be above 0");
     if (profile.segments.empty()) return refuse("the profile has no element");
     const Vec2 p0 = profile.start, pe = profile.segments.back().end;
-    if (!(start.y > p0.y + 1e-6)) return refuse("the start point is not above the profile's start");
+    if (!(start.y > p0.y + 1e-6)) return refuse(words.start_above);
     if (!(start.x > p0.x + 1e-3))
-        return refuse("the start point is not beyond the profile's start in Z (the control's cycle is not modelled down a "
-                      "line along X)");
-    if (!(p0.x - pe.x > 1e-3)) return refuse("the profile does not run towards -Z");
-    if (p0.y > pe.y) return refuse("the profile ends below its start");
+        return refuse(words.start_beyond);
+    if (!(p0.x - pe.x > 1e-3)) return refuse(words.not_towards);
+    if (p0.y > pe.y) return refuse(words.ends_below);
+    // G72 decides which way to turn the profile by the sign of its Z from the start to the end:
+    // one that stays at a Z is turned the other way (not modelled).
+    if (words.flat && !(pe.y - p0.y > 1e-6)) return refuse(words.flat);
     std::vector<G71Element> el;
     el.push_back({start, p0});
     for (std::size_t k = 0; k < profile.segments.size(); ++k) {
@@ -224,17 +268,17 @@ LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, d
             e.ccw = s.direction == ArcDirection::ccw;
         }
         const std::string which = "element " + std::to_string(k);
-        if (e.b.y < e.a.y) return refuse(which + " falls in radius (a pocket)");
+        if (e.b.y < e.a.y) return refuse(which + words.falls);
         if (!e.arc) {
-            if (e.b.x - e.a.x > 1e-3) return refuse(which + " turns back towards +Z");
+            if (e.b.x - e.a.x > 1e-3) return refuse(which + words.turns_back);
         } else {
             const double in = e.a.y - e.c.y, ex = e.b.y - e.c.y, dz = e.b.x - e.a.x;
             // The control's own test, and no pocket: a G3 on the right of its top quarter, a G2 on
             // the left of its bottom one.
             const bool control = e.ccw ? in >= -1e-3 && ex >= -1e-3 && dz <= -1e-3 : in <= 1e-3 && ex <= 1e-3 && dz <= -1e-3;
-            if (!control) return refuse(which + " is an arc the control does not take (not within a half above or below its centre, towards -Z)");
+            if (!control) return refuse(which + words.arc_half);
             const bool rising = e.ccw ? e.a.x >= e.c.x && e.b.x >= e.c.x : e.a.x <= e.c.x && e.b.x <= e.c.x;
-            if (!rising) return refuse(which + " is an arc that falls in radius (a pocket)");
+            if (!rising) return refuse(which + " is an arc that" + words.falls);
         }
         el.push_back(e);
     }
@@ -245,7 +289,7 @@ LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, d
         bool hit = through(p0.y);
         for (const ProfileSegment& s : profile.segments) hit = hit || through(s.end.y);
         if (hit)
-            return refuse("a level of the cycle (radius " + g71_number(x) +
+            return refuse(std::string("a level of the cycle (") + words.level + " " + g71_number(x) +
                           ") runs through a corner of the profile: the control's cycle is not modelled there");
     }
     if (pe.y < start.y) el.push_back({pe, Vec2{pe.x, start.y}});
@@ -258,6 +302,31 @@ LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, d
         return refuse(why);
     }
     out.moves = std::move(run.moves);
+    return out;
+}
+
+
+}  // namespace
+
+LatheCycleModel linuxcnc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& profile, double depth, double retract) {
+    if (axis == LatheCycleAxis::z) return g7x_model(start, profile, depth, retract, g7x_words_z);
+    // G72: the control turns the profile a quarter and flips it so that it is G71's, runs G71
+    // and turns the moves back; together a swap of Z and X (which turns arcs the other way).
+    Profile swapped = profile;
+    swapped.start = g7x_swapped(profile.start);
+    for (ProfileSegment& s : swapped.segments) {
+        s.end = g7x_swapped(s.end);
+        if (s.centre) s.centre = g7x_swapped(*s.centre);
+        s.direction = g7x_reversed(s.direction);
+    }
+    LatheCycleModel out = g7x_model(g7x_swapped(start), swapped, depth, retract, g7x_words_x);
+    for (LatheCycleMove& m : out.moves) {
+        m.end = g7x_swapped(m.end);
+        if (m.kind == LatheCycleMove::Kind::arc) {
+            m.centre = g7x_swapped(m.centre);
+            m.direction = g7x_reversed(m.direction);
+        }
+    }
     return out;
 }
 

@@ -566,12 +566,14 @@ std::optional<std::string> Post::turn_cycle_limit(const TurnCycle&, const Roughi
 void Post::handle_turn_cycle(const TurnCycle& c) {
     if (!pos_known_) throw std::logic_error("roughing cycle from an unknown position");
     if (c.output == CycleOutput::longhand) throw std::logic_error("a roughing cycle written longhand by its operation");
+    const RoughingCycleKind kind = c.along_x ? RoughingCycleKind::rough_x : RoughingCycleKind::rough_z;
     const RoughingCycleSpec* spec = nullptr;
     for (const RoughingCycleSpec& r : machine_.roughing_cycles)
-        if (r.kind == RoughingCycleKind::rough_z) spec = &r;
+        if (r.kind == kind) spec = &r;
     std::string reason;
     if (!spec) {
-        reason = fmt::format("machine {} has no canned roughing cycle along Z (roughingCycles)", machine_.name);
+        reason = fmt::format("machine {} has no canned roughing cycle along {} (roughingCycles)", machine_.name,
+                             c.along_x ? "X" : "Z");
     } else if (c.refusal) {
         reason = fmt::format("machine {}'s {} would not cut these passes: {}", machine_.name, spec->name, *c.refusal);
     } else {

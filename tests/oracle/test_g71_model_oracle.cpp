@@ -167,9 +167,10 @@ std::string g71m_program(const G71mCase& c) {
            " F0.2\nM2\n";
 }
 
-void g71m_compare(const G71mCase& c, const std::string& rs274) {
-    const LatheCycleModel model = linuxcnc_g71(c.start, c.profile, c.depth, c.retract);
-    const std::string program = g71m_program(c);
+void g71m_compare(const G71mCase& c, const std::string& rs274, LatheCycleAxis axis = LatheCycleAxis::z) {
+    const LatheCycleModel model = linuxcnc_g7x(axis, c.start, c.profile, c.depth, c.retract);
+    std::string program = g71m_program(c);
+    if (axis == LatheCycleAxis::x) program.replace(program.find("G71 Q100"), 3, "G72");
     INFO(program);
     REQUIRE_FALSE(model.refusal);
     const std::vector<G71mMove> want = g71m_canon(oracle::run_rs274_canon(rs274, program));
@@ -240,6 +241,44 @@ std::string g71m_lathe_program(const G71mCase& c) {
     return "G18 G7 G40 G80 G90 G94 G21\nT1 M6\nS1000 M3\nG0 G43 Z20 H1\nX" + g71m_num(2 * c.start.y) + " Z" +
            g71m_num(c.start.x) + "\nO100 sub\n" + c.sub + "O100 endsub\nG71 Q100 D0 I" + g71m_num(c.depth) + " R" +
            g71m_num(c.retract) + " F100\nG0 Z20\nM5\nM2\n";
+}
+
+// A G71 case turned into a G72 one: each point (Z, radius) to (radius - 20, Z + 70) (Z and X
+// swapped, moved so that the radii stay above 0; arcs turn the other way), the subroutine
+// written anew. G72 on it is, by LinuxCNC's source, G71 on the original: rs274 decides.
+G71mCase g72m_of(const G71mCase& g) {
+    auto map = [](Vec2 p) { return Vec2{p.y - 20.0, p.x + 70.0}; };
+    G71mCase c;
+    c.profile.plane = ProfilePlane::xz;
+    c.profile.start = map(g.profile.start);
+    std::ostringstream sub;
+    sub << "G1 X" << g71m_num(2 * c.profile.start.y) << " Z" << g71m_num(c.profile.start.x) << "\n";
+    Vec2 at = c.profile.start;
+    for (const ProfileSegment& s : g.profile.segments) {
+        const Vec2 to = map(s.end);
+        if (!s.centre) {
+            c.profile.segments.push_back({to, std::nullopt, ArcDirection::ccw});
+            sub << "G1 X" << g71m_num(2 * to.y) << " Z" << g71m_num(to.x) << "\n";
+        } else {
+            const Vec2 centre = map(*s.centre);
+            const bool ccw = s.direction != ArcDirection::ccw;
+            c.profile.segments.push_back({to, centre, ccw ? ArcDirection::ccw : ArcDirection::cw});
+            sub << (ccw ? "G3" : "G2") << " X" << g71m_num(2 * to.y) << " Z" << g71m_num(to.x) << " I" << g71m_num(centre.y - at.y)
+                << " K" << g71m_num(centre.x - at.x) << "\n";
+        }
+        at = to;
+    }
+    c.start = map(g.start);
+    c.depth = g.depth;
+    c.retract = g.retract;
+    c.sub = sub.str();
+    return c;
+}
+
+std::string g72m_lathe_program(const G71mCase& c) {
+    std::string p = g71m_lathe_program(c);
+    p.replace(p.find("G71 Q100"), 3, "G72");
+    return p;
 }
 
 }  // namespace
@@ -355,6 +394,66 @@ TEST_CASE("G71 model: what it does not cover is refused with a reason") {
     CHECK(refused.refusal->find("runs through a corner") != std::string::npos);
     // The start at the profile's start Z (a line down along X): not modelled.
     CHECK(linuxcnc_g71({0, 14.5}, Profile{ProfilePlane::xz, {0, 10}, {{{-10, 12}, std::nullopt, ArcDirection::ccw}}}, 1, 0.5).refusal);
+}
+
+
+TEST_CASE("G72 model: 300 generated profiles along X move as rs274 moves, within 0.001 mm") {
+    const std::string rs274 = g71m_rs274();
+    std::mt19937 rng(20261204);
+    int compared = 0;
+    for (int k = 0; k < 300; ++k) {
+        const G71mCase c = g72m_of(g71m_generate(rng));
+        CAPTURE(k);
+        if (linuxcnc_g72(c.start, c.profile, c.depth, c.retract).refusal) continue;
+        g71m_compare(c, rs274, LatheCycleAxis::x);
+        ++compared;
+    }
+    CHECK(compared >= 200);
+    MESSAGE(compared << " of 300 generated G72 profiles compared");
+}
+
+TEST_CASE("linuxcnc-lathe reader: G72 with its profile subroutine is read as the moves rs274 makes") {
+    const std::string rs274 = g71m_rs274();
+    std::mt19937 rng(72);
+    int compared = 0;
+    for (int k = 0; k < 60; ++k) {
+        const G71mCase c = g72m_of(g71m_generate(rng));
+        if (linuxcnc_g72(c.start, c.profile, c.depth, c.retract).refusal) continue;
+        const std::string program = g72m_lathe_program(c);
+        CAPTURE(k);
+        INFO(program);
+        const std::vector<G71mMove> want = g71m_from(g71m_canon(oracle::run_rs274_canon(rs274, program)), c.start);
+        const std::vector<G71mMove> got = g71m_from(g71m_read(program), c.start);
+        REQUIRE(want.size() > 3);
+        const std::string diff = g71m_diff(want, got);
+        CHECK_MESSAGE(diff.empty(), diff);
+        ++compared;
+    }
+    CHECK(compared >= 40);
+}
+
+TEST_CASE("G72 model: what it does not cover is refused in G72's terms") {
+    // Along X from the end face's top back to the start: X must not rise, Z must not fall.
+    Profile p{ProfilePlane::xz, {-20, 20}, {{{-20, 10}, std::nullopt, ArcDirection::ccw}, {{-10, 10}, std::nullopt, ArcDirection::ccw},
+                                            {{-5, 12}, std::nullopt, ArcDirection::ccw}, {{0, 5}, std::nullopt, ArcDirection::ccw}}};
+    const auto up = linuxcnc_g72({2, 21}, p, 1, 0.5);
+    REQUIRE(up.refusal);
+    CHECK(up.refusal->find("element 2 turns back towards +X") != std::string::npos);
+    p.segments[2].end = {-12, 8};
+    const auto back = linuxcnc_g72({2, 21}, p, 1, 0.5);
+    REQUIRE(back.refusal);
+    CHECK(back.refusal->find("element 2 falls in Z (a pocket)") != std::string::npos);
+    p.segments[2].end = {-5, 8};
+    CHECK_FALSE(linuxcnc_g72({2.3, 21}, p, 1, 0.5).refusal);
+    CHECK(linuxcnc_g72({2.3, 20}, p, 1, 0.5).refusal->find("not outside the profile's start in X") != std::string::npos);
+    CHECK(linuxcnc_g72({-25, 21}, p, 1, 0.5).refusal->find("not beyond the profile's start in Z") != std::string::npos);
+    // A profile along X alone: rs274 turns it the other way.
+    CHECK(linuxcnc_g72({2.3, 21}, Profile{ProfilePlane::xz, {-20, 20}, {{{-20, 10}, std::nullopt, ArcDirection::ccw}}}, 1, 0.5)
+              .refusal->find("ends at the Z it starts at") != std::string::npos);
+    // A level on a corner's Z.
+    const auto corner = linuxcnc_g72({2, 21}, p, 1, 0.5);
+    REQUIRE(corner.refusal);
+    CHECK(corner.refusal->find("a level of the cycle (Z 0) runs through a corner") != std::string::npos);
 }
 
 }  // namespace test_g71_model_oracle

@@ -145,8 +145,11 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     check_refused("linuxcnc-lathe", g71,
                   R"({"name": "G71", "kind": "rough-z", "style": "linuxcnc", "fields": ["depthOfCut", "finish"]})",
                   "/roughingCycles/0/fields/1", "unknown roughing field \"finish\"; fields: depthOfCut, retract, allowance");
-    check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-x", "style": "linuxcnc"})",
-                  "/roughingCycles/0/kind", "only rough-z (G71)");
+    // One cycle of each kind: a second rough-z.
+    const std::string g72 =
+        R"({"name": "G72", "kind": "rough-x", "style": "linuxcnc", "fields": ["depthOfCut", "retract", "allowance"]})";
+    check_refused("linuxcnc-lathe", g72, R"({"name": "G72", "kind": "rough-z", "style": "linuxcnc"})",
+                  "/roughingCycles/1", "a second rough-z cycle");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "fanuc"})",
                   "/roughingCycles/0/style", "linuxcnc");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z"})", "/roughingCycles/0/style", "style");
@@ -155,9 +158,11 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     check_refused("linuxcnc", R"("frame": {)", R"("roughingCycles": [{"name": "G71", "kind": "rough-z", "style": "linuxcnc"}], "frame": {)",
                   "/roughingCycles", "roughing cycles are a lathe's");
     const Machine m = load_machine("linuxcnc-lathe");
-    REQUIRE(m.roughing_cycles.size() == 1);
+    REQUIRE(m.roughing_cycles.size() == 2);
     CHECK(m.roughing_cycles[0].name == "G71");
     CHECK(m.roughing_cycles[0].fields.size() == 3);
+    CHECK(m.roughing_cycles[1].name == "G72");
+    CHECK(m.roughing_cycles[1].kind == RoughingCycleKind::rough_x);
     CHECK(load_machine("fanuc-lathe").roughing_cycles.empty());
 }
 

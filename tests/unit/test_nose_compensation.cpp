@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -422,6 +423,103 @@ TEST_CASE("turn-rough: with a nose radius the last pass runs the nose along the 
         CHECK(envelope_error(boundary, centre_of(last, 2, r), r, false, {segment_start(boundary, boundary.segments.size() - 1)}) <=
               0.002);
     }
+}
+
+TEST_CASE("turn-rough along X: with a nose radius no feed's nose enters the boundary and the last pass's nose envelopes it") {
+    // Random profiles (a face up from Z0 then cylinders, tapers, chamfers, convex arcs and
+    // concave fillets), half of them without the face (the boundary starts at a corner, round
+    // which the nose rolls), noses 0.4, 0.8 and 1.2, roughed in passes along -X.
+    std::mt19937 rng(30307);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int jobs = 0, feeds = 0;
+    double worst_gouge = 0.0, worst_envelope = 0.0;
+    for (int round = 0; round < 60; ++round) {
+        const double r = std::array<double, 3>{0.4, 0.8, 1.2}[round % 3];
+        const double ax = 0.3 * u(rng), az = 0.3 * u(rng);
+        Profile p = random_profile(rng, r);
+        if (round % 2) {
+            p.start = p.segments.front().end;
+            p.segments.erase(p.segments.begin());
+        }
+        double top = 0;
+        for (const Vec2& q : samples(pieces_of(p), 0.05)) top = std::max(top, q.y);
+        const double bar = top + ax + 2.0 + u(rng);
+        const double doc = 0.6 + 1.5 * u(rng);
+        const std::string text = fmt::format(
+            R"({{"clearance": 20, "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": {}, "rpm": 1000}}],
+  "operations": [{{"type": "turn-rough", "direction": "x", "tool": 1, "feed": 200, "xValues": "radius", "startX": {}, "allowanceX": {},
+                  "allowanceZ": {}, "depthOfCut": {}, {}}}]}})",
+            r, bar, ax, az, doc, json_of(p));
+        INFO(text);
+        // camgen's passes, and the cycle's moves (G72: "auto" without a machine gives the cycle).
+        for (const char* output : {"longhand", "auto"}) {
+        CAPTURE(output);
+        const Job job = read_job(text.substr(0, text.size() - 3) + R"(, "output": ")" + output + R"("}]})", "roughx.json");
+        // The boundary, worked out here: the profile moved by the allowances, closed by the face
+        // at its end up to the bar.
+        Profile boundary = p;
+        const Vec2 shift{az, ax};
+        boundary.start = boundary.start + shift;
+        for (ProfileSegment& s : boundary.segments) {
+            s.end = s.end + shift;
+            if (s.centre) s.centre = *s.centre + shift;
+        }
+        boundary.segments.push_back({Vec2{boundary.segments.back().end.x, bar}, std::nullopt, ArcDirection::ccw});
+        const std::vector<Piece> closed = pieces_of(boundary);
+        // Every feed's nose stays outside the boundary; the last pass is the cutting feeds after
+        // the last rapid before the final lift off.
+        Vec2 at{0, 0};
+        bool started = false;
+        std::vector<Piece> pass, last;
+        std::vector<Event> events;
+        for (const Event& e : expand_job(job)) {
+            if (const auto* c = std::get_if<TurnCycle>(&e)) {
+                for (const Event& m : turn_cycle_moves(*c)) events.push_back(m);
+            } else {
+                events.push_back(e);
+            }
+        }
+        for (const Event& e : events) {
+            Piece moved;
+            Movement kind = Movement::cutting;
+            bool feed = true;
+            if (const auto* q = std::get_if<Rapid>(&e)) moved = {at, {q->to.z, q->to.x}}, feed = false;
+            else if (const auto* l = std::get_if<Linear>(&e)) moved = {at, {l->to.z, l->to.x}}, kind = l->movement;
+            else if (const auto* a = std::get_if<Arc>(&e))
+                moved = {at, {a->to.z, a->to.x}, true, {a->centre.z, a->centre.x}, a->direction == ArcDirection::ccw},
+                kind = a->movement;
+            else continue;
+            at = moved.b;
+            if (!std::exchange(started, true)) continue;
+            if (!feed) {
+                pass.clear();
+                continue;
+            }
+            ++feeds;
+            for (const Vec2& c : samples(centre_of({moved}, 2, r), 0.02))
+                worst_gouge = std::max(worst_gouge, r - distance_to(closed, c));
+            if (kind == Movement::cutting) pass.push_back(moved);
+            else if (kind == Movement::lead_out && !pass.empty()) last = pass;
+        }
+        // The last pass: its first feed comes down the end face's line from outside the bar; from
+        // where the nose touches the bar's corner (the tip a nose radius below the bar) the nose
+        // runs down the face and along the boundary to its start.
+        REQUIRE(last.size() >= 2);
+        CHECK(!last.front().arc);
+        CHECK(std::abs(last.front().a.x - last.front().b.x) < 1e-9);
+        CHECK(last.front().a.y >= bar - r - 1e-9);
+        last.front().a.y = bar - r;
+        const double e = envelope_error(boundary, centre_of(last, 2, r), r, false,
+                                        {segment_start(boundary, boundary.segments.size() - 1)});
+        worst_envelope = std::max(worst_envelope, e);
+        CHECK(e <= 0.002);
+        ++jobs;
+        }
+    }
+    CHECK(worst_gouge <= 0.002);
+    MESSAGE("turn-rough along X with a nose: " << jobs << " random jobs, " << feeds << " feeds; the nose enters the boundary by at most "
+                                               << worst_gouge << " mm, the last pass's envelope is off it by at most " << worst_envelope
+                                               << " mm");
 }
 
 TEST_CASE("nose compensation: refusals and notes at their JSON paths") {

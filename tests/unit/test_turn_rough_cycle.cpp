@@ -1,5 +1,5 @@
 // turn-rough's output (issue 30 item 2): a TurnCycle (LinuxCNC's G71 with the boundary as its
-// profile subroutine) where the control's cycle makes the roughing, longhand otherwise; the
+// profile subroutine, G72 along X) where the control's cycle makes the roughing, longhand otherwise; the
 // linuxcnc-lathe program and its reading back; the notes and refusals with their JSON paths.
 #include <doctest/doctest.h>
 
@@ -110,6 +110,73 @@ TEST_CASE("turn-rough output: G71 with its profile subroutine on linuxcnc-lathe,
     }
 }
 
+TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcnc-lathe, read back as the job's moves") {
+    const Machine lcnc = load_machine("linuxcnc-lathe");
+    for (const char* nose : {R"(, "direction": "x")", R"(, "direction": "x", "compensation": "none")"}) {
+        CAPTURE(nose);
+        const std::string text = rc_job(nose);
+        const Job j = read_job(text, "rc.json");
+        const auto& op = std::get<TurnRoughOp>(j.operations.at(1));
+        const TurnCycle c = turn_cycle(op);
+        REQUIRE_FALSE(c.refusal);
+        CHECK(c.along_x);
+        // The start outside the bar, its Z (the first level) at most a pass below the faced Z0;
+        // the sub from the top of the end face (at the bar) back to the boundary's start.
+        CHECK(c.start.x == doctest::Approx(20.0 + 1.0));
+        CHECK(c.start.z <= 0.0);
+        CHECK(c.start.z >= -1.5);
+        CHECK(c.depth <= 1.5);
+        CHECK(c.profile.start.y == doctest::Approx(20.0));
+        CHECK(c.profile.segments.back().end == op.tip_boundary.start);
+        const auto p = rc_posted(text, lcnc);
+        CHECK_MESSAGE(p.text.find("o100 sub\nG1 X40 Z") != std::string::npos, p.text);
+        CHECK(p.text.find("o100 endsub\nG72 Q100 D0 I") != std::string::npos);
+        CHECK(p.text.find("G71") == std::string::npos);
+        CHECK(p.warnings.find("longhand") == std::string::npos);
+        const Trace read = trace_program(read_program(p.text, lcnc, "t.ngc"), lcnc);
+        const auto mismatch = compare_traces(trace_expected(expand_job(j), lcnc), read, compare_tolerance(lcnc));
+        CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
+        // Another depth of cut in the G72 block is another roughing: found.
+        std::string wrong = p.text;
+        const std::size_t at = wrong.find("D0 I");
+        REQUIRE(at != std::string::npos);
+        const std::size_t end = wrong.find(' ', at + 3);
+        wrong.replace(at + 3, end - (at + 3), "I0.4");
+        CHECK(compare_traces(trace_expected(expand_job(j), lcnc), trace_program(read_program(wrong, lcnc, "t.ngc"), lcnc),
+                             compare_tolerance(lcnc)));
+        // longhand: camgen's passes along X, no cycle.
+        const auto l = rc_posted(rc_job(std::string(nose) + R"(, "output": "longhand")"), lcnc);
+        CHECK(l.text.find("G72") == std::string::npos);
+        // fanuc-lathe has no G72: the control's moves longhand, read back as the job's, no note.
+        const Machine fanuc = load_machine("fanuc-lathe");
+        const auto q = rc_posted(text, fanuc);
+        CHECK(q.text.find("G72") == std::string::npos);
+        CHECK(q.warnings.find("longhand") == std::string::npos);
+        const auto miss = compare_traces(trace_expected(expand_job(j), fanuc), trace_program(read_program(q.text, fanuc, "t.nc"), fanuc),
+                                         compare_tolerance(fanuc));
+        CHECK_MESSAGE(!miss, (miss ? miss->message : ""));
+    }
+}
+
+TEST_CASE("turn-rough output along X: no level of G72 within 0.005 mm of the Z of a corner of its sub") {
+    for (double doc : {1.0, 2.0, 0.5, 2.5}) {
+        CAPTURE(doc);
+        const std::string text = fmt::format(
+            R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0}}}},
+  "tools": [{{"number": 1, "type": "turning-tool", "noseRadius": 0.4, "rpm": 1000}}],
+  "operations": [{{"type": "turn-rough", "tool": 1, "feed": 200, "depthOfCut": {}, "compensation": "none", "direction": "x",
+                   "start": [10, 0], "path": [{{"line": [20, -2]}}, {{"line": [20, -5]}}, {{"line": [30, -5]}}, {{"line": [30, -10]}}, {{"line": [36, -12]}}]}}]}})",
+            doc);
+        const Job j = read_job(text, "rc.json");
+        const auto& op = std::get<TurnRoughOp>(j.operations.at(0));
+        const TurnCycle c = turn_cycle(op);
+        REQUIRE_FALSE(c.refusal);
+        CHECK(c.depth <= doc);
+        for (double level = c.start.z; level > -12 - 0.01; level -= c.depth)
+            for (double corner : {0.0, -2.0, -5.0, -10.0, -12.0}) CHECK(std::abs(level - corner) >= 0.005 - 1e-9);
+    }
+}
+
 TEST_CASE("turn-rough output: longhand where the cycle would not make the roughing (a note), refused under canned") {
     const Machine lcnc = load_machine("linuxcnc-lathe");
     const Machine fanuc = load_machine("fanuc-lathe");
@@ -134,13 +201,21 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
           std::string::npos);
     // longhand: no cycle, the passes as before.
     CHECK(rc_posted(rc_job(R"(, "output": "longhand")"), lcnc).text.find("G71") == std::string::npos);
-    // Along X: longhand; canned refused when read.
-    const std::string along_x = rc_job(R"(, "direction": "x", "output": "canned")");
-    try {
-        (void)read_job(along_x, "rc.json");
-        FAIL("a canned roughing along X was read");
-    } catch (const InputError& e) {
-        CHECK(std::string(e.what()).find("/operations/1/output") != std::string::npos);
+    // Along X: an undercut (X falling along the profile) is a pocket for G72 (element 4 of its
+    // sub, which runs from the end face back: the profile's element 3): longhand with a note,
+    // refused under canned; fanuc-lathe has no G72.
+    {
+        const auto p = rc_posted(rc_job(R"(, "compensation": "none", "direction": "x")", under), lcnc);
+        CHECK(p.text.find("G72") == std::string::npos);
+        CHECK_MESSAGE(p.warnings.find("/operations/1 (turn rough): the roughing is written longhand because machine "
+                                      "linuxcnc-lathe's G72 would not cut these passes: element 4 turns back towards +X") !=
+                          std::string::npos,
+                      p.warnings);
+        CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "direction": "x", "output": "canned")", under), lcnc)
+                  .find("/operations/1/output: machine linuxcnc-lathe's G72 would not cut these passes") != std::string::npos);
+        CHECK(rc_refusal(rc_job(R"(, "direction": "x", "output": "canned")"), fanuc)
+                  .find("/operations/1/output: machine fanuc-lathe has no canned roughing cycle along X (roughingCycles)") !=
+              std::string::npos);
     }
     // A bar not faced to the profile's start: the cycle's line down to it would run through the
     // stub, so it is refused, and the note says why.

@@ -235,8 +235,8 @@ struct ThreadCycle {
     friend bool operator==(const ThreadCycle&, const ThreadCycle&) = default;
 };
 
-// A canned roughing cycle along -Z (turn-rough's output: LinuxCNC's G71 with its profile as a
-// subroutine), resolved to absolute values (mm, radius). Before it the tool stands at `start`
+// A canned roughing cycle along -Z or -X (turn-rough's output: LinuxCNC's G71 or G72 with its
+// profile as a subroutine), resolved to absolute values (mm, radius). Before it the tool stands at `start`
 // (Z, radius in x); `profile` ((Z, radius)) is what the cycle roughs to: the finished profile
 // moved by the allowances, as the tool tip follows it (a nose's tip path where camgen makes up
 // for the nose), so that the control leaves no offset of its own (LinuxCNC D0). `moves` are
@@ -255,13 +255,17 @@ struct TurnCycle {
     double feed = 0.0;                  // mm/min
     std::vector<LatheCycleMove> moves;  // what the control makes of it, from `start`
     std::optional<std::string> refusal;
+    // Passes along -X at Z levels `depth` apart (LinuxCNC's G72: `profile` is then the boundary
+    // walked backwards from the top of its end face, the control's G71 with Z and X swapped),
+    // else along -Z (G71).
+    bool along_x = false;
     friend bool operator==(const TurnCycle& a, const TurnCycle& b) {
         auto same_profile = [](const Profile& x, const Profile& y) {
             return x.plane == y.plane && x.start == y.start && x.segments == y.segments;
         };
         return a.path == b.path && a.output == b.output && a.start == b.start && same_profile(a.profile, b.profile) &&
                a.depth == b.depth && a.retract == b.retract && a.feed == b.feed && a.moves == b.moves &&
-               a.refusal == b.refusal;
+               a.refusal == b.refusal && a.along_x == b.along_x;
     }
 };
 

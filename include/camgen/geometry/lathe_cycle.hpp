@@ -1,5 +1,5 @@
 #pragma once
-// What LinuxCNC 2.9's G71 roughing cycle makes of a profile: the moves the control makes, as a
+// What LinuxCNC 2.9's G71 roughing cycle (and G72, below) makes of a profile: the moves the control makes, as a
 // model camgen computes itself (held to rs274 by tests/oracle/test_g71_model_oracle.cpp). The
 // linuxcnc-lathe reader expands a G71 it reads back into these moves, so that verify, stats and
 // the simulation see what the control will cut; a canned turn-rough carries them (TurnCycle) as
@@ -44,8 +44,26 @@ struct LatheCycleModel {
     std::optional<std::string> refusal;  // why the model does not cover this profile (moves empty)
 };
 
-// LinuxCNC's `G71 Q<sub> D0 I<depth> R<retract>` from start (Z, radius) on `profile` ((Z,
-// radius), its start the sub's first point). depth and retract > 0.
-LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, double retract);
+// Which of LinuxCNC's roughing cycles: G71 (passes along -Z at radial levels) or G72 (passes
+// along -X at Z levels).
+enum class LatheCycleAxis { z, x };
+
+// LinuxCNC's `G71 Q<sub> D0 I<depth> R<retract>` (axis z) or `G72 ...` (axis x) from start (Z,
+// radius) on `profile` ((Z, radius), its start the sub's first point). depth and retract > 0.
+// G72 is G71 with Z and X swapped (the control turns the profile a quarter and flips it: LinuxCNC
+// 2.9 interp_g7x.cc, do_g72), so that everything above holds with the roles swapped: the levels
+// are Z = S's Z, S's Z - I, ...; each pass feeds along -X to the profile; the profile's X never
+// rises and its Z never falls along the sub (it runs from outside towards the axis and +Z, with
+// no pocket); the last pass runs along the whole profile and a closing line along Z from its
+// end to S's Z where it ends below it. A G72 profile is a turn-rough's boundary walked backwards
+// from the top of its end face.
+LatheCycleModel linuxcnc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& profile, double depth, double retract);
+
+inline LatheCycleModel linuxcnc_g71(Vec2 start, const Profile& profile, double depth, double retract) {
+    return linuxcnc_g7x(LatheCycleAxis::z, start, profile, depth, retract);
+}
+inline LatheCycleModel linuxcnc_g72(Vec2 start, const Profile& profile, double depth, double retract) {
+    return linuxcnc_g7x(LatheCycleAxis::x, start, profile, depth, retract);
+}
 
 }  // namespace camgen

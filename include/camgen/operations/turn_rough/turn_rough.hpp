@@ -8,9 +8,11 @@
 // the allowances are all that is left. With direction "x" the passes run along -X instead (the
 // facing direction, as Fanuc's G72), at Z levels depthOfCut apart, each from outside the bar in
 // to the boundary, lifted off away from it; the last pass follows the boundary from the end face
-// back to the start. Along Z, output "auto" or "canned" hands the passes to the machine's
-// roughing cycle (TurnCycle: LinuxCNC's G71 on linuxcnc-lathe, the profile as the tip follows
-// it in a subroutine, D0); along X they are longhand. (Z, radius), mm.
+// back to the start. Output "auto" or "canned" hands the passes to the machine's roughing cycle
+// (TurnCycle: LinuxCNC's G71 along Z, G72 along X, on linuxcnc-lathe, the profile as the tip
+// follows it in a subroutine, D0). With a nose radius and computer compensation the passes and
+// the last pass keep the nose circle on the boundary in both directions (tip_boundary).
+// (Z, radius), mm.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -59,8 +61,10 @@ struct TurnRoughOp {
     Profile boundary;               // the profile moved by the allowances: what the roughing leaves
     // What the tool tip follows to leave the boundary: with a nose radius and computer
     // compensation the tip path of nose_path along the boundary closed by its end face up to
-    // the bar (so its end is that face's), else the boundary itself. The levels' spans and
-    // the last pass are this path's.
+    // the bar (so its end is that face's), else the boundary itself. Along X it begins with
+    // the nose's roll round the boundary's start corner from +Z (unless the boundary starts up
+    // a face), so that every Z level from the start down has its stop on it. The levels' spans
+    // (along X: each pass's stop) and the last pass are this path's.
     Profile tip_boundary;
     NoseCompensation compensation = NoseCompensation::computer;
     double nose_radius = 0.0;       // mm
@@ -112,15 +116,19 @@ std::vector<double> turn_rough_x_levels(const TurnRoughOp& op);
 // span: rapid down in air (beyond the start, or down the column the levels above have cleared),
 // feed along -Z to the span's end, lift at 45 degrees, rapid back in air; then feed along the
 // boundary, up the face at its end to the bar, lift off, rapid back to the clearance. Along X:
-// for each Z level, rapid down outside the bar, feed in along -X to the boundary, lift off
+// for each Z level, rapid down outside the bar, feed in along -X to the tip boundary, lift off
 // (+Z, and +X steeper than the boundary's steepest fall) and rapid back out; then feed down the
-// end face, along the boundary to its start, lift off it and rapid to the clearance.
+// end face, along the tip boundary to its start, lift off it and rapid to the clearance. Under
+// "auto"/"canned" the cycle (turn_cycle) instead, in either direction, where it is not refused.
 void expand(const TurnRoughOp& op, const Context& context, EventSink& sink);
 
 // The roughing cycle of a turn-rough along Z: from its start beyond the part, levels depthOfCut
 // apart at most, the control's moves (linuxcnc_g71), or a refusal saying why the cycle would not
 // rough this boundary (a pocket, a profile starting inside the bar, a level through a corner
-// whatever the start).
+// whatever the start). Along X (along_x): G72 (linuxcnc_g72) on the tip boundary walked
+// backwards from the top of its end face at the bar, from a start approachDistance outside the
+// bar whose Z, the first level, is at most depthOfCut below the boundary's start (or the bar's
+// face beyond it).
 TurnCycle turn_cycle(const TurnRoughOp& op);
 
 // The operation's name for comments: its comment, else "turn rough".
