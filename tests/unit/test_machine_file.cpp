@@ -158,7 +158,10 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     REQUIRE(m.roughing_cycles.size() == 1);
     CHECK(m.roughing_cycles[0].name == "G71");
     CHECK(m.roughing_cycles[0].fields.size() == 3);
-    CHECK(load_machine("fanuc-lathe").roughing_cycles.empty());
+    const Machine fanuc = load_machine("fanuc-lathe");
+    REQUIRE(fanuc.roughing_cycles.size() == 1);
+    CHECK(fanuc.roughing_cycles[0].style == RoughingCycleStyle::fanuc_g71);
+    CHECK(fanuc.rough_pattern() == RoughCyclePattern::fanuc_g71);
 }
 
 TEST_CASE("machine file: dialect settings are read with the machine, each error naming its line and key") {
