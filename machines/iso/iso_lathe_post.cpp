@@ -352,6 +352,107 @@ void IsoLathePost::on_thread_cycle(const ThreadCycle& c, const ThreadingCycleSpe
     forget_motion();
 }
 
+void IsoLathePost::profile_blocks(const Profile& profile, std::vector<std::string>& lines, Profile& read) const {
+    const nc::Format x = machine().format("x");  // diameters
+    const nc::Format z = machine().format("z");
+    const nc::Format& len = xyz_format();       // I, K: radial mm
+    auto point = [&](Vec2 p) { return Vec2{z.rounded(p.x), x.rounded(p.y)}; };
+    Vec2 at = read.start;
+    for (const ProfileSegment& s : profile.segments) {
+        const Vec2 end = point(s.end);
+        if (!s.centre) {
+            lines.push_back(fmt::format("{} {} {}", g(1), x.word("X", s.end.y), z.word("Z", s.end.x)));
+            read.segments.push_back({end, std::nullopt, ArcDirection::ccw});
+        } else {
+            const double i = len.rounded(s.centre->y - at.y), k = len.rounded(s.centre->x - at.x);
+            lines.push_back(fmt::format("{} {} {} {} {}", g(s.direction == ArcDirection::ccw ? 3 : 2), x.word("X", s.end.y),
+                                        z.word("Z", s.end.x), len.word("I", s.centre->y - at.y), len.word("K", s.centre->x - at.x)));
+            read.segments.push_back({end, Vec2{at.x + k, at.y + i}, s.direction});
+        }
+        at = end;
+    }
+}
+
+IsoLathePost::FanucG71Words IsoLathePost::fanuc_g71_words(const TurnCycle& c) const {
+    FanucG71Words w;
+    const nc::Format x = machine().format("x");
+    const nc::Format z = machine().format("z");
+    const nc::Format& len = xyz_format();  // U(depth) and R(retract) of the first block: radial mm
+    const Vec2 a = fanuc_g71_start(c);
+    const Profile shape = fanuc_g71_shape(a, c.profile);
+    w.start = Vec2{z.rounded(a.x), x.rounded(a.y)};
+    w.a_x = x.word("X", a.y);
+    w.read.plane = ProfilePlane::xz;
+    w.read.start = Vec2{w.start.x, x.rounded(shape.start.y)};
+    // ns: along X only from A (type I), at rapid: the control moves to each level so.
+    w.shape.push_back(fmt::format("{} {}", g(0), x.word("X", shape.start.y)));
+    profile_blocks(shape, w.shape, w.read);
+    w.depth = len.rounded(c.depth);
+    w.retract = len.rounded(c.retract);
+    w.u = len.word("U", c.depth);
+    w.r = len.word("R", c.retract);
+    return w;
+}
+
+namespace {
+// Why a control's moves (from the rounded words) are not camgen's within 0.001 mm, if they are not.
+std::optional<std::string> lathe_cycle_moves_differ(const std::vector<LatheCycleMove>& control,
+                                                    const std::vector<LatheCycleMove>& camgen) {
+    if (control.size() != camgen.size())
+        return fmt::format("its rounded words make {} moves, not {}", control.size(), camgen.size());
+    for (std::size_t n = 0; n < camgen.size(); ++n) {
+        const LatheCycleMove& a = control[n];
+        const LatheCycleMove& b = camgen[n];
+        double off = distance(a.end, b.end);
+        if (a.kind == LatheCycleMove::Kind::arc) off = std::max(off, distance(a.centre, b.centre));
+        if (a.kind != b.kind || off > 0.001)
+            return fmt::format("its move {} would run {} mm from camgen's", n + 1, number_text(off, 4));
+    }
+    return std::nullopt;
+}
+}  // namespace
+
+std::optional<std::string> IsoLathePost::fanuc_g71_limit(const TurnCycle& c) const {
+    const Vec2 a = fanuc_g71_start(c);
+    const LatheCycleModel own = fanuc_g71(a, fanuc_g71_shape(a, c.profile), c.depth, c.retract);
+    if (own.refusal) return *own.refusal;
+    const FanucG71Words w = fanuc_g71_words(c);
+    const LatheCycleModel control = fanuc_g71(w.start, w.read, w.depth, w.retract);
+    if (control.refusal) return "from its rounded words: " + *control.refusal;
+    return lathe_cycle_moves_differ(control.moves, own.moves);
+}
+
+void IsoLathePost::write_fanuc_g71(const TurnCycle& c, const RoughingCycleSpec& spec) {
+    const FanucG71Words w = fanuc_g71_words(c);
+    // Up to A (the event's start is A's Z, one depth of cut lower), then the two blocks, then
+    // the finishing shape ns..nf, which the control skips after the cycle. No G70: camgen's
+    // finishing is a turn-profile of its own, and U0 W0 leave nothing for G70 to take.
+    writer().add(g(0)).add(w.a_x).end();
+    writer().add(spec.name).add(w.u).add(w.r).end();
+    const nc::BlockStyle& style = writer().style();
+    const long count = static_cast<long>(w.shape.size());
+    long ns = 0, step = 1;
+    if (style.sequence_numbers) {
+        // The program's own numbers: the shape's blocks follow the cycle's second block.
+        step = style.sequence_increment;
+        ns = writer().next_sequence() + step;
+    } else {
+        ns = next_shape_number_;
+        next_shape_number_ += count;
+    }
+    const long nf = ns + (count - 1) * step;
+    if (nf > 99999) throw InputError(c.path, fmt::format("the finishing shape's sequence numbers reach N{}, above N99999", nf));
+    writer().add(spec.name).add(fmt::format("P{}", ns)).add(fmt::format("Q{}", nf)).add(machine().format("x").word("U", 0.0))
+        .add(machine().format("z").word("W", 0.0)).add(feed_word(c.feed)).end();
+    for (long k = 0; k < count; ++k) {
+        if (!style.sequence_numbers) writer().add(fmt::format("N{}", ns + k));
+        writer().add(w.shape[static_cast<std::size_t>(k)]).end();
+    }
+    // The control returns to A, in no motion mode camgen writes.
+    reset_modal_axes();
+    forget_motion();
+}
+
 IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
     G71Words w;
     const nc::Format x = machine().format("x");  // diameters under G7
@@ -362,20 +463,7 @@ IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
     w.profile.plane = ProfilePlane::xz;
     w.profile.start = point(c.profile.start);
     w.sub.push_back(fmt::format("{} {} {}", g(1), x.word("X", c.profile.start.y), z.word("Z", c.profile.start.x)));
-    Vec2 at = w.profile.start;
-    for (const ProfileSegment& s : c.profile.segments) {
-        const Vec2 end = point(s.end);
-        if (!s.centre) {
-            w.sub.push_back(fmt::format("{} {} {}", g(1), x.word("X", s.end.y), z.word("Z", s.end.x)));
-            w.profile.segments.push_back({end, std::nullopt, ArcDirection::ccw});
-        } else {
-            const double i = len.rounded(s.centre->y - at.y), k = len.rounded(s.centre->x - at.x);
-            w.sub.push_back(fmt::format("{} {} {} {} {}", g(s.direction == ArcDirection::ccw ? 3 : 2), x.word("X", s.end.y),
-                                        z.word("Z", s.end.x), len.word("I", s.centre->y - at.y), len.word("K", s.centre->x - at.x)));
-            w.profile.segments.push_back({end, Vec2{at.x + k, at.y + i}, s.direction});
-        }
-        at = end;
-    }
+    profile_blocks(c.profile, w.sub, w.profile);
     w.depth = len.rounded(c.depth);
     w.retract = len.rounded(c.retract);
     w.i = len.word("I", c.depth);
@@ -384,25 +472,20 @@ IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
 }
 
 std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, const RoughingCycleSpec& spec) const {
+    if (spec.style == RoughingCycleStyle::fanuc_g71 && spec.kind == RoughingCycleKind::rough_z) return fanuc_g71_limit(c);
     if (spec.style != RoughingCycleStyle::linuxcnc) return IsoPost::turn_cycle_limit(c, spec);
     const G71Words w = g71_words(c);
     const LatheCycleModel control =
         linuxcnc_g7x(c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z, w.start, w.profile, w.depth, w.retract);
     if (control.refusal) return "from its rounded words: " + *control.refusal;
-    if (control.moves.size() != c.moves.size())
-        return fmt::format("its rounded words make {} moves, not {}", control.moves.size(), c.moves.size());
-    for (std::size_t n = 0; n < c.moves.size(); ++n) {
-        const LatheCycleMove& a = control.moves[n];
-        const LatheCycleMove& b = c.moves[n];
-        double off = distance(a.end, b.end);
-        if (a.kind == LatheCycleMove::Kind::arc) off = std::max(off, distance(a.centre, b.centre));
-        if (a.kind != b.kind || off > 0.001)
-            return fmt::format("its move {} would run {} mm from camgen's", n + 1, number_text(off, 4));
-    }
-    return std::nullopt;
+    return lathe_cycle_moves_differ(control.moves, c.moves);
 }
 
 void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
+    if (spec.style == RoughingCycleStyle::fanuc_g71 && spec.kind == RoughingCycleKind::rough_z) {
+        write_fanuc_g71(c, spec);
+        return;
+    }
     if (spec.style != RoughingCycleStyle::linuxcnc) IsoPost::on_turn_cycle(c, spec);
     const G71Words w = g71_words(c);
     const int n = next_sub_++;

@@ -70,6 +70,22 @@ private:
     };
     G71Words g71_words(const TurnCycle& cycle) const;
     int next_sub_ = 100;          // the number of the next profile subroutine
+    // A profile's blocks after its start (G1 X Z, G2/G3 X Z I K), appended to `lines`, and the
+    // profile as the control reads them back (`read`'s start set by the caller).
+    void profile_blocks(const Profile& profile, std::vector<std::string>& lines, Profile& read) const;
+    // Fanuc T's G71 type I: the start point A's X word, the first block's U R, the finishing
+    // shape's blocks (ns: G0 X along X from A) and the cycle as the control reads it (rounded).
+    struct FanucG71Words {
+        std::string a_x, u, r;
+        std::vector<std::string> shape;
+        Profile read;             // the finishing shape, (Z, radius)
+        Vec2 start;               // A, rounded
+        double depth = 0.0, retract = 0.0;
+    };
+    FanucG71Words fanuc_g71_words(const TurnCycle& cycle) const;
+    std::optional<std::string> fanuc_g71_limit(const TurnCycle& cycle) const;
+    void write_fanuc_g71(const TurnCycle& cycle, const RoughingCycleSpec& spec);
+    long next_shape_number_ = 1;  // the next ns where the program has no sequence numbers
     // Fanuc T's two blocks, or why the cycle cannot be written so.
     struct FanucG76Words {
         std::vector<std::string> first, second;

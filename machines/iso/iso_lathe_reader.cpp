@@ -4,9 +4,11 @@
 // writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
 // end-face peck drilling G74 R(e) / G74 Z Q F; threading cycles: LinuxCNC's G76 P Z I J K R Q H
 // and Fanuc T's two-block G76 P(m r a) Q R / G76 X Z P Q F, expanded into the passes of camgen's
-// models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); and LinuxCNC's G71 and G72 roughing from a
+// models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); LinuxCNC's G71 and G72 roughing from a
 // profile subroutine (o<n> sub ... o<n> endsub, then G71/G72 Q<n> D0 I R F), expanded into the
-// moves the control makes (geometry/lathe_cycle.hpp).
+// moves the control makes (geometry/lathe_cycle.hpp); and Fanuc T's type I G71 U(depth)
+// R(retract) / G71 P Q U0 W0 F with its finishing shape in the blocks ns..nf right after it,
+// expanded into the moves of camgen's model of it (fanuc_g71).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -43,6 +45,9 @@ protected:
 
     void line(std::string_view text) override;
     void finish() override;
+    std::string_view address_letters() const override {
+        return fanuc_g71_spec() ? std::string_view("XYZIJKRQPFSTHDUW") : IsoReader::address_letters();
+    }
 
 public:
     // The base's, and the profile subroutines read (a custom block may not define one).
@@ -79,6 +84,32 @@ private:
     static std::optional<int> sub_line(std::string_view text, std::string_view keyword);
     void sub_body_line(std::string_view text);
     void roughing_cycle(BlockWords& w, LatheCycleAxis axis);
+    // A block of a G71 profile (G0/G1/G2/G3 X Z I K) onto `profile` (its start set by the
+    // first block, `started`), `motion` the modal motion code in it; `where` names it in messages.
+    void profile_block(const Block& b, Profile& profile, bool& started, int& motion, const std::string& where,
+                       bool x_only_first);
+    // The moves of a roughing cycle from where the tool stands.
+    void cycle_moves(const std::vector<LatheCycleMove>& moves);
+    // The machine's Fanuc T G71 (roughingCycles of style fanuc-g71), if it has one.
+    const RoughingCycleSpec* fanuc_g71_spec() const {
+        for (const RoughingCycleSpec& c : machine_.roughing_cycles)
+            if (c.style == RoughingCycleStyle::fanuc_g71 && c.kind == RoughingCycleKind::rough_z) return &c;
+        return nullptr;
+    }
+    void fanuc_g71(BlockWords& w);
+    void fanuc_shape_line(std::string_view text);
+    // Fanuc G71's first block: U(depth) R(retract), radial mm.
+    std::optional<std::pair<double, double>> fanuc_g71_first_;
+    // A Fanuc G71 whose finishing shape ns..nf is being read.
+    struct FanucG71Shape {
+        long ns = 0, nf = 0;
+        Vec2 start;  // A, (Z, radius)
+        double depth = 0.0, retract = 0.0;
+        Profile shape;
+        bool started = false;
+        int motion = -1;
+    };
+    std::optional<FanucG71Shape> fanuc_shape_;
 
     // A profile subroutine being read (its number) and those read, by number: (Z, radius).
     std::optional<int> reading_sub_;
@@ -137,6 +168,10 @@ std::optional<int> IsoLatheReader::sub_line(std::string_view text, std::string_v
 }
 
 void IsoLatheReader::line(std::string_view text) {
+    if (fanuc_shape_) {
+        fanuc_shape_line(text);
+        return;
+    }
     if (!linuxcnc_g71_spec()) {
         IsoReader::line(text);
         return;
@@ -168,15 +203,20 @@ void IsoLatheReader::line(std::string_view text) {
 void IsoLatheReader::sub_body_line(std::string_view text) {
     // A profile for G71: G0/G1/G2/G3 X Z (I K for arcs, I a radius, from the arc's start), the
     // first block to the profile's start with both X and Z.
-    Block b = split_line(text);
+    const Block b = split_line(text);
     if (b.words.empty()) return;  // a comment
+    profile_block(b, sub_profile_, sub_started_, sub_motion_, fmt::format("subroutine o{}", *reading_sub_), false);
+}
+
+void IsoLatheReader::profile_block(const Block& b, Profile& profile, bool& started, int& motion_code, const std::string& where,
+                                   bool x_only_first) {
     std::optional<int> motion;
     std::optional<double> x, z, i, k;
     for (const Word& w : b.words) {
         if (w.letter == 'G') {
             const int g = code_of(w);
             if (g != code(0) && g != code(1) && g != code(2) && g != code(3))
-                fail(fmt::format("{} in subroutine o{}: camgen reads a G71 profile of G0, G1, G2 and G3 only", w.text, *reading_sub_));
+                fail(fmt::format("{} in {}: camgen reads a G71 profile of G0, G1, G2 and G3 only", w.text, where));
             if (motion) fail(fmt::format("{}: two motion codes in one block", w.text));
             motion = g;
         } else if (w.letter == 'X' && !x) {
@@ -188,36 +228,136 @@ void IsoLatheReader::sub_body_line(std::string_view text) {
         } else if (w.letter == 'K' && !k) {
             k = offset(w);
         } else {
-            fail(fmt::format("{} in subroutine o{}: camgen reads a G71 profile of G0/G1/G2/G3 X Z I K only", w.text, *reading_sub_));
+            fail(fmt::format("{} in {}: camgen reads a G71 profile of G0/G1/G2/G3 X Z I K only", w.text, where));
         }
     }
-    if (motion) sub_motion_ = *motion;
-    if (sub_motion_ < 0) fail(fmt::format("subroutine o{}: its first block has no motion code", *reading_sub_));
-    const bool arc = sub_motion_ == code(2) || sub_motion_ == code(3);
-    if (!arc && (i || k)) fail(fmt::format("I/K on a straight move in subroutine o{}", *reading_sub_));
-    if (!sub_started_) {
-        if (!x || !z || arc)
-            fail(fmt::format("subroutine o{}: its first block is a straight move to the profile's start with X and Z", *reading_sub_));
-        sub_profile_.start = Vec2{*z, *x};
-        sub_started_ = true;
+    if (motion) motion_code = *motion;
+    if (motion_code < 0) fail(fmt::format("{}: its first block has no motion code", where));
+    const bool arc = motion_code == code(2) || motion_code == code(3);
+    if (!arc && (i || k)) fail(fmt::format("I/K on a straight move in {}", where));
+    if (!started) {
+        if (x_only_first) {
+            // Type I: block ns moves along X only, from the start point.
+            if (!x || z || arc) fail(fmt::format("{}: its first block (ns) moves along X only (G0 or G1 X, type I)", where));
+            profile.start = Vec2{profile.start.x, *x};
+        } else {
+            if (!x || !z || arc) fail(fmt::format("{}: its first block is a straight move to the profile's start with X and Z", where));
+            profile.start = Vec2{*z, *x};
+        }
+        started = true;
         return;
     }
-    if (sub_profile_.segments.size() >= 100000) fail(fmt::format("subroutine o{}: more than 100000 elements", *reading_sub_));
-    const Vec2 from = sub_profile_.segments.empty() ? sub_profile_.start : sub_profile_.segments.back().end;
+    if (profile.segments.size() >= 100000) fail(fmt::format("{}: more than 100000 elements", where));
+    const Vec2 from = profile.segments.empty() ? profile.start : profile.segments.back().end;
     const Vec2 to{z.value_or(from.x), x.value_or(from.y)};
     if (to == from) return;  // the control skips it
     if (!arc) {
-        sub_profile_.segments.push_back({to, std::nullopt, ArcDirection::ccw});
+        profile.segments.push_back({to, std::nullopt, ArcDirection::ccw});
         return;
     }
-    if (!i && !k) fail(fmt::format("an arc without its centre I/K in subroutine o{}", *reading_sub_));
+    if (!i && !k) fail(fmt::format("an arc without its centre I/K in {}", where));
     const Vec2 centre{from.x + k.value_or(0.0), from.y + i.value_or(0.0)};
     if (std::abs(distance(from, centre) - distance(to, centre)) > machine_.tolerance)
-        fail(fmt::format("an arc in subroutine o{} whose start and end are not equally far from its centre", *reading_sub_));
-    sub_profile_.segments.push_back({to, centre, sub_motion_ == code(3) ? ArcDirection::ccw : ArcDirection::cw});
+        fail(fmt::format("an arc in {} whose start and end are not equally far from its centre", where));
+    profile.segments.push_back({to, centre, motion_code == code(3) ? ArcDirection::ccw : ArcDirection::cw});
+}
+
+void IsoLatheReader::cycle_moves(const std::vector<LatheCycleMove>& moves) {
+    for (const LatheCycleMove& m : moves) {
+        const Vec3 at = position();
+        if (std::abs(at.x - m.end.y) < 1e-12 && std::abs(at.z - m.end.x) < 1e-12) continue;
+        switch (m.kind) {
+            case LatheCycleMove::Kind::rapid: rapid_to(m.end.y, std::nullopt, m.end.x); break;
+            case LatheCycleMove::Kind::feed: linear_to(m.end.y, std::nullopt, m.end.x); break;
+            case LatheCycleMove::Kind::arc: {
+                ArcWords a;
+                a.direction = m.direction;
+                a.plane = Plane::xz;
+                a.x = m.end.y;
+                a.z = m.end.x;
+                a.i = m.centre.y - at.x;
+                a.k = m.centre.x - at.z;
+                arc(a);
+            } break;
+        }
+    }
+}
+
+void IsoLatheReader::fanuc_g71(BlockWords& w) {
+    // Fanuc T's type I G71 in two blocks: the first, U(depth of cut, radial) R(retract), sets the
+    // cycle's values; the second, P(ns) Q(nf) U(0) W(0) F, roughs from where the tool stands (A)
+    // to the finishing shape in the blocks N<ns>..N<nf> that follow it (read there, see
+    // fanuc_shape_line), and returns to A.
+    for (char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'D', 'H'})
+        if (const Word* x = w.find(letter))
+            fail(fmt::format("{} on G71: camgen reads Fanuc's G71 U R / G71 P Q U W F from the start point only", x->text));
+    auto radial = [&](const Word& word) {
+        Word z = word;
+        z.letter = 'Z';
+        return length(z);
+    };
+    if (!w.has('P')) {
+        const Word* u = w.take('U');
+        const Word* r = w.take('R');
+        if (!u || !r || w.has('Q') || w.has('W'))
+            fail("the first G71 block is G71 U(depth of cut) R(retract) (camgen reads both, not the control's parameters)");
+        fanuc_g71_first_ = std::make_pair(radial(*u), radial(*r));
+        if (!(fanuc_g71_first_->first > 0) || !(fanuc_g71_first_->second > 0))
+            fail(fmt::format("{} {}: the depth of cut and the retract must be above 0", u->text, r->text));
+        return;
+    }
+    const Word* p = w.take('P');
+    const Word* q = w.take('Q');
+    if (!q) fail("G71 P without Q(nf), the finishing shape's last block");
+    if (w.has('R')) fail("R on the second G71 block: the retract is the first block's");
+    for (char letter : {'U', 'W'})
+        if (const Word* a = w.take(letter); a && a->value != 0)
+            fail(fmt::format("{} on G71: camgen reads G71 with U0 W0 only (the control's finishing allowance is not modelled)",
+                             a->text));
+    if (!fanuc_g71_first_) fail("G71 P Q without its first block G71 U R");
+    if (!position_known()) fail("G71 from an unknown position");
+    if (!feed_) fail("G71 without a feed (F)");
+    FanucG71Shape s;
+    s.ns = integer_of(*p);
+    s.nf = integer_of(*q);
+    if (s.nf < s.ns) fail(fmt::format("G71 {} {}: the last block comes before the first", p->text, q->text));
+    const Vec3 here = position();
+    s.start = Vec2{here.z, here.x};
+    s.shape.plane = ProfilePlane::xz;
+    s.shape.start = Vec2{here.z, here.x};
+    s.depth = fanuc_g71_first_->first;
+    s.retract = fanuc_g71_first_->second;
+    fanuc_shape_ = std::move(s);
+}
+
+void IsoLatheReader::fanuc_shape_line(std::string_view text) {
+    // A block of the finishing shape after G71 P Q: its sequence number, then the profile's words.
+    FanucG71Shape& s = *fanuc_shape_;
+    std::size_t at = 0;
+    while (at < text.size() && is_blank(text[at])) ++at;
+    std::optional<long> n;
+    if (at < text.size() && (text[at] == 'N' || text[at] == 'n')) {
+        std::size_t e = at + 1;
+        while (e < text.size() && is_digit(text[e])) ++e;
+        if (e > at + 1 && e - at <= 9) n = std::stol(std::string(text.substr(at + 1, e - at - 1)));
+    }
+    const Block b = split_line(text);
+    if (!s.started && (!n || *n != s.ns))
+        fail(fmt::format("G71 P{}: the block after it is not N{} (camgen reads the finishing shape right after the cycle)",
+                         s.ns, s.ns));
+    if (n && (*n < s.ns || *n > s.nf)) fail(fmt::format("N{} within G71's finishing shape N{}..N{}", *n, s.ns, s.nf));
+    if (!b.words.empty()) profile_block(b, s.shape, s.started, s.motion, fmt::format("G71's finishing shape (N{})", s.ns), true);
+    if (!n || *n != s.nf) return;
+    const FanucG71Shape done = std::move(s);
+    fanuc_shape_.reset();
+    if (done.shape.segments.empty()) fail(fmt::format("G71's finishing shape N{}..N{} has no element", done.ns, done.nf));
+    const LatheCycleModel model = camgen::fanuc_g71(done.start, done.shape, done.depth, done.retract);
+    if (model.refusal) fail("G71: " + *model.refusal);
+    cycle_moves(model.moves);
 }
 
 void IsoLatheReader::finish() {
+    if (fanuc_shape_) fail(fmt::format("G71 P{} Q{}: the program ends before N{}", fanuc_shape_->ns, fanuc_shape_->nf, fanuc_shape_->nf));
     if (reading_sub_) fail(fmt::format("subroutine o{} has no o{} endsub", *reading_sub_, *reading_sub_));
     IsoReader::finish();
 }
@@ -247,28 +387,11 @@ void IsoLatheReader::roughing_cycle(BlockWords& w, LatheCycleAxis axis) {
     const Vec3 here = position();
     const LatheCycleModel model = linuxcnc_g7x(axis, Vec2{here.z, here.x}, sub->second, depth, retract);
     if (model.refusal) fail(std::string(name) + ": " + *model.refusal);
-    for (const LatheCycleMove& m : model.moves) {
-        const Vec3 at = position();
-        if (std::abs(at.x - m.end.y) < 1e-12 && std::abs(at.z - m.end.x) < 1e-12) continue;
-        switch (m.kind) {
-            case LatheCycleMove::Kind::rapid: rapid_to(m.end.y, std::nullopt, m.end.x); break;
-            case LatheCycleMove::Kind::feed: linear_to(m.end.y, std::nullopt, m.end.x); break;
-            case LatheCycleMove::Kind::arc: {
-                ArcWords a;
-                a.direction = m.direction;
-                a.plane = Plane::xz;
-                a.x = m.end.y;
-                a.z = m.end.x;
-                a.i = m.centre.y - at.x;
-                a.k = m.centre.x - at.z;
-                arc(a);
-            } break;
-        }
-    }
+    cycle_moves(model.moves);
 }
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
-    if (rough_axis(c.value)) {
+    if (rough_axis(c.value) || (c.value == code(71) && fanuc_g71_spec())) {
         set_group(codes.motion, c);
         return true;
     }
@@ -295,6 +418,10 @@ bool IsoLatheReader::f_is_lead(int mode) const {
 bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
     if (const auto axis = rough_axis(mode)) {
         roughing_cycle(w, *axis);
+        return true;
+    }
+    if (mode == code(71) && fanuc_g71_spec()) {
+        fanuc_g71(w);
         return true;
     }
     if (mode == code(76) && g76_spec()) {

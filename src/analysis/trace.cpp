@@ -72,7 +72,7 @@ class TraceBuilder::Impl {
 public:
     Impl(const Machine& machine, TraceSink& sink, TraceOptions options)
         : options_(machine.longhand()), lathe_(machine.kind == MachineKind::lathe), arcs_(machine.arcs),
-          thread_pattern_(machine.thread_pattern()), sink_(sink), trace_options_(std::move(options)) {}
+          thread_pattern_(machine.thread_pattern()), rough_pattern_(machine.rough_pattern()), sink_(sink), trace_options_(std::move(options)) {}
 
     // `job`: an event of a job (its Compensation carries the radius), not of a program.
     void add(const ReadEvent& e, bool job) {
@@ -179,7 +179,7 @@ public:
                                    job);
                        },
                        [&](const TurnCycle& c) {
-                           for (const Event& m : turn_cycle_moves(c))
+                           for (const Event& m : turn_cycle_moves(c, rough_pattern_))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
                                              .per_revolution = e.per_revolution},
                                    job);
@@ -481,6 +481,7 @@ private:
     bool lathe_;  // Z is the spindle axis
     ArcSettings arcs_;  // the machine's: which of a job's arcs it writes as straight moves
     ThreadCyclePattern thread_pattern_;  // how the machine's threading cycles move in air
+    RoughCyclePattern rough_pattern_;    // how its roughing cycles move
     std::optional<double> op_tolerance_;  // the operation's chord tolerance (OperationStart)
     LonghandBuffers longhand_buffers_;  // reused by every canned hole's moves
     TraceSink& sink_;

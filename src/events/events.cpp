@@ -158,12 +158,30 @@ std::vector<Event> thread_cycle_moves(const ThreadCycle& c, ThreadCyclePattern p
     return out;
 }
 
-std::vector<Event> turn_cycle_moves(const TurnCycle& c) {
+Vec2 fanuc_g71_start(const TurnCycle& c) { return Vec2{c.start.z, c.start.x + c.depth}; }
+
+std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& c, RoughCyclePattern pattern) {
+    if (pattern == RoughCyclePattern::fanuc_g71 && !c.refusal && !c.moves.empty()) {
+        const Vec2 a = fanuc_g71_start(c);
+        LatheCycleModel m = fanuc_g71(a, fanuc_g71_shape(a, c.profile), c.depth, c.retract);
+        if (!m.refusal) return std::move(m.moves);
+    }
+    return c.moves;
+}
+
+Vec3 turn_cycle_end(const TurnCycle& c, RoughCyclePattern pattern) {
+    const std::vector<LatheCycleMove> path = turn_cycle_path(c, pattern);
+    if (path.empty()) return c.start;
+    return Vec3{path.back().end.y, c.start.y, path.back().end.x};
+}
+
+std::vector<Event> turn_cycle_moves(const TurnCycle& c, RoughCyclePattern pattern) {
     std::vector<Event> out;
-    out.reserve(c.moves.size());
+    const std::vector<LatheCycleMove> path = turn_cycle_path(c, pattern);
+    out.reserve(path.size());
     const double y = c.start.y;
     Vec3 at = c.start;
-    for (const LatheCycleMove& m : c.moves) {
+    for (const LatheCycleMove& m : path) {
         const Vec3 to{m.end.y, y, m.end.x};
         if (to == at) continue;  // the cycle's first move, to where it starts
         at = to;

@@ -233,6 +233,39 @@ constexpr G7xWords g7x_words_x{
     "the profile ends at the Z it starts at (LinuxCNC's G72 turns such a profile the other way)",
 };
 
+// The elements of a profile for a G71 (appended to `el`), or why the cycle does not take it: its
+// Z never rises and its radius never falls (no pocket); arcs within a quarter the control takes;
+// the refusals in `words`.
+// `slack`: how far an arc's end may lie beyond its quarter in Z (rounded words: Fanuc's 0.001 mm).
+std::optional<std::string> g71_elements(const Profile& profile, std::vector<G71Element>& el, const G7xWords& words,
+                                        double slack = 0.0) {
+    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
+        const ProfileSegment& s = profile.segments[k];
+        G71Element e{segment_start(profile, k), s.end};
+        if (s.centre) {
+            e.arc = true;
+            e.c = *s.centre;
+            e.ccw = s.direction == ArcDirection::ccw;
+        }
+        const std::string which = "element " + std::to_string(k);
+        if (e.b.y < e.a.y) return std::string(which + words.falls);
+        if (!e.arc) {
+            if (e.b.x - e.a.x > 1e-3) return std::string(which + words.turns_back);
+        } else {
+            const double in = e.a.y - e.c.y, ex = e.b.y - e.c.y, dz = e.b.x - e.a.x;
+            // The control's own test, and no pocket: a G3 on the right of its top quarter, a G2 on
+            // the left of its bottom one.
+            const bool control = e.ccw ? in >= -1e-3 && ex >= -1e-3 && dz <= -1e-3 : in <= 1e-3 && ex <= 1e-3 && dz <= -1e-3;
+            if (!control) return std::string(which + words.arc_half);
+            const bool rising = e.ccw ? e.a.x >= e.c.x - slack && e.b.x >= e.c.x - slack
+                                      : e.a.x <= e.c.x + slack && e.b.x <= e.c.x + slack;
+            if (!rising) return std::string(which + " is an arc that" + words.falls);
+        }
+        el.push_back(e);
+    }
+    return std::nullopt;
+}
+
 // The (Z, radius) point with its coordinates swapped: G72's frame, in which it is G71.
 Vec2 g7x_swapped(Vec2 p) { return Vec2{p.y, p.x}; }
 
@@ -259,29 +292,7 @@ LatheCycleModel g7x_model(Vec2 start, const Profile& profile, double depth, doub
     if (words.flat && !(pe.y - p0.y > 1e-6)) return refuse(words.flat);
     std::vector<G71Element> el;
     el.push_back({start, p0});
-    for (std::size_t k = 0; k < profile.segments.size(); ++k) {
-        const ProfileSegment& s = profile.segments[k];
-        G71Element e{segment_start(profile, k), s.end};
-        if (s.centre) {
-            e.arc = true;
-            e.c = *s.centre;
-            e.ccw = s.direction == ArcDirection::ccw;
-        }
-        const std::string which = "element " + std::to_string(k);
-        if (e.b.y < e.a.y) return refuse(which + words.falls);
-        if (!e.arc) {
-            if (e.b.x - e.a.x > 1e-3) return refuse(which + words.turns_back);
-        } else {
-            const double in = e.a.y - e.c.y, ex = e.b.y - e.c.y, dz = e.b.x - e.a.x;
-            // The control's own test, and no pocket: a G3 on the right of its top quarter, a G2 on
-            // the left of its bottom one.
-            const bool control = e.ccw ? in >= -1e-3 && ex >= -1e-3 && dz <= -1e-3 : in <= 1e-3 && ex <= 1e-3 && dz <= -1e-3;
-            if (!control) return refuse(which + words.arc_half);
-            const bool rising = e.ccw ? e.a.x >= e.c.x && e.b.x >= e.c.x : e.a.x <= e.c.x && e.b.x <= e.c.x;
-            if (!rising) return refuse(which + " is an arc that" + words.falls);
-        }
-        el.push_back(e);
-    }
+    if (auto why = g71_elements(profile, el, words)) return refuse(*why);
     // A level through a corner of the profile: there the control's cycle turns on tolerances
     // (rs274 runs some such profiles without end), and the model does not follow it.
     for (double x = start.y; x > p0.y - 1e-4; x -= depth) {
@@ -327,6 +338,76 @@ LatheCycleModel linuxcnc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& pro
             m.direction = g7x_reversed(m.direction);
         }
     }
+    return out;
+}
+
+Profile fanuc_g71_shape(Vec2 start, const Profile& profile) {
+    Profile shape;
+    shape.plane = profile.plane;
+    shape.start = Vec2{start.x, profile.start.y};
+    shape.segments.push_back({profile.start, std::nullopt, ArcDirection::ccw});
+    for (const ProfileSegment& s : profile.segments) shape.segments.push_back(s);
+    return shape;
+}
+
+LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract) {
+    LatheCycleModel out;
+    auto refuse = [&](std::string why) {
+        out.moves.clear();
+        out.refusal = std::move(why);
+        return out;
+    };
+    if (!(depth > 0) || !(retract > 0)) return refuse("the depth of cut and the retract must be above 0");
+    if (shape.segments.empty()) return refuse("the finishing shape has no element");
+    const Vec2 a1 = shape.start, pe = shape.segments.back().end;
+    if (std::abs(a1.x - start.x) > 1e-6)
+        return refuse("the finishing shape's first block is not along X from the start point (type I)");
+    if (!(start.y > a1.y + 1e-6)) return refuse("the start point is not above the finishing shape's start");
+    if (!(a1.x - pe.x > 1e-3)) return refuse("the finishing shape does not run towards -Z");
+    if (pe.y > start.y + 1e-6) return refuse("the finishing shape ends above the start point");
+    std::vector<G71Element> el;
+    if (auto why = g71_elements(shape, el, g7x_words_z, 1e-3)) return refuse(*why);
+    std::vector<double> corners{a1.y};
+    for (const ProfileSegment& s : shape.segments) corners.push_back(s.end.y);
+    std::vector<double> levels;
+    for (int k = 1; start.y - k * depth > a1.y - 1e-4; ++k) {
+        if (k > 1000000) return refuse("the cycle makes more than 1000000 levels");
+        const double x = start.y - k * depth;
+        for (double r : corners)
+            if (std::abs(x - r) < 1e-4)
+                return refuse("a level of the cycle (radius " + g71_number(x) +
+                              ") runs through a corner of the finishing shape: the control's cycle is not modelled there");
+        levels.push_back(x);
+    }
+    auto add = [&](LatheCycleMove::Kind kind, Vec2 end) { out.moves.push_back({kind, end, {}, ArcDirection::ccw}); };
+    add(LatheCycleMove::Kind::rapid, start);
+    for (double x : levels) {
+        // Where the level meets the shape: the first element reaching it (monotone: the only
+        // one), or the end's Z above the shape's end.
+        std::optional<double> z;
+        for (const G71Element& e : el) {
+            const std::vector<double> m = g71_meets(e, x);
+            if (!m.empty()) {
+                z = e.arc ? (e.ccw ? m.back() : m.front()) : m.front();
+                break;
+            }
+        }
+        if (!z) z = pe.x;
+        if (start.x - *z < retract - 1e-9)
+            return refuse("a pass (radius " + g71_number(x) + ") is shorter than the retract");
+        add(LatheCycleMove::Kind::rapid, Vec2{start.x, x});
+        add(LatheCycleMove::Kind::feed, Vec2{*z, x});
+        add(LatheCycleMove::Kind::rapid, Vec2{*z + retract, x + retract});
+        add(LatheCycleMove::Kind::rapid, Vec2{start.x, x + retract});
+    }
+    add(LatheCycleMove::Kind::rapid, a1);
+    for (const G71Element& e : el) {
+        if (e.arc)
+            out.moves.push_back({LatheCycleMove::Kind::arc, e.b, e.c, e.ccw ? ArcDirection::ccw : ArcDirection::cw});
+        else
+            add(LatheCycleMove::Kind::feed, e.b);
+    }
+    add(LatheCycleMove::Kind::rapid, start);
     return out;
 }
 

@@ -588,11 +588,12 @@ void Post::handle_turn_cycle(const TurnCycle& c) {
     }
     if (reason.empty()) {
         on_turn_cycle(c, *spec);
-        if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
+        if (!c.moves.empty()) pos_ = turn_cycle_end(c, machine_.rough_pattern());
         return;
     }
     cycle_not_canned(c.path, c.output, spec != nullptr, "roughing", reason);
-    for (const Event& e : turn_cycle_moves(c)) handle(e);
+    // Longhand in the pattern of the machine's own cycle (as trace_expected traces it).
+    for (const Event& e : turn_cycle_moves(c, machine_.rough_pattern())) handle(e);
 }
 
 void Post::cycle_not_canned(const std::string& path, CycleOutput output, bool has_cycle, std::string_view what,

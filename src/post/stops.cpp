@@ -198,7 +198,7 @@ void OperatorStops::emit(const Event& event) {
                          },
                          [&](const TurnCycle& c) {
                              resume();
-                             if (!c.moves.empty()) pos_ = Vec3{c.moves.back().end.y, c.start.y, c.moves.back().end.x};
+                             if (!c.moves.empty()) pos_ = turn_cycle_end(c, machine_.rough_pattern());
                              next_.emit(event);
                          },
                          [&](const GrooveCycle& c) {

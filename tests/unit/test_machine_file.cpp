@@ -163,7 +163,10 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     CHECK(m.roughing_cycles[0].fields.size() == 3);
     CHECK(m.roughing_cycles[1].name == "G72");
     CHECK(m.roughing_cycles[1].kind == RoughingCycleKind::rough_x);
-    CHECK(load_machine("fanuc-lathe").roughing_cycles.empty());
+    const Machine fanuc = load_machine("fanuc-lathe");
+    REQUIRE(fanuc.roughing_cycles.size() == 1);
+    CHECK(fanuc.roughing_cycles[0].style == RoughingCycleStyle::fanuc_g71);
+    CHECK(fanuc.rough_pattern() == RoughCyclePattern::fanuc_g71);
 }
 
 TEST_CASE("machine file: dialect settings are read with the machine, each error naming its line and key") {

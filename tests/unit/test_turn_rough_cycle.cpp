@@ -95,13 +95,14 @@ TEST_CASE("turn-rough output: G71 with its profile subroutine on linuxcnc-lathe,
         wrong.replace(at + 3, end - (at + 3), "I0.4");
         CHECK(compare_traces(trace_expected(expand_job(j), lcnc), trace_program(read_program(wrong, lcnc, "t.ngc"), lcnc),
                              compare_tolerance(lcnc)));
-        // fanuc-lathe and sinumerik-lathe have no roughing cycle: the control's moves longhand,
-        // read back as the job's, no note.
+        // sinumerik-lathe has no roughing cycle: the control's moves longhand, read back as the
+        // job's, no note; fanuc-lathe writes its own G71 (test_fanuc_g71), read back as the job's.
         for (const char* name : {"fanuc-lathe", "sinumerik-lathe"}) {
             CAPTURE(name);
             const Machine m = load_machine(name);
             const auto q = rc_posted(text, m);
             CHECK(q.text.find("G71 Q") == std::string::npos);
+            CHECK((q.text.find("G71 U") != std::string::npos) == (std::string(name) == "fanuc-lathe"));
             CHECK(q.warnings.find("longhand") == std::string::npos);
             const auto miss = compare_traces(trace_expected(expand_job(j), m),
                                              trace_program(read_program(q.text, m, "t.nc"), m), compare_tolerance(m));
@@ -193,11 +194,13 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
         CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "output": "canned")", under), lcnc)
                   .find("/operations/1/output: machine linuxcnc-lathe's G71 would not cut these passes: element 3 falls in "
                         "radius (a pocket); use \"auto\" or \"longhand\"") != std::string::npos);
-        // fanuc-lathe: longhand, no note; canned refused for want of a cycle.
-        CHECK(rc_posted(rc_job(R"(, "compensation": "none")", under), fanuc).warnings.find("longhand") == std::string::npos);
+        // fanuc-lathe's G71 (type I) does not rough a pocket either: longhand with the note.
+        CHECK(rc_posted(rc_job(R"(, "compensation": "none")", under), fanuc)
+                  .warnings.find("machine fanuc-lathe's G71 would not cut these passes") != std::string::npos);
     }
-    CHECK(rc_refusal(rc_job(R"(, "output": "canned")"), fanuc)
-              .find("/operations/1/output: machine fanuc-lathe has no canned roughing cycle along Z (roughingCycles)") !=
+    const Machine sinumerik = load_machine("sinumerik-lathe");
+    CHECK(rc_refusal(rc_job(R"(, "output": "canned")"), sinumerik)
+              .find("/operations/1/output: machine sinumerik-lathe has no canned roughing cycle along Z (roughingCycles)") !=
           std::string::npos);
     // longhand: no cycle, the passes as before.
     CHECK(rc_posted(rc_job(R"(, "output": "longhand")"), lcnc).text.find("G71") == std::string::npos);

@@ -318,9 +318,20 @@ using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Co
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
                            ThreadFeed, ThreadCycle, TurnCycle, GrooveCycle>;
 
+// How a roughing cycle moves: LinuxCNC's G71 (the event's `moves`), or Fanuc T's type I G71
+// (fanuc_g71 in lathe_cycle.hpp from the start point A: the event's start moved out by one
+// depth of cut, so that its levels are the event's; each pass back along Z to A's Z; the tool
+// ends at A). Where Fanuc's model does not take the cycle, its moves are LinuxCNC's.
+enum class RoughCyclePattern { linuxcnc_g71, fanuc_g71 };
+
 // The moves of a roughing cycle (Rapid, Linear and Arc events in XZ at the cycle's feed), from
 // its start: none where the cycle carries a refusal.
-std::vector<Event> turn_cycle_moves(const TurnCycle& cycle);
+std::vector<Event> turn_cycle_moves(const TurnCycle& cycle, RoughCyclePattern pattern = RoughCyclePattern::linuxcnc_g71);
+// The cycle's moves as LatheCycleMove (Z, radius) in the pattern; and where the tool ends.
+std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& cycle, RoughCyclePattern pattern);
+Vec3 turn_cycle_end(const TurnCycle& cycle, RoughCyclePattern pattern);
+// Fanuc's start point A for a roughing cycle (Z, radius): the event's start moved out by depth.
+Vec2 fanuc_g71_start(const TurnCycle& cycle);
 
 // How a threading cycle's passes move in air: LinuxCNC's G76 (each pass returns out to the drive
 // line moved out by depth - d, the next pass starts from there; the tool ends at (start.x, end_z))

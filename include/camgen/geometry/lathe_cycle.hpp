@@ -66,4 +66,24 @@ inline LatheCycleModel linuxcnc_g72(Vec2 start, const Profile& profile, double d
     return linuxcnc_g7x(LatheCycleAxis::x, start, profile, depth, retract);
 }
 
+// Fanuc T's type I G71 (G code system A), `G71 U(depth) R(retract)` / `G71 P Q U0 W0 F` from
+// the start point A = start (Z, radius), as camgen models it from the 0i-TF manual's
+// description (no Fanuc control was run; docs/reference.md lists what is the manual's and what
+// is camgen's reading). `shape` is the finishing shape ns..nf ((Z, radius)) from A' = its start,
+// which lies at A's Z (block ns moves along X only), towards -Z, its radius never falling (the
+// same profiles as linuxcnc_g71: lines and arcs within a quarter). U0 W0: no finishing offset.
+// Moves: a rapid to A; levels x = A - depth, A - 2 depth, ... while above A': a rapid down to
+// the level at A's Z (block ns is G0), a feed along -Z to where the level meets the shape (its
+// end's Z where the level is above the shape's end), a rapid escape of `retract` at 45 degrees
+// (+Z, +X), a rapid along +Z back to A's Z; then a rapid to A' and a feed along the whole shape
+// (the pass that leaves the even allowance, here none), and a rapid straight back to A, where
+// the control ends. Refused: a level within 0.0001 mm of a corner's radius, a pass shorter than
+// the retract, a shape ending above A.
+LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract);
+
+// The finishing shape camgen writes for Fanuc's G71 from the start point A (Z, radius) on a
+// profile (Z, radius) that starts below and before A: A' = (A's Z, the profile's start radius),
+// then the profile.
+Profile fanuc_g71_shape(Vec2 start, const Profile& profile);
+
 }  // namespace camgen

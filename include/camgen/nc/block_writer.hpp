@@ -52,6 +52,9 @@ public:
     // it never ends). Throws IoError when the stream failed.
     void flush();
     const BlockStyle& style() const { return style_; }
+    // The sequence number the next block gets (with sequence_numbers; a block being built has
+    // its number already).
+    long next_sequence() const { return sequence_; }
     // Comment text made safe for the style, the one place every post's text goes through:
     // printable ASCII only (control bytes become spaces, common letters such as umlauts and
     // the diameter sign are spelt out, any other non-ASCII character is '?'), no nested

@@ -53,11 +53,14 @@ inline constexpr Named<RoughingCycleKind> roughing_cycle_kinds[] = {
 };
 
 // How a canned roughing cycle is written and what the control makes of it.
-enum class RoughingCycleStyle { linuxcnc };
+enum class RoughingCycleStyle { linuxcnc, fanuc_g71 };
 inline constexpr Named<RoughingCycleStyle> roughing_cycle_styles[] = {
     {RoughingCycleStyle::linuxcnc, "linuxcnc",
      "LinuxCNC 2.9: the profile as a subroutine o<n> sub ... o<n> endsub, the cycle G71 Q<n> D I R F from the start "
      "point (G72 alike)"},
+    {RoughingCycleStyle::fanuc_g71, "fanuc-g71",
+     "Fanuc T type I (G code system A): G71 U(depth) R(retract) / G71 P(ns) Q(nf) U0 W0 F from the start point, the "
+     "finishing shape as the N-numbered blocks ns..nf right after it (ns along X only)"},
 };
 
 // The values of a roughing operation a canned roughing cycle can carry.
@@ -208,6 +211,12 @@ struct Machine {
     LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
     // How its threading cycles move in air (ThreadCycle events, canned or longhand): as its first
     // threading cycle does, LinuxCNC's G76 where it has none.
+    RoughCyclePattern rough_pattern() const {
+        for (const RoughingCycleSpec& r : roughing_cycles)
+            if (r.kind == RoughingCycleKind::rough_z)
+                return r.style == RoughingCycleStyle::fanuc_g71 ? RoughCyclePattern::fanuc_g71 : RoughCyclePattern::linuxcnc_g71;
+        return RoughCyclePattern::linuxcnc_g71;
+    }
     ThreadCyclePattern thread_pattern() const {
         return !threading.empty() && threading.front().style == ThreadCycleStyle::fanuc_g76 ? ThreadCyclePattern::fanuc_g76
                                                                                                : ThreadCyclePattern::linuxcnc_g76;
