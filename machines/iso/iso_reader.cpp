@@ -194,7 +194,7 @@ void IsoReader::block(const Block& b) {
         ++program_numbers_;
         return;
     }
-    BlockWords w(*this, "XYZIJKRQPFSTHD");
+    BlockWords w(*this, block_letters());
     const BlockCodes k = block_codes(b, w);
 
     // In the order of RS274/NGC: feed, speed, tool, tool change, spindle, dwell, modes, motion, stop.

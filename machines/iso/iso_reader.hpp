@@ -44,6 +44,8 @@ protected:
     void block(const Block& b) override;
     void finish() override;
 
+    // The letters of the words a block may hold (a lathe with LinuxCNC's G76 adds its taper's E and L).
+    virtual std::string_view block_letters() const { return "XYZIJKRQPFSTHD"; }
     // A variant's hooks. A G code the base does not know (a lathe's G50/G97): taken into
     // `codes` (true), or unknown (false).
     virtual bool variant_code(BlockCodes& codes, const Word& x, Code c);

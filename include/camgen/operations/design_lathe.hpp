@@ -164,7 +164,9 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
 // around what lies beyond the thread's root, as the simulation sweeps them (the helix and its
 // flanks are not designed); its tip's whole path as the passes make it. An internal thread
 // designs a bore of its major diameter down to endZ (a LatheHoleDesign whose end is the tool's
-// nose, swept as orientation 3 where the tool has none), the part kept around it.
+// nose, swept as orientation 3 where the tool has none), the part kept around it. A chamfered
+// runout designs the last pass's taper instead of the end at endZ: outside from the root at
+// endZ + runoutLength up to the major at endZ; inside a cone from the major down to the minor.
 void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen
