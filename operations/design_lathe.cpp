@@ -393,16 +393,14 @@ void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& des
         h.top_z = op.start_z;
         h.bottom_z = op.end_z;
         h.radius = op.root_radius();
-        if (op.runout == ThreadRunout::chamfered) {
-            // The runout's cone: the bore narrows from the major at endZ + runoutLength to the
-            // minor at endZ, as the last pass's pull-out cuts it.
-            h.flat = op.surface_radius();
-            h.slope = op.runout_length / (op.root_radius() - op.surface_radius());
-            design.holes.push_back(std::move(h));
-            return;
-        }
         h.nose = tool ? tool->nose_radius : 0.0;
         h.nose_above = -lathe_tip_offset(tool && tool->orientation > 0 ? tool->orientation : 3, h.nose).x;
+        if (op.runout == ThreadRunout::chamfered) {
+            // The runout's cone: the bore narrows from the major at endZ + runoutLength to the
+            // minor at endZ, as the last pass's pull-out cuts it (rounded by the nose).
+            h.flat = op.surface_radius();
+            h.slope = op.runout_length / (op.root_radius() - op.surface_radius());
+        }
         design.holes.push_back(std::move(h));
         return;
     }

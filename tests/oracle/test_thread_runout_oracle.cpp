@@ -178,7 +178,7 @@ TEST_CASE("linuxcnc-lathe chamfered runout: an M20x2.5 thread's G76 E L2 and its
         c.runout = 2.5;
         c.canned = canned;
         const double worst = runout_check(c);
-        MESSAGE("M20x2.5 " << (canned ? "G76 E2.5 L2" : "G33 X Z K") << ": rs274, camgen's reading and the job differ by at most "
+        MESSAGE("M20x2.5 " << std::string(canned ? "G76 E2.5 L2" : "G33 X Z K") << ": rs274, camgen's reading and the job differ by at most "
                            << worst << " mm");
     }
 }

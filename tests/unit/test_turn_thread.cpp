@@ -314,7 +314,7 @@ TEST_CASE("turn-thread: machine files' threadingCycles are checked with their pa
     buf << f.rdbuf();
     const std::string file = buf.str();
     const std::string cycle = R"({"name": "G76", "kind": "thread", "style": "linuxcnc-g76",
-     "fields": ["constant-depth", "constant-area", "infeedAngle", "springPasses"]})";
+     "fields": ["constant-depth", "constant-area", "infeedAngle", "springPasses", "runout"]})";
     REQUIRE(file.find(cycle) != std::string::npos);
     CHECK_NOTHROW((void)parse_machine(file, "m", "m.json"));
     auto refused = [&](const std::string& with) {
