@@ -395,14 +395,26 @@ void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& des
         h.radius = op.root_radius();
         h.nose = tool ? tool->nose_radius : 0.0;
         h.nose_above = -lathe_tip_offset(tool && tool->orientation > 0 ? tool->orientation : 3, h.nose).x;
+        if (op.runout == ThreadRunout::chamfered) {
+            // The runout's cone: the bore narrows from the major at endZ + runoutLength to the
+            // minor at endZ, as the last pass's pull-out cuts it (rounded by the nose).
+            h.flat = op.surface_radius();
+            h.slope = op.runout_length / (op.root_radius() - op.surface_radius());
+        }
         design.holes.push_back(std::move(h));
         return;
     }
     LatheTurnDesign d;
     if (!lathe_design_turned(op, job, d, unchecked)) return;
     d.profile.start = {op.start_z, op.root_radius()};
-    d.profile.segments.push_back({{op.end_z, op.root_radius()}, std::nullopt, ArcDirection::ccw});
-    d.profile.segments.push_back({{op.end_z, op.surface_radius()}, std::nullopt, ArcDirection::ccw});
+    if (op.runout == ThreadRunout::chamfered) {
+        // The runout: the root up to endZ + runoutLength, then the last pass's taper to the crest.
+        d.profile.segments.push_back({{op.end_z + op.runout_length, op.root_radius()}, std::nullopt, ArcDirection::ccw});
+        d.profile.segments.push_back({{op.end_z, op.surface_radius()}, std::nullopt, ArcDirection::ccw});
+    } else {
+        d.profile.segments.push_back({{op.end_z, op.root_radius()}, std::nullopt, ArcDirection::ccw});
+        d.profile.segments.push_back({{op.end_z, op.surface_radius()}, std::nullopt, ArcDirection::ccw});
+    }
     d.z_lo = op.end_z;
     d.z_hi = op.start_z;
     design.profiles.push_back(std::move(d));

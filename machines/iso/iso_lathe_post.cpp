@@ -143,11 +143,18 @@ void IsoLathePost::on_drilling_point(const DrillCycle& c, const DrillingCycleSpe
 }
 
 void IsoLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
-    if (std::abs(t.to.x - from.x) > 1e-9 || std::abs(t.to.y - from.y) > 1e-9)
-        fail("", "a thread-cutting move that is not along Z: camgen cuts straight threads only");
+    if (std::abs(t.to.y - from.y) > 1e-9) fail("", "a thread-cutting move that leaves the XZ plane");
+    const double dx = std::abs(t.to.x - from.x), dz = std::abs(t.to.z - from.z);
+    // A taper (a chamfered runout's pull-out): at most 45 degrees from Z, where Fanuc's G32 F is
+    // the lead along Z, the longer axis; LinuxCNC's G33 K follows the path (K = lead x path / Z).
+    if (dx > 1e-9 && !(dz > 0 && dx <= dz + 0.001))
+        fail("", "a thread-cutting move steeper than 45 degrees from Z: camgen writes a taper's lead along Z only");
     const bool g32 = lathe_.thread_move == iso::LatheThreadMove::g32_f;
-    const std::string lead = lead_word(g32 ? "F" : "K", t.lead);
-    writer().add(g(g32 ? iso::thread_g32_code : iso::thread_g33_code)).add(force_z(t.to.z)).add(lead).end();
+    const double along = g32 || dx <= 1e-9 ? t.lead : t.lead * std::hypot(dx, dz) / dz;
+    const std::string lead = lead_word(g32 ? "F" : "K", along);
+    writer().add(g(g32 ? iso::thread_g32_code : iso::thread_g33_code));
+    if (dx > 1e-9) writer().add(force_xy({t.to.x, t.to.y}).x);
+    writer().add(force_z(t.to.z)).add(lead).end();
     // The synchronised move is not a mode the next feed move continues, and G32's F was the
     // lead, not a feed: the next move writes its motion word and its feed.
     forget_motion();
@@ -198,6 +205,12 @@ IsoLathePost::G76Words IsoLathePost::g76_words(const ThreadCycle& c) const {
     }
     w.read.h = c.spring_passes;
     if (c.spring_passes > 0) w.text.push_back(fmt::format("H{}", c.spring_passes));
+    if (c.runout > 0) {
+        // The exit taper: E along the drive line (Z, not a diameter), L2 the exit alone.
+        w.read.e = put(z, "E", c.runout);
+        w.read.l = 2;
+        w.text.push_back("L2");
+    }
     return w;
 }
 
@@ -308,8 +321,8 @@ std::optional<std::string> IsoLathePost::thread_cycle_limit(const ThreadCycle& c
         return IsoPost::thread_cycle_limit(c, spec);
     }
     const std::vector<Event> wanted = thread_cycle_moves(c, machine().thread_pattern());
-    // (moves a pass: Fanuc's five, four under a radial infeed; LinuxCNC's four)
-    const std::size_t per_pass = spec.style == ThreadCycleStyle::fanuc_g76 && c.infeed_angle != 0 ? 5 : 4;
+    // (moves a pass: Fanuc's five, four under a radial infeed; LinuxCNC's four, five with a runout)
+    const std::size_t per_pass = c.depths.empty() ? 1 : std::max<std::size_t>(1, wanted.size() / c.depths.size());
     if (control.size() != wanted.size())
         return fmt::format("its rounded words make {} passes, not {}", control.size() / per_pass, wanted.size() / per_pass);
     auto at = [](const Event& e) {

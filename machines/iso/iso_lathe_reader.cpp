@@ -46,7 +46,12 @@ protected:
     void line(std::string_view text) override;
     void finish() override;
     std::string_view address_letters() const override {
-        return fanuc_g71_spec() ? std::string_view("XYZIJKRQPFSTHDUW") : IsoReader::address_letters();
+        // Fanuc T G71's U and W; LinuxCNC G76's E (the exit taper's length) and L (which end tapers).
+        const bool uw = fanuc_g71_spec() != nullptr, el = g76_spec() && !fanuc_g76_style();
+        if (uw && el) return "XYZIJKRQPFSTHDUWEL";
+        if (uw) return "XYZIJKRQPFSTHDUW";
+        if (el) return "XYZIJKRQPFSTHDEL";
+        return IsoReader::address_letters();
     }
 
 public:
@@ -436,24 +441,26 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
         return true;
     }
     if (mode != code(thread_code())) return false;
-    // The thread-cutting move: G33 Z K (LinuxCNC) or G32 Z F (Fanuc T), along Z from where the
-    // tool stands, the lead K or F mm per revolution.
+    // The thread-cutting move: G33 [X] Z K (LinuxCNC) or G32 [X] Z F (Fanuc T) from where the
+    // tool stands, the lead K or F mm per revolution; with X a taper of at most 45 degrees (a
+    // chamfered runout), whose K LinuxCNC measures along the path, Fanuc's F along Z.
     const bool g32 = lathe_.thread_move == iso::LatheThreadMove::g32_f;
     const std::string name = g32 ? "G32" : "G33";
-    for (char letter : {'X', 'Y', 'I', 'J', 'R', 'Q', 'P'})
+    for (char letter : {'Y', 'I', 'J', 'R', 'Q', 'P'})
         if (const Word* x = w.find(letter))
-            fail(fmt::format("{} on {}: camgen cuts threads along Z only, each pass positioned with G0", x->text, name));
+            fail(fmt::format("{} on {}: camgen cuts threads in X and Z only, each pass positioned with G0", x->text, name));
+    const Word* xw = w.take('X');
     const Word* zw = w.take('Z');
     const Word* lw = w.take(g32 ? 'F' : 'K');
     if (!zw || !lw) fail(fmt::format("{} needs the end Z and the lead {}", name, g32 ? 'F' : 'K'));
-    thread_to(name, length(*zw), *lw);
+    thread_to(name, xw ? std::optional<double>(length(*xw)) : std::nullopt, length(*zw), *lw, !g32);
     return true;
 }
 
 void IsoLatheReader::g76(BlockWords& w) {
     // LinuxCNC's G76 P Z I J K [R Q H]: from where the tool stands (the drive point) the passes
     // the control makes (linuxcnc_g76.hpp); I, J and K are read as X is (diameters under G7).
-    for (char letter : {'X', 'Y', 'E', 'L', 'F'})
+    for (char letter : {'X', 'Y', 'F'})
         if (const Word* x = w.find(letter))
             fail(fmt::format("{} on G76: camgen reads straight threads along Z from the drive point only", x->text));
     const Word* pw = w.take('P');
@@ -489,11 +496,33 @@ void IsoLatheReader::g76(BlockWords& w) {
     if (!(g.q >= 0 && g.q < 90)) fail("G76: Q must be from 0 to below 90 degrees");
     if (g.h < 0 || g.h > 100) fail("G76: H must be from 0 to 100");
     if (g.j * std::pow(10000.0, 1.0 / g.r) < g.k) fail("G76: J is too small for K: more than 10000 passes");
+    // The tapers: E along the drive line, L which ends (camgen reads the exit taper, L2).
+    const Word* ew = w.take('E');
+    const Word* lw = w.take('L');
+    if (lw) {
+        if (lw->value != 0 && lw->value != 2)
+            fail(fmt::format("{} on G76: camgen reads an exit taper (L2) or none (L0), not an entry taper", lw->text));
+        g.l = static_cast<int>(lw->value);
+    }
+    if (ew) {
+        Word along = *ew;  // a length along the drive line, written as Z is
+        along.letter = 'Z';
+        g.e = length(along);
+        if (!(g.e >= 0)) fail(fmt::format("{} on G76: the taper's length must be 0 or more", ew->text));
+    }
+    if (g.l == 2 && g.e > 0) {
+        if (g.e < g.k - 0.001)
+            fail(fmt::format("{} on G76: an exit taper steeper than 45 degrees (E below K); camgen reads 45 degrees or "
+                             "flatter",
+                             ew->text));
+        if (g.e >= g.drive_z - g.z)
+            fail(fmt::format("{} on G76: the exit taper is not shorter than the thread", ew->text));
+    }
     for (const Event& e : iso::linuxcnc_g76_moves(g)) {
         if (const auto* r = std::get_if<Rapid>(&e))
             rapid_to(r->to.x, std::nullopt, r->to.z);
         else
-            thread_to("G76", std::get<ThreadFeed>(e).to.z, *pw);
+            thread_to("G76", std::get<ThreadFeed>(e).to.x, std::get<ThreadFeed>(e).to.z, *pw);
     }
 }
 
@@ -571,7 +600,7 @@ void IsoLatheReader::fanuc_g76(BlockWords& w) {
         if (const auto* r = std::get_if<Rapid>(&e))
             rapid_to(r->to.x, std::nullopt, r->to.z);
         else
-            thread_to("G76", std::get<ThreadFeed>(e).to.z, *fw);
+            thread_to("G76", std::get<ThreadFeed>(e).to.x, std::get<ThreadFeed>(e).to.z, *fw);
     }
 }
 

@@ -47,7 +47,8 @@ protected:
     // A variant's hooks. A G code the base does not know (a lathe's G50/G97): taken into
     // `codes` (true), or unknown (false).
     virtual bool variant_code(BlockCodes& codes, const Word& x, Code c);
-    // The address letters of a block (a dialect's own added: Fanuc T G71's U and W).
+    // The address letters of a block (a dialect's own added: Fanuc T G71's U and W, LinuxCNC G76's E
+    // and L).
     virtual std::string_view address_letters() const { return "XYZIJKRQPFSTHD"; }
     // The block's words before its S is read as a speed (Fanuc T's G50 S is a limit).
     virtual void variant_words(const BlockCodes& codes, BlockWords& w);

@@ -58,10 +58,16 @@ void SinumerikLathePost::on_spindle(const Spindle& s) {
 }
 
 void SinumerikLathePost::on_thread_feed(const Vec3& from, const ThreadFeed& t) {
-    if (std::abs(t.to.x - from.x) > 1e-9 || std::abs(t.to.y - from.y) > 1e-9)
-        fail("", "a thread-cutting move that is not along Z: camgen cuts straight threads only");
+    if (std::abs(t.to.y - from.y) > 1e-9) fail("", "a thread-cutting move that leaves the XZ plane");
+    const double dx = std::abs(t.to.x - from.x), dz = std::abs(t.to.z - from.z);
+    // A taper (a chamfered runout's pull-out): G33 takes the lead of the longer axis, K along Z
+    // below 45 degrees (the Programming Manual, G33 taper thread); camgen writes no steeper one.
+    if (dx > 1e-9 && !(dz > 0 && dx <= dz + 0.001))
+        fail("", "a thread-cutting move steeper than 45 degrees from Z: camgen writes a taper's lead along Z (K) only");
     const std::string lead = lead_word("K", t.lead);
-    writer().add(g(33)).add(force_z(t.to.z)).add(lead).end();
+    writer().add(g(33));
+    if (dx > 1e-9) writer().add(force_xy({t.to.x, t.to.y}).x);
+    writer().add(force_z(t.to.z)).add(lead).end();
     forget_motion();
 }
 

@@ -472,15 +472,17 @@ void SinumerikReader::block(const Block& b) {
             Vec3 here = position();
             drill_point({here.x, here.y});
         } else if (motion_ == code(33)) {
-            // G33 Z K: along Z from where the tool stands, K mm per revolution.
-            for (char letter : {'X', 'Y', 'I', 'J'})
+            // G33 [X] Z K from where the tool stands, K mm per revolution along Z; with X a taper
+            // of at most 45 degrees (a chamfered runout), whose lead is the longer axis's, Z's.
+            for (char letter : {'Y', 'I', 'J'})
                 if (const Word* x = w.find(letter))
-                    fail(fmt::format("{} on G33: camgen cuts threads along Z only, each pass positioned with G0", x->text));
+                    fail(fmt::format("{} on G33: camgen cuts threads in X and Z only, each pass positioned with G0", x->text));
             if (cr) fail("CR= on G33");
+            const Word* xw = w.take('X');
             const Word* zw = w.take('Z');
             const Word* kw = w.take('K');
             if (!zw || !kw) fail("G33 needs the end Z and the lead K");
-            thread_to("G33", length(*zw), *kw);
+            thread_to("G33", xw ? std::optional<double>(length(*xw)) : std::nullopt, length(*zw), *kw);
         } else if (std::optional<ArcWords> a = move_or_arc(motion_, plane_, w)) {
             if (cr) a->r = length(*cr);
             arc(*a);

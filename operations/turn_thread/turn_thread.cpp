@@ -60,6 +60,10 @@ constexpr KeySpec turn_thread_keys[] = {
      .description = "Z where the thread ends towards the chuck, below startZ: each pass leaves it there, mm"},
     {.key = "runout", .type = JsonType::string, .default_json = "\"straight\"", .choices = &choices_of<thread_runouts>,
      .description = "how the thread ends at endZ"},
+    {.key = "runoutLength", .quantity = Quantity::length, .min = Bound{0, false},
+     .description = "a chamfered runout's length along Z, ending at endZ: over it each pass pulls out by the thread's "
+                    "depth, synchronised with the spindle (LinuxCNC G76 E); at least the thread's depth (45 degrees or "
+                    "flatter), mm (default: one lead)"},
     {.key = "infeed", .type = JsonType::string, .default_json = "\"constant-area\"", .choices = &choices_of<thread_infeeds>,
      .description = "how the passes' depths grow"},
     {.key = "firstDepth", .quantity = Quantity::length, .required = true, .min = Bound{0, false},
@@ -164,9 +168,9 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
     if (!(op.end_z < op.start_z))
         f.fail("endZ", fmt::format("endZ ({}) must be below startZ ({}): the passes cut towards the chuck", in.show(op.end_z),
                                    in.show(op.start_z)));
-    if (f.choice("runout", thread_runouts, ThreadRunout::straight) == ThreadRunout::chamfered)
-        f.fail("runout", "a chamfered runout is not written yet (the lead of a tapered synchronised move is not the "
-                         "same on every control): use \"straight\", ending the thread in a relief groove or off the part");
+    op.runout = f.choice("runout", thread_runouts, ThreadRunout::straight);
+    if (op.runout == ThreadRunout::straight && f.has("runoutLength"))
+        f.fail("runoutLength", "runoutLength is the length of a chamfered runout: give \"runout\": \"chamfered\" with it");
     op.infeed = f.choice("infeed", thread_infeeds, ThreadInfeed::constant_area);
     op.first_depth = in.length(f, "firstDepth");
     if (!(op.first_depth > 0)) f.fail("firstDepth", "firstDepth must be > 0");
@@ -183,6 +187,10 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
     op.retract = in.optional_length(f, "retract").value_or(1.0);
     if (!(op.retract > 0)) f.fail("retract", "retract must be > 0");
     op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
+    if (op.runout == ThreadRunout::chamfered) {
+        op.runout_length = in.optional_length(f, "runoutLength").value_or(op.lead());
+        if (!(op.runout_length > 0)) f.fail("runoutLength", "runoutLength must be > 0");
+    }
 
     const double total = op.root_radius() > op.surface_radius() ? op.root_radius() - op.surface_radius()
                                                                 : op.surface_radius() - op.root_radius();
@@ -191,6 +199,19 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
                                          in.show(total)));
     if (op.min_depth > total + 1e-9)
         f.fail("minDepth", fmt::format("minDepth {} is more than the thread's depth {}", in.show(op.min_depth), in.show(total)));
+    if (op.runout == ThreadRunout::chamfered) {
+        // The pull-out: the thread's depth over runoutLength. Steeper than 45 degrees, X would be
+        // the longer axis, along which Fanuc's G32 F and Sinumerik's G33 take the lead.
+        const std::string key = f.has("runoutLength") ? "runoutLength" : "runout";
+        if (op.runout_length < total - 1e-9)
+            f.fail(key, fmt::format("a chamfered runout of length {} is steeper than 45 degrees for the thread's depth {} "
+                                    "(Fanuc G32 and Sinumerik G33 measure such a taper's lead along X): give a "
+                                    "runoutLength of at least the depth",
+                                    in.show(op.runout_length), in.show(total)));
+        if (op.runout_length > op.start_z - op.end_z - 1e-9)
+            f.fail(key, fmt::format("a chamfered runout of length {} is not shorter than the thread (startZ {} to endZ {})",
+                                    in.show(op.runout_length), in.show(op.start_z), in.show(op.end_z)));
+    }
     op.depths = thread_pass_depths(op.infeed, total, op.first_depth, op.min_depth);
     if (static_cast<int>(op.depths.size()) > turn_thread_max_passes)
         f.fail("firstDepth", fmt::format("firstDepth {} makes more than {} passes", in.show(op.first_depth),
@@ -206,9 +227,11 @@ TurnThreadOp TurnThreadOp::read(Fields& f, const JobInput& in) {
         f.fail("startZ", fmt::format("the passes start at Z {} (startZ, approachDistance and the starts), at or above the "
                                      "clearance (Z {})",
                                      in.show(top), in.show(clearance)));
-    if (op.side == ThreadSide::internal && op.surface_radius() - op.retract <= 0)
-        f.fail("retract", fmt::format("retract {} inside a bore of diameter {} passes the axis", in.show(op.retract),
-                                      in.show(op.minor)));
+    // (a chamfered runout's first returns lie the thread's depth further in)
+    const double inward = op.runout == ThreadRunout::chamfered ? total : 0.0;
+    if (op.side == ThreadSide::internal && op.surface_radius() - op.retract - inward <= 0)
+        f.fail("retract", fmt::format("retract {} inside a bore of diameter {} passes the axis{}", in.show(op.retract),
+                                      in.show(op.minor), inward > 0 ? " (with the chamfered runout's pull-out)" : ""));
     if (const std::optional<Stock>& stock = in.header().stock; stock && stock->shape == StockShape::bar) {
         if (op.start_z > stock->face_z + 1e-9)
             f.fail("startZ", fmt::format("the thread starts at Z {}, beyond the bar's face (Z {})", in.show(op.start_z),
@@ -282,6 +305,10 @@ ThreadCycle thread_cycle(const TurnThreadOp& op, int start) {
     c.spring_passes = op.spring_passes;
     if (op.spring_passes > 0) c.fields.emplace_back("springPasses");
     c.depths = op.depths;
+    if (op.runout == ThreadRunout::chamfered) {
+        c.runout = op.runout_length;
+        c.fields.emplace_back("runout");
+    }
     return c;
 }
 
@@ -301,16 +328,26 @@ void expand(const TurnThreadOp& op, const Context& ctx, EventSink& sink) {
         sink.emit(Rapid{turn_thread_at(away, ctx.job.clearance)});
         return;
     }
+    const double total = std::abs(op.root_radius() - surface);
+    const bool chamfered = op.runout == ThreadRunout::chamfered;
     for (int s = 0; s < op.starts; ++s) {
         for (double depth : op.depths) {
             // Flank infeed: the pass starts earlier along the feed by depth x tan(angle), so that
             // the groove moves along Z with the depth and the tool cuts on its leading flank.
             const double z0 = op.start_z + op.approach + s * op.pitch - depth * tan_a;
             const double r = surface - out * depth;
-            sink.emit(Rapid{turn_thread_at(away, z0)});
+            // A chamfered runout ends the pass (total - depth) outside the crest: the return
+            // stays retract beyond that (as LinuxCNC's G76 returns).
+            const double back = chamfered ? away + out * (total - depth) : away;
+            sink.emit(Rapid{turn_thread_at(back, z0)});
             sink.emit(Rapid{turn_thread_at(r, z0)});
-            sink.emit(ThreadFeed{turn_thread_at(r, op.end_z), op.lead()});
-            sink.emit(Rapid{turn_thread_at(away, op.end_z)});
+            if (chamfered) {
+                sink.emit(ThreadFeed{turn_thread_at(r, op.end_z + op.runout_length), op.lead()});
+                sink.emit(ThreadFeed{turn_thread_at(r + out * total, op.end_z), op.lead()});
+            } else {
+                sink.emit(ThreadFeed{turn_thread_at(r, op.end_z), op.lead()});
+            }
+            sink.emit(Rapid{turn_thread_at(back, op.end_z)});
         }
     }
     sink.emit(Rapid{turn_thread_at(away, ctx.job.clearance)});

@@ -94,6 +94,7 @@ std::string event_to_json(const Event& event) {
                             {"degression", e.degression}, {"minDepth", e.min_depth},
                             {"infeedAngle", e.infeed_angle}, {"springPasses", e.spring_passes},
                             {"fields", e.fields},        {"depths", e.depths}};
+                       if (e.runout > 0) j["runout"] = e.runout;
                    },
                    [&](const TurnCycle& e) {
                        j = {{"event", "turn-cycle"}, {"path", e.path}, {"output", name_of(cycle_outputs, e.output)},
@@ -144,14 +145,21 @@ std::vector<Event> thread_cycle_moves(const ThreadCycle& c, ThreadCyclePattern p
     const bool fanuc = pattern == ThreadCyclePattern::fanuc_g76;
     out.reserve(5 * c.depths.size());
     for (double d : c.depths) {
-        const double back = fanuc ? c.start.x : c.start.x + out_dir * (c.depth - d);
+        // (a chamfered runout ends the pass depth - d outside the crest: the return lies as far
+        // beyond it as the drive line lies beyond the crest, as LinuxCNC's G76 returns)
+        const double back = fanuc && !(c.runout > 0) ? c.start.x : c.start.x + out_dir * (c.depth - d);
         const double z0 = c.start.z - d * t;
         const double z1 = c.end_z + (c.depth - d) * t;
         const double r = c.crest_x - out_dir * d;
         // (Fanuc: along Z at the start X to the pass's start, none under a radial infeed)
         if (!fanuc || t != 0.0) out.emplace_back(Rapid{{back, c.start.y, z0}});
         out.emplace_back(Rapid{{r, c.start.y, z0}});
-        out.emplace_back(ThreadFeed{{r, c.start.y, z1}, c.lead});
+        if (c.runout > 0) {
+            out.emplace_back(ThreadFeed{{r, c.start.y, z1 + c.runout}, c.lead});
+            out.emplace_back(ThreadFeed{{r + out_dir * c.depth, c.start.y, z1}, c.lead});
+        } else {
+            out.emplace_back(ThreadFeed{{r, c.start.y, z1}, c.lead});
+        }
         out.emplace_back(Rapid{{back, c.start.y, z1}});
         if (fanuc) out.emplace_back(Rapid{c.start});
     }

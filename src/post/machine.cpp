@@ -328,7 +328,7 @@ constexpr KeySpec thread_cycle_keys[] = {
      .description = "how the canned cycle is written and read"},
     {.key = "fields", .type = JsonType::array, .choices = &thread_cycle_field_list,
      .description = "what it carries of a turn-thread: its infeed rules (constant-depth, constant-area), minDepth, "
-                    "infeedAngle (flank infeed), springPasses"},
+                    "infeedAngle (flank infeed), springPasses, runout (a chamfered runout)"},
 };
 
 constexpr Named<GrooveCycleStyle> groove_cycle_styles[] = {

@@ -554,13 +554,20 @@ void NcReader::linear_to(std::optional<double> x, std::optional<double> y, std::
     emit(Linear{p, *feed_}, false, xy_uncertainty_);
 }
 
-void NcReader::thread_to(const std::string& name, double z, const Word& lead) {
+void NcReader::thread_to(const std::string& name, std::optional<double> x, double z, const Word& lead, bool along_path) {
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
     if (spindle_ == SpindleState::off || !(rpm_ > 0))
         fail(fmt::format("{} with the spindle off: a thread-cutting move follows the spindle", name));
-    const double l = lead.value / feed_rev_fmt_.spec().scale;
+    double l = lead.value / feed_rev_fmt_.spec().scale;
     if (!(l > 0)) fail(fmt::format("{}: the lead must be > 0", lead.text));
     Vec3 p = position();
+    if (x) {
+        const double dx = std::abs(*x - p.x), dz = std::abs(z - p.z);
+        if (dx > 1e-9 && !(dz > 0 && dx <= dz + 0.001))
+            fail(fmt::format("{} steeper than 45 degrees from Z: camgen reads a taper's lead along Z only", name));
+        if (along_path && dx > 1e-9) l *= dz / std::hypot(dx, dz);
+        p.x = *x;
+    }
     p.z = z;
     pos_ = {p.x, p.y, p.z};
     emit(ThreadFeed{p, l});

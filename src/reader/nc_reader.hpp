@@ -193,7 +193,11 @@ protected:
     // A thread-cutting move (G33 Z K, G32 Z F) named `name` along Z to `z`, its lead the word
     // `lead` (in the machine's feed-per-revolution format). Fails from an unknown position, with
     // the spindle off, or for a lead not above 0.
-    void thread_to(const std::string& name, double z, const Word& lead);
+    // A thread-cutting move to Z (and X: a taper of at most 45 degrees), `lead` read through the
+    // feed-per-revolution format: along Z, or with `along_path` along the move's path (LinuxCNC's
+    // G33 K), turned into the ThreadFeed's lead along Z.
+    void thread_to(const std::string& name, std::optional<double> x, double z, const Word& lead, bool along_path = false);
+    void thread_to(const std::string& name, double z, const Word& lead) { thread_to(name, std::nullopt, z, lead); }
 
     // The words of an arc block in internal units (nullopt: not written).
     struct ArcWords {

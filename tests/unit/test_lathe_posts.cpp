@@ -111,7 +111,7 @@ TEST_CASE("lathe machines describe their TurnDrillingFields") {
     CHECK(has(l, "canned G83; fields: plungingFeedrate, firstPeckDepth, peckClearance"));
     // Their threading cycles (turn-thread's output).
     CHECK(has(l, "threading cycles (turn-thread)\n"));
-    CHECK(has(l, "G76 (linuxcnc-g76): constant-depth, constant-area, infeedAngle, springPasses\n"));
+    CHECK(has(l, "G76 (linuxcnc-g76): constant-depth, constant-area, infeedAngle, springPasses, runout\n"));
     CHECK(has(d, "longhand\n"));
 }
 

@@ -295,7 +295,7 @@ TEST_CASE("turn-thread: the linuxcnc-lathe reader refuses a G76 it cannot read, 
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 R2 Q29.5 H1").empty());
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 R2 Q29.5 H1.5").find("H1.5 on G76: the spring passes are a whole number") !=
           std::string::npos);
-    // (the ISO reader knows no E word: "unknown word E1")
+    // (an exit taper steeper than 45 degrees: test_thread_runout.cpp)
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 J0.8 K3.0672 E1 L2").find("E1") != std::string::npos);
     CHECK(refusal_of("G76 P2.5 Z10 I-2 J0.8 K3.0672").find("towards the chuck") != std::string::npos);
     CHECK(refusal_of("G76 P2.5 Z-20 I-2 K3.0672").find("G76 needs P, Z, I, J and K") != std::string::npos);
@@ -314,7 +314,7 @@ TEST_CASE("turn-thread: machine files' threadingCycles are checked with their pa
     buf << f.rdbuf();
     const std::string file = buf.str();
     const std::string cycle = R"({"name": "G76", "kind": "thread", "style": "linuxcnc-g76",
-     "fields": ["constant-depth", "constant-area", "infeedAngle", "springPasses"]})";
+     "fields": ["constant-depth", "constant-area", "infeedAngle", "springPasses", "runout"]})";
     REQUIRE(file.find(cycle) != std::string::npos);
     CHECK_NOTHROW((void)parse_machine(file, "m", "m.json"));
     auto refused = [&](const std::string& with) {
@@ -355,8 +355,8 @@ TEST_CASE("turn-thread: refusals name their key") {
     CHECK(refusal(job(R"("thread": "M20", "hand": "left", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
               .find("/operations/0/hand: a left-hand thread is cut towards the chuck with the spindle turning ccw") !=
           std::string::npos);
-    CHECK(refusal(job(R"("thread": "M20", "runout": "chamfered", "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
-              .find("/operations/0/runout: a chamfered runout is not written yet") != std::string::npos);
+    // (a chamfered runout is cut: test_thread_runout.cpp)
+    CHECK(refusal(job(R"("thread": "M20", "runout": "chamfered", "startZ": 0, "endZ": -10, "firstDepth": 0.2)")).empty());
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": 5, "firstDepth": 0.2)")).find("/operations/0/endZ") !=
           std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 3)")).find("/operations/0/firstDepth") !=

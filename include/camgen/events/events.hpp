@@ -202,7 +202,10 @@ struct CustomBlock {
 // A straight move synchronised with the spindle (thread cutting: LinuxCNC and Sinumerik G33 K,
 // Fanuc G32 F): the tool advances `lead` mm along Z per spindle revolution, from where it stands
 // to `to`. Its feed is the lead times the spindle's rpm; the control waits for the spindle's
-// index before it starts, so that every pass of a thread runs in the same groove.
+// index before it starts, so that every pass of a thread runs in the same groove. A move that
+// changes X too (a chamfered runout's pull-out, at most 45 degrees from Z) still advances `lead`
+// along Z per revolution: the posts write the word each control measures (LinuxCNC's K along the
+// path, Fanuc's F and Sinumerik's K along Z, the longer axis).
 struct ThreadFeed {
     Vec3 to;
     double lead = 0.0;  // mm per revolution along Z
@@ -216,7 +219,11 @@ struct ThreadFeed {
 // Z start.z - d tan(infeed_angle), cuts synchronised with the spindle to end_z + (depth - d)
 // tan(infeed_angle) (the flank ends where the last pass does) and returns to the radius
 // start.x + (depth - d) outward; after the last pass the tool stands at (start.x, end_z). Cut
-// along -Z. `thread_cycle_moves` gives the moves, which posts without the cycle write longhand.
+// along -Z. With a chamfered runout (runout > 0, LinuxCNC G76 E L2) each pass's straight part
+// ends `runout` above its end Z and a synchronised taper pulls the tool out by the thread's depth
+// over that length (the last pass from the root to the crest, the earlier ones parallel to it,
+// ending in air). `thread_cycle_moves` gives the moves, which posts without the cycle write
+// longhand.
 struct ThreadCycle {
     std::string path;                   // JSON path of the operation, for messages
     CycleOutput output = CycleOutput::automatic;
@@ -232,6 +239,7 @@ struct ThreadCycle {
     int spring_passes = 0;
     std::vector<std::string> fields;    // what the canned cycle must carry ("constant-area", "infeedAngle", ...)
     std::vector<double> depths;         // each pass's cumulative radial depth, the spring passes included
+    double runout = 0.0;                // a chamfered runout's length along Z (G76 E), 0: straight
     friend bool operator==(const ThreadCycle&, const ThreadCycle&) = default;
 };
 

@@ -117,13 +117,34 @@ struct LatheHoleDesign {
     double slope = 0.0;      // mm of Z per mm of radius along the point (0: a flat end)
     // An internal thread's tool nose (radius > 0): its centre `nose_above` mm above bottom_z
     // (the tip's Z) and a nose radius inside `radius` (the tip's radius): the bore's end is
-    // what the nose leaves, rounded, not a flat.
+    // what the nose leaves, rounded, not a flat. With a slope too (a chamfered runout): what the
+    // nose leaves along the tip's cone from `radius` down to `flat` at bottom_z.
     double nose = 0.0;
     double nose_above = 0.0;
 
     // The designed bore's radius at Z z: 0 below the point, the point's cone (or the nose's
     // round), the radius above.
     double radius_at(double z) const {
+        if (nose > 0 && slope > 0) {
+            // An internal thread's chamfered runout: the tip's path the radius down to the cone
+            // from `radius` to `flat` at bottom_z; what the nose disc (centre nose_above above the
+            // tip, nose inside it) reaches at z along that path: concave in the centre's Z, its
+            // most found by halving.
+            const double lo = std::max(bottom_z + nose_above, z - nose), hi = z + nose;
+            if (lo > hi) return 0.0;
+            auto reach = [&](double cz) {
+                const double tip = std::min(radius, flat + (cz - nose_above - bottom_z) / slope);
+                const double e = z - cz;
+                return tip - nose + std::sqrt(std::max(0.0, nose * nose - e * e));
+            };
+            double a = lo, b = hi;
+            for (int k = 0; k < 60; ++k) {
+                const double m1 = a + (b - a) / 3, m2 = b - (b - a) / 3;
+                if (reach(m1) < reach(m2)) a = m1;
+                else b = m2;
+            }
+            return std::max({reach(lo), reach(hi), reach((a + b) / 2)});
+        }
         if (nose > 0) {
             const double e = bottom_z + nose_above - z;
             if (e <= 0) return radius;
@@ -164,7 +185,9 @@ void design_turn_part(const TurnPartOp& op, const Job& job, LatheDesign& design,
 // around what lies beyond the thread's root, as the simulation sweeps them (the helix and its
 // flanks are not designed); its tip's whole path as the passes make it. An internal thread
 // designs a bore of its major diameter down to endZ (a LatheHoleDesign whose end is the tool's
-// nose, swept as orientation 3 where the tool has none), the part kept around it.
+// nose, swept as orientation 3 where the tool has none), the part kept around it. A chamfered
+// runout designs the last pass's taper instead of the end at endZ: outside from the root at
+// endZ + runoutLength up to the major at endZ; inside a cone from the major down to the minor.
 void design_turn_thread(const TurnThreadOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 
 }  // namespace camgen

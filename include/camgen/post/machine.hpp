@@ -86,7 +86,7 @@ enum class ThreadCycleStyle { linuxcnc_g76, fanuc_g76 };
 
 // What a turn-thread may ask of a threading cycle (machine file threadingCycles[].fields).
 inline constexpr const char* thread_cycle_field_names[] = {"constant-depth", "constant-area", "minDepth", "infeedAngle",
-                                                           "springPasses"};
+                                                           "springPasses", "runout"};
 
 // One threading cycle the machine offers (machine file threadingCycles).
 struct ThreadingCycleSpec {

@@ -37,7 +37,9 @@ inline constexpr Named<ThreadInfeed> thread_infeeds[] = {
 enum class ThreadRunout { straight, chamfered };
 inline constexpr Named<ThreadRunout> thread_runouts[] = {
     {ThreadRunout::straight, "straight", "the tool leaves the thread straight out along X at endZ (into a relief groove or off the part)"},
-    {ThreadRunout::chamfered, "chamfered", "the tool leaves the thread along a taper (not written yet: refused)"},
+    {ThreadRunout::chamfered, "chamfered",
+     "each pass ends with a taper synchronised with the spindle, pulling out by the thread's depth over runoutLength "
+     "(no relief groove needed; LinuxCNC G76 E L2)"},
 };
 
 struct TurnThreadOp {
@@ -59,6 +61,8 @@ struct TurnThreadOp {
     int starts = 1;
     double start_z = 0.0;               // the thread's free end, mm
     double end_z = 0.0;                 // where it ends towards the chuck, mm
+    ThreadRunout runout = ThreadRunout::straight;
+    double runout_length = 0.0;         // a chamfered runout's length along Z, mm
     ThreadInfeed infeed = ThreadInfeed::constant_area;
     double first_depth = 0.0;           // radial, mm
     double min_depth = 0.0;             // radial, mm; 0: none
@@ -87,6 +91,8 @@ ThreadCycle thread_cycle(const TurnThreadOp& op, int start);
 
 // Output longhand: for each start, for each pass: rapid in air to the pass's start, in to its
 // depth, a ThreadFeed to endZ, out to the retract X, back along Z; then back to the clearance.
+// A chamfered runout: the ThreadFeed ends runoutLength above endZ, a second (tapered) one pulls
+// out by the thread's depth to endZ, and the returns lie (depth - d) further out.
 // Otherwise a ThreadCycle per start from its drive point (its passes end short of endZ by
 // (depth - d) tan(infeedAngle), the flank's shadow of the last pass, as G76 cuts them).
 void expand(const TurnThreadOp& op, const Context& context, EventSink& sink);
