@@ -255,7 +255,8 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                 what = "its passes come in";
             }
             cut_outside = cut_outside || std::holds_alternative<TurnFaceOp>(op) || std::holds_alternative<TurnRoughOp>(op) ||
-                          std::holds_alternative<TurnProfileOp>(op) || std::holds_alternative<TurnGrooveOp>(op) ||
+                          std::holds_alternative<TurnProfileOp>(op) ||
+                          (std::holds_alternative<TurnGrooveOp>(op) && std::get<TurnGrooveOp>(op).side == GrooveSide::external) ||
                           std::holds_alternative<TurnPartOp>(op);
             if (entry && *entry < face - 1e-9)
                 json::fail(in.source(), path_of(op),
