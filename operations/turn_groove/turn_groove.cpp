@@ -103,8 +103,11 @@ GrooveBlade read_groove_blade(Fields& f, const JobInput& in, std::string_view wh
     case GrooveSide::external:
         if (o != 0 && o != 1 && o != 2)
             f.fail("tool", fmt::format("tool {} has orientation {}: a {}'s programmed point is a corner of its blade's edge, "
-                                       "the left one (orientation 2, or none) or the right one (orientation 1)",
-                                       tool.number, o, what));
+                                       "the left one (orientation 2, or none) or the right one (orientation 1){}",
+                                       tool.number, o, what,
+                                       what == "turn-groove" && (o == 3 || o == 4) ? " (3 and 4 are an internal groove's: \"side\": \"internal\")"
+                                       : what == "turn-groove" && o == 7          ? " (7 is a face groove's: \"side\": \"face\")"
+                                                                                  : ""));
         b.right_point = o == 1;
         break;
     case GrooveSide::internal:
@@ -239,8 +242,6 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
                                          "bore's wall",
                                          x_text(op.surface), x_text(bar_bore)));
         op.z_right = in.length(f, "z");
-        if (!f.has("width")) f.fail("width", fmt::format("give the groove's width (an {} groove runs width from z towards the "
-                                                         "chuck)", internal ? "internal" : "external"));
         width = in.length(f, "width");
         if (!(width > 0)) f.fail("width", "width must be > 0");
         if (width < op.blade.width - 1e-9)

@@ -72,7 +72,9 @@ public:
                     // Below every point: the hole whose point is nearest above.
                     std::optional<std::size_t> above;
                     for (std::size_t j = 0; j < nh; ++j)
-                        if (d_.holes[j].bottom_z >= at.z && (!above || d_.holes[j].bottom_z < d_.holes[*above].bottom_z)) above = j;
+                        if (!d_.holes[j].groove() && d_.holes[j].bottom_z >= at.z &&
+                            (!above || d_.holes[j].bottom_z < d_.holes[*above].bottom_z))
+                            above = j;
                     if (above)
                         f = &finding(LatheFinding::Kind::gouge, LatheFinding::Surface::bore, np + nh + *above,
                                      d_.holes[*above].path, "the part below the hole's point");

@@ -49,14 +49,14 @@ std::string fanuc_as_linuxcnc(const std::string& program) {
     return out;
 }
 
-void run_on(const Job& job, const std::string& machine) {
+void run_on(const Job& job, const std::string& machine, double tolerance = 1e-6) {
     const Machine m = load_machine(machine);
     const std::string program = oracle::posted_program(job, m);
     const std::string text = machine == "fanuc-lathe" ? fanuc_as_linuxcnc(program) : program;
     INFO(machine << ":\n" << text);
     std::vector<oracle::Step> theirs;
     REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274(), text));
-    oracle::check_read_as_run(theirs, program, m);
+    oracle::check_read_as_run(theirs, program, m, tolerance);
 }
 
 }  // namespace
@@ -136,8 +136,10 @@ TEST_CASE("linuxcnc-lathe and fanuc-lathe: random internal and face grooves run 
         INFO(text);
         Job job;
         REQUIRE_NOTHROW(job = read_job(text, "groove.json"));
-        run_on(job, "linuxcnc-lathe");
-        run_on(job, "fanuc-lathe");
+        // (a face groove's plunges and chamfers fall on X of odd thousandths: their radii end
+        // in 5 at the fourth decimal, which rs274 prints rounded)
+        run_on(job, "linuxcnc-lathe", 1e-4);
+        run_on(job, "fanuc-lathe", 1e-4);
     }
 }
 
