@@ -210,6 +210,13 @@ TEST_CASE("turn-groove sides: keys of another side and tools that do not fit are
           std::string::npos);
     CHECK(face(facer, R"(, "innerX": 22, "outerX": 30, "depth": 2, "chamfer": 12)").find("/operations/0/chamfer") !=
           std::string::npos);
+    // Its moves along X run at z + approachDistance: below the bar's face that is in the bar.
+    CHECK(refusal(bushing_job(facer, R"({"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": -3, "innerX": 22,
+                                        "outerX": 30, "depth": 2})"))
+              .find("/operations/0: it moves along X over the face groove at Z -2.000 mm, inside the bar") != std::string::npos);
+    // An external groove with an internal or face tool: the refusal names the side.
+    CHECK(refusal(bushing_job(inner, R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 4, "depth": 2})"))
+              .find("(3 and 4 are an internal groove's: \"side\": \"internal\")") != std::string::npos);
 }
 
 TEST_CASE("turn-groove sides: random internal and face grooves keep the blade in air and within the groove") {
