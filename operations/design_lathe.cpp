@@ -356,6 +356,22 @@ void lathe_design_blade(const Job& job, LatheTurnDesign& d, const GrooveBlade& b
 }  // namespace
 
 void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
+    if (op.side == GrooveSide::face)
+        return unchecked.push_back(op.path + ": a face groove is a ring inside the end face; the simulated part holds one "
+                                             "outside and one bore radius per Z");
+    if (op.side == GrooveSide::internal) {
+        if (!lathe_design_tool(job, op.tool)) return unchecked.push_back(op.path + ": its tool is not in the job");
+        LatheHoleDesign h;
+        h.path = op.path;
+        h.tool = op.tool;
+        h.top_z = op.z_right;
+        h.bottom_z = op.z_left;
+        h.radius = op.bottom;
+        h.groove_chamfer = op.chamfer;
+        h.groove_surface = op.surface;
+        design.holes.push_back(std::move(h));
+        return;
+    }
     LatheTurnDesign d;
     if (!lathe_design_turned(op, job, d, unchecked)) return;
     const double c = op.chamfer, R = op.surface;

@@ -249,13 +249,17 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
                 const Profile& tip = t->tip_path.segments.empty() || control ? t->profile : t->tip_path;
                 entry = tip.start.x + t->approach, what = "it rapids along Z to its start";
             }
+            // A face groove moves along X at approachDistance above its z: that must be air.
+            if (const auto* g = std::get_if<TurnGrooveOp>(&op); g && g->side == GrooveSide::face)
+                entry = g->surface + g->approach, what = "it moves along X over the face groove";
             if (const auto* t = std::get_if<TurnThreadOp>(&op)) {
                 const double deepest = t->depths.empty() ? 0.0 : t->depths.back();
                 entry = t->start_z + t->approach - deepest * std::tan(t->infeed_angle * rad_per_deg),
                 what = "its passes come in";
             }
             cut_outside = cut_outside || std::holds_alternative<TurnFaceOp>(op) || std::holds_alternative<TurnRoughOp>(op) ||
-                          std::holds_alternative<TurnProfileOp>(op) || std::holds_alternative<TurnGrooveOp>(op) ||
+                          std::holds_alternative<TurnProfileOp>(op) ||
+                          (std::holds_alternative<TurnGrooveOp>(op) && std::get<TurnGrooveOp>(op).side == GrooveSide::external) ||
                           std::holds_alternative<TurnPartOp>(op);
             if (entry && *entry < face - 1e-9)
                 json::fail(in.source(), path_of(op),

@@ -25,7 +25,8 @@ struct FanucG75 {
 };
 
 // The moves the control makes (Rapid and Linear events), from the start point. An external
-// groove: x below start_x; peck and step > 0 (step unused when z is start_z).
+// groove: x below start_x; an internal one (the manual's "internal diameter"): x beyond it, the
+// pecks and back-offs mirrored; peck and step > 0 (step unused when z is start_z).
 inline std::vector<Event> fanuc_g75_moves(const FanucG75& g) {
     std::vector<Event> out;
     auto at = [&](double r, double z) { return Vec3{r, g.start_y, z}; };
@@ -38,11 +39,14 @@ inline std::vector<Event> fanuc_g75_moves(const FanucG75& g) {
     for (std::size_t k = 0; k < zs.size(); ++k) {
         if (k > 0) out.emplace_back(Rapid{at(g.start_x, zs[k])});
         std::vector<double> depths;
+        // In the plunge's own direction: s = -1 where X rises into the material.
+        const double s = g.x > g.start_x ? -1.0 : 1.0;
         if (g.peck > 0)
-            for (int n = 1; g.start_x - n * g.peck > g.x + 1e-9 && depths.size() < 100000; ++n) depths.push_back(g.start_x - n * g.peck);
+            for (int n = 1; s * (g.start_x - s * n * g.peck) > s * g.x + 1e-9 && depths.size() < 100000; ++n)
+                depths.push_back(g.start_x - s * n * g.peck);
         depths.push_back(g.x);
         for (std::size_t n = 0; n < depths.size(); ++n) {
-            if (n > 0) out.emplace_back(Rapid{at(std::min(depths[n - 1] + g.e, g.start_x), zs[k])});
+            if (n > 0) out.emplace_back(Rapid{at(s * std::min(s * (depths[n - 1] + s * g.e), s * g.start_x), zs[k])});
             out.emplace_back(Linear{at(depths[n], zs[k]), g.feed, Movement::plunge});
         }
         out.emplace_back(Rapid{at(g.start_x, zs[k])});

@@ -535,7 +535,7 @@ IsoLathePost::G75Words IsoLathePost::g75_words(const GrooveCycle& c) const {
     w.read.z = z.rounded(last.z);
     // Without pecks, one peck as deep as the plunge: the least written value at or beyond it.
     double peck = c.peck;
-    if (!(peck > 0)) peck = std::ceil((w.read.start_x - w.read.x) * inc.scale - 1e-6) / inc.scale;
+    if (!(peck > 0)) peck = std::ceil(std::abs(w.read.start_x - w.read.x) * inc.scale - 1e-6) / inc.scale;
     w.text.push_back(pq.word("P", peck));
     w.read.peck = pq.rounded(peck);
     if (c.plunges().size() > 1) {
@@ -550,6 +550,7 @@ std::optional<std::string> IsoLathePost::groove_cycle_limit(const GrooveCycle& c
     // G75 makes its plunges from the rounded words: they must be the cycle's within 0.001 mm.
     if (spec.style != GrooveCycleStyle::fanuc_g75) return IsoPost::groove_cycle_limit(c, spec);
     if (!c.plain()) return std::string("G75 plunges only, pecks counted from its start, back to its start at the end");
+    if (c.side == GrooveSide::face) return std::string("G75 plunges along X, a face groove along Z");
     const G75Words w = g75_words(c);
     if (!(w.read.e > 0)) return std::string("its back-off R would be written as 0");
     const std::vector<Event> control = iso::fanuc_g75_moves(w.read);

@@ -641,11 +641,12 @@ void IsoLatheReader::g75(BlockWords& w) {
     g.step = qw ? length_value(qw->value / increments) : 0.0;
     g.e = *groove_back_off_;
     g.feed = *feed_;
-    if (!(g.x < g.start_x)) fail(fmt::format("{} {}: camgen reads external grooves, the bottom below the start point", name, xw->text));
+    // X below the start point: an external groove; beyond it: an internal one (the pecks mirrored).
+    if (g.x == g.start_x) fail(fmt::format("{} {}: the groove's bottom must lie off the start point's X", name, xw->text));
     if (!(g.peck > 0)) fail(fmt::format("{}: the peck P must be > 0", pw->text));
     if (std::abs(g.z - g.start_z) > 1e-9 && !(g.step > 0))
         fail(fmt::format("{} {}: a groove along Z needs its step Q > 0", name, zw->text));
-    if ((g.start_x - g.x) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", pw->text));
+    if (std::abs(g.start_x - g.x) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", pw->text));
     if (g.step > 0 && std::abs(g.z - g.start_z) / g.step > 10000) fail(fmt::format("{}: more than 10000 plunges", qw->text));
     for (const Event& e : iso::fanuc_g75_moves(g)) {
         if (const auto* r = std::get_if<Rapid>(&e)) rapid_to(r->to.x, std::nullopt, r->to.z);

@@ -125,6 +125,8 @@ std::string event_to_json(const Event& event) {
                             {"retract", e.retract}, {"fullRetract", e.full_retract},
                             {"dwell", e.dwell}, {"feed", e.feed},
                             {"fields", e.fields}};
+                       if (e.side != GrooveSide::external)
+                           j["side"] = e.side == GrooveSide::internal ? "internal" : "face";
                    },
                    [&](const CustomBlock& e) {
                        j = {{"event", "custom"}, {"path", e.path}};
@@ -222,7 +224,12 @@ std::vector<Event> groove_cycle_moves(const GrooveCycle& c) {
     std::vector<Event> out;
     const std::vector<double> zs = c.plunges();
     const bool plain = c.plain();
-    const double end = c.bottom + c.finish;  // where the plunges stop
+    // Depths in the groove's own coordinate d = into * (radius or Z): falling into the material
+    // on every side; P maps one back.
+    const double s = c.into();
+    const double air = s * c.air, surface = s * c.surface, bottom = s * c.bottom;
+    auto P = [&](double d, double z) { return c.at(s * d, z); };
+    const double end = bottom + c.finish;  // where the plunges stop
     // One plunge from the air level at left-corner Z z: pecks counted from `from_r` down to `to_r`.
     auto plunge = [&](double z, double from_r, double to_r) {
         std::vector<double> depths;
@@ -231,52 +238,52 @@ std::vector<Event> groove_cycle_moves(const GrooveCycle& c) {
         depths.push_back(to_r);
         for (std::size_t k = 0; k < depths.size(); ++k) {
             if (k > 0) {
-                const double back = std::min(depths[k - 1] + c.retract, c.air);
-                if (c.full_retract) out.emplace_back(Rapid{c.at(c.air, z)});
-                out.emplace_back(Rapid{c.at(back, z)});
+                const double back = std::min(depths[k - 1] + c.retract, air);
+                if (c.full_retract) out.emplace_back(Rapid{P(air, z)});
+                out.emplace_back(Rapid{P(back, z)});
             }
-            out.emplace_back(Linear{c.at(depths[k], z), c.feed, Movement::plunge});
+            out.emplace_back(Linear{P(depths[k], z), c.feed, Movement::plunge});
         }
     };
     if (plain) {
         for (std::size_t k = 0; k < zs.size(); ++k) {
-            if (k > 0) out.emplace_back(Rapid{c.at(c.air, zs[k])});
-            plunge(zs[k], c.air, end);
-            out.emplace_back(Rapid{c.at(c.air, zs[k])});
+            if (k > 0) out.emplace_back(Rapid{P(air, zs[k])});
+            plunge(zs[k], air, end);
+            out.emplace_back(Rapid{P(air, zs[k])});
         }
         if (zs.size() > 1) out.emplace_back(Rapid{c.start()});
         return out;
     }
     const bool one = zs.size() == 1;
     for (std::size_t k = 0; k < zs.size(); ++k) {
-        if (k > 0) out.emplace_back(Rapid{c.at(c.air, zs[k])});
-        plunge(zs[k], c.surface, end);
+        if (k > 0) out.emplace_back(Rapid{P(air, zs[k])});
+        plunge(zs[k], surface, end);
         if (one && c.dwell > 0) out.emplace_back(Dwell{c.dwell});
-        if (k + 1 < zs.size()) out.emplace_back(Rapid{c.at(c.air, zs[k])});
+        if (k + 1 < zs.size()) out.emplace_back(Rapid{P(air, zs[k])});
     }
     const double right_wall = c.first_z;  // the left corner at the +Z wall
     if (!one) {
         // The last plunge stands at the -Z wall: on to the bottom and along it to the +Z wall.
-        if (c.finish > 0) out.emplace_back(Linear{c.at(c.bottom, c.last_z), c.feed, Movement::plunge});
+        if (c.finish > 0) out.emplace_back(Linear{P(bottom, c.last_z), c.feed, Movement::plunge});
         if (c.dwell > 0) out.emplace_back(Dwell{c.dwell});
-        out.emplace_back(Linear{c.at(c.bottom, right_wall), c.feed, Movement::cutting});
+        out.emplace_back(Linear{P(bottom, right_wall), c.feed, Movement::cutting});
         if (c.dwell > 0) out.emplace_back(Dwell{c.dwell});
-        out.emplace_back(Rapid{c.at(c.air, right_wall)});
+        out.emplace_back(Rapid{P(air, right_wall)});
     } else {
-        out.emplace_back(Rapid{c.at(c.air, zs.back())});
+        out.emplace_back(Rapid{P(air, zs.back())});
     }
     if (c.chamfer > 0) {
-        const double ch = c.chamfer, a = c.air - c.surface;
+        const double ch = c.chamfer, a = air - surface;
         const double z_right = right_wall + c.width;  // the +Z wall
         // The +Z edge: the right corner from the chamfer's line extended to the air level down to
         // its foot on the wall.
-        out.emplace_back(Rapid{c.at(c.air, z_right + ch + a - c.width)});
-        out.emplace_back(Linear{c.at(c.surface - ch, right_wall), c.feed, Movement::cutting});
-        out.emplace_back(Rapid{c.at(c.air, right_wall)});
+        out.emplace_back(Rapid{P(air, z_right + ch + a - c.width)});
+        out.emplace_back(Linear{P(surface - ch, right_wall), c.feed, Movement::cutting});
+        out.emplace_back(Rapid{P(air, right_wall)});
         // The -Z edge: the left corner likewise.
-        out.emplace_back(Rapid{c.at(c.air, c.last_z - ch - a)});
-        out.emplace_back(Linear{c.at(c.surface - ch, c.last_z), c.feed, Movement::cutting});
-        out.emplace_back(Rapid{c.at(c.air, c.last_z)});
+        out.emplace_back(Rapid{P(air, c.last_z - ch - a)});
+        out.emplace_back(Linear{P(surface - ch, c.last_z), c.feed, Movement::cutting});
+        out.emplace_back(Rapid{P(air, c.last_z)});
     }
     return out;
 }

@@ -83,7 +83,9 @@ constexpr KeySpec tool_keys[] = {
                     "point (the imaginary tip) lies on the nose circle, seen with +Z to the right and +X up: 1 "
                     "lower right, 2 lower left, 3 upper left, 4 upper right, 5 right, 6 below, 7 left, 8 above, 9 the "
                     "centre (default: 2 for a turning-tool, the outside tool cutting towards the chuck; none for the "
-                    "others; refused for tools that are not lathe tools)"},
+                    "others; refused for tools that are not lathe tools). A grooving or parting tool's says which way "
+                    "its blade cuts and which corner is programmed: 2 (or none) and 1 outside (left, right corner), 3 and "
+                    "4 inside a bore (left, right), 7 a face grooving blade (its inner corner)"},
     {.key = "insertAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{180, false},
      .description = "a turning-tool's insert: its included angle at the nose (80 C, 55 D, 35 V, 60 T, 90 S), with "
                     "approachAngle; together they say which slopes the insert can follow without rubbing (refused for "

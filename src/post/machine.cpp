@@ -336,7 +336,7 @@ constexpr Named<GrooveCycleStyle> groove_cycle_styles[] = {
      "Fanuc T's G75 R(back-off) / G75 X Z P(peck) Q(Z step, least increments) F from the start point, back to it"},
 };
 
-constexpr Named<int> groove_cycle_kinds[] = {{0, "groove", "an external groove cut in plunges (turn-groove)"}};
+constexpr Named<int> groove_cycle_kinds[] = {{0, "groove", "an external or internal groove cut in plunges along X (turn-groove)"}};
 
 // The names a grooving cycle's "fields" may hold.
 std::vector<std::string> groove_cycle_field_list() {

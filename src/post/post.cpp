@@ -619,6 +619,10 @@ void Post::handle_groove_cycle(const GrooveCycle& c) {
         std::string reason;
         if (!spec) {
             reason = fmt::format("machine {} has no canned grooving cycle", machine_.name);
+        } else if (c.side == GrooveSide::face) {
+            reason = fmt::format("machine {}'s {} plunges along X; a face groove plunges along Z (Fanuc T's G74 face "
+                                 "grooving, which camgen does not write)",
+                                 machine_.name, spec->name);
         } else {
             std::vector<std::string> missing;
             for (const std::string& f : c.fields)

@@ -55,7 +55,7 @@ public:
         double bored = bore_;
         std::optional<std::size_t> hole;
         for (std::size_t j = 0; j < nh; ++j)
-            if (const double r = d_.holes[j].radius_at(b); r > bored) bored = r, hole = j;
+            if (const double r = d_.holes[j].radius_most(a, b); r > bored) bored = r, hole = j;
         if (kept > bored + tol_) {
             if (at.outside < kept - tol_) {
                 LatheFinding& f = profile ? finding(LatheFinding::Kind::gouge, LatheFinding::Surface::outside, *profile,
@@ -72,7 +72,9 @@ public:
                     // Below every point: the hole whose point is nearest above.
                     std::optional<std::size_t> above;
                     for (std::size_t j = 0; j < nh; ++j)
-                        if (d_.holes[j].bottom_z >= at.z && (!above || d_.holes[j].bottom_z < d_.holes[*above].bottom_z)) above = j;
+                        if (!d_.holes[j].groove() && d_.holes[j].bottom_z >= at.z &&
+                            (!above || d_.holes[j].bottom_z < d_.holes[*above].bottom_z))
+                            above = j;
                     if (above)
                         f = &finding(LatheFinding::Kind::gouge, LatheFinding::Surface::bore, np + nh + *above,
                                      d_.holes[*above].path, "the part below the hole's point");
@@ -106,8 +108,8 @@ public:
         // Material left inside each hole's drill.
         for (std::size_t j = 0; j < nh; ++j) {
             const LatheHoleDesign& h = d_.holes[j];
-            if (at.z < h.bottom_z) continue;
-            const double need = h.radius_at(a), top = std::min(at.outside, need);
+            if (at.z < h.bottom_z && !h.groove()) continue;
+            const double need = h.radius_least(a, b), top = std::min(at.outside, need);
             if (top - at.bore > tol_)
                 record(finding(LatheFinding::Kind::left, LatheFinding::Surface::bore, np + j, h.path, "the hole"), at,
                        top - at.bore, at.bore, need, 0);
@@ -208,6 +210,11 @@ std::vector<double> lathe_check_sections(const LatheDesign& design, const SimSto
     for (const LatheHoleDesign& h : design.holes) {
         corners.push_back(h.bottom_z);
         if (h.slope > 0) corners.push_back(h.bottom_z + (h.radius - h.flat) * h.slope);
+        if (h.groove()) {
+            corners.push_back(h.top_z);
+            if (h.groove_chamfer > 0)
+                for (double z : {h.bottom_z - h.groove_chamfer, h.top_z + h.groove_chamfer}) corners.push_back(z);
+        }
     }
     const double end = bar.face_z - bar.bar_length;
     std::vector<double> out;

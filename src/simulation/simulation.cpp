@@ -700,8 +700,11 @@ private:
             if (tool.form == ToolForm::turning)  // tip +X of the nose: a boring tool
                 lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n,
                            tip.y > 0 ? -1.0 : 1.0, acc);
+            else if (tool.form == ToolForm::blade && tool.orientation == 7)
+                lathe_face_blade(s, p, q, tool.diameter, acc);
             else if (tool.form == ToolForm::blade)
-                lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter, acc);
+                lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter,
+                            tool.orientation == 3 || tool.orientation == 4 ? -1.0 : 1.0, acc);
             else lathe_axial(s, p, q, tool, acc);
         }
         acc.volume *= result_.lathe.dz;
@@ -749,28 +752,32 @@ private:
         });
     }
 
-    // A blade: its edge from the point's Z + lo to + hi, its body straight out in +X.
-    void lathe_blade(const Vec3& a, const Vec3& b, double lo, double hi, SimMoveAcc& acc) {
+    // A blade: its edge from the point's Z + lo to + hi, its body straight out in +X (side +1),
+    // or (side -1, an internal grooving tool) its edge facing +X, its body towards the axis: it
+    // opens the bore to the edge's radius.
+    void lathe_blade(const Vec3& a, const Vec3& b, double lo, double hi, double side, SimMoveAcc& acc) {
         const LatheProfile& p = result_.lathe;
+        constexpr double none = std::numeric_limits<double>::infinity();
         const double zlo = std::min(a.z, b.z) + lo, zhi = std::max(a.z, b.z) + hi;
         int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
         for (int k = k0; k < p.nz && p.z(k) <= zhi + p.dz; ++k) {
-            const double r = blade_reach(a, b, lo, hi, p.z(k));
-            if (!std::isfinite(r)) continue;
-            if (r < p.outside[k] && p.outside[k] > p.bore[k])
-                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+            const double r = side * blade_reach(a, b, lo, hi, p.z(k), side);
+            if (!std::isfinite(r) || !(p.outside[k] > p.bore[k])) continue;
+            if (side > 0 && r < p.outside[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+            else if (side < 0 && r > p.bore[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, r, acc));
         }
         sections_above(zlo, [&](std::size_t i) {
-            const double r = blade_reach(a, b, lo, hi, result_.lathe_sections.z[i]);
-            if (std::isfinite(r)) section_cut(i, r, 0.0);
+            const double r = side * blade_reach(a, b, lo, hi, result_.lathe_sections.z[i], side);
+            if (std::isfinite(r)) side > 0 ? section_cut(i, r, 0.0) : section_cut(i, none, r);
         });
     }
 
     // The least radius a blade moving from a to b clears at Z z: where its point's Z lies in
     // [z - hi, z - lo] its edge covers z; the radius is linear along the move, least at an end
-    // of that stretch (infinity: it never covers z).
-    static double blade_reach(const Vec3& a, const Vec3& b, double lo, double hi, double z) {
-        const double xa = std::abs(a.x), xb = std::abs(b.x), dz = b.z - a.z;
+    // of that stretch (infinity: it never covers z). With `side` -1 the radii are taken
+    // negative: minus the greatest radius an internal blade's edge reaches.
+    static double blade_reach(const Vec3& a, const Vec3& b, double lo, double hi, double z, double side = 1.0) {
+        const double xa = side * std::abs(a.x), xb = side * std::abs(b.x), dz = b.z - a.z;
         double t0 = 0, t1 = 1;
         if (std::abs(dz) < sim_tiny) {
             if (a.z < z - hi || a.z > z - lo) return std::numeric_limits<double>::infinity();
@@ -781,6 +788,56 @@ private:
             if (t0 > t1) return std::numeric_limits<double>::infinity();
         }
         return std::min(xa + t0 * (xb - xa), xa + t1 * (xb - xa));
+    }
+
+    // A face grooving blade (orientation 7): its edge faces -Z, `width` along X from the
+    // programmed point out, its body along +Z. At Z z it clears the ring from the least X to
+    // the greatest X + width of the stretch of the move at or below z. The turned profile holds
+    // an outside and a bore radius per Z: a ring that reaches the outside or the bore is cut; one
+    // strictly inside the material (an annular groove) cannot be held and is not swept (a note).
+    void lathe_face_blade(const Step& s, const Vec3& a, const Vec3& b, double width, SimMoveAcc& acc) {
+        LatheProfile& p = result_.lathe;
+        constexpr double none = std::numeric_limits<double>::infinity();
+        // The ring at Z z, or none where the blade's edge stays above z.
+        auto ring_at = [&](double z, double& lo, double& hi) {
+            const double xa = std::abs(a.x), xb = std::abs(b.x), dz = b.z - a.z;
+            double t0 = 0, t1 = 1;
+            if (std::abs(dz) < sim_tiny) {
+                if (a.z > z) return false;
+            } else {
+                const double t = (z - a.z) / dz;
+                if (dz > 0) t1 = std::min(1.0, t);
+                else t0 = std::max(0.0, t);
+                if (t0 > t1) return false;
+            }
+            const double x0 = xa + t0 * (xb - xa), x1 = xa + t1 * (xb - xa);
+            lo = std::min(x0, x1), hi = std::max(x0, x1) + width;
+            return true;
+        };
+        const double zlo = std::min(a.z, b.z);
+        const int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
+        bool inside = false;
+        for (int k = k0; k < p.nz; ++k) {
+            double lo = 0, hi = 0;
+            if (!ring_at(p.z(k), lo, hi) || !(p.outside[k] > p.bore[k])) continue;
+            if (hi <= p.bore[k] || lo >= p.outside[k]) continue;  // in the bore or beyond the outside: air
+            if (hi >= p.outside[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, lo, 0.0, acc));
+            else if (lo <= p.bore[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, hi, acc));
+            else inside = true;
+        }
+        sections_above(zlo, [&](std::size_t i) {
+            LatheSections& sec = result_.lathe_sections;
+            double lo = 0, hi = 0;
+            if (!ring_at(sec.z[i], lo, hi) || !(sec.outside[i] > sec.bore[i])) return;
+            if (hi <= sec.bore[i] || lo >= sec.outside[i]) return;
+            if (hi >= sec.outside[i]) section_cut(i, lo, 0.0);
+            else if (lo <= sec.bore[i]) section_cut(i, none, hi);
+        });
+        if (inside && ++face_rings_ == 1)
+            result_.notes.push_back(fmt::format("line {}: tool {} cuts a ring inside the end face (a face groove); the "
+                                                "turned profile holds one outside and one bore radius per Z: the ring is "
+                                                "not swept",
+                                                s.line, s.tool));
     }
 
     // The least radius the move clears at Z z (infinity: none there). With `side` -1 the radii
@@ -936,6 +993,7 @@ private:
     double field_x1_ = 0.0, field_y1_ = 0.0;  // the stock's extent (the field may reach beyond)
     std::vector<Vec2> stock_polygon_;          // a profile stock's outline as sampled (empty: a box)
     std::vector<std::int32_t> section_order_;  // the lathe's sections in order of Z
+    std::size_t face_rings_ = 0;                // face grooving moves inside the material, not swept
 };
 
 Simulator::Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)
@@ -988,7 +1046,8 @@ ToolShape tool_shape(const Tool& tool) {
     case ToolType::parting_tool:
         s.form = ToolForm::blade;
         s.diameter = tool.width > 0 ? tool.width : tool.diameter;
-        s.blade_lo = tool.orientation == 1 ? -s.diameter : 0.0;
+        s.blade_lo = tool.orientation == 1 || tool.orientation == 4 ? -s.diameter : 0.0;
+        s.orientation = tool.orientation;
         break;
     case ToolType::threading_tool:
         s.form = ToolForm::turning;

@@ -104,7 +104,7 @@ std::vector<Step> normalised(const Trace& trace) {
 
 }  // namespace
 
-void check_read_as_run(const std::vector<Step>& theirs, const std::string& program, const Machine& machine) {
+void check_read_as_run(const std::vector<Step>& theirs, const std::string& program, const Machine& machine, double tolerance) {
     auto from_first_feed = [](const std::vector<Step>& steps) {
         auto it = std::find_if(steps.begin(), steps.end(),
                                [](const Step& s) { return s.kind == Step::Kind::feed || s.kind == Step::Kind::arc; });
@@ -117,9 +117,9 @@ void check_read_as_run(const std::vector<Step>& theirs, const std::string& progr
         const Step& a = theirs_fed[i];
         INFO("step " << i << ": rs274 " << describe(a) << ", camgen " << describe(ours[i]));
         CHECK(a.kind == ours[i].kind);
-        CHECK(std::abs(a.to.x - ours[i].to.x) <= 1e-6);
-        CHECK(std::abs(a.to.y - ours[i].to.y) <= 1e-6);
-        CHECK(std::abs(a.to.z - ours[i].to.z) <= 1e-6);
+        CHECK(std::abs(a.to.x - ours[i].to.x) <= tolerance);
+        CHECK(std::abs(a.to.y - ours[i].to.y) <= tolerance);
+        CHECK(std::abs(a.to.z - ours[i].to.z) <= tolerance);
         CHECK(a.rotation == ours[i].rotation);
     }
 }

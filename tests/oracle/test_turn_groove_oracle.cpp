@@ -3,7 +3,8 @@
 // reading of the program (oracle::check_read_as_run): linuxcnc-lathe's as written, and
 // fanuc-lathe's with the words only a Fanuc has put in LinuxCNC's (diameter mode G7 for its
 // diameter X, T0101 as T1 M6, G98/G99 as G94/G95, no O number, sequence numbers or G50 S
-// block) and its motion words untouched. The sample shaft and many random grooves and partings.
+// block) and its motion words untouched. The sample shaft and many random grooves and partings;
+// random internal grooves (in a bore, along +X) and face grooves (along -Z) alike.
 #include <doctest/doctest.h>
 
 #include <fstream>
@@ -48,14 +49,14 @@ std::string fanuc_as_linuxcnc(const std::string& program) {
     return out;
 }
 
-void run_on(const Job& job, const std::string& machine) {
+void run_on(const Job& job, const std::string& machine, double tolerance = 1e-6) {
     const Machine m = load_machine(machine);
     const std::string program = oracle::posted_program(job, m);
     const std::string text = machine == "fanuc-lathe" ? fanuc_as_linuxcnc(program) : program;
     INFO(machine << ":\n" << text);
     std::vector<oracle::Step> theirs;
     REQUIRE_NOTHROW(theirs = oracle::run_rs274(rs274(), text));
-    oracle::check_read_as_run(theirs, program, m);
+    oracle::check_read_as_run(theirs, program, m, tolerance);
 }
 
 }  // namespace
@@ -106,6 +107,39 @@ TEST_CASE("linuxcnc-lathe and fanuc-lathe: random grooves and partings run in rs
         REQUIRE_NOTHROW(job = read_job(text, "groove.json"));
         run_on(job, "linuxcnc-lathe");
         run_on(job, "fanuc-lathe");
+    }
+}
+
+TEST_CASE("linuxcnc-lathe and fanuc-lathe: random internal and face grooves run in rs274 as camgen reads them") {
+    std::mt19937 rng(3134);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int n = 0; n < 16; ++n) {
+        const bool face = n % 2 == 1;
+        auto mm = [](double v) { return std::round(v * 1000) / 1000; };
+        const double w = mm(1.5 + 2.0 * u(rng));
+        const double width = u(rng) < 0.3 ? w : mm(w + 4.0 * u(rng));
+        const double depth = 0.5 + 3.0 * u(rng);
+        const double c = u(rng) < 0.5 ? 0.0 : std::min(depth * 0.9, 0.2 + 0.8 * u(rng));
+        std::string keys;
+        if (u(rng) < 0.6) keys += fmt::format(R"(, "peckDepth": {:.3f})", 0.4 + 1.5 * u(rng));
+        if (!keys.empty() && u(rng) < 0.5) keys += R"(, "fullRetract": true)";
+        const double inner = mm(10.5 + 2.0 * u(rng));
+        std::string side = face ? fmt::format(R"("side": "face", "z": 0, "innerX": {:.3f}, "outerX": {:.3f})", 2 * inner,
+                                              2 * (inner + width))
+                                : fmt::format(R"("side": "internal", "z": {:.3f}, "width": {:.3f})", -4.0 - 20.0 * u(rng), width);
+        const std::string text = fmt::format(
+            R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0, "boreDiameter": 16}}}},
+  "tools": [{{"number": 1, "type": "grooving-tool", "width": {:.3f}, "rpm": 700, "orientation": {}}}],
+  "operations": [{{"type": "turn-groove", "tool": 1, "feedMode": "per-revolution", "feed": 0.05, {},
+                   "depth": {:.3f}, "chamfer": {:.3f}, "dwell": {}, "output": "longhand"{}}}]}})",
+            w, face ? 7 : (u(rng) < 0.5 ? 3 : 4), side, depth, c, u(rng) < 0.5 ? 0 : 0.3, keys);
+        INFO(text);
+        Job job;
+        REQUIRE_NOTHROW(job = read_job(text, "groove.json"));
+        // (a face groove's plunges and chamfers fall on X of odd thousandths: their radii end
+        // in 5 at the fourth decimal, which rs274 prints rounded)
+        run_on(job, "linuxcnc-lathe", 1e-4);
+        run_on(job, "fanuc-lathe", 1e-4);
     }
 }
 

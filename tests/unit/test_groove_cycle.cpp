@@ -333,7 +333,9 @@ TEST_CASE("groove cycle: the fanuc-lathe reader refuses a G75 it cannot read, na
           std::string::npos);
     CHECK(refusal_of("G75 R0.2\nG75 X36.000 Z-19.000 P800 Q2000 R0.1 F30").find("R0.1 in the second G75 block") !=
           std::string::npos);
-    CHECK(refusal_of("G75 R0.2\nG75 X46.000 Z-19.000 P800 Q2000 F30").find("camgen reads external grooves") != std::string::npos);
+    CHECK(refusal_of("G75 R0.2\nG75 X42.000 Z-19.000 P800 Q2000 F30").find("must lie off the start point's X") !=
+          std::string::npos);
+    CHECK(refusal_of("G75 R0.2\nG75 X46.000 Z-19.000 P800 Q2000 F30") == "");  // an internal groove, X rising
     CHECK(refusal_of("G75 R0.2\nG75 X36.000 Z-19.000 P800 F30").find("needs its step Q > 0") != std::string::npos);
     // A machine without the cycle does not know G75.
     CHECK_THROWS_AS((void)read_program("G18 G7 G90 G21\nT1 M6\nS800 M3\nG0 X42 Z-13\nG75 R0.2\nM2\n",

@@ -292,7 +292,13 @@ struct TurnCycle {
 //   retract out to `air` and back to `retract` above the depth reached), the last plunge on to
 //   the bottom and along it to the +Z wall (a dwell at both ends), or one plunge's dwell at the
 //   bottom; then the chamfers (the right corner down the +Z edge's, the left down the -Z edge's).
-// Cut along -Z, into an external diameter; every move along Z at `air`.
+// `side` says where: external (the above: cut along -X into an outside diameter, every move
+// along Z at `air`); internal (into a bore, along +X: the radii the same but `air` < `surface`
+// < `bottom`, "down" is +X, `finish` and `peck` still positive); face (into an end face, along
+// -Z: `air`, `surface`, `bottom` are Zs, `first_z`/`last_z`/`z_step` radii of the blade's inner
+// (-X) corner, `width` along X, every move along X at the Z `air`). `at` maps (depth coordinate,
+// step coordinate) to the programmed point alike.
+enum class GrooveSide { external, internal, face };
 struct GrooveCycle {
     std::string path;                   // JSON path of the operation, for messages
     CycleOutput output = CycleOutput::automatic;
@@ -312,8 +318,16 @@ struct GrooveCycle {
     double dwell = 0.0;                 // s
     double feed = 0.0;                  // mm/min
     std::vector<std::string> fields;    // what the canned cycle must carry
-    // The programmed point of the blade whose left corner is at radius r, Z left_z.
-    Vec3 at(double r, double left_z) const { return {r, 0.0, left_z + (right_point ? width : 0.0)}; }
+    GrooveSide side = GrooveSide::external;
+    // The programmed point of the blade whose left corner is at radius r, Z left_z (a face
+    // groove: whose inner corner is at Z r, radius left_z).
+    Vec3 at(double r, double left_z) const {
+        if (side == GrooveSide::face) return {left_z + (right_point ? width : 0.0), 0.0, r};
+        return {r, 0.0, left_z + (right_point ? width : 0.0)};
+    }
+    // +1 where the groove's depth coordinate falls into the material (external: radius, face:
+    // Z), -1 where it rises (internal: radius).
+    double into() const { return side == GrooveSide::internal ? -1.0 : 1.0; }
     Vec3 start() const { return at(air, first_z); }
     // The moves follow G75's pattern (see above).
     bool plain() const;

@@ -122,9 +122,22 @@ struct LatheHoleDesign {
     double nose = 0.0;
     double nose_above = 0.0;
 
+    // An internal groove (groove_chamfer >= 0): the bore opened to `radius` between Z bottom_z
+    // (its -Z wall) and top_z (its +Z wall), 45-degree chamfers of groove_chamfer from the bore's
+    // radius `groove_surface` at bottom_z - chamfer and top_z + chamfer; nothing beyond.
+    double groove_chamfer = -1.0;
+    double groove_surface = 0.0;
+    bool groove() const { return groove_chamfer >= 0; }
+
     // The designed bore's radius at Z z: 0 below the point, the point's cone (or the nose's
     // round), the radius above.
     double radius_at(double z) const {
+        if (groove()) {
+            const double c = groove_chamfer;
+            if (z >= bottom_z && z <= top_z) return radius;
+            const double out = z < bottom_z ? bottom_z - z : z - top_z;  // beyond the nearer wall
+            return c > 0 && out <= c ? groove_surface + c - out : 0.0;
+        }
         if (nose > 0 && slope > 0) {
             // An internal thread's chamfered runout: the tip's path the radius down to the cone
             // from `radius` to `flat` at bottom_z; what the nose disc (centre nose_above above the
@@ -154,6 +167,17 @@ struct LatheHoleDesign {
         if (!(slope > 0)) return radius;
         return std::min(radius, flat + (z - bottom_z) / slope);
     }
+    // The most and the least of radius_at over Z in [a, b] (a hole's radius rises with Z; a
+    // groove's rises to its walls and falls beyond them).
+    double radius_most(double a, double b) const {
+        if (!groove()) return radius_at(b);
+        if (b >= bottom_z && a <= top_z) return radius;
+        return std::max(radius_at(a), radius_at(b));
+    }
+    double radius_least(double a, double b) const {
+        if (!groove()) return radius_at(a);
+        return std::min(radius_at(a), radius_at(b));
+    }
 };
 
 struct LatheDesign {
@@ -174,7 +198,10 @@ void design_turn_face(const TurnFaceOp& op, const Job& job, LatheDesign& design,
 // its tip's whole path as the passes make it.
 void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 // A turn-groove designs its groove (walls, bottom, 45-degree chamfers on its edges): removed
-// down to it over its Z, kept below; its blade's whole path as the plunges make it.
+// down to it over its Z, kept below; its blade's whole path as the plunges make it. An internal
+// groove designs a LatheHoleDesign of its bottom's radius between its walls (the part kept
+// around it); a face groove (a ring inside the end face, which the turned profile cannot hold)
+// is left unchecked.
 void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 // A turn-part designs the slot its blade parts through (down to the remainder radius) and the
 // chamfer on the part's edge; the part and the bar either side are kept (the simulation keeps

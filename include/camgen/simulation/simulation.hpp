@@ -47,7 +47,10 @@ enum class ToolForm {
     cylinder,   // tap, reamer: its diameter, flat at the end
     turning,    // a lathe's tool: its tip point, or a circle of its nose radius
     blade,      // a grooving or parting tool: a flat edge `diameter` wide (its width) along Z, its body
-                // straight out in +X; its programmed point at the edge's Z + blade_lo
+                // straight out in +X; its programmed point at the edge's Z + blade_lo. Orientation 3
+                // or 4 (an internal grooving tool): the edge faces +X, its body towards the axis (it
+                // opens the bore). Orientation 7 (a face grooving tool): the edge faces -Z, `diameter`
+                // wide along X from the programmed point (its inner corner) out, its body along +Z
 };
 
 // A tool as the simulation sweeps it, mm and degrees.
@@ -60,7 +63,8 @@ struct ToolShape {
     double nose_radius = 0.0;             // turning: mm (0: the tip point); the program's point is the
                                           // imaginary tip of `orientation`
     int orientation = 2;                  // turning: LinuxCNC's tip code (1-9): the nose centre is the
-                                          // program's point less lathe_tip_offset (2: a radius above in X and Z)
+                                          // program's point less lathe_tip_offset (2: a radius above in X and Z);
+                                          // blade: which way its edge faces (see ToolForm::blade)
     double blade_lo = 0.0;                // blade: the edge's -Z end from the programmed point, mm (0: the
                                           // left corner is programmed; -diameter: the right one)
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error

@@ -50,8 +50,11 @@ struct GroovePlunge {
 void emit_groove_plunge(const GrooveBlade& blade, const GroovePlunge& p, const GroovePecks& pecks, EventSink& sink);
 
 // Reads the blade of an operation's "tool": a grooving-tool or parting-tool (else refused at
-// "tool", naming `what`), orientation none, 2 (left corner) or 1 (right corner).
-GrooveBlade read_groove_blade(json::Fields& f, const JobInput& input, std::string_view what, const Tool*& tool);
+// "tool", naming `what`). External: orientation none, 2 (left corner) or 1 (right corner);
+// internal (the blade cuts towards +X): 3 (left corner) or 4 (right corner); face (its edge
+// faces -Z, its width along X): 7, programmed at the edge's inner (-X) corner.
+GrooveBlade read_groove_blade(json::Fields& f, const JobInput& input, std::string_view what, const Tool*& tool,
+                              GrooveSide side = GrooveSide::external);
 // Reads "peckDepth", "peckRetract" and "fullRetract".
 GroovePecks read_groove_pecks(json::Fields& f, const JobInput& input);
 
@@ -69,11 +72,12 @@ struct TurnGrooveOp {
     FeedMode feed_mode = FeedMode::per_minute;
     double feed = 0.0;            // mm/min
     GrooveBlade blade;
-    double z_right = 0.0;         // Z of the groove's +Z wall, mm
-    double z_left = 0.0;          // Z of its -Z wall (z_right - width), mm
-    double surface = 0.0;         // radius of the surface it is cut into, mm
-    double bottom = 0.0;          // radius of its bottom, mm
-    double outside = 0.0;         // the bar's radius (the tool moves along Z approachDistance beyond it), mm
+    GrooveSide side = GrooveSide::external;  // a face groove: the Zs below are radii and the radii Zs
+    double z_right = 0.0;         // Z of the groove's +Z wall (face: the radius of its outer wall), mm
+    double z_left = 0.0;          // Z of its -Z wall (z_right - width; face: its inner wall's radius), mm
+    double surface = 0.0;         // radius of the surface it is cut into (face: the face's Z), mm
+    double bottom = 0.0;          // radius of its bottom (internal: above surface; face: its Z), mm
+    double outside = 0.0;         // external: the bar's radius (the tool moves along Z approachDistance beyond it), mm
     double chamfer = 0.0;         // each edge's 45-degree chamfer, along Z and along X, mm
     std::vector<double> plunges;  // the left corner's Z of each plunge, from the +Z wall to the -Z wall
     double finish = 0.0;          // radial allowance the plunges leave for the pass along the bottom (0: one plunge)
