@@ -23,6 +23,7 @@ namespace camgen::test {
 struct Posted {
     std::string text;
     std::string warnings;
+    std::string notes;  // (post_noted's)
 };
 
 // Posts a job given as JSON text for a machine given by name.
@@ -50,6 +51,22 @@ inline std::map<int, double> tool_diameters(const Job& job) {
     std::map<int, double> out;
     for (const auto& [number, tool] : job.tools) out[number] = tool.diameter;
     return out;
+}
+
+// Posts a job for a machine keeping camgen's notes (a cycle written longhand and why, ...):
+// the program in `text`, the notes in `notes`.
+inline Posted post_noted(const Job& job, const Machine& machine) {
+    std::ostringstream out, notes;
+    PostOptions o;
+    o.notes = &notes;
+    auto post = make_post(machine, out, o);
+    post->open();
+    expand_job(job, *post);
+    post->close();
+    return {out.str(), {}, notes.str()};
+}
+inline Posted post_noted(const std::string& job_json, const Machine& machine, const std::string& source = "test.json") {
+    return post_noted(read_job(job_json, source), machine);
 }
 
 inline Posted post_job(const std::string& job_json, const std::string& machine_name, bool snippet = false) {

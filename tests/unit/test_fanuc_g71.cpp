@@ -37,16 +37,7 @@ std::string fg_job(const std::string& path, double start_x, double doc, const st
                        doc, start_x, path, extra);
 }
 
-test::Posted fg_posted(const Job& j, const Machine& m) {
-    std::ostringstream out, notes;
-    PostOptions o;
-    o.notes = &notes;
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(j, *post);
-    post->close();
-    return test::Posted{out.str(), notes.str()};
-}
+test::Posted fg_posted(const Job& j, const Machine& m) { return test::post_noted(j, m); }
 
 // A profile of lines that never fall in radius nor rise in Z, with faces, tapers and 90-degree
 // fillets (G3 quarter arcs), from diameter d0 at Z0 towards the chuck: as JSON.
@@ -137,10 +128,10 @@ TEST_CASE("fanuc-g71: generated profiles: canned where the model takes them, rea
             const auto p = fg_posted(j, *m);
             const bool is_canned = p.text.find("G71 U") != std::string::npos;
             if (m == &fanuc) (is_canned ? canned : longhand)++;
-            if (!is_canned && m == &fanuc && p.warnings.find("longhand") != std::string::npos)
-                MESSAGE(p.warnings.substr(p.warnings.find("longhand"), 160));
+            if (!is_canned && m == &fanuc && p.notes.find("longhand") != std::string::npos)
+                MESSAGE(p.notes.substr(p.notes.find("longhand"), 160));
             // Where LinuxCNC's model takes the boundary, so does Fanuc's (these profiles): canned.
-            CHECK_MESSAGE(is_canned == !c.refusal, p.warnings);
+            CHECK_MESSAGE(is_canned == !c.refusal, p.notes);
             // verify --job: the program read back moves as the job's events traced for the machine.
             const Trace read = trace_program(read_program(p.text, *m, "t.nc"), *m);
             const auto miss = compare_traces(trace_expected(expand_job(j), *m), read, compare_tolerance(*m));

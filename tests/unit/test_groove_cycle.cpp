@@ -71,17 +71,7 @@ std::string random_groove(std::mt19937& rng, bool plain, const std::string& outp
                                   z, width, depth, a, extra));
 }
 
-test::Posted posted(const std::string& text, const Machine& m) {
-    const Job j = read_job(text, "g.json");
-    std::ostringstream out, notes;
-    PostOptions o;
-    o.notes = &notes;
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(j, *post);
-    post->close();
-    return test::Posted{out.str(), notes.str()};
-}
+test::Posted posted(const std::string& text, const Machine& m) { return test::post_noted(text, m, "g.json"); }
 
 }  // namespace
 
@@ -217,7 +207,7 @@ TEST_CASE("groove cycle: the words of a G75, worked out by hand") {
     CHECK_MESSAGE(p.text.find("G0 X42.000 Z-13.000\n") != std::string::npos, p.text);
     CHECK_MESSAGE(p.text.find("G75 R0.200\n") != std::string::npos, p.text);
     CHECK_MESSAGE(p.text.find("G75 X36.000 Z-19.000 P800 Q2000 F30\n") != std::string::npos, p.text);
-    CHECK(p.warnings.find("longhand") == std::string::npos);
+    CHECK(p.notes.find("longhand") == std::string::npos);
     // Pecks from X42 (radius 21): 20.2, 19.4, 18.6, then the bottom 18 (each fed, 3 back-offs,
     // out): 8 moves a plunge, 4 plunges, 3 shifts along Z, back to the start.
     const Job job = read_job(text, "g.json");
@@ -241,9 +231,9 @@ TEST_CASE("groove cycle output: auto writes what G75 cannot carry longhand with 
     {
         const test::Posted p = posted(groove_job(tool, "{" + chamfered + "}"), fanuc);
         CHECK(p.text.find("G75") == std::string::npos);
-        CHECK_MESSAGE(p.warnings.find("/operations/0 (turn groove): the groove is written longhand because machine fanuc-lathe's "
+        CHECK_MESSAGE(p.notes.find("/operations/0 (turn groove): the groove is written longhand because machine fanuc-lathe's "
                                       "G75 cannot carry dwell, finishPass, chamfer") != std::string::npos,
-                      p.warnings);
+                      p.notes);
         try {
             (void)posted(groove_job(tool, "{" + chamfered + R"(, "output": "canned"})"), fanuc);
             FAIL("a canned groove G75 cannot carry was not refused");
@@ -254,7 +244,7 @@ TEST_CASE("groove cycle output: auto writes what G75 cannot carry longhand with 
     }
     // A full retract: longhand, named.
     const std::string pecked = R"("type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 3, "depth": 2, "peckDepth": 0.5)";
-    CHECK(posted(groove_job(tool, "{" + pecked + R"(, "fullRetract": true})"), fanuc).warnings.find("cannot carry fullRetract") !=
+    CHECK(posted(groove_job(tool, "{" + pecked + R"(, "fullRetract": true})"), fanuc).notes.find("cannot carry fullRetract") !=
           std::string::npos);
     CHECK(posted(groove_job(tool, "{" + pecked + "}"), fanuc).text.find("G75 X36.000 Z-13.000 P500 F30\n") != std::string::npos);
     // longhand: no G75, no note.
@@ -262,13 +252,13 @@ TEST_CASE("groove cycle output: auto writes what G75 cannot carry longhand with 
         const test::Posted p = posted(groove_job(tool, "{" + pecked + R"(, "output": "longhand"})"), fanuc);
         CHECK(p.text.find("G75") == std::string::npos);
         CHECK(p.text.find("G1 X") != std::string::npos);
-        CHECK(p.warnings.find("longhand") == std::string::npos);
+        CHECK(p.notes.find("longhand") == std::string::npos);
     }
     // linuxcnc-lathe has no grooving cycle: auto longhand without a note, canned refused.
     {
         const test::Posted p = posted(groove_job(tool, "{" + pecked + "}"), lcnc);
         CHECK(p.text.find("G75") == std::string::npos);
-        CHECK(p.warnings.find("longhand") == std::string::npos);
+        CHECK(p.notes.find("longhand") == std::string::npos);
         try {
             (void)posted(groove_job(tool, "{" + pecked + R"(, "output": "canned"})"), lcnc);
             FAIL("a canned groove on a machine without a grooving cycle was not refused");
@@ -284,7 +274,7 @@ TEST_CASE("groove cycle output: auto writes what G75 cannot carry longhand with 
         text << f.rdbuf();
         const test::Posted p = posted(text.str(), fanuc);
         CHECK(p.text.find("G75") == std::string::npos);
-        CHECK(p.warnings.find("the groove is written longhand because machine fanuc-lathe's G75 cannot carry dwell, finishPass, "
+        CHECK(p.notes.find("the groove is written longhand because machine fanuc-lathe's G75 cannot carry dwell, finishPass, "
                               "chamfer") != std::string::npos);
     }
 }

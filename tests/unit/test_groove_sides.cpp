@@ -142,17 +142,7 @@ RandomGroove random_face(std::mt19937& rng, const std::string& output = "auto") 
     return g;
 }
 
-test::Posted posted(const std::string& text, const Machine& m) {
-    const Job j = read_job(text, "g.json");
-    std::ostringstream out, notes;
-    PostOptions o;
-    o.notes = &notes;
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(j, *post);
-    post->close();
-    return test::Posted{out.str(), notes.str()};
-}
+test::Posted posted(const std::string& text, const Machine& m) { return test::post_noted(text, m, "g.json"); }
 
 }  // namespace
 
@@ -359,9 +349,9 @@ TEST_CASE("turn-groove sides: fanuc-lathe writes a plain internal groove as G75 
     const test::Posted p = posted(f.text, fanuc);
     CHECK(p.text.find("G75") == std::string::npos);
     CHECK(p.text.find("G74") == std::string::npos);
-    CHECK_MESSAGE(p.warnings.find("the groove is written longhand because machine fanuc-lathe's G75 plunges along X; a face "
+    CHECK_MESSAGE(p.notes.find("the groove is written longhand because machine fanuc-lathe's G75 plunges along X; a face "
                                   "groove plunges along Z") != std::string::npos,
-                  p.warnings);
+                  p.notes);
     const RandomGroove fc = random_face(rng, "canned");
     try {
         (void)posted(fc.text, fanuc);

@@ -57,16 +57,9 @@ struct RunoutPosted {
 };
 
 RunoutPosted runout_post(const std::string& job_text, const std::string& machine) {
-    const Job j = read_job(job_text, "t.json");
-    std::ostringstream out, notes;
-    PostOptions o;
-    o.notes = &notes;
     const Machine m = load_machine(machine);  // (the post keeps a reference to it)
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(j, *post);
-    post->close();
-    return {out.str(), notes.str()};
+    test::Posted p = test::post_noted(job_text, m, "t.json");
+    return {std::move(p.text), std::move(p.notes)};
 }
 
 // The job read back from its program matches the job's own moves.

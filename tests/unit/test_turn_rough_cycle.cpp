@@ -39,17 +39,7 @@ std::string rc_job(const std::string& op_extra, const std::string& path = "") {
                        p, op_extra);
 }
 
-test::Posted rc_posted(const std::string& text, const Machine& m) {
-    const Job j = read_job(text, "rc.json");
-    std::ostringstream out, notes;
-    PostOptions o;
-    o.notes = &notes;
-    auto post = make_post(m, out, o);
-    post->open();
-    expand_job(j, *post);
-    post->close();
-    return test::Posted{out.str(), notes.str()};
-}
+test::Posted rc_posted(const std::string& text, const Machine& m) { return test::post_noted(text, m, "rc.json"); }
 
 std::string rc_refusal(const std::string& text, const Machine& m) {
     try {
@@ -81,7 +71,7 @@ TEST_CASE("turn-rough output: G71 with its profile subroutine on linuxcnc-lathe,
         const auto p = rc_posted(text, lcnc);
         CHECK_MESSAGE(p.text.find("o100 sub\nG1 X") != std::string::npos, p.text);
         CHECK(p.text.find("o100 endsub\nG71 Q100 D0 I") != std::string::npos);
-        CHECK(p.warnings.find("longhand") == std::string::npos);
+        CHECK(p.notes.find("longhand") == std::string::npos);
         // Read back: the control's moves are the job's (verify --job, within its 0.001 mm: the
         // control's moves are those of the rounded subroutine).
         const Trace read = trace_program(read_program(p.text, lcnc, "t.ngc"), lcnc);
@@ -103,7 +93,7 @@ TEST_CASE("turn-rough output: G71 with its profile subroutine on linuxcnc-lathe,
             const auto q = rc_posted(text, m);
             CHECK(q.text.find("G71 Q") == std::string::npos);
             CHECK((q.text.find("G71 U") != std::string::npos) == (std::string(name) == "fanuc-lathe"));
-            CHECK(q.warnings.find("longhand") == std::string::npos);
+            CHECK(q.notes.find("longhand") == std::string::npos);
             const auto miss = compare_traces(trace_expected(expand_job(j), m),
                                              trace_program(read_program(q.text, m, "t.nc"), m), compare_tolerance(m));
             CHECK_MESSAGE(!miss, (miss ? miss->message : ""));
@@ -133,7 +123,7 @@ TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcn
         CHECK_MESSAGE(p.text.find("o100 sub\nG1 X40 Z") != std::string::npos, p.text);
         CHECK(p.text.find("o100 endsub\nG72 Q100 D0 I") != std::string::npos);
         CHECK(p.text.find("G71") == std::string::npos);
-        CHECK(p.warnings.find("longhand") == std::string::npos);
+        CHECK(p.notes.find("longhand") == std::string::npos);
         const Trace read = trace_program(read_program(p.text, lcnc, "t.ngc"), lcnc);
         const auto mismatch = compare_traces(trace_expected(expand_job(j), lcnc), read, compare_tolerance(lcnc));
         CHECK_MESSAGE(!mismatch, (mismatch ? mismatch->message : ""));
@@ -152,7 +142,7 @@ TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcn
         const Machine fanuc = load_machine("fanuc-lathe");
         const auto q = rc_posted(text, fanuc);
         CHECK(q.text.find("G72") == std::string::npos);
-        CHECK(q.warnings.find("longhand") == std::string::npos);
+        CHECK(q.notes.find("longhand") == std::string::npos);
         const auto miss = compare_traces(trace_expected(expand_job(j), fanuc), trace_program(read_program(q.text, fanuc, "t.nc"), fanuc),
                                          compare_tolerance(fanuc));
         CHECK_MESSAGE(!miss, (miss ? miss->message : ""));
@@ -187,16 +177,16 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
     {
         const auto p = rc_posted(rc_job(R"(, "compensation": "none")", under), lcnc);
         CHECK(p.text.find("G71") == std::string::npos);
-        CHECK_MESSAGE(p.warnings.find("/operations/1 (turn rough): the roughing is written longhand because machine "
+        CHECK_MESSAGE(p.notes.find("/operations/1 (turn rough): the roughing is written longhand because machine "
                                       "linuxcnc-lathe's G71 would not cut these passes: element 3 falls in radius (a pocket)") !=
                           std::string::npos,
-                      p.warnings);
+                      p.notes);
         CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "output": "canned")", under), lcnc)
                   .find("/operations/1/output: machine linuxcnc-lathe's G71 would not cut these passes: element 3 falls in "
                         "radius (a pocket); use \"auto\" or \"longhand\"") != std::string::npos);
         // fanuc-lathe's G71 (type I) does not rough a pocket either: longhand with the note.
         CHECK(rc_posted(rc_job(R"(, "compensation": "none")", under), fanuc)
-                  .warnings.find("machine fanuc-lathe's G71 would not cut these passes") != std::string::npos);
+                  .notes.find("machine fanuc-lathe's G71 would not cut these passes") != std::string::npos);
     }
     const Machine sinumerik = load_machine("sinumerik-lathe");
     CHECK(rc_refusal(rc_job(R"(, "output": "canned")"), sinumerik)
@@ -210,10 +200,10 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
     {
         const auto p = rc_posted(rc_job(R"(, "compensation": "none", "direction": "x")", under), lcnc);
         CHECK(p.text.find("G72") == std::string::npos);
-        CHECK_MESSAGE(p.warnings.find("/operations/1 (turn rough): the roughing is written longhand because machine "
+        CHECK_MESSAGE(p.notes.find("/operations/1 (turn rough): the roughing is written longhand because machine "
                                       "linuxcnc-lathe's G72 would not cut these passes: element 4 turns back towards +X") !=
                           std::string::npos,
-                      p.warnings);
+                      p.notes);
         CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "direction": "x", "output": "canned")", under), lcnc)
                   .find("/operations/1/output: machine linuxcnc-lathe's G72 would not cut these passes") != std::string::npos);
         CHECK(rc_refusal(rc_job(R"(, "direction": "x", "output": "canned")"), fanuc)
@@ -229,7 +219,7 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
                    "start": [18, 0], "path": [{{"line": [20, -1]}}, {{"line": [20, -15]}}, {{"line": [32, -20]}}]}}]}})");
     const auto u = rc_posted(unfaced, lcnc);
     CHECK(u.text.find("G71") == std::string::npos);
-    CHECK_MESSAGE(u.warnings.find("inside the bar whose face is at Z 0.05") != std::string::npos, u.warnings);
+    CHECK_MESSAGE(u.notes.find("inside the bar whose face is at Z 0.05") != std::string::npos, u.notes);
 }
 
 TEST_CASE("turn-rough output: no level of the cycle within 0.005 mm of a corner of its boundary") {

@@ -165,17 +165,7 @@ TEST_CASE("turn-thread: the three lathes write the shaft's thread (its minDepth:
 TEST_CASE("turn-thread output: G76 on linuxcnc-lathe where it carries the thread, else longhand with a note, or refused") {
     const Machine lcnc = load_machine("linuxcnc-lathe");
     // The program and the notes.
-    auto posted = [&](const std::string& op, const Machine& m) {
-        const Job j = read_job(job(op), "t.json");
-        std::ostringstream out, notes;
-        PostOptions o;
-        o.notes = &notes;
-        auto post = make_post(m, out, o);
-        post->open();
-        expand_job(j, *post);
-        post->close();
-        return test::Posted{out.str(), notes.str()};
-    };
+    auto posted = [&](const std::string& op, const Machine& m) { return test::post_noted(job(op), m, "t.json"); };
     // The G76 block of a program.
     auto g76_line = [](const std::string& text) {
         const std::size_t at = text.find("G76 ");
@@ -224,9 +214,9 @@ TEST_CASE("turn-thread output: G76 on linuxcnc-lathe where it carries the thread
         const auto p = posted(op, lcnc);
         CHECK(p.text.find("G76") == std::string::npos);
         CHECK(p.text.find("G33 Z-20 K2.5") != std::string::npos);
-        CHECK_MESSAGE(p.warnings.find("/operations/0 (turn thread M20x2.5): the thread is written longhand because "
+        CHECK_MESSAGE(p.notes.find("/operations/0 (turn thread M20x2.5): the thread is written longhand because "
                                       "machine linuxcnc-lathe's G76 cannot carry minDepth") != std::string::npos,
-                      p.warnings);
+                      p.notes);
         try {
             (void)posted(op + R"(, "output": "canned")", lcnc);
             FAIL("a canned thread G76 cannot carry was not refused");
@@ -245,7 +235,7 @@ TEST_CASE("turn-thread output: G76 on linuxcnc-lathe where it carries the thread
         CHECK(posted(op + R"(, "output": "longhand")", lcnc).text.find("G76") == std::string::npos);
         const auto sinumerik = posted(op, load_machine("sinumerik-lathe"));
         CHECK(sinumerik.text.find("G33") != std::string::npos);
-        CHECK(sinumerik.warnings.find("longhand") == std::string::npos);
+        CHECK(sinumerik.notes.find("longhand") == std::string::npos);
         try {
             (void)posted(op + R"(, "output": "canned")", load_machine("sinumerik-lathe"));
             FAIL("a canned thread on a machine without a threading cycle was not refused");
