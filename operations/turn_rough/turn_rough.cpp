@@ -452,6 +452,45 @@ std::vector<double> turn_rough_x_levels(const TurnRoughOp& op) {
 }
 
 namespace {
+// The cycle's first level and depth of cut (its I): depths from depthOfCut down in steps of
+// 2.5 % (rounded to 0.0001), the first level from one cut below `top` towards it, until no level
+// (first, first - I, ... down to `low`) lies within 0.005 mm of a corner of the boundary and
+// `model_at` (the control's cycle from that first level) covers it; `c` gets the start
+// (`start_at` the first level), depth, retract and moves, or the refusal.
+void choose_cycle_levels(TurnCycle& c, const TurnRoughOp& op, double top, double low, const std::vector<double>& corners,
+                         const std::function<LatheCycleModel(double, double, double)>& model_at,
+                         const std::function<Vec3(double)>& start_at) {
+    const double room = top - low;
+    std::optional<std::string> last_refusal;
+    for (int i = 0; i <= 8; ++i) {
+        const double depth = std::round(op.depth_of_cut * (1.0 - i / 40.0) * 1e4) / 1e4;
+        if (!(depth > 0.0001)) break;
+        for (int j = 0; j < 32; ++j) {
+            const double below = std::min(depth, room - 0.01) * (1.0 - j / 64.0);
+            const double level0 = std::round((top - below) * 1e4) / 1e4;
+            if (!(level0 > low + 0.005)) continue;
+            bool near = false;
+            for (double v = level0; v > low - 0.01 && !near; v -= depth)
+                for (double k : corners) near = near || std::abs(v - k) < 0.005;
+            if (near) continue;
+            const double retract = std::round(std::min(op.lift, depth / 2) * 1e4) / 1e4;
+            LatheCycleModel model = model_at(level0, depth, retract);
+            if (model.refusal) {
+                last_refusal = model.refusal;
+                if (model.refusal->find("runs through a corner") != std::string::npos) continue;
+                c.refusal = *model.refusal;
+                return;
+            }
+            c.start = start_at(level0);
+            c.depth = depth;
+            c.retract = retract;
+            c.moves = std::move(model.moves);
+            return;
+        }
+    }
+    c.refusal = last_refusal.value_or("every start and depth of cut tried puts a level within 0.005 mm of a corner of the boundary");
+}
+
 // The roughing cycle along X: LinuxCNC's G72 on the tip boundary walked backwards from the top
 // of its end face (at the bar: the cycle comes in along the line from its start to there, which
 // stays outside the bar), from a start outside the bar whose Z is the first level.
@@ -482,34 +521,9 @@ TurnCycle turn_cycle_along_x(const TurnRoughOp& op) {
         c.refusal = "the boundary is less than 0.02 mm long in Z";
         return c;
     }
-    std::optional<std::string> last_refusal;
-    for (int i = 0; i <= 8; ++i) {
-        const double depth = std::round(op.depth_of_cut * (1.0 - i / 40.0) * 1e4) / 1e4;
-        if (!(depth > 0.0001)) break;
-        for (int j = 0; j < 32; ++j) {
-            const double below = std::min(depth, room - 0.01) * (1.0 - j / 64.0);
-            const double level0 = std::round((top - below) * 1e4) / 1e4;
-            if (!(level0 > low + 0.005)) continue;
-            bool near = false;
-            for (double z = level0; z > low - 0.01 && !near; z -= depth)
-                for (double k : corners) near = near || std::abs(z - k) < 0.005;
-            if (near) continue;
-            const double retract = std::round(std::min(op.lift, depth / 2) * 1e4) / 1e4;
-            LatheCycleModel model = linuxcnc_g72(Vec2{level0, outside}, sub, depth, retract);
-            if (model.refusal) {
-                last_refusal = model.refusal;
-                if (model.refusal->find("runs through a corner") != std::string::npos) continue;
-                c.refusal = *model.refusal;
-                return c;
-            }
-            c.start = turn_rough_at(outside, level0);
-            c.depth = depth;
-            c.retract = retract;
-            c.moves = std::move(model.moves);
-            return c;
-        }
-    }
-    c.refusal = last_refusal.value_or("every start and depth of cut tried puts a level within 0.005 mm of a corner of the boundary");
+    choose_cycle_levels(c, op, top, low, corners, [&](double level0, double depth, double retract) {
+        return linuxcnc_g72(Vec2{level0, outside}, sub, depth, retract);
+    }, [&](double level0) { return turn_rough_at(outside, level0); });
     return c;
 }
 }  // namespace
@@ -542,34 +556,9 @@ TurnCycle turn_cycle(const TurnRoughOp& op) {
         c.refusal = "the bar is less than 0.02 mm above the boundary's start";
         return c;
     }
-    std::optional<std::string> last_refusal;
-    for (int i = 0; i <= 8; ++i) {
-        const double depth = std::round(op.depth_of_cut * (1.0 - i / 40.0) * 1e4) / 1e4;
-        if (!(depth > 0.0001)) break;
-        for (int j = 0; j < 32; ++j) {
-            const double below = std::min(depth, room - 0.01) * (1.0 - j / 64.0);
-            const double level0 = std::round((op.stock_radius - below) * 1e4) / 1e4;
-            if (!(level0 > p0.y + 0.005)) continue;
-            bool near = false;
-            for (double x = level0; x > p0.y - 0.01 && !near; x -= depth)
-                for (double r : corners) near = near || std::abs(x - r) < 0.005;
-            if (near) continue;
-            const double retract = std::round(std::min(op.lift, depth / 2) * 1e4) / 1e4;
-            LatheCycleModel model = linuxcnc_g71(Vec2{z_start, level0}, path, depth, retract);
-            if (model.refusal) {
-                last_refusal = model.refusal;
-                if (model.refusal->find("runs through a corner") != std::string::npos) continue;
-                c.refusal = *model.refusal;
-                return c;
-            }
-            c.start = turn_rough_at(level0, z_start);
-            c.depth = depth;
-            c.retract = retract;
-            c.moves = std::move(model.moves);
-            return c;
-        }
-    }
-    c.refusal = last_refusal.value_or("every start and depth of cut tried puts a level within 0.005 mm of a corner of the boundary");
+    choose_cycle_levels(c, op, op.stock_radius, p0.y, corners, [&](double level0, double depth, double retract) {
+        return linuxcnc_g71(Vec2{z_start, level0}, path, depth, retract);
+    }, [&](double level0) { return turn_rough_at(level0, z_start); });
     return c;
 }
 
