@@ -515,8 +515,13 @@ void IsoLatheReader::g76(BlockWords& w) {
             fail(fmt::format("{} on G76: an exit taper steeper than 45 degrees (E below K); camgen reads 45 degrees or "
                              "flatter",
                              ew->text));
-        if (g.e >= g.drive_z - g.z)
-            fail(fmt::format("{} on G76: the exit taper is not shorter than the thread", ew->text));
+        // A pass of depth d runs from drive_z - d tan q to z + (k - d) tan q + E before its taper:
+        // the deepest (d = k) runs towards -Z only where E < drive_z - z - k tan q.
+        const double shift = g.k * std::tan(g.q * 3.14159265358979323846 / 180.0);
+        if (g.e >= g.drive_z - g.z - shift)
+            fail(fmt::format("{} on G76: the exit taper is not shorter than the thread (less the last pass's shift along "
+                             "Z by the infeed angle)",
+                             ew->text));
     }
     for (const Event& e : iso::linuxcnc_g76_moves(g)) {
         if (const auto* r = std::get_if<Rapid>(&e))

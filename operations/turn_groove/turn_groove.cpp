@@ -326,6 +326,13 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
                                       in.show(op.z_right + op.chamfer), in.show(stock->face_z)));
     op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
     if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
+    // A face groove's inner chamfer is entered from approachDistance inside its line's start:
+    // that must not be past the spindle axis.
+    if (face && op.chamfer > 0 && op.z_left - op.chamfer - op.approach < -1e-9)
+        f.fail("approachDistance",
+               fmt::format("the inner chamfer (at X {}, chamfer {}) is entered from approachDistance {} inside it, past the "
+                           "spindle axis: give a smaller approachDistance or chamfer",
+                           x_text(op.z_left), in.show(op.chamfer), in.show(op.approach)));
     // Inside a bore the blade moves along Z approachDistance inside the bore's surface (less the
     // chamfer's reach): it must stay off the spindle axis, on the bore's side of it.
     if (internal && !(op.surface - op.approach > 0))

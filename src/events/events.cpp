@@ -171,7 +171,8 @@ std::vector<Event> thread_cycle_moves(const ThreadCycle& c, ThreadCyclePattern p
 Vec2 fanuc_g71_start(const TurnCycle& c) { return Vec2{c.start.z, c.start.x + c.depth}; }
 
 std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& c, RoughCyclePattern pattern) {
-    if (pattern == RoughCyclePattern::fanuc_g71 && !c.refusal && !c.moves.empty()) {
+    // (Fanuc's G71 is along Z; along X the cycle's own moves, LinuxCNC's G72.)
+    if (pattern == RoughCyclePattern::fanuc_g71 && !c.along_x && !c.refusal && !c.moves.empty()) {
         const Vec2 a = fanuc_g71_start(c);
         LatheCycleModel m = fanuc_g71(a, fanuc_g71_shape(a, c.profile), c.depth, c.retract);
         if (!m.refusal) return std::move(m.moves);

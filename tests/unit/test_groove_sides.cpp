@@ -204,6 +204,19 @@ TEST_CASE("turn-groove sides: keys of another side and tools that do not fit are
     CHECK(refusal(bushing_job(facer, R"({"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": -3, "innerX": 22,
                                         "outerX": 30, "depth": 2})"))
               .find("/operations/0: it moves along X over the face groove at Z -2.000 mm, inside the bar") != std::string::npos);
+    // A face groove's inner chamfer is entered approachDistance inside its start: not past the axis.
+    const std::string near_axis = R"({"name": "t", "units": "mm", "clearance": 20, "stock": {"bar": {"diameter": 40, "length": 40, "faceZ": 0}},
+ "tools": [{"number": 1, "type": "grooving-tool", "width": 3, "rpm": 600, "orientation": 7}],
+ "operations": [{"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": 0, "innerX": 2, "outerX": 12, "depth": 2,
+                 "chamfer": 0.5 APPROACH}]})";
+    auto with_approach = [&](const std::string& a) {
+        std::string t = near_axis;
+        return t.replace(t.find(" APPROACH"), 9, a);
+    };
+    CHECK(refusal(with_approach("")).find("/operations/0/approachDistance: the inner chamfer (at X 2.000 mm, chamfer 0.500 mm) "
+                                          "is entered from approachDistance 1.000 mm inside it, past the spindle axis") !=
+          std::string::npos);
+    CHECK(refusal(with_approach(R"(, "approachDistance": 0.5)")) == "");
     // An external groove with an internal or face tool: the refusal names the side.
     CHECK(refusal(bushing_job(inner, R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 4, "depth": 2})"))
               .find("(3 and 4 are an internal groove's: \"side\": \"internal\")") != std::string::npos);

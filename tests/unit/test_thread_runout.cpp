@@ -252,6 +252,12 @@ TEST_CASE("turn-thread runout: LinuxCNC's G76 carries it as E and L2; Fanuc's G7
     };
     CHECK(read_refusal(" E2 L2", " E2 L1").find("L1 on G76: camgen reads an exit taper") != std::string::npos);
     CHECK(read_refusal(" E2 L2", " E1 L2").find("E1 on G76: an exit taper steeper than 45 degrees") != std::string::npos);
+    // Shorter than the thread (Z6 to Z-20), but not than the thread less the last pass's shift
+    // by Q29.5 (K3.0672 on the diameter: 1.5336 tan 29.5 = 0.868): its straight part would run
+    // towards +Z.
+    CHECK(read_refusal(" E2 L2", " E25.5 L2").find("E25.5 on G76: the exit taper is not shorter than the thread (less the "
+                                                   "last pass's shift") != std::string::npos);
+    CHECK(read_refusal(" E2 L2", " E25 L2") == "");
 }
 
 TEST_CASE("turn-thread runout: refusals name their key") {

@@ -111,6 +111,9 @@ TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcn
         const TurnCycle c = turn_cycle(op);
         REQUIRE_FALSE(c.refusal);
         CHECK(c.along_x);
+        // A machine of Fanuc's roughing pattern (which has no G72) takes the cycle's own moves
+        // along X: Fanuc's G71 model is along Z only.
+        CHECK(turn_cycle_path(c, RoughCyclePattern::fanuc_g71) == c.moves);
         // The start outside the bar, its Z (the first level) at most a pass below the faced Z0;
         // the sub from the top of the end face (at the bar) back to the boundary's start.
         CHECK(c.start.x == doctest::Approx(20.0 + 1.0));
