@@ -370,6 +370,35 @@ void turn_rough_backwards(const TurnRoughOp& op, const Profile& path, EventSink&
     }
 }
 
+// The machine's roughing cycle for `op` where it makes the roughing (`via`, a point outside the
+// bar on the way to its start, first): the cycle, then off the end of its last pass at 45
+// degrees (above it the levels or the pass along the boundary have cut) and out of the bar;
+// true. Otherwise the cycle with why it is not used (a note where the machine has one, an error
+// under "canned"), false: the caller writes the passes.
+bool emit_turn_cycle(const TurnRoughOp& op, const Context& ctx, EventSink& sink, double outside, std::optional<Vec3> via) {
+    TurnCycle c = turn_cycle(op);
+    if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
+        // Passes from what the earlier operations left take less than the cycle, which roughs
+        // from the bar; "canned" writes the cycle anyway.
+        c.refusal = "the operations before it removed part of the bar over the profile, and the cycle roughs from the "
+                    "bar, in air there: camgen's passes start from what they left (\"output\": \"canned\" writes the cycle)";
+        c.moves.clear();
+    }
+    if (c.refusal) {
+        sink.emit(c);
+        return false;
+    }
+    if (via) sink.emit(Rapid{*via});
+    sink.emit(Rapid{c.start});
+    sink.emit(c);
+    const Vec2 end = c.moves.back().end;
+    const double lift = std::min(op.lift, c.depth / 2);
+    sink.emit(Linear{turn_rough_at(end.y + lift, end.x + lift), op.feed, Movement::lead_out});
+    sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), end.x + lift)});
+    sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), ctx.job.clearance)});
+    return true;
+}
+
 // Passes along -X at Z levels; then down the end face and along the boundary back to its start.
 void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     const double z_hi = op.boundary.start.x;
@@ -384,27 +413,7 @@ void expand_along_x(const TurnRoughOp& op, const Context& ctx, EventSink& sink) 
     const double angle = std::max(45.0, (op.steepest_fall + 90.0) / 2.0) / deg_per_rad;
     const double dz = std::sqrt(2.0) * lift * std::cos(angle), dr = std::sqrt(2.0) * lift * std::sin(angle);
     sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
-    if (op.output != CycleOutput::longhand) {
-        TurnCycle c = turn_cycle(op);
-        if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
-            c.refusal = "the operations before it removed part of the bar over the profile, and the cycle roughs from the "
-                        "bar, in air there: camgen's passes start from what they left (\"output\": \"canned\" writes the cycle)";
-            c.moves.clear();
-        }
-        if (!c.refusal) {
-            // Down outside the bar to the cycle's start, the cycle, then off the end of its last
-            // pass (the boundary's start) at 45 degrees and out of the bar.
-            sink.emit(Rapid{c.start});
-            sink.emit(c);
-            const Vec2 last = c.moves.back().end;
-            const double off = std::min(op.lift, c.depth / 2);
-            sink.emit(Linear{turn_rough_at(last.y + off, last.x + off), op.feed, Movement::lead_out});
-            sink.emit(Rapid{turn_rough_at(std::max(outside, last.y + off), last.x + off)});
-            sink.emit(Rapid{turn_rough_at(std::max(outside, last.y + off), ctx.job.clearance)});
-            return;
-        }
-        sink.emit(c);
-    }
+    if (op.output != CycleOutput::longhand && emit_turn_cycle(op, ctx, sink, outside, std::nullopt)) return;
     const bool from_material = !op.material.r.empty();
     // Where a pass at Z z begins with the earlier material: approachDistance outside the most
     // of it at z and above (the tool stands towards +Z of its tip).
@@ -582,34 +591,9 @@ void expand(const TurnRoughOp& op, const Context& ctx, EventSink& sink) {
     const double z_start = std::max(op.boundary.start.x, path.start.x) + op.approach;  // where passes begin, beyond the part
     const double outside = op.stock_radius + op.approach;        // outside the bar
     sink.emit(Rapid{turn_rough_at(outside, ctx.job.clearance)});
-    if (op.output != CycleOutput::longhand) {
-        TurnCycle c = turn_cycle(op);
-        if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
-            // Passes from what the earlier operations left take less than the cycle, which
-            // roughs from the bar; "canned" writes the cycle anyway.
-            c.refusal = "the operations before it removed part of the bar over the profile, and the cycle roughs from the "
-                        "bar, in air there: camgen's passes start from what they left (\"output\": \"canned\" writes the cycle)";
-            c.moves.clear();
-        }
-        if (!c.refusal) {
-            // The control roughs from its start point down, whatever earlier operations left
-            // (over what they removed it cuts air).
-            sink.emit(Rapid{turn_rough_at(outside, z_start)});
-            // The cycle, then off the end of its last pass at 45 degrees (above it the levels or
-            // the pass along the boundary have cut) and out of the bar.
-            sink.emit(Rapid{c.start});
-            sink.emit(c);
-            const Vec2 end = c.moves.back().end;
-            const double lift = std::min(op.lift, c.depth / 2);
-            sink.emit(Linear{turn_rough_at(end.y + lift, end.x + lift), op.feed, Movement::lead_out});
-            sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), end.x + lift)});
-            sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), ctx.job.clearance)});
-            return;
-        }
-        // Why the cycle is not used: a note where the machine has one (or an error under
-        // "canned"), then the passes longhand.
-        sink.emit(c);
-    }
+    // The control roughs from its start point down, whatever earlier operations left (over what
+    // they removed it cuts air); it comes down outside the bar beyond the part.
+    if (op.output != CycleOutput::longhand && emit_turn_cycle(op, ctx, sink, outside, turn_rough_at(outside, z_start))) return;
     const bool from_material = !op.material.r.empty();
     const double inf = std::numeric_limits<double>::infinity();
     // The most there is to rough: the bar, or the most the earlier operations left from the
