@@ -11,7 +11,7 @@ foreach(machine_file ${CAMGEN_MACHINE_FILES})
   set(ext ${CMAKE_MATCH_1})
   foreach(sample_file ${CAMGEN_SAMPLES})
     get_filename_component(sample ${sample_file} NAME_WE)
-    add_test(NAME golden/${machine}/${sample}
+    camgen_add_test(NAME golden/${machine}/${sample}
       COMMAND ${CMAKE_COMMAND} -DCAMGEN=$<TARGET_FILE:camgen> -DDIFF=$<TARGET_FILE:golden_diff> -DJOB=${sample_file} -DMACHINE=${machine}
               -DEXPECTED=${CMAKE_SOURCE_DIR}/tests/golden/${machine}/${sample}.${ext}
               -DEXPECTED_ERROR=${CMAKE_SOURCE_DIR}/tests/golden/${machine}/${sample}.err

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -19,6 +20,22 @@
 #include "camgen/post/post.hpp"
 
 namespace camgen::test {
+
+// The camgen command the tests run: CAMGEN_BINARY from the environment (the sanitized twin's
+// ctest entries point it at build/sanitized/camgen, CMakeLists.txt), else the one built beside
+// the tests. The test objects are shared by both test programs, so this is read at run time.
+#ifdef CAMGEN_BINARY
+inline const char* camgen_binary() {
+    const char* env = std::getenv("CAMGEN_BINARY");
+    return env && *env ? env : CAMGEN_BINARY;
+}
+#endif
+
+// Whether the sanitizers' runtime is linked in (the twin test programs): their allocator and
+// shadow memory raise a process's peak memory. The test objects are compiled without the
+// instrumentation, so this is asked of the linked program, not of the compiler.
+extern "C" void __asan_init() __attribute__((weak));
+inline bool sanitizer_runtime() { return &__asan_init != nullptr; }
 
 struct Posted {
     std::string text;

@@ -30,13 +30,9 @@
 namespace test_inputs {
 
 // The peak memory a run that must not hold its input may reach: far below the 1 GiB it reads.
-// AddressSanitizer's allocator and shadow memory alone take about 450 MB (the sanitizer build,
-// whose tests are compiled without the instrumentation but run with its runtime).
-#if defined(__SANITIZE_ADDRESS__) || defined(CAMGEN_SANITIZED)
-constexpr long peak_limit_kb = 600 * 1024;
-#else
-constexpr long peak_limit_kb = 200 * 1024;
-#endif
+// AddressSanitizer's allocator and shadow memory alone take about 450 MB (the sanitized twin,
+// whose test programs are the same objects linked with its runtime).
+const long peak_limit_kb = camgen::test::sanitizer_runtime() ? 600 * 1024 : 200 * 1024;
 
 using namespace camgen;
 namespace fs = std::filesystem;
@@ -75,7 +71,7 @@ BinaryRun run_binary(const std::vector<std::string>& args, const std::vector<std
     REQUIRE(pid >= 0);
     if (pid == 0) {
         for (const std::string& e : env) ::putenv(const_cast<char*>(e.c_str()));
-        std::vector<char*> argv{const_cast<char*>(CAMGEN_BINARY)};
+        std::vector<char*> argv{const_cast<char*>(camgen::test::camgen_binary())};
         for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
         const int in = ::open(stdin_file.empty() ? "/dev/null" : stdin_file.c_str(), O_RDONLY);
@@ -84,7 +80,7 @@ BinaryRun run_binary(const std::vector<std::string>& args, const std::vector<std
         ::dup2(in, 0);
         ::dup2(out, 1);
         ::dup2(err, 2);
-        ::execv(CAMGEN_BINARY, argv.data());
+        ::execv(camgen::test::camgen_binary(), argv.data());
         ::_exit(127);
     }
     BinaryRun r;

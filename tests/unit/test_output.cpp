@@ -60,13 +60,13 @@ pid_t start_camgen(const std::vector<std::string>& args) {
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
-        std::vector<char*> argv{const_cast<char*>(CAMGEN_BINARY)};
+        std::vector<char*> argv{const_cast<char*>(camgen::test::camgen_binary())};
         for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
         const int devnull = ::open("/dev/null", O_WRONLY);
         ::dup2(devnull, 1);
         ::dup2(devnull, 2);
-        ::execv(CAMGEN_BINARY, argv.data());
+        ::execv(camgen::test::camgen_binary(), argv.data());
         ::_exit(127);
     }
     return pid;
@@ -197,7 +197,7 @@ TEST_CASE("--plot follows the same rules: into a FIFO, and a failed plot names i
 namespace {
 // Runs the camgen binary with standard output sent to `stdout_path`; returns its exit code.
 int run_binary_to(const std::string& args, const std::string& stdout_path) {
-    const std::string cmd = std::string(CAMGEN_BINARY) + " " + args + " > " + stdout_path + " 2>/dev/null";
+    const std::string cmd = std::string(camgen::test::camgen_binary()) + " " + args + " > " + stdout_path + " 2>/dev/null";
     const int status = std::system(cmd.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
