@@ -936,6 +936,13 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
                                              c.style == GrooveCycleStyle::fanuc_g74 ? "face grooves (kind \"face-groove\")"
                                                                                     : "grooves along X (kind \"groove\")",
                                              name_of(groove_cycle_kinds, c.face ? 1 : 0)));
+            // G74 is also Fanuc T's peck drilling (the reader tells them apart by X and P): a
+            // drilling cycle of the same name must be that one, not another control's G74.
+            for (const DrillingCycleSpec& d : m.drilling)
+                if (c.style == GrooveCycleStyle::fanuc_g74 && d.canned && d.name == c.name && d.style != CannedStyle::fanuc_g74)
+                    cf.fail("name", fmt::format("{} is also a drilling cycle of this machine of another style than fanuc-g74: "
+                                                "the reader could not tell the face grooving from it",
+                                                c.name));
             for (const GroovingCycleSpec& o : m.grooving)
                 if (o.face == c.face)
                     cf.fail("kind", fmt::format("a second grooving cycle of kind {}: a lathe has one of each kind",

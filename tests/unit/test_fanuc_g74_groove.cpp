@@ -353,6 +353,18 @@ TEST_CASE("fanuc G74 face groove: machine files' face-groove cycles are checked 
     CHECK(refused(R"({"name": "G76", "kind": "groove", "style": "fanuc-g75"})").find("/groovingCycles/1/kind: a second grooving "
                                                                                     "cycle of kind groove") != std::string::npos);
     CHECK(describe_machine(load_machine("fanuc-lathe")).find("G74 (fanuc-g74): pecks") != std::string::npos);
+    // G74 grooving beside a G74 drilling cycle of another style (LinuxCNC's left-hand tapping).
+    const std::string drill = R"({"name": "G74", "kind": "chip-break", "style": "fanuc-g74",)";
+    REQUIRE(file.find(drill) != std::string::npos);
+    std::string tapping = file;
+    tapping.replace(tapping.find(drill), drill.size(), R"({"name": "G74", "kind": "chip-break", "style": "standard",)");
+    try {
+        (void)parse_machine(tapping, "m", "m.json");
+        FAIL("G74 grooving beside another G74 was not refused");
+    } catch (const InputError& e) {
+        CHECK_MESSAGE(std::string(e.what()).find("/groovingCycles/1/name: G74 is also a drilling cycle") != std::string::npos,
+                      e.what());
+    }
 }
 
 }  // namespace test_fanuc_g74_groove
