@@ -271,6 +271,16 @@ TEST_CASE("fanuc G74 face groove: what G74 cannot carry is longhand with a note,
     REQUIRE(only_g75.grooving.size() == 1);
     CHECK(g74_posted(g74_job(false, tool, "{" + chamfered + "}"), only_g75)
               .notes.find("machine fanuc-lathe's G75 plunges along X; a face groove plunges along Z") != std::string::npos);
+    // linuxcnc-lathe has no grooving cycle: a plain face groove is longhand without a note under
+    // auto, refused under canned.
+    const std::string plain =
+        R"("type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": 0, "innerX": 28, "outerX": 32, "depth": 3)";
+    const test::Posted lc = g74_posted(g74_job(false, tool, "{" + plain + "}"), load_machine("linuxcnc-lathe"));
+    CHECK(lc.text.find("G74") == std::string::npos);
+    CHECK(lc.notes.find("longhand") == std::string::npos);
+    CHECK_THROWS_WITH_AS((void)g74_posted(g74_job(false, tool, "{" + plain + R"(, "output": "canned"})"), load_machine("linuxcnc-lathe")),
+                         doctest::Contains("/operations/0/output: machine linuxcnc-lathe has no canned grooving cycle"), InputError);
+    CHECK(g74_posted(g74_job(false, tool, "{" + plain + "}"), fanuc).text.find("G74 X28.000 Z-3.000 Q4000 F30") != std::string::npos);
     // The bushing sample's face groove (chamfered, three plunges with a finishing pass) stays longhand.
     std::ifstream f(CAMGEN_SOURCE_DIR "/samples/bushing.json");
     std::stringstream text;
