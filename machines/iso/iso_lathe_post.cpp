@@ -512,18 +512,22 @@ void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& sp
     forget_motion();
 }
 
-IsoLathePost::G75Words IsoLathePost::g75_words(const GrooveCycle& c) const {
-    G75Words w;
+IsoLathePost::GrooveWords IsoLathePost::groove_words(const GrooveCycle& c) const {
+    // G75 (external and internal grooves) plunges along X and steps along Z; G74 (face grooves)
+    // plunges along Z and steps along X: the same words with the axes' roles swapped.
+    GrooveWords w;
+    const bool along_z = c.side == GrooveSide::face;
     const nc::Format x = machine().format("x");
     const nc::Format z = machine().format("z");
-    // P and Q: unsigned, in least input increments without a decimal point (as G74's Q).
+    // P and Q: unsigned, in least input increments without a decimal point (as G74's Q), radial.
     nc::FormatSpec inc = xyz_format().spec();
     inc.scale *= std::pow(10.0, inc.decimals);
     inc.decimals = 0;
     inc.force_decimal = false;
     const nc::Format pq(inc);
     const Vec3 start = c.start();
-    const Vec3 last = c.at(c.bottom + c.finish, c.last_z);
+    const Vec3 last = c.at(c.bottom + c.into() * c.finish, c.last_z);
+    w.read.along_z = along_z;
     w.read.start_x = x.rounded(start.x);
     w.read.start_y = start.y;
     w.read.start_z = z.rounded(start.z);
@@ -533,27 +537,50 @@ IsoLathePost::G75Words IsoLathePost::g75_words(const GrooveCycle& c) const {
     w.read.x = x.rounded(last.x);
     w.text.push_back(z.word("Z", last.z));
     w.read.z = z.rounded(last.z);
-    // Without pecks, one peck as deep as the plunge: the least written value at or beyond it.
-    double peck = c.peck;
-    if (!(peck > 0)) peck = std::ceil(std::abs(w.read.start_x - w.read.x) * inc.scale - 1e-6) / inc.scale;
-    w.text.push_back(pq.word("P", peck));
+    // The plunge's length as written: a peck at or beyond it is one peck, written as the least
+    // value at or beyond the plunge (the control refuses a peck longer than the plunge).
+    const double plunge = along_z ? std::abs(w.read.start_z - w.read.z) : std::abs(w.read.start_x - w.read.x);
+    const double whole = std::ceil(plunge * inc.scale - 1e-6) / inc.scale;
+    const double peck = c.peck > 0 && c.peck < whole ? c.peck : whole;
     w.read.peck = pq.rounded(peck);
+    const std::string peck_word = pq.word(along_z ? "Q" : "P", peck);
+    std::string step_word;
     if (c.plunges().size() > 1) {
-        w.text.push_back(pq.word("Q", c.z_step));
-        w.read.step = pq.rounded(c.z_step);
+        // A step beyond the travel (the spacing rounded up to a whole µm) is written as the
+        // travel: the same plunges, and the control refuses a longer one.
+        const double travel = along_z ? std::abs(w.read.start_x - w.read.x) : std::abs(w.read.start_z - w.read.z);
+        const double step = std::min(c.z_step, std::ceil(travel * inc.scale - 1e-6) / inc.scale);
+        step_word = pq.word(along_z ? "P" : "Q", step);
+        w.read.step = pq.rounded(step);
+    }
+    // In the order of the manual's format: X Z P Q.
+    if (along_z) {
+        if (!step_word.empty()) w.text.push_back(step_word);
+        w.text.push_back(peck_word);
+    } else {
+        w.text.push_back(peck_word);
+        if (!step_word.empty()) w.text.push_back(step_word);
     }
     w.read.feed = c.feed;
     return w;
 }
 
 std::optional<std::string> IsoLathePost::groove_cycle_limit(const GrooveCycle& c, const GroovingCycleSpec& spec) const {
-    // G75 makes its plunges from the rounded words: they must be the cycle's within 0.001 mm.
-    if (spec.style != GrooveCycleStyle::fanuc_g75) return IsoPost::groove_cycle_limit(c, spec);
-    if (!c.plain()) return std::string("G75 plunges only, pecks counted from its start, back to its start at the end");
-    if (c.side == GrooveSide::face) return std::string("G75 plunges along X, a face groove along Z");
-    const G75Words w = g75_words(c);
+    // G75 and G74 make their plunges from the rounded words: they must be the cycle's within 0.001 mm.
+    if (spec.style != GrooveCycleStyle::fanuc_g75 && spec.style != GrooveCycleStyle::fanuc_g74)
+        return IsoPost::groove_cycle_limit(c, spec);
+    const bool along_z = spec.style == GrooveCycleStyle::fanuc_g74;
+    if (!c.plain())
+        return fmt::format("{} plunges only, pecks counted from its start, back to its start at the end", spec.name);
+    if ((c.side == GrooveSide::face) != along_z)
+        return along_z ? fmt::format("{} plunges along Z, this groove along X", spec.name)
+                       : fmt::format("{} plunges along X, a face groove along Z", spec.name);
+    const GrooveWords w = groove_words(c);
     if (!(w.read.e > 0)) return std::string("its back-off R would be written as 0");
-    const std::vector<Event> control = iso::fanuc_g75_moves(w.read);
+    // The control refuses a back-off longer than the peck.
+    if (w.read.e > w.read.peck + 1e-9)
+        return fmt::format("its back-off R {} is longer than its peck {}", number_text(w.read.e, 3), number_text(w.read.peck, 3));
+    const std::vector<Event> control = iso::fanuc_groove_moves(w.read);
     const std::vector<Event> wanted = groove_cycle_moves(c);
     if (control.size() != wanted.size())
         return fmt::format("its rounded words make {} moves, not {}", control.size(), wanted.size());
@@ -572,13 +599,13 @@ std::optional<std::string> IsoLathePost::groove_cycle_limit(const GrooveCycle& c
 }
 
 void IsoLathePost::on_groove_cycle(const GrooveCycle& c, const GroovingCycleSpec& spec) {
-    if (spec.style != GrooveCycleStyle::fanuc_g75) IsoPost::on_groove_cycle(c, spec);
-    const G75Words w = g75_words(c);
+    if (spec.style != GrooveCycleStyle::fanuc_g75 && spec.style != GrooveCycleStyle::fanuc_g74) IsoPost::on_groove_cycle(c, spec);
+    const GrooveWords w = groove_words(c);
     writer().add(spec.name).add(w.back_off).end();
     writer().add(spec.name);
     for (const std::string& t : w.text) writer().add(t);
     writer().add(feed_word(c.feed)).end();
-    // G75 returns the tool to its start point, in no motion mode camgen writes.
+    // The cycle returns the tool to its start point, in no motion mode camgen writes.
     reset_modal_axes();
 }
 

@@ -93,14 +93,14 @@ private:
         std::string refusal;
     };
     FanucG76Words fanuc_g76_words(const ThreadCycle& cycle) const;
-    // The G75 words of a grooving cycle: the first block's R(e), the second's words, and the
-    // values the control reads from them.
-    struct G75Words {
+    // The G75 words of a grooving cycle (G74's of a face groove): the first block's R(e), the
+    // second's words, and the values the control reads from them.
+    struct GrooveWords {
         std::string back_off;
         std::vector<std::string> text;
-        iso::FanucG75 read;
+        iso::FanucGroove read;
     };
-    G75Words g75_words(const GrooveCycle& cycle) const;
+    GrooveWords groove_words(const GrooveCycle& cycle) const;
     const iso::LatheSettings& lathe_;
     double limit_written_ = 0.0;  // the G50 S written last (rpm), 0: none
     bool surface_mode_ = false;   // G96 is in effect (M5 leaves it so): an rpm needs G97

@@ -2,7 +2,9 @@
 // what lathes write differently, by its hooks: Fanuc T's spindle limit G50 S and constant speed G97,
 // turret calls T0101 (setting toolCall "turret"), canned cycles in any plane where the post
 // writes no plane word for them (setting drillingPlane false, Fanuc T), and Fanuc T's two-block
-// end-face peck drilling G74 R(e) / G74 Z Q F; threading cycles: LinuxCNC's G76 P Z I J K R Q H
+// end-face peck drilling G74 R(e) / G74 Z Q F; Fanuc T's grooving cycles G75 R(e) / G75 X Z P Q F
+// and (face grooving) G74 R(e) / G74 X Z P Q F, expanded into the moves of fanuc_g75.hpp's model;
+// threading cycles: LinuxCNC's G76 P Z I J K R Q H
 // and Fanuc T's two-block G76 P(m r a) Q R / G76 X Z P Q F, expanded into the passes of camgen's
 // models of them (linuxcnc_g76.hpp, fanuc_g76.hpp); LinuxCNC's G71 and G72 roughing from a
 // profile subroutine (o<n> sub ... o<n> endsub, then G71/G72 Q<n> D0 I R F), expanded into the
@@ -123,11 +125,18 @@ private:
     int sub_motion_ = -1;       // the modal motion code inside it (tenths)
     std::map<int, Profile> subs_;
     void g76(BlockWords& w);
-    void g75(BlockWords& w);
+    // Fanuc T's G75 (along_z false) or G74 face grooving (along_z true), either block.
+    void fanuc_groove(BlockWords& w, bool along_z);
     // The machine's G75 (groovingCycles of style fanuc-g75), if it has one.
     const GroovingCycleSpec* g75_spec() const {
         for (const GroovingCycleSpec& s : machine_.grooving)
             if (s.style == GrooveCycleStyle::fanuc_g75) return &s;
+        return nullptr;
+    }
+    // The machine's G74 face grooving (groovingCycles of style fanuc-g74), if it has one.
+    const GroovingCycleSpec* g74_spec() const {
+        for (const GroovingCycleSpec& s : machine_.grooving)
+            if (s.style == GrooveCycleStyle::fanuc_g74) return &s;
         return nullptr;
     }
     void fanuc_g76(BlockWords& w);
@@ -144,7 +153,7 @@ private:
     }
 
     const iso::LatheSettings& lathe_;
-    std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm
+    std::optional<double> face_back_off_;  // Fanuc T G74's first block R(e), mm (drilling and face grooving)
     std::optional<double> groove_back_off_;  // Fanuc T G75's first block R(e), mm
     std::optional<double> g50_limit_;      // Fanuc T's G50 S, rpm: the limit of a G96
     // Fanuc T G76's first block: m, r, a of P, the least depth Q and the finishing allowance R.
@@ -407,7 +416,8 @@ bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
         set_group(codes.spindle_mode, c);
         return true;
     }
-    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec()) || (c.value == code(75) && g75_spec())) {
+    if (c.value == code(thread_code()) || (c.value == code(76) && g76_spec()) || (c.value == code(75) && g75_spec()) ||
+        (c.value == code(74) && g74_spec())) {
         set_group(codes.motion, c);
         return true;
     }
@@ -437,7 +447,11 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
         return true;
     }
     if (mode == code(75) && g75_spec()) {
-        g75(w);
+        fanuc_groove(w, false);
+        return true;
+    }
+    if (mode == code(74) && g74_spec()) {  // (a machine whose G74 is not a drilling cycle too)
+        fanuc_groove(w, true);
         return true;
     }
     if (mode != code(thread_code())) return false;
@@ -609,17 +623,19 @@ void IsoLatheReader::fanuc_g76(BlockWords& w) {
     }
 }
 
-void IsoLatheReader::g75(BlockWords& w) {
-    // Fanuc T's G75 in two blocks: G75 R(e) sets the back-off; G75 X Z P Q F plunges from where
-    // the tool stands (the start point) as fanuc_g75.hpp models it. P and Q are in least input
+void IsoLatheReader::fanuc_groove(BlockWords& w, bool along_z) {
+    // Fanuc T's G75 / G74 in two blocks: R(e) sets the back-off; X Z P Q F plunges from where the
+    // tool stands (the start point) as fanuc_g75.hpp models it: G75 along X (P the peck, Q the
+    // step along Z), G74 along Z (Q the peck, P the step along X). P and Q are in least input
     // increments without a decimal point; X is read as X (a diameter on a diameter machine).
-    const std::string name = g75_spec()->name;
+    const std::string name = along_z ? g74_spec()->name : g75_spec()->name;
+    std::optional<double>& back_off = along_z ? face_back_off_ : groove_back_off_;
     for (char letter : {'Y', 'I', 'J', 'K'})
         if (const Word* x = w.find(letter)) fail(fmt::format("{} in a {} block: camgen grooves in X and Z only", x->text, name));
     if (w.has('R') && !w.has('X') && !w.has('Z') && !w.has('P') && !w.has('Q')) {
         const Word* r = w.take('R');
-        groove_back_off_ = length(*r);
-        if (!(*groove_back_off_ > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
+        back_off = length(*r);
+        if (!(*back_off > 0)) fail(fmt::format("{}: the back-off must be > 0", r->text));
         return;
     }
     if (const Word* r = w.find('R'))
@@ -630,30 +646,51 @@ void IsoLatheReader::g75(BlockWords& w) {
     const Word* zw = w.take('Z');
     const Word* pw = w.take('P');
     const Word* qw = w.take('Q');
-    if (!xw || !zw || !pw) fail(fmt::format("the second {} block needs X, Z and the peck P", name));
-    if (!groove_back_off_) fail(fmt::format("{} X Z P without the first block {} R(e)", name, name));
+    const Word* peck_w = along_z ? qw : pw;
+    const Word* step_w = along_z ? pw : qw;
+    if (!xw || !zw || !peck_w)
+        fail(fmt::format("the second {} block needs X, Z and the peck {}", name, along_z ? 'Q' : 'P'));
+    if (!back_off) fail(fmt::format("{} X Z {} without the first block {} R(e)", name, along_z ? 'Q' : 'P', name));
     for (const Word* iw : {pw, qw})
         if (iw && iw->has_point) fail(fmt::format("{}: P and Q are in least input increments, without a decimal point", iw->text));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
     if (!feed_) fail(fmt::format("{} without a feed F", name));
     const Vec3 here = position();
     const double increments = std::pow(10.0, length_format('Z').spec().decimals);
-    iso::FanucG75 g;
+    iso::FanucGroove g;
+    g.along_z = along_z;
     g.start_x = here.x, g.start_y = here.y, g.start_z = here.z;
     g.x = length(*xw);
     g.z = length(*zw);
-    g.peck = length_value(pw->value / increments);
-    g.step = qw ? length_value(qw->value / increments) : 0.0;
-    g.e = *groove_back_off_;
+    g.peck = length_value(peck_w->value / increments);
+    g.step = step_w ? length_value(step_w->value / increments) : 0.0;
+    g.e = *back_off;
     g.feed = *feed_;
-    // X below the start point: an external groove; beyond it: an internal one (the pecks mirrored).
-    if (g.x == g.start_x) fail(fmt::format("{} {}: the groove's bottom must lie off the start point's X", name, xw->text));
-    if (!(g.peck > 0)) fail(fmt::format("{}: the peck P must be > 0", pw->text));
-    if (std::abs(g.z - g.start_z) > 1e-9 && !(g.step > 0))
-        fail(fmt::format("{} {}: a groove along Z needs its step Q > 0", name, zw->text));
-    if (std::abs(g.start_x - g.x) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", pw->text));
-    if (g.step > 0 && std::abs(g.z - g.start_z) / g.step > 10000) fail(fmt::format("{}: more than 10000 plunges", qw->text));
-    for (const Event& e : iso::fanuc_g75_moves(g)) {
+    const double d0 = along_z ? g.start_z : g.start_x, d_end = along_z ? g.z : g.x;
+    const double s0 = along_z ? g.start_x : g.start_z, s_end = along_z ? g.x : g.z;
+    const Word* bottom_w = along_z ? zw : xw;
+    const Word* end_w = along_z ? xw : zw;
+    // G75: X below the start point, an external groove; beyond it, an internal one (the pecks
+    // mirrored). G74: the bottom towards the chuck, below the start point.
+    if (d_end == d0)
+        fail(fmt::format("{} {}: the groove's bottom must lie off the start point's {}", name, bottom_w->text, along_z ? 'Z' : 'X'));
+    if (along_z && d_end > d0)
+        fail(fmt::format("{} {}: camgen cuts face grooves towards the chuck, below the start point", name, bottom_w->text));
+    if (!(g.peck > 0)) fail(fmt::format("{}: the peck {} must be > 0", peck_w->text, along_z ? 'Q' : 'P'));
+    if (std::abs(s_end - s0) > 1e-9 && !(g.step > 0))
+        fail(fmt::format("{} {}: a groove along {} needs its step {} > 0", name, end_w->text, along_z ? 'X' : 'Z', along_z ? 'P' : 'Q'));
+    // The control's alarms (docs/reference.md): a peck longer than the plunge, a step longer than
+    // the travel, a back-off longer than the peck (one least increment of slack for a diameter's
+    // half).
+    const double slack = 1.0 / increments + 1e-9;
+    if (g.peck > std::abs(d0 - d_end) + slack)
+        fail(fmt::format("{}: the peck is longer than the plunge from the start point to {}", peck_w->text, bottom_w->text));
+    if (step_w && g.step > std::abs(s_end - s0) + slack)
+        fail(fmt::format("{}: the step is longer than the travel from the start point to {}", step_w->text, end_w->text));
+    if (g.e > g.peck + 1e-9) fail(fmt::format("{}: the back-off R(e) is longer than the peck", peck_w->text));
+    if (std::abs(d0 - d_end) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", peck_w->text));
+    if (g.step > 0 && std::abs(s_end - s0) / g.step > 10000) fail(fmt::format("{}: more than 10000 plunges", step_w->text));
+    for (const Event& e : iso::fanuc_groove_moves(g)) {
         if (const auto* r = std::get_if<Rapid>(&e)) rapid_to(r->to.x, std::nullopt, r->to.z);
         else linear_to(std::get<Linear>(e).to.x, std::nullopt, std::get<Linear>(e).to.z);
     }
@@ -713,6 +750,13 @@ bool IsoLatheReader::variant_tool_call(const Word& t) {
 
 bool IsoLatheReader::variant_cycle(const DrillingCycleSpec& spec, BlockWords& w) {
     if (spec.style != CannedStyle::fanuc_g74) return false;
+    // G74 with X or P is face grooving (camgen's drilling G74 has neither); its first block R(e)
+    // is the same for both.
+    if (g74_spec() && (w.has('X') || w.has('P'))) {
+        drill_end();
+        fanuc_groove(w, true);
+        return true;
+    }
     face_peck(spec, w);
     return true;
 }

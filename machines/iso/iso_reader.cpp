@@ -159,6 +159,8 @@ IsoReader::BlockCodes IsoReader::block_codes(const Block& b, BlockWords& w) {
                         break;
                     }
                     if (cycle_kind_of(c.value)) {
+                        // (a dialect's own cycle of that code, not a drilling cycle: Fanuc T's G74 face grooving)
+                        if (!canned_spec(c.value) && variant_code(k, x, c)) break;
                         if (!canned_spec(c.value)) {
                             std::vector<std::string> names;
                             for (const auto& s : machine_.drilling)
@@ -303,7 +305,7 @@ void IsoReader::block(const Block& b) {
 }
 
 void IsoReader::motion_block(int mode, BlockWords& w) {
-    if (cycle_kind_of(mode)) {
+    if (cycle_kind_of(mode) && canned_spec(mode)) {
         cycle_block(mode, w);
         return;
     }

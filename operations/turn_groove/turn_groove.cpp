@@ -83,9 +83,8 @@ constexpr KeySpec turn_groove_keys[] = {
                     "(internal: inside the bore's surface, where the blade moves along Z in and out of the bore; face: "
                     "above the face, along Z)"},
     {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
-     .description = "auto: the machine's grooving cycle (Fanuc T G75) where it carries the groove, else longhand with a "
-                    "note; canned: the cycle or an error; longhand: G0/G1 moves (a face groove is longhand: camgen does "
-                    "not write G74's face grooving)"},
+     .description = "auto: the machine's grooving cycle (Fanuc T G75; a face groove: G74) where it carries the groove, "
+                    "else longhand with a note; canned: the cycle or an error; longhand: G0/G1 moves"},
 };
 
 }  // namespace

@@ -334,9 +334,15 @@ constexpr KeySpec thread_cycle_keys[] = {
 constexpr Named<GrooveCycleStyle> groove_cycle_styles[] = {
     {GrooveCycleStyle::fanuc_g75, "fanuc-g75",
      "Fanuc T's G75 R(back-off) / G75 X Z P(peck) Q(Z step, least increments) F from the start point, back to it"},
+    {GrooveCycleStyle::fanuc_g74, "fanuc-g74",
+     "Fanuc T's G74 R(back-off) / G74 X Z P(X step) Q(peck, least increments) F from the start point, back to it "
+     "(face grooving)"},
 };
 
-constexpr Named<int> groove_cycle_kinds[] = {{0, "groove", "an external or internal groove cut in plunges along X (turn-groove)"}};
+constexpr Named<int> groove_cycle_kinds[] = {
+    {0, "groove", "an external or internal groove cut in plunges along X (turn-groove)"},
+    {1, "face-groove", "a face groove cut in plunges along Z (turn-groove \"side\": \"face\")"},
+};
 
 // The names a grooving cycle's "fields" may hold.
 std::vector<std::string> groove_cycle_field_list() {
@@ -920,10 +926,27 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             GroovingCycleSpec c;
             c.name = cf.string("name");
             check_program_text(c.name, cf.path_of("name"), source);
-            cf.choice("kind", groove_cycle_kinds, 0);
-            if (!cf.has("kind")) cf.fail("kind", "a grooving cycle needs its kind (\"groove\")");
+            c.face = cf.choice("kind", groove_cycle_kinds, 0) == 1;
+            if (!cf.has("kind")) cf.fail("kind", "a grooving cycle needs its kind (\"groove\" or \"face-groove\")");
             if (!cf.has("style")) cf.fail("style", "a grooving cycle needs its style");
             c.style = cf.choice("style", groove_cycle_styles, GrooveCycleStyle::fanuc_g75);
+            // Each style cuts one kind: G75 along X, G74 along Z.
+            if (c.face != (c.style == GrooveCycleStyle::fanuc_g74))
+                cf.fail("style", fmt::format("style {} cuts {}, not kind {}", name_of(groove_cycle_styles, c.style),
+                                             c.style == GrooveCycleStyle::fanuc_g74 ? "face grooves (kind \"face-groove\")"
+                                                                                    : "grooves along X (kind \"groove\")",
+                                             name_of(groove_cycle_kinds, c.face ? 1 : 0)));
+            // G74 is also Fanuc T's peck drilling (the reader tells them apart by X and P): a
+            // drilling cycle of the same name must be that one, not another control's G74.
+            for (const DrillingCycleSpec& d : m.drilling)
+                if (c.style == GrooveCycleStyle::fanuc_g74 && d.canned && d.name == c.name && d.style != CannedStyle::fanuc_g74)
+                    cf.fail("name", fmt::format("{} is also a drilling cycle of this machine of another style than fanuc-g74: "
+                                                "the reader could not tell the face grooving from it",
+                                                c.name));
+            for (const GroovingCycleSpec& o : m.grooving)
+                if (o.face == c.face)
+                    cf.fail("kind", fmt::format("a second grooving cycle of kind {}: a lathe has one of each kind",
+                                                name_of(groove_cycle_kinds, c.face ? 1 : 0)));
             if (const auto* fields = cf.member("fields")) {
                 if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                 const std::vector<std::string> known = groove_cycle_field_list();

@@ -615,14 +615,21 @@ std::optional<std::string> Post::groove_cycle_limit(const GrooveCycle&, const Gr
 void Post::handle_groove_cycle(const GrooveCycle& c) {
     if (!pos_known_) throw std::logic_error("grooving cycle from an unknown position");
     if (c.output != CycleOutput::longhand) {
-        const GroovingCycleSpec* spec = machine_.grooving.empty() ? nullptr : &machine_.grooving.front();
+        // The machine's cycle of the groove's kind: face grooves along Z (G74), others along X (G75).
+        const bool face = c.side == GrooveSide::face;
+        const GroovingCycleSpec* spec = nullptr;
+        for (const GroovingCycleSpec& s : machine_.grooving)
+            if (s.face == face && !spec) spec = &s;
         std::string reason;
-        if (!spec) {
+        if (machine_.grooving.empty()) {
             reason = fmt::format("machine {} has no canned grooving cycle", machine_.name);
-        } else if (c.side == GrooveSide::face) {
-            reason = fmt::format("machine {}'s {} plunges along X; a face groove plunges along Z (Fanuc T's G74 face "
-                                 "grooving, which camgen does not write)",
-                                 machine_.name, spec->name);
+        } else if (!spec) {
+            reason = face ? fmt::format("machine {}'s {} plunges along X; a face groove plunges along Z (the machine lists "
+                                        "no grooving cycle of kind \"face-groove\")",
+                                        machine_.name, machine_.grooving.front().name)
+                          : fmt::format("machine {}'s {} cuts face grooves; this groove plunges along X (the machine lists "
+                                        "no grooving cycle of kind \"groove\")",
+                                        machine_.name, machine_.grooving.front().name);
         } else {
             std::vector<std::string> missing;
             for (const std::string& f : c.fields)
@@ -637,7 +644,7 @@ void Post::handle_groove_cycle(const GrooveCycle& c) {
             pos_ = groove_cycle_end(c);
             return;
         }
-        cycle_not_canned(c.path, c.output, spec != nullptr, "groove", reason);
+        cycle_not_canned(c.path, c.output, !machine_.grooving.empty(), "groove", reason);
     }
     for (const Event& e : groove_cycle_moves(c)) handle(e);
 }

@@ -54,8 +54,11 @@ std::string random_groove(std::mt19937& rng, bool plain, const std::string& outp
     const bool right = u(rng) < 0.5;
     const double a = 0.5 + u(rng);
     std::string extra = fmt::format(R"(, "output": "{}")", output);
-    if (u(rng) < 0.6) extra += fmt::format(R"(, "peckDepth": {:.3f})", 0.3 + 2.0 * u(rng));
-    if (extra.find("peck") != std::string::npos && u(rng) < 0.5) extra += fmt::format(R"(, "peckRetract": {:.3f})", 0.1 + u(rng));
+    double peck = 0.0;
+    if (u(rng) < 0.6) extra += fmt::format(R"(, "peckDepth": {:.3f})", peck = 0.3 + 2.0 * u(rng));
+    // (a back-off at most the peck: the control refuses a longer one)
+    if (extra.find("peck") != std::string::npos && u(rng) < 0.5)
+        extra += fmt::format(R"(, "peckRetract": {:.3f})", std::min(0.1 + u(rng), std::floor(peck * 1000) / 1000));
     if (width > w && u(rng) < 0.5) extra += fmt::format(R"(, "stepover": {:.3f})", w * (0.3 + 0.7 * u(rng)));
     if (plain) {
         extra += R"(, "finishAllowance": 0)";
@@ -127,10 +130,10 @@ TEST_CASE("groove cycle: the moves stay within the groove, every move along Z in
         if (plain) {
             CHECK(at == c.start());
             // G75's model from the same values makes the same moves.
-            iso::FanucG75 g;
+            iso::FanucGroove g;
             g.start_x = c.air, g.start_z = c.start().z, g.x = c.bottom, g.z = c.at(c.bottom, c.last_z).z;
             g.peck = c.peck > 0 ? c.peck : c.air - c.bottom + 1, g.step = c.z_step, g.e = c.retract, g.feed = c.feed;
-            const std::vector<Event> control = iso::fanuc_g75_moves(g);
+            const std::vector<Event> control = iso::fanuc_groove_moves(g);
             REQUIRE(control.size() == moves.size());
             for (std::size_t k = 0; k < moves.size(); ++k) {
                 CHECK(control[k].index() == moves[k].index());

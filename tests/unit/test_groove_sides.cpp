@@ -4,8 +4,8 @@
 // face), with nothing beyond the groove's walls and bottom; the lathe simulation of random
 // internal grooves on the three lathes says "as designed", a groove 0.2 mm too deep or too wide
 // is a gouge; Fanuc T's G75 carries a plain internal groove (X rising) and reads back as
-// camgen's moves; a face groove is longhand (G74's face grooving is not written): a note under
-// auto, an error naming the path under canned.
+// camgen's moves; a face groove G74 cannot carry is longhand: a note under auto, an error naming
+// the path under canned (the plain ones: test_fanuc_g74_groove.cpp).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -96,8 +96,11 @@ RandomGroove random_internal(std::mt19937& rng, const std::string& output = "aut
     g.approach = std::round((0.3 + 1.5 * u(rng)) * 1000) / 1000;
     g.surface = 8, g.bottom = 8 + depth;
     std::string extra = fmt::format(R"(, "output": "{}")", output);
-    if (u(rng) < 0.6) extra += fmt::format(R"(, "peckDepth": {:.3f})", 0.3 + 2.0 * u(rng));
-    if (extra.find("peck") != std::string::npos && u(rng) < 0.5) extra += fmt::format(R"(, "peckRetract": {:.3f})", 0.1 + 0.3 * u(rng));
+    double peck = 0.0;
+    if (u(rng) < 0.6) extra += fmt::format(R"(, "peckDepth": {:.3f})", peck = 0.3 + 2.0 * u(rng));
+    // (a back-off at most the peck: the control refuses a longer one)
+    if (extra.find("peck") != std::string::npos && u(rng) < 0.5)
+        extra += fmt::format(R"(, "peckRetract": {:.3f})", std::min(0.1 + 0.3 * u(rng), std::floor(peck * 1000) / 1000));
     if (width > g.w && u(rng) < 0.5) extra += fmt::format(R"(, "stepover": {:.3f})", g.w * (0.3 + 0.7 * u(rng)));
     if (plain) {
         extra += R"(, "finishAllowance": 0)";
@@ -330,7 +333,7 @@ TEST_CASE("turn-groove sides: a rapid into the bore's wall is a crash the simula
 }
 
 TEST_CASE("turn-groove sides: fanuc-lathe writes a plain internal groove as G75 with X rising and reads it back; a face groove "
-          "is longhand") {
+          "G74 cannot carry is longhand") {
     const Machine fanuc = load_machine("fanuc-lathe");
     std::mt19937 rng(3132);
     int canned = 0;
@@ -357,20 +360,23 @@ TEST_CASE("turn-groove sides: fanuc-lathe writes a plain internal groove as G75 
         CHECK_MESSAGE(v.code == 0, std::string(v.out + v.err));
     }
     CHECK(canned == 40);
-    // A face groove: longhand with a note under auto; canned refuses it at its path.
-    const RandomGroove f = random_face(rng, "auto");
-    const test::Posted p = posted(f.text, fanuc);
+    // A face groove G74 cannot carry (a finishing pass): longhand with a note under auto; canned
+    // refuses it at its path (test_fanuc_g74_groove.cpp: the plain ones are written as G74).
+    const std::string facer = R"({"number": 1, "type": "grooving-tool", "width": 2, "rpm": 600, "orientation": 7})";
+    const std::string face = R"({"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": 0, "innerX": 22, "outerX": 30,
+                                 "depth": 2)";
+    const test::Posted p = posted(bushing_job(facer, face + "}"), fanuc);
     CHECK(p.text.find("G75") == std::string::npos);
     CHECK(p.text.find("G74") == std::string::npos);
-    CHECK_MESSAGE(p.notes.find("the groove is written longhand because machine fanuc-lathe's G75 plunges along X; a face "
-                                  "groove plunges along Z") != std::string::npos,
+    CHECK_MESSAGE(p.notes.find("the groove is written longhand because machine fanuc-lathe's G74 cannot carry finishPass") !=
+                      std::string::npos,
                   p.notes);
-    const RandomGroove fc = random_face(rng, "canned");
     try {
-        (void)posted(fc.text, fanuc);
+        (void)posted(bushing_job(facer, face + R"(, "output": "canned"})"), fanuc);
         FAIL("a canned face groove was written");
     } catch (const InputError& e) {
-        CHECK(std::string(e.what()).find("/operations/0/output: machine fanuc-lathe's G75 plunges along X") != std::string::npos);
+        CHECK(std::string(e.what()).find("/operations/0/output: machine fanuc-lathe's G74 cannot carry finishPass") !=
+              std::string::npos);
     }
     // LinuxCNC and Sinumerik: longhand, no note (they have no grooving cycle).
     for (const std::string machine : {"linuxcnc-lathe", "sinumerik-lathe"}) {

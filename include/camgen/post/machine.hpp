@@ -95,8 +95,9 @@ struct ThreadingCycleSpec {
     std::vector<std::string> fields;   // what it carries: thread_cycle_field_names
 };
 
-// How a canned grooving cycle is written: Fanuc T's two-block G75 R(e) / G75 X Z P Q F.
-enum class GrooveCycleStyle { fanuc_g75 };
+// How a canned grooving cycle is written: Fanuc T's two-block G75 R(e) / G75 X Z P Q F (plunges
+// along X), or its G74 R(e) / G74 X Z P Q F (face grooving, plunges along Z).
+enum class GrooveCycleStyle { fanuc_g75, fanuc_g74 };
 
 // What a turn-groove may ask of a grooving cycle beyond plain plunges (machine file
 // groovingCycles[].fields; GrooveCycle::fields).
@@ -106,6 +107,7 @@ inline constexpr const char* groove_cycle_field_names[] = {"pecks", "fullRetract
 struct GroovingCycleSpec {
     std::string name;                  // "G75"
     GrooveCycleStyle style = GrooveCycleStyle::fanuc_g75;
+    bool face = false;                 // kind "face-groove": it cuts face grooves (along Z), else external and internal ones
     std::vector<std::string> fields;   // what it carries: groove_cycle_field_names
 };
 
