@@ -329,6 +329,25 @@ TopViewFrame png_lathe(const SimResult& r, const PictureLabels& labels, std::ost
         cairo_rectangle(cr, px(z), py(p.outside[k]), p.dz * scale, (p.outside[k] - p.bore[k]) * scale);
     }
     cairo_fill(cr);
+    // The rings of air inside the material (face grooves), in the background's colour, edged.
+    if (!p.gaps.empty()) {
+        cairo_set_source_rgb(cr, 0xf4 / 255.0, 0xf4 / 255.0, 0xf4 / 255.0);
+        for (int k = 0; k < p.nz; ++k)
+            if (const std::vector<LatheGap>* gaps = p.gaps_at(k))
+                for (const LatheGap& g : *gaps)
+                    cairo_rectangle(cr, px(p.z0 + k * p.dz), py(g.hi), p.dz * scale, (g.hi - g.lo) * scale);
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_set_line_width(cr, 1.5);
+        for (int k = 0; k < p.nz; ++k)
+            if (const std::vector<LatheGap>* gaps = p.gaps_at(k))
+                for (const LatheGap& g : *gaps)
+                    for (double rad : {g.lo, g.hi}) {
+                        cairo_move_to(cr, px(p.z0 + k * p.dz), py(rad));
+                        cairo_line_to(cr, px(p.z0 + (k + 1) * p.dz), py(rad));
+                    }
+        cairo_stroke(cr);
+    }
     // Its outline, sample by sample.
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 1.5);
