@@ -2,8 +2,10 @@
 // Material simulation: the motion a program makes (the steps of a TraceBuilder: tool-centre
 // moves with cutter compensation applied, lines and arcs, tool changes) swept through a stock.
 // A mill's stock is a height field (Z-map) over its XY extent; a lathe's bar is its turned
-// profile r(z) (and bore) sampled along Z. Each move lowers the material it passes through to
-// the tool's lowest surface and is then dropped: memory is the field plus a constant.
+// profile r(z) (and bore, and the rings of air a face blade cuts inside the material: LatheGap)
+// sampled along Z. Each move lowers the material it passes through to the tool's lowest surface
+// and is then dropped: memory is the field plus a constant (a lathe's rings: a list a sample,
+// made at the first ring, 24 bytes a sample and 24 a ring).
 //
 // Exactness (mill, heights at each cell's centre):
 // - a straight move: exact for every tool shape where the move is horizontal or vertical; a
