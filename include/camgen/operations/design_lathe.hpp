@@ -14,7 +14,9 @@
 //   profile moved by its allowances (design_turn_face, design_turn_rough);
 // - a turn-drill removes a bore of its drill's radius on the axis, down to its depth with the
 //   drill's point (above startDepth too: the drill comes down the axis), and keeps the part
-//   around and below it.
+//   around and below it;
+// - a face turn-groove removes its ring from the face down to its bottom (LatheRingDesign),
+//   and keeps the part around and below it (the simulation holds the ring as a LatheGap).
 //
 // In (u, v) = (Z, radius), mm, as a turn-profile's Profile is. A turn-profile has no inside
 // (bore) side and no stock-to-leave key yet: neither is designed.
