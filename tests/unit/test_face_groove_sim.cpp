@@ -64,21 +64,29 @@ FaceGroove random_face_groove(std::mt19937& rng, int n) {
     if (extra.find("peck") != std::string::npos && u(rng) < 0.5) extra += R"(, "fullRetract": true)";
     if (width > w && u(rng) < 0.5) extra += fmt::format(R"(, "stepover": {:.3f})", w * (0.3 + 0.7 * u(rng)));
     if (u(rng) < 0.3) extra += R"(, "dwell": 0.2)";
+    if (u(rng) < 0.3) extra += R"(, "finishAllowance": 0)";
     if (g.c > 0) extra += fmt::format(R"(, "chamfer": {:.3f})", g.c);
+    // Every third bar is faced first, from Z1 to Z0.
+    const bool faced = n % 3 == 1;
     g.text = fmt::format(
-        R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": 0{}}}}},
-  "tools": [{{"number": 1, "type": "grooving-tool", "width": {:.3f}, "rpm": 600, "orientation": 7}}],
-  "operations": [{{"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": 0, "innerX": {:.3f}, "outerX": {:.3f},
+        R"({{"clearance": 10, "stock": {{"bar": {{"diameter": 40, "length": 60, "faceZ": {}{}}}}},
+  "tools": [{{"number": 1, "type": "grooving-tool", "width": {:.3f}, "rpm": 600, "orientation": 7}},
+            {{"number": 2, "type": "turning-tool", "noseRadius": 0.4, "orientation": 2, "rpm": 900}}],
+  "operations": [{}{{"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": 0, "innerX": {:.3f}, "outerX": {:.3f},
                    "depth": {:.3f}, "approachDistance": {:.3f}{}}}]}})",
-        bore ? R"(, "boreDiameter": 16)" : "", w, 2 * g.lo, 2 * g.hi, depth, approach, extra);
+        faced ? 1 : 0, bore ? R"(, "boreDiameter": 16)" : "", w,
+        faced ? R"({"type": "turn-face", "tool": 2, "z": 0, "stepdown": 0.5, "feed": 60}, )" : "", 2 * g.lo, 2 * g.hi, depth,
+        approach, extra);
     return g;
 }
 
-// The removed volume camgen simulate prints for /operations/0.
-double removed_by_op0(const std::string& out) {
-    std::smatch m;
-    if (!std::regex_search(out, m, std::regex("operation /operations/0: removed ([0-9.]+) mm\\^3"))) return -1;
-    return std::stod(m[1]);
+// The removed volume camgen simulate prints for the face groove (the last operation).
+double removed_by_groove(const std::string& out) {
+    const std::regex line("operation /operations/[0-9]+: removed ([0-9.]+) mm\\^3");
+    double last = -1;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), line); it != std::sregex_iterator(); ++it)
+        last = std::stod((*it)[1]);
+    return last;
 }
 
 }  // namespace
@@ -107,7 +115,7 @@ TEST_CASE("face groove simulation: random face grooves on the three lathes remov
                 // The ring and its two chamfers' triangles (centroids a third of the chamfer out).
                 const double ring = pi * (g.hi * g.hi - g.lo * g.lo) * g.depth;
                 const double chamfers = pi * g.c * g.c * ((g.lo - g.c / 3) + (g.hi + g.c / 3));
-                const double removed = removed_by_op0(r.out);
+                const double removed = removed_by_groove(r.out);
                 CHECK_MESSAGE(std::abs(removed - (ring + chamfers)) <= 0.002 * (ring + chamfers) + 0.05,
                               r.out << "\nexpected " << ring + chamfers);
             }
@@ -224,6 +232,31 @@ TEST_CASE("face groove simulation: a ring of air inside the material is held, wi
     for (int k = 0; k < p.nz; ++k)
         left += lathe_material_area(p.outside[static_cast<std::size_t>(k)], p.bore[static_cast<std::size_t>(k)], p.gaps_at(k)) * p.dz;
     CHECK(sim.result().initial_volume - sim.result().removed_volume == doctest::Approx(left).epsilon(1e-9));
+}
+
+TEST_CASE("face groove simulation: a rapid of a face blade into the face is a crash; one down its own ring is not") {
+    Machine m = load_machine("linuxcnc-lathe");
+    SimStock bar;
+    bar.kind = SimStock::Kind::bar;
+    bar.bar_diameter = 40, bar.bar_length = 10, bar.face_z = 0;
+    ToolShape blade;
+    blade.form = ToolForm::blade, blade.diameter = 2, blade.orientation = 7;
+    SimOptions options;
+    options.resolution = 0.01;
+    Simulator sim(m, bar, {{1, blade}}, options);
+    auto move = [&](StepKind kind, double x, double z0, double z1, int line) {
+        Step s;
+        s.kind = kind, s.tool = 1, s.line = line, s.from_known = true;
+        s.from = {x, 0, z0}, s.to = {x, 0, z1};
+        sim.step(s);
+    };
+    move(StepKind::feed, 10, 1, -2, 1);    // the ring 10 to 12, 2 deep
+    move(StepKind::rapid, 10, 1, -1.5, 2);  // down it again: air
+    CHECK(sim.result().errors.empty());
+    move(StepKind::rapid, 10.5, 1, -1, 3);  // half a blade beside it, into the face
+    REQUIRE(sim.result().errors.size() == 1);
+    CHECK(sim.result().errors[0].line == 3);
+    CHECK(sim.result().errors[0].message.find("a rapid removes material (a crash): 0.5 mm deep") != std::string::npos);
 }
 
 TEST_CASE("face groove simulation: the bushing sample simulates as designed, its face groove swept and checked") {
