@@ -356,9 +356,19 @@ void lathe_design_blade(const Job& job, LatheTurnDesign& d, const GrooveBlade& b
 }  // namespace
 
 void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked) {
-    if (op.side == GrooveSide::face)
-        return unchecked.push_back(op.path + ": a face groove is a ring inside the end face; the simulated part holds one "
-                                             "outside and one bore radius per Z");
+    if (op.side == GrooveSide::face) {
+        if (!lathe_design_tool(job, op.tool)) return unchecked.push_back(op.path + ": its tool is not in the job");
+        LatheRingDesign r;
+        r.path = op.path;
+        r.tool = op.tool;
+        r.inner = op.z_left;
+        r.outer = op.z_right;
+        r.face_z = op.surface;
+        r.bottom_z = op.bottom;
+        r.chamfer = op.chamfer;
+        design.rings.push_back(std::move(r));
+        return;
+    }
     if (op.side == GrooveSide::internal) {
         if (!lathe_design_tool(job, op.tool)) return unchecked.push_back(op.path + ": its tool is not in the job");
         LatheHoleDesign h;

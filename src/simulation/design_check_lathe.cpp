@@ -29,6 +29,7 @@ struct LatheCheckAt {
     double z, outside, bore;
     int outside_line, bore_line;
     bool section;
+    const std::vector<LatheGap>* gaps;  // the rings of air inside the material (null: none)
 };
 
 class LatheChecker {
@@ -56,16 +57,30 @@ public:
         std::optional<std::size_t> hole;
         for (std::size_t j = 0; j < nh; ++j)
             if (const double r = d_.holes[j].radius_most(a, b); r > bored) bored = r, hole = j;
+        // A face groove's ring that reaches the outside (or the bore) lets it fall (rise) to the ring.
+        const std::size_t nr = d_.rings.size();
+        std::optional<std::size_t> ring_out, ring_in;
+        for (std::size_t r = 0; r < nr; ++r) {
+            double lo = 0, hi = 0;
+            if (!d_.rings[r].allowed(a, b, lo, hi)) continue;
+            if (hi + tol_ >= kept && lo < kept) kept = lo, profile.reset(), ring_out = r;
+            if (lo - tol_ <= bored && hi > bored) bored = hi, hole.reset(), ring_in = r;
+        }
         if (kept > bored + tol_) {
             if (at.outside < kept - tol_) {
                 LatheFinding& f = profile ? finding(LatheFinding::Kind::gouge, LatheFinding::Surface::outside, *profile,
                                                     d_.profiles[*profile].path, "the part inside the profile")
-                                          : bar_finding(LatheFinding::Surface::outside, at.outside_line);
+                                  : ring_out ? finding(LatheFinding::Kind::gouge, LatheFinding::Surface::outside, ring_rank(*ring_out),
+                                                       d_.rings[*ring_out].path, "the part around the face groove")
+                                             : bar_finding(LatheFinding::Surface::outside, at.outside_line);
                 record(f, at, kept - at.outside, at.outside, kept, at.outside_line);
             }
             if (at.bore > bored + tol_) {
                 LatheFinding* f = nullptr;
-                if (hole) {
+                if (ring_in) {
+                    f = &finding(LatheFinding::Kind::gouge, LatheFinding::Surface::bore, ring_rank(*ring_in),
+                                 d_.rings[*ring_in].path, "the part around the face groove");
+                } else if (hole) {
                     f = &finding(LatheFinding::Kind::gouge, LatheFinding::Surface::bore, np + *hole, d_.holes[*hole].path,
                                  "the part around the hole");
                 } else {
@@ -81,6 +96,20 @@ public:
                     else f = &bar_finding(LatheFinding::Surface::bore, at.bore_line);
                 }
                 record(*f, at, std::min(at.bore, kept) - bored, at.bore, bored, at.bore_line);
+            }
+        }
+        // The rings of air inside the material: each within a designed ring's walls over the window.
+        if (at.gaps)
+            for (const LatheGap& g : *at.gaps) judge_gap(at, g, a, b);
+        // Material left inside each face groove's ring where it must be clear over the window.
+        for (std::size_t r = 0; r < nr; ++r) {
+            double lo = 0, hi = 0;
+            if (!d_.rings[r].required(a, b, lo, hi)) continue;
+            const double left = lathe_material_within(at.outside, at.bore, at.gaps, lo, hi, true);
+            if (left > tol_) {
+                LatheFinding& f =
+                    finding(LatheFinding::Kind::left, LatheFinding::Surface::ring, ring_rank(r), d_.rings[r].path, "the face groove");
+                if (record(f, at, left, left, lo, 0)) f.designed_hi = hi;
             }
         }
         // Material left beyond what each profile's tool leaves.
@@ -114,6 +143,42 @@ public:
                 record(finding(LatheFinding::Kind::left, LatheFinding::Surface::bore, np + j, h.path, "the hole"), at,
                        top - at.bore, at.bore, need, 0);
         }
+    }
+
+    // A ring of air: a gouge where no designed ring holds it within the tolerance.
+    void judge_gap(const LatheCheckAt& at, const LatheGap& g, double a, double b) {
+        double excess = std::numeric_limits<double>::infinity(), dlo = 0, dhi = 0;
+        std::optional<std::size_t> owner;
+        for (std::size_t r = 0; r < d_.rings.size(); ++r) {
+            double lo = 0, hi = 0;
+            if (!d_.rings[r].allowed(a, b, lo, hi)) continue;
+            const double e = std::max({0.0, lo - g.lo, g.hi - hi});
+            if (e < excess) excess = e, owner = r, dlo = lo, dhi = hi;
+        }
+        if (!(excess > tol_)) return;
+        if (owner) {
+            LatheFinding& f = finding(LatheFinding::Kind::gouge, LatheFinding::Surface::ring, ring_rank(*owner),
+                                      d_.rings[*owner].path, "the part around the face groove");
+            if (record(f, at, excess, dlo - g.lo > g.hi - dhi ? g.lo : g.hi, dlo, g.line)) f.designed_hi = dhi;
+            return;
+        }
+        // Below every ring at this Z: the ring above whose radii it meets, nearest.
+        std::optional<std::size_t> above;
+        for (std::size_t r = 0; r < d_.rings.size(); ++r) {
+            const LatheRingDesign& d = d_.rings[r];
+            if (d.bottom_z >= at.z && d.lo_at(d.bottom_z) < g.hi && d.hi_at(d.bottom_z) > g.lo &&
+                (!above || d.bottom_z < d_.rings[*above].bottom_z))
+                above = r;
+        }
+        if (above) {
+            const LatheRingDesign& d = d_.rings[*above];
+            record(finding(LatheFinding::Kind::gouge, LatheFinding::Surface::ring_bottom, ring_rank(*above), d.path,
+                           "the part below the face groove"),
+                   at, d.bottom_z - at.z, g.lo, d.bottom_z, g.line);
+            return;
+        }
+        LatheFinding& f = bar_finding(LatheFinding::Surface::ring, g.line);
+        if (record(f, at, g.hi - g.lo, g.lo, g.lo, g.line)) f.designed_hi = g.hi;
     }
 
     LatheCheck take() {
@@ -159,17 +224,23 @@ private:
             if (it != ops_.begin()) path = std::prev(it)->path;
         }
         // After every operation's own features, in the order the operations first cut the bar.
-        const std::size_t base = 2 * (d_.profiles.size() + d_.holes.size());
+        const std::size_t base = 2 * (d_.profiles.size() + d_.holes.size()) + d_.rings.size();
         const std::size_t rank = base + bar_rank_.try_emplace(path, bar_rank_.size()).first->second;
         return finding(LatheFinding::Kind::gouge, surface, rank, path,
                        surface == LatheFinding::Surface::outside ? "the bar, which no operation turns there"
-                                                                 : "the bar, which no operation bores there");
+                       : surface == LatheFinding::Surface::bore  ? "the bar, which no operation bores there"
+                                                                 : "the bar, which no face groove cuts there");
     }
 
-    void record(LatheFinding& f, const LatheCheckAt& at, double amount, double radius, double designed, int line) {
+    // A face groove's rank: after the profiles' and the holes' features, before the bar's.
+    std::size_t ring_rank(std::size_t r) const { return 2 * (d_.profiles.size() + d_.holes.size()) + r; }
+
+    // Counts the position; true where it is the finding's worst yet (then taken).
+    bool record(LatheFinding& f, const LatheCheckAt& at, double amount, double radius, double designed, int line) {
         ++(at.section ? f.sections : f.samples);
-        if (amount <= f.amount) return;
+        if (amount <= f.amount) return false;
         f.amount = amount, f.z = at.z, f.radius = radius, f.designed = designed, f.line = line;
+        return true;
     }
 
     const LatheDesign& d_;
@@ -191,8 +262,25 @@ std::string LatheFinding::message() const {
     const std::string who = path.empty() ? what : fmt::format("{} ({})", path, what);
     const std::string z_text = number_text(z, 3);
     const bool outside = surface == Surface::outside;
+    const std::string by = line > 0 ? fmt::format(", by line {}", line) : std::string();
     std::string where = fmt::format("{} sample{}", samples, samples == 1 ? "" : "s");
     if (sections > 0) where += fmt::format(" and {} section{} beside corners", sections, sections == 1 ? "" : "s");
+    if (surface == Surface::ring_bottom)
+        return fmt::format("{}: material removed {} mm below the designed bottom Z{} at Z{} (a ring of air from radius {}){} "
+                           "(cut at {})",
+                           who, number_text(amount, 3), number_text(designed, 3), z_text, number_text(radius, 3), by, where);
+    if (surface == Surface::ring && kind == Kind::gouge && what.rfind("the bar", 0) == 0)
+        return fmt::format("{}: material removed {} mm thick inside the part at Z{} (a ring of air from radius {} to {}){} "
+                           "(cut at {})",
+                           who, number_text(amount, 3), z_text, number_text(designed, 3), number_text(designed_hi, 3), by, where);
+    if (surface == Surface::ring && kind == Kind::gouge)
+        return fmt::format("{}: material removed {} mm beyond the designed ring (radius {} to {}) at Z{} (a ring of air to "
+                           "radius {}){} (cut at {})",
+                           who, number_text(amount, 3), number_text(designed, 3), number_text(designed_hi, 3), z_text,
+                           number_text(radius, 3), by, where);
+    if (surface == Surface::ring)
+        return fmt::format("{}: material left {} mm thick inside the ring its blade cuts (radius {} to {}) at Z{} (at {})", who,
+                           number_text(amount, 3), number_text(designed, 3), number_text(designed_hi, 3), z_text, where);
     if (kind == Kind::gouge)
         return fmt::format("{}: material removed {} mm {} {} at Z{} ({} {}){} (cut at {})", who, number_text(amount, 3),
                            outside ? "inside the designed radius" : "beyond the designed bore radius", number_text(designed, 3),
@@ -216,6 +304,8 @@ std::vector<double> lathe_check_sections(const LatheDesign& design, const SimSto
                 for (double z : {h.bottom_z - h.groove_chamfer, h.top_z + h.groove_chamfer}) corners.push_back(z);
         }
     }
+    for (const LatheRingDesign& r : design.rings)
+        for (double z : {r.bottom_z, r.face_z - r.chamfer, r.face_z}) corners.push_back(z);
     const double end = bar.face_z - bar.bar_length;
     std::vector<double> out;
     for (double c : corners)
@@ -232,11 +322,12 @@ LatheCheck check_lathe_design(const LatheDesign& design, const SimStock& bar, co
     auto line = [](const std::vector<std::int32_t>& lines, std::size_t k) { return k < lines.size() ? static_cast<int>(lines[k]) : 0; };
     for (int k = 0; k < part.nz; ++k) {
         const std::size_t s = static_cast<std::size_t>(k);
-        checker.judge({part.z(k), part.outside[s], part.bore[s], line(part.outside_lines, s), line(part.bore_lines, s), false});
+        checker.judge({part.z(k), part.outside[s], part.bore[s], line(part.outside_lines, s), line(part.bore_lines, s), false,
+                       part.gaps_at(k)});
     }
     for (std::size_t i = 0; i < sections.z.size(); ++i)
         checker.judge({sections.z[i], sections.outside[i], sections.bore[i], line(sections.outside_lines, i),
-                       line(sections.bore_lines, i), true});
+                       line(sections.bore_lines, i), true, sections.gaps_at(i)});
     return checker.take();
 }
 
@@ -265,10 +356,12 @@ std::size_t report_lathe_design_check(const LatheDesignCheck& c, const SimResult
                                       std::ostream& out) {
     const LatheCheck found = check_lathe_design(c.design.lathe, c.bar, r.lathe, r.lathe_sections, c.tolerance, operations);
     const std::size_t profiles = c.design.lathe.profiles.size(), holes = c.design.lathe.holes.size();
-    out << fmt::format("design check   lathe: {} profile{}, {} hole{}, within {} mm in radius and in Z, {} samples and {} "
+    const std::size_t rings = c.design.lathe.rings.size();
+    out << fmt::format("design check   lathe: {} profile{}, {} hole{}{}, within {} mm in radius and in Z, {} samples and {} "
                        "sections {} mm beside the designed corners\n",
-                       profiles, profiles == 1 ? "" : "s", holes, holes == 1 ? "" : "s", number_text(c.tolerance),
-                       found.samples, found.sections, number_text(c.offset));
+                       profiles, profiles == 1 ? "" : "s", holes, holes == 1 ? "" : "s",
+                       rings == 0 ? std::string() : fmt::format(", {} face groove{}", rings, rings == 1 ? "" : "s"),
+                       number_text(c.tolerance), found.samples, found.sections, number_text(c.offset));
     for (const std::string& u : c.design.unchecked) out << "  not checked: " << u << '\n';
     for (const std::string& n : found.notes) out << "  note: " << n << '\n';
     std::size_t gouges = 0;

@@ -329,6 +329,57 @@ TopViewFrame png_lathe(const SimResult& r, const PictureLabels& labels, std::ost
         cairo_rectangle(cr, px(z), py(p.outside[k]), p.dz * scale, (p.outside[k] - p.bore[k]) * scale);
     }
     cairo_fill(cr);
+    // The rings of air inside the material (face grooves), in the background's colour, edged.
+    if (!p.gaps.empty()) {
+        cairo_set_source_rgb(cr, 0xf4 / 255.0, 0xf4 / 255.0, 0xf4 / 255.0);
+        for (int k = 0; k < p.nz; ++k)
+            if (const std::vector<LatheGap>* gaps = p.gaps_at(k))
+                for (const LatheGap& g : *gaps)
+                    cairo_rectangle(cr, px(p.z0 + k * p.dz), py(g.hi), p.dz * scale, (g.hi - g.lo) * scale);
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_set_line_width(cr, 1.5);
+        for (int k = 0; k < p.nz; ++k)
+            if (const std::vector<LatheGap>* gaps = p.gaps_at(k))
+                for (const LatheGap& g : *gaps)
+                    for (double rad : {g.lo, g.hi}) {
+                        cairo_move_to(cr, px(p.z0 + k * p.dz), py(rad));
+                        cairo_line_to(cr, px(p.z0 + (k + 1) * p.dz), py(rad));
+                    }
+        // Their ends along Z (a groove's bottom, a wall's step): where material and air differ
+        // between a sample and the one below it.
+        auto material = [&](int k) {
+            std::vector<std::pair<double, double>> m;
+            const std::size_t i = static_cast<std::size_t>(k);
+            if (!(p.outside[i] > p.bore[i])) return m;
+            double from = p.bore[i];
+            if (const std::vector<LatheGap>* gaps = p.gaps_at(k))
+                for (const LatheGap& g : *gaps) m.emplace_back(from, g.lo), from = g.hi;
+            m.emplace_back(from, p.outside[i]);
+            return m;
+        };
+        for (int k = 1; k < p.nz; ++k) {
+            if (!p.gaps_at(k) && !p.gaps_at(k - 1)) continue;
+            std::vector<double> edges;  // the radii where either side's material starts or ends
+            for (int j : {k - 1, k})
+                for (const auto& [lo, hi] : material(j)) edges.push_back(lo), edges.push_back(hi);
+            std::sort(edges.begin(), edges.end());
+            const auto below = material(k - 1), above = material(k);
+            auto in = [](const std::vector<std::pair<double, double>>& m, double r) {
+                for (const auto& [lo, hi] : m)
+                    if (r > lo && r < hi) return true;
+                return false;
+            };
+            const double z = px(p.z0 + k * p.dz);
+            for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
+                const double mid = (edges[e] + edges[e + 1]) / 2;
+                if (!(edges[e + 1] > edges[e]) || in(below, mid) == in(above, mid)) continue;
+                cairo_move_to(cr, z, py(edges[e]));
+                cairo_line_to(cr, z, py(edges[e + 1]));
+            }
+        }
+        cairo_stroke(cr);
+    }
     // Its outline, sample by sample.
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 1.5);

@@ -166,9 +166,10 @@ void stl_mill(const StlBlocks& b, StlEmitter& e) {
 }
 
 // A lathe's part as bands along Z: from z, each an outside radius and a bore (no material
-// where the outside is not above the bore).
+// where the outside is not above the bore), less rings of air (a face groove's: sorted, inside).
 struct StlBand {
     double z0 = 0, z1 = 0, outside = 0, bore = 0;
+    std::vector<std::pair<double, double>> gaps;
     bool material() const { return outside > bore; }
 };
 
@@ -177,26 +178,59 @@ std::vector<StlBand> stl_bands(const LatheProfile& p, std::size_t budget) {
     std::vector<StlBand> bands;
     for (int k0 = 0; k0 < p.nz; k0 += m) {
         const int k1 = std::min(p.nz, k0 + m);
-        StlBand band{p.z0 + k0 * p.dz, p.z0 + k1 * p.dz, 0, 0};
+        StlBand band{p.z0 + k0 * p.dz, p.z0 + k1 * p.dz, 0, 0, {}};
         if (m == 1) {
-            if (p.outside[static_cast<std::size_t>(k0)] > p.bore[static_cast<std::size_t>(k0)])
+            if (p.outside[static_cast<std::size_t>(k0)] > p.bore[static_cast<std::size_t>(k0)]) {
                 band.outside = p.outside[static_cast<std::size_t>(k0)], band.bore = p.bore[static_cast<std::size_t>(k0)];
+                if (const std::vector<LatheGap>* gaps = p.gaps_at(k0))
+                    for (const LatheGap& g : *gaps) band.gaps.emplace_back(g.lo, g.hi);
+            }
         } else {
             // The mean ring area over the band, and the mean square bore of its samples with
-            // material: the band's volume kept.
+            // material: the band's volume kept. Where every such sample has as many rings of
+            // air, the rings' mean square radii too (and the outside wider by their area), if
+            // they stay in order inside; else their area comes off the outside.
             double area = 0, bore2 = 0;
             int solid = 0;
+            std::vector<std::pair<double, double>> gap2;  // sums of lo^2 and hi^2
+            bool same = true;
             for (int k = k0; k < k1; ++k) {
                 const double r = p.outside[static_cast<std::size_t>(k)], b = p.bore[static_cast<std::size_t>(k)];
                 if (!(r > b)) continue;
-                area += r * r - b * b, bore2 += b * b, ++solid;
+                area += r * r - b * b, bore2 += b * b;
+                const std::vector<LatheGap>* gaps = p.gaps_at(k);
+                const std::size_t n = gaps ? gaps->size() : 0;
+                if (solid == 0) gap2.assign(n, {0.0, 0.0});
+                else if (n != gap2.size()) same = false;
+                for (std::size_t j = 0; j < n; ++j) {
+                    const LatheGap& g = (*gaps)[j];
+                    area -= g.hi * g.hi - g.lo * g.lo;
+                    if (same && j < gap2.size()) gap2[j].first += g.lo * g.lo, gap2[j].second += g.hi * g.hi;
+                }
+                ++solid;
             }
             if (solid > 0 && area > 0) {
                 band.bore = std::sqrt(bore2 / solid);
-                band.outside = std::sqrt(band.bore * band.bore + area / (k1 - k0));
+                double within = 0;  // the rings' mean area, (k1 - k0) samples
+                if (same)
+                    for (const auto& [lo2, hi2] : gap2) {
+                        band.gaps.emplace_back(std::sqrt(lo2 / solid), std::sqrt(hi2 / solid));
+                        within += (hi2 - lo2) / (k1 - k0);
+                    }
+                band.outside = std::sqrt(band.bore * band.bore + area / (k1 - k0) + within);
+                double at = band.bore;
+                for (const auto& [lo, hi] : band.gaps) {
+                    if (!(lo > at && hi > lo)) same = false;
+                    at = hi;
+                }
+                if (!same || !(band.outside > at)) {
+                    band.gaps.clear();
+                    band.outside = std::sqrt(band.bore * band.bore + area / (k1 - k0));
+                }
             }
         }
-        if (!bands.empty() && bands.back().outside == band.outside && bands.back().bore == band.bore) bands.back().z1 = band.z1;
+        if (!bands.empty() && bands.back().outside == band.outside && bands.back().bore == band.bore && bands.back().gaps == band.gaps)
+            bands.back().z1 = band.z1;
         else bands.push_back(band);
     }
     return bands;
@@ -231,10 +265,18 @@ void stl_lathe(const std::vector<StlBand>& bands, int n, StlEmitter& e) {
         const double z = k < bands.size() ? bands[k].z0 : bands[k - 1].z1;
         std::vector<double> cuts;
         for (const StlBand* b : {below, above})
-            if (b) cuts.push_back(b->bore), cuts.push_back(b->outside);
+            if (b) {
+                cuts.push_back(b->bore), cuts.push_back(b->outside);
+                for (const auto& [lo, hi] : b->gaps) cuts.push_back(lo), cuts.push_back(hi);
+            }
         std::sort(cuts.begin(), cuts.end());
         cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-        auto in = [](const StlBand* b, double r) { return b && r > b->bore && r < b->outside; };
+        auto in = [](const StlBand* b, double r) {
+            if (!b || !(r > b->bore && r < b->outside)) return false;
+            for (const auto& [lo, hi] : b->gaps)
+                if (r > lo && r < hi) return false;
+            return true;
+        };
         for (std::size_t a = 0; a + 1 < cuts.size();) {
             const double mid = (cuts[a] + cuts[a + 1]) / 2;
             const int side = in(below, mid) == in(above, mid) ? 0 : in(below, mid) ? 1 : -1;
@@ -251,6 +293,7 @@ void stl_lathe(const std::vector<StlBand>& bands, int n, StlEmitter& e) {
         if (above) {
             cylinder(above->outside, above->z0, above->z1, 1);
             if (above->bore > 0) cylinder(above->bore, above->z0, above->z1, -1);
+            for (const auto& [lo, hi] : above->gaps) cylinder(lo, above->z0, above->z1, 1), cylinder(hi, above->z0, above->z1, -1);
         }
     }
 }

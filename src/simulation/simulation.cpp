@@ -189,7 +189,61 @@ struct SimArcColumns {
     }
 };
 
+// Removes the radii [lo, hi] from the material at one Z (outside, bore, gaps): where it reaches
+// the outside, the outside falls to lo (or to the edge of a gap it opens into); where it reaches
+// the bore, the bore rises to hi (likewise); else it is a gap, merged with those it meets. Sets
+// `out_changed` and `bore_changed`; gaps the move made or widened take `line`.
+void sim_remove_radii(double& outside, double& bore, std::vector<LatheGap>& gaps, double lo, double hi, int line,
+                      bool& out_changed, bool& bore_changed) {
+    out_changed = bore_changed = false;
+    if (!(outside > bore) || !(hi > lo) || hi <= bore || lo >= outside) return;
+    if (hi >= outside) {
+        double r = std::max(lo, 0.0);
+        while (!gaps.empty() && gaps.back().lo >= r) gaps.pop_back();
+        if (!gaps.empty() && gaps.back().hi >= r) r = gaps.back().lo, gaps.pop_back();
+        outside = r, out_changed = true;
+    } else if (lo <= bore) {
+        double b = hi;
+        std::size_t n = 0;
+        while (n < gaps.size() && gaps[n].hi <= b) ++n;
+        if (n < gaps.size() && gaps[n].lo <= b) b = gaps[n].hi, ++n;
+        gaps.erase(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(n));
+        bore = b, bore_changed = true;
+    } else {
+        auto first = std::lower_bound(gaps.begin(), gaps.end(), lo, [](const LatheGap& g, double v) { return g.hi < v; });
+        auto last = first;
+        double nlo = lo, nhi = hi;
+        while (last != gaps.end() && last->lo <= hi) nlo = std::min(nlo, last->lo), nhi = std::max(nhi, last->hi), ++last;
+        if (last - first == 1 && first->lo == nlo && first->hi == nhi) return;  // within a gap: air
+        first = gaps.erase(first, last);
+        gaps.insert(first, LatheGap{nlo, nhi, line});
+    }
+    if (!(outside > bore)) gaps.clear();
+}
+
 }  // namespace
+
+double lathe_material_area(double outside, double bore, const std::vector<LatheGap>* gaps) {
+    if (!(outside > bore)) return 0.0;
+    double a = pi * (outside * outside - bore * bore);
+    if (gaps)
+        for (const LatheGap& g : *gaps) a -= pi * (g.hi * g.hi - g.lo * g.lo);
+    return a;
+}
+
+double lathe_material_within(double outside, double bore, const std::vector<LatheGap>* gaps, double lo, double hi,
+                             bool largest_piece) {
+    if (!(outside > bore)) return 0.0;
+    double total = 0.0, best = 0.0, from = bore;
+    auto piece = [&](double a, double b) {
+        const double len = std::min(b, hi) - std::max(a, lo);
+        if (len > 0) total += len, best = std::max(best, len);
+    };
+    if (gaps)
+        for (const LatheGap& g : *gaps) piece(from, g.lo), from = g.hi;
+    piece(from, outside);
+    return largest_piece ? best : total;
+}
 
 class Simulator::Impl {
 public:
@@ -629,6 +683,7 @@ private:
         result_.initial_volume = v * dz;
         p.outside_lines.assign(p.nz, 0);
         p.bore_lines.assign(p.nz, 0);
+        p.gaps.clear();
         if (!options_.lathe_sections.empty()) {
             std::vector<double> z = std::move(options_.lathe_sections);
             set_lathe_sections(std::move(z));
@@ -649,6 +704,7 @@ public:
         s.outside.assign(s.z.size(), bore);
         s.outside_lines.assign(s.z.size(), 0);
         s.bore_lines.assign(s.z.size(), 0);
+        s.gaps.clear();
         for (std::size_t i = 0; i < s.z.size(); ++i)
             if (s.z[i] >= end && s.z[i] <= stock_.face_z) s.outside[i] = stock_.bar_diameter / 2;
         section_order_.resize(s.z.size());
@@ -663,6 +719,9 @@ private:
     // radial depth of material removed, mm.
     double lathe_cut(int k, double r, double b, SimMoveAcc& acc) {
         LatheProfile& p = result_.lathe;
+        if (!p.gaps.empty() && !p.gaps[static_cast<std::size_t>(k)].empty())
+            return std::isfinite(r) ? lathe_ring_cut(k, r, std::numeric_limits<double>::infinity(), acc)
+                                    : lathe_ring_cut(k, -std::numeric_limits<double>::infinity(), b, acc);
         ++result_.cell_updates;
         const double before = ring(p.outside[k], p.bore[k]);
         const double old_r = p.outside[k], old_b = p.bore[k];
@@ -674,6 +733,27 @@ private:
         if (!(removed > 0) || !(old_r > old_b)) return 0.0;
         acc.volume += removed;
         return std::max(old_r - std::max(p.outside[k], old_b), std::min(p.bore[k], old_r) - old_b);
+    }
+
+    // Removes the radii [lo, hi] from sample k, its gaps kept (sim_remove_radii); returns the
+    // radial length of material removed, mm.
+    double lathe_ring_cut(int k, double lo, double hi, SimMoveAcc& acc) {
+        LatheProfile& p = result_.lathe;
+        ++result_.cell_updates;
+        const std::size_t i = static_cast<std::size_t>(k);
+        if (p.gaps.empty()) p.gaps.resize(static_cast<std::size_t>(p.nz));
+        std::vector<LatheGap>& gaps = p.gaps[i];
+        const double before = lathe_material_area(p.outside[i], p.bore[i], &gaps);
+        const double depth = lathe_material_within(p.outside[i], p.bore[i], &gaps, lo, hi);
+        bool out_changed = false, bore_changed = false;
+        sim_remove_radii(p.outside[i], p.bore[i], gaps, lo, hi, line_, out_changed, bore_changed);
+        if (out_changed) p.outside_lines[i] = line_;
+        if (bore_changed) p.bore_lines[i] = line_;
+        if (options_.observer && (out_changed || bore_changed)) options_.observer->turned(k, p.outside[i], p.bore[i], line_);
+        const double removed = before - lathe_material_area(p.outside[i], p.bore[i], &gaps);
+        if (!(removed > 0)) return 0.0;
+        acc.volume += removed;
+        return depth;
     }
 
     void lathe_move(const Step& s, const ToolShape& tool, SimMoveAcc& acc) {
@@ -701,7 +781,7 @@ private:
                 lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n,
                            tip.y > 0 ? -1.0 : 1.0, acc);
             else if (tool.form == ToolForm::blade && tool.orientation == 7)
-                lathe_face_blade(s, p, q, tool.diameter, acc);
+                lathe_face_blade(p, q, tool.diameter, acc);
             else if (tool.form == ToolForm::blade)
                 lathe_blade(p, q, tool.blade_lo, tool.blade_lo + tool.diameter,
                             tool.orientation == 3 || tool.orientation == 4 ? -1.0 : 1.0, acc);
@@ -714,8 +794,21 @@ private:
     // least `b`, as lathe_cut does a sample's.
     void section_cut(std::size_t i, double r, double b) {
         LatheSections& s = result_.lathe_sections;
+        if (!s.gaps.empty() && !s.gaps[i].empty())
+            return std::isfinite(r) ? section_ring_cut(i, r, std::numeric_limits<double>::infinity())
+                                    : section_ring_cut(i, -std::numeric_limits<double>::infinity(), b);
         if (r < s.outside[i] && s.outside[i] > s.bore[i]) s.outside[i] = std::max(r, 0.0), s.outside_lines[i] = line_;
         if (b > s.bore[i]) s.bore[i] = b, s.bore_lines[i] = line_;
+    }
+
+    // A section's radii [lo, hi] removed, as lathe_ring_cut does a sample's.
+    void section_ring_cut(std::size_t i, double lo, double hi) {
+        LatheSections& s = result_.lathe_sections;
+        if (s.gaps.empty()) s.gaps.resize(s.z.size());
+        bool out_changed = false, bore_changed = false;
+        sim_remove_radii(s.outside[i], s.bore[i], s.gaps[i], lo, hi, line_, out_changed, bore_changed);
+        if (out_changed) s.outside_lines[i] = line_;
+        if (bore_changed) s.bore_lines[i] = line_;
     }
 
     // The sections at or above Z `zlo`, in order of Z: f(index).
@@ -792,10 +885,9 @@ private:
 
     // A face grooving blade (orientation 7): its edge faces -Z, `width` along X from the
     // programmed point out, its body along +Z. At Z z it clears the ring from the least X to
-    // the greatest X + width of the stretch of the move at or below z. The turned profile holds
-    // an outside and a bore radius per Z: a ring that reaches the outside or the bore is cut; one
-    // strictly inside the material (an annular groove) cannot be held and is not swept (a note).
-    void lathe_face_blade(const Step& s, const Vec3& a, const Vec3& b, double width, SimMoveAcc& acc) {
+    // the greatest X + width of the stretch of the move at or below z: a ring that reaches the
+    // outside or the bore turns it; one strictly inside the material is a gap (LatheGap).
+    void lathe_face_blade(const Vec3& a, const Vec3& b, double width, SimMoveAcc& acc) {
         LatheProfile& p = result_.lathe;
         constexpr double none = std::numeric_limits<double>::infinity();
         // The ring at Z z, or none where the blade's edge stays above z.
@@ -816,14 +908,13 @@ private:
         };
         const double zlo = std::min(a.z, b.z);
         const int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
-        bool inside = false;
         for (int k = k0; k < p.nz; ++k) {
             double lo = 0, hi = 0;
             if (!ring_at(p.z(k), lo, hi) || !(p.outside[k] > p.bore[k])) continue;
             if (hi <= p.bore[k] || lo >= p.outside[k]) continue;  // in the bore or beyond the outside: air
             if (hi >= p.outside[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, lo, 0.0, acc));
             else if (lo <= p.bore[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, hi, acc));
-            else inside = true;
+            else acc.max_depth = std::max(acc.max_depth, lathe_ring_cut(k, lo, hi, acc));
         }
         sections_above(zlo, [&](std::size_t i) {
             LatheSections& sec = result_.lathe_sections;
@@ -832,12 +923,8 @@ private:
             if (hi <= sec.bore[i] || lo >= sec.outside[i]) return;
             if (hi >= sec.outside[i]) section_cut(i, lo, 0.0);
             else if (lo <= sec.bore[i]) section_cut(i, none, hi);
+            else section_ring_cut(i, lo, hi);
         });
-        if (inside && ++face_rings_ == 1)
-            result_.notes.push_back(fmt::format("line {}: tool {} cuts a ring inside the end face (a face groove); the "
-                                                "turned profile holds one outside and one bore radius per Z: the ring is "
-                                                "not swept",
-                                                s.line, s.tool));
     }
 
     // The least radius the move clears at Z z (infinity: none there). With `side` -1 the radii
@@ -993,7 +1080,6 @@ private:
     double field_x1_ = 0.0, field_y1_ = 0.0;  // the stock's extent (the field may reach beyond)
     std::vector<Vec2> stock_polygon_;          // a profile stock's outline as sampled (empty: a box)
     std::vector<std::int32_t> section_order_;  // the lathe's sections in order of Z
-    std::size_t face_rings_ = 0;                // face grooving moves inside the material, not swept
 };
 
 Simulator::Simulator(const Machine& machine, SimStock stock, std::map<int, ToolShape> tools, SimOptions options)

@@ -5,7 +5,8 @@
 // internal grooves on the three lathes says "as designed", a groove 0.2 mm too deep or too wide
 // is a gouge; Fanuc T's G75 carries a plain internal groove (X rising) and reads back as
 // camgen's moves; a face groove G74 cannot carry is longhand: a note under auto, an error naming
-// the path under canned (the plain ones: test_fanuc_g74_groove.cpp).
+// the path under canned (the plain ones: test_fanuc_g74_groove.cpp). (A face groove's simulation
+// and design check: test_face_groove_sim.cpp.)
 #include <doctest/doctest.h>
 
 #include <algorithm>

@@ -334,6 +334,56 @@ TEST_CASE("pictures: a lathe's PNG is its half-section: material between bore an
     CHECK_THROWS_AS(write_simulation_png(r, SectionLine{{0, 0}, {1, 1}}, {"s.nc", "fanuc-lathe"}, bad), SimInputError);
 }
 
+// turned() with a face groove's rings of air in its last 10 mm: from radius 8 to 11 (a second
+// ring from 12 to 13 in the last 2 mm), its 2 mm below ringed wider, 7.5 to 11.
+SimResult ringed() {
+    SimResult r = turned();
+    LatheProfile& p = r.lathe;
+    p.gaps.resize(static_cast<std::size_t>(p.nz));
+    for (int k = 0; k < p.nz; ++k) {
+        const double z = p.z(k);
+        auto& g = p.gaps[static_cast<std::size_t>(k)];
+        if (z > -10) g.push_back({z > -2 ? 7.5 : 8.0, 11.0, 1});
+        if (z > -2) g.push_back({12.0, 13.0, 2});
+    }
+    return r;
+}
+
+TEST_CASE("pictures: a lathe part's rings of air (face grooves) are air in the PNG and walls of the closed STL") {
+    const SimResult r = ringed();
+    const int n = 64;
+    double simulated = 0;
+    for (int k = 0; k < r.lathe.nz; ++k)
+        simulated += lathe_material_area(r.lathe.outside[static_cast<std::size_t>(k)], r.lathe.bore[static_cast<std::size_t>(k)],
+                                         r.lathe.gaps_at(k)) *
+                     r.lathe.dz;
+    const double polygon = simulated * n * std::sin(2 * pi_ / n) / (2 * pi_);
+    for (const std::size_t bands : {std::size_t{4000}, std::size_t{50}, std::size_t{30}}) {
+        INFO("bands " << bands);
+        std::ostringstream out;
+        write_simulation_stl(r, {250'000, n, bands}, out);
+        const std::vector<Tri> tris = read_stl(out.str());
+        const auto use = edge_use(tris);
+        CHECK(use[1] == 0);
+        CHECK(use[2] == 0);
+        const auto [volume, area] = volume_and_area(tris);
+        CHECK(std::abs(volume - polygon) <= area * 50 * std::ldexp(1.0, -24) * 3 + 1e-6 * polygon);
+    }
+    // The rings themselves: more triangles than without them.
+    std::ostringstream plain, rings;
+    CHECK(write_simulation_stl(r, {250'000, n, 4000}, rings).triangles > write_simulation_stl(turned(), {250'000, n, 4000}, plain).triangles);
+    std::ostringstream png;
+    const TopViewFrame f = write_simulation_png(r, std::nullopt, {"s.nc", "fanuc-lathe"}, png);
+    const Decoded d = decode(png.str());
+    auto px = [&](double z, double rad) { return d.at(f.left + (z - f.x0) * f.scale, f.top + (f.y1 - rad) * f.scale); };
+    const Rgb material{150, 160, 176}, background{0xf4, 0xf4, 0xf4};
+    CHECK(px(-5, 9.5) == background);   // the ring
+    CHECK(px(-5, 12.5) == material);    // between the rings where the second is not
+    CHECK(px(-1, 12.5) == background);  // the second ring
+    CHECK(px(-5, 13.5) == material);
+    CHECK(px(-15, 9.5) == material);    // below the groove
+}
+
 // Replays a history up to `line` as the page does: each coarse cell the lowest of its initial
 // value and its changes at lines up to `line`.
 std::vector<float> replay(const SimHistory& h, int line) {

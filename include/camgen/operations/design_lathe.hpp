@@ -14,7 +14,9 @@
 //   profile moved by its allowances (design_turn_face, design_turn_rough);
 // - a turn-drill removes a bore of its drill's radius on the axis, down to its depth with the
 //   drill's point (above startDepth too: the drill comes down the axis), and keeps the part
-//   around and below it.
+//   around and below it;
+// - a face turn-groove removes its ring from the face down to its bottom (LatheRingDesign),
+//   and keeps the part around and below it (the simulation holds the ring as a LatheGap).
 //
 // In (u, v) = (Z, radius), mm, as a turn-profile's Profile is. A turn-profile has no inside
 // (bore) side and no stock-to-leave key yet: neither is designed.
@@ -180,10 +182,41 @@ struct LatheHoleDesign {
     }
 };
 
+// A face groove's design: the ring from `inner` to `outer` (radii) removed from the face at
+// face_z down to bottom_z, 45-degree chamfers of `chamfer` on its edges in the face (the ring
+// widens by z - (face_z - chamfer) on each side above face_z - chamfer); the part kept around
+// and below it.
+struct LatheRingDesign {
+    std::string path;
+    int tool = 0;
+    double inner = 0.0, outer = 0.0;  // mm, radius
+    double face_z = 0.0, bottom_z = 0.0;
+    double chamfer = 0.0;
+    // The ring's radii at Z z in [bottom_z, face_z].
+    double lo_at(double z) const { return inner - std::max(0.0, z - (face_z - chamfer)); }
+    double hi_at(double z) const { return outer + std::max(0.0, z - (face_z - chamfer)); }
+    // The radii the ring may reach somewhere in Z [a, b] (its widest there): false where it has
+    // no Z in [a, b].
+    bool allowed(double a, double b, double& lo, double& hi) const {
+        if (b < bottom_z || a > face_z) return false;
+        const double z = std::min(b, face_z);
+        lo = lo_at(z), hi = hi_at(z);
+        return true;
+    }
+    // The radii it must clear at every Z in [a, b] (its narrowest there): false unless [a, b]
+    // lies within [bottom_z, face_z].
+    bool required(double a, double b, double& lo, double& hi) const {
+        if (a < bottom_z || b > face_z) return false;
+        lo = lo_at(a), hi = hi_at(a);
+        return true;
+    }
+};
+
 struct LatheDesign {
     std::vector<LatheTurnDesign> profiles;
     std::vector<LatheHoleDesign> holes;
-    bool empty() const { return profiles.empty() && holes.empty(); }
+    std::vector<LatheRingDesign> rings;
+    bool empty() const { return profiles.empty() && holes.empty() && rings.empty(); }
 };
 
 // An operation's design added to `design`, or why it has none to `unchecked` ("PATH: why").
@@ -200,8 +233,7 @@ void design_turn_rough(const TurnRoughOp& op, const Job& job, LatheDesign& desig
 // A turn-groove designs its groove (walls, bottom, 45-degree chamfers on its edges): removed
 // down to it over its Z, kept below; its blade's whole path as the plunges make it. An internal
 // groove designs a LatheHoleDesign of its bottom's radius between its walls (the part kept
-// around it); a face groove (a ring inside the end face, which the turned profile cannot hold)
-// is left unchecked.
+// around it); a face groove designs its ring (LatheRingDesign: walls, bottom and chamfers).
 void design_turn_groove(const TurnGrooveOp& op, const Job& job, LatheDesign& design, std::vector<std::string>& unchecked);
 // A turn-part designs the slot its blade parts through (down to the remainder radius) and the
 // chamfer on the part's edge; the part and the bar either side are kept (the simulation keeps

@@ -28,7 +28,9 @@ struct Job;
 
 struct LatheFinding {
     enum class Kind { gouge, left };
-    enum class Surface { outside, bore };
+    // ring: a face groove's walls (designed..designed_hi: the ring's radii); ring_bottom: below
+    // its bottom (designed: the bottom's Z; amount: mm in Z below it).
+    enum class Surface { outside, bore, ring, ring_bottom };
     Kind kind = Kind::gouge;
     Surface surface = Surface::outside;
     std::string path;        // the operation whose design it breaks (for the bar no operation turns: the one that cut it)
@@ -37,6 +39,7 @@ struct LatheFinding {
     double radius = 0.0;     // the simulated radius there (outside or bore), mm
     double designed = 0.0;   // the designed radius there: the least kept (gouge), the most left (left)
     double amount = 0.0;     // mm in radius beyond it
+    double designed_hi = 0.0;  // ring: the ring's outer radius (designed: its inner)
     std::size_t samples = 0; // Z samples of this finding
     std::size_t sections = 0;  // sections beside corners of this finding
     int line = 0;            // the program line that last turned the worst position (gouge)

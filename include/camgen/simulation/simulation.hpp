@@ -2,8 +2,10 @@
 // Material simulation: the motion a program makes (the steps of a TraceBuilder: tool-centre
 // moves with cutter compensation applied, lines and arcs, tool changes) swept through a stock.
 // A mill's stock is a height field (Z-map) over its XY extent; a lathe's bar is its turned
-// profile r(z) (and bore) sampled along Z. Each move lowers the material it passes through to
-// the tool's lowest surface and is then dropped: memory is the field plus a constant.
+// profile r(z) (and bore, and the rings of air a face blade cuts inside the material: LatheGap)
+// sampled along Z. Each move lowers the material it passes through to the tool's lowest surface
+// and is then dropped: memory is the field plus a constant (a lathe's rings: a list a sample,
+// made at the first ring, 24 bytes a sample and 24 a ring).
 //
 // Exactness (mill, heights at each cell's centre):
 // - a straight move: exact for every tool shape where the move is horizontal or vertical; a
@@ -138,8 +140,22 @@ struct HeightField {
     double y(int j) const { return y0 + (j + 0.5) * cell; }
 };
 
-// A lathe's bar: at each Z sample the outside radius and the bore's radius (0: none); no
-// material where the outside is not above the bore.
+// A ring of air inside a lathe's material at one Z (a face groove's): radii lo < hi, strictly
+// between the bore and the outside, and the program line that last widened it.
+struct LatheGap {
+    double lo = 0.0, hi = 0.0;  // mm, radius
+    std::int32_t line = 0;
+};
+
+// The material at one Z: from the bore to the outside less the gaps (sorted, apart, strictly
+// inside); radial length of it within [lo, hi], its largest piece there, its area (mm^2).
+double lathe_material_within(double outside, double bore, const std::vector<LatheGap>* gaps, double lo, double hi,
+                             bool largest_piece = false);
+double lathe_material_area(double outside, double bore, const std::vector<LatheGap>* gaps);
+
+// A lathe's bar: at each Z sample the outside radius and the bore's radius (0: none), less the
+// rings of air a face blade cut inside the material (`gaps`); no material where the outside is
+// not above the bore.
 struct LatheProfile {
     double z0 = 0.0;    // the bottom of sample 0, mm (face_z - length)
     double dz = 0.0;    // mm
@@ -148,15 +164,27 @@ struct LatheProfile {
     std::vector<double> bore;     // mm, radius
     // The program line of the move that last turned each sample's outside, and its bore (0: none).
     std::vector<std::int32_t> outside_lines, bore_lines;
+    // Each sample's gaps, sorted by radius: empty until a face blade cuts a ring inside the
+    // material (then nz lists, most of them empty).
+    std::vector<std::vector<LatheGap>> gaps;
     double z(int k) const { return z0 + (k + 0.5) * dz; }
+    // Sample k's gaps, or null where it has none.
+    const std::vector<LatheGap>* gaps_at(int k) const {
+        return gaps.empty() || gaps[static_cast<std::size_t>(k)].empty() ? nullptr : &gaps[static_cast<std::size_t>(k)];
+    }
 };
 
 // A lathe's bar at given Z positions (SimOptions::lathe_sections), swept exactly as the samples
 // are: the outside radius and the bore there (no material where the outside is not above the
-// bore: beyond the bar's ends) and the lines that last turned them (0: none).
+// bore: beyond the bar's ends), the lines that last turned them (0: none) and the gaps, as
+// LatheProfile's.
 struct LatheSections {
     std::vector<double> z, outside, bore;  // mm
     std::vector<std::int32_t> outside_lines, bore_lines;
+    std::vector<std::vector<LatheGap>> gaps;
+    const std::vector<LatheGap>* gaps_at(std::size_t i) const {
+        return gaps.empty() || gaps[i].empty() ? nullptr : &gaps[i];
+    }
 };
 
 // An error the simulation found, at a program line (0: a job's event) and operation.
