@@ -184,7 +184,7 @@ std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& c, RoughCyclePatter
 }
 
 namespace {
-// The way out from where the control's moves end (`at`, (Z, radius)).
+// The way out from where the control's moves `path` end.
 std::vector<Event> turn_cycle_exit_from(const TurnCycle& c, RoughCyclePattern pattern, const std::vector<LatheCycleMove>& path) {
     std::vector<Event> out;
     if (!(c.lift > 0) || path.empty()) return out;
