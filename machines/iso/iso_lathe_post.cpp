@@ -390,19 +390,29 @@ IsoLathePost::FanucG71Words IsoLathePost::fanuc_g71_words(const TurnCycle& c) co
     FanucG71Words w;
     const nc::Format x = machine().format("x");
     const nc::Format z = machine().format("z");
-    const nc::Format& len = xyz_format();  // U(depth) and R(retract) of the first block: radial mm
+    const nc::Format& len = xyz_format();  // U/W(depth) and R(retract) of the first block: radial mm, mm along Z
+    const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
     const Vec2 a = fanuc_g71_start(c);
-    const Profile shape = fanuc_g71_shape(a, c.profile);
+    const Profile shape = fanuc_g7x_shape(axis, a, c.profile);
     w.start = Vec2{z.rounded(a.x), x.rounded(a.y)};
-    w.a_x = x.word("X", a.y);
     w.read.plane = ProfilePlane::xz;
-    w.read.start = Vec2{w.start.x, x.rounded(shape.start.y)};
-    // ns: along X only from A (type I), at rapid: the control moves to each level so.
-    w.shape.push_back(fmt::format("{} {}", g(0), x.word("X", shape.start.y)));
+    if (axis == LatheCycleAxis::z) {
+        // G71: up to A along X; ns along X only from A (type I), at rapid: the control moves to
+        // each level so.
+        w.a_word = x.word("X", a.y);
+        w.read.start = Vec2{w.start.x, x.rounded(shape.start.y)};
+        w.shape.push_back(fmt::format("{} {}", g(0), x.word("X", shape.start.y)));
+        w.u = len.word("U", c.depth);
+    } else {
+        // G72: the same along Z.
+        w.a_word = z.word("Z", a.x);
+        w.read.start = Vec2{z.rounded(shape.start.x), w.start.y};
+        w.shape.push_back(fmt::format("{} {}", g(0), z.word("Z", shape.start.x)));
+        w.u = len.word("W", c.depth);
+    }
     profile_blocks(shape, w.shape, w.read);
     w.depth = len.rounded(c.depth);
     w.retract = len.rounded(c.retract);
-    w.u = len.word("U", c.depth);
     w.r = len.word("R", c.retract);
     return w;
 }
@@ -426,21 +436,23 @@ std::optional<std::string> lathe_cycle_moves_differ(const std::vector<LatheCycle
 }  // namespace
 
 std::optional<std::string> IsoLathePost::fanuc_g71_limit(const TurnCycle& c) const {
+    const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
     const Vec2 a = fanuc_g71_start(c);
-    const LatheCycleModel own = fanuc_g71(a, fanuc_g71_shape(a, c.profile), c.depth, c.retract);
+    const LatheCycleModel own = fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
     if (own.refusal) return *own.refusal;
     const FanucG71Words w = fanuc_g71_words(c);
-    const LatheCycleModel control = fanuc_g71(w.start, w.read, w.depth, w.retract);
+    const LatheCycleModel control = fanuc_g7x(axis, w.start, w.read, w.depth, w.retract);
     if (control.refusal) return "from its rounded words: " + *control.refusal;
     return lathe_cycle_moves_differ(control.moves, own.moves);
 }
 
 void IsoLathePost::write_fanuc_g71(const TurnCycle& c, const RoughingCycleSpec& spec) {
     const FanucG71Words w = fanuc_g71_words(c);
-    // Up to A (the event's start is A's Z, one depth of cut lower), then the two blocks, then
-    // the finishing shape ns..nf, which the control skips after the cycle. No G70: camgen's
-    // finishing is a turn-profile of its own, and U0 W0 leave nothing for G70 to take.
-    writer().add(g(0)).add(w.a_x).end();
+    // Up to A (the event's start is A's Z, one depth of cut lower; along X: A's X, one depth of
+    // cut towards -Z), then the two blocks, then the finishing shape ns..nf, which the control
+    // skips after the cycle. No G70: camgen's finishing is a turn-profile of its own, and U0 W0
+    // leave nothing for G70 to take.
+    writer().add(g(0)).add(w.a_word).end();
     writer().add(spec.name).add(w.u).add(w.r).end();
     const nc::BlockStyle& style = writer().style();
     const long count = static_cast<long>(w.shape.size());
@@ -485,7 +497,7 @@ IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {
 }
 
 std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, const RoughingCycleSpec& spec) const {
-    if (spec.style == RoughingCycleStyle::fanuc_g71 && spec.kind == RoughingCycleKind::rough_z) return fanuc_g71_limit(c);
+    if (spec.style == RoughingCycleStyle::fanuc_g71 || spec.style == RoughingCycleStyle::fanuc_g72) return fanuc_g71_limit(c);
     if (spec.style != RoughingCycleStyle::linuxcnc) return IsoPost::turn_cycle_limit(c, spec);
     const G71Words w = g71_words(c);
     const LatheCycleModel control =
@@ -495,7 +507,7 @@ std::optional<std::string> IsoLathePost::turn_cycle_limit(const TurnCycle& c, co
 }
 
 void IsoLathePost::on_turn_cycle(const TurnCycle& c, const RoughingCycleSpec& spec) {
-    if (spec.style == RoughingCycleStyle::fanuc_g71 && spec.kind == RoughingCycleKind::rough_z) {
+    if (spec.style == RoughingCycleStyle::fanuc_g71 || spec.style == RoughingCycleStyle::fanuc_g72) {
         write_fanuc_g71(c, spec);
         return;
     }

@@ -74,9 +74,10 @@ private:
     // profile as the control reads them back (`read`'s start set by the caller).
     void profile_blocks(const Profile& profile, std::vector<std::string>& lines, Profile& read) const;
     // Fanuc T's G71 type I: the start point A's X word, the first block's U R, the finishing
-    // shape's blocks (ns: G0 X along X from A) and the cycle as the control reads it (rounded).
+    // shape's blocks (ns: G0 X along X from A) and the cycle as the control reads it (rounded);
+    // G72 (a cycle along X): A's Z word, W R, ns G0 Z along Z from A.
     struct FanucG71Words {
-        std::string a_x, u, r;
+        std::string a_word, u, r;  // (u: G72's W)
         std::vector<std::string> shape;
         Profile read;             // the finishing shape, (Z, radius)
         Vec2 start;               // A, rounded

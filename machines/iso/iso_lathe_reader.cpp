@@ -10,7 +10,8 @@
 // profile subroutine (o<n> sub ... o<n> endsub, then G71/G72 Q<n> D0 I R F), expanded into the
 // moves the control makes (geometry/lathe_cycle.hpp); and Fanuc T's type I G71 U(depth)
 // R(retract) / G71 P Q U0 W0 F with its finishing shape in the blocks ns..nf right after it,
-// expanded into the moves of camgen's model of it (fanuc_g71).
+// and its G72 W(depth) R(retract) / G72 P Q U0 W0 F alike, expanded into the moves of camgen's
+// model of them (fanuc_g7x).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -49,7 +50,7 @@ protected:
     void finish() override;
     std::string_view address_letters() const override {
         // Fanuc T G71's U and W; LinuxCNC G76's E (the exit taper's length) and L (which end tapers).
-        const bool uw = fanuc_g71_spec() != nullptr, el = g76_spec() && !fanuc_g76_style();
+        const bool uw = fanuc_rough_spec(RoughingCycleKind::rough_z) || fanuc_rough_spec(RoughingCycleKind::rough_x), el = g76_spec() && !fanuc_g76_style();
         if (uw && el) return "XYZIJKRQPFSTHDUWEL";
         if (uw) return "XYZIJKRQPFSTHDUW";
         if (el) return "XYZIJKRQPFSTHDEL";
@@ -94,21 +95,31 @@ private:
     // A block of a G71 profile (G0/G1/G2/G3 X Z I K) onto `profile` (its start set by the
     // first block, `started`), `motion` the modal motion code in it; `where` names it in messages.
     void profile_block(const Block& b, Profile& profile, bool& started, int& motion, const std::string& where,
-                       bool x_only_first);
+                       char first_only);
     // The moves of a roughing cycle from where the tool stands.
     void cycle_moves(const std::vector<LatheCycleMove>& moves);
-    // The machine's Fanuc T G71 (roughingCycles of style fanuc-g71), if it has one.
-    const RoughingCycleSpec* fanuc_g71_spec() const {
+    // The machine's Fanuc T G71 (roughingCycles of style fanuc-g71, rough_z) or G72 (style
+    // fanuc-g72, rough_x), if it has one.
+    const RoughingCycleSpec* fanuc_rough_spec(RoughingCycleKind kind) const {
         for (const RoughingCycleSpec& c : machine_.roughing_cycles)
-            if (c.style == RoughingCycleStyle::fanuc_g71 && c.kind == RoughingCycleKind::rough_z) return &c;
+            if (c.kind == kind && (c.style == RoughingCycleStyle::fanuc_g71 || c.style == RoughingCycleStyle::fanuc_g72)) return &c;
         return nullptr;
     }
-    void fanuc_g71(BlockWords& w);
+    // The Fanuc roughing cycle `mode` is, if it is one the machine has.
+    std::optional<LatheCycleAxis> fanuc_rough_axis(int mode) const {
+        if (mode == code(71) && fanuc_rough_spec(RoughingCycleKind::rough_z)) return LatheCycleAxis::z;
+        if (mode == code(72) && fanuc_rough_spec(RoughingCycleKind::rough_x)) return LatheCycleAxis::x;
+        return std::nullopt;
+    }
+    void fanuc_g71(BlockWords& w, LatheCycleAxis axis);
     void fanuc_shape_line(std::string_view text);
-    // Fanuc G71's first block: U(depth) R(retract), radial mm.
-    std::optional<std::pair<double, double>> fanuc_g71_first_;
-    // A Fanuc G71 whose finishing shape ns..nf is being read.
+    // Fanuc G71's first block: U(depth) R(retract), radial mm; G72's: W(depth) R(retract), mm
+    // along Z (by axis: z, x).
+    std::optional<std::pair<double, double>> fanuc_g71_first_[2];
+    // A Fanuc G71 (G72) whose finishing shape ns..nf is being read.
     struct FanucG71Shape {
+        LatheCycleAxis axis = LatheCycleAxis::z;
+        std::string name;  // "G71", "G72"
         long ns = 0, nf = 0;
         Vec2 start;  // A, (Z, radius)
         double depth = 0.0, retract = 0.0;
@@ -219,11 +230,11 @@ void IsoLatheReader::sub_body_line(std::string_view text) {
     // first block to the profile's start with both X and Z.
     const Block b = split_line(text);
     if (b.words.empty()) return;  // a comment
-    profile_block(b, sub_profile_, sub_started_, sub_motion_, fmt::format("subroutine o{}", *reading_sub_), false);
+    profile_block(b, sub_profile_, sub_started_, sub_motion_, fmt::format("subroutine o{}", *reading_sub_), 0);
 }
 
 void IsoLatheReader::profile_block(const Block& b, Profile& profile, bool& started, int& motion_code, const std::string& where,
-                                   bool x_only_first) {
+                                   char first_only) {
     std::optional<int> motion;
     std::optional<double> x, z, i, k;
     for (const Word& w : b.words) {
@@ -250,10 +261,14 @@ void IsoLatheReader::profile_block(const Block& b, Profile& profile, bool& start
     const bool arc = motion_code == code(2) || motion_code == code(3);
     if (!arc && (i || k)) fail(fmt::format("I/K on a straight move in {}", where));
     if (!started) {
-        if (x_only_first) {
+        if (first_only == 'X') {
             // Type I: block ns moves along X only, from the start point.
             if (!x || z || arc) fail(fmt::format("{}: its first block (ns) moves along X only (G0 or G1 X, type I)", where));
             profile.start = Vec2{profile.start.x, *x};
+        } else if (first_only == 'Z') {
+            // G72 type I: block ns moves along Z only, from the start point.
+            if (!z || x || arc) fail(fmt::format("{}: its first block (ns) moves along Z only (G0 or G1 Z, type I)", where));
+            profile.start = Vec2{*z, profile.start.y};
         } else {
             if (!x || !z || arc) fail(fmt::format("{}: its first block is a straight move to the profile's start with X and Z", where));
             profile.start = Vec2{*z, *x};
@@ -297,50 +312,59 @@ void IsoLatheReader::cycle_moves(const std::vector<LatheCycleMove>& moves) {
     }
 }
 
-void IsoLatheReader::fanuc_g71(BlockWords& w) {
+void IsoLatheReader::fanuc_g71(BlockWords& w, LatheCycleAxis axis) {
     // Fanuc T's type I G71 in two blocks: the first, U(depth of cut, radial) R(retract), sets the
     // cycle's values; the second, P(ns) Q(nf) U(0) W(0) F, roughs from where the tool stands (A)
     // to the finishing shape in the blocks N<ns>..N<nf> that follow it (read there, see
-    // fanuc_shape_line), and returns to A.
+    // fanuc_shape_line), and returns to A. G72 alike, its first block W(depth of cut, along Z) R.
+    const bool g72 = axis == LatheCycleAxis::x;
+    const std::string name = g72 ? "G72" : "G71";
+    const char depth_letter = g72 ? 'W' : 'U', other_letter = g72 ? 'U' : 'W';
+    std::optional<std::pair<double, double>>& first = fanuc_g71_first_[g72 ? 1 : 0];
     for (char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'D', 'H'})
         if (const Word* x = w.find(letter))
-            fail(fmt::format("{} on G71: camgen reads Fanuc's G71 U R / G71 P Q U W F from the start point only", x->text));
+            fail(fmt::format("{} on {}: camgen reads Fanuc's {} {} R / {} P Q U W F from the start point only", x->text, name,
+                             name, depth_letter, name));
     auto radial = [&](const Word& word) {
         Word z = word;
         z.letter = 'Z';
         return length(z);
     };
     if (!w.has('P')) {
-        const Word* u = w.take('U');
+        const Word* u = w.take(depth_letter);
         const Word* r = w.take('R');
-        if (!u || !r || w.has('Q') || w.has('W'))
-            fail("the first G71 block is G71 U(depth of cut) R(retract) (camgen reads both, not the control's parameters)");
-        fanuc_g71_first_ = std::make_pair(radial(*u), radial(*r));
-        if (!(fanuc_g71_first_->first > 0) || !(fanuc_g71_first_->second > 0))
+        if (!u || !r || w.has('Q') || w.has(other_letter))
+            fail(fmt::format("the first {} block is {} {}(depth of cut) R(retract) (camgen reads both, not the control's "
+                             "parameters)",
+                             name, name, depth_letter));
+        first = std::make_pair(radial(*u), radial(*r));
+        if (!(first->first > 0) || !(first->second > 0))
             fail(fmt::format("{} {}: the depth of cut and the retract must be above 0", u->text, r->text));
         return;
     }
     const Word* p = w.take('P');
     const Word* q = w.take('Q');
-    if (!q) fail("G71 P without Q(nf), the finishing shape's last block");
-    if (w.has('R')) fail("R on the second G71 block: the retract is the first block's");
+    if (!q) fail(fmt::format("{} P without Q(nf), the finishing shape's last block", name));
+    if (w.has('R')) fail(fmt::format("R on the second {} block: the retract is the first block's", name));
     for (char letter : {'U', 'W'})
         if (const Word* a = w.take(letter); a && a->value != 0)
-            fail(fmt::format("{} on G71: camgen reads G71 with U0 W0 only (the control's finishing allowance is not modelled)",
-                             a->text));
-    if (!fanuc_g71_first_) fail("G71 P Q without its first block G71 U R");
-    if (!position_known()) fail("G71 from an unknown position");
-    if (!feed_) fail("G71 without a feed (F)");
+            fail(fmt::format("{} on {}: camgen reads {} with U0 W0 only (the control's finishing allowance is not modelled)",
+                             a->text, name, name));
+    if (!first) fail(fmt::format("{} P Q without its first block {} {} R", name, name, depth_letter));
+    if (!position_known()) fail(fmt::format("{} from an unknown position", name));
+    if (!feed_) fail(fmt::format("{} without a feed (F)", name));
     FanucG71Shape s;
+    s.axis = axis;
+    s.name = name;
     s.ns = integer_of(*p);
     s.nf = integer_of(*q);
-    if (s.nf < s.ns) fail(fmt::format("G71 {} {}: the last block comes before the first", p->text, q->text));
+    if (s.nf < s.ns) fail(fmt::format("{} {} {}: the last block comes before the first", name, p->text, q->text));
     const Vec3 here = position();
     s.start = Vec2{here.z, here.x};
     s.shape.plane = ProfilePlane::xz;
     s.shape.start = Vec2{here.z, here.x};
-    s.depth = fanuc_g71_first_->first;
-    s.retract = fanuc_g71_first_->second;
+    s.depth = first->first;
+    s.retract = first->second;
     fanuc_shape_ = std::move(s);
 }
 
@@ -357,21 +381,26 @@ void IsoLatheReader::fanuc_shape_line(std::string_view text) {
     }
     const Block b = split_line(text);
     if (!s.started && (!n || *n != s.ns))
-        fail(fmt::format("G71 P{}: the block after it is not N{} (camgen reads the finishing shape right after the cycle)",
-                         s.ns, s.ns));
-    if (n && (*n < s.ns || *n > s.nf)) fail(fmt::format("N{} within G71's finishing shape N{}..N{}", *n, s.ns, s.nf));
-    if (!b.words.empty()) profile_block(b, s.shape, s.started, s.motion, fmt::format("G71's finishing shape (N{})", s.ns), true);
+        fail(fmt::format("{} P{}: the block after it is not N{} (camgen reads the finishing shape right after the cycle)",
+                         s.name, s.ns, s.ns));
+    if (n && (*n < s.ns || *n > s.nf)) fail(fmt::format("N{} within {}'s finishing shape N{}..N{}", *n, s.name, s.ns, s.nf));
+    if (!b.words.empty())
+        profile_block(b, s.shape, s.started, s.motion, fmt::format("{}'s finishing shape (N{})", s.name, s.ns),
+                      s.axis == LatheCycleAxis::x ? 'Z' : 'X');
     if (!n || *n != s.nf) return;
     const FanucG71Shape done = std::move(s);
     fanuc_shape_.reset();
-    if (done.shape.segments.empty()) fail(fmt::format("G71's finishing shape N{}..N{} has no element", done.ns, done.nf));
-    const LatheCycleModel model = camgen::fanuc_g71(done.start, done.shape, done.depth, done.retract);
-    if (model.refusal) fail("G71: " + *model.refusal);
+    if (done.shape.segments.empty())
+        fail(fmt::format("{}'s finishing shape N{}..N{} has no element", done.name, done.ns, done.nf));
+    const LatheCycleModel model = camgen::fanuc_g7x(done.axis, done.start, done.shape, done.depth, done.retract);
+    if (model.refusal) fail(done.name + ": " + *model.refusal);
     cycle_moves(model.moves);
 }
 
 void IsoLatheReader::finish() {
-    if (fanuc_shape_) fail(fmt::format("G71 P{} Q{}: the program ends before N{}", fanuc_shape_->ns, fanuc_shape_->nf, fanuc_shape_->nf));
+    if (fanuc_shape_)
+        fail(fmt::format("{} P{} Q{}: the program ends before N{}", fanuc_shape_->name, fanuc_shape_->ns, fanuc_shape_->nf,
+                         fanuc_shape_->nf));
     if (reading_sub_) fail(fmt::format("subroutine o{} has no o{} endsub", *reading_sub_, *reading_sub_));
     IsoReader::finish();
 }
@@ -405,7 +434,7 @@ void IsoLatheReader::roughing_cycle(BlockWords& w, LatheCycleAxis axis) {
 }
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
-    if (rough_axis(c.value) || (c.value == code(71) && fanuc_g71_spec())) {
+    if (rough_axis(c.value) || fanuc_rough_axis(c.value)) {
         set_group(codes.motion, c);
         return true;
     }
@@ -435,8 +464,8 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
         roughing_cycle(w, *axis);
         return true;
     }
-    if (mode == code(71) && fanuc_g71_spec()) {
-        fanuc_g71(w);
+    if (const auto axis = fanuc_rough_axis(mode)) {
+        fanuc_g71(w, *axis);
         return true;
     }
     if (mode == code(76) && g76_spec()) {

@@ -390,12 +390,13 @@ bool emit_turn_cycle(const TurnRoughOp& op, const Context& ctx, EventSink& sink,
     }
     if (via) sink.emit(Rapid{*via});
     sink.emit(Rapid{c.start});
+    // The way out, part of the cycle's moves (turn_cycle_exit): where LinuxCNC's cycle ends, on
+    // the last pass, a feed off it at 45 degrees and out of the bar; where Fanuc's ends, at its
+    // start point in air, a rapid out of the bar.
+    c.lift = std::min(op.lift, c.depth / 2);
+    c.out_x = outside;
+    c.out_z = ctx.job.clearance;
     sink.emit(c);
-    const Vec2 end = c.moves.back().end;
-    const double lift = std::min(op.lift, c.depth / 2);
-    sink.emit(Linear{turn_rough_at(end.y + lift, end.x + lift), op.feed, Movement::lead_out});
-    sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), end.x + lift)});
-    sink.emit(Rapid{turn_rough_at(std::max(outside, end.y + lift), ctx.job.clearance)});
     return true;
 }
 

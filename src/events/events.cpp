@@ -112,6 +112,7 @@ std::string event_to_json(const Event& event) {
                        j["moves"] = e.moves.size();
                        if (e.refusal) j["refusal"] = *e.refusal;
                        if (e.along_x) j["alongX"] = true;
+                       if (e.lift > 0) j["exit"] = {{"lift", e.lift}, {"x", e.out_x}, {"z", e.out_z}};
                    },
                    [&](const GrooveCycle& e) {
                        j = {{"event", "groove-cycle"}, {"path", e.path},
@@ -168,28 +169,60 @@ std::vector<Event> thread_cycle_moves(const ThreadCycle& c, ThreadCyclePattern p
     return out;
 }
 
-Vec2 fanuc_g71_start(const TurnCycle& c) { return Vec2{c.start.z, c.start.x + c.depth}; }
+Vec2 fanuc_g71_start(const TurnCycle& c) {
+    return c.along_x ? Vec2{c.start.z + c.depth, c.start.x} : Vec2{c.start.z, c.start.x + c.depth};
+}
 
 std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& c, RoughCyclePattern pattern) {
-    // (Fanuc's G71 is along Z; along X the cycle's own moves, LinuxCNC's G72.)
-    if (pattern == RoughCyclePattern::fanuc_g71 && !c.along_x && !c.refusal && !c.moves.empty()) {
+    if (pattern == RoughCyclePattern::fanuc_g71 && !c.refusal && !c.moves.empty()) {
+        const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
         const Vec2 a = fanuc_g71_start(c);
-        LatheCycleModel m = fanuc_g71(a, fanuc_g71_shape(a, c.profile), c.depth, c.retract);
+        LatheCycleModel m = fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
         if (!m.refusal) return std::move(m.moves);
     }
     return c.moves;
 }
 
+namespace {
+// The way out from where the control's moves `path` end.
+std::vector<Event> turn_cycle_exit_from(const TurnCycle& c, RoughCyclePattern pattern, const std::vector<LatheCycleMove>& path) {
+    std::vector<Event> out;
+    if (!(c.lift > 0) || path.empty()) return out;
+    const Vec2 end = path.back().end;
+    const double y = c.start.y;
+    // Fanuc's control ends at A, in air beyond the part (where it was before the cycle): out
+    // from there at rapid. LinuxCNC's ends on the last pass: a feed off it first.
+    const bool at_a = pattern == RoughCyclePattern::fanuc_g71 && distance(end, fanuc_g71_start(c)) < 1e-9;
+    Vec2 at = end;
+    if (!at_a) {
+        at = Vec2{end.x + c.lift, end.y + c.lift};
+        out.emplace_back(Linear{Vec3{at.y, y, at.x}, c.feed, Movement::lead_out});
+    }
+    const double r = std::max(c.out_x, at.y);
+    if (!at_a || r != at.y) out.emplace_back(Rapid{Vec3{r, y, at.x}});
+    out.emplace_back(Rapid{Vec3{r, y, c.out_z}});
+    return out;
+}
+}  // namespace
+
+std::vector<Event> turn_cycle_exit(const TurnCycle& c, RoughCyclePattern pattern) {
+    return turn_cycle_exit_from(c, pattern, turn_cycle_path(c, pattern));
+}
+
 Vec3 turn_cycle_end(const TurnCycle& c, RoughCyclePattern pattern) {
     const std::vector<LatheCycleMove> path = turn_cycle_path(c, pattern);
     if (path.empty()) return c.start;
+    const std::vector<Event> exit = turn_cycle_exit_from(c, pattern, path);
+    if (!exit.empty()) {
+        if (const auto* r = std::get_if<Rapid>(&exit.back())) return r->to;
+    }
     return Vec3{path.back().end.y, c.start.y, path.back().end.x};
 }
 
 std::vector<Event> turn_cycle_moves(const TurnCycle& c, RoughCyclePattern pattern) {
     std::vector<Event> out;
     const std::vector<LatheCycleMove> path = turn_cycle_path(c, pattern);
-    out.reserve(path.size());
+    out.reserve(path.size() + 3);
     const double y = c.start.y;
     Vec3 at = c.start;
     for (const LatheCycleMove& m : path) {
@@ -204,6 +237,7 @@ std::vector<Event> turn_cycle_moves(const TurnCycle& c, RoughCyclePattern patter
                 break;
         }
     }
+    for (Event& e : turn_cycle_exit_from(c, pattern, path)) out.push_back(std::move(e));
     return out;
 }
 

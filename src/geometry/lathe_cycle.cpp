@@ -271,6 +271,29 @@ Vec2 g7x_swapped(Vec2 p) { return Vec2{p.y, p.x}; }
 
 ArcDirection g7x_reversed(ArcDirection d) { return d == ArcDirection::ccw ? ArcDirection::cw : ArcDirection::ccw; }
 
+// A profile with Z and X swapped (its arcs turning the other way): G72's in G71's frame and back.
+Profile g7x_swapped_profile(const Profile& profile) {
+    Profile swapped = profile;
+    swapped.start = g7x_swapped(profile.start);
+    for (ProfileSegment& s : swapped.segments) {
+        s.end = g7x_swapped(s.end);
+        if (s.centre) s.centre = g7x_swapped(*s.centre);
+        s.direction = g7x_reversed(s.direction);
+    }
+    return swapped;
+}
+
+// A model's moves from G71's frame back to G72's.
+void g7x_swap_moves(LatheCycleModel& model) {
+    for (LatheCycleMove& m : model.moves) {
+        m.end = g7x_swapped(m.end);
+        if (m.kind == LatheCycleMove::Kind::arc) {
+            m.centre = g7x_swapped(m.centre);
+            m.direction = g7x_reversed(m.direction);
+        }
+    }
+}
+
 // G71 in its own frame (Z along the passes, radius across them), its refusals in `words`.
 LatheCycleModel g7x_model(Vec2 start, const Profile& profile, double depth, double retract, const G7xWords& words) {
     LatheCycleModel out;
@@ -323,25 +346,14 @@ LatheCycleModel linuxcnc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& pro
     if (axis == LatheCycleAxis::z) return g7x_model(start, profile, depth, retract, g7x_words_z);
     // G72: the control turns the profile a quarter and flips it so that it is G71's, runs G71
     // and turns the moves back; together a swap of Z and X (which turns arcs the other way).
-    Profile swapped = profile;
-    swapped.start = g7x_swapped(profile.start);
-    for (ProfileSegment& s : swapped.segments) {
-        s.end = g7x_swapped(s.end);
-        if (s.centre) s.centre = g7x_swapped(*s.centre);
-        s.direction = g7x_reversed(s.direction);
-    }
-    LatheCycleModel out = g7x_model(g7x_swapped(start), swapped, depth, retract, g7x_words_x);
-    for (LatheCycleMove& m : out.moves) {
-        m.end = g7x_swapped(m.end);
-        if (m.kind == LatheCycleMove::Kind::arc) {
-            m.centre = g7x_swapped(m.centre);
-            m.direction = g7x_reversed(m.direction);
-        }
-    }
+    LatheCycleModel out = g7x_model(g7x_swapped(start), g7x_swapped_profile(profile), depth, retract, g7x_words_x);
+    g7x_swap_moves(out);
     return out;
 }
 
-Profile fanuc_g71_shape(Vec2 start, const Profile& profile) {
+Profile fanuc_g7x_shape(LatheCycleAxis axis, Vec2 start, const Profile& profile) {
+    if (axis == LatheCycleAxis::x)
+        return g7x_swapped_profile(fanuc_g7x_shape(LatheCycleAxis::z, g7x_swapped(start), g7x_swapped_profile(profile)));
     Profile shape;
     shape.plane = profile.plane;
     shape.start = Vec2{start.x, profile.start.y};
@@ -350,7 +362,30 @@ Profile fanuc_g71_shape(Vec2 start, const Profile& profile) {
     return shape;
 }
 
-LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract) {
+namespace {
+
+// What Fanuc's model's refusals call the axes: G71's, or G72's (run with the axes swapped).
+struct FanucWords {
+    const char* first_block;  // block ns does not move along the axis across the passes
+    const char* start_above;  // A not beyond A' across the passes
+    const char* not_towards;  // the shape does not run the passes' way
+    const char* ends_above;   // the shape ends beyond A across the passes
+    const G7xWords& elements;
+};
+
+const FanucWords fanuc_words_z{"the finishing shape's first block is not along X from the start point (type I)",
+                               "the start point is not above the finishing shape's start",
+                               "the finishing shape does not run towards -Z",
+                               "the finishing shape ends above the start point",
+                               g7x_words_z};
+const FanucWords fanuc_words_x{"the finishing shape's first block is not along Z from the start point (type I)",
+                               "the start point is not beyond the finishing shape's start in Z",
+                               "the finishing shape does not run towards -X",
+                               "the finishing shape ends beyond the start point in Z",
+                               g7x_words_x};
+
+// Fanuc's type I G71 in its own frame (Z along the passes, radius across them).
+LatheCycleModel fanuc_model(Vec2 start, const Profile& shape, double depth, double retract, const FanucWords& words) {
     LatheCycleModel out;
     auto refuse = [&](std::string why) {
         out.moves.clear();
@@ -360,13 +395,12 @@ LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double
     if (!(depth > 0) || !(retract > 0)) return refuse("the depth of cut and the retract must be above 0");
     if (shape.segments.empty()) return refuse("the finishing shape has no element");
     const Vec2 a1 = shape.start, pe = shape.segments.back().end;
-    if (std::abs(a1.x - start.x) > 1e-6)
-        return refuse("the finishing shape's first block is not along X from the start point (type I)");
-    if (!(start.y > a1.y + 1e-6)) return refuse("the start point is not above the finishing shape's start");
-    if (!(a1.x - pe.x > 1e-3)) return refuse("the finishing shape does not run towards -Z");
-    if (pe.y > start.y + 1e-6) return refuse("the finishing shape ends above the start point");
+    if (std::abs(a1.x - start.x) > 1e-6) return refuse(words.first_block);
+    if (!(start.y > a1.y + 1e-6)) return refuse(words.start_above);
+    if (!(a1.x - pe.x > 1e-3)) return refuse(words.not_towards);
+    if (pe.y > start.y + 1e-6) return refuse(words.ends_above);
     std::vector<G71Element> el;
-    if (auto why = g71_elements(shape, el, g7x_words_z, 1e-3)) return refuse(*why);
+    if (auto why = g71_elements(shape, el, words.elements, 1e-3)) return refuse(*why);
     std::vector<double> corners{a1.y};
     for (const ProfileSegment& s : shape.segments) corners.push_back(s.end.y);
     std::vector<double> levels;
@@ -375,7 +409,7 @@ LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double
         const double x = start.y - k * depth;
         for (double r : corners)
             if (std::abs(x - r) < 1e-4)
-                return refuse("a level of the cycle (radius " + g71_number(x) +
+                return refuse(std::string("a level of the cycle (") + words.elements.level + " " + g71_number(x) +
                               ") runs through a corner of the finishing shape: the control's cycle is not modelled there");
         levels.push_back(x);
     }
@@ -394,7 +428,7 @@ LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double
         }
         if (!z) z = pe.x;
         if (start.x - *z < retract - 1e-9)
-            return refuse("a pass (radius " + g71_number(x) + ") is shorter than the retract");
+            return refuse(std::string("a pass (") + words.elements.level + " " + g71_number(x) + ") is shorter than the retract");
         add(LatheCycleMove::Kind::rapid, Vec2{start.x, x});
         add(LatheCycleMove::Kind::feed, Vec2{*z, x});
         add(LatheCycleMove::Kind::rapid, Vec2{*z + retract, x + retract});
@@ -408,6 +442,16 @@ LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double
             add(LatheCycleMove::Kind::feed, e.b);
     }
     add(LatheCycleMove::Kind::rapid, start);
+    return out;
+}
+
+}  // namespace
+
+LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract) {
+    if (axis == LatheCycleAxis::z) return fanuc_model(start, shape, depth, retract, fanuc_words_z);
+    // G72: G71 with Z and X swapped, as LinuxCNC's (and as the manual draws it).
+    LatheCycleModel out = fanuc_model(g7x_swapped(start), g7x_swapped_profile(shape), depth, retract, fanuc_words_x);
+    g7x_swap_moves(out);
     return out;
 }
 

@@ -865,8 +865,10 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
             c.kind = cf.choice("kind", roughing_cycle_kinds, RoughingCycleKind::rough_z);
             (void)cf.string("style");  // required: what the control makes of the cycle has no default
             c.style = cf.choice("style", roughing_cycle_styles, RoughingCycleStyle::linuxcnc);
-            if (c.kind == RoughingCycleKind::rough_x && c.style != RoughingCycleStyle::linuxcnc)
-                cf.fail("kind", "camgen writes and reads rough-x (G72) roughing cycles only in the linuxcnc style");
+            if (c.kind == RoughingCycleKind::rough_x && c.style == RoughingCycleStyle::fanuc_g71)
+                cf.fail("kind", "style fanuc-g71 is a rough-z cycle (Fanuc's G71); along X: style fanuc-g72");
+            if (c.kind == RoughingCycleKind::rough_z && c.style == RoughingCycleStyle::fanuc_g72)
+                cf.fail("kind", "style fanuc-g72 is a rough-x cycle (Fanuc's G72); along Z: style fanuc-g71");
             if (const auto* fields = cf.member("fields")) {
                 if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                 for (size_t j = 0; j < fields->size(); ++j) {

@@ -588,7 +588,10 @@ void Post::handle_turn_cycle(const TurnCycle& c) {
     }
     if (reason.empty()) {
         on_turn_cycle(c, *spec);
-        if (!c.moves.empty()) pos_ = turn_cycle_end(c, machine_.rough_pattern());
+        // Where the control ends, then the way out, written out.
+        const std::vector<LatheCycleMove> path = turn_cycle_path(c, machine_.rough_pattern());
+        if (!path.empty()) pos_ = Vec3{path.back().end.y, c.start.y, path.back().end.x};
+        for (const Event& e : turn_cycle_exit(c, machine_.rough_pattern())) handle(e);
         return;
     }
     cycle_not_canned(c.path, c.output, spec != nullptr, "roughing", reason);

@@ -153,6 +153,11 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "fanuc"})",
                   "/roughingCycles/0/style", "linuxcnc");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z"})", "/roughingCycles/0/style", "style");
+    // Fanuc's styles: G71 along Z, G72 along X, each its own kind only.
+    check_refused("linuxcnc-lathe", g72, R"({"name": "G72", "kind": "rough-x", "style": "fanuc-g71"})",
+                  "/roughingCycles/1/kind", "style fanuc-g71 is a rough-z cycle (Fanuc's G71); along X: style fanuc-g72");
+    check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "fanuc-g72"})",
+                  "/roughingCycles/0/kind", "style fanuc-g72 is a rough-x cycle (Fanuc's G72); along Z: style fanuc-g71");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71(", "kind": "rough-z", "style": "linuxcnc"})",
                   "/roughingCycles/0/name", "(");
     check_refused("linuxcnc", R"("frame": {)", R"("roughingCycles": [{"name": "G71", "kind": "rough-z", "style": "linuxcnc"}], "frame": {)",
@@ -164,8 +169,10 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
     CHECK(m.roughing_cycles[1].name == "G72");
     CHECK(m.roughing_cycles[1].kind == RoughingCycleKind::rough_x);
     const Machine fanuc = load_machine("fanuc-lathe");
-    REQUIRE(fanuc.roughing_cycles.size() == 1);
+    REQUIRE(fanuc.roughing_cycles.size() == 2);
     CHECK(fanuc.roughing_cycles[0].style == RoughingCycleStyle::fanuc_g71);
+    CHECK(fanuc.roughing_cycles[1].style == RoughingCycleStyle::fanuc_g72);
+    CHECK(fanuc.roughing_cycles[1].kind == RoughingCycleKind::rough_x);
     CHECK(fanuc.rough_pattern() == RoughCyclePattern::fanuc_g71);
 }
 

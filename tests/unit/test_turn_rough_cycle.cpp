@@ -111,9 +111,12 @@ TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcn
         const TurnCycle c = turn_cycle(op);
         REQUIRE_FALSE(c.refusal);
         CHECK(c.along_x);
-        // A machine of Fanuc's roughing pattern (which has no G72) takes the cycle's own moves
-        // along X: Fanuc's G71 model is along Z only.
-        CHECK(turn_cycle_path(c, RoughCyclePattern::fanuc_g71) == c.moves);
+        // A machine of Fanuc's roughing pattern takes Fanuc's G72 along X (test_fanuc_g72): the
+        // same levels, each pass back along X to A (one depth of cut beyond the start in Z), the
+        // tool ending at A.
+        const std::vector<LatheCycleMove> fanuc_path = turn_cycle_path(c, RoughCyclePattern::fanuc_g71);
+        CHECK(fanuc_path != c.moves);
+        CHECK(fanuc_path.back().end == Vec2{c.start.z + c.depth, c.start.x});
         // The start outside the bar, its Z (the first level) at most a pass below the faced Z0;
         // the sub from the top of the end face (at the bar) back to the boundary's start.
         CHECK(c.start.x == doctest::Approx(20.0 + 1.0));
@@ -141,10 +144,10 @@ TEST_CASE("turn-rough output along X: G72 with its profile subroutine on linuxcn
         // longhand: camgen's passes along X, no cycle.
         const auto l = rc_posted(rc_job(std::string(nose) + R"(, "output": "longhand")"), lcnc);
         CHECK(l.text.find("G72") == std::string::npos);
-        // fanuc-lathe has no G72: the control's moves longhand, read back as the job's, no note.
+        // fanuc-lathe writes its own G72 (test_fanuc_g72), read back as the job's, no note.
         const Machine fanuc = load_machine("fanuc-lathe");
         const auto q = rc_posted(text, fanuc);
-        CHECK(q.text.find("G72") == std::string::npos);
+        CHECK(q.text.find("G72 W") != std::string::npos);
         CHECK(q.notes.find("longhand") == std::string::npos);
         const auto miss = compare_traces(trace_expected(expand_job(j), fanuc), trace_program(read_program(q.text, fanuc, "t.nc"), fanuc),
                                          compare_tolerance(fanuc));
@@ -199,7 +202,7 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
     CHECK(rc_posted(rc_job(R"(, "output": "longhand")"), lcnc).text.find("G71") == std::string::npos);
     // Along X: an undercut (X falling along the profile) is a pocket for G72 (element 4 of its
     // sub, which runs from the end face back: the profile's element 3): longhand with a note,
-    // refused under canned; fanuc-lathe has no G72.
+    // refused under canned, on fanuc-lathe too.
     {
         const auto p = rc_posted(rc_job(R"(, "compensation": "none", "direction": "x")", under), lcnc);
         CHECK(p.text.find("G72") == std::string::npos);
@@ -209,9 +212,11 @@ TEST_CASE("turn-rough output: longhand where the cycle would not make the roughi
                       p.notes);
         CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "direction": "x", "output": "canned")", under), lcnc)
                   .find("/operations/1/output: machine linuxcnc-lathe's G72 would not cut these passes") != std::string::npos);
-        CHECK(rc_refusal(rc_job(R"(, "direction": "x", "output": "canned")"), fanuc)
-                  .find("/operations/1/output: machine fanuc-lathe has no canned roughing cycle along X (roughingCycles)") !=
-              std::string::npos);
+        CHECK(rc_refusal(rc_job(R"(, "compensation": "none", "direction": "x", "output": "canned")", under), fanuc)
+                  .find("/operations/1/output: machine fanuc-lathe's G72 would not cut these passes: element 4 turns back "
+                        "towards +X") != std::string::npos);
+        CHECK(rc_posted(rc_job(R"(, "compensation": "none", "direction": "x")", under), fanuc)
+                  .notes.find("machine fanuc-lathe's G72 would not cut these passes") != std::string::npos);
     }
     // A bar not faced to the profile's start: the cycle's line down to it would run through the
     // stub, so it is refused, and the note says why.

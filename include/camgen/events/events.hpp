@@ -267,13 +267,22 @@ struct TurnCycle {
     // walked backwards from the top of its end face, the control's G71 with Z and X swapped),
     // else along -Z (G71).
     bool along_x = false;
+    // The way out after the cycle (turn-rough's), part of its moves (lift 0: none). LinuxCNC's
+    // pattern ends on the last pass: a feed `lift` off it at 45 degrees (+X, +Z), a rapid out to
+    // radius `out_x` (or the lift's, beyond it) and one to Z `out_z`. Fanuc's ends at its start
+    // point A, in air beyond the part: a rapid out to radius out_x (or A's, beyond it) at A's Z
+    // and one to out_z.
+    double lift = 0.0;
+    double out_x = 0.0;
+    double out_z = 0.0;
     friend bool operator==(const TurnCycle& a, const TurnCycle& b) {
         auto same_profile = [](const Profile& x, const Profile& y) {
             return x.plane == y.plane && x.start == y.start && x.segments == y.segments;
         };
         return a.path == b.path && a.output == b.output && a.start == b.start && same_profile(a.profile, b.profile) &&
                a.depth == b.depth && a.retract == b.retract && a.feed == b.feed && a.moves == b.moves &&
-               a.refusal == b.refusal && a.along_x == b.along_x;
+               a.refusal == b.refusal && a.along_x == b.along_x && a.lift == b.lift && a.out_x == b.out_x &&
+               a.out_z == b.out_z;
     }
 };
 
@@ -340,19 +349,25 @@ using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Co
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
                            ThreadFeed, ThreadCycle, TurnCycle, GrooveCycle>;
 
-// How a roughing cycle moves: LinuxCNC's G71 (the event's `moves`), or Fanuc T's type I G71
-// (fanuc_g71 in lathe_cycle.hpp from the start point A: the event's start moved out by one
-// depth of cut, so that its levels are the event's; each pass back along Z to A's Z; the tool
-// ends at A). Where Fanuc's model does not take the cycle, its moves are LinuxCNC's.
+// How a roughing cycle moves: LinuxCNC's G71/G72 (the event's `moves`), or Fanuc T's type I
+// G71/G72 (fanuc_g7x in lathe_cycle.hpp from the start point A: the event's start moved out by
+// one depth of cut (along X: towards +Z), so that its levels are the event's; each pass back
+// along Z (along X) to A's; the tool ends at A). Where Fanuc's model does not take the cycle,
+// its moves are LinuxCNC's.
 enum class RoughCyclePattern { linuxcnc_g71, fanuc_g71 };
 
 // The moves of a roughing cycle (Rapid, Linear and Arc events in XZ at the cycle's feed), from
-// its start: none where the cycle carries a refusal.
+// its start, and its way out (turn_cycle_exit): none where the cycle carries a refusal.
 std::vector<Event> turn_cycle_moves(const TurnCycle& cycle, RoughCyclePattern pattern = RoughCyclePattern::linuxcnc_g71);
-// The cycle's moves as LatheCycleMove (Z, radius) in the pattern; and where the tool ends.
+// The control's moves of the cycle as LatheCycleMove (Z, radius) in the pattern (no way out);
+// and where the tool ends after the way out.
 std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& cycle, RoughCyclePattern pattern);
 Vec3 turn_cycle_end(const TurnCycle& cycle, RoughCyclePattern pattern);
-// Fanuc's start point A for a roughing cycle (Z, radius): the event's start moved out by depth.
+// The way out after the control's moves (lift, out_x, out_z), in the pattern: written longhand
+// after a canned cycle too.
+std::vector<Event> turn_cycle_exit(const TurnCycle& cycle, RoughCyclePattern pattern);
+// Fanuc's start point A for a roughing cycle (Z, radius): the event's start moved out by depth
+// (along X: moved by depth towards +Z).
 Vec2 fanuc_g71_start(const TurnCycle& cycle);
 
 // How a threading cycle's passes move in air: LinuxCNC's G76 (each pass returns out to the drive

@@ -79,11 +79,25 @@ inline LatheCycleModel linuxcnc_g72(Vec2 start, const Profile& profile, double d
 // (the pass that leaves the even allowance, here none), and a rapid straight back to A, where
 // the control ends. Refused: a level within 0.0001 mm of a corner's radius, a pass shorter than
 // the retract, a shape ending above A.
-LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract);
+// Axis x: Fanuc T's type I G72, `G72 W(depth) R(retract)` / `G72 P Q U0 W0 F`: the same with Z
+// and X swapped (arcs turning the other way): block ns moves along Z only (A' at A's X), the
+// shape runs towards -X and its Z never falls; levels Z = A - depth, A - 2 depth, ... while
+// beyond A'; each pass feeds along -X from A's X, escapes by `retract` at 45 degrees (+X, +Z)
+// and rapids along +X back to A's X; then the pass along the shape and a rapid back to A.
+LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract);
 
-// The finishing shape camgen writes for Fanuc's G71 from the start point A (Z, radius) on a
-// profile (Z, radius) that starts below and before A: A' = (A's Z, the profile's start radius),
-// then the profile.
-Profile fanuc_g71_shape(Vec2 start, const Profile& profile);
+inline LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract) {
+    return fanuc_g7x(LatheCycleAxis::z, start, shape, depth, retract);
+}
+inline LatheCycleModel fanuc_g72(Vec2 start, const Profile& shape, double depth, double retract) {
+    return fanuc_g7x(LatheCycleAxis::x, start, shape, depth, retract);
+}
+
+// The finishing shape camgen writes for Fanuc's G71 (axis z) from the start point A (Z, radius)
+// on a profile (Z, radius) that starts below and before A: A' = (A's Z, the profile's start
+// radius), then the profile. G72 (axis x): A' = (the profile's start Z, A's radius), then the
+// profile (which starts inside and on the -Z side of A).
+Profile fanuc_g7x_shape(LatheCycleAxis axis, Vec2 start, const Profile& profile);
+inline Profile fanuc_g71_shape(Vec2 start, const Profile& profile) { return fanuc_g7x_shape(LatheCycleAxis::z, start, profile); }
 
 }  // namespace camgen

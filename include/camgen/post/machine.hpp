@@ -53,14 +53,17 @@ inline constexpr Named<RoughingCycleKind> roughing_cycle_kinds[] = {
 };
 
 // How a canned roughing cycle is written and what the control makes of it.
-enum class RoughingCycleStyle { linuxcnc, fanuc_g71 };
+enum class RoughingCycleStyle { linuxcnc, fanuc_g71, fanuc_g72 };
 inline constexpr Named<RoughingCycleStyle> roughing_cycle_styles[] = {
     {RoughingCycleStyle::linuxcnc, "linuxcnc",
      "LinuxCNC 2.9: the profile as a subroutine o<n> sub ... o<n> endsub, the cycle G71 Q<n> D I R F from the start "
      "point (G72 alike)"},
     {RoughingCycleStyle::fanuc_g71, "fanuc-g71",
      "Fanuc T type I (G code system A): G71 U(depth) R(retract) / G71 P(ns) Q(nf) U0 W0 F from the start point, the "
-     "finishing shape as the N-numbered blocks ns..nf right after it (ns along X only)"},
+     "finishing shape as the N-numbered blocks ns..nf right after it (ns along X only); kind rough-z"},
+    {RoughingCycleStyle::fanuc_g72, "fanuc-g72",
+     "Fanuc T type I (G code system A): G72 W(depth) R(retract) / G72 P(ns) Q(nf) U0 W0 F from the start point, the "
+     "finishing shape as the N-numbered blocks ns..nf right after it (ns along Z only); kind rough-x"},
 };
 
 // The values of a roughing operation a canned roughing cycle can carry.
@@ -211,14 +214,15 @@ struct Machine {
     const DrillingCycleSpec* canned_cycle(CycleKind kind) const;
     // How longhand cycles move on this machine (so that they equal its canned cycles).
     LonghandOptions longhand() const { return {peck_clearance, bore_dwell_feed_out}; }
-    // How its threading cycles move in air (ThreadCycle events, canned or longhand): as its first
-    // threading cycle does, LinuxCNC's G76 where it has none.
+    // How its roughing cycles move (TurnCycle events, canned or longhand, along Z and along X):
+    // Fanuc T's type I G71/G72 where its first roughing cycle is of a Fanuc style, else LinuxCNC's.
     RoughCyclePattern rough_pattern() const {
-        for (const RoughingCycleSpec& r : roughing_cycles)
-            if (r.kind == RoughingCycleKind::rough_z)
-                return r.style == RoughingCycleStyle::fanuc_g71 ? RoughCyclePattern::fanuc_g71 : RoughCyclePattern::linuxcnc_g71;
+        if (!roughing_cycles.empty() && roughing_cycles.front().style != RoughingCycleStyle::linuxcnc)
+            return RoughCyclePattern::fanuc_g71;
         return RoughCyclePattern::linuxcnc_g71;
     }
+    // How its threading cycles move in air (ThreadCycle events, canned or longhand): as its first
+    // threading cycle does, LinuxCNC's G76 where it has none.
     ThreadCyclePattern thread_pattern() const {
         return !threading.empty() && threading.front().style == ThreadCycleStyle::fanuc_g76 ? ThreadCyclePattern::fanuc_g76
                                                                                                : ThreadCyclePattern::linuxcnc_g76;
