@@ -719,6 +719,10 @@ void IsoLatheReader::fanuc_groove(BlockWords& w, bool along_z) {
     if (g.e > g.peck + 1e-9) fail(fmt::format("{}: the back-off R(e) is longer than the peck", peck_w->text));
     if (std::abs(d0 - d_end) / g.peck > 10000) fail(fmt::format("{}: more than 10000 pecks", peck_w->text));
     if (g.step > 0 && std::abs(s_end - s0) / g.step > 10000) fail(fmt::format("{}: more than 10000 plunges", step_w->text));
+    // Both bounds at once would still be 10^8 pecks from one block: the cycle's pecks are bounded too.
+    const double plunges = g.step > 0 ? std::ceil(std::abs(s_end - s0) / g.step) + 1 : 1;
+    if (std::ceil(std::abs(d0 - d_end) / g.peck) * plunges > 100000)
+        fail(fmt::format("{} {}: more than 100000 pecks in one cycle", name, peck_w->text));
     for (const Event& e : iso::fanuc_groove_moves(g)) {
         if (const auto* r = std::get_if<Rapid>(&e)) rapid_to(r->to.x, std::nullopt, r->to.z);
         else linear_to(std::get<Linear>(e).to.x, std::nullopt, std::get<Linear>(e).to.z);

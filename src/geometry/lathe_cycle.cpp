@@ -403,16 +403,23 @@ LatheCycleModel fanuc_model(Vec2 start, const Profile& shape, double depth, doub
     if (auto why = g71_elements(shape, el, words.elements, 1e-3)) return refuse(*why);
     std::vector<double> corners{a1.y};
     for (const ProfileSegment& s : shape.segments) corners.push_back(s.end.y);
+    // Sorted, so that each level looks up its nearest corners (a read program's shape may have
+    // 10^5 blocks and the cycle 10^6 levels: every corner for every level would not end).
+    std::sort(corners.begin(), corners.end());
     std::vector<double> levels;
     for (int k = 1; start.y - k * depth > a1.y - 1e-4; ++k) {
         if (k > 1000000) return refuse("the cycle makes more than 1000000 levels");
         const double x = start.y - k * depth;
-        for (double r : corners)
-            if (std::abs(x - r) < 1e-4)
-                return refuse(std::string("a level of the cycle (") + words.elements.level + " " + g71_number(x) +
-                              ") runs through a corner of the finishing shape: the control's cycle is not modelled there");
+        const auto near = std::lower_bound(corners.begin(), corners.end(), x - 1e-4);
+        if (near != corners.end() && std::abs(x - *near) < 1e-4)
+            return refuse(std::string("a level of the cycle (") + words.elements.level + " " + g71_number(x) +
+                          ") runs through a corner of the finishing shape: the control's cycle is not modelled there");
         levels.push_back(x);
     }
+    // Each level looks for the element it meets: bounded, so that a read program's cycle ends.
+    if (static_cast<double>(levels.size()) * static_cast<double>(el.size()) > 5e7)
+        return refuse("the cycle's " + std::to_string(levels.size()) + " levels over a shape of " + std::to_string(el.size()) +
+                      " elements are more than camgen models");
     auto add = [&](LatheCycleMove::Kind kind, Vec2 end) { out.moves.push_back({kind, end, {}, ArcDirection::ccw}); };
     add(LatheCycleMove::Kind::rapid, start);
     for (double x : levels) {

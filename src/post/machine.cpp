@@ -869,6 +869,13 @@ Machine parse_machine_json(const nlohmann::json& root, const std::string& name, 
                 cf.fail("kind", "style fanuc-g71 is a rough-z cycle (Fanuc's G71); along X: style fanuc-g72");
             if (c.kind == RoughingCycleKind::rough_z && c.style == RoughingCycleStyle::fanuc_g72)
                 cf.fail("kind", "style fanuc-g72 is a rough-x cycle (Fanuc's G72); along Z: style fanuc-g71");
+            // The pattern the tool moves in (Machine::rough_pattern) is the machine's, one for
+            // both axes: Fanuc's and LinuxCNC's cycles cannot be mixed on one machine.
+            for (const RoughingCycleSpec& other : m.roughing_cycles)
+                if ((other.style == RoughingCycleStyle::linuxcnc) != (c.style == RoughingCycleStyle::linuxcnc))
+                    cf.fail("style", fmt::format("{} and {} move in different patterns (LinuxCNC's and Fanuc's); a machine's "
+                                                 "roughing cycles are all LinuxCNC's or all Fanuc's",
+                                                 other.name, c.name));
             if (const auto* fields = cf.member("fields")) {
                 if (!fields->is_array()) cf.fail("fields", "expected an array of field names");
                 for (size_t j = 0; j < fields->size(); ++j) {

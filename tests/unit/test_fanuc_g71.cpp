@@ -224,6 +224,15 @@ TEST_CASE("fanuc-g71: the reader refuses what it does not model") {
               .find("finishing shape") != std::string::npos);
     CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.000 W0.000 F200\nN100 G0 X20.000\nN101 G1 X16.000 Z-10.000\nN102 G1 X40.000 Z-12.000\n")
               .find("falls in radius") != std::string::npos);
+    // 12,000 levels over a shape of 6,000 elements: bounded (each level looks for its element),
+    // refused at once instead of running for minutes. (A at radius 22.0005, the corners' radii
+    // on whole thousandths: no level runs through a corner, which is refused before.)
+    {
+        std::string many = "N100 G0 X20.000\n";
+        for (int k = 1; k <= 6000; ++k) many += fmt::format("N{} G1 X{:.3f} Z{:.3f}\n", 100 + k, 20.0 + k * 0.004, -k * 0.01);
+        CHECK(refusal(fmt::format("G0 X44.001\nG71 U0.001 R0.0005\nG71 P100 Q{} U0.000 W0.000 F200\n", 6100) + many)
+                  .find("more than camgen models") != std::string::npos);
+    }
     CHECK(refusal("G0 X30.000\nG71 U1.400 R0.500\n") == "");
     CHECK(refusal("G1 X30.000 U2.000 F100\n") != "");
 }

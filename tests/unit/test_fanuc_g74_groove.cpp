@@ -323,6 +323,10 @@ TEST_CASE("fanuc G74 face groove: the reader refuses a G74 it cannot read and st
           std::string::npos);
     CHECK(refusal_of("G74 R0.3\nG74 X28.000 Z-3.000 P1000 Q200 F30").find("Q200: the back-off R(e) is longer than the peck") !=
           std::string::npos);
+    // Each bound alone holds (10000 pecks a plunge, 10000 plunges), both at once would be 10^8
+    // pecks from one block: the cycle's pecks are bounded too.
+    CHECK(refusal_of("G74 R0.001\nG74 X12.000 Z-9.000 P1 Q1 F30").find("more than 100000 pecks in one cycle") !=
+          std::string::npos);
     // X the start point's and no P: one plunge.
     {
         const std::vector<ReadEvent> r = read("G74 R0.3\nG74 X32.000 Z-3.000 Q1500 F30");

@@ -158,6 +158,11 @@ TEST_CASE("machine file: roughingCycles, a lathe's canned roughing cycles, check
                   "/roughingCycles/1/kind", "style fanuc-g71 is a rough-z cycle (Fanuc's G71); along X: style fanuc-g72");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71", "kind": "rough-z", "style": "fanuc-g72"})",
                   "/roughingCycles/0/kind", "style fanuc-g72 is a rough-x cycle (Fanuc's G72); along Z: style fanuc-g71");
+    // One pattern a machine: LinuxCNC's G71 beside Fanuc's G72 (or the other way) is refused.
+    check_refused("linuxcnc-lathe", g72, R"({"name": "G72", "kind": "rough-x", "style": "fanuc-g72"})",
+                  "/roughingCycles/1/style", "G71 and G72 move in different patterns (LinuxCNC's and Fanuc's)");
+    check_refused("fanuc-lathe", R"("style": "fanuc-g72")", R"("style": "linuxcnc")", "/roughingCycles/1/style",
+                  "a machine's roughing cycles are all LinuxCNC's or all Fanuc's");
     check_refused("linuxcnc-lathe", g71, R"({"name": "G71(", "kind": "rough-z", "style": "linuxcnc"})",
                   "/roughingCycles/0/name", "(");
     check_refused("linuxcnc", R"("frame": {)", R"("roughingCycles": [{"name": "G71", "kind": "rough-z", "style": "linuxcnc"}], "frame": {)",
