@@ -114,6 +114,10 @@ std::string event_to_json(const Event& event) {
                        if (e.refusal) j["refusal"] = *e.refusal;
                        if (e.along_x) j["alongX"] = true;
                        if (e.lift > 0) j["exit"] = {{"lift", e.lift}, {"x", e.out_x}, {"z", e.out_z}};
+                       if (e.finish)
+                           j["finish"] = {{"path", e.finish->path},
+                                          {"allowance", {e.finish->allowance.x, e.finish->allowance.y}},
+                                          {"feed", e.finish->feed}};
                    },
                    [&](const FinishCycle& e) {
                        j = {{"event", "finish-cycle"}, {"path", e.path}, {"output", name_of(cycle_outputs, e.output)},
