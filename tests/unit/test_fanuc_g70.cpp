@@ -16,6 +16,8 @@
 #include "camgen/analysis/compare.hpp"
 #include "camgen/analysis/trace.hpp"
 #include "camgen/common/error.hpp"
+#include "camgen/geometry/compensation.hpp"
+#include "camgen/operations/fanuc_finish.hpp"
 #include "camgen/operations/registry.hpp"
 #include "camgen/operations/turn_profile/turn_profile.hpp"
 #include "camgen/operations/turn_rough/turn_rough.hpp"
@@ -367,6 +369,30 @@ TEST_CASE("fanuc-g70: the reader reads G71 U W and G70 P Q, and refuses what the
     CHECK(lowest_g71_feed >= 10.2 - 1e-9);
     CHECK(t.steps.back().to.x == doctest::Approx(22.0));  // back at A
     CHECK(t.steps.back().to.z == doctest::Approx(2.0));
+}
+
+TEST_CASE("fanuc-g70: G70's rapids are checked against the finished part, nose and all") {
+    // A profile (Z, radius) of D20 for 10 mm, a shoulder up to D30, D30 for 10 mm.
+    Profile p;
+    p.plane = ProfilePlane::xz;
+    p.start = Vec2{0.0, 10.0};
+    p.segments = {{Vec2{-10.0, 10.0}, std::nullopt, ArcDirection::ccw},
+                  {Vec2{-10.0, 15.0}, std::nullopt, ArcDirection::ccw},
+                  {Vec2{-20.0, 15.0}, std::nullopt, ArcDirection::ccw}};
+    auto shape_from = [&](Vec2 a) { return fanuc_g7x_shape(LatheCycleAxis::z, a, p); };
+    const Vec2 zero{0.0, 0.0};
+    // From A beyond the bar: in air, with a sharp tip and with a nose of 0.8 (orientation 2).
+    CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 16.0}, shape_from(Vec2{1.0, 16.0}), 0.0, zero));
+    CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 16.0}, shape_from(Vec2{1.0, 16.0}), 0.8, lathe_tip_offset(2, 0.8)));
+    // A below the shoulder: the rapid back from the end runs through it.
+    const auto low = fanuc_g70_air(p, Vec2{1.0, 12.0}, shape_from(Vec2{1.0, 12.0}), 0.0, zero);
+    REQUIRE(low);
+    CHECK(low->find("from the shape's end back to the start point") != std::string::npos);
+    // The nose counts, not only its tip: a tip path 0.5 above D30 is air for a sharp tip and for
+    // orientation 2 (the nose above its tip), not for orientation 3 (the nose 0.8 below its tip).
+    CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.0, zero));
+    CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.4, lathe_tip_offset(2, 0.4)));
+    CHECK(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.4, lathe_tip_offset(3, 0.4)));
 }
 
 }  // namespace test_fanuc_g70
