@@ -267,6 +267,8 @@ public:
             for (const Event& m : thread_cycle_moves(*c)) emit(m);
         else if (const auto* t = std::get_if<TurnCycle>(&e))
             for (const Event& m : turn_cycle_moves(*t)) emit(m);
+        else if (const auto* f = std::get_if<FinishCycle>(&e))
+            for (const Event& m : finish_cycle_moves(*f, RoughCyclePattern::linuxcnc_g71)) emit(m);
         else if (const auto* g = std::get_if<GrooveCycle>(&e))
             for (const Event& m : groove_cycle_moves(*g)) emit(m);
     }

@@ -20,6 +20,7 @@
 #include "camgen/events/visit.hpp"
 #include "camgen/geometry/compensation.hpp"
 #include "camgen/operations/design_lathe.hpp"
+#include "camgen/operations/fanuc_finish.hpp"
 #include "camgen/operations/stock.hpp"
 
 namespace camgen {
@@ -310,6 +311,7 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     static_cast<JobHeader&>(job) = in.take_header();
     if (job.name.empty()) job.name = job_name(source_name);
     rough_from_earlier_material(job, in);
+    link_fanuc_finishing(job, in);
     return job;
 }
 

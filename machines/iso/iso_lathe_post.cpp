@@ -393,7 +393,12 @@ IsoLathePost::FanucG71Words IsoLathePost::fanuc_g71_words(const TurnCycle& c) co
     const nc::Format& len = xyz_format();  // U/W(depth) and R(retract) of the first block: radial mm, mm along Z
     const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
     const Vec2 a = fanuc_g71_start(c);
-    const Profile shape = fanuc_g7x_shape(axis, a, c.profile);
+    // Linked to a G70: the finishing pass's tip path, the allowances in U and W; else the boundary, U0 W0.
+    const Profile shape = fanuc_g7x_shape(axis, a, c.finish ? c.finish->shape : c.profile);
+    const Vec2 allowance = c.finish ? c.finish->allowance : Vec2{0.0, 0.0};
+    w.allowance = Vec2{z.rounded(allowance.x), x.rounded(allowance.y)};
+    w.u_allow = x.word("U", allowance.y);
+    w.w_allow = z.word("W", allowance.x);
     w.start = Vec2{z.rounded(a.x), x.rounded(a.y)};
     w.read.plane = ProfilePlane::xz;
     if (axis == LatheCycleAxis::z) {
@@ -438,10 +443,13 @@ std::optional<std::string> lathe_cycle_moves_differ(const std::vector<LatheCycle
 std::optional<std::string> IsoLathePost::fanuc_g71_limit(const TurnCycle& c) const {
     const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
     const Vec2 a = fanuc_g71_start(c);
-    const LatheCycleModel own = fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
+    // camgen's moves in Fanuc's pattern (linked to a G70: the finishing shape moved by the allowances).
+    const LatheCycleModel own =
+        c.finish ? fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.finish->shape), c.depth, c.retract, c.finish->allowance)
+                 : fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
     if (own.refusal) return *own.refusal;
     const FanucG71Words w = fanuc_g71_words(c);
-    const LatheCycleModel control = fanuc_g7x(axis, w.start, w.read, w.depth, w.retract);
+    const LatheCycleModel control = fanuc_g7x(axis, w.start, w.read, w.depth, w.retract, w.allowance);
     if (control.refusal) return "from its rounded words: " + *control.refusal;
     return lathe_cycle_moves_differ(control.moves, own.moves);
 }
@@ -467,15 +475,39 @@ void IsoLathePost::write_fanuc_g71(const TurnCycle& c, const RoughingCycleSpec& 
     }
     const long nf = ns + (count - 1) * step;
     if (nf > 99999) throw InputError(c.path, fmt::format("the finishing shape's sequence numbers reach N{}, above N99999", nf));
-    writer().add(spec.name).add(fmt::format("P{}", ns)).add(fmt::format("Q{}", nf)).add(machine().format("x").word("U", 0.0))
-        .add(machine().format("z").word("W", 0.0)).add(feed_word(c.feed)).end();
+    writer().add(spec.name).add(fmt::format("P{}", ns)).add(fmt::format("Q{}", nf)).add(w.u_allow).add(w.w_allow)
+        .add(feed_word(c.feed)).end();
+    // Linked to a G70: the finishing feed in the shape's first feed block (G70 takes the F of
+    // blocks ns..nf, G71 its own block's).
+    const std::string finish_feed = c.finish ? " " + feed_text(c.finish->feed, c.finish->rpm) : std::string();
     for (long k = 0; k < count; ++k) {
         if (!style.sequence_numbers) writer().add(fmt::format("N{}", ns + k));
-        writer().add(w.shape[static_cast<std::size_t>(k)]).end();
+        writer().add(w.shape[static_cast<std::size_t>(k)] + (k == 1 ? finish_feed : std::string())).end();
     }
-    // The control returns to A, in no motion mode camgen writes.
+    if (c.finish) linked_ = LinkedShape{c.finish->path, ns, nf};
+    else linked_.reset();
+    // The control returns to A, in no motion mode camgen writes (and an F in the shape, skipped
+    // by G71, is not relied on either way).
     reset_modal_axes();
     forget_motion();
+    forget_feed();
+}
+
+std::optional<std::string> IsoLathePost::finish_cycle_limit(const FinishCycle& c) const {
+    if (!linked_ || linked_->finishing_path != c.path)
+        return fmt::format("the turn-rough before it ({}) was not written as the roughing cycle whose shape G70 runs",
+                           c.rough_path);
+    return std::nullopt;
+}
+
+void IsoLathePost::on_finish_cycle(const FinishCycle&) {
+    // From A, where the tool stands: the shape ns..nf at its own F, back to A.
+    writer().add("G70").add(fmt::format("P{}", linked_->ns)).add(fmt::format("Q{}", linked_->nf)).end();
+    linked_.reset();
+    // The control returns to A, in no motion mode and at no feed camgen writes.
+    reset_modal_axes();
+    forget_motion();
+    forget_feed();
 }
 
 IsoLathePost::G71Words IsoLathePost::g71_words(const TurnCycle& c) const {

@@ -82,11 +82,22 @@ private:
         Profile read;             // the finishing shape, (Z, radius)
         Vec2 start;               // A, rounded
         double depth = 0.0, retract = 0.0;
+        Vec2 allowance;           // (W, U/2) as written, rounded (a cycle linked to G70; else 0)
+        std::string u_allow, w_allow;  // the second block's U and W
     };
     FanucG71Words fanuc_g71_words(const TurnCycle& cycle) const;
     std::optional<std::string> fanuc_g71_limit(const TurnCycle& cycle) const;
     void write_fanuc_g71(const TurnCycle& cycle, const RoughingCycleSpec& spec);
     long next_shape_number_ = 1;  // the next ns where the program has no sequence numbers
+    // The last roughing cycle written linked to a G70 (CycleFinish): the turn-profile's path and
+    // its shape's ns, nf.
+    struct LinkedShape {
+        std::string finishing_path;
+        long ns = 0, nf = 0;
+    };
+    std::optional<LinkedShape> linked_;
+    std::optional<std::string> finish_cycle_limit(const FinishCycle& cycle) const override;
+    void on_finish_cycle(const FinishCycle& cycle) override;
     // Fanuc T's two blocks, or why the cycle cannot be written so.
     struct FanucG76Words {
         std::vector<std::string> first, second;

@@ -123,11 +123,20 @@ private:
         long ns = 0, nf = 0;
         Vec2 start;  // A, (Z, radius)
         double depth = 0.0, retract = 0.0;
+        Vec2 allowance;  // (W, U/2)
         Profile shape;
         bool started = false;
         int motion = -1;
+        std::optional<Word> feed;  // the first F in ns..nf, for G70
     };
     std::optional<FanucG71Shape> fanuc_shape_;
+    // The finishing shapes read, by ns: what G70 P(ns) Q(nf) runs.
+    std::map<long, FanucG71Shape> fanuc_shapes_;
+    void fanuc_g70(BlockWords& w);
+    // G70 on a machine with a Fanuc roughing cycle (whose shapes it finishes).
+    bool fanuc_g70_code(int mode) const {
+        return mode == code(70) && (fanuc_rough_spec(RoughingCycleKind::rough_z) || fanuc_rough_spec(RoughingCycleKind::rough_x));
+    }
 
     // A profile subroutine being read (its number) and those read, by number: (Z, radius).
     std::optional<int> reading_sub_;
@@ -346,10 +355,20 @@ void IsoLatheReader::fanuc_g71(BlockWords& w, LatheCycleAxis axis) {
     const Word* q = w.take('Q');
     if (!q) fail(fmt::format("{} P without Q(nf), the finishing shape's last block", name));
     if (w.has('R')) fail(fmt::format("R on the second {} block: the retract is the first block's", name));
-    for (char letter : {'U', 'W'})
-        if (const Word* a = w.take(letter); a && a->value != 0)
-            fail(fmt::format("{} on {}: camgen reads {} with U0 W0 only (the control's finishing allowance is not modelled)",
-                             a->text, name, name));
+    // The finishing allowance: U on the diameter (as X), W along Z; the shape moved by them.
+    Vec2 allowance{0.0, 0.0};
+    if (const Word* a = w.take('U')) {
+        Word x = *a;
+        x.letter = 'X';
+        allowance.y = length(x);
+    }
+    if (const Word* a = w.take('W')) {
+        Word z = *a;
+        z.letter = 'Z';
+        allowance.x = length(z);
+    }
+    if (allowance.x < 0 || allowance.y < 0)
+        fail(fmt::format("{} with a negative finishing allowance: camgen models the allowance towards +X and +Z only", name));
     if (!first) fail(fmt::format("{} P Q without its first block {} {} R", name, name, depth_letter));
     if (!position_known()) fail(fmt::format("{} from an unknown position", name));
     if (!feed_) fail(fmt::format("{} without a feed (F)", name));
@@ -365,6 +384,7 @@ void IsoLatheReader::fanuc_g71(BlockWords& w, LatheCycleAxis axis) {
     s.shape.start = Vec2{here.z, here.x};
     s.depth = first->first;
     s.retract = first->second;
+    s.allowance = allowance;
     fanuc_shape_ = std::move(s);
 }
 
@@ -384,16 +404,56 @@ void IsoLatheReader::fanuc_shape_line(std::string_view text) {
         fail(fmt::format("{} P{}: the block after it is not N{} (camgen reads the finishing shape right after the cycle)",
                          s.name, s.ns, s.ns));
     if (n && (*n < s.ns || *n > s.nf)) fail(fmt::format("N{} within {}'s finishing shape N{}..N{}", *n, s.name, s.ns, s.nf));
-    if (!b.words.empty())
-        profile_block(b, s.shape, s.started, s.motion, fmt::format("{}'s finishing shape (N{})", s.name, s.ns),
+    Block shape_block = b;
+    // An F in ns..nf is G70's feed (G71 and G72 rough at their own block's F).
+    for (auto it = shape_block.words.begin(); it != shape_block.words.end();) {
+        if (it->letter != 'F') {
+            ++it;
+            continue;
+        }
+        if (!s.feed) s.feed = *it;
+        it = shape_block.words.erase(it);
+    }
+    if (!shape_block.words.empty())
+        profile_block(shape_block, s.shape, s.started, s.motion, fmt::format("{}'s finishing shape (N{})", s.name, s.ns),
                       s.axis == LatheCycleAxis::x ? 'Z' : 'X');
     if (!n || *n != s.nf) return;
     const FanucG71Shape done = std::move(s);
     fanuc_shape_.reset();
     if (done.shape.segments.empty())
         fail(fmt::format("{}'s finishing shape N{}..N{} has no element", done.name, done.ns, done.nf));
-    const LatheCycleModel model = camgen::fanuc_g7x(done.axis, done.start, done.shape, done.depth, done.retract);
+    const LatheCycleModel model = camgen::fanuc_g7x(done.axis, done.start, done.shape, done.depth, done.retract, done.allowance);
     if (model.refusal) fail(done.name + ": " + *model.refusal);
+    cycle_moves(model.moves);
+    fanuc_shapes_[done.ns] = done;
+}
+
+void IsoLatheReader::fanuc_g70(BlockWords& w) {
+    // G70 P(ns) Q(nf): from where the tool stands (A), the finishing shape read after a G71/G72
+    // before it (block ns along X, for G72 along Z, from A) at the F of its blocks, back to A.
+    for (char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'D', 'H', 'U', 'W', 'R', 'F'})
+        if (const Word* x = w.find(letter)) fail(fmt::format("{} on G70: camgen reads G70 P(ns) Q(nf) only", x->text));
+    const Word* p = w.take('P');
+    const Word* q = w.take('Q');
+    if (!p || !q) fail("G70 without P(ns) and Q(nf), the finishing shape's first and last block");
+    const long ns = integer_of(*p), nf = integer_of(*q);
+    const auto found = fanuc_shapes_.find(ns);
+    if (found == fanuc_shapes_.end() || found->second.nf != nf)
+        fail(fmt::format("G70 P{} Q{}: no G71 or G72 before it with the finishing shape N{}..N{}", ns, nf, ns, nf));
+    if (!position_known()) fail("G70 from an unknown position");
+    const FanucG71Shape& s = found->second;
+    const Vec3 here = position();
+    const Vec2 a{here.z, here.x};
+    // Block ns moves along one axis from where G70 starts: A' lies on A's line.
+    Profile shape = s.shape;
+    if (s.axis == LatheCycleAxis::z) shape.start.x = a.x;
+    else shape.start.y = a.y;
+    const LatheCycleModel model = camgen::fanuc_g70(s.axis, a, shape);
+    if (model.refusal) fail("G70: " + *model.refusal);
+    // The shape's F (else the F in force), which stays in force after it (camgen's reading; its
+    // posts write F again before the next feed).
+    if (s.feed) set_feed(*s.feed);
+    if (!feed_) fail(fmt::format("G70 P{} Q{}: no feed in its blocks nor before it", ns, nf));
     cycle_moves(model.moves);
 }
 
@@ -434,7 +494,7 @@ void IsoLatheReader::roughing_cycle(BlockWords& w, LatheCycleAxis axis) {
 }
 
 bool IsoLatheReader::variant_code(BlockCodes& codes, const Word&, Code c) {
-    if (rough_axis(c.value) || fanuc_rough_axis(c.value)) {
+    if (rough_axis(c.value) || fanuc_rough_axis(c.value) || fanuc_g70_code(c.value)) {
         set_group(codes.motion, c);
         return true;
     }
@@ -466,6 +526,10 @@ bool IsoLatheReader::variant_motion(int mode, BlockWords& w) {
     }
     if (const auto axis = fanuc_rough_axis(mode)) {
         fanuc_g71(w, *axis);
+        return true;
+    }
+    if (fanuc_g70_code(mode)) {
+        fanuc_g70(w);
         return true;
     }
     if (mode == code(76) && g76_spec()) {

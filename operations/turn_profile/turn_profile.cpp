@@ -59,6 +59,11 @@ constexpr KeySpec turn_profile_keys[] = {
      .description = "how far the tool feeds off the profile's end, away from the finished surface along its tip "
                     "orientation (orientation 2: +Z and +X at 45 degrees, steeper after a falling slope), before it "
                     "rapids, mm"},
+    {.key = "output", .type = JsonType::string, .default_json = "\"auto\"", .choices = &choices_of<cycle_outputs>,
+     .description = "after a turn-rough of the same profile right before it written as Fanuc's G71: auto finishes "
+                    "with G70 P Q on that cycle's shape where it cuts this pass (else longhand with a note), canned "
+                    "G70 or an error, longhand its own moves; on other machines and without such a turn-rough its "
+                    "own moves (canned: an error)"},
 };
 
 constexpr KeySpec turn_element_keys[] = {
@@ -491,6 +496,8 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     if (auto bad = first_unfollowable(op.profile, tool))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
     op.nose_radius = tool.nose_radius;
+    op.rpm = tool.rpm;
+    op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     op.compensation = f.choice("compensation", nose_compensation_modes, NoseCompensation::computer);
     op.tip_path = op.profile;
     op.orientation = tool.orientation;
@@ -576,7 +583,46 @@ void expand_control(const TurnProfileOp& op, const Context& ctx, EventSink& sink
 }
 }  // namespace
 
+namespace {
+void expand_own(const TurnProfileOp& op, const Context& ctx, EventSink& sink);
+
+// Collects a turn-profile's own moves for a FinishCycle.
+class PlainMoveSink : public EventSink {
+public:
+    explicit PlainMoveSink(std::vector<PlainMove>& out) : out_(out) {}
+    void emit(const Event& e) override {
+        if (const auto* r = std::get_if<Rapid>(&e)) out_.emplace_back(*r);
+        else if (const auto* l = std::get_if<Linear>(&e)) out_.emplace_back(*l);
+        else if (const auto* a = std::get_if<Arc>(&e)) out_.emplace_back(*a);
+        else if (const auto* c = std::get_if<Compensation>(&e)) out_.emplace_back(*c);
+        else throw std::logic_error("turn-profile: a finishing pass of moves only");
+    }
+
+private:
+    std::vector<PlainMove>& out_;
+};
+}  // namespace
+
 void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
+    if (!op.g70 || op.output == CycleOutput::longhand) return expand_own(op, ctx, sink);
+    FinishCycle c;
+    c.path = op.path;
+    c.output = op.output;
+    c.rough_path = op.g70->rough_path;
+    c.along_x = op.g70->along_x;
+    c.start = op.g70->start;
+    c.shape = op.tip_path.segments.empty() ? op.profile : op.tip_path;
+    c.feed = op.feed;
+    c.clearance = ctx.job.clearance;
+    c.out_x = op.retract_x;
+    c.refusal = op.g70->refusal;
+    PlainMoveSink plain(c.plain);
+    expand_own(op, ctx, plain);
+    sink.emit(c);
+}
+
+namespace {
+void expand_own(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
     // An op built by hand (a library user, a test) may leave tip_path empty: the profile is then the tip's path.
     if (op.compensation == NoseCompensation::control && !op.control_path.segments.empty()) return expand_control(op, ctx, sink);
     const Profile& tip_path = op.tip_path.segments.empty() ? op.profile : op.tip_path;
@@ -598,6 +644,7 @@ void expand(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
     sink.emit(Rapid{{op.retract_x, 0.0, lifted.x}});
     sink.emit(Rapid{{op.retract_x, 0.0, ctx.job.clearance}});
 }
+}  // namespace
 
 std::string default_name(const TurnProfileOp& op) { return op.comment.empty() ? "turn profile" : op.comment; }
 

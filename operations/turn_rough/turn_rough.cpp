@@ -377,6 +377,7 @@ void turn_rough_backwards(const TurnRoughOp& op, const Profile& path, EventSink&
 // under "canned"), false: the caller writes the passes.
 bool emit_turn_cycle(const TurnRoughOp& op, const Context& ctx, EventSink& sink, double outside, std::optional<Vec3> via) {
     TurnCycle c = turn_cycle(op);
+    c.finish = op.finish;
     if (!c.refusal && op.output == CycleOutput::automatic && !op.whole_bar_over_boundary()) {
         // Passes from what the earlier operations left take less than the cycle, which roughs
         // from the bar; "canned" writes the cycle anyway.

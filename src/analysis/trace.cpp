@@ -184,6 +184,12 @@ public:
                                              .per_revolution = e.per_revolution},
                                    job);
                        },
+                       [&](const FinishCycle& c) {
+                           for (const Event& m : finish_cycle_moves(c, rough_pattern_))
+                               add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
+                                             .per_revolution = e.per_revolution},
+                                   job);
+                       },
                        [&](const GrooveCycle& c) {
                            for (const Event& m : groove_cycle_moves(c))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ostream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -113,6 +114,17 @@ std::string event_to_json(const Event& event) {
                        if (e.refusal) j["refusal"] = *e.refusal;
                        if (e.along_x) j["alongX"] = true;
                        if (e.lift > 0) j["exit"] = {{"lift", e.lift}, {"x", e.out_x}, {"z", e.out_z}};
+                       if (e.finish)
+                           j["finish"] = {{"path", e.finish->path},
+                                          {"allowance", {e.finish->allowance.x, e.finish->allowance.y}},
+                                          {"feed", e.finish->feed}};
+                   },
+                   [&](const FinishCycle& e) {
+                       j = {{"event", "finish-cycle"}, {"path", e.path}, {"output", name_of(cycle_outputs, e.output)},
+                            {"rough", e.rough_path}, {"start", {e.start.x, e.start.y}}, {"feed", e.feed},
+                            {"moves", e.plain.size()}};
+                       if (e.along_x) j["alongX"] = true;
+                       if (e.refusal) j["refusal"] = *e.refusal;
                    },
                    [&](const GrooveCycle& e) {
                        j = {{"event", "groove-cycle"}, {"path", e.path},
@@ -177,7 +189,10 @@ std::vector<LatheCycleMove> turn_cycle_path(const TurnCycle& c, RoughCyclePatter
     if (pattern == RoughCyclePattern::fanuc_g71 && !c.refusal && !c.moves.empty()) {
         const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
         const Vec2 a = fanuc_g71_start(c);
-        LatheCycleModel m = fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
+        // Linked to a G70 (read_job): the finishing shape moved by the allowances; else the boundary.
+        LatheCycleModel m = c.finish ? fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.finish->shape), c.depth, c.retract,
+                                                 c.finish->allowance)
+                                     : fanuc_g7x(axis, a, fanuc_g7x_shape(axis, a, c.profile), c.depth, c.retract);
         if (!m.refusal) return std::move(m.moves);
     }
     return c.moves;
@@ -239,6 +254,61 @@ std::vector<Event> turn_cycle_moves(const TurnCycle& c, RoughCyclePattern patter
     }
     for (Event& e : turn_cycle_exit_from(c, pattern, path)) out.push_back(std::move(e));
     return out;
+}
+
+Profile finish_cycle_written_shape(const FinishCycle& c) {
+    const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
+    return fanuc_g7x_shape(axis, c.start, c.shape);
+}
+
+std::vector<Event> finish_cycle_moves(const FinishCycle& c, RoughCyclePattern pattern) {
+    std::vector<Event> out;
+    if (!finish_cycle_g70(c, pattern)) {
+        for (const PlainMove& m : c.plain) std::visit([&](const auto& e) { out.emplace_back(e); }, m);
+        return out;
+    }
+    const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
+    const LatheCycleModel g70 = fanuc_g70(axis, c.start, finish_cycle_written_shape(c));
+    if (g70.refusal) throw std::logic_error("finish cycle: " + *g70.refusal);
+    // From the clearance along Z at A's radius to A (the roughing tool's way in and out).
+    const Vec3 a{c.start.y, 0.0, c.start.x};
+    out.emplace_back(Rapid{Vec3{a.x, 0.0, c.clearance}});
+    out.emplace_back(Rapid{a});
+    Vec3 at = a;
+    bool first_feed = true;
+    for (const LatheCycleMove& m : g70.moves) {
+        const Vec3 to{m.end.y, 0.0, m.end.x};
+        if (to == at) continue;
+        at = to;
+        // The feed from A' to the shape's start is the lead-in, the rest the finishing pass.
+        const Movement movement = first_feed ? Movement::lead_in : Movement::finishing;
+        switch (m.kind) {
+            case LatheCycleMove::Kind::rapid: out.emplace_back(Rapid{to}); break;
+            case LatheCycleMove::Kind::feed:
+                out.emplace_back(Linear{to, c.feed, movement});
+                first_feed = false;
+                break;
+            case LatheCycleMove::Kind::arc:
+                out.emplace_back(Arc{to, Vec3{m.centre.y, 0.0, m.centre.x}, m.direction, Plane::xz, c.feed, 0, movement});
+                first_feed = false;
+                break;
+        }
+    }
+    // Out of the bar at rapid from A (in air beyond the part), then to the clearance.
+    const double r = std::max(c.out_x, a.x);
+    if (r != a.x) out.emplace_back(Rapid{Vec3{r, 0.0, a.z}});
+    out.emplace_back(Rapid{Vec3{r, 0.0, c.clearance}});
+    return out;
+}
+
+Vec3 finish_cycle_end(const FinishCycle& c, RoughCyclePattern pattern) {
+    const std::vector<Event> moves = finish_cycle_moves(c, pattern);
+    for (auto it = moves.rbegin(); it != moves.rend(); ++it) {
+        if (const auto* r = std::get_if<Rapid>(&*it)) return r->to;
+        if (const auto* l = std::get_if<Linear>(&*it)) return l->to;
+        if (const auto* a = std::get_if<Arc>(&*it)) return a->to;
+    }
+    throw std::logic_error("finish cycle without moves");
 }
 
 bool GrooveCycle::plain() const {

@@ -385,7 +385,8 @@ const FanucWords fanuc_words_x{"the finishing shape's first block is not along Z
                                g7x_words_x};
 
 // Fanuc's type I G71 in its own frame (Z along the passes, radius across them).
-LatheCycleModel fanuc_model(Vec2 start, const Profile& shape, double depth, double retract, const FanucWords& words) {
+LatheCycleModel fanuc_model(Vec2 start, const Profile& written, double depth, double retract, Vec2 allowance,
+                            const FanucWords& words) {
     LatheCycleModel out;
     auto refuse = [&](std::string why) {
         out.moves.clear();
@@ -393,9 +394,12 @@ LatheCycleModel fanuc_model(Vec2 start, const Profile& shape, double depth, doub
         return out;
     };
     if (!(depth > 0) || !(retract > 0)) return refuse("the depth of cut and the retract must be above 0");
-    if (shape.segments.empty()) return refuse("the finishing shape has no element");
+    if (written.segments.empty()) return refuse("the finishing shape has no element");
+    if (std::abs(written.start.x - start.x) > 1e-6) return refuse(words.first_block);
+    if (allowance.x < 0 || allowance.y < 0) return refuse("a negative finishing allowance is not modelled");
+    // The allowance moves the whole shape, A' with it (Fanuc's Δw along the passes, Δu/2 across).
+    const Profile shape = fanuc_moved_shape(written, allowance);
     const Vec2 a1 = shape.start, pe = shape.segments.back().end;
-    if (std::abs(a1.x - start.x) > 1e-6) return refuse(words.first_block);
     if (!(start.y > a1.y + 1e-6)) return refuse(words.start_above);
     if (!(a1.x - pe.x > 1e-3)) return refuse(words.not_towards);
     if (pe.y > start.y + 1e-6) return refuse(words.ends_above);
@@ -454,11 +458,44 @@ LatheCycleModel fanuc_model(Vec2 start, const Profile& shape, double depth, doub
 
 }  // namespace
 
-LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract) {
-    if (axis == LatheCycleAxis::z) return fanuc_model(start, shape, depth, retract, fanuc_words_z);
+LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract, Vec2 allowance) {
+    if (axis == LatheCycleAxis::z) return fanuc_model(start, shape, depth, retract, allowance, fanuc_words_z);
     // G72: G71 with Z and X swapped, as LinuxCNC's (and as the manual draws it).
-    LatheCycleModel out = fanuc_model(g7x_swapped(start), g7x_swapped_profile(shape), depth, retract, fanuc_words_x);
+    LatheCycleModel out =
+        fanuc_model(g7x_swapped(start), g7x_swapped_profile(shape), depth, retract, g7x_swapped(allowance), fanuc_words_x);
     g7x_swap_moves(out);
+    return out;
+}
+
+Profile fanuc_moved_shape(const Profile& shape, Vec2 allowance) {
+    Profile moved = shape;
+    moved.start = moved.start + allowance;
+    for (ProfileSegment& s : moved.segments) {
+        s.end = s.end + allowance;
+        if (s.centre) s.centre = *s.centre + allowance;
+    }
+    return moved;
+}
+
+LatheCycleModel fanuc_g70(LatheCycleAxis axis, Vec2 start, const Profile& shape) {
+    LatheCycleModel out;
+    if (shape.segments.empty()) {
+        out.refusal = "the finishing shape has no element";
+        return out;
+    }
+    const bool along_x = axis == LatheCycleAxis::z;  // G71's ns moves along X from A, G72's along Z
+    if (std::abs((along_x ? shape.start.x - start.x : shape.start.y - start.y)) > 1e-6) {
+        out.refusal = along_x ? "the finishing shape's first block is not along X from the start point (type I)"
+                              : "the finishing shape's first block is not along Z from the start point (type I)";
+        return out;
+    }
+    auto add = [&](LatheCycleMove::Kind kind, Vec2 end) { out.moves.push_back({kind, end, {}, ArcDirection::ccw}); };
+    add(LatheCycleMove::Kind::rapid, shape.start);
+    for (const ProfileSegment& s : shape.segments) {
+        if (s.centre) out.moves.push_back({LatheCycleMove::Kind::arc, s.end, *s.centre, s.direction});
+        else add(LatheCycleMove::Kind::feed, s.end);
+    }
+    add(LatheCycleMove::Kind::rapid, start);
     return out;
 }
 

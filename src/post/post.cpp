@@ -123,6 +123,19 @@ std::string_view Post::feed_word(double mm_per_min) {
     return feed_.format(f);
 }
 
+std::string Post::feed_text(double mm_per_min, double rpm) {
+    const double f = clamped_feed(mm_per_min);
+    if (feed_mode_ == FeedMode::per_revolution) {
+        if (!(rpm > 0)) fail("", "a feed per revolution while the spindle stands still");
+        if (feed_rev_fmt_.is_zero(f / rpm))
+            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", number_text(f / rpm), machine_.name));
+        return feed_rev_fmt_.word("F", f / rpm);
+    }
+    if (feed_fmt_.is_zero(f))
+        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", number_text(f), machine_.name));
+    return feed_fmt_.word("F", f);
+}
+
 void Post::on_thread_feed(const Vec3&, const ThreadFeed&) {
     fail("", fmt::format("machine {} cuts no threads: its dialect writes no move synchronised with the spindle", machine_.name));
 }
@@ -254,6 +267,7 @@ std::string what_it_does(const Event& e) {
                                 [](const ThreadCycle&) { return std::string("cut a thread in a cycle"); },
                                 [](const TurnCycle&) { return std::string("rough in a cycle"); },
                                 [](const GrooveCycle&) { return std::string("cut a groove in a cycle"); },
+                                [](const FinishCycle&) { return std::string("finish a profile"); },
                             },
                             e);
 }
@@ -597,6 +611,52 @@ void Post::handle_turn_cycle(const TurnCycle& c) {
     cycle_not_canned(c.path, c.output, spec != nullptr, "roughing", reason);
     // Longhand in the pattern of the machine's own cycle (as trace_expected traces it).
     for (const Event& e : turn_cycle_moves(c, machine_.rough_pattern())) handle(e);
+}
+
+std::optional<std::string> Post::finish_cycle_limit(const FinishCycle&) const {
+    return "camgen writes G70 only on the iso-lathe dialect";
+}
+
+void Post::on_finish_cycle(const FinishCycle& c) {
+    throw InputError(c.path + "/output", fmt::format("machine {}'s dialect cannot write G70", machine_.name));
+}
+
+void Post::handle_finish_cycle(const FinishCycle& c) {
+    // (It begins with rapids, which come from wherever the tool stands, as a turn-profile's do.)
+    const RoughCyclePattern pattern = machine_.rough_pattern();
+    const bool fanuc = pattern == RoughCyclePattern::fanuc_g71;
+    if (finish_cycle_g70(c, pattern)) {
+        const std::optional<std::string> limit = finish_cycle_limit(c);
+        if (!limit) {
+            // To A as the moves go (from the clearance), G70, then the way out from A.
+            const std::vector<Event> moves = finish_cycle_moves(c, pattern);
+            handle(moves.at(0));
+            handle(moves.at(1));
+            on_finish_cycle(c);
+            pos_ = Vec3{c.start.y, 0.0, c.start.x};
+            // The way out: the rapids after G70's own moves (its last is the rapid back to A).
+            const LatheCycleModel g70 =
+                fanuc_g70(c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z, c.start, finish_cycle_written_shape(c));
+            std::size_t skip = 2;
+            Vec3 at{c.start.y, 0.0, c.start.x};
+            for (const LatheCycleMove& m : g70.moves) {
+                const Vec3 to{m.end.y, 0.0, m.end.x};
+                if (to == at) continue;
+                at = to;
+                ++skip;
+            }
+            for (std::size_t k = skip; k < moves.size(); ++k) handle(moves[k]);
+            return;
+        }
+        cycle_not_canned(c.path, c.output, true, "finishing", fmt::format("G70 cannot finish it: {}", *limit));
+    } else {
+        const std::string reason = fanuc && c.refusal ? fmt::format("G70 cannot finish it: {}", *c.refusal)
+                                                      : fmt::format("machine {} has no Fanuc roughing cycle whose shape G70 finishes "
+                                                           "(roughingCycles of style fanuc-g71 or fanuc-g72)",
+                                                           machine_.name);
+        cycle_not_canned(c.path, c.output, fanuc, "finishing", reason);
+    }
+    for (const Event& e : finish_cycle_moves(c, pattern)) handle(e);
 }
 
 void Post::cycle_not_canned(const std::string& path, CycleOutput output, bool has_cycle, std::string_view what,
@@ -1112,6 +1172,7 @@ void Post::handle(const Event& event) {
                    [&](const ThreadCycle& c) { handle_thread_cycle(c); },
                    [&](const TurnCycle& c) { handle_turn_cycle(c); },
                    [&](const GrooveCycle& c) { handle_groove_cycle(c); },
+                   [&](const FinishCycle& c) { handle_finish_cycle(c); },
                },
                event);
 }

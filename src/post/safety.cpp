@@ -245,6 +245,9 @@ void SafetyCheck::emit(const Event& event) {
             [&](const TurnCycle& c) {
                 for (const Event& m : turn_cycle_moves(c)) emit(m);
             },
+            [&](const FinishCycle& c) {
+                for (const Event& m : finish_cycle_moves(c, RoughCyclePattern::linuxcnc_g71)) emit(m);
+            },
             [&](const GrooveCycle& c) {
                 for (const Event& m : groove_cycle_moves(c)) emit(m);
             },

@@ -201,6 +201,11 @@ void OperatorStops::emit(const Event& event) {
                              if (!c.moves.empty()) pos_ = turn_cycle_end(c, machine_.rough_pattern());
                              next_.emit(event);
                          },
+                         [&](const FinishCycle& c) {
+                             resume();
+                             pos_ = finish_cycle_end(c, machine_.rough_pattern());
+                             next_.emit(event);
+                         },
                          [&](const GrooveCycle& c) {
                              resume();
                              pos_ = groove_cycle_end(c);

@@ -15,7 +15,7 @@ int visit_event(const Event& e) {
                                 [](const Compensation&) { return 0; },   [](const DrillCycle&) { return 0; },
                                 [](const DrillPoint&) { return 0; },     [](const DrillEnd&) { return 0; },
                                 [](const Comment&) { return 0; },       [](const Stop&) { return 0; },
-                                [](const CustomBlock&) { return 0; },   [](const ThreadFeed&) { return 0; }, [](const ThreadCycle&) { return 0; }, [](const TurnCycle&) { return 0; }, [](const GrooveCycle&) { return 0; },
+                                [](const CustomBlock&) { return 0; },   [](const ThreadFeed&) { return 0; }, [](const ThreadCycle&) { return 0; }, [](const TurnCycle&) { return 0; }, [](const GrooveCycle&) { return 0; }, [](const FinishCycle&) { return 0; },
                             },
                             e);
 }

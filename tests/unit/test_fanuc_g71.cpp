@@ -216,7 +216,9 @@ TEST_CASE("fanuc-g71: the reader refuses what it does not model") {
     };
     const std::string shape = "N100 G0 X20.000\nN101 G1 Z-10.000\nN102 G1 X40.000 Z-12.000\n";
     CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.000 W0.000 F200\n" + shape) == "");
-    CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.400 W0.000 F200\n" + shape).find("U0 W0 only") != std::string::npos);
+    // U and W (the finishing allowance) are read (test_fanuc_g70.cpp); a negative one is not modelled.
+    CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.400 W0.000 F200\n" + shape) == "");
+    CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.000 W-0.100 F200\n" + shape).find("negative") != std::string::npos);
     CHECK(refusal("G71 P100 Q102 U0.000 W0.000 F200\n" + shape).find("without its first block") != std::string::npos);
     CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U0.000 W0.000 F200\nN100 G0 X20.000 Z1.000\nN101 G1 Z-10.000\nN102 G1 X40.000 Z-12.000\n")
               .find("along X only") != std::string::npos);

@@ -244,7 +244,9 @@ TEST_CASE("fanuc-g72: the reader refuses what it does not model") {
     };
     const std::string shape = "N100 G0 Z-12.000\nN101 G1 X30.000\nN102 G1 X20.000 Z-4.000\nN103 G1 X10.000 Z0.000\n";
     CHECK(refusal("G72 W1.400 R0.500\nG72 P100 Q103 U0.000 W0.000 F200\n" + shape) == "");
-    CHECK(refusal("G72 W1.400 R0.500\nG72 P100 Q103 U0.000 W0.200 F200\n" + shape).find("U0 W0 only") != std::string::npos);
+    // The allowance is read (the shape moved by it: test_fanuc_g70.cpp); a negative one is not modelled.
+    CHECK(refusal("G72 W1.400 R0.500\nG72 P100 Q103 U0.000 W0.200 F200\n" + shape) == "");
+    CHECK(refusal("G72 W1.400 R0.500\nG72 P100 Q103 U-0.400 W0.000 F200\n" + shape).find("negative") != std::string::npos);
     CHECK(refusal("G72 P100 Q103 U0.000 W0.000 F200\n" + shape).find("G72 P Q without its first block G72 W R") !=
           std::string::npos);
     // G71's first block does not set G72's.

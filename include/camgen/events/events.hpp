@@ -253,6 +253,22 @@ struct ThreadCycle {
 // verify see. `refusal`: why the control's cycle cannot make this roughing (then `moves` is
 // empty and the operation's own passes follow the event: a post notes the reason, or refuses
 // it under output "canned").
+// The turn-profile that finishes a roughing cycle's shape with Fanuc T's G70 (read_job links a
+// turn-profile to the turn-rough right before it, of the same profile, where the cycle roughs the
+// finishing pass's tip path moved by the allowances: docs/reference.md). Under Fanuc's pattern the
+// cycle's shape is then `shape` and its second block's U/W the allowance; elsewhere nothing changes.
+struct CycleFinish {
+    std::string path;                   // the turn-profile's JSON path
+    Profile shape;                      // the finishing pass's tip path (Z, radius)
+    Vec2 allowance;                     // (Z, radius): the cycle's boundary less `shape` (Fanuc's W, U/2)
+    double feed = 0.0;                  // the finishing feed, mm/min: written in the shape, where G70 takes it
+    double rpm = 0.0;                   // the finishing tool's speed (a feed per revolution is feed / rpm)
+    friend bool operator==(const CycleFinish& a, const CycleFinish& b) {
+        return a.path == b.path && a.shape.plane == b.shape.plane && a.shape.start == b.shape.start &&
+               a.shape.segments == b.shape.segments && a.allowance == b.allowance && a.feed == b.feed && a.rpm == b.rpm;
+    }
+};
+
 struct TurnCycle {
     std::string path;                   // JSON path of the operation, for messages
     CycleOutput output = CycleOutput::automatic;
@@ -275,6 +291,7 @@ struct TurnCycle {
     double lift = 0.0;
     double out_x = 0.0;
     double out_z = 0.0;
+    std::optional<CycleFinish> finish;  // a turn-profile finishes its shape with G70 (Fanuc's pattern)
     friend bool operator==(const TurnCycle& a, const TurnCycle& b) {
         auto same_profile = [](const Profile& x, const Profile& y) {
             return x.plane == y.plane && x.start == y.start && x.segments == y.segments;
@@ -282,7 +299,33 @@ struct TurnCycle {
         return a.path == b.path && a.output == b.output && a.start == b.start && same_profile(a.profile, b.profile) &&
                a.depth == b.depth && a.retract == b.retract && a.feed == b.feed && a.moves == b.moves &&
                a.refusal == b.refusal && a.along_x == b.along_x && a.lift == b.lift && a.out_x == b.out_x &&
-               a.out_z == b.out_z;
+               a.out_z == b.out_z && a.finish == b.finish;
+    }
+};
+
+// A turn-profile that finishes the shape of the Fanuc roughing cycle before it (CycleFinish) with
+// G70 P Q: under Fanuc's pattern (finish_cycle_moves) from the clearance to the cycle's start
+// point A, G70's moves (fanuc_g70: a rapid to A', the shape at `feed`, a rapid back to A) and out
+// at rapid to radius out_x at A's Z, then to the clearance; in any other pattern, or where
+// `refusal` says why G70 is not used, the turn-profile's own moves (`plain`).
+using PlainMove = std::variant<Rapid, Linear, Arc, Compensation>;
+struct FinishCycle {
+    std::string path;                   // the turn-profile's JSON path
+    CycleOutput output = CycleOutput::automatic;
+    std::string rough_path;             // the turn-rough whose cycle's shape it runs
+    bool along_x = false;               // the cycle is G72 (passes along X)
+    Vec2 start;                         // the cycle's start point A (Z, radius)
+    Profile shape;                      // the finishing pass's tip path (Z, radius)
+    double feed = 0.0;                  // mm/min
+    double clearance = 0.0;             // Z the tool comes from and leaves to
+    double out_x = 0.0;                 // radius of the way out (retractX)
+    std::vector<PlainMove> plain;       // the turn-profile's own moves
+    std::optional<std::string> refusal; // why G70 does not finish it (then `plain` on every machine)
+    friend bool operator==(const FinishCycle& a, const FinishCycle& b) {
+        return a.path == b.path && a.output == b.output && a.rough_path == b.rough_path && a.along_x == b.along_x &&
+               a.start == b.start && a.shape.start == b.shape.start && a.shape.segments == b.shape.segments &&
+               a.feed == b.feed && a.clearance == b.clearance && a.out_x == b.out_x && a.plain == b.plain &&
+               a.refusal == b.refusal;
     }
 };
 
@@ -347,7 +390,7 @@ struct GrooveCycle {
 
 using Event = std::variant<OperationStart, OperationEnd, ToolChange, Spindle, Coolant, Rapid, Linear, Arc,
                            Dwell, Compensation, DrillCycle, DrillPoint, DrillEnd, Comment, Stop, CustomBlock,
-                           ThreadFeed, ThreadCycle, TurnCycle, GrooveCycle>;
+                           ThreadFeed, ThreadCycle, TurnCycle, GrooveCycle, FinishCycle>;
 
 // How a roughing cycle moves: LinuxCNC's G71/G72 (the event's `moves`), or Fanuc T's type I
 // G71/G72 (fanuc_g7x in lathe_cycle.hpp from the start point A: the event's start moved out by
@@ -366,6 +409,17 @@ Vec3 turn_cycle_end(const TurnCycle& cycle, RoughCyclePattern pattern);
 // The way out after the control's moves (lift, out_x, out_z), in the pattern: written longhand
 // after a canned cycle too.
 std::vector<Event> turn_cycle_exit(const TurnCycle& cycle, RoughCyclePattern pattern);
+// A finishing cycle's moves in the machine's roughing pattern (FinishCycle), from the clearance; and
+// where they end.
+std::vector<Event> finish_cycle_moves(const FinishCycle& cycle, RoughCyclePattern pattern);
+Vec3 finish_cycle_end(const FinishCycle& cycle, RoughCyclePattern pattern);
+// Whether G70 finishes it in this pattern (Fanuc's, no refusal).
+inline bool finish_cycle_g70(const FinishCycle& cycle, RoughCyclePattern pattern) {
+    return pattern == RoughCyclePattern::fanuc_g71 && !cycle.refusal;
+}
+// The cycle's shape under Fanuc's pattern written for G70 from A (fanuc_g7x_shape of the
+// finishing shape), and the control's G70 moves on it.
+Profile finish_cycle_written_shape(const FinishCycle& cycle);
 // Fanuc's start point A for a roughing cycle (Z, radius): the event's start moved out by depth
 // (along X: moved by depth towards +Z).
 Vec2 fanuc_g71_start(const TurnCycle& cycle);

@@ -84,7 +84,12 @@ inline LatheCycleModel linuxcnc_g72(Vec2 start, const Profile& profile, double d
 // shape runs towards -X and its Z never falls; levels Z = A - depth, A - 2 depth, ... while
 // beyond A'; each pass feeds along -X from A's X, escapes by `retract` at 45 degrees (+X, +Z)
 // and rapids along +X back to A's X; then the pass along the shape and a rapid back to A.
-LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract);
+// `allowance` (Z, radius), both >= 0: the second block's W and U/2 (G71 and G72 alike: U a
+// diameter along X, W along Z). The control roughs to the shape moved by it, the whole shape
+// with A' (so the last pass starts W beyond A in Z under G71, U/2 beyond A in X under G72, in
+// air: camgen's reading, docs/reference.md), and leaves that much for G70.
+LatheCycleModel fanuc_g7x(LatheCycleAxis axis, Vec2 start, const Profile& shape, double depth, double retract,
+                          Vec2 allowance = {0.0, 0.0});
 
 inline LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth, double retract) {
     return fanuc_g7x(LatheCycleAxis::z, start, shape, depth, retract);
@@ -92,6 +97,16 @@ inline LatheCycleModel fanuc_g71(Vec2 start, const Profile& shape, double depth,
 inline LatheCycleModel fanuc_g72(Vec2 start, const Profile& shape, double depth, double retract) {
     return fanuc_g7x(LatheCycleAxis::x, start, shape, depth, retract);
 }
+
+// A finishing shape moved by an allowance (Z, radius): every point, A' with them.
+Profile fanuc_moved_shape(const Profile& shape, Vec2 allowance);
+
+// Fanuc T's G70 P(ns) Q(nf) from the start point A = start (Z, radius) on the finishing shape
+// ns..nf as written (from A': block ns along X from A for a G71 shape, axis z; along Z for a
+// G72 shape, axis x): a rapid to A' (block ns is G0), the shape at the finishing feed (the F
+// of blocks ns..nf), a rapid straight back to A, where the control ends. Refused: block ns
+// not along its axis from A.
+LatheCycleModel fanuc_g70(LatheCycleAxis axis, Vec2 start, const Profile& shape);
 
 // The finishing shape camgen writes for Fanuc's G71 (axis z) from the start point A (Z, radius)
 // on a profile (Z, radius) that starts below and before A: A' = (A's Z, the profile's start

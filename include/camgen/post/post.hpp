@@ -166,6 +166,11 @@ protected:
     // every field (the control's own arithmetic on the rounded words), or nullopt. The base: the
     // dialect writes no grooving cycle.
     virtual std::optional<std::string> groove_cycle_limit(const GrooveCycle& cycle, const GroovingCycleSpec& spec) const;
+    // Why G70 cannot finish `cycle` here (the turn-rough before it was not written as the linked
+    // cycle), or nullopt: then on_finish_cycle writes it from A, where the tool stands, and the
+    // control ends at A. The base: the dialect writes no G70.
+    virtual std::optional<std::string> finish_cycle_limit(const FinishCycle& cycle) const;
+    virtual void on_finish_cycle(const FinishCycle& cycle);
     // Why this machine cannot tap (a cycle of tapping kind `kind`) at all, whatever its tapping
     // mode says (nccad: the spindle cannot reverse), or nullopt. Said after "machine M cannot
     // tap: ". Asked through cycle_capability.
@@ -288,6 +293,9 @@ protected:
     void assume_plane(double code) { plane_.set_last(code); }
     // The feed is unknown: the next F word is written.
     void forget_feed() { feed_.reset(); }
+    // The F word of a feed (mm/min) at spindle speed `rpm` in the feed mode now, clamped as
+    // feed_word, not modal (Fanuc's finishing feed in a G71 shape, for G70).
+    std::string feed_text(double mm_per_min, double rpm);
 
 private:
     const Machine& machine_;
@@ -348,6 +356,11 @@ private:
     // A grooving cycle: canned where the machine's cycle carries it (groove_cycle_limit), else
     // its moves longhand with a note (output "auto") or refused (output "canned").
     void handle_groove_cycle(const GrooveCycle& cycle);
+    // A finishing pass after a linked Fanuc roughing cycle: under the machine's Fanuc pattern the
+    // way to A, G70 (canned where finish_cycle_limit allows, else longhand in G70's pattern with a
+    // note, or refused under "canned") and the way out; elsewhere, or refused by read_job, the
+    // turn-profile's own moves (refused under "canned", a note where the machine has Fanuc's cycle).
+    void handle_finish_cycle(const FinishCycle& cycle);
     // A lathe cycle (threading, roughing, grooving) not written canned, `reason` why: refused at
     // its `/output` under "canned", else a note, where the machine has such a cycle, that its
     // `what` ("thread", "roughing", "groove") is written longhand.

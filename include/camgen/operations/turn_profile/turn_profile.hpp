@@ -88,6 +88,19 @@ struct TurnProfileOp {
     Profile control_path;
     Vec2 control_exit;
     double nose_low = 0.0;        // the nose's least radius less the programmed point's, mm (<= 0)
+    double rpm = 0.0;             // the tool's speed, rev/min
+    // "auto": Fanuc's G70 after the turn-rough right before it of the same profile, where exact
+    // (link_fanuc_finishing); "canned": that or an error; "longhand": its own moves.
+    CycleOutput output = CycleOutput::automatic;
+    // The turn-rough right before it of the same profile (set by read_job): expand emits a
+    // FinishCycle (G70 where the machine's pattern is Fanuc's and `refusal` is empty).
+    struct FinishLink {
+        std::string rough_path;
+        bool along_x = false;
+        Vec2 start;                          // the rough's cycle's start point A (Z, radius)
+        std::optional<std::string> refusal;  // why G70 does not finish it
+    };
+    std::optional<FinishLink> g70;
     std::vector<std::string> notes;  // what camgen decided that the job did not ask for
 };
 

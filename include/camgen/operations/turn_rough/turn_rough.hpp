@@ -89,6 +89,10 @@ struct TurnRoughOp {
     // level wholly in air is left out.
     LatheMaterial material;
     std::vector<std::string> notes;
+    // The turn-profile right after it that finishes its cycle's shape with Fanuc's G70 (set by
+    // read_job where that is exact, link_fanuc_finishing): its cycle (TurnCycle::finish) then
+    // carries the finishing shape and the allowances.
+    std::optional<CycleFinish> finish;
 
     // Whether the operations before it left the whole bar over the boundary's length up to the
     // bar's face (material empty, or only the face moved): a roughing cycle, which roughs from
