@@ -178,7 +178,7 @@ void link_fanuc_finishing(Job& job, const JobInput& in) {
                                *differ + "): " + tools();
             } else {
                 const Vec2 tip_offset = lathe_tip_offset(f->orientation > 0 ? f->orientation : 2, f->nose_radius);
-                        if (auto air = fanuc_g70_air(f->profile, link.start, written, f->nose_radius, tip_offset))
+                if (auto air = fanuc_g70_air(f->profile, link.start, written, f->nose_radius, tip_offset))
                     link.refusal = *air;
             }
         }
