@@ -458,8 +458,9 @@ void IsoLathePost::write_fanuc_g71(const TurnCycle& c, const RoughingCycleSpec& 
     const FanucG71Words w = fanuc_g71_words(c);
     // Up to A (the event's start is A's Z, one depth of cut lower; along X: A's X, one depth of
     // cut towards -Z), then the two blocks, then the finishing shape ns..nf, which the control
-    // skips after the cycle. No G70: camgen's finishing is a turn-profile of its own, and U0 W0
-    // leave nothing for G70 to take.
+    // skips after the cycle. With U0 W0 the shape is the rough's own boundary; where a turn-profile
+    // is linked to it (link_fanuc_finishing), the finishing pass's tip path with U W, finished by
+    // G70 (on_finish_cycle).
     writer().add(g(0)).add(w.a_word).end();
     writer().add(spec.name).add(w.u).add(w.r).end();
     const nc::BlockStyle& style = writer().style();

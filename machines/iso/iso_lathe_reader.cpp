@@ -270,6 +270,11 @@ void IsoLatheReader::profile_block(const Block& b, Profile& profile, bool& start
     const bool arc = motion_code == code(2) || motion_code == code(3);
     if (!arc && (i || k)) fail(fmt::format("I/K on a straight move in {}", where));
     if (!started) {
+        // Fanuc's type I infeeds in the mode of block ns, G0 or G1; camgen's model rapids them.
+        if (first_only && motion_code != code(0))
+            fail(fmt::format("{}: its first block (ns) is not G0 (camgen models G71 and G72 with rapid infeeds; a G1 ns "
+                             "makes the control feed each one)",
+                             where));
         if (first_only == 'X') {
             // Type I: block ns moves along X only, from the start point.
             if (!x || z || arc) fail(fmt::format("{}: its first block (ns) moves along X only (G0 or G1 X, type I)", where));
@@ -411,7 +416,10 @@ void IsoLatheReader::fanuc_shape_line(std::string_view text) {
             ++it;
             continue;
         }
-        if (!s.feed) s.feed = *it;
+        // G70 feeds each block at the F in force there; camgen models the shape at one feed.
+        if (s.feed) fail(fmt::format("{}: a second F in {}'s finishing shape N{}..N{} (camgen reads one feed for G70's pass)",
+                                     it->text, s.name, s.ns, s.nf));
+        s.feed = *it;
         it = shape_block.words.erase(it);
     }
     if (!shape_block.words.empty())
@@ -425,6 +433,10 @@ void IsoLatheReader::fanuc_shape_line(std::string_view text) {
     const LatheCycleModel model = camgen::fanuc_g7x(done.axis, done.start, done.shape, done.depth, done.retract, done.allowance);
     if (model.refusal) fail(done.name + ": " + *model.refusal);
     cycle_moves(model.moves);
+    // Which of two shapes numbered alike a G70 P would find is not in the sources: refused.
+    if (fanuc_shapes_.count(done.ns))
+        fail(fmt::format("{} P{}: a finishing shape N{} was read before (G70 P{} would not name one shape)", done.name, done.ns,
+                         done.ns, done.ns));
     fanuc_shapes_[done.ns] = done;
 }
 

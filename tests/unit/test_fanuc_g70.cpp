@@ -347,6 +347,14 @@ TEST_CASE("fanuc-g70: the reader reads G71 U W and G70 P Q, and refuses what the
     CHECK(refusal(cycle + shape + "G70 P100\n").find("without P(ns) and Q(nf)") != std::string::npos);
     CHECK(refusal(cycle + shape + "G70 P100 Q102 U0.2\n").find("G70 P(ns) Q(nf) only") != std::string::npos);
     CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U-0.400 W0.000 F200\n" + shape).find("negative") != std::string::npos);
+    // A second F in the shape (G70 would change feed within it), a G1 ns (the control would feed
+    // each infeed), a second shape numbered as the first (which one G70 P finds is not known).
+    CHECK(refusal(cycle + "N100 G0 X20.000\nN101 G1 Z-10.000 F90\nN102 G1 X40.000 Z-12.000 F10\n")
+              .find("a second F in G71's finishing shape") != std::string::npos);
+    CHECK(refusal(cycle + "N100 G1 X20.000\nN101 G1 Z-10.000 F90\nN102 G1 X40.000 Z-12.000\n").find("is not G0") !=
+          std::string::npos);
+    CHECK(refusal(cycle + shape + "G0 X44.000 Z2.000\n" + cycle + shape).find("a finishing shape N100 was read before") !=
+          std::string::npos);
     // The moves: G71 roughs to the shape moved by (W, U/2); G70 runs the shape at its F from A and back.
     const Trace t = trace_program(read(cycle + shape + "G70 P100 Q102\n"), fanuc);
     double lowest_g71_feed = 1e9;
@@ -393,6 +401,48 @@ TEST_CASE("fanuc-g70: G70's rapids are checked against the finished part, nose a
     CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.0, zero));
     CHECK_FALSE(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.4, lathe_tip_offset(2, 0.4)));
     CHECK(fanuc_g70_air(p, Vec2{1.0, 15.5}, shape_from(Vec2{1.0, 15.5}), 0.4, lathe_tip_offset(3, 0.4)));
+}
+
+}  // namespace test_fanuc_g70
+
+namespace test_fanuc_g70 {
+
+using namespace camgen;
+
+TEST_CASE("fanuc-g70: after G70 the next feed is written again, per minute and per revolution") {
+    // G70 leaves the shape's F in force; a rough after it at the first rough's feed must say its F
+    // (a review found the per-revolution feed remembered across G70: the second G71 was written
+    // without F and would have roughed at the finishing feed).
+    const Machine fanuc = load_machine("fanuc-lathe");
+    for (const std::string mode : {"per-revolution", "per-minute"}) {
+        const bool rev = mode == "per-revolution";
+        const std::string rough_feed = rev ? "0.25" : "250", finish_feed = rev ? "0.1" : "100";
+        const std::string profile =
+            R"("start": [24, 0], "path": [{"line": [28, 0]}, {"line": [30, -1]}, {"line": [30, -20]}, {"line": [40, -20]}, {"line": [40, -40]}])";
+        const std::string text = fmt::format(
+            R"({{"name": "g70feed", "units": "mm", "clearance": 20,
+ "stock": {{"bar": {{"diameter": 44, "length": 70, "faceZ": 0}}}},
+ "tools": [{{"number": 3, "type": "turning-tool", "noseRadius": 0.4, "orientation": 2, "rpm": 1500}},
+           {{"number": 4, "type": "turning-tool", "noseRadius": 0.8, "orientation": 2, "rpm": 1000}}],
+ "operations": [
+  {{"type": "turn-rough", "tool": 4, "feedMode": "{0}", "feed": {1}, "depthOfCut": 1.5, "allowanceX": 0.4, "allowanceZ": 0.1,
+    "compensation": "none", {3}}},
+  {{"type": "turn-profile", "tool": 3, "feedMode": "{0}", "feed": {2}, "compensation": "none", "retractX": 44, {3}}},
+  {{"type": "turn-rough", "tool": 4, "feedMode": "{0}", "feed": {1}, "depthOfCut": 1.5, "allowanceX": 0.2, "allowanceZ": 0.05,
+    "compensation": "none", "output": "canned", "start": [20, 0], "path": [{{"line": [24, -2]}}, {{"line": [24, -10]}}, {{"line": [28, -10]}}]}}]}})",
+            mode, rough_feed, finish_feed, profile);
+        CAPTURE(mode);
+        const Job j = read_job(text, "g70feed.json");
+        const std::string program = test::post_noted(j, fanuc).text;
+        const std::size_t g70 = program.find("G70 P");
+        REQUIRE(g70 != std::string::npos);
+        // The second G71's second block carries its F again.
+        const std::size_t second = program.find("G71 P", g70);
+        REQUIRE(second != std::string::npos);
+        const std::string block = program.substr(second, program.find('\n', second) - second);
+        CHECK(block.find(rev ? "F0.2500" : "F250") != std::string::npos);
+        CHECK_FALSE(g70_found_by_verify(j, fanuc, program));
+    }
 }
 
 }  // namespace test_fanuc_g70

@@ -291,8 +291,11 @@ protected:
     void forget_motion() { motion_.reset(); }
     // The control is in plane `code` (17, 18, 19): the program start selected it.
     void assume_plane(double code) { plane_.set_last(code); }
-    // The feed is unknown: the next F word is written.
-    void forget_feed() { feed_.reset(); }
+    // The feed is unknown: the next F word is written, per minute or per revolution.
+    void forget_feed() {
+        feed_.reset();
+        feed_rev_.reset();
+    }
     // The F word of a feed (mm/min) at spindle speed `rpm` in the feed mode now, clamped as
     // feed_word, not modal (Fanuc's finishing feed in a G71 shape, for G70).
     std::string feed_text(double mm_per_min, double rpm);
