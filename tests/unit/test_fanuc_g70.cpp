@@ -24,6 +24,7 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
+#include "lathe_profiles.hpp"
 
 namespace test_fanuc_g70 {
 
@@ -43,66 +44,6 @@ std::string g70_job(const std::string& path, double start_x, double doc, double 
                  {{"type": "turn-profile", "tool": 2, "feed": 90, "start": [{}, 0], "path": {}, "retractX": 44{}}}]}})",
                        nose_rough > 0 ? fmt::format(R"("noseRadius": {}, )", nose_rough) : std::string(),
                        nose_finish > 0 ? fmt::format(R"("noseRadius": {}, )", nose_finish) : std::string(), doc, allowance_z, start_x, path, rough_extra, start_x, path, finish_extra);
-}
-
-// A profile of lines that never fall in radius nor rise in Z, with faces, tapers and 90-degree
-// fillets, from diameter d0 at Z0 towards the chuck (test_fanuc_g71's).
-std::string g70_profile(std::mt19937& rng, double& d0) {
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    double d = 8 + std::round(u(rng) * 80) / 10, z = 0;
-    d0 = d;
-    std::string out = "[";
-    const int n = 2 + static_cast<int>(u(rng) * 5);
-    for (int k = 0; k < n && d < 36; ++k) {
-        const double len = 1 + std::round(u(rng) * 60) / 10;
-        out += fmt::format(R"({{"line": [{}, {}]}}, )", d, z - len);
-        z -= len;
-        const double rise = 0.5 + std::round(u(rng) * 40) / 10;
-        if (d + rise > 37) break;
-        const int kind = rise >= 4 ? static_cast<int>(u(rng) * 3) : static_cast<int>(u(rng) * 2);
-        if (kind == 0) {
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise, z);
-        } else if (kind == 1) {
-            const double dz = std::round(u(rng) * 30) / 10 + 0.5;
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise, z - dz);
-            z -= dz;
-        } else {
-            const double rr = rise / 4;
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise / 2, z);
-            out += fmt::format(R"({{"arc": {{"end": [{}, {}], "centre": [{}, {}], "direction": "ccw"}}}}, )", d + rise, z - rr,
-                               d + rise / 2, z - rr);
-            z -= rr;
-        }
-        d = std::round((d + rise) * 10) / 10;
-    }
-    out += fmt::format(R"({{"line": [{}, {}]}}])", d, z - 3);
-    return out;
-}
-
-// The radius of a (Z, radius) profile that never rises in Z at z (on a face its highest where
-// `highest`, the material under it, else its lowest: where a pass may end), -1 outside its Z range.
-double g70_radius_at(const Profile& p, double z, bool highest) {
-    double best = -1;
-    Vec2 a = p.start;
-    for (const ProfileSegment& s : p.segments) {
-        const Vec2 b = s.end;
-        const double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
-        if (z >= lo - 1e-9 && z <= hi + 1e-9) {
-            double r;
-            if (!s.centre) {
-                r = std::abs(b.x - a.x) < 1e-12 ? std::max(a.y, b.y) : a.y + (z - a.x) / (b.x - a.x) * (b.y - a.y);
-            } else {
-                const double rr = distance(a, *s.centre), dz = z - s.centre->x;
-                const double h = std::sqrt(std::max(0.0, rr * rr - dz * dz));
-                const double r1 = s.centre->y + h, r2 = s.centre->y - h;
-                r = std::abs(r1 - (a.y + b.y) / 2) < std::abs(r2 - (a.y + b.y) / 2) ? r1 : r2;
-                r = std::clamp(r, std::min(a.y, b.y), std::max(a.y, b.y));
-            }
-            best = best < 0 ? r : (highest ? std::max(best, r) : std::min(best, r));
-        }
-        a = b;
-    }
-    return best;
 }
 
 bool g70_found_by_verify(const Job& j, const Machine& m, const std::string& text) {
@@ -137,7 +78,7 @@ TEST_CASE("fanuc-g70: generated profiles roughed and finished: G70 where exact, 
     int with_g70 = 0, noses = 0, refused_other = 0, unreachable = 0, checked = 0, nose_notes = 0;
     for (int n = 0; n < 45; ++n) {
         double d0 = 0;
-        const std::string path = g70_profile(rng, d0);
+        const std::string path = test::stepped_shaft_profile(rng, d0);
         const double doc = n % 3 == 0 ? 1.5 : (n % 3 == 1 ? 1.0 : 2.2);
         // Sharp tips (or compensation none on both): the shapes are one; noses of 0.4 on both
         // with computer compensation: they are not (the rough's runs round the end onto the face).
@@ -213,7 +154,7 @@ TEST_CASE("fanuc-g70: generated profiles roughed and finished: G70 where exact, 
             if (mv.kind == LatheCycleMove::Kind::feed)
                 for (int s = 0; s <= 20; ++s) {
                     const Vec2 q = at + (mv.end - at) * (s / 20.0);
-                    const double below = g70_radius_at(rough.tip_boundary, q.x, false);
+                    const double below = test::stepped_profile_radius_at(rough.tip_boundary, q.x, false);
                     if (below >= 0)
                         CHECK_MESSAGE(q.y >= below - 1e-6, "a feed below the boundary at Z " << q.x << " radius " << q.y
                                                                                               << " (boundary " << below << ")");
@@ -240,7 +181,7 @@ TEST_CASE("fanuc-g70: generated profiles roughed and finished: G70 where exact, 
             if (const auto* r = std::get_if<Rapid>(&e); r && have_from) {
                 for (int s = 0; s <= 40; ++s) {
                     const Vec2 q = from + (zx(r->to) - from) * (s / 40.0);  // (Z, radius)
-                    const double kept = g70_radius_at(finish.profile, q.x, true);
+                    const double kept = test::stepped_profile_radius_at(finish.profile, q.x, true);
                     if (kept >= 0) CHECK_MESSAGE(q.y >= kept - 1e-6, "a rapid into the finished part at Z " << q.x);
                     // (the turn-face faced the bar to Z0)
                     CHECK_MESSAGE((q.x >= -1e-9 || q.y >= 20 - 1e-9 || kept >= 0), "a rapid into the bar at Z " << q.x);

@@ -21,6 +21,7 @@
 #include "camgen/post/machine.hpp"
 #include "camgen/reader/reader.hpp"
 #include "support.hpp"
+#include "lathe_profiles.hpp"
 
 namespace test_fanuc_g71 {
 
@@ -39,66 +40,6 @@ std::string fg_job(const std::string& path, double start_x, double doc, const st
 
 test::Posted fg_posted(const Job& j, const Machine& m) { return test::post_noted(j, m); }
 
-// A profile of lines that never fall in radius nor rise in Z, with faces, tapers and 90-degree
-// fillets (G3 quarter arcs), from diameter d0 at Z0 towards the chuck: as JSON.
-std::string fg_profile(std::mt19937& rng, double& d0) {
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    double d = 8 + std::round(u(rng) * 80) / 10, z = 0;
-    d0 = d;
-    std::string out = "[";
-    const int n = 2 + static_cast<int>(u(rng) * 5);
-    for (int k = 0; k < n && d < 36; ++k) {
-        const double len = 1 + std::round(u(rng) * 60) / 10;
-        out += fmt::format(R"({{"line": [{}, {}]}}, )", d, z - len);
-        z -= len;
-        const double rise = 0.5 + std::round(u(rng) * 40) / 10;
-        if (d + rise > 37) break;
-        const int kind = rise >= 4 ? static_cast<int>(u(rng) * 3) : static_cast<int>(u(rng) * 2);
-        if (kind == 0) {
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise, z);
-        } else if (kind == 1) {
-            const double dz = std::round(u(rng) * 30) / 10 + 0.5;
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise, z - dz);
-            z -= dz;
-        } else {
-            // A face up, then a 90-degree fillet of radius rr (radial) into the next diameter.
-            const double rr = rise / 4;
-            out += fmt::format(R"({{"line": [{}, {}]}}, )", d + rise / 2, z);
-            out += fmt::format(R"({{"arc": {{"end": [{}, {}], "centre": [{}, {}], "direction": "ccw"}}}}, )", d + rise, z - rr,
-                               d + rise / 2, z - rr);
-            z -= rr;
-        }
-        d = std::round((d + rise) * 10) / 10;
-    }
-    out += fmt::format(R"({{"line": [{}, {}]}}])", d, z - 3);
-    return out;
-}
-
-// The radius of a (Z, radius) profile that never rises in Z at z (its lowest on a face).
-double fg_radius_at(const Profile& p, double z) {
-    double best = -1;
-    Vec2 a = p.start;
-    for (const ProfileSegment& s : p.segments) {
-        const Vec2 b = s.end;
-        const double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
-        if (z >= lo - 1e-9 && z <= hi + 1e-9) {
-            double r;
-            if (!s.centre) {
-                r = std::abs(b.x - a.x) < 1e-12 ? std::max(a.y, b.y) : a.y + (z - a.x) / (b.x - a.x) * (b.y - a.y);
-            } else {
-                const double rr = distance(a, *s.centre), dz = z - s.centre->x;
-                const double h = std::sqrt(std::max(0.0, rr * rr - dz * dz));
-                const double r1 = s.centre->y + h, r2 = s.centre->y - h;
-                r = std::abs(r1 - (a.y + b.y) / 2) < std::abs(r2 - (a.y + b.y) / 2) ? r1 : r2;
-                r = std::clamp(r, std::min(a.y, b.y), std::max(a.y, b.y));
-            }
-            best = best < 0 ? r : std::min(best, r);
-        }
-        a = b;
-    }
-    return best;
-}
-
 }  // namespace
 
 TEST_CASE("fanuc-g71: generated profiles: canned where the model takes them, read back as the job's moves") {
@@ -110,7 +51,7 @@ TEST_CASE("fanuc-g71: generated profiles: canned where the model takes them, rea
     int canned = 0, longhand = 0, checked_moves = 0, unreachable = 0;
     for (int n = 0; n < 60; ++n) {
         double d0 = 0;
-        const std::string path = fg_profile(rng, d0);
+        const std::string path = test::stepped_shaft_profile(rng, d0);
         const double doc = (n % 3 == 0) ? 1.5 : (n % 3 == 1 ? 1.0 : 2.2);
         CAPTURE(path);
         CAPTURE(doc);
@@ -182,7 +123,7 @@ TEST_CASE("fanuc-g71: generated profiles: canned where the model takes them, rea
             for (int s = 0; s <= 20; ++s) {
                 const Vec2 q = at + (m.end - at) * (s / 20.0);
                 if (m.kind == LatheCycleMove::Kind::arc) break;  // on the boundary: its ends are checked
-                const double below = fg_radius_at(b, q.x);
+                const double below = test::stepped_profile_radius_at(b, q.x, false);
                 if (below >= 0 && (k <= contour || last)) CHECK_MESSAGE(q.y >= below - 1e-6, "move " << k << " below the boundary at Z " << q.x);
                 if (m.kind != LatheCycleMove::Kind::rapid || q.x >= face - 1e-9 || q.y >= stock - 1e-9) continue;
                 bool cleared = last;  // the return to A: after the pass along the boundary, above it
