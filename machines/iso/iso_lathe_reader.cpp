@@ -443,6 +443,14 @@ void IsoLatheReader::fanuc_shape_line(std::string_view text) {
 void IsoLatheReader::fanuc_g70(BlockWords& w) {
     // G70 P(ns) Q(nf): from where the tool stands (A), the finishing shape read after a G71/G72
     // before it (block ns along X, for G72 along Z, from A) at the F of its blocks, back to A.
+    // (A block of coordinates without a motion code after it comes here too: camgen reads the
+    // cycles as modal motion, where Fanuc's G70 is one-shot, back to the motion mode before it.)
+    if (!w.has('P') && !w.has('Q'))
+        for (char letter : {'X', 'Y', 'Z', 'U', 'W'})
+            if (const Word* x = w.find(letter))
+                fail(fmt::format("{} without a motion code after G70: G70 is one-shot; camgen reads a block after it only "
+                                 "with G0 or G1 written",
+                                 x->text));
     for (char letter : {'X', 'Y', 'Z', 'I', 'J', 'K', 'D', 'H', 'U', 'W', 'R', 'F'})
         if (const Word* x = w.find(letter)) fail(fmt::format("{} on G70: camgen reads G70 P(ns) Q(nf) only", x->text));
     const Word* p = w.take('P');

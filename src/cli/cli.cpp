@@ -341,7 +341,7 @@ void write_program(const Job& job, const Options& o, const Machine* loaded, std:
     po.program_number = job.program_number;
     // Every event is checked before the post sees it, and the post writes into a buffer: an
     // unsafe job, or a cycle a post refuses half-way, writes nothing.
-    SafetyLimits limits{job.clearance, {}, machine.longhand(), machine.kind};
+    SafetyLimits limits{job.clearance, {}, machine.longhand(), machine.kind, machine.rough_pattern()};
     for (const auto& [number, tool] : job.tools)
         if (tool.flute_length) limits.flute_lengths[number] = *tool.flute_length;
     std::optional<BlockBuffer> blocks;

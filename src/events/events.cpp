@@ -270,11 +270,8 @@ std::vector<Event> finish_cycle_moves(const FinishCycle& c, RoughCyclePattern pa
     const LatheCycleAxis axis = c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z;
     const LatheCycleModel g70 = fanuc_g70(axis, c.start, finish_cycle_written_shape(c));
     if (g70.refusal) throw std::logic_error("finish cycle: " + *g70.refusal);
-    // From the clearance along Z at A's radius to A (the roughing tool's way in and out).
-    const Vec3 a{c.start.y, 0.0, c.start.x};
-    out.emplace_back(Rapid{Vec3{a.x, 0.0, c.clearance}});
-    out.emplace_back(Rapid{a});
-    Vec3 at = a;
+    out = finish_cycle_entry(c);
+    Vec3 at{c.start.y, 0.0, c.start.x};
     bool first_feed = true;
     for (const LatheCycleMove& m : g70.moves) {
         const Vec3 to{m.end.y, 0.0, m.end.x};
@@ -294,16 +291,29 @@ std::vector<Event> finish_cycle_moves(const FinishCycle& c, RoughCyclePattern pa
                 break;
         }
     }
+    for (Event& e : finish_cycle_exit(c)) out.push_back(std::move(e));
+    return out;
+}
+
+std::vector<Event> finish_cycle_entry(const FinishCycle& c) {
+    // From the clearance along Z at A's radius to A (the roughing tool's way in and out).
+    const Vec3 a{c.start.y, 0.0, c.start.x};
+    return {Rapid{Vec3{a.x, 0.0, c.clearance}}, Rapid{a}};
+}
+
+std::vector<Event> finish_cycle_exit(const FinishCycle& c) {
     // Out of the bar at rapid from A (in air beyond the part), then to the clearance.
+    const Vec3 a{c.start.y, 0.0, c.start.x};
     const double r = std::max(c.out_x, a.x);
+    std::vector<Event> out;
     if (r != a.x) out.emplace_back(Rapid{Vec3{r, 0.0, a.z}});
     out.emplace_back(Rapid{Vec3{r, 0.0, c.clearance}});
     return out;
 }
 
 Vec3 finish_cycle_end(const FinishCycle& c, RoughCyclePattern pattern) {
-    const std::vector<Event> moves = finish_cycle_moves(c, pattern);
-    for (auto it = moves.rbegin(); it != moves.rend(); ++it) {
+    if (finish_cycle_g70(c, pattern)) return std::get<Rapid>(finish_cycle_exit(c).back()).to;
+    for (auto it = c.plain.rbegin(); it != c.plain.rend(); ++it) {
         if (const auto* r = std::get_if<Rapid>(&*it)) return r->to;
         if (const auto* l = std::get_if<Linear>(&*it)) return l->to;
         if (const auto* a = std::get_if<Arc>(&*it)) return a->to;

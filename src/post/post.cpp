@@ -108,32 +108,29 @@ void Post::fail(const std::string& key, const std::string& detail) const {
     throw InputError(op_path_ + key, detail);
 }
 
-std::string_view Post::feed_word(double mm_per_min) {
+double Post::checked_feed(double mm_per_min, double rpm) {
     const double f = clamped_feed(mm_per_min);
     if (feed_mode_ == FeedMode::per_revolution) {
         // The control feeds F x its spindle speed: F is the job's feed per revolution.
-        if (!(spindle_rpm_ > 0)) fail("", "a feed per revolution while the spindle stands still");
-        const double per_rev = f / spindle_rpm_;
+        if (!(rpm > 0)) fail("", "a feed per revolution while the spindle stands still");
+        const double per_rev = f / rpm;
         if (feed_rev_fmt_.is_zero(per_rev))
             fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", number_text(per_rev), machine_.name));
-        return feed_rev_.format(per_rev);
+        return per_rev;
     }
     if (feed_fmt_.is_zero(f))
         fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", number_text(f), machine_.name));
-    return feed_.format(f);
+    return f;
+}
+
+std::string_view Post::feed_word(double mm_per_min) {
+    const double f = checked_feed(mm_per_min, spindle_rpm_);
+    return feed_mode_ == FeedMode::per_revolution ? feed_rev_.format(f) : feed_.format(f);
 }
 
 std::string Post::feed_text(double mm_per_min, double rpm) {
-    const double f = clamped_feed(mm_per_min);
-    if (feed_mode_ == FeedMode::per_revolution) {
-        if (!(rpm > 0)) fail("", "a feed per revolution while the spindle stands still");
-        if (feed_rev_fmt_.is_zero(f / rpm))
-            fail("", fmt::format("feed {} mm/rev would be written as F0 on machine {}", number_text(f / rpm), machine_.name));
-        return feed_rev_fmt_.word("F", f / rpm);
-    }
-    if (feed_fmt_.is_zero(f))
-        fail("", fmt::format("feed {} mm/min would be written as F0 on machine {}", number_text(f), machine_.name));
-    return feed_fmt_.word("F", f);
+    const double f = checked_feed(mm_per_min, rpm);
+    return feed_mode_ == FeedMode::per_revolution ? feed_rev_fmt_.word("F", f) : feed_fmt_.word("F", f);
 }
 
 void Post::on_thread_feed(const Vec3&, const ThreadFeed&) {
@@ -628,24 +625,11 @@ void Post::handle_finish_cycle(const FinishCycle& c) {
     if (finish_cycle_g70(c, pattern)) {
         const std::optional<std::string> limit = finish_cycle_limit(c);
         if (!limit) {
-            // To A as the moves go (from the clearance), G70, then the way out from A.
-            const std::vector<Event> moves = finish_cycle_moves(c, pattern);
-            handle(moves.at(0));
-            handle(moves.at(1));
+            // To A (from the clearance), G70 (which ends back at A), then the way out from A.
+            for (const Event& e : finish_cycle_entry(c)) handle(e);
             on_finish_cycle(c);
             pos_ = Vec3{c.start.y, 0.0, c.start.x};
-            // The way out: the rapids after G70's own moves (its last is the rapid back to A).
-            const LatheCycleModel g70 =
-                fanuc_g70(c.along_x ? LatheCycleAxis::x : LatheCycleAxis::z, c.start, finish_cycle_written_shape(c));
-            std::size_t skip = 2;
-            Vec3 at{c.start.y, 0.0, c.start.x};
-            for (const LatheCycleMove& m : g70.moves) {
-                const Vec3 to{m.end.y, 0.0, m.end.x};
-                if (to == at) continue;
-                at = to;
-                ++skip;
-            }
-            for (std::size_t k = skip; k < moves.size(); ++k) handle(moves[k]);
+            for (const Event& e : finish_cycle_exit(c)) handle(e);
             return;
         }
         cycle_not_canned(c.path, c.output, true, "finishing", fmt::format("G70 cannot finish it: {}", *limit));

@@ -243,10 +243,10 @@ void SafetyCheck::emit(const Event& event) {
                 for (const Event& m : thread_cycle_moves(c)) emit(m);
             },
             [&](const TurnCycle& c) {
-                for (const Event& m : turn_cycle_moves(c)) emit(m);
+                for (const Event& m : turn_cycle_moves(c, limits_.rough_pattern)) emit(m);
             },
             [&](const FinishCycle& c) {
-                for (const Event& m : finish_cycle_moves(c, RoughCyclePattern::linuxcnc_g71)) emit(m);
+                for (const Event& m : finish_cycle_moves(c, limits_.rough_pattern)) emit(m);
             },
             [&](const GrooveCycle& c) {
                 for (const Event& m : groove_cycle_moves(c)) emit(m);

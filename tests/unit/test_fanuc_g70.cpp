@@ -287,6 +287,10 @@ TEST_CASE("fanuc-g70: the reader reads G71 U W and G70 P Q, and refuses what the
     CHECK(refusal("G70 P100 Q102\n").find("no G71 or G72 before it") != std::string::npos);
     CHECK(refusal(cycle + shape + "G70 P100\n").find("without P(ns) and Q(nf)") != std::string::npos);
     CHECK(refusal(cycle + shape + "G70 P100 Q102 U0.2\n").find("G70 P(ns) Q(nf) only") != std::string::npos);
+    // A bare move after G70 (one-shot on the control) is refused as such, not as a word on G70.
+    CHECK(refusal(cycle + shape + "G70 P100 Q102\nX50.\n").find("X50. without a motion code after G70") !=
+          std::string::npos);
+    CHECK(refusal(cycle + shape + "G70 P100 Q102\nG0 X50.\n") == "");
     CHECK(refusal("G71 U1.400 R0.500\nG71 P100 Q102 U-0.400 W0.000 F200\n" + shape).find("negative") != std::string::npos);
     // A second F in the shape (G70 would change feed within it), a G1 ns (the control would feed
     // each infeed), a second shape numbered as the first (which one G70 P finds is not known).

@@ -413,6 +413,10 @@ std::vector<Event> turn_cycle_exit(const TurnCycle& cycle, RoughCyclePattern pat
 // where they end.
 std::vector<Event> finish_cycle_moves(const FinishCycle& cycle, RoughCyclePattern pattern);
 Vec3 finish_cycle_end(const FinishCycle& cycle, RoughCyclePattern pattern);
+// Under G70, the moves before it (from the clearance to A) and after it (from A, where G70
+// ends, out to the clearance): finish_cycle_moves is entry, G70's moves, exit.
+std::vector<Event> finish_cycle_entry(const FinishCycle& cycle);
+std::vector<Event> finish_cycle_exit(const FinishCycle& cycle);
 // Whether G70 finishes it in this pattern (Fanuc's, no refusal).
 inline bool finish_cycle_g70(const FinishCycle& cycle, RoughCyclePattern pattern) {
     return pattern == RoughCyclePattern::fanuc_g71 && !cycle.refusal;

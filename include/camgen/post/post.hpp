@@ -299,6 +299,9 @@ protected:
     // The F word of a feed (mm/min) at spindle speed `rpm` in the feed mode now, clamped as
     // feed_word, not modal (Fanuc's finishing feed in a G71 shape, for G70).
     std::string feed_text(double mm_per_min, double rpm);
+    // The F value feed_word and feed_text write (mm/min, or mm per revolution at `rpm`), clamped
+    // to the machine's limits; fails where the spindle stands still or F would read 0.
+    double checked_feed(double mm_per_min, double rpm);
 
 private:
     const Machine& machine_;

@@ -28,6 +28,9 @@ struct SafetyLimits {
     // above it in Z: the turning operations plan it there and check it themselves
     // (check_turned_material, turn-face and turn-rough by construction).
     MachineKind kind = MachineKind::mill;
+    // How the machine's roughing and finishing cycles move (Machine::rough_pattern): the
+    // cycles are checked as the control runs them.
+    RoughCyclePattern rough_pattern = RoughCyclePattern::linuxcnc_g71;
 };
 
 // The holes drilled so far: the lowest Z reached at each XY (keyed in nm). A job of a million
