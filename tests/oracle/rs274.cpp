@@ -58,6 +58,17 @@ std::string describe(const Step& s) {
     return "?";
 }
 
+int oracle_stride() {
+    const char* env = std::getenv("CAMGEN_ORACLE_STRIDE");
+    const int stride = env ? std::atoi(env) : 1;
+    return stride > 0 ? stride : 1;
+}
+
+bool oracle_case(int k) {
+    const int stride = oracle_stride();
+    return (k + k / stride) % stride == 0;
+}
+
 std::optional<std::string> find_rs274() {
     if (const char* env = std::getenv("CAMGEN_RS274"); env && *env) {
         if (::access(env, X_OK) == 0) return std::string(env);

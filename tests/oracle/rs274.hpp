@@ -32,6 +32,16 @@ std::string describe(const Step& step);
 // none exists.
 std::optional<std::string> find_rs274();
 
+// Every how-many-th generated case a test that runs rs274 on many generated cases checks:
+// $CAMGEN_ORACLE_STRIDE (the sanitized twin sets 4: rs274's run, which is not instrumented,
+// takes most of such a test's time, and the code under test takes the same paths), else 1.
+// The cases are generated alike either way (a skipped case still draws its random numbers).
+int oracle_stride();
+// Whether generated case k is checked: one in oracle_stride(), the choice moving by one every
+// stride cases (k = 0, 7, 10, 13, 16, 23, ... at 4), so that a case's parity or its number mod 3,
+// which some tests use to vary the job, is not always the same.
+bool oracle_case(int k);
+
 // Runs `rs274 -g` on `program` (NC text). Throws std::runtime_error with rs274's message when
 // it rejects the program or does not reach PROGRAM_END. Tools 1 to 99 have zero length and the
 // diameter `tool_diameters` gives them (mm; else 1 inch): cutter compensation offsets by it.

@@ -238,6 +238,7 @@ TEST_CASE("linuxcnc-lathe: generated turn-rough jobs as G71 run in rs274 as camg
   "operations": [{{"type": "turn-rough", "tool": 1, "feedMode": "per-revolution", "feed": 0.2, "depthOfCut": {},
                    "allowanceX": {}, "allowanceZ": {}, "lift": {}, "compensation": "{}", "start": [{}, 0], "path": [{}]}}]}})",
             doc, ax, az, n % 3 == 0 ? 1.0 : 0.5, nose ? "computer" : "none", 2 * r0, path);
+        if (!oracle::oracle_case(n)) continue;
         CAPTURE(n);
         INFO(text);
         Job job;
@@ -339,6 +340,7 @@ TEST_CASE("linuxcnc-lathe: generated turn-rough jobs along X as G72 run in rs274
   "operations": [{{"type": "turn-rough", "direction": "x", "tool": 1, "feedMode": "per-revolution", "feed": 0.2, "depthOfCut": {},
                    "allowanceX": {}, "allowanceZ": {}, "lift": {}, "compensation": "{}", "start": [{}, 0], "path": [{}]}}]}})",
             doc, ax, az, n % 3 == 0 ? 1.0 : 0.5, nose ? "computer" : "none", 2 * r0, path);
+        if (!oracle::oracle_case(n)) continue;
         CAPTURE(n);
         INFO(text);
         Job job;
