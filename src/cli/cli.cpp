@@ -997,7 +997,9 @@ int run_new(const std::string& from, const std::string& machine_name, const std:
         }
     }
     if (used == 0) {
-        err << "camgen: the starter job from " << from << " does not " << (machine ? "post: " : "read: ") << last_error << '\n';
+        // (The line is the starter job's, which is not written.)
+        err << "camgen: the starter job from " << from << " does not " << (machine ? "post" : "read")
+            << " (not written; the line is the one it would have): " << last_error << '\n';
         return exit_invalid_input;
     }
     if (used < 6.0) notes.push_back(fmt::format("the end mill is {} mm: a larger one does not fit the pockets", number_text(used, 1)));

@@ -253,6 +253,14 @@ std::string starter_job_text(const dxf::Drawing& d, const std::string& dxf_path,
     int number = 0;
     // A drill per diameter, smallest first; rpm for about 60 m/min, feed 0.05 mm per turn.
     for (const auto& [key, list] : holes) {
+        // A circle under 0.01 job units across (a point marker, a drawing in microns) is no
+        // hole a drill makes, and its diameter range (0.001 either side) would go below 0.
+        if (double(key) / 1e4 * st.factor < 0.01) {
+            notes.push_back(fmt::format("{} circle{} of diameter {} {} left out: too small to drill", list.size(),
+                                        list.size() == 1 ? "" : "s", number_text(double(key) / 1e4 * st.factor, 6),
+                                        inch ? "inch" : "mm"));
+            continue;
+        }
         const double dia_mm = double(key) / 1e4 * (mm ? *mm : 1.0);
         const int rpm = static_cast<int>(std::clamp(std::round(60000.0 / (pi * dia_mm) / 100) * 100, 300.0, 6000.0));
         ++number;

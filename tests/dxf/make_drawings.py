@@ -256,8 +256,21 @@ def starter():
     doc.saveas(HERE / "starter.dxf")
 
 
+def microns():
+    """For camgen new --from: a drawing in microns ($INSUNITS 13), a 4 x 2 mm plate with a
+    hole of 1 mm and a circle of 0.5 micron (a point marker: no hole to drill; its diameter
+    range would have gone below 0)."""
+    doc = new(13)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (4000, 0), (4000, 2000), (0, 2000)], close=True)
+    msp.add_circle((1000, 1000), 500)
+    msp.add_circle((3000, 1000), 0.25)
+    doc.saveas(HERE / "microns.dxf")
+
+
 if __name__ == "__main__":
     starter()
+    microns()
     curves()
     entities()
     ocs()

@@ -48,6 +48,12 @@ if command -v rs274 >/dev/null; then
   done
   grep -q "STRAIGHT_TRAVERSE(50.0000, 30.0000" "$tmp/starter/rs274.txt" && fail "starter: the island was drilled"
 fi
+# A drawing in microns: the 1 mm hole is drilled, the 0.5 micron circle left out with a note (its
+# diameter range [d - 0.001, d + 0.001] went below 0, and the starter job did not read).
+"$camgen" new --from "$src/tests/dxf/microns.dxf" -o "$tmp/microns.json" 2>"$tmp/microns.err" || { cat "$tmp/microns.err"; fail "microns.dxf: no starter job"; }
+grep -q "1 circle of diameter 0.0005 mm left out: too small to drill" "$tmp/microns.err" || fail "microns.dxf: the note on the tiny circle"
+[ "$(grep -c '"type": "drill"' "$tmp/microns.json")" = 2 ] || fail "microns.dxf: one drill (tool and operation) for the 1 mm hole"
+"$camgen" "$tmp/microns.json" -m linuxcnc -q -o "$tmp/microns.nc" || fail "microns.dxf: the starter job does not post"
 # Nothing to machine: an error, nothing written.
 if "$camgen" new --from "$src/tests/dxf/bad-gap.dxf" -o "$tmp/none.json" 2>"$tmp/none.err"; then fail "bad-gap.dxf made a job"; fi
 grep -q "holds nothing a starter job machines" "$tmp/none.err" || fail "bad-gap.dxf: the message"
