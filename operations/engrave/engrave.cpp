@@ -352,7 +352,7 @@ EngraveOp EngraveOp::read(Fields& f, const JobInput& in) {
             if (text[i] != '\n' && !font.glyph(text[i]))
                 f.fail("text", fmt::format("character {} of the text, {}, is not in font {} (it has characters U+0020 to "
                                            "U+{:04X})",
-                                           i + 1, engrave_shown(text[i]), op.font, 32 + font.glyphs.size() - 1));
+                                           i + 1, engrave_shown(text[i]), op.font, static_cast<unsigned>(font.last())));
         if (!f.has("height")) f.fail("height", "text needs its height (the cap height, mm)");
         TextStyle style;
         style.height = in.length(f, "height");

@@ -96,12 +96,22 @@ void Post::close() {
 std::string Post::g(double code) const { return code_fmt_.word("G", code); }
 std::string Post::m(double code) const { return code_fmt_.word("M", code); }
 
+namespace {
+// A note or a warning is one line on the terminal: a control character in it (a line break in
+// an operation's comment, which names it) is shown as a space, as the NC text's comments do.
+std::string post_one_line(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    return text;
+}
+}  // namespace
+
 void Post::warn(const std::string& message) {
-    if (options_.warnings) *options_.warnings << "camgen: warning: " << message << '\n';
+    if (options_.warnings) *options_.warnings << "camgen: warning: " << post_one_line(message) << '\n';
 }
 
 void Post::note(const std::string& message) {
-    if (options_.notes) *options_.notes << "camgen: note: " << message << '\n';
+    if (options_.notes) *options_.notes << "camgen: note: " << post_one_line(message) << '\n';
 }
 
 void Post::fail(const std::string& key, const std::string& detail) const {

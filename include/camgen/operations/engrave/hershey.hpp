@@ -7,6 +7,7 @@
 // than a line continues on the next (the original distribution wraps at 72 characters).
 // The reading is strict and bounded: anything else is an error naming the file, the line and
 // what is wrong, never a crash.
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -40,11 +41,16 @@ struct HersheyFont {
     std::string name;  // "rowmans"
     std::string file;  // where it was read
     std::vector<HersheyGlyph> glyphs;  // glyph k is character 32 + k
+    // The last character a font's text may use: printable ASCII (a font's 96th record, at
+    // U+007F, is DEL's place: a control character, never engraved).
+    static constexpr char32_t last_character = 0x7E;
     // The glyph of character code `c`, or none where the font has none.
     const HersheyGlyph* glyph(char32_t c) const {
-        if (c < 32 || c - 32 >= glyphs.size()) return nullptr;
+        if (c < 32 || c > last_character || c - 32 >= glyphs.size()) return nullptr;
         return &glyphs[c - 32];
     }
+    // The last character it has a glyph for.
+    char32_t last() const { return std::min<char32_t>(last_character, static_cast<char32_t>(32 + glyphs.size() - 1)); }
     // The cap height's top and the baseline in font units (Y down): the extent of the "H"
     // glyph's points where it has any, else Hershey's usual -12 and 9.
     int cap_top = -12;
