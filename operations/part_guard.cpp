@@ -154,6 +154,19 @@ void PartGuard::check(const CompMove& m) {
     const double t = len > 0 ? std::clamp(std::hypot(near.at.x - from.x, near.at.y - from.y) / len, 0.0, 1.0) : 1.0;
     const Vec3 where{near.at.x, near.at.y, from.z + (m.end.z - from.z) * t};
     if (near.distance < need - tol) {
+        // The nearest point of the profile says how far; which side of it the centre is says
+        // whether that is the depth of the cut or what is left of the tool's reach.
+        const Vec2 at{where.x, where.y};
+        bool in_material = part_.material_inside && clearance_.inside(at) == *part_.material_inside;
+        for (const ProfileClearance& island : island_clearances_) in_material = in_material || island.inside(at);
+        if (in_material) {
+            fail(where, fmt::format("brings the tool centre inside the material the part keeps, {} mm from the profile at "
+                                    "({}, {}, {}): it cuts {} mm into it (the centre must stay {} mm outside: tool radius {}{})",
+                                    show(near.distance), show(where.x), show(where.y), show(where.z),
+                                    show(need + near.distance), show(need), show(part_.tool_radius),
+                                    wall_ > 0 ? " + " + show(wall_) + " stock" : ""));
+            return;
+        }
         fail(where, fmt::format("brings the tool centre {} mm from the profile at ({}, {}, {}): it cuts {} mm into what the part "
                                 "keeps (the centre must stay {} mm away: tool radius {}{})",
                                 show(near.distance), show(where.x), show(where.y), show(where.z), show(need - near.distance),

@@ -100,7 +100,9 @@ void guard_against_part(const ContourOp& op, Fields& f, const JobInput& in, cons
     const GuardBlame blame = guard_blame(v->movement, v->rapid, op.compensation == CompensationMode::control);
     key = blame.key;
     hint = blame.hint;
-    if (!f.has(key)) key = "";
+    // A lead, ramp or plunge the job does not give: where the profile starts decides where the
+    // tool goes down (the start, else the profile).
+    if (!f.has(key)) key = key == "path" ? "" : f.has("start") ? "start" : f.has("profile") ? "profile" : "";
     f.fail(key, fmt::format("the {}{} {}: {}", movement_words(v->movement, v->rapid),
                             v->movement == Movement::plunge && !v->rapid ? " at the lead-in's start" : "", v->what, hint));
 }

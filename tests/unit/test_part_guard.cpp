@@ -157,7 +157,8 @@ TEST_CASE("guard: control compensation without a lead enters square to the path,
 
 TEST_CASE("guard: a pocket wall started at a corner with control compensation is refused at the lead-in, not cut") {
     const std::string job = contour_job(rectangle(0, 0, 50, 30, 0) + R"(, "side": "inside", "compensation": "control")");
-    CHECK_THROWS_WITH_AS(read_job(job, "guard.json"), doctest::Contains("/operations/0: the plunge at the lead-in's start puts the tool centre"), InputError);
+    // (No leadIn in the job: the start, where the tool goes down, is named.)
+    CHECK_THROWS_WITH_AS(read_job(job, "guard.json"), doctest::Contains("/operations/0/start: the plunge at the lead-in's start puts the tool centre"), InputError);
     CHECK_THROWS_WITH_AS(read_job(job, "guard.json"), doctest::Contains("start the profile in the middle of a straight side"), InputError);
 }
 
@@ -295,6 +296,21 @@ TEST_CASE("guard: an offset's corner arc whose ends are a hair apart is not a fu
     // A full circle (ends the same) sweeps the whole circle: down to y = 0 from a centre at y = 4.
     const PathPiece full{{5, 7}, {{5, 7}, Vec2{5, 4}, ArcDirection::ccw}};
     CHECK(c.nearest(full).distance == doctest::Approx(1));
+}
+
+TEST_CASE("guard: a tool centre inside the kept material is said to be inside, with the depth it cuts") {
+    // An L-shaped part cut outside, 6 mm tool, a 12 mm line lead at 0 degrees from (40, 20): the
+    // plunge at (28, 20) + 3 mm square is 2 mm inside the notch's wall x = 30, so the tool cuts
+    // 5 mm into the part (found by an exploratory tester: the message said 2 mm from the profile,
+    // 1 mm in).
+    const std::string keys = R"("side": "outside", "compensation": "computer", "leadIn": {"type": "line", "length": 12, "angle": 0},
+        "start": [40, 20], "path": [{"line": [50, 20]}, {"line": [50, 0]}, {"line": [0, 0]}, {"line": [0, 50]}, {"line": [30, 50]},
+                                   {"line": [30, 20]}, {"line": [40, 20]}])";
+    CHECK_THROWS_WITH_AS(read_job(contour_job(keys, 6), "guard.json"),
+                         doctest::Contains("/operations/0/leadIn: the plunge at the lead-in's start brings the tool centre inside the "
+                                           "material the part keeps, 2.000 mm from the profile at (28.000, 23.000, -3.000): it cuts "
+                                           "5.000 mm into it"),
+                         InputError);
 }
 
 }  // namespace test_part_guard
