@@ -273,6 +273,14 @@ public:
         if (skipped_tool0_ > 0)
             result_.notes.push_back(fmt::format("{} moves before the first tool change were not swept (no tool)",
                                                 skipped_tool0_));
+        for (const SimFigure& f : result_.tools) {
+            const auto it = tools_.find(f.tool);
+            if (it != tools_.end() && it->second.thread_mill && f.max_engagement > thread_mill_engagement)
+                result_.notes.push_back(fmt::format(
+                    "line {}: tool {}, a thread mill, cuts {} % of its diameter into the stock: a thread mill cuts a "
+                    "thread's depth into a bore or onto a boss made before it (an operation that makes them first)",
+                    f.engagement_line, f.tool, number_text(f.max_engagement * 100, 1)));
+        }
     }
     void begin_operation(std::string path) { current_op_ = std::move(path); }
     void observe(SimObserver* observer) { options_.observer = observer; }
@@ -1119,8 +1127,11 @@ ToolShape tool_shape(const Tool& tool) {
         s.form = ToolForm::cone;
         s.tip_angle = tool.tip_angle.value_or(tool.type == ToolType::drill ? 118.0 : 90.0);
         break;
-    case ToolType::tap:
     case ToolType::thread_mill:  // its teeth's tips: the height field cannot hold a thread's undercut flanks
+        s.thread_mill = true;
+        s.form = ToolForm::cylinder;
+        break;
+    case ToolType::tap:
     case ToolType::reamer:
     case ToolType::boring_bar: s.form = ToolForm::cylinder; break;
     case ToolType::turning_tool:

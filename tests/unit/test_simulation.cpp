@@ -609,4 +609,33 @@ TEST_CASE("camgen simulate: the plate in its box is clean, a rapid into it exits
     CHECK(words.err == "camgen: --stock-box takes x0,y0,z0,x1,y1,z1 in mm, not \"0,0,-8,100,50\"\n");
 }
 
+TEST_CASE("simulation: a thread mill cutting far more than a thread's depth gets a note at its line") {
+    // An external M16 milled with no boss made first: the tool helixes through solid stock at
+    // full engagement (an exploratory tester's job); the same thread on a boss turned... here
+    // milled first by a contour is engaged a thread's depth only.
+    const Machine m = load_machine("linuxcnc");
+    auto job_text = [](bool boss) {
+        return fmt::format(R"({{"clearance": 10, "stock": {{"box": {{"min": [0, 0, -20], "max": [60, 60, 0]}}}},
+          "tools": [{{"number": 1, "type": "end-mill", "diameter": 10, "rpm": 8000}},
+                    {{"number": 3, "type": "thread-mill", "diameter": 8, "minPitch": 1, "maxPitch": 2.5, "rpm": 6000}}],
+          "operations": [{}{{"type": "thread-mill", "tool": 3, "thread": "M16", "side": "external", "retractPlane": 5,
+                           "safeDistance": 1, "endDepth": 10, "feed": 400, "holes": [[30, 30]]}}]}})",
+                           boss ? R"({"type": "contour", "tool": 1, "side": "outside", "endDepth": 11, "stepDown": 2, "feed": 500,
+                                      "profile": {"circle": {"centre": [30, 30], "diameter": 16}}}, )"
+                                : "");
+    };
+    for (bool boss : {false, true}) {
+        CAPTURE(boss);
+        const std::string text = job_text(boss);
+        const Job job = read_job(text, "test.json");
+        SimOptions o;
+        o.resolution = 0.1;
+        const SimResult r = simulate(posted_steps(text, m, "linuxcnc"), m, box({0, 0, -20}, {60, 60, 0}), tool_shapes(job.tools), o);
+        CHECK(r.errors.empty());
+        bool noted = false;
+        for (const std::string& n : r.notes) noted = noted || n.find("tool 3, a thread mill, cuts") != std::string::npos;
+        CHECK(noted == !boss);
+    }
+}
+
 }  // namespace test_simulation

@@ -70,7 +70,13 @@ struct ToolShape {
     double blade_lo = 0.0;                // blade: the edge's -Z end from the programmed point, mm (0: the
                                           // left corner is programmed; -diameter: the right one)
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error
+    bool thread_mill = false;             // a thread mill: made to cut a thread's depth, not stock (a note
+                                          // above thread_mill_engagement)
 };
+
+// The radial engagement (of the diameter) above which a thread mill's cut gets a note: a metric
+// thread's depth is 0.61 x its pitch, at most a few tenths of the tool's diameter.
+inline constexpr double thread_mill_engagement = 0.5;
 
 // The stock before the program runs.
 struct SimStock {
