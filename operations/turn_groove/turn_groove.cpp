@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "camgen/common/error.hpp"
+#include "camgen/common/number_text.hpp"
 
 namespace camgen {
 
@@ -69,7 +70,8 @@ constexpr KeySpec turn_groove_keys[] = {
      .description = "radial material the plunges of a groove wider than the tool leave on the bottom for the finishing "
                     "pass along it, mm"},
     {.key = "peckDepth", .quantity = Quantity::length, .min = Bound{0, false},
-     .description = "radial depth of each peck, mm (default: no pecks, one feed to the bottom)"},
+     .description = "radial depth of each peck, mm, at least 0.01 and at most 10000 pecks a plunge (default: no pecks, one "
+                    "feed to the bottom)"},
     {.key = "peckRetract", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.3",
      .description = "how far the blade backs off (rapid) between pecks to break the chip, mm; with fullRetract, how far "
                     "above the depth reached it comes back down at rapid"},
@@ -129,10 +131,18 @@ GrooveBlade read_groove_blade(Fields& f, const JobInput& in, std::string_view wh
     return b;
 }
 
-GroovePecks read_groove_pecks(Fields& f, const JobInput& in) {
+GroovePecks read_groove_pecks(Fields& f, const JobInput& in, double depth) {
     GroovePecks p;
     if (auto q = in.optional_length(f, "peckDepth")) {
         if (!(*q > 0)) f.fail("peckDepth", "peckDepth must be > 0");
+        // (A peck of a nanometre made a program of millions of lines, or none at all; one below
+        // the program's resolution, pecks written at the same X.)
+        if (*q < groove_min_peck)
+            f.fail("peckDepth", fmt::format("peckDepth must be at least {}", in.show(groove_min_peck)));
+        const double pecks = std::ceil(depth / *q - 1e-9);
+        if (pecks > groove_max_pecks)
+            f.fail("peckDepth", fmt::format("peckDepth {} makes {} pecks of the {} deep plunge, more than {}: use larger pecks",
+                                            in.show(*q), number_text(pecks, 0), in.show(depth), number_text(groove_max_pecks, 0)));
         p.peck = *q;
     }
     p.retract = in.optional_length(f, "peckRetract").value_or(0.3);
@@ -340,7 +350,7 @@ TurnGrooveOp TurnGrooveOp::read(Fields& f, const JobInput& in) {
                                                in.show(op.approach), x_text(op.surface), in.show(op.surface)));
     op.dwell = f.optional_number("dwell").value_or(0.0);
     if (op.dwell < 0) f.fail("dwell", "dwell must be 0 or more");
-    op.pecks = read_groove_pecks(f, in);
+    op.pecks = read_groove_pecks(f, in, depth);
     op.output = f.choice("output", cycle_outputs, CycleOutput::automatic);
     const double stepover = in.optional_length(f, "stepover").value_or(0.75 * op.blade.width);
     if (!(stepover > 0) || stepover > op.blade.width + 1e-9)

@@ -44,7 +44,8 @@ constexpr KeySpec turn_part_keys[] = {
      .description = "a 45-degree chamfer on the part's edge, mm along Z and along the radius, cut by the blade's right corner "
                     "after a plunge to its depth"},
     {.key = "peckDepth", .quantity = Quantity::length, .min = Bound{0, false},
-     .description = "radial depth of each peck, mm (default: no pecks, one feed)"},
+     .description = "radial depth of each peck, mm, at least 0.01 and at most 10000 pecks a plunge (default: no pecks, one "
+                    "feed)"},
     {.key = "peckRetract", .quantity = Quantity::length, .min = Bound{0, false}, .default_json = "0.3",
      .description = "how far the blade backs off (rapid) between pecks to break the chip, mm; with fullRetract, how far "
                     "above the depth reached it comes back down at rapid"},
@@ -111,7 +112,7 @@ TurnPartOp TurnPartOp::read(Fields& f, const JobInput& in) {
         f.fail("chamfer", fmt::format("chamfer {} is not less than the depth parted, {}", in.show(op.chamfer), in.show(depth)));
     op.approach = in.optional_length(f, "approachDistance").value_or(1.0);
     if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
-    op.pecks = read_groove_pecks(f, in);
+    op.pecks = read_groove_pecks(f, in, depth);
     const double clearance = in.header().clearance;
     if (op.z + op.chamfer + op.approach >= clearance)
         f.fail("z", fmt::format("the parting (with its chamfer and approachDistance) reaches Z {}, at or above the clearance "

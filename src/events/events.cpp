@@ -349,7 +349,11 @@ std::vector<Event> groove_cycle_moves(const GrooveCycle& c) {
     auto plunge = [&](double z, double from_r, double to_r) {
         std::vector<double> depths;
         if (c.peck > 0)
-            for (int k = 1; from_r - k * c.peck > to_r + 1e-9 && depths.size() < 100000; ++k) depths.push_back(from_r - k * c.peck);
+            for (int k = 1; from_r - k * c.peck > to_r + 1e-9; ++k) {
+                // (read_groove_pecks allows at most groove_max_pecks; this stops a GrooveCycle made otherwise.)
+                if (depths.size() >= 100000) throw std::logic_error("groove cycle: more than 100000 pecks in one plunge");
+                depths.push_back(from_r - k * c.peck);
+            }
         depths.push_back(to_r);
         for (std::size_t k = 0; k < depths.size(); ++k) {
             if (k > 0) {

@@ -280,6 +280,20 @@ TEST_CASE("turn-groove and turn-part refuse what they cannot cut") {
     CHECK(short_blade.find("/operations/0/tool") != std::string::npos);
     CHECK(short_blade.find("too short to part off") != std::string::npos);
     CHECK(refusal(groove_job(part, R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -30, "toX": 12})")).empty());
+    // Pecks: at least 0.01 mm, at most 10000 a plunge (an exploratory tester: a peckDepth of 1e-9
+    // hung turn-part building billions of pecks, and made turn-groove write 400,000 pecks that
+    // did not advance, then feed the rest at once).
+    for (const char* op : {R"({"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 3, "depth": 2, "peckDepth": 1e-9})",
+                           R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -30, "toX": 12, "peckDepth": 1e-9})",
+                           R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -30, "toX": 12, "peckDepth": 0.009})"})
+        CHECK(refusal(groove_job(std::string(op).find("part") != std::string::npos ? part : tool, op))
+                  .find("/operations/0/peckDepth: peckDepth must be at least 0.010 mm") != std::string::npos);
+    CHECK(refusal(groove_job(part, R"({"type": "turn-part", "tool": 1, "feed": 30, "z": -30, "toX": 12, "peckDepth": 0.01})")).empty());
+    const std::string big = R"({"clearance": 20, "stock": {"bar": {"diameter": 300, "length": 80, "faceZ": 0}},
+      "tools": [{"number": 1, "type": "parting-tool", "width": 3, "rpm": 300, "fluteLength": 200}],
+      "operations": [{"type": "turn-part", "tool": 1, "feed": 30, "z": -30, "peckDepth": 0.01}]})";
+    CHECK(refusal(big).find("/operations/0/peckDepth: peckDepth 0.010 mm makes 15000 pecks of the 150.000 mm deep plunge, more "
+                            "than 10000: use larger pecks") != std::string::npos);
     // On a mill: the machine kind's check names the operation.
     const Job job = read_job(R"({"clearance": 20, "tools": [{"number": 1, "type": "grooving-tool", "width": 3, "rpm": 800}],
       "operations": [{"type": "turn-groove", "tool": 1, "feed": 30, "z": -10, "width": 3, "depth": 2, "startX": 30}]})",

@@ -55,8 +55,12 @@ void emit_groove_plunge(const GrooveBlade& blade, const GroovePlunge& p, const G
 // faces -Z, its width along X): 7, programmed at the edge's inner (-X) corner.
 GrooveBlade read_groove_blade(json::Fields& f, const JobInput& input, std::string_view what, const Tool*& tool,
                               GrooveSide side = GrooveSide::external);
-// Reads "peckDepth", "peckRetract" and "fullRetract".
-GroovePecks read_groove_pecks(json::Fields& f, const JobInput& input);
+// Reads "peckDepth", "peckRetract" and "fullRetract"; `depth` (mm) is the deepest plunge's, of
+// which peckDepth may make at most groove_max_pecks pecks.
+// and which is at least groove_min_peck (mm).
+inline constexpr double groove_max_pecks = 10000;
+inline constexpr double groove_min_peck = 0.01;
+GroovePecks read_groove_pecks(json::Fields& f, const JobInput& input, double depth);
 
 struct TurnGrooveOp {
     static constexpr std::string_view type = "turn-groove";
