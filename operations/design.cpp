@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "camgen/common/number_text.hpp"
+#include "camgen/events/events.hpp"
 #include "camgen/events/visit.hpp"
 #include "camgen/geometry/offset.hpp"
 #include "camgen/geometry/vec.hpp"
@@ -64,26 +68,203 @@ std::optional<PlaneRegion> design_closing(const PlaneRegion& region, double r) {
     return design_largest(offset_region(*grown, r));
 }
 
-// A stretch of a band beside a closed profile: between lengths from and to along it, from
-// offset o0 to o1 on the side `sign` (+1: left of the profile's travel), as a polygon.
-PlaneRegion design_stretch(const Profile& p, double from, double to, double o0, double o1, double sign) {
-    const Profile piece = sub_profile(p, from, to);
-    const std::vector<Vec2> pts = sample_profile(piece, 0.01);
-    PlaneRegion r;
-    if (pts.size() < 2) return r;
-    auto normal_at = [&](std::size_t i) {
-        const Vec2 a = pts[i == 0 ? 0 : i - 1], b = pts[i + 1 < pts.size() ? i + 1 : i];
-        const Vec2 d = b - a;
-        const double n = norm(d);
-        return n > 0 ? Vec2{-d.y / n * sign, d.x / n * sign} : Vec2{0.0, 0.0};
+// ---- A tab as the cutter leaves it (Cutter::tab_intervals, follow_over_tabs): the tool stays at
+// the tab's top over `half` mm each side of the point of ITS path nearest the tab's centre, and
+// is below the top everywhere else on that path (on the flanks too). What stands at the top is
+// the band within the radius of that stretch of the centre path less the discs of every other
+// centre position. The region is traced from that exact test on a fine grid (marching squares):
+// a sharp corner of the centre path, where normals jump, or an arc tighter than the radius, or
+// another pass or the path's far side coming near, need no case of their own, and the loops it
+// gives never cross themselves.
+
+// A line or an arc of a tool centre path.
+struct DtabPiece {
+    Vec2 a, b;
+    std::optional<Vec2> centre;
+    double radius = 0.0, a0 = 0.0, sweep = 0.0, sign = 1.0;  // an arc's: start angle, sweep (>= 0), +1 ccw
+    double from = 0.0, length = 0.0;                           // along its path
+    Vec2 lo, hi;                                               // its extent (an arc's: its circle's)
+};
+
+std::vector<DtabPiece> dtab_pieces(const Profile& p, double offset_along = 0.0) {
+    std::vector<DtabPiece> out;
+    double done = offset_along;
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+        const ProfileSegment& s = p.segments[k];
+        DtabPiece q;
+        q.a = segment_start(p, k);
+        q.b = s.end;
+        q.from = done;
+        if (s.centre) {
+            q.centre = *s.centre;
+            q.radius = distance(q.a, *s.centre);
+            q.a0 = std::atan2(q.a.y - s.centre->y, q.a.x - s.centre->x);
+            q.sweep = segment_sweep(p, k);
+            q.sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+            q.length = q.sweep * q.radius;
+            q.lo = *s.centre - Vec2{q.radius, q.radius};
+            q.hi = *s.centre + Vec2{q.radius, q.radius};
+        } else {
+            q.length = distance(q.a, q.b);
+            q.lo = {std::min(q.a.x, q.b.x), std::min(q.a.y, q.b.y)};
+            q.hi = {std::max(q.a.x, q.b.x), std::max(q.a.y, q.b.y)};
+        }
+        done += q.length;
+        out.push_back(q);
+    }
+    return out;
+}
+
+// The point of a piece nearest to x: how far along the piece, and how far from x.
+std::pair<double, double> dtab_nearest(const DtabPiece& q, Vec2 x) {
+    if (!q.centre) {
+        if (q.length <= 0.0) return {0.0, distance(x, q.a)};
+        const Vec2 d = q.b - q.a;
+        const double t = std::clamp(((x - q.a).x * d.x + (x - q.a).y * d.y) / (q.length * q.length), 0.0, 1.0);
+        return {t * q.length, distance(x, q.a + d * t)};
+    }
+    const Vec2 c = *q.centre;
+    double delta = q.sign * (std::atan2(x.y - c.y, x.x - c.x) - q.a0);
+    delta = std::fmod(std::fmod(delta, 2 * pi) + 2 * pi, 2 * pi);
+    if (delta <= q.sweep) return {delta * q.radius, std::abs(distance(x, c) - q.radius)};
+    const double da = distance(x, q.a), db = distance(x, q.b);
+    return da <= db ? std::pair{0.0, da} : std::pair{q.length, db};
+}
+
+double dtab_distance(const std::vector<DtabPiece>& pieces, Vec2 x) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const DtabPiece& q : pieces) d = std::min(d, dtab_nearest(q, x).second);
+    return d;
+}
+
+// How far along the path (its pieces) its point nearest to x is (the first of equals).
+double dtab_along(const std::vector<DtabPiece>& pieces, Vec2 x) {
+    double best = std::numeric_limits<double>::infinity(), along = 0.0;
+    for (const DtabPiece& q : pieces)
+        if (const auto [t, d] = dtab_nearest(q, x); d < best) best = d, along = q.from + t;
+    return along;
+}
+
+// The pieces of closed path p from `from` to `to` mm along it (to > from, either beyond the
+// path's ends: on round it), those reaching the box [lo, hi] grown by `reach` only.
+std::vector<DtabPiece> dtab_stretch(const Profile& p, double from, double to, Vec2 lo, Vec2 hi, double reach) {
+    std::vector<DtabPiece> out;
+    const double total = profile_length(p);
+    if (total <= 0.0 || to <= from) return out;
+    if (to - from >= total) from = 0.0, to = total;
+    const double shift = std::floor(from / total) * total;
+    from -= shift, to -= shift;
+    auto add = [&](double x0, double x1) {
+        if (x1 - x0 <= 1e-9) return;
+        for (const DtabPiece& q : dtab_pieces(sub_profile(p, x0, x1), x0))
+            if (q.hi.x + reach >= lo.x && q.lo.x - reach <= hi.x && q.hi.y + reach >= lo.y && q.lo.y - reach <= hi.y) out.push_back(q);
     };
-    std::vector<Vec2> loop;
-    for (std::size_t i = 0; i < pts.size(); ++i) loop.push_back(pts[i] + normal_at(i) * o0);
-    for (std::size_t i = pts.size(); i-- > 0;) loop.push_back(pts[i] + normal_at(i) * o1);
-    r.outer.start = loop.front();
-    for (std::size_t i = 1; i < loop.size(); ++i) r.outer.segments.push_back({loop[i], std::nullopt, ArcDirection::ccw});
-    r.outer.segments.push_back({loop.front(), std::nullopt, ArcDirection::ccw});
-    return normalised(r);
+    add(from, std::min(to, total));
+    if (to > total) add(0.0, to - total);
+    return out;
+}
+
+// The regions of the points where `in` holds, inside the box [lo, hi] (nothing on its edge
+// holds), traced on a grid of `cell`: the loops between the grid's nodes in and out, each
+// crossing found on its grid edge by halving. A loop's chord may cut a corner of the set, and
+// lies within a few microns of it elsewhere.
+std::vector<PlaneRegion> dtab_trace(const std::function<bool(Vec2)>& in, Vec2 lo, Vec2 hi, double cell) {
+    const Vec2 o = lo - Vec2{cell, cell};
+    const std::size_t nx = static_cast<std::size_t>(std::ceil((hi.x - lo.x) / cell)) + 2;
+    const std::size_t ny = static_cast<std::size_t>(std::ceil((hi.y - lo.y) / cell)) + 2;
+    const std::size_t w = nx + 1;
+    auto node = [&](std::size_t i, std::size_t j) { return o + Vec2{static_cast<double>(i) * cell, static_cast<double>(j) * cell}; };
+    std::vector<char> v(w * (ny + 1), 0);
+    for (std::size_t j = 1; j < ny; ++j)
+        for (std::size_t i = 1; i < nx; ++i) v[j * w + i] = in(node(i, j)) ? 1 : 0;
+    // Edge ids: 2 (j w + i) the one from node (i, j) along x, + 1 along y.
+    std::unordered_map<std::size_t, Vec2> crossing;
+    auto point_on = [&](std::size_t id) {
+        if (const auto it = crossing.find(id); it != crossing.end()) return it->second;
+        const std::size_t n = id / 2, i = n % w, j = n / w;
+        Vec2 a = node(i, j), b = id % 2 ? node(i, j + 1) : node(i + 1, j);
+        if (!v[n]) std::swap(a, b);  // a in, b out
+        for (int k = 0; k < 20; ++k) {
+            const Vec2 m = (a + b) * 0.5;
+            (in(m) ? a : b) = m;
+        }
+        const Vec2 at = (a + b) * 0.5;
+        crossing.emplace(id, at);
+        return at;
+    };
+    std::unordered_map<std::size_t, std::size_t> next;
+    for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i) {
+            // Corners counter-clockwise from the lower left, and the edge after each.
+            const std::size_t c[4] = {j * w + i, j * w + i + 1, (j + 1) * w + i + 1, (j + 1) * w + i};
+            const std::size_t e[4] = {2 * c[0], 2 * c[1] + 1, 2 * c[3], 2 * c[0] + 1};
+            int outs = 0;
+            bool leaves[4], enters[4];
+            for (int k = 0; k < 4; ++k) {
+                leaves[k] = v[c[k]] && !v[c[(k + 1) % 4]];
+                enters[k] = !v[c[k]] && v[c[(k + 1) % 4]];
+                outs += leaves[k];
+            }
+            if (outs == 0) continue;
+            // Two ins across: joined through the cell when its centre is in.
+            const bool joined = outs == 2 && in(node(i, j) + Vec2{cell / 2, cell / 2});
+            for (int k = 0; k < 4; ++k) {
+                if (!leaves[k]) continue;
+                for (int s = 1; s < 4; ++s) {
+                    const int m = joined ? (k + s) % 4 : (k + 4 - s) % 4;
+                    if (!enters[m]) continue;
+                    next[e[k]] = e[m];
+                    break;
+                }
+            }
+        }
+    // The loops: counter-clockwise around what is in, clockwise around a hole in it.
+    std::vector<std::vector<Vec2>> outers, holes;
+    while (!next.empty()) {
+        const std::size_t first = next.begin()->first;
+        std::vector<Vec2> loop;
+        std::size_t at = first;
+        for (std::size_t guard = 0; guard <= crossing.size() + next.size() + 4; ++guard) {
+            loop.push_back(point_on(at));
+            const auto it = next.find(at);
+            if (it == next.end()) break;
+            at = it->second;
+            next.erase(it);
+            if (at == first) break;
+        }
+        // Points on a straight run between their neighbours dropped.
+        std::vector<Vec2> kept;
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+            const Vec2 a = kept.empty() ? loop.back() : kept.back(), b = loop[k], c = loop[(k + 1) % loop.size()];
+            const double len = distance(a, c);
+            if (len > 0 && std::abs(cross(b - a, c - a)) / len < 1e-6) continue;
+            kept.push_back(b);
+        }
+        if (kept.size() < 3) continue;
+        double area = 0.0;
+        for (std::size_t k = 0; k < kept.size(); ++k) area += cross(kept[k], kept[(k + 1) % kept.size()]);
+        // A sliver of a few cells (the tip of a cusp the grid cuts off) is left out: the region
+        // is then smaller, never larger; a hole is always kept.
+        if (area > 0 && area / 2 < 4 * cell * cell) continue;
+        (area > 0 ? outers : holes).push_back(std::move(kept));
+    }
+    auto profile_of = [](const std::vector<Vec2>& pts) {
+        Profile p;
+        p.start = pts.front();
+        for (std::size_t k = 1; k < pts.size(); ++k) p.segments.push_back({pts[k], std::nullopt, ArcDirection::ccw});
+        p.segments.push_back({pts.front(), std::nullopt, ArcDirection::ccw});
+        return p;
+    };
+    std::vector<PlaneRegion> out;
+    for (const std::vector<Vec2>& loop : outers) out.push_back(PlaneRegion{profile_of(loop), {}});
+    for (const std::vector<Vec2>& hole : holes)
+        for (PlaneRegion& r : out)
+            if (contains(r.outer, hole.front())) {
+                r.islands.push_back(profile_of(hole));
+                break;
+            }
+    for (PlaneRegion& r : out) r = normalised(r);
+    return out;
 }
 
 class Designer {
@@ -387,33 +568,180 @@ private:
         }
         design_.keeps.push_back(std::move(keep));
         if (!op.tabs) return;
-        // The band's side of the profile as drawn: +1 left of its travel.
-        const ProfilePoint first = point_at(op.profile, std::min(1.0, profile_length(op.profile) / 2.0));
-        const Vec2 probe = first.point + Vec2{-first.tangent.y, first.tangent.x} * 1e-3;
-        const bool left_inside = contains(op.profile, probe);
-        const double sign = (outside != left_inside) ? 1.0 : -1.0;
-        const double length = profile_length(op.profile);
+        // The tool centre's paths: the programmed ones (computer, wear and inverse-wear: camgen
+        // offsets them, the control's table holding only the wear, taken as none), or under
+        // control compensation their offset by the radius as the control makes it (an arc about
+        // each convex corner, concave corners trimmed). The cutter measures a tab's stretch on
+        // the programmed path; its ends are carried across to the centre path along the normal.
+        const double r = op.tool_radius, half = op.tabs->width / 2.0 + r;
+        const double run = op.tabs->ramp_angle < 90.0 ? op.tabs->height / std::tan(op.tabs->ramp_angle * rad_per_deg) : 0.0;
+        struct CentrePath {
+            const Profile* programmed;
+            std::vector<DtabPiece> programmed_pieces;
+            Profile centre;
+            std::vector<DtabPiece> centre_pieces;
+        };
+        const bool control = op.compensation == CompensationMode::control;
+        std::vector<CentrePath> paths;
+        for (const Profile* prog : {&op.rough, &op.finish}) {
+            if (prog->segments.empty() || !is_closed(*prog)) continue;
+            CentrePath c{prog, dtab_pieces(*prog), *prog, {}};
+            if (op.compensation == CompensationMode::control) {
+                OffsetResult o = offset_profile(*prog, r, op.tool_left ? OffsetSide::left : OffsetSide::right);
+                if (o.empty()) continue;
+                c.centre = std::move(o.profile);
+            }
+            c.centre_pieces = dtab_pieces(c.centre);
+            paths.push_back(std::move(c));
+        }
+        if (paths.empty()) return skip(op.path, "its tool centre path for the tabs is empty");
+        // Where else the tool goes at depth: each path's lead-in and lead-out, and the helix it
+        // may go down on before the lead-in (about a centre beside its start). Under control
+        // compensation the leads as programmed and offset by the radius both, and the moves
+        // between (the control switches on and off along them): more than it reaches, so the tab
+        // is smaller, never larger, than what stands.
+        std::vector<DtabPiece> elsewhere;
+        {
+            CutSettings cs;
+            cs.tool = op.tool;
+            cs.tool_radius = r;
+            cs.tool_left = op.tool_left;
+            cs.compensation = op.compensation;
+            cs.lead_in = op.lead_in;
+            cs.lead_out = op.lead_out;
+            cs.ramp = op.ramp;
+            cs.z = z;
+            EventRecorder nowhere;
+            const Cutter cutter(cs, nowhere);
+            for (const CentrePath& c : paths) {
+                for (const Profile& lead : {cutter.lead_in(*c.programmed), cutter.lead_out(*c.programmed)}) {
+                    if (lead.segments.empty()) continue;
+                    for (const DtabPiece& q : dtab_pieces(lead)) elsewhere.push_back(q);
+                    if (!control) continue;
+                    OffsetResult o = offset_profile(lead, r, op.tool_left ? OffsetSide::left : OffsetSide::right);
+                    if (o.empty()) continue;
+                    Profile joins;
+                    joins.start = lead.start;
+                    joins.segments = {{o.profile.start, std::nullopt, ArcDirection::ccw}};
+                    for (const DtabPiece& q : dtab_pieces(joins)) elsewhere.push_back(q);
+                    joins.start = lead.segments.back().end;
+                    joins.segments = {{o.profile.segments.back().end, std::nullopt, ArcDirection::ccw}};
+                    for (const DtabPiece& q : dtab_pieces(joins)) elsewhere.push_back(q);
+                    for (const DtabPiece& q : dtab_pieces(o.profile)) elsewhere.push_back(q);
+                }
+                if (op.ramp.kind == Ramp::Kind::helix) {
+                    const Vec2 at = cutter.lead_in(*c.programmed).start, t = point_at(*c.programmed, 0.0).tangent;
+                    const Vec2 away = op.tool_left ? left_of(t) : left_of(t) * -1.0;
+                    DtabPiece helix;
+                    helix.a = helix.b = at;
+                    helix.centre = at + away * op.ramp.radius;
+                    helix.radius = op.ramp.radius;
+                    helix.a0 = std::atan2(at.y - helix.centre->y, at.x - helix.centre->x);
+                    helix.sweep = 2 * pi;
+                    helix.length = 2 * pi * helix.radius;
+                    helix.lo = *helix.centre - Vec2{helix.radius, helix.radius};
+                    helix.hi = *helix.centre + Vec2{helix.radius, helix.radius};
+                    elsewhere.push_back(helix);
+                }
+            }
+        }
         for (std::size_t i = 0; i < op.tabs->centres.size(); ++i) {
-            const double c = op.tabs->centres[i], w = op.tabs->width;
-            DesignCut tab;
-            tab.path = op.path;
-            tab.what = fmt::format("tab {}", i);
-            tab.region = design_stretch(op.profile, std::max(0.0, c - w / 2.0), std::min(length, c + w / 2.0), s, s + d, sign);
-            tab.floor.z = std::min(z.reference_z, z.bottom_z + op.tabs->height);
-            tab.top_z = z.reference_z;
-            tab.overrides = true;
-            design_.cuts.push_back(tab);
-            // Where the tool climbs onto it and comes down again: a diameter each side, and the
-            // run of a sloped flank.
-            const double run = op.tabs->ramp_angle < 90.0 ? op.tabs->height / std::tan(op.tabs->ramp_angle * rad_per_deg) : 0.0;
-            DesignCut shoulder = tab;
-            shoulder.what = fmt::format("the ends of tab {}", i);
-            shoulder.region = design_stretch(op.profile, std::max(0.0, c - w / 2.0 - d - run), std::min(length, c + w / 2.0 + d + run),
-                                             s, s + d, sign);
-            shoulder.floor.z = z.bottom_z;
-            shoulder.overrides = false;
-            shoulder.may_leave = true;
-            design_.cuts.push_back(std::move(shoulder));
+            const Vec2 tab_centre = point_at(op.profile, op.tabs->centres[i]).point;
+            // Each pass's stretches on its centre path: [a, b] over the tab, [ea, eb] with the
+            // flanks and a radius more.
+            struct Span {
+                const CentrePath* path;
+                double a, b, ea, eb;
+            };
+            std::vector<Span> spans;
+            for (const CentrePath& c : paths) {
+                const double along = dtab_along(c.programmed_pieces, tab_centre);
+                double x[5] = {along, along - half, along + half, along - half - run - r, along + half + run + r};
+                if (control) {
+                    const double lp = profile_length(*c.programmed), lc = profile_length(c.centre);
+                    double m[5];
+                    for (int k = 0; k < 5; ++k) {
+                        const ProfilePoint q = point_at(*c.programmed, x[k] - std::floor(x[k] / lp) * lp);
+                        const Vec2 n = op.tool_left ? left_of(q.tangent) : left_of(q.tangent) * -1.0;
+                        m[k] = dtab_along(c.centre_pieces, q.point + n * r);
+                    }
+                    for (int k = 1; k < 5; ++k) {
+                        if (k % 2 == 1 && m[k] > m[0]) m[k] -= lc;
+                        if (k % 2 == 0 && m[k] < m[0]) m[k] += lc;
+                    }
+                    std::copy(std::begin(m), std::end(m), std::begin(x));
+                }
+                spans.push_back({&c, x[1], x[2], x[3], x[4]});
+            }
+            // The extent of a stretch (sampled), grown by `by`.
+            auto extent = [&](bool ends, double by) {
+                Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi = lo * -1.0;
+                for (const Span& sp : spans) {
+                    const std::vector<DtabPiece> pieces =
+                        dtab_stretch(sp.path->centre, ends ? sp.ea : sp.a, ends ? sp.eb : sp.b, {-1e300, -1e300}, {1e300, 1e300}, 0.0);
+                    for (const DtabPiece& q : pieces)
+                        for (int k = 0; k <= 64; ++k) {
+                            const Vec2 p = q.centre ? *q.centre + unit_at(q.a0 + q.sign * q.sweep * k / 64.0) * q.radius
+                                                    : q.a + (q.b - q.a) * (k / 64.0);
+                            lo = {std::min(lo.x, p.x - by), std::min(lo.y, p.y - by)};
+                            hi = {std::max(hi.x, p.x + by), std::max(hi.y, p.y + by)};
+                        }
+                }
+                return std::pair{lo, hi};
+            };
+            // About 300 cells across, 0.01 to 0.1 mm, at most about a million nodes.
+            auto cell_for = [](Vec2 lo, Vec2 hi) {
+                return std::max(std::clamp(std::max(hi.x - lo.x, hi.y - lo.y) / 300.0, 0.01, 0.1), std::sqrt((hi.x - lo.x) * (hi.y - lo.y) / 1e6));
+            };
+            // What stands at the tab's top: within the radius of a pass's stretch over the tab
+            // and beyond the radius (and a little more: the loops' chords) of every other
+            // position of every pass.
+            const auto [lo, hi] = extent(false, r);
+            if (!(lo.x < hi.x && lo.y < hi.y)) continue;
+            const double cell = cell_for(lo, hi), eps = 1e-3 + cell * cell / r;
+            std::vector<std::vector<DtabPiece>> up, down, ends;
+            for (const Span& sp : spans) {
+                up.push_back(dtab_stretch(sp.path->centre, sp.a, sp.b, lo, hi, r + 2 * cell));
+                down.push_back(dtab_stretch(sp.path->centre, sp.b, sp.a + profile_length(sp.path->centre), lo, hi, r + 2 * cell));
+            }
+            auto standing = [&](Vec2 q) {
+                bool near = false;
+                for (const auto& u : up) near = near || dtab_distance(u, q) <= r;
+                if (!near) return false;
+                for (const auto& dn : down)
+                    if (dtab_distance(dn, q) <= r + eps) return false;
+                return dtab_distance(elsewhere, q) > r + eps;
+            };
+            for (PlaneRegion& region : dtab_trace(standing, lo, hi, cell)) {
+                DesignCut tab;
+                tab.path = op.path;
+                tab.what = fmt::format("tab {}", i);
+                tab.region = std::move(region);
+                tab.floor.z = std::min(z.reference_z, z.bottom_z + op.tabs->height);
+                tab.top_z = z.reference_z;
+                tab.overrides = true;
+                design_.cuts.push_back(std::move(tab));
+            }
+            // Where the tool climbs onto it and comes down again: within the radius of the
+            // centre paths over the tab, its flanks and a radius more, down to the bottom.
+            const auto [elo, ehi] = extent(true, r + 0.01);
+            if (!(elo.x < ehi.x && elo.y < ehi.y)) continue;
+            for (const Span& sp : spans) ends.push_back(dtab_stretch(sp.path->centre, sp.ea, sp.eb, elo, ehi, r + 1.0));
+            auto beside = [&](Vec2 q) {
+                for (const auto& e : ends)
+                    if (dtab_distance(e, q) <= r + 1e-3) return true;
+                return false;
+            };
+            for (PlaneRegion& region : dtab_trace(beside, elo, ehi, cell_for(elo, ehi))) {
+                DesignCut shoulder;
+                shoulder.path = op.path;
+                shoulder.what = fmt::format("the ends of tab {}", i);
+                shoulder.region = std::move(region);
+                shoulder.floor.z = z.bottom_z;
+                shoulder.top_z = z.reference_z;
+                shoulder.may_leave = true;
+                design_.cuts.push_back(std::move(shoulder));
+            }
         }
     }
 

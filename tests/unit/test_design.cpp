@@ -126,8 +126,13 @@ TEST_CASE("design: a contour outside keeps the part and cuts a band of the tool'
         REQUIRE(tab);
         CHECK(tab->overrides);
         CHECK(tab->floor.z == doctest::Approx(band->floor.z + op.tabs->height));
-        // The tab's stretch lies in the band, about width x diameter.
-        CHECK(region_area(tab->region) == doctest::Approx(op.tabs->width * diameter).epsilon(0.05));
+        // What the cutter leaves standing on a straight side: the tool is up over the tab's
+        // width and its radius each side, so the kept stretch is width x the band's width (the
+        // diameter, and the roughing pass's radial stock beyond) plus the corners the tool's
+        // round ends leave beside the up-stretch, (4 - pi) r^2.
+        const double r = op.tool_radius, stock = op.finishing ? op.finishing->radial_stock : 0.0;
+        CHECK(region_area(tab->region) ==
+              doctest::Approx(op.tabs->width * (diameter + stock) + (4 - std::numbers::pi) * r * r).epsilon(0.01));
         const DesignCut* ends = cut_named(d, "the ends of tab 0");
         REQUIRE(ends);
         CHECK(ends->may_leave);

@@ -2,6 +2,7 @@
 // as designed has no finding; a gouge into an island, a floor cut too deep, material left in a
 // pocket's corner and a tab cut away are each found, named by operation and cut or keep.
 #include <cmath>
+#include <functional>
 
 #include <doctest/doctest.h>
 
@@ -105,7 +106,11 @@ TEST_CASE("design check: a tab cut away is a gouge of its contour's tab") {
         const bool part = p.x >= 0 && p.x <= 30 && p.y >= 0 && p.y <= 20;
         return !part;  // everything outside is cut (the band and beyond)
     };
-    auto tab = [](Vec2 p) { return p.y < 0 && p.y > -8 && std::abs(p.x - 15) < 2.5; };
+    // What the cutter leaves: the tool (its centre on y = -4) up over 15 +- (2.5 + 4), so the
+    // kept stretch less the discs of the tool's last positions down each side.
+    auto tab = [](Vec2 p) {
+        return p.y < 0 && p.y > -8 && std::abs(p.x - 15) < 6.5 && std::hypot(p.x - 8.5, p.y + 4) > 4 && std::hypot(p.x - 21.5, p.y + 4) > 4;
+    };
     SUBCASE("kept") {
         const auto found = check(job, [&](Vec2 p) { return band(p) ? (tab(p) ? -4.0 : -6.0) : 0.0; });
         for (const DesignFinding& f : found) MESSAGE(f.message());
@@ -116,6 +121,15 @@ TEST_CASE("design check: a tab cut away is a gouge of its contour's tab") {
         REQUIRE(found.size() == 1);
         CHECK(found[0].what == "tab 0");
         CHECK(found[0].amount == doctest::Approx(2.0));
+    }
+    SUBCASE("its middle 3 mm cut away, or 1 mm of a corner the tool's round end leaves beside the width") {
+        for (auto bite : std::vector<std::function<bool(Vec2)>>{[](Vec2 p) { return std::abs(p.x - 15) < 1.5; },
+                                                                [](Vec2 p) { return p.x > 10.5 && p.x < 11.5 && p.y > -1; }}) {
+            const auto found = check(job, [&](Vec2 p) { return band(p) ? (tab(p) && !bite(p) ? -4.0 : -6.0) : 0.0; });
+            REQUIRE(found.size() == 1);
+            CHECK(found[0].what == "tab 0");
+            CHECK(found[0].amount == doctest::Approx(2.0));
+        }
     }
 }
 
