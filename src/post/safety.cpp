@@ -110,8 +110,9 @@ void SafetyCheck::move(const Vec3& to, bool feed) {
         return;
     }
     const Vec3 from = *pos_;
-    if (limits_.kind == MachineKind::lathe && (std::abs(from.x) > eps || std::abs(to.x) > eps)) {
-        // A turning move (SafetyLimits::kind).
+    // A turning move (SafetyLimits::kind): off the axis, or on it in an operation without
+    // drilling planes (a turn-profile that starts at X0 comes down the axis to its start).
+    if (limits_.kind == MachineKind::lathe && (op_planeless_ || std::abs(from.x) > eps || std::abs(to.x) > eps)) {
         pos_ = to;
         last_was_feed_ = feed;
         return;
@@ -214,6 +215,7 @@ void SafetyCheck::emit(const Event& event) {
                 op_retract_z_.reset();
                 op_reference_z_.reset();
                 op_safe_z_.reset();
+                op_planeless_ = !op.planes;
                 if (op.planes) {
                     op_retract_z_ = op.planes->retract_z;
                     op_reference_z_ = op.planes->reference_z;
@@ -230,6 +232,7 @@ void SafetyCheck::emit(const Event& event) {
                 op_retract_z_.reset();
                 op_reference_z_.reset();
                 op_safe_z_.reset();
+                op_planeless_ = false;
             },
             [&](const ToolChange& t) {
                 tool_ = t.number;

@@ -288,4 +288,33 @@ TEST_CASE("safety: each hole of a cycle is checked, though holes of one shape ar
     CHECK_THROWS_WITH_AS(check_safety(back, limits), doctest::Contains("a rapid down to Z -9.000 at X2502.500"), InputError);
 }
 
+TEST_CASE("safety: on a lathe a turning operation comes down the axis to its start; a drilling one does not rapid below its plane") {
+    // (An exploratory tester: a turn-profile starting at X0 was refused with the drilling rule,
+    // "a rapid down to Z 1.000 at X0.000 Y0.000 goes below the retract plane".)
+    const SafetyLimits lathe{20.0, {}, {}, MachineKind::lathe};
+    auto events = [](std::optional<OperationPlanes> planes) {
+        return std::vector<Event>{OperationStart{"op", "/operations/0", std::nullopt, {}, planes}, ToolChange{1, 0.8, "turning tool"},
+                                  Spindle{SpindleState::cw, 1000.0}, Rapid{{0, 0, 20}}, Rapid{{0, 0, 1}},
+                                  Linear{{0, 0, 0}, 100.0, Movement::cutting}, Linear{{14, 0, 0}, 100.0, Movement::cutting},
+                                  Rapid{{22, 0, 20}}, OperationEnd{}};
+    };
+    CHECK_NOTHROW(check_safety(events(std::nullopt), lathe));
+    CHECK_THROWS_WITH_AS(check_safety(events(OperationPlanes{5.0, 0.0, 3.0}), lathe),
+                         doctest::Contains("a rapid down to Z 1.000 at X0.000 Y0.000 goes below the retract plane (Z 5.000)"),
+                         InputError);
+    // The shaft's finishing started on the axis posts on the three lathes.
+    std::string job = test::read_file(CAMGEN_SOURCE_DIR "/samples/shaft-control.json");
+    const std::size_t at = job.find("\"type\": \"turn-profile\"");
+    REQUIRE(at != std::string::npos);
+    const std::size_t start = job.find("\"start\": [", at);
+    REQUIRE(start != std::string::npos);
+    job.replace(start, job.find(']', start) + 1 - start, "\"start\": [0, 0]");
+    for (const char* m : {"fanuc-lathe", "linuxcnc-lathe", "sinumerik-lathe"}) {
+        CAPTURE(m);
+        const Run r = run({file_with("axis-start", job), "--machine", m, "-q"});
+        CHECK(r.err == "");
+        CHECK(r.code == 0);
+    }
+}
+
 }  // namespace test_safety

@@ -137,6 +137,8 @@ private:
     std::optional<double> op_retract_z_;   // the current operation's retract plane (else the clearance)
     std::optional<double> op_reference_z_; // the current operation's reference plane, if it has one
     std::optional<double> op_safe_z_;      // where a contour's rapid approach may end
+    bool op_planeless_ = false;            // the operation has no retract and reference planes (a
+                                           // lathe's turning operations: its moves on the axis too)
     bool last_was_feed_ = false;           // the tool got where it is by feed
     std::optional<Vec3> pos_;              // where the tool is (unknown after a tool change)
     int tool_ = 0;
