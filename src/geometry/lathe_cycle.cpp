@@ -257,6 +257,9 @@ std::optional<std::string> g71_elements(const Profile& profile, std::vector<G71E
             // the left of its bottom one.
             const bool control = e.ccw ? in >= -1e-3 && ex >= -1e-3 && dz <= -1e-3 : in <= 1e-3 && ex <= 1e-3 && dz <= -1e-3;
             if (!control) return std::string(which + words.arc_half);
+            // (An end at the centre's Z, as a quarter's is, comes out a rounding error either
+            // side of it from an offset or a shift: 1e-7 mm past it is no pocket.)
+            slack = std::max(slack, 1e-7);
             const bool rising = e.ccw ? e.a.x >= e.c.x - slack && e.b.x >= e.c.x - slack
                                       : e.a.x <= e.c.x + slack && e.b.x <= e.c.x + slack;
             if (!rising) return std::string(which + " is an arc that" + words.falls);

@@ -250,4 +250,22 @@ TEST_CASE("turn-rough output: no level of the cycle within 0.005 mm of a corner 
     }
 }
 
+TEST_CASE("turn-rough: a fillet rising from a shoulder's corner is canned, not taken for a pocket by a rounding error") {
+    // The shaft in inch-sized mm (an exploratory tester): the R5.08 fillet's start lies at its
+    // centre's Z; offset by the nose and shifted by the allowances it came out 1e-15 mm on the
+    // falling side, and "output": "canned" was refused as "an arc that falls in radius (a pocket)".
+    const std::string job = R"({"name":"fp","units":"mm","clearance":20,"stock":{"bar":{"diameter":44.45,"length":76,"faceZ":0}},
+ "tools":[{"number":4,"type":"turning-tool","noseRadius":0.7874,"orientation":2,"rpm":1000}],
+ "operations":[{"type":"turn-rough","tool":4,"feed":0.25,"feedMode":"per-revolution","depthOfCut":1.524,
+   "allowanceX":0.4064,"allowanceZ":0.1016,"start":[0,0],"output":"canned",
+   "path":[{"line":[27.94,0]},{"line":[30.48,-1.27]},{"line":[30.48,-20.32]},
+           {"arc":{"end":[40.64,-25.4],"centre":[40.64,-20.32],"direction":"cw"}},{"line":[40.64,-40.64]}]}]})";
+    for (const char* m : {"linuxcnc-lathe", "fanuc-lathe"}) {
+        CAPTURE(m);
+        std::string program;
+        CHECK_NOTHROW(program = rc_posted(job, load_machine(m)).text);
+        CHECK(program.find("G71") != std::string::npos);
+    }
+}
+
 }  // namespace test_turn_rough_cycle
