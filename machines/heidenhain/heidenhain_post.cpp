@@ -194,6 +194,8 @@ void HeidenhainPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpe
 
 void HeidenhainPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) {}
 
+std::string heidenhain_length_offset(const Machine&, int tool) { return tool > 0 ? fmt::format("TOOL CALL {}", tool) : ""; }
+
 std::optional<MachineProblem> check_heidenhain_machine(const Machine& machine) {
     // A TNC numbers its blocks 0, 1, 2, ... and its reader checks each number.
     const nc::BlockStyle& b = machine.block;

@@ -54,4 +54,9 @@ std::pair<std::string, std::vector<TncParameter>> heidenhain_cycle(const DrillCy
 // The machine-file settings the Heidenhain dialect would write as wrong motion (Dialect::check_machine).
 std::optional<MachineProblem> check_heidenhain_machine(const Machine& machine);
 
+// The tool length offset the Heidenhain post selects for `tool` (Dialect::length_offset): the
+// TOOL CALL applies the called tool's own length from the control's tool table; there is no
+// register of its own to select (as G43 H has), so it is always the tool's ("TOOL CALL 1").
+std::string heidenhain_length_offset(const Machine& machine, int tool);
+
 }  // namespace camgen

@@ -219,6 +219,9 @@ void HeidenhainReader::tool_call(const std::vector<std::string_view>& t) {
         if (spindle_ != SpindleState::off) emit(Spindle{SpindleState::off, 0.0});
         spindle_ = SpindleState::off;
         change_tool(*tool, commented_description(*tool));
+        // The call applies the called tool's own length from the tool table (no register of its
+        // own, as G43 H has; TOOL CALL's DL is not read): the offset is the tool's, compared with it.
+        select_length_offset(fmt::format("TOOL CALL {}", *tool));
     }
     if (speed) spindle_speed(*speed, nullptr);
 }

@@ -18,6 +18,13 @@ namespace camgen {
 IsoLathePost::IsoLathePost(const Machine& machine, std::ostream& out, PostOptions options)
     : IsoPost(machine, out, std::move(options)), lathe_(settings_of<iso::LatheSettings>(this->machine())) {}
 
+std::string iso_lathe_length_offset(const Machine& machine, int tool) {
+    // The turret call selects the tool's own offset, which holds its length (on_tool_change).
+    if (settings_of<iso::LatheSettings>(machine).tool_call == iso::LatheToolCall::turret)
+        return tool > 0 ? fmt::format("T{:02}{:02}", tool, tool) : std::string();
+    return iso_length_offset(machine, tool);
+}
+
 void IsoLathePost::on_open() {
     IsoPost::on_open();
     const auto& b = machine().frame.start_block;

@@ -857,11 +857,14 @@ void IsoLatheReader::variant_words(const BlockCodes& codes, BlockWords& w) {
 
 bool IsoLatheReader::variant_tool_call(const Word& t) {
     if (lathe_.tool_call != iso::LatheToolCall::turret) return false;
-    // A turret call T<tool><offset>: the tool with its own offset.
+    // A turret call T<tool><offset>: the tool and the offset (its length and nose) the control
+    // applies from here. camgen's post calls each tool with its own offset (T0101); another
+    // offset (T0102, a second set for the same tool) is read, and verify --job finds it differs.
     const int call = integer_of(t);
-    if (call < 100 || call % 100 != call / 100)
-        fail(fmt::format("{}: machine {} calls tool n with its offset n, T0101 to T9999", t.text, machine_.name));
+    if (call < 100 || call > 9999)
+        fail(fmt::format("{}: machine {} calls tool n with offset m as T<nn><mm>, T0101 to T9999", t.text, machine_.name));
     change_tool(call / 100, commented_description(call / 100));
+    select_length_offset(fmt::format("T{:02}{:02}", call / 100, call % 100));
     return true;
 }
 

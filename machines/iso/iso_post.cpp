@@ -139,6 +139,10 @@ void IsoPost::on_drilling_footer(const DrillCycle& c, const DrillingCycleSpec& s
                                                  c.spindle_rpm});
 }
 
+std::string iso_length_offset(const Machine& machine, int tool) {
+    return tool > 0 && settings_of<iso::Settings>(machine).length_offset ? fmt::format("G43 H{}", tool) : std::string();
+}
+
 std::optional<MachineProblem> check_iso_machine(const Machine& machine) {
     if (auto p = decimal_point_only_problem(machine, "Fanuc and LinuxCNC read \"1,5\" as 1 and a stray comma "
                                                      "(rs274 refuses the block)"))

@@ -51,4 +51,11 @@ private:
 // The machine-file settings the ISO dialect would write as wrong motion (Dialect::check_machine).
 std::optional<MachineProblem> check_iso_machine(const Machine& machine);
 
+// The tool length offset the ISO posts select for `tool` (Dialect::length_offset): "G43 H<tool>"
+// where toolLengthOffset writes it (rapid_z_from_unknown), else none (""; GRBL as camgen
+// writes it: the operator touches each tool off); the lathe's turret call "T0101" (its offset
+// is the tool's number).
+std::string iso_length_offset(const Machine& machine, int tool);
+std::string iso_lathe_length_offset(const Machine& machine, int tool);
+
 }  // namespace camgen

@@ -249,8 +249,10 @@ void IsoReader::block(const Block& b) {
         const Word* h = w.take('H');
         if (!h) fail(fmt::format("{} without its offset number H", k.length_offset->word->text));
         length_offset_ = fmt::format("G43 H{}", integer_of(*h));
+        select_length_offset(length_offset_);
     } else if (k.length_offset) {
         length_offset_ = "G49";
+        select_length_offset("");
     }
     if (k.return_level) g98_ = k.return_level->value == code(98);
     if (k.motion) {

@@ -191,6 +191,8 @@ void SinumerikPost::on_drilling_point(const DrillCycle&, const DrillingCycleSpec
 
 void SinumerikPost::on_drilling_footer(const DrillCycle&, const DrillingCycleSpec&) { writer().add("MCALL").end(); }
 
+std::string sinumerik_length_offset(const Machine&, int tool) { return tool > 0 ? "D1" : ""; }
+
 std::optional<MachineProblem> check_sinumerik_machine(const Machine& machine) {
     if (auto p = decimal_point_only_problem(machine, "',' separates the parameters of a cycle call, so "
                                                      "CYCLE82(5,000, 0,000, ...) would split every number in two"))

@@ -37,4 +37,8 @@ std::string sinumerik_cycle_call(const DrillCycle& cycle, const Machine& machine
 // The machine-file settings the Sinumerik dialect would write as wrong motion (Dialect::check_machine).
 std::optional<MachineProblem> check_sinumerik_machine(const Machine& machine);
 
+// The tool length offset the Sinumerik posts select for `tool` (Dialect::length_offset): its
+// first cutting edge D1, written with the tool (T1 D1), which holds its length and radius.
+std::string sinumerik_length_offset(const Machine& machine, int tool);
+
 }  // namespace camgen

@@ -52,6 +52,7 @@ private:
     int motion_ = -1;
     Plane plane_ = Plane::xy;
     std::optional<int> selected_tool_;
+    std::string selected_edge_;  // SelectedOffsets::length of the tool selected ("D1")
     std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
@@ -432,13 +433,20 @@ void SinumerikReader::block(const Block& b) {
     if (const Word* s = w.take('S')) spindle_speed(rpm(*s), m.spindle ? m.spindle->word : nullptr);
     if (const Word* t = w.take('T')) {
         selected_tool_ = integer_of(*t);
-        // D: the tool's cutting edge, selected with it.
-        if (const Word* d = w.take('D'); d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
+        // D: the tool's cutting edge, selected with it: its length and radius apply from the tool
+        // change (M6). camgen's post writes D1; a T without D leaves the edge to the control's
+        // machine data (Siemens' default: D1, unconfirmed for a given control), which verify --job
+        // does not assume.
+        const Word* d = w.take('D');
+        if (d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
+        selected_edge_ = d ? fmt::format("D{}", integer_of(*d))
+                           : fmt::format("T{} without D: the control's default edge", *selected_tool_);
     }
     if (m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool selected by T");
         if (mcall_) fail(fmt::format("a tool change while the modal call {} of line {} is active", mcall_->name, mcall_->line));
         change_tool(*selected_tool_, commented_description(*selected_tool_));
+        select_length_offset(selected_edge_);
     }
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
     if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});

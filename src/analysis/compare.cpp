@@ -18,6 +18,7 @@
 #include "camgen/analysis/trace.hpp"
 #include "camgen/nc/format.hpp"
 #include "camgen/post/arc_output.hpp"
+#include "camgen/post/post.hpp"
 #include "camgen/reader/reader.hpp"
 
 namespace camgen {
@@ -67,8 +68,22 @@ struct Path {
     bool start_known = true;
     Vec3 start;
     std::vector<Seg> segs;
+    // The offsets in force at its first move, and where a later move of it runs under others
+    // (the first such: a work offset selected between two holes of a canned cycle).
+    int tool = 0;
+    int line = 0;  // of its first move (first_line: of its first segment, 0 without one)
+    SelectedOffsets offsets;
+    std::optional<SelectedOffsets> changed;
+    int changed_line = 0;
     Vec3 end() const { return segs.empty() ? start : segs.back().b; }
     int first_line() const { return segs.empty() ? 0 : segs.front().line; }
+    // A move at `line` under `o`: the first change of offsets is kept.
+    void moves_under(const SelectedOffsets& o, int at) {
+        if (!changed && !o.same(offsets)) {
+            changed = o;
+            changed_line = at;
+        }
+    }
 };
 
 struct Item {
@@ -125,7 +140,12 @@ public:
                     it.path.rapid = rapid;
                     it.path.start_known = s.from_known;
                     it.path.start = s.from_known ? s.from : s.to;
+                    it.path.tool = s.tool;
+                    it.path.line = s.line;
+                    it.path.offsets = s.offsets;
                     made(std::move(it));
+                } else {
+                    open_->path.moves_under(s.offsets, s.line);
                 }
                 if (s.from_known && (s.arc || dist(s.from, s.to) > tiny)) open_->path.segs.emplace_back(s);
                 break;
@@ -183,6 +203,8 @@ private:
     void kept(Item&& i) {
         if (last_ && i.kind == Item::Kind::path && last_->kind == Item::Kind::path && i.path.start_known &&
             last_->path.rapid == i.path.rapid) {
+            last_->path.moves_under(i.path.offsets, i.path.line);
+            if (i.path.changed) last_->path.moves_under(*i.path.changed, i.path.changed_line);
             auto& segs = last_->path.segs;
             segs.insert(segs.end(), std::make_move_iterator(i.path.segs.begin()), std::make_move_iterator(i.path.segs.end()));
             return;
@@ -469,6 +491,19 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     return std::nullopt;
 }
 
+// The offsets in force along two paths at the same place in their traces: the same at their
+// first moves, and the same after a change (a program that selects another work offset between
+// two holes of a canned cycle changes it inside a rapid path; a job never does).
+std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog) {
+    if (auto d = offsets_difference(job.offsets, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
+    const SelectedOffsets& job_after = job.changed ? *job.changed : job.offsets;
+    if (prog.changed)
+        if (auto d = offsets_difference(job_after, *prog.changed, prog.tool)) return Mismatch{prog.changed_line, *d};
+    if (job.changed && !prog.changed)
+        if (auto d = offsets_difference(*job.changed, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
+    return std::nullopt;
+}
+
 // The first difference between two items at the same place in their traces. `job_next` and
 // `prog_next`: the next path on each side (for messages).
 std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* job_next, const Path* prog_next,
@@ -499,6 +534,7 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
         case Item::Kind::path:
             if (a.path.rapid != b.path.rapid)
                 return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+            if (auto m = compare_offsets(a.path, b.path)) return m;
             return compare_paths(a.path, b.path, job_next, prog_next, tol);
     }
     return std::nullopt;
@@ -557,6 +593,52 @@ private:
 };
 
 }  // namespace
+
+std::optional<std::string> offsets_difference(const SelectedOffsets& job, const SelectedOffsets& program, int tool) {
+    const auto at = [](int line) { return line > 0 ? fmt::format(" (line {})", line) : std::string(); };
+    if (job.length != program.length) {
+        const std::string prog = program.length.empty()
+                                     ? (program.length_line > 0 ? fmt::format("with no tool length offset (cancelled at line {})",
+                                                                              program.length_line)
+                                                                : std::string("with no tool length offset selected"))
+                                     : fmt::format("under the tool length offset {}{}", program.length, at(program.length_line));
+        return fmt::format("tool {} moves {} where the job's post selects {} for it: every position of the tool is off by "
+                           "the difference between their lengths",
+                           tool, prog, job.length.empty() ? std::string("none") : job.length);
+    }
+    if (job.work != program.work) {
+        const std::string prog = program.work.empty() ? std::string("in no work offset selected (the control's active one)")
+                                                      : fmt::format("in work offset {}{}", program.work, at(program.work_line));
+        const std::string expected = job.work.empty() ? std::string("none (the post selects none: the control's active one)")
+                                                      : job.work;
+        return fmt::format("tool {} moves {} where the job's work offset is {}: every position is off by the difference "
+                           "between the two",
+                           tool, prog, expected);
+    }
+    return std::nullopt;
+}
+
+OffsetCheck::OffsetCheck(const Machine& machine, std::string work_offset, std::function<void(const Mismatch&, const Step&)> found)
+    : machine_(machine), found_(std::move(found)) {
+    expected_.work = std::move(work_offset);
+}
+
+void OffsetCheck::step(const Step& s) {
+    if (s.kind == StepKind::tool_change) {
+        expected_.length = post_length_offset(machine_, s.tool);
+        reported_.reset();
+        return;
+    }
+    if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
+    if (s.offsets.same(expected_)) {
+        reported_.reset();
+        return;
+    }
+    // Once for each run of moves under the same wrong offsets.
+    if (reported_ && reported_->same(s.offsets)) return;
+    reported_ = s.offsets;
+    if (auto d = offsets_difference(expected_, s.offsets, s.tool)) found_(Mismatch{s.line, *d}, s);
+}
 
 CompareTolerance compare_tolerance(const Machine& machine, double position) {
     return compare_tolerance(machine, has_reader(machine.dialect) ? read_resolution(machine) : ReadResolution{}, position);

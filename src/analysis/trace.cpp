@@ -78,6 +78,7 @@ public:
     void add(const ReadEvent& e, bool job) {
         line_ = e.line;
         uncertainty_ = e.uncertainty;
+        offsets_ = e.offsets;
         visit_exhaustive(overloaded{
                        [&](const OperationStart& o) {
                            operation_path_ = o.path;
@@ -166,7 +167,7 @@ public:
                            pitch_ = is_tapping(cycle_->kind) ? cycle_->values.value_or(DrillField::pitch, 0.0) : 0.0;
                            for (const LonghandMove& m : longhand_moves(*cycle_, pos_, p.at, options_, longhand_buffers_))
                                add(ReadEvent{.event = to_event(m), .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution},
+                                             .per_revolution = e.per_revolution, .offsets = e.offsets},
                                    job);
                            pitch_ = 0.0;
                        },
@@ -175,25 +176,25 @@ public:
                            // As the machine's cycle moves (canned) and its post writes it (longhand).
                            for (const Event& m : thread_cycle_moves(c, thread_pattern_))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution},
+                                             .per_revolution = e.per_revolution, .offsets = e.offsets},
                                    job);
                        },
                        [&](const TurnCycle& c) {
                            for (const Event& m : turn_cycle_moves(c, rough_pattern_))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution},
+                                             .per_revolution = e.per_revolution, .offsets = e.offsets},
                                    job);
                        },
                        [&](const FinishCycle& c) {
                            for (const Event& m : finish_cycle_moves(c, rough_pattern_))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution},
+                                             .per_revolution = e.per_revolution, .offsets = e.offsets},
                                    job);
                        },
                        [&](const GrooveCycle& c) {
                            for (const Event& m : groove_cycle_moves(c))
                                add(ReadEvent{.event = m, .line = e.line, .uncertainty = e.uncertainty,
-                                             .per_revolution = e.per_revolution},
+                                             .per_revolution = e.per_revolution, .offsets = e.offsets},
                                    job);
                        },
                        [&](const Stop& st) {
@@ -242,10 +243,11 @@ private:
         // A lathe's move under nose-radius compensation: the controlled point is the imaginary
         // tip, this far from the nose centre the control offsets (Z, radius), mm.
         std::optional<Vec2> tip;
+        SelectedOffsets offsets;  // in force where it was programmed
     };
 
     Programmed programmed(StepKind kind, double feed, Movement movement, double pitch, bool from_unknown) const {
-        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt, std::nullopt};
+        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt, std::nullopt, offsets_};
     }
 
     Step base(StepKind kind) const {
@@ -254,6 +256,7 @@ private:
         s.tool = tool_;
         s.line = line_;
         s.uncertainty = uncertainty_;
+        s.offsets = offsets_;
         return s;
     }
 
@@ -285,6 +288,7 @@ private:
         Step s = base(p.kind);
         s.line = p.line;
         s.uncertainty = p.uncertainty;
+        s.offsets = p.offsets;
         s.from = from_known ? pos_ : to;
         s.to = to;
         s.from_known = from_known;
@@ -302,6 +306,7 @@ private:
         Step s = base(StepKind::feed);
         s.line = p.line;
         s.uncertainty = p.uncertainty;
+        s.offsets = p.offsets;
         s.from = pos_;
         s.to = to;
         s.feed = p.feed;
@@ -499,6 +504,7 @@ private:
     int tool_ = 0;
     int line_ = 0;
     double uncertainty_ = 0.0;
+    SelectedOffsets offsets_;  // of the event being added
     double pitch_ = 0.0;  // while a tap is expanded
     double thread_rpm_ = 0.0;  // the spindle speed a thread-cutting move feeds by (lead x rpm)
     std::optional<DrillCycle> cycle_;
@@ -515,6 +521,7 @@ private:
 
 TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)
     : machine_(machine),
+      job_offsets_{.length = {}, .work = options.work_offset},
       impl_(std::make_unique<Impl>(machine, sink, std::move(options))),
       stops_(std::make_unique<OperatorStops>(machine, job_events_)) {}
 
@@ -535,6 +542,10 @@ void TraceBuilder::add_stopped_event(const Event& e) {
     }
     ReadEvent r{e};
     if (std::holds_alternative<ToolChange>(e) || std::holds_alternative<Stop>(e)) known_ = false;
+    // The offsets the post selects: the tool's length offset from its change on, the job's
+    // work offset from the start.
+    if (const auto* t = std::get_if<ToolChange>(&e)) job_offsets_.length = post_length_offset(machine_, t->number);
+    r.offsets = job_offsets_;
     if (std::holds_alternative<Rapid>(e)) {
         r.from_unknown = !known_;
         known_ = true;
@@ -589,10 +600,12 @@ Trace trace_events(const std::vector<Event>& events, const Machine& machine) {
     return trace.take();
 }
 
-Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine) {
+Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine, const std::string& work_offset) {
     TraceCollector trace;
     FeedClamp clamp(machine, trace);
-    TraceBuilder t(machine, clamp);
+    TraceOptions options;
+    options.work_offset = work_offset;
+    TraceBuilder t(machine, clamp, options);
     for (const Event& e : job_events) t.add_job_event(e);
     t.finish();
     return trace.take();

@@ -531,7 +531,9 @@ std::optional<Mismatch> compare_with_job(ProgramInput& program, const std::strin
     TraceBuilder program_trace(machine, comparer.actual(), options);
     reader = std::make_unique<ProgramReader>(program.open(), machine, source, program_trace);
     FeedClamp clamp(machine, comparer.expected());
-    TraceBuilder job_trace(machine, clamp, TraceOptions{.compensation_radii = {}, .rounding = rounding});
+    TraceBuilder job_trace(machine, clamp,
+                           TraceOptions{.compensation_radii = {}, .rounding = rounding, .compensation_orientations = {},
+                                        .work_offset = job.work_offset});
     // The job's events one at a time; once the first difference is known the rest says nothing.
     struct Expected : EventSink {
         TraceComparer& comparer;
@@ -671,7 +673,7 @@ int run_verify(const VerifyOptions& v, std::istream& in, std::ostream& out) {
             return exit_invalid_input;
         }
         out << fmt::format("matches job {}: the same moves within {} mm (inside arcs {} mm), the same feeds, dwells, "
-                           "tools and spindle\n",
+                           "tools, tool length and work offsets, and spindle\n",
                            v.job, fmt::format("{:.4f}", tolerance.position), fmt::format("{:.4f}", tolerance.path));
         finish_stream(out, "standard output");
     } catch (const InputError& e) {
@@ -866,7 +868,12 @@ int run_simulate(const SimulateOptions& v, std::istream& in, std::ostream& out) 
         sim->observe(&*history);
     }
     try {
-        TraceBuilder trace(machine, *sim, job_trace_options(*job));
+        // The offsets the program selects against those the job's post selects: the simulation
+        // sweeps the program's coordinates as written, so a move under another tool length
+        // offset or work offset is an error of its own (at the first move of each run).
+        OffsetCheck offsets(machine, job->work_offset, [&](const Mismatch& m, const Step& s) { sim->report_error(m.line, s.tool, m.message); });
+        TraceFanOut both({&offsets, &*sim});
+        TraceBuilder trace(machine, both, job_trace_options(*job));
         ProgramReader reader(program.open(), machine, source, trace);
         reader.read_all();
     } catch (const ControlRefusal& e) {

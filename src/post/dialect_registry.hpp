@@ -28,7 +28,8 @@ struct Source;
 
 // One dialect: the name a machine file gives in "dialect", the factories of its post and
 // reader (make_reader is nullptr for a dialect camgen cannot read), the check of a machine's
-// settings against what the dialect writes and reads (nullptr: none), and its machine files'
+// settings against what the dialect writes and reads (nullptr: none), the tool length offset its
+// post selects for a tool (post_length_offset; nullptr: none, a control without them), and its machine files'
 // "settings": their keys (a variant's are its base dialect's and its own; the schema, the docs
 // and the unknown-key check take them from here) and the reader of them, which parse_machine
 // calls once with the settings' Fields (every error names the file, line and key) and the
@@ -42,6 +43,7 @@ struct Dialect {
     std::span<const KeySpec> settings_keys = {};
     std::shared_ptr<const DialectSettings> (*read_settings)(json::Fields& settings, const Machine& machine,
                                                             const json::Source& source) = nullptr;
+    std::string (*length_offset)(const Machine& machine, int tool) = nullptr;
 };
 
 // What a machine's reader made of some lines of a program (a custom block): the events of each

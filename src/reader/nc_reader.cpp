@@ -86,6 +86,7 @@ void NcReader::emit(Event event, bool from_unknown, double uncertainty, Approach
                            std::holds_alternative<DrillPoint>(event);
     ReadEvent e{std::move(event), line_, from_unknown, uncertainty, approach};
     if (feed_move && feed_per_rev_) e.per_revolution = *feed_per_rev_;
+    e.offsets = offsets_;
     sink_->read_event(e);
 }
 
@@ -183,6 +184,13 @@ void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
         if (!machine_.has_work_offset(word)) fail(fmt::format("{}: machine {} has no work offset {}", word, machine_.name, word));
     }
     work_offset_ = word;
+    offsets_.work = word;
+    offsets_.work_line = line_;
+}
+
+void NcReader::select_length_offset(std::string description) {
+    offsets_.length = std::move(description);
+    offsets_.length_line = line_;
 }
 
 std::optional<FeedMode> NcReader::feed_mode_of(const Word& g) const {

@@ -241,6 +241,9 @@ protected:
     // Checks the work offset a block selects with code `g` (its word `text`), taking its P word
     // from `w` where the machine's offsets have one; fails for an offset the machine lacks.
     void select_work_offset(int g, const Word& text, BlockWords& w);
+    // The tool length offset the program selects from this line on, as SelectedOffsets::length
+    // names it ("G43 H1"; "": cancelled). Every event after it carries it.
+    void select_length_offset(std::string description);
     // The feed mode a G word selects, where it is one of the machine's feed mode codes.
     std::optional<FeedMode> feed_mode_of(const Word& g) const;
     // The feed mode (frame feedModes) and an F word in it: per revolution the feed is F x S,
@@ -313,6 +316,7 @@ private:
     FeedMode feed_mode_ = FeedMode::per_minute;
     std::optional<double> feed_per_rev_;  // mm/rev, the F word per revolution
     std::string work_offset_;             // the work offset selected last ("G54"; "": none)
+    SelectedOffsets offsets_;             // the offsets in force, as every event carries them
     nc::Format feed_rev_fmt_;
     ReadEventSink* sink_ = nullptr;  // where events go (set by start)
     ReadResolution coarsest_;

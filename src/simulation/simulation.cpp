@@ -284,6 +284,9 @@ public:
     }
     void begin_operation(std::string path) { current_op_ = std::move(path); }
     void observe(SimObserver* observer) { options_.observer = observer; }
+    void report_error(int line, int tool, std::string message) {
+        result_.errors.push_back({line, operation_of(line), tool, std::move(message)});
+    }
     SimResult result_;
 
 private:
@@ -1100,6 +1103,7 @@ void Simulator::begin_operation(std::string path) { impl_->begin_operation(std::
 void Simulator::set_probes(std::vector<Vec2> points) { impl_->set_probes(std::move(points)); }
 void Simulator::set_lathe_sections(std::vector<double> z) { impl_->set_lathe_sections(std::move(z)); }
 void Simulator::observe(SimObserver* observer) { impl_->observe(observer); }
+void Simulator::report_error(int line, int tool, std::string message) { impl_->report_error(line, tool, std::move(message)); }
 const SimResult& Simulator::result() const { return impl_->result_; }
 SimResult Simulator::take() { return std::move(impl_->result_); }
 

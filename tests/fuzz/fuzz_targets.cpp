@@ -189,7 +189,7 @@ std::optional<std::string> mutated_sample(const std::uint8_t* data, std::size_t 
         } catch (const InputError& e) {
             return "machine " + machine.name + " cannot read back its own program: " + e.what() + "\njob: " + text;
         }
-        const Trace expected = trace_expected(expand_job(parsed), machine);
+        const Trace expected = trace_expected(expand_job(parsed), machine, parsed.work_offset);
         if (auto m = compare_traces(expected, actual, compare_tolerance(machine, resolution)))
             return "machine " + machine.name + ", line " + std::to_string(m->line) + ": " + m->message + "\njob: " + text;
         return std::nullopt;

@@ -27,7 +27,7 @@ inline std::string round_trip(const std::string& job_json, const std::string& pr
     Machine m = load_machine(machine_name);
     Job job = read_job(job_json, "job.json");
     Trace actual = trace_program(read_program(program, m, "prog"), m);
-    auto mismatch = compare_traces(trace_expected(expand_job(job), m), actual, compare_tolerance(m, 0.0));
+    auto mismatch = compare_traces(trace_expected(expand_job(job), m, job.work_offset), actual, compare_tolerance(m, 0.0));
     return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
 }
 
@@ -35,7 +35,7 @@ inline std::string round_trip(const std::string& job_json, const std::string& pr
 inline std::string round_trip_machine(const Job& job, const std::string& program, const Machine& m) {
     ReadResolution res;
     Trace actual = trace_program(read_program(program, m, "prog", &res), m);
-    auto mismatch = compare_traces(trace_expected(expand_job(job), m), actual, compare_tolerance(m, res, 0.0));
+    auto mismatch = compare_traces(trace_expected(expand_job(job), m, job.work_offset), actual, compare_tolerance(m, res, 0.0));
     return mismatch ? fmt::format("line {}: {}", mismatch->line, mismatch->message) : std::string();
 }
 

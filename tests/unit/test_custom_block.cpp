@@ -44,7 +44,7 @@ std::optional<Mismatch> verify(const std::string& job_json, const std::string& m
     const Machine machine = load_machine(machine_name);
     const Job job = read_job(job_json, "t.json");
     const std::string text = post_program(job, machine);
-    return compare_traces(trace_expected(expand_job(job), machine), trace_program(read_program(text, machine), machine),
+    return compare_traces(trace_expected(expand_job(job), machine, job.work_offset), trace_program(read_program(text, machine), machine),
                           compare_tolerance(machine));
 }
 

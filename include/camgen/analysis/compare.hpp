@@ -39,8 +39,15 @@ struct Mismatch {
     std::string message;  // what was expected and what the program does
 };
 
+// What differs between the offsets a job's post selects and those a program has in force at a
+// move of `tool` (SelectedOffsets: the tool length offset, then the work offset), in words
+// that name where the program selected them; nullopt when they are the same.
+std::optional<std::string> offsets_difference(const SelectedOffsets& job, const SelectedOffsets& program, int tool);
+
 // Compares the motion: the same tool changes, spindle states, dwells, and the same path in
-// the same order, rapid where rapid and at the same feed where feeding. Paths are compared
+// the same order, rapid where rapid and at the same feed where feeding, under the same
+// offsets (Step::offsets: the tool length offset the post selects for each tool and the job's
+// work offset, at every move). Paths are compared
 // as positions visited, not as blocks: an arc written as two half arcs or as chords matches
 // the arc it stands for; every end point of each side must lie on the other's path, in
 // order, and points sampled along arcs too. Moves from an unknown position compare only by
@@ -54,6 +61,24 @@ std::optional<Mismatch> compare_traces(const Trace& expected, const Trace& actua
 // memory. The expected side may lead: when the comparer needs more of the actual trace it calls
 // `more_actual`, which hands on the next part of it (false: there is no more, the actual
 // sink has finished). Without it the actual side must lead.
+// The offsets alone, for a program whose moves are not compared with a job's (simulate --job):
+// each move of the program (its steps, as a sink) against the tool length offset `machine`'s post
+// selects for the tool in the spindle and the job's `work_offset` ("": none). `found` is told of
+// the first move of each run of moves under other offsets, with what differs, at its line.
+class OffsetCheck : public TraceSink {
+public:
+    OffsetCheck(const Machine& machine, std::string work_offset, std::function<void(const Mismatch&, const Step&)> found);
+    void step(const Step& step) override;
+    void hole(const Hole&) override {}
+    void finish(const TraceSummary&) override {}
+
+private:
+    const Machine& machine_;
+    std::function<void(const Mismatch&, const Step&)> found_;
+    SelectedOffsets expected_;
+    std::optional<SelectedOffsets> reported_;  // the wrong offsets of the run told of last
+};
+
 class TraceComparer {
 public:
     TraceComparer(const CompareTolerance& tolerance, std::function<bool()> more_actual = {});

@@ -40,6 +40,10 @@ struct Step {
     StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
     int line = 0;                    // program line (0: from a job)
     double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
+    // The tool length offset and work offset in force: a program's as it selected them
+    // (ReadEvent::offsets), a job's those its post selects (post_length_offset for the tool, the
+    // job's workOffset: TraceOptions::work_offset).
+    SelectedOffsets offsets;
 };
 
 // A hole: a feed move down at one XY position that the tool leaves upwards again before it
@@ -108,6 +112,9 @@ struct TraceOptions {
     // as the control's table holds it; a tool missing here is taken as orientation 0 (the
     // programmed point the nose centre), with a note.
     std::map<int, int> compensation_orientations;
+    // A job's events: the job's work offset (workOffset; "": none, the post writes none), in
+    // force at every step (Step::offsets) with the length offset the post selects for the tool.
+    std::string work_offset;
 };
 
 // The control refuses the program: cutter compensation it cannot apply without gouging, a
@@ -186,6 +193,7 @@ private:
     // One event of a job after OperatorStops.
     void add_stopped_event(const Event& event);
     const Machine& machine_;
+    SelectedOffsets job_offsets_;  // job events: the offsets the post selects (Step::offsets)
     class Impl;
     std::unique_ptr<Impl> impl_;
     JobEvents job_events_{*this};
@@ -216,7 +224,7 @@ Trace trace_program(const std::vector<ReadEvent>& events, const Machine& machine
 Trace trace_events(const std::vector<Event>& events, const Machine& machine);
 
 // The motion a job's events (expand_job) should make on `machine`: feeds clamped to the
-// machine's limits, as every post writes them.
-Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine);
+// machine's limits, as every post writes them; `work_offset` the job's (TraceOptions::work_offset).
+Trace trace_expected(const std::vector<Event>& job_events, const Machine& machine, const std::string& work_offset = {});
 
 }  // namespace camgen

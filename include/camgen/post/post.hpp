@@ -413,6 +413,12 @@ private:
 // The post for a machine, by its dialect. Throws InputError for an unknown dialect.
 std::unique_ptr<Post> make_post(const Machine& machine, std::ostream& out, PostOptions options);
 
+// The tool length offset the machine's post selects for `tool` (0: before any tool), as the
+// reader names the one a program selects (SelectedOffsets::length in reader.hpp): "G43 H1",
+// "T0101", "D1", "TOOL CALL 1"; "" where the post selects none (nccad, GRBL, a machine file
+// with toolLengthOffset false). What verify --job expects in force at every move of the tool.
+std::string post_length_offset(const Machine& machine, int tool);
+
 // Whether the machine's start block selects the XY plane (G17).
 bool starts_in_xy(const Machine& machine);
 

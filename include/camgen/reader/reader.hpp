@@ -20,6 +20,24 @@ namespace camgen {
 // the height was still unknown (a tool touched off on the stock crosses the part).
 enum class Approach { z_first, xy_first };
 
+// The offsets a program has selected, in force at an event: the tool length offset and the
+// work offset, as the control's words name them ("" where none is in force). verify --job
+// compares them with the ones camgen's post selects (compare.hpp), every move; reading a program
+// takes any of them.
+struct SelectedOffsets {
+    // The tool length offset: "G43 H1" (ISO mills, LinuxCNC's lathe), "T0101" (a turret's call,
+    // its last two digits the offset), "D1" (Sinumerik's cutting edge, selected with T),
+    // "TOOL CALL 1" (Heidenhain: the called tool's own length, no register of its own); "": none
+    // (G49, or none selected; nccad and GRBL as camgen writes them have none).
+    std::string length;
+    // The work offset: "G54", "G54.1 P1"; "": none selected (the control's active one).
+    std::string work;
+    int length_line = 0;  // the line that selected (or cancelled) it; 0: none did
+    int work_line = 0;
+    // The same offsets (where they were selected aside).
+    bool same(const SelectedOffsets& o) const { return length == o.length && work == o.work; }
+};
+
 // One event read from a program. Canned drilling cycles come back as DrillCycle, DrillPoint
 // (one per hole) and DrillEnd; trace_program (motion.hpp) expands them with longhand_moves.
 struct ReadEvent {
@@ -33,6 +51,7 @@ struct ReadEvent {
     Approach approach = Approach::z_first;  // a from_unknown Rapid: whether Z moved first
     double per_revolution = 0.0;  // a feed move in per-revolution mode (G95): its mm per spindle
                                   // turn (its feed follows the spindle speed); else 0
+    SelectedOffsets offsets;      // in force at the event
 };
 
 // How precisely a program for a machine states values: half a unit of the last decimal written,

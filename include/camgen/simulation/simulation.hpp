@@ -261,6 +261,9 @@ public:
     void set_probes(std::vector<Vec2> points);
     // Sets SimOptions::lathe_sections (before the first step; a lathe's).
     void set_lathe_sections(std::vector<double> z);
+    // An error found beside the sweep at a program line (a move under offsets the job's post does
+    // not select: OffsetCheck), among the errors in program order (told before the line's step).
+    void report_error(int line, int tool, std::string message);
     // From now on tell `observer` of each change (nullptr: none).
     void observe(SimObserver* observer);
     // The result, complete after finish.
