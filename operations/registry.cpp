@@ -225,6 +225,8 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
     for (const Operation& op : job.operations)
         if (const auto* t = std::get_if<TurnProfileOp>(&op)) turned.push_back(t);
     check_turned_material(turned, in);
+    // The grooving and parting blades' rapids likewise, outside what earlier operations keep.
+    check_blade_material(job.operations, in);
     const auto path_of = [](const Operation& op) { return visit_exhaustive([]<OperationType Op>(const Op& o) { return o.path; }, op); };
     // Turning operations come in along Z to their first X beyond the bar's face: the stock's
     // faceZ, or the Z an earlier turn-face faced it to. A start inside it (a bar not faced

@@ -58,8 +58,10 @@ constexpr KeySpec turn_groove_keys[] = {
      .description = "X (as xValues) of the groove's bottom (give depth or bottomX; internal: beyond startX; not for face)"},
     {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "X (as xValues) of the surface the groove is cut into, which must be the largest over the groove, its "
-                    "chamfers and approachDistance either side (default: the stock bar's diameter; required without a bar); "
-                    "internal: the bore's X, the least over them (default: the bar's bore); not for face"},
+                    "chamfers and approachDistance either side: a rapid of the blade through the material an earlier "
+                    "turn-profile keeps is refused (default: the stock bar's diameter; required without a bar); internal: "
+                    "the bore's X, the least over them, a rapid through the bar's solid that nothing before bored out "
+                    "refused (default: the bar's bore); not for face"},
     {.key = "chamfer", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
      .description = "a 45-degree chamfer on each edge of the groove, mm along Z and along the radius: the +Z edge's cut "
                     "by the blade's right corner, the -Z edge's by its left corner"},

@@ -648,21 +648,6 @@ void expand_own(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
 
 std::string default_name(const TurnProfileOp& op) { return op.comment.empty() ? "turn profile" : op.comment; }
 
-namespace {
-
-// An interval along Z, mm.
-struct Span {
-    double lo, hi;
-};
-
-// The material a turn-profile keeps, in (u, v) = (Z, radius): the profile's sampling closed
-// through the spindle axis (from its end down to the axis, along it, up to its start).
-struct KeptMaterial {
-    std::vector<Vec2> ring;
-    double u_min = 0.0, u_max = 0.0, v_max = 0.0;
-    const TurnProfileOp* op = nullptr;
-};
-
 KeptMaterial kept_by(const TurnProfileOp& op) {
     KeptMaterial k;
     k.op = &op;
@@ -679,8 +664,7 @@ KeptMaterial kept_by(const TurnProfileOp& op) {
     return k;
 }
 
-// Where the line at radius `level` (> 0) runs inside the kept material: Z intervals, in order.
-std::vector<Span> inside_at(const KeptMaterial& k, double level) {
+std::vector<ZSpan> kept_inside_at(const KeptMaterial& k, double level) {
     if (level >= k.v_max) return {};
     std::vector<double> crossings;
     for (std::size_t i = 0; i < k.ring.size(); ++i) {
@@ -688,13 +672,12 @@ std::vector<Span> inside_at(const KeptMaterial& k, double level) {
         if ((a.y > level) != (b.y > level)) crossings.push_back(a.x + (level - a.y) * (b.x - a.x) / (b.y - a.y));
     }
     std::sort(crossings.begin(), crossings.end());
-    std::vector<Span> out;
+    std::vector<ZSpan> out;
     for (std::size_t i = 0; i + 1 < crossings.size(); i += 2) out.push_back({crossings[i], crossings[i + 1]});
     return out;
 }
 
-// The largest radius of the kept material between Z `lo` and `hi`.
-double largest_radius(const KeptMaterial& k, double lo, double hi) {
+double kept_largest_radius(const KeptMaterial& k, double lo, double hi) {
     double top = 0.0;
     for (std::size_t i = 0; i < k.ring.size(); ++i) {
         const Vec2 a = k.ring[i], b = k.ring[(i + 1) % k.ring.size()];
@@ -706,17 +689,8 @@ double largest_radius(const KeptMaterial& k, double lo, double hi) {
     return top;
 }
 
-// Material that a move along Z at radius `radius`, between Z `lo` and `hi`, runs through.
-struct MaterialHit {
-    Span span;          // where along Z
-    const KeptMaterial* kept;   // the first operation that keeps it
-};
-
-// The first stretch (from `hi` down when `downwards`, else from `lo` up) of the move along Z at
-// `radius` that runs inside what `kept` keeps and that none of the first `cut` of them passed
-// above (what a profile passes above is gone).
-std::optional<MaterialHit> first_hit(const std::vector<KeptMaterial>& kept, std::size_t cut, double radius, double lo, double hi,
-                             bool downwards) {
+std::optional<KeptMaterialHit> first_kept_hit(const std::vector<KeptMaterial>& kept, std::size_t cut, double radius,
+                                              double lo, double hi, bool downwards) {
     const double level = radius + profile_same_point;
     // +1/-1 at each end of an interval, for the material and for the air.
     struct Edge {
@@ -727,15 +701,15 @@ std::optional<MaterialHit> first_hit(const std::vector<KeptMaterial>& kept, std:
     for (std::size_t i = 0; i < kept.size(); ++i) {
         const KeptMaterial& k = kept[i];
         if (k.u_max <= lo || k.u_min >= hi) continue;
-        const std::vector<Span> inside = inside_at(k, level);
-        for (const Span& s : inside) {
+        const std::vector<ZSpan> inside = kept_inside_at(k, level);
+        for (const ZSpan& s : inside) {
             edges.push_back({s.lo, 1, 0});
             edges.push_back({s.hi, -1, 0});
         }
         if (i >= cut) continue;
         // Air: the profile's stretch of Z where the line is not inside.
         double from = k.u_min;
-        for (const Span& s : inside) {
+        for (const ZSpan& s : inside) {
             edges.push_back({from, 0, 1});
             edges.push_back({s.lo, 0, -1});
             from = s.hi;
@@ -744,7 +718,7 @@ std::optional<MaterialHit> first_hit(const std::vector<KeptMaterial>& kept, std:
         edges.push_back({k.u_max, 0, -1});
     }
     std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u < b.u; });
-    std::vector<Span> bad;
+    std::vector<ZSpan> bad;
     int material = 0, air = 0;
     for (std::size_t i = 0; i < edges.size(); ++i) {
         material += edges[i].material;
@@ -755,15 +729,17 @@ std::optional<MaterialHit> first_hit(const std::vector<KeptMaterial>& kept, std:
         if (!bad.empty() && bad.back().hi >= a) bad.back().hi = b;
         else bad.push_back({a, b});
     }
-    std::erase_if(bad, [](const Span& s) { return s.hi - s.lo <= material_margin; });
+    std::erase_if(bad, [](const ZSpan& s) { return s.hi - s.lo <= material_margin; });
     if (bad.empty()) return std::nullopt;
-    const Span s = downwards ? bad.back() : bad.front();
+    const ZSpan s = downwards ? bad.back() : bad.front();
     const double mid = (s.lo + s.hi) / 2;
     for (const KeptMaterial& k : kept)
-        for (const Span& in : inside_at(k, level))
-            if (in.lo <= mid && mid <= in.hi) return MaterialHit{s, &k};
+        for (const ZSpan& in : kept_inside_at(k, level))
+            if (in.lo <= mid && mid <= in.hi) return KeptMaterialHit{s, &k};
     return std::nullopt;  // not reached: every stretch lies inside one of them
 }
+
+namespace {
 
 // "this profile" or "the profile of /operations/N".
 std::string whose(const KeptMaterial& k, const TurnProfileOp& op) {
@@ -787,20 +763,20 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
         const Vec2 start = op->tip_path.segments.empty() || control ? op->profile.start : op->tip_path.start;
         const Vec2 end = op->profile.segments.back().end;
         // The approach: before this profile cuts, the material above it is still there.
-        if (auto hit = first_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))
+        if (auto hit = first_kept_hit(kept, kept.size() - 1, start.y + op->nose_low, start.x, clearance, true))
             json::fail(in.source(), op->path + "/start",
                              fmt::format("the approach runs along Z at X {} from the clearance (Z {}) down to the start "
                                          "(Z {}) through the material that {} keeps: X up to {} between Z {} and Z {}",
                                          x(start.y), in.show(clearance), in.show(start.x), whose(*hit->kept, *op),
-                                         x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
+                                         x(kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
                                          in.show(hit->span.hi)));
-        if (auto hit = first_hit(kept, kept.size(), op->retract_x + op->nose_low, end.x, clearance, false))
+        if (auto hit = first_kept_hit(kept, kept.size(), op->retract_x + op->nose_low, end.x, clearance, false))
             json::fail(in.source(), op->path + "/retractX",
                              fmt::format("retractX {} is inside the part: the return along Z from the profile's end (Z {}) "
                                          "to the clearance (Z {}) runs through the material that {} keeps, up to X {} "
                                          "between Z {} and Z {}; retractX must be beyond it",
                                          x(op->retract_x), in.show(end.x), in.show(clearance), whose(*hit->kept, *op),
-                                         x(largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
+                                         x(kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
                                          in.show(hit->span.hi)));
     }
 }

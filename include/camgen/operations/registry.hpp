@@ -91,6 +91,14 @@ Job read_job(std::string_view text, const std::string& source_name, JobLimits li
 // the stock's shape, else at the first such operation's "type", naming it and both kinds.
 void check_machine_kind(const Job& job, MachineKind kind, const std::string& machine_name);
 
+// Refuses (InputError at "startX", a face groove's at "z") a turn-groove or turn-part one of
+// whose rapids (the approach along Z and in to the approach level, the moves along Z there
+// between plunges and to the chamfers, the way out) runs through material: that earlier
+// turn-profiles keep (external and face); with a stock bar, an internal groove's through the
+// bar's solid that its bore, earlier turn-faces, turn-drills, internal grooves and turn-profiles
+// did not remove. `operations` in job order.
+void check_blade_material(const std::vector<Operation>& operations, const JobInput& input);
+
 // Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.
 Job read_job_file(const std::string& filename);
 

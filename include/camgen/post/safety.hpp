@@ -26,7 +26,7 @@ struct SafetyLimits {
     // On a lathe the retract-plane rules hold for moves on the spindle axis (a turn-drill's);
     // a move off the axis is a turning move, whose air lies outside the part radially, not
     // above it in Z: the turning operations plan it there and check it themselves
-    // (check_turned_material, turn-face and turn-rough by construction).
+    // (check_turned_material, check_blade_material, turn-face and turn-rough by construction).
     MachineKind kind = MachineKind::mill;
     // How the machine's roughing and finishing cycles move (Machine::rough_pattern): the
     // cycles are checked as the control runs them.

@@ -112,6 +112,39 @@ struct TurnProfileOp {
 // later profile passes above is gone.
 void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const JobInput& input);
 
+// The material a turn-profile keeps, in (u, v) = (Z, radius): the profile's sampling closed
+// through the spindle axis (from its end down to the axis, along it, up to its start). What
+// check_turned_material and the blades' checks (check_blade_material) measure moves against.
+struct KeptMaterial {
+    std::vector<Vec2> ring;
+    double u_min = 0.0, u_max = 0.0, v_max = 0.0;
+    const TurnProfileOp* op = nullptr;
+};
+KeptMaterial kept_by(const TurnProfileOp& op);
+
+// An interval along Z, mm.
+struct ZSpan {
+    double lo, hi;
+};
+// Where the line at radius `level` (> 0) runs inside the kept material: Z intervals, in order.
+std::vector<ZSpan> kept_inside_at(const KeptMaterial& k, double level);
+// The largest radius of the kept material between Z `lo` and `hi`.
+double kept_largest_radius(const KeptMaterial& k, double lo, double hi);
+
+// Material that a move along Z at a radius runs through: where along Z, and the first
+// operation that keeps it.
+struct KeptMaterialHit {
+    ZSpan span;
+    const KeptMaterial* kept;
+};
+// The first stretch (from `hi` down when `downwards`, else from `lo` up) of the move along Z at
+// `radius` between Z `lo` and `hi` that runs inside what `kept` keeps (by more than a few µm)
+// and that none of the first `cut` of them passed above (what a profile passes above is gone).
+// A tool whose body stands straight out from `radius` (a blade) meets the material iff this
+// line does: the material a profile keeps reaches down to the axis.
+std::optional<KeptMaterialHit> first_kept_hit(const std::vector<KeptMaterial>& kept, std::size_t cut, double radius,
+                                              double lo, double hi, bool downwards);
+
 // Reads an outside turning profile: "start" [x, z] and "path" (its elements, lines and arcs,
 // each from where the one before ends), X as `xv` says; refuses a negative X, a start or an
 // element at or above the clearance, an arc through the spindle axis, an element without length
