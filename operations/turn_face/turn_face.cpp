@@ -76,6 +76,10 @@ TurnFaceOp TurnFaceOp::read(Fields& f, const JobInput& in) {
     else f.fail("outerX", "give outerX (the X the face starts at), or a stock bar whose diameter it is");
     if (f.has("innerX")) op.inner = turn_face_radius(in, f, "innerX", xv);
     if (!(op.inner < op.outer)) f.fail("innerX", "innerX must be less than outerX: the face runs from outerX in to innerX");
+    // To the axis the tip goes past the centre by the nose radius: the nose's centre reaches the
+    // axis and its lowest point on the face sweeps the whole face. With the tip only at X0 the
+    // nose's round would leave a nub of up to its radius standing at the centre.
+    op.tip_end = op.inner > 0 ? op.inner : -tool.nose_radius;
     if (f.has("startZ")) op.start_z = in.length(f, "startZ");
     else if (bar) op.start_z = stock->face_z;
     else f.fail("startZ", "give startZ (the Z of the face before), or a stock bar whose face it is");
@@ -108,9 +112,9 @@ void expand(const TurnFaceOp& op, const Context& ctx, EventSink& sink) {
     sink.emit(Rapid{at(out, ctx.job.clearance)});
     for (double z : op.passes) {
         sink.emit(Rapid{at(out, z)});
-        sink.emit(Linear{at(op.inner, z), op.feed, Movement::cutting});
+        sink.emit(Linear{at(op.tip_end, z), op.feed, Movement::cutting});
         // Off the face before the return: the return runs lift above the face just cut.
-        sink.emit(Linear{at(op.inner + op.lift, z + op.lift), op.feed, Movement::lead_out});
+        sink.emit(Linear{at(op.tip_end + op.lift, z + op.lift), op.feed, Movement::lead_out});
         sink.emit(Rapid{at(out, z + op.lift)});
     }
     sink.emit(Rapid{at(out, ctx.job.clearance)});

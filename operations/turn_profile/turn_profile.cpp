@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -206,7 +207,21 @@ Profile read_turned_profile(json::Fields& f, const JobInput& in, XValues xv) {
     return profile;
 }
 
-Vec2 turned_lift_direction(int orientation, const Profile& profile) {
+bool turned_material_right(const Profile& profile) {
+    // The shoelace sum of the profile closed through the axis (from its end down to the axis,
+    // along it, up to its start): clockwise in (Z, radius) puts its inside on the right of travel.
+    std::vector<Vec2> ring = sample_profile(profile, 0.01);
+    ring.push_back({profile.segments.back().end.x, 0.0});
+    ring.push_back({profile.start.x, 0.0});
+    double twice_area = 0.0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        twice_area += a.x * b.y - b.x * a.y;
+    }
+    return twice_area < 0;
+}
+
+Vec2 turned_lift_direction(int orientation, const Profile& profile, bool material_right) {
     // From the imaginary tip towards the nose centre (LinuxCNC's codes, interp_queue.cc), in
     // (Z, radius): the way the tool's body lies, away from what the tip has just cut.
     Vec2 d{1.0, 1.0};
@@ -220,8 +235,15 @@ Vec2 turned_lift_direction(int orientation, const Profile& profile) {
     case 8: d = {0.0, -1.0}; break;
     default: break;
     }
+    // A profile that runs towards +Z (its material on the right of travel) is the mirror image
+    // in Z of one that runs towards -Z: a nose centre's lift (0, 9) mirrors with it, and
+    // orientation 1 (the left-hand tool) takes orientation 2's rule mirrored.
+    const double mirror = material_right ? -1.0 : 1.0;
+    if (material_right && (orientation == 0 || orientation == 9)) d.x = -d.x;
     d = d * (1.0 / norm(d));
-    if (orientation != 2 && orientation != 0 && orientation != 9) return d;
+    if (material_right ? orientation != 1 && orientation != 0 && orientation != 9
+                       : orientation != 2 && orientation != 0 && orientation != 9)
+        return d;
     // After a falling slope (the surface behind the tip rises towards +Z steeper than 45
     // degrees), halfway between it and straight up.
     const std::size_t k = profile.segments.size() - 1;
@@ -231,10 +253,13 @@ Vec2 turned_lift_direction(int orientation, const Profile& profile) {
         const Vec2 r = s.end - *s.centre;
         back = s.direction == ArcDirection::ccw ? Vec2{r.y, -r.x} : Vec2{-r.y, r.x};
     }
+    back.x *= mirror;
     if (!(back.x > 0 && back.y > 0)) return d;
     const double phi = std::atan2(back.y, back.x);
     if (phi <= pi / 4) return d;
-    return unit_at((phi + pi / 2) / 2);
+    Vec2 u = unit_at((phi + pi / 2) / 2);
+    u.x *= mirror;
+    return u;
 }
 
 std::optional<UnfollowableSegment> first_unfollowable(const Profile& profile, const Tool& tool) {
@@ -306,7 +331,8 @@ std::string direction_words(double deg) {
 }
 }  // namespace
 
-std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number) {
+std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number,
+                                                    bool material_right) {
     if (orientation < 1 || orientation > 8) return std::nullopt;
     constexpr double half = 90.0;
     const Vec2 t = lathe_tip_offset(orientation, 1.0);
@@ -320,8 +346,8 @@ std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int
                            direction_words(std::fmod(c + 180.0, 360.0)), c, tool_number, orientation,
                            direction_words(degrees_of(t)), std::fmod(lo + 360.0, 360.0), std::fmod(hi + 360.0, 360.0))};
     };
-    // The material directions are the left normals of travel, turning with an arc's sweep and
-    // about a convex corner; each sweep is checked at its ends and every 1 degree between
+    // The material directions are the left normals of travel (the right ones where the material
+    // lies on the right), turning with an arc's sweep and about a convex corner; each sweep is checked at its ends and every 1 degree between
     // (reach is an interval of less than 180 degrees, so the ends decide: the steps are a
     // guard against a sweep that wraps past it).
     auto check = [&](std::size_t k, double from, double sweep) -> std::optional<UnfollowableSegment> {
@@ -339,18 +365,19 @@ std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int
         double from = 0.0, sweep = 0.0;
         if (!s.centre) {
             if (distance(a, s.end) <= profile_same_point) continue;
-            from = degrees_of(left_of(s.end - a));
+            from = degrees_of(left_of(s.end - a) * (material_right ? -1.0 : 1.0));
         } else {
             const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
             const Vec2 r = a - *s.centre;
             // The left normal of travel: towards the centre of a ccw arc, away from a cw one's.
-            from = degrees_of(r * -sign);
+            from = degrees_of(r * (material_right ? sign : -sign));
             sweep = sign * segment_sweep(profile, k) * deg_per_rad;
         }
         if (before) {
-            // A convex corner (a left turn): the nose rolls about it from one normal to the next.
+            // A convex corner (a turn towards the material: left, or right where the material lies
+            // on the right): the nose rolls about it from one normal to the next.
             const double turn = std::fmod(from - *before + 540.0, 360.0) - 180.0;
-            if (turn > 1e-9)
+            if (material_right ? turn < -1e-9 : turn > 1e-9)
                 if (auto bad = check(k, *before, turn)) return bad;
         }
         if (auto bad = check(k, from, sweep)) return bad;
@@ -359,9 +386,9 @@ std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int
     return std::nullopt;
 }
 
-NosePath nose_path(const Profile& profile, double r, int orientation) {
+NosePath nose_path(const Profile& profile, double r, int orientation, bool material_right) {
     NosePath out;
-    const OffsetResult off = offset_profile(profile, r, OffsetSide::right);
+    const OffsetResult off = offset_profile(profile, r, material_right ? OffsetSide::left : OffsetSide::right);
     for (const OffsetNote& n : off.notes) {
         std::string why;
         switch (n.kind) {
@@ -377,7 +404,9 @@ NosePath nose_path(const Profile& profile, double r, int orientation) {
     // The nose must start and end square to the profile's ends: an offset trimmed there means
     // the nose cannot reach the profile's first or last element whole.
     const ProfilePoint first = point_at(profile, 0.0), last = point_at(profile, profile_length(profile));
-    const Vec2 want_start = first.point - left_of(first.tangent) * r, want_end = last.point - left_of(last.tangent) * r;
+    const double air = material_right ? -1.0 : 1.0;  // the air side: the right of travel, or the left
+    const Vec2 want_start = first.point - left_of(first.tangent) * (r * air),
+               want_end = last.point - left_of(last.tangent) * (r * air);
     if (distance(out.centre.start, want_start) > 1e-6) {
         out.refusal = UnfollowableSegment{0, fmt::format("the nose (radius {:.3f} mm) cannot start on this element: the "
                                                          "elements after it come closer to its start than the nose is wide",
@@ -412,7 +441,7 @@ NosePath nose_path(const Profile& profile, double r, int orientation) {
             distance(segment_start(profile, k), profile.segments[k].end) <= profile_same_point)
             continue;
         const Vec2 din = tangent_at(k - 1, true), dout = tangent_at(k, false);
-        if (cross(din, dout) < -1e-9) out.concave_corners.push_back(k);
+        if (cross(din, dout) * air < -1e-9) out.concave_corners.push_back(k);
     }
     return out;
 }
@@ -456,7 +485,7 @@ void plan_control_compensation(TurnProfileOp& op, Fields& f, const JobInput& in)
     };
     const Vec2 start = op.profile.start;
     comp.set_position(at({start.x + op.approach, start.y}));
-    check(comp.on(CompSide::right, r, 0));
+    check(comp.on(op.material_right ? CompSide::left : CompSide::right, r, 0));
     check(comp.move(CompMove{CompMove::Kind::feed, at(start), {}, ArcDirection::ccw, 0, 0}));
     for (std::size_t k = 0; k < op.control_path.segments.size(); ++k) {
         const ProfileSegment& s = op.control_path.segments[k];
@@ -492,7 +521,8 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
     if (!(op.approach > 0)) f.fail("approachDistance", "approachDistance must be > 0");
     op.lift = in.optional_length(f, "lift").value_or(0.5);
     if (!(op.lift > 0)) f.fail("lift", "lift must be > 0");
-    op.lift_direction = turned_lift_direction(tool.orientation, op.profile);
+    op.material_right = turned_material_right(op.profile);
+    op.lift_direction = turned_lift_direction(tool.orientation, op.profile, op.material_right);
     if (auto bad = first_unfollowable(op.profile, tool))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
     op.nose_radius = tool.nose_radius;
@@ -522,9 +552,9 @@ TurnProfileOp TurnProfileOp::read(Fields& f, const JobInput& in) {
         // An insert with angles is checked by first_unfollowable (orientation 2); any other
         // nose by the directions its orientation reaches.
         if (!(tool.insert_angle && tool.orientation == 2))
-            if (auto bad = first_unreachable(op.profile, tool.orientation, tool.number))
+            if (auto bad = first_unreachable(op.profile, tool.orientation, tool.number, op.material_right))
                 json::fail(in.source(), f.path_of("path") + "/" + std::to_string(bad->index), bad->why);
-        const NosePath nose = nose_path(op.profile, op.nose_radius, tool.orientation);
+        const NosePath nose = nose_path(op.profile, op.nose_radius, tool.orientation, op.material_right);
         if (nose.refusal)
             json::fail(in.source(), f.path_of("path") + "/" + std::to_string(nose.refusal->index), nose.refusal->why);
         // The nose stops a radius short of the profile's end along it: its leading point at the
@@ -566,8 +596,10 @@ void expand_control(const TurnProfileOp& op, const Context& ctx, EventSink& sink
     const Vec3 start = position_of(op.profile.start);
     sink.emit(Rapid{{start.x, 0.0, ctx.job.clearance}});
     if (start.z + op.approach < ctx.job.clearance) sink.emit(Rapid{{start.x, 0.0, start.z + op.approach}});
-    // The outside profile's material lies left of travel in (Z, X): the nose on its right, G42.
-    sink.emit(Compensation{CompensationSide::right, 0, op.nose_radius, op.orientation});
+    // The outside profile's material lies left of travel in (Z, X): the nose on its right, G42;
+    // a profile that runs towards +Z has it on its right: G41.
+    sink.emit(Compensation{op.material_right ? CompensationSide::left : CompensationSide::right, 0, op.nose_radius,
+                           op.orientation});
     sink.emit(Linear{start, op.feed, Movement::lead_in});
     for (const ProfileSegment& s : op.control_path.segments) {
         if (s.centre)
@@ -741,6 +773,39 @@ std::optional<KeptMaterialHit> first_kept_hit(const std::vector<KeptMaterial>& k
 
 namespace {
 
+// How deep a nose circle of radius `r` about `c` reaches into the ring's inside (< 0: clear of
+// it by that much).
+double nose_depth(const std::vector<Vec2>& ring, Vec2 c, double r) {
+    double d = std::numeric_limits<double>::infinity();
+    bool inside = false;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        const Vec2 ab = b - a;
+        const double len2 = dot(ab, ab);
+        const double t = len2 > 0 ? std::clamp(dot(c - a, ab) / len2, 0.0, 1.0) : 0.0;
+        d = std::min(d, distance(c, a + ab * t));
+        if ((a.y > c.y) != (b.y > c.y) && c.x < a.x + (c.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+    }
+    return inside ? r + d : r - d;
+}
+
+// The deepest a nose reaches into the ring while its centre moves straight from `a` to `b`
+// (sampled every 0.005 mm), and where its centre is then.
+struct NoseDepth {
+    double depth;
+    Vec2 centre;
+};
+NoseDepth deepest_along(const std::vector<Vec2>& ring, Vec2 a, Vec2 b, double r) {
+    const int n = std::clamp(static_cast<int>(std::ceil(distance(a, b) / 0.005)), 1, 20000);
+    NoseDepth worst{nose_depth(ring, a, r), a};
+    for (int i = 1; i <= n; ++i) {
+        const Vec2 c = a + (b - a) * (static_cast<double>(i) / n);
+        const double d = nose_depth(ring, c, r);
+        if (d > worst.depth) worst = {d, c};
+    }
+    return worst;
+}
+
 // "this profile" or "the profile of /operations/N".
 std::string whose(const KeptMaterial& k, const TurnProfileOp& op) {
     return k.op == &op ? "this profile" : "the profile of " + k.op->path;
@@ -778,6 +843,46 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
                                          x(op->retract_x), in.show(end.x), in.show(clearance), whose(*hit->kept, *op),
                                          x(kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)), in.show(hit->span.lo),
                                          in.show(hit->span.hi)));
+        // (After the return along Z, whose message names a retractX inside the part.)
+        // The way off the profile's end: the feed of the lift (from the tip path's end, or from
+        // where the control leaves the tip), then the rapid out along X to retractX. The nose
+        // must go no deeper into what this profile keeps than it is at the end of the cut (on
+        // it, under compensation; without compensation the nose may already lie across a slope).
+        {
+            const double r = op->nose_radius;
+            const Vec2 tip_offset = r > 0 ? lathe_tip_offset(op->orientation, r) : Vec2{0.0, 0.0};
+            const Profile& tip_path = op->tip_path.segments.empty() ? op->profile : op->tip_path;
+            Vec2 from = tip_path.segments.back().end - tip_offset;  // the nose centre
+            Vec2 lifted = from + op->lift_direction * op->lift;
+            if (control) {
+                // The nose centre where the control leaves it (plan_control_compensation).
+                lifted = op->control_exit - tip_offset;
+                from = lifted - op->lift_direction * op->lift;
+            }
+            const Vec2 out{lifted.x, op->retract_x - tip_offset.y};
+            const std::vector<Vec2>& ring = kept.back().ring;
+            const double allowed = std::max(0.0, nose_depth(ring, from, r)) + material_margin;
+            auto where = [&](Vec2 centre) {
+                const Vec2 tip = centre + tip_offset;
+                return fmt::format("the tip at X {} Z {}", x(tip.y), in.show(tip.x));
+            };
+            if (const NoseDepth lift = deepest_along(ring, from, lifted, r); lift.depth > allowed)
+                json::fail(in.source(), op->path + "/lift",
+                           fmt::format("the lift off the profile's end ({} towards {}: from tool {}'s imaginary tip "
+                                       "towards its nose centre, orientation {}) runs the tool into the material this "
+                                       "profile keeps, {} deep with {}: end the profile where the tool can leave it that "
+                                       "way, or use a tool of another orientation",
+                                       in.show(op->lift), direction_words(degrees_of(op->lift_direction)), op->tool,
+                                       op->orientation, in.show(lift.depth - std::max(0.0, allowed - material_margin)),
+                                       where(lift.centre)));
+            if (const NoseDepth way = deepest_along(ring, lifted, out, r); way.depth > allowed)
+                json::fail(in.source(), op->path + "/retractX",
+                           fmt::format("the rapid out along X from the lifted end (Z {}) to retractX {} runs the tool "
+                                       "through the material this profile keeps, {} deep with {}: the lift leaves the "
+                                       "tool over the part, not beside it",
+                                       in.show(lifted.x + tip_offset.x), x(op->retract_x),
+                                       in.show(way.depth - std::max(0.0, allowed - material_margin)), where(way.centre)));
+        }
     }
 }
 

@@ -544,8 +544,11 @@ TEST_CASE("nose compensation: refusals and notes at their JSON paths") {
               .find("/operations/0/path/1: the nose touches this element's surface from") != std::string::npos);
     CHECK(refusal(job(R"({"number": 1, "type": "turning-tool", "noseRadius": 0.4, "orientation": 3, "rpm": 1000})", cyl))
               .find("tool 1 of orientation 3 (its tip towards -Z and +X) cuts only between 45 and 225 degrees") != std::string::npos);
+    // Without compensation the tip follows the profile, but the boring tool's lift (towards +Z
+    // and -X) would dive into the diameter it has just cut: refused at lift.
     CHECK(refusal(job(R"({"number": 1, "type": "turning-tool", "noseRadius": 0.4, "orientation": 3, "rpm": 1000})", cyl,
-                      R"("compensation": "none", )")) == "");
+                      R"("compensation": "none", )"))
+              .find("/operations/0/lift: the lift off the profile's end (0.500 mm towards +Z and -X") != std::string::npos);
     CHECK(refusal(job(nose, cyl, R"("compensation": "left", )")).find("/operations/0/compensation") != std::string::npos);
     // A sharp concave corner is cut with the nose's radius left in it, and says so.
     const Job shoulder = read_job(job(nose, R"({"line": [10, 0]}, {"line": [10, -5]}, {"line": [12, -5]}, {"line": [12, -9]})"), "n.json");

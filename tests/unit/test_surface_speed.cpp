@@ -95,7 +95,7 @@ TEST_CASE("fanuc-lathe: G50 S<limit> then G96 S<vc> M3; the drill's G50 S<maxRpm
     CHECK(has(text, " G96 S200 M3\n"));
     CHECK(text.find("G50 S2500") < text.find("G96 S200"));
     // The feed per revolution the job gives, exactly.
-    CHECK(has(text, " G1 X0.000 F0.2000\n"));
+    CHECK(has(text, " G1 X-0.800 F0.2000\n"));
     // Back to rpm: G97; 1200 rpm is within the G50 S2500 in effect, which stays.
     CHECK(has(text, " G97 S1200 M3\n"));
     CHECK(text.find("G96 S200") < text.find("G97 S1200"));
@@ -118,7 +118,7 @@ TEST_CASE("linuxcnc-lathe: G96 D<limit> S<vc> M3 and G95; G97 S before the drill
     CHECK(has(text, "G96 D2500 S200 M3\n"));
     CHECK(has(text, "G95\n"));
     CHECK(has(text, "G97 S1200 M3\n"));
-    CHECK(has(text, "G1 X0 F0.2\n"));
+    CHECK(has(text, "G1 X-0.8 F0.2\n"));
     CHECK(test::round_trip(job(), text, "linuxcnc-lathe").empty());
     const std::vector<Spindle> back = spindles(text, "linuxcnc-lathe");
     REQUIRE(back.size() >= 2);

@@ -355,17 +355,18 @@ TEST_CASE("turn-face: equal passes to z, each fed across to the axis, lifted off
     for (std::size_t i = 0; i < moves.size(); ++i) {
         const TipMove& m = moves[i];
         if (m.rapid || m.movement != Movement::cutting) continue;
-        // Across the face at one Z from outside the bar (radius 20 + 1) in to the axis.
+        // Across the face at one Z from outside the bar (radius 20 + 1) in past the axis by the
+        // nose radius 0.8 (the nose's centre on the axis: no nub left).
         CHECK(m.from.x == doctest::Approx(m.to.x));
         CHECK(m.from.y == doctest::Approx(21));
-        CHECK(m.to.y == doctest::Approx(0));
+        CHECK(m.to.y == doctest::Approx(-0.8));
         passes.push_back(m.to.x);
         // Then off the face: +Z and +X by the lift, and only then a rapid, above the face.
         REQUIRE(i + 2 < moves.size());
         const TipMove& lift = moves[i + 1];
         CHECK_FALSE(lift.rapid);
         CHECK(lift.to.x == doctest::Approx(m.to.x + 0.5));
-        CHECK(lift.to.y == doctest::Approx(0.5));
+        CHECK(lift.to.y == doctest::Approx(-0.3));
         CHECK(moves[i + 2].rapid);
         CHECK(moves[i + 2].to.x == doctest::Approx(m.to.x + 0.5));
         CHECK(moves[i + 2].to.y == doctest::Approx(21));

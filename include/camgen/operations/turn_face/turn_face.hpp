@@ -29,6 +29,10 @@ struct TurnFaceOp {
     double feed = 0.0;            // mm/min (a job's mm/rev times the tool's speed)
     double outer = 0.0;           // radius the face starts at (the bar's), mm
     double inner = 0.0;           // radius it ends at (0: the axis), mm
+    // The radius the tip feeds to: inner, or at the axis minus the nose radius (the nose's
+    // centre on the axis, past the centre by the radius, so that no nub of the nose's round is
+    // left at the centre), mm.
+    double tip_end = 0.0;
     double start_z = 0.0;         // Z of the face before (the bar's), mm
     double z = 0.0;               // Z of the face after, mm
     std::vector<double> passes;   // the Z of each pass, from start_z down, the last z
@@ -38,7 +42,7 @@ struct TurnFaceOp {
 };
 
 // Rapid to approachDistance outside the bar at the clearance; for each pass: rapid along Z to
-// its Z, feed across to the inner radius, feed off by lift in +Z and +X, rapid back out above the
+// its Z, feed across to tip_end, feed off by lift in +Z and +X, rapid back out above the
 // face; rapid back to the clearance.
 void expand(const TurnFaceOp& op, const Context& context, EventSink& sink);
 

@@ -50,7 +50,9 @@ struct NosePath {
     std::optional<UnfollowableSegment> refusal;
     std::vector<std::size_t> concave_corners;
 };
-NosePath nose_path(const Profile& profile, double nose_radius, int orientation);
+// With `material_right` (a profile that runs towards +Z, turned_material_right) the material
+// lies on the right of travel and the nose runs on its left.
+NosePath nose_path(const Profile& profile, double nose_radius, int orientation, bool material_right = false);
 
 // The first element of `profile` that a nose of tip orientation `orientation` cannot reach: the
 // directions from the nose centre to where it touches the profile (the left normal of travel,
@@ -58,7 +60,14 @@ NosePath nose_path(const Profile& profile, double nose_radius, int orientation);
 // of the direction from the centre to the imaginary tip (the insert's body lies on the other
 // half); 9 and 0 (no tip given) reach every direction. A necessary condition only: an insert's
 // angles narrow it (first_unfollowable, orientation 2).
-std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number);
+// With `material_right` the material directions are the right normals of travel.
+std::optional<UnfollowableSegment> first_unreachable(const Profile& profile, int orientation, int tool_number,
+                                                    bool material_right = false);
+
+// Whether the material a turned profile keeps (between the spindle axis and the profile, the
+// profile closed through the axis) lies on the right of travel in (Z, radius): a profile that
+// runs towards +Z (a left-hand tool's, cutting towards the tailstock). Else on the left.
+bool turned_material_right(const Profile& profile);
 
 struct TurnProfileOp {
     static constexpr std::string_view type = "turn-profile";
@@ -77,6 +86,7 @@ struct TurnProfileOp {
     double retract_x = 0.0;       // radius the tool leaves the profile's end to, mm
     double approach = 1.0;        // mm before the start where the approach along Z turns from rapid to feed
     double lift = 0.5;            // mm the tool feeds off the profile's end before it rapids
+    bool material_right = false;  // the profile runs towards +Z: its material on the right of travel (turned_material_right)
     Vec2 lift_direction{0.70710678118654752, 0.70710678118654752};  // unit, (Z, radius): away from the finished surface (turned_lift_direction)
     NoseCompensation compensation = NoseCompensation::computer;
     double nose_radius = 0.0;     // the tool's, mm (0: a sharp tip)
@@ -107,9 +117,11 @@ struct TurnProfileOp {
 // Refuses (InputError at "start" or "retractX") a turn-profile of `ops`, in job order, whose
 // approach (the feed along Z from the clearance to its start) runs through material that it or
 // an earlier one keeps, or whose return (the rapid along Z at retractX from its end to the
-// clearance) runs through material that it or an earlier one keeps. The material a profile
-// keeps lies between the spindle axis and the profile, from its start's Z to its end's; what a
-// later profile passes above is gone.
+// clearance) runs through material that it or an earlier one keeps; and (InputError at "lift"
+// or "retractX") one whose lift off its end or rapid out along X to retractX runs its nose
+// circle deeper into the material it keeps than the nose lies at the end of its cut. The
+// material a profile keeps lies between the spindle axis and the profile, from its start's Z to
+// its end's; what a later profile passes above is gone.
 void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const JobInput& input);
 
 // The material a turn-profile keeps, in (u, v) = (Z, radius): the profile's sampling closed
@@ -173,7 +185,9 @@ std::optional<UnfollowableSegment> first_unfollowable(const Profile& profile, co
 // the end of `profile`: from its imaginary tip towards its nose centre (LinuxCNC's codes); for
 // orientation 2 (and none) +Z +X at 45 degrees, or halfway between the falling surface behind
 // the end and +X where that is steeper than 45 degrees.
-Vec2 turned_lift_direction(int orientation, const Profile& profile);
+// A profile whose material lies on the right (`material_right`, running towards +Z) takes the
+// mirror image in Z of that rule for orientation 1 (and for 0 and 9).
+Vec2 turned_lift_direction(int orientation, const Profile& profile, bool material_right = false);
 
 // Rapid to the start's X at the clearance, rapid along Z to approachDistance before its start,
 // feed to the start, feed along the profile (the tip path), feed off its end by lift (turned_lift_direction),
