@@ -170,11 +170,7 @@ double turn_rough_steepest_fall(const Profile& p) {
 void turn_rough_compensate(TurnRoughOp& op, const Tool& tool, Fields& f, const JobInput& in) {
     Profile closed = op.boundary;
     const Vec2 end = closed.segments.back().end;
-    // (Up past the bar by what the nose needs to round the end's corner onto it: a face shorter
-    // than the nose is wide would be refused, though the nose leaves its radius there anyway.)
-    if (end.y < op.stock_radius)
-        closed.segments.push_back(
-            {Vec2{end.x, std::max(op.stock_radius, end.y + 2 * op.nose_radius + 0.01)}, std::nullopt, ArcDirection::ccw});
+    if (end.y < op.stock_radius) closed.segments.push_back({Vec2{end.x, op.stock_radius}, std::nullopt, ArcDirection::ccw});
     bool lead = false;
     if (op.direction == RoughDirection::x) {
         const Vec2 t = point_at(closed, 0.0).tangent;

@@ -268,19 +268,4 @@ TEST_CASE("turn-rough: a fillet rising from a shoulder's corner is canned, not t
     }
 }
 
-TEST_CASE("turn-rough: a profile ending within a nose's width of the bar is roughed, not refused for a face it adds") {
-    // (An exploratory tester: a last cut of 0.7 mm on a D44 bar with a 0.8 mm nose was refused at
-    // /path for "the face from the profile's end up to the bar", an element the job does not give.)
-    for (const char* d : {"42.4", "42.6", "43"})
-        for (const char* m : {"linuxcnc-lathe", "fanuc-lathe", "sinumerik-lathe"}) {
-            CAPTURE(d);
-            CAPTURE(m);
-            const std::string job = fmt::format(R"({{"clearance":20,"stock":{{"bar":{{"diameter":44,"length":70,"faceZ":0}}}},
- "tools":[{{"number":4,"type":"turning-tool","noseRadius":0.8,"orientation":2,"rpm":1000}}],
- "operations":[{{"type":"turn-rough","tool":4,"feedMode":"per-revolution","feed":0.25,"depthOfCut":1.5,"start":[0,0],
-   "path":[{{"line":[{0},0]}},{{"line":[{0},-40]}}]}}]}})", d);
-            CHECK_NOTHROW((void)rc_posted(job, load_machine(m)));
-        }
-}
-
 }  // namespace test_turn_rough_cycle
