@@ -27,13 +27,6 @@ namespace {
 
 const std::string samples = CAMGEN_SOURCE_DIR "/samples/";
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // The 1-based number of the first line holding `what` (at or after line `from`); 0: none.
 int line_of(const std::string& text, const std::string& what, int from = 1) {
     std::istringstream in(text);
@@ -76,7 +69,7 @@ std::string inserted(const std::string& text, int before, const std::string& lin
 // A job: the sample with a work offset (empty: as it is).
 std::string job_file(const fs::path& dir, const std::string& sample, const std::string& work_offset) {
     if (work_offset.empty()) return samples + sample + ".json";
-    std::string text = read_text(samples + sample + ".json");
+    std::string text = test::read_file(samples + sample + ".json");
     REQUIRE(text.rfind("{", 0) == 0);
     text.insert(1, "\"workOffset\": \"" + work_offset + "\",");
     const fs::path p = dir / (sample + "-" + work_offset + ".json");
