@@ -52,7 +52,10 @@ private:
     int motion_ = -1;
     Plane plane_ = Plane::xy;
     std::optional<int> selected_tool_;
-    std::string selected_edge_;  // SelectedOffsets::length of the tool selected ("D1")
+    std::string selected_edge_;  // SelectedOffsets::length of the tool selected ("D1"; "": D0)
+    bool active_tool_ = false;   // a tool change (M6) was read
+    std::string active_edge_;    // the edge in force since then ("D1"; "": D0)
+    bool comp_on_ = false;       // G41/G42 in force
     std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
@@ -437,15 +440,25 @@ void SinumerikReader::block(const Block& b) {
         // change (M6). camgen's post writes D1; a T without D leaves the edge to the control's
         // machine data (Siemens' default: D1, unconfirmed for a given control), which verify --job
         // does not assume.
+        // D0 selects no edge: no length and no radius (SelectedOffsets::length "").
         const Word* d = w.take('D');
-        if (d && integer_of(*d) < 1) fail(fmt::format("{}: cutting edges count from D1", d->text));
-        selected_edge_ = d ? fmt::format("D{}", integer_of(*d))
-                           : fmt::format("T{} without D: the control's default edge", *selected_tool_);
+        selected_edge_ = !d                     ? fmt::format("T{} without D: the control's default edge", *selected_tool_)
+                         : integer_of(*d) == 0 ? std::string()
+                                               : fmt::format("D{}", integer_of(*d));
+    } else if (const Word* d = w.take('D')) {
+        // D without T selects another edge of the tool in the spindle (D0: none), in force from
+        // this block on: its length applies with the next move along Z.
+        if (!active_tool_) fail(fmt::format("{} without a tool in the spindle (T.. M6 before it)", d->text));
+        if (comp_on_) fail(fmt::format("{} under G41/G42: camgen reads a change of edge only with G40 in force", d->text));
+        active_edge_ = integer_of(*d) == 0 ? std::string() : fmt::format("D{}", integer_of(*d));
+        select_length_offset(active_edge_);
     }
     if (m.tool_change) {
         if (!selected_tool_) fail("M6 without a tool selected by T");
         if (mcall_) fail(fmt::format("a tool change while the modal call {} of line {} is active", mcall_->name, mcall_->line));
         change_tool(*selected_tool_, commented_description(*selected_tool_));
+        active_tool_ = true;
+        active_edge_ = selected_edge_;
         select_length_offset(selected_edge_);
     }
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
@@ -454,7 +467,11 @@ void SinumerikReader::block(const Block& b) {
     if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
     if (units) set_units(units->value == code(70) ? Units::inch : Units::mm);
     if (comp) {
-        // G41/G42 take the radius of the cutting edge selected with the tool (D1).
+        // G41/G42 take the radius of the cutting edge selected with the tool (D1); under D0 there
+        // is none, and the control would cut on the programmed path.
+        if (comp->value != code(40) && active_tool_ && active_edge_.empty())
+            fail(fmt::format("{} under D0: no cutting edge selected, no radius to offset by", comp->word->text));
+        comp_on_ = comp->value != code(40);
         emit(Compensation{comp->value == code(40)  ? CompensationSide::off
                           : comp->value == code(41) ? CompensationSide::left
                                                     : CompensationSide::right});

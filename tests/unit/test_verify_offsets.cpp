@@ -213,7 +213,32 @@ TEST_CASE("verify --job: Sinumerik's cutting edge D is the length offset, D1 as 
         check_mismatch(s, replaced(s.program, tool + " D1", tool), move,
                        {"moves under the tool length offset " + tool + " without D: the control's default edge",
                         "the job's post selects D1"});
+        // D0 selects no edge: no length offset at all.
+        check_mismatch(s, replaced(s.program, tool + " D1", tool + " D0"), move,
+                       {"moves with no tool length offset (cancelled at line", "the job's post selects D1"});
+        // D without T changes the edge of the tool in the spindle from its block on.
+        const Run d2 = verify(s, inserted(s.program, move, "D2"), "edge.nc");
+        CHECK(d2.code == 1);
+        CHECK_MESSAGE(d2.out.find(fmt::format("edge.nc:{}: ", move + 1)) != std::string::npos, d2.out);
+        CHECK_MESSAGE(d2.out.find("moves under the tool length offset D2") != std::string::npos, d2.out);
     }
+}
+
+TEST_CASE("Sinumerik's reader: D0 and a D without T, read as the control selects them") {
+    const fs::path dir = test::scratch("verify-offsets-d0");
+    const auto read = [&](const std::string& name, const std::string& program) {
+        std::ofstream(dir / name) << program;
+        return run({"verify", (dir / name).string(), "--machine", "sinumerik"});
+    };
+    const std::string head = "T1 D1\nM6\nS1000 M3\nG0 X0. Y0. Z5.\n";
+    CHECK(read("d0.mpf", head + "D0\nG1 Z-1. F100\nM30\n").code == 0);
+    // Under D0 the control has no radius: a G41 would cut on the programmed path.
+    Run comp = read("d0-comp.mpf", head + "D0\nG41 G1 X5. F100\nM30\n");
+    CHECK(comp.code != 0);
+    CHECK_MESSAGE(comp.err.find("d0-comp.mpf:6: G41 under D0: no cutting edge selected") != std::string::npos, comp.err);
+    Run none = read("d-first.mpf", "D0\nT1 D1\nM6\nM30\n");
+    CHECK(none.code != 0);
+    CHECK_MESSAGE(none.err.find("d-first.mpf:1: D0 without a tool in the spindle") != std::string::npos, none.err);
 }
 
 TEST_CASE("verify --job: lathes: Fanuc T's turret offset digits, LinuxCNC's G43 H") {
