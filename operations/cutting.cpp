@@ -101,7 +101,7 @@ constexpr KeySpec tab_keys[] = {
     {.key = "count", .type = JsonType::integer, .quantity = Quantity::count, .min = Bound{1, true}, .max = Bound{1000, true}, .description = "tabs spread by length over the profile's straight runs (and arcs long enough), clear of the corners"},
     {.key = "spacing", .quantity = Quantity::length, .min = Bound{0, false}, .description = "or one tab every so many mm of the profile, spread the same way"},
     {.key = "at", .type = JsonType::array, .quantity = Quantity::length, .min_items = 1, .description = "or tabs at these places: each a distance along the profile as drawn from its start, or a point [x, y] near the profile (its nearest point; at most the tool's diameter away)"},
-    {.key = "width", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "width of a tab on the part (at its top)"},
+    {.key = "width", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "width of a tab at its top, at its narrowest: in the middle of the cut (a tool diameter wider where it meets the wall)"},
     {.key = "height", .quantity = Quantity::length, .required = true, .min = Bound{0, false}, .description = "height of a tab above the bottom of the cut"},
     {.key = "rampAngle", .quantity = Quantity::angle, .min = Bound{0, false}, .max = Bound{90, true}, .default_json = "90", .description = "degrees of a tab's flanks above horizontal: below 90 a trapezoid, the tool climbing and descending along the path"},
 };
