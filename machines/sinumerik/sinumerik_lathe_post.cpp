@@ -41,9 +41,19 @@ void SinumerikLathePost::on_spindle(const Spindle& s) {
     if (s.surface_speed == 0) {
         writer().add(g(97)).add(speed_word(s.rpm)).add(on).end();
         surface_mode_ = false;
+        // G97 switches feed per revolution on, as G95 (SINUMERIK ONE programming manual: "G97:
+        // revolutional feedrate and constant spindle speed"; the 840D manual of 2004: "G97 can be
+        // programmed without G96 beforehand. The function then has the same effect as G95"): under
+        // feed per minute, G94 again (it keeps the speed just written; G971 would do the same,
+        // but not every Sinumerik has it), and the F is written anew.
+        if (feed_mode_now() == FeedMode::per_minute) {
+            const auto code = machine().frame.feed_modes.find(FeedMode::per_minute);
+            writer().add(code != machine().frame.feed_modes.end() ? code->second : g(94)).end();
+            forget_feed();
+        }
         return;
     }
-    // G96 S in m/min (ft/min under G70), the spindle held to LIMS= (SINUMERIK programming
+    // G96 S in m/min (ft/min under G700), the spindle held to LIMS= (SINUMERIK programming
     // manual, "Constant cutting rate"); G96 switches G95 on, which camgen's operations under
     // it use already.
     const std::string limit = speed_text(s.rpm);

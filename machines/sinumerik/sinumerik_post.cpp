@@ -121,7 +121,9 @@ SinumerikPost::SinumerikPost(const Machine& machine, std::ostream& out, PostOpti
 
 void SinumerikPost::on_open() {
     if (!options().program_name.empty()) writer().comment(options().program_name);
-    write_start_block(g(machine().units == Units::inch ? 70 : 71));
+    // G700/G710: positions and feeds in the program's units, whatever the control's base
+    // system (G70/G71 would leave F in the base system's unit).
+    write_start_block(g(machine().units == Units::inch ? 700 : 710));
     if (starts_in_xy(machine())) assume_plane(17);
 }
 

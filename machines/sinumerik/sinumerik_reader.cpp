@@ -56,6 +56,7 @@ private:
     bool active_tool_ = false;   // a tool change (M6) was read
     std::string active_edge_;    // the edge in force since then ("D1"; "": D0)
     bool comp_on_ = false;       // G41/G42 in force
+    Units base_units_ = machine_.units;  // the control's base system: F's unit under G70/G71
     std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
@@ -381,7 +382,7 @@ void SinumerikReader::block(const Block& b) {
                     set_group(speed_mode, c);
                     break;
                 case code(17): case code(18): case code(19): set_group(plane, c); break;
-                case code(70): case code(71): set_group(units, c); break;
+                case code(70): case code(71): case code(700): case code(710): set_group(units, c); break;
                 case code(90): break;
                 case code(91): fail(fmt::format("{} (incremental positions): camgen posts never write it", x.text));
                 case code(94): break;
@@ -424,7 +425,11 @@ void SinumerikReader::block(const Block& b) {
         const std::string& name = speed_mode->word->text;
         if (!w.has('S')) fail(fmt::format("{} without S: camgen writes {} S", name, name));
         if (speed_mode->value == code(97)) {
+            // G97 also switches feed per revolution on, as G95 ("G97: revolutional feedrate and
+            // constant spindle speed", SINUMERIK ONE programming manual; the 840D manual of 2004:
+            // "the same effect as G95"): camgen's post writes G94 after it for feed per minute.
             constant_rpm();
+            set_feed_mode(FeedMode::per_revolution);
         } else {
             if (!lims_ && !(machine_.limits.max_rpm > 0))
                 fail(fmt::format("{} without a spindle limit LIMS= before it, and machine {} has no maxRpm", name, machine_.name));
@@ -465,7 +470,20 @@ void SinumerikReader::block(const Block& b) {
     if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
     if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
     if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
-    if (units) set_units(units->value == code(70) ? Units::inch : Units::mm);
+    if (units) {
+        // G700/G710: positions and feeds in inch or mm. G70/G71 change the positions only, the F
+        // stays in the control's base system (802D sl, 840D manuals: "feedrates ... are not
+        // influenced by G70/G71"), which camgen takes as the machine's units: G71 on a metric
+        // machine is G710, but a G70 there would leave F in mm/min under inch positions.
+        const bool inch = units->value == code(70) || units->value == code(700);
+        const bool positions_only = units->value == code(70) || units->value == code(71);
+        if (positions_only && (inch ? Units::inch : Units::mm) != base_units_)
+            fail(fmt::format("{} sets {} positions but leaves F in the control's base system ({}, machine {}): camgen "
+                             "reads {} (positions and feeds) instead",
+                             units->word->text, inch ? "inch" : "mm", name_of(unit_names, base_units_), machine_.name,
+                             inch ? "G700" : "G710"));
+        set_units(inch ? Units::inch : Units::mm);
+    }
     if (comp) {
         // G41/G42 take the radius of the cutting edge selected with the tool (D1); under D0 there
         // is none, and the control would cut on the programmed path.

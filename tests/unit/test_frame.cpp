@@ -50,7 +50,7 @@ TEST_CASE("the safe-start block, the work offset and coolant on every machine, r
         {"fanuc", "G55", "flood", "N10 G40 G49 G80 G17 G90 G94 G21 G55\n", " M8\n"},
         {"linuxcnc", "G59.1", "mist", "G40 G49 G80 G17 G90 G94 G21 G59.1\n", "M7\n"},
         {"grbl", "G54", "flood", "G40 G49 G17 G90 G94 G21 G54\n", "M8\n"},
-        {"sinumerik", "G505", "flood", "N10 G40 G17 G90 G94 G71 G505\n", " M8\n"},
+        {"sinumerik", "G505", "flood", "N10 G40 G17 G90 G94 G710 G505\n", " M8\n"},
         {"heidenhain", "", "flood", "0 BEGIN PGM frame MM\n", " M8\n"},
         {"wabeco", "", "", "_\n_\n; frame\nG90\n", ""},
         {"kosy", "", "", "_\n_\n; frame\nG90\n", ""},

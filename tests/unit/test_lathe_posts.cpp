@@ -127,7 +127,7 @@ TEST_CASE("sinumerik-lathe: DIAMON and G18; axial drilling as G17, MCALL CYCLE83
     const std::string text = post(R"(, "feedMode": "per-revolution", "plungingFeedrate": 0.1, "firstPeckDepth": 5,
                                       "peckRetract": 0.5)", "sinumerik-lathe");
     INFO(text);
-    CHECK(has(text, "N10 G18 DIAMON G40 G90 G94 G71\n"));
+    CHECK(has(text, "N10 G18 DIAMON G40 G90 G94 G710\n"));
     CHECK(has(text, " G95\n"));
     // RTP 5, RFP 0, SDIS 2, DP -20, FDEP 2 - 5 = -3, FRF 1, VARI 0 (chip break), _VRT 0.5.
     CHECK(has(text, " G17\nN"));

@@ -372,4 +372,43 @@ TEST_CASE("inch programs: cycle parameters in inches; Sinumerik FRF stays a fact
     CHECK(tnc.find("Q208=+99999 ;") != std::string::npos);
 }
 
+TEST_CASE("sinumerik: G700/G710 set positions and feeds; G70/G71 only positions, so only the machine's own is read") {
+    // The post writes G700 (inch) or G710 (mm): F in the program's unit whatever the control's
+    // base system (802D sl manual: "feedrates ... are not influenced by G70/G71. G700/G710,
+    // however, influences additionally the feedrate F").
+    Machine inch = load_machine("sinumerik");
+    inch.units = Units::inch;
+    const std::string job = R"({"clearance": 10, "tools": [{"number": 1, "type": "drill", "diameter": 5, "rpm": 1000}],
+ "operations": [{"type": "drill", "tool": 1, "retractPlane": 10, "safeDistance": 2, "endDepth": 5,
+   "plungingFeedrate": 80, "holes": [[0, 0]]}]})";
+    const std::string inch_program = test::post_program(read_job(job, "job.json"), inch);
+    CHECK(inch_program.find(" G700\n") != std::string::npos);
+    CHECK(round_trip_machine(read_job(job, "job.json"), inch_program, inch) == "");
+    CHECK(post_job(job, "sinumerik").text.find(" G710\n") != std::string::npos);
+    // Read on the metric machine: G700 F3.15 is 80 mm/min; G710 and G71 mean mm and mm/min.
+    const std::string body = "N20 T1 D1\nN30 M6\nN40 S1000 M3\nN50 G0 X0.000 Y0.000 Z0.100\nN60 G1 Z-0.100 F3.15\nN70 M30\n";
+    const auto feed_of = [&](const std::string& units) {
+        double f = 0;
+        for (const ReadEvent& e : read_program("N10 G17 G90 G94 " + units + "\n" + body, load_machine("sinumerik"), "p.mpf"))
+            if (const auto* m = std::get_if<Linear>(&e.event)) f = m->feed;
+        return f;
+    };
+    CHECK(feed_of("G700") == doctest::Approx(3.15 * 25.4));
+    CHECK(feed_of("G710") == doctest::Approx(3.15));
+    CHECK(feed_of("G71") == doctest::Approx(3.15));
+    // G70 on a metric control: inch positions, F still mm/min; camgen reads G700 only.
+    CHECK(error_of("N10 G17 G90 G94 G70\n" + body, "sinumerik") ==
+          "prog.nc:1: G70 sets inch positions but leaves F in the control's base system (mm, machine sinumerik): camgen "
+          "reads G700 (positions and feeds) instead");
+    std::string refusal;
+    try {
+        (void)read_program("N10 G17 G90 G94 G71\n" + body, inch, "prog.nc");
+    } catch (const InputError& e) {
+        refusal = e.what();
+    }
+    CHECK(refusal ==
+          "prog.nc:1: G71 sets mm positions but leaves F in the control's base system (inch, machine sinumerik): camgen "
+          "reads G710 (positions and feeds) instead");
+}
+
 }  // namespace test_reader_dialects

@@ -148,6 +148,30 @@ TEST_CASE("sinumerik-lathe: LIMS=<limit>, then G96 S<vc> M3; G97 S before the dr
     CHECK(back[0] == Spindle{SpindleState::cw, 2500, 200});
 }
 
+TEST_CASE("sinumerik-lathe: G97 switches feed per revolution on (as G95): a drill fed per minute gets G94 after it") {
+    // Siemens: "G97: revolutional feedrate and constant spindle speed" (SINUMERIK ONE), "the same
+    // effect as G95" (840D, 2004). Without G94 after it, F100 would be 100 mm per revolution.
+    std::string text = job();
+    const std::string rev = R"("feedMode": "per-revolution", "plungingFeedrate": 0.1)";
+    REQUIRE(has(text, rev));
+    text.replace(text.find(rev), rev.size(), R"("feedMode": "per-minute", "plungingFeedrate": 100)");
+    const std::string program = post("sinumerik-lathe", text);
+    INFO(program);
+    const auto g97 = program.find(" G97 S1200 M3\n");
+    REQUIRE(g97 != std::string::npos);
+    const auto next = program.find('\n', g97) + 1;
+    CHECK(program.substr(next, program.find('\n', next) - next).ends_with(" G94"));
+    CHECK(has(program.substr(next), " F100\n"));
+    CHECK(test::round_trip(text, program, "sinumerik-lathe").empty());
+    // The program without that G94 drills at 100 mm per revolution: read so, a mismatch.
+    const auto line_end = program.find('\n', next);
+    const std::string without = program.substr(0, next) + program.substr(line_end + 1);
+    const std::string difference = test::round_trip(text, without, "sinumerik-lathe");
+    CHECK_MESSAGE(has(difference, "feeds at 120000.000 mm/min where the job feeds at 100.000 mm/min"), difference);
+    // Feed per revolution after G97 needs no G94: the drill of job() is per revolution.
+    CHECK_FALSE(has(post("sinumerik-lathe").substr(post("sinumerik-lathe").find(" G97 ")), "G94"));
+}
+
 TEST_CASE("an inch lathe writes the surface speed in feet per minute and reads it back in m/min") {
     // 200 m/min = 656.17 ft/min; the three lathes write S as an rpm (a whole number): S656, which
     // reads back as 656 x 0.3048 = 199.949 m/min; the limit stays in rpm.

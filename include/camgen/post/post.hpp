@@ -291,6 +291,8 @@ protected:
     void forget_motion() { motion_.reset(); }
     // The control is in plane `code` (17, 18, 19): the program start selected it.
     void assume_plane(double code) { plane_.set_last(code); }
+    // How F is written now: per minute or per revolution.
+    FeedMode feed_mode_now() const { return feed_mode_; }
     // The feed is unknown: the next F word is written, per minute or per revolution.
     void forget_feed() {
         feed_.reset();
