@@ -153,7 +153,7 @@ TEST_CASE("custom: a block that changes the state the program goes on with is re
         {"fanuc", R"("O1234")", "changes the program numbers from 1 to 2"},
         {"grbl", R"~("(Insert tool 2: a drill)")~", "changes the tool change announced from none to Insert tool 2"},
         {"sinumerik", R"~(["F100", "MCALL CYCLE81(5, 0, 2, -5)"])~", "changes the modal cycle call from none to CYCLE81"},
-        {"sinumerik", R"("G70")", "changes the units from mm to inch"},
+        {"sinumerik", R"("G700")", "changes the units from mm to inch"},
         {"heidenhain", R"("CYCL DEF 9.0 DWELL TIME")", "changes the cycle definition from none to CYCL DEF 9.0 (without its 9.1)"},
         {"heidenhain", R"("M30")", "changes the program end from not read to M30 read"},
         {"wabeco", R"("G99")", "changes the program end from not read to read"},
