@@ -917,8 +917,9 @@ private:
     // A turning tool whose programmed point (the imaginary tip) moves from p to q: its nose
     // circle's centre lies from the point as the orientation says (lathe_tip_offset; 2: a nose
     // radius above it in X and Z), its insert's flanks as ToolShape::flank_lo/hi say, mirrored
-    // in Z for a tip on the nose's +Z side (1, 4, 5: the body towards -Z) and in X for one on
-    // its +X side (3, 4, 8: a boring tool, its body towards the axis). The swept shape is
+    // in Z for an outside tool whose tip lies on the nose's +Z side (1, 5: the body towards -Z,
+    // its shank out along +X) and in X for one on its +X side (3, 4, 8: a boring tool, its body
+    // towards the axis; never in Z: its bar leaves the bore towards +Z). The swept shape is
     // SimTurnSweep's in the mirrored frame. An outside tool clears every radius from the
     // shape's lowest at each Z outward (the profile holds no overhang: what lies above the
     // insert is its holder's, or was cut on the way in); its centre's X is taken signed (a nose
@@ -931,8 +932,8 @@ private:
         const double n = tool.nose_radius;
         const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
         const Vec2 unit = lathe_tip_offset(tool.orientation, 1.0);
-        const double zs = unit.x > 0 ? -1.0 : 1.0;   // left-hand: Z mirrored
-        const bool boring = unit.y > 0;              // X mirrored
+        const bool boring = unit.y > 0;                          // X mirrored
+        const double zs = unit.x > 0 && !boring ? -1.0 : 1.0;   // left-hand outside: Z mirrored
         double xa = p.x - tip.y, xb = q.x - tip.y;
         if (boring) xa = -std::abs(xa), xb = -std::abs(xb);
         else if (xa <= 0 && xb <= 0) xa = -xa, xb = -xb;
