@@ -189,6 +189,83 @@ struct SimArcColumns {
     }
 };
 
+// A direction `deg` degrees from +Z towards +X, as (Z, radius); exact along the axes.
+Vec2 sim_unit_deg(double deg) {
+    if (deg == 0.0) return {1.0, 0.0};
+    if (deg == 90.0) return {0.0, 1.0};
+    if (deg == 180.0) return {-1.0, 0.0};
+    return {std::cos(deg * rad_per_deg), std::sin(deg * rad_per_deg)};
+}
+
+// A turning tool whose nose centre moves straight from a to b, in (Z, radius) of the frame in
+// which it is an outside tool (its body towards +X): the nose disc of radius n and its flanks,
+// rays tangent to the disc in the directions lo and hi (degrees from +Z towards +X, 0 <= lo <= hi
+// <= 180: the insert fills the angle between them). The swept shape, the sum of the segment, the
+// disc and the angle, is convex; the lower edge of the segment plus the angle lies on five
+// pieces (the segment and the two rays from each end), so the swept shape's lower edge at Z z is
+// the least of the discs at a and b and those pieces each moved n down along its normal.
+// Closed form, a few operations a sample.
+struct SimTurnSweep {
+    struct Piece {
+        Vec2 o, d;     // o + t d, 0 <= t <= t_max
+        double t_max;
+    };
+    Vec2 a, b;
+    double n;
+    Piece rays[4];
+    int nrays = 0;
+    Piece seg{};
+    bool has_seg = false;
+
+    SimTurnSweep(Vec2 a_, Vec2 b_, double nose, double lo, double hi) : a(a_), b(b_), n(nose) {
+        // The piece moved n along its normal that points down (-X); none along X (the discs at
+        // its ends lie lower).
+        auto moved = [&](Vec2 o, Vec2 d, double t_max, Piece& out) {
+            const double len = std::hypot(d.x, d.y);
+            if (!(len > 0) || std::abs(d.x) < sim_tiny * len) return false;
+            Vec2 down{d.y / len, -d.x / len};
+            if (down.y > 0) down = down * -1.0;
+            out = {o + down * n, d, t_max};
+            return true;
+        };
+        constexpr double none = std::numeric_limits<double>::infinity();
+        for (Vec2 v : {a, b})
+            for (double deg : {lo, hi})
+                if (moved(v, sim_unit_deg(deg), none, rays[nrays])) ++nrays;
+        has_seg = moved(a, b - a, 1.0, seg);
+    }
+
+    // The least radius the swept shape reaches at Z z (+infinity: it does not reach z).
+    double low(double z) const {
+        double r = std::numeric_limits<double>::infinity();
+        for (Vec2 v : {a, b}) {
+            const double e = z - v.x;
+            if (std::abs(e) <= n) r = std::min(r, v.y - std::sqrt(std::max(0.0, n * n - e * e)));
+        }
+        auto piece = [&](const Piece& p) {
+            const double t = (z - p.o.x) / p.d.x;
+            if (t >= 0 && t <= p.t_max) r = std::min(r, p.o.y + t * p.d.y);
+        };
+        for (int i = 0; i < nrays; ++i) piece(rays[i]);
+        if (has_seg) piece(seg);
+        return r;
+    }
+
+    // The Z range [lo, hi] outside which the swept shape stays at or above radius `bound`
+    // (the flanks rise away from the nose; one along Z never does: the range is unbounded).
+    void extent(double bound, double& lo, double& hi) const {
+        lo = std::min(a.x, b.x) - n, hi = std::max(a.x, b.x) + n;
+        for (int i = 0; i < nrays; ++i) {
+            const Piece& p = rays[i];
+            const double t = p.o.y >= bound ? 0.0
+                             : p.d.y > sim_tiny ? (bound - p.o.y) / p.d.y
+                                                : std::numeric_limits<double>::infinity();
+            const double z = p.o.x + t * p.d.x;
+            lo = std::min(lo, z), hi = std::max(hi, z);
+        }
+    }
+};
+
 // Removes the radii [lo, hi] from the material at one Z (outside, bore, gaps): where it reaches
 // the outside, the outside falls to lo (or to the edge of a gap it opens into); where it reaches
 // the bore, the bore rises to hi (likewise); else it is a gap, merged with those it meets. Sets
@@ -301,6 +378,9 @@ private:
         if (t.form == ToolForm::cone && !(t.tip_diameter >= 0 && t.tip_diameter <= t.diameter))
             bad("a tip diameter from 0 to the tool's diameter");
         if (t.form == ToolForm::turning && !(t.nose_radius >= 0)) bad("a nose radius of 0 or more");
+        if (t.form == ToolForm::turning &&
+            !(t.flank_lo >= 0 && t.flank_lo <= t.flank_hi && t.flank_hi <= 180 && t.flank_hi - t.flank_lo < 180))
+            bad("flanks between 0 and 180 degrees from +Z, less than 180 apart");
         if (t.flute_length && !(*t.flute_length > 0)) bad("a flute length above 0");
     }
 
@@ -783,14 +863,8 @@ private:
             pieces.emplace_back(a, b);
         }
         for (const auto& [p, q] : pieces) {
-            // The program's point is the imaginary tip: the nose circle's centre lies from it
-            // as the tool's orientation says (2: a nose radius above it in X and Z); a tip
-            // past the axis (X < 0) has its centre there too, its radius |X - offset|.
-            const double n = tool.nose_radius;
-            const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
-            if (tool.form == ToolForm::turning)  // tip +X of the nose: a boring tool
-                lathe_turn({std::abs(p.x - tip.y), p.y, p.z - tip.x}, {std::abs(q.x - tip.y), q.y, q.z - tip.x}, n,
-                           tip.y > 0 ? -1.0 : 1.0, acc);
+            if (tool.form == ToolForm::turning)
+                lathe_turn(p, q, tool, acc);
             else if (tool.form == ToolForm::blade && tool.orientation == 7)
                 lathe_face_blade(p, q, tool.diameter, acc);
             else if (tool.form == ToolForm::blade)
@@ -822,6 +896,15 @@ private:
         if (bore_changed) s.bore_lines[i] = line_;
     }
 
+    // The sections from Z `zlo` to `zhi`, in order of Z: f(index).
+    template <class F>
+    void sections_within(double zlo, double zhi, F f) {
+        const std::vector<double>& zs = result_.lathe_sections.z;
+        auto it = std::lower_bound(section_order_.begin(), section_order_.end(), zlo,
+                                   [&](std::int32_t i, double z) { return zs[static_cast<std::size_t>(i)] < z; });
+        for (; it != section_order_.end() && zs[static_cast<std::size_t>(*it)] <= zhi; ++it) f(static_cast<std::size_t>(*it));
+    }
+
     // The sections at or above Z `zlo`, in order of Z: f(index).
     template <class F>
     void sections_above(double zlo, F f) {
@@ -831,28 +914,56 @@ private:
         for (; it != section_order_.end(); ++it) f(static_cast<std::size_t>(*it));
     }
 
-    // A turning tool: its nose circle's centre at P (its tip where the nose is 0). Turning
-    // (side +1, tip -X of the nose): its body toward +X and +Z (cutting toward the chuck, -Z,
-    // and facing toward the axis), it clears r >= x - nose at z >= Pz, and the nose's lower
-    // quarter below. Boring (side -1, orientations 3, 4 and 8: the tip +X of the nose): the
-    // same mirrored in X, its body toward the axis and +Z, it opens the bore to r <= x + nose
-    // at z >= Pz, and to the nose's upper quarter below.
-    void lathe_turn(const Vec3& a, const Vec3& b, double nose, double side, SimMoveAcc& acc) {
-        const LatheProfile& p = result_.lathe;
+    // A turning tool whose programmed point (the imaginary tip) moves from p to q: its nose
+    // circle's centre lies from the point as the orientation says (lathe_tip_offset; 2: a nose
+    // radius above it in X and Z), its insert's flanks as ToolShape::flank_lo/hi say, mirrored
+    // in Z for an outside tool whose tip lies on the nose's +Z side (1, 5: the body towards -Z,
+    // its shank out along +X) and in X for one on its +X side (3, 4, 8: a boring tool, its body
+    // towards the axis; never in Z: its bar leaves the bore towards +Z). The swept shape is
+    // SimTurnSweep's in the mirrored frame. An outside tool clears every radius from the
+    // shape's lowest at each Z outward (the profile holds no overhang: what lies above the
+    // insert is its holder's, or was cut on the way in); its centre's X is taken signed (a nose
+    // that crosses the axis clears the axis), or as its mirror image where the move lies wholly
+    // past the axis (X <= 0). A boring tool opens the bore to the shape's highest, its
+    // centre's radius |X|.
+    void lathe_turn(const Vec3& p, const Vec3& q, const ToolShape& tool, SimMoveAcc& acc) {
+        const LatheProfile& pr = result_.lathe;
         constexpr double none = std::numeric_limits<double>::infinity();
-        const double zlo = std::min(a.z, b.z) - nose;
-        int k0 = std::max(0, static_cast<int>(std::ceil((zlo - p.z0) / p.dz - 0.5)));
-        for (int k = k0; k < p.nz; ++k) {
-            const double r = side * turn_reach(a, b, nose, p.z(k), side);
-            if (!std::isfinite(r) || p.outside[k] <= p.bore[k]) continue;
-            if (side > 0 && r < p.outside[k])
-                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
-            else if (side < 0 && r > p.bore[k])
-                acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, r, acc));
+        const double n = tool.nose_radius;
+        const Vec2 tip = lathe_tip_offset(tool.orientation, n);  // (Z, radius) from the centre
+        const Vec2 unit = lathe_tip_offset(tool.orientation, 1.0);
+        const bool boring = unit.y > 0;                          // X mirrored
+        const double zs = unit.x > 0 && !boring ? -1.0 : 1.0;   // left-hand outside: Z mirrored
+        double xa = p.x - tip.y, xb = q.x - tip.y;
+        if (boring) xa = -std::abs(xa), xb = -std::abs(xb);
+        else if (xa <= 0 && xb <= 0) xa = -xa, xb = -xb;
+        const SimTurnSweep sweep({zs * (p.z - tip.x), xa}, {zs * (q.z - tip.x), xb}, n, tool.flank_lo, tool.flank_hi);
+        // The shape cuts only below the most material can reach: the bar's radius outside, the
+        // bar's bore (less) in a boring tool's frame.
+        const double bound = boring ? -stock_.bore_diameter.value_or(0.0) / 2 : stock_.bar_diameter / 2;
+        double lo = 0, hi = 0;
+        sweep.extent(bound, lo, hi);
+        if (zs < 0) std::swap(lo, hi), lo = -lo, hi = -hi;
+        // The radius at Z z: outside, cut to at most it; boring, bored to at least it; none.
+        auto reach = [&](double z) {
+            const double r = sweep.low(zs * z);
+            if (!std::isfinite(r)) return none;
+            return boring ? -r : std::max(r, 0.0);
+        };
+        // The samples whose Z lie in [lo, hi] (as doubles first: either may be infinite).
+        const double f0 = std::ceil((lo - pr.z0) / pr.dz - 0.5), f1 = std::floor((hi - pr.z0) / pr.dz - 0.5);
+        const int k0 = f0 > 0 ? (f0 < pr.nz ? static_cast<int>(f0) : pr.nz) : 0;
+        const int k1 = f1 < pr.nz - 1 ? (f1 >= 0 ? static_cast<int>(f1) : -1) : pr.nz - 1;
+        for (int k = k0; k <= k1; ++k) {
+            if (pr.outside[k] <= pr.bore[k]) continue;
+            const double r = reach(pr.z(k));
+            if (!std::isfinite(r)) continue;
+            if (!boring && r < pr.outside[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, r, 0.0, acc));
+            else if (boring && r > pr.bore[k]) acc.max_depth = std::max(acc.max_depth, lathe_cut(k, none, r, acc));
         }
-        sections_above(zlo, [&](std::size_t i) {
-            const double r = side * turn_reach(a, b, nose, result_.lathe_sections.z[i], side);
-            if (std::isfinite(r)) side > 0 ? section_cut(i, r, 0.0) : section_cut(i, none, r);
+        sections_within(lo, hi, [&](std::size_t i) {
+            const double r = reach(result_.lathe_sections.z[i]);
+            if (std::isfinite(r)) boring ? section_cut(i, none, r) : section_cut(i, r, 0.0);
         });
     }
 
@@ -936,44 +1047,6 @@ private:
             else if (lo <= sec.bore[i]) section_cut(i, none, hi);
             else section_ring_cut(i, lo, hi);
         });
-    }
-
-    // The least radius the move clears at Z z (infinity: none there). With `side` -1 the radii
-    // are taken negative: minus the greatest radius a boring tool's nose reaches.
-    static double turn_reach(const Vec3& a, const Vec3& b, double nose, double z, double side = 1.0) {
-        const double xa = side * std::abs(a.x), xb = side * std::abs(b.x);
-        // Positions at or below z: the part of the segment with Pz <= z.
-        double r = std::numeric_limits<double>::infinity();
-        if (a.z <= z) r = std::min(r, xa);
-        if (b.z <= z) r = std::min(r, xb);
-        if ((a.z <= z) != (b.z <= z)) r = std::min(r, xa + (z - a.z) / (b.z - a.z) * (xb - xa));
-        r -= nose;
-        if (nose > 0 && !(a.z <= z && b.z <= z)) {
-            // Positions with z < Pz <= z + nose: the nose circle's lower quarter (convex in t).
-            double t_lo = 0, t_hi = 1;
-            const double dzs = b.z - a.z;
-            if (std::abs(dzs) > sim_tiny) {
-                double u0 = (z - a.z) / dzs, u1 = (z + nose - a.z) / dzs;
-                if (u0 > u1) std::swap(u0, u1);
-                t_lo = std::max(0.0, u0), t_hi = std::min(1.0, u1);
-            } else if (!(a.z > z && a.z <= z + nose)) {
-                t_lo = 1, t_hi = 0;
-            }
-            if (t_lo <= t_hi) {
-                auto g = [&](double t) {
-                    const double pz = a.z + t * dzs, px = xa + t * (xb - xa), e = pz - z;
-                    return px - std::sqrt(std::max(0.0, nose * nose - e * e));
-                };
-                double lo_t = t_lo, hi_t = t_hi;
-                for (int it = 0; it < sim_golden_iterations; ++it) {
-                    const double m1 = hi_t - sim_golden * (hi_t - lo_t), m2 = lo_t + sim_golden * (hi_t - lo_t);
-                    if (g(m1) <= g(m2)) hi_t = m2;
-                    else lo_t = m1;
-                }
-                r = std::min({r, g(t_lo), g(t_hi), g((lo_t + hi_t) / 2)});
-            }
-        }
-        return r;
     }
 
     // A drill (or any round tool) on the spindle's axis: it clears its radius above its point.
@@ -1142,6 +1215,12 @@ ToolShape tool_shape(const Tool& tool) {
         s.form = ToolForm::turning;
         s.nose_radius = tool.diameter / 2;
         s.orientation = tool.orientation;
+        if (tool.insert_angle && tool.approach_angle) {
+            // The main edge at approachAngle from the direction of feed (-Z), the end edge
+            // insertAngle further round: 180 - approachAngle - insertAngle above +Z.
+            s.flank_lo = 180.0 - *tool.approach_angle - *tool.insert_angle;
+            s.flank_hi = 180.0 - *tool.approach_angle;
+        }
         break;
     case ToolType::grooving_tool:  // a blade of its width, programmed at its left corner (orientation 1: right)
     case ToolType::parting_tool:

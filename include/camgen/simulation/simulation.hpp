@@ -67,6 +67,18 @@ struct ToolShape {
     int orientation = 2;                  // turning: LinuxCNC's tip code (1-9): the nose centre is the
                                           // program's point less lathe_tip_offset (2: a radius above in X and Z);
                                           // blade: which way its edge faces (see ToolForm::blade)
+    // turning: the insert beyond its nose, drawn as an outside tool cutting towards the chuck's
+    // (orientation 2): its two flanks leave the nose circle (tangent to it) in the directions
+    // flank_lo and flank_hi, degrees from +Z towards +X, and the insert and its holder fill the
+    // angle between them (0 <= flank_lo <= flank_hi <= 180, less than 180 apart), without end.
+    // The end edge is flank_lo (180 - approachAngle - insertAngle), the main edge flank_hi
+    // (180 - approachAngle). Mirrored in Z for an outside tool whose tip lies on the nose's +Z
+    // side (orientations 1 and 5: cutting towards the tailstock) and in X where the tip lies on
+    // its +X side (3, 4, 8: a boring tool, not mirrored in Z: its bar runs out of the bore
+    // towards +Z). The default, 0 and 90: an end edge along Z and a main edge
+    // along X, an insert that cuts no undercut (a tool whose angles are not given).
+    double flank_lo = 0.0;
+    double flank_hi = 90.0;
     double blade_lo = 0.0;                // blade: the edge's -Z end from the programmed point, mm (0: the
                                           // left corner is programmed; -diameter: the right one)
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error
