@@ -72,14 +72,14 @@ struct Path {
     // (the first such: a work offset selected between two holes of a canned cycle).
     int tool = 0;
     int line = 0;  // of its first move (first_line: of its first segment, 0 without one)
-    SelectedOffsets offsets;
-    std::optional<SelectedOffsets> changed;
+    int offsets = 0;             // Step::offsets: an entry of the table (offsets_of)
+    std::optional<int> changed;  // likewise
     int changed_line = 0;
     Vec3 end() const { return segs.empty() ? start : segs.back().b; }
     int first_line() const { return segs.empty() ? 0 : segs.front().line; }
-    // A move at `line` under `o`: the first change of offsets is kept.
-    void moves_under(const SelectedOffsets& o, int at) {
-        if (!changed && !o.same(offsets)) {
+    // A move at `line` under `o` (an entry of the table): the first change of offsets is kept.
+    void moves_under(int o, int at) {
+        if (!changed && o != offsets && !offsets_of(o).same(offsets_of(offsets))) {
             changed = o;
             changed_line = at;
         }
@@ -491,23 +491,35 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     return std::nullopt;
 }
 
+// The entries of the table (the job's, the program's) last found the same along two paths: most
+// paths run under the offsets of the path before (and looking entries up takes the table's lock).
+struct SameOffsets {
+    int job = 0;
+    int prog = 0;
+};
+
 // The offsets in force along two paths at the same place in their traces: the same at their
 // first moves, and the same after a change (a program that selects another work offset between
 // two holes of a canned cycle changes it inside a rapid path; a job never does).
-std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog) {
-    if (auto d = offsets_difference(job.offsets, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
-    const SelectedOffsets& job_after = job.changed ? *job.changed : job.offsets;
+// `same`: the entries last found the same, skipped and updated.
+std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog, SameOffsets& same) {
+    if (!job.changed && !prog.changed && job.offsets == same.job && prog.offsets == same.prog) return std::nullopt;
+    const SelectedOffsets& job_first = offsets_of(job.offsets);
+    const SelectedOffsets& prog_first = offsets_of(prog.offsets);
+    if (auto d = offsets_difference(job_first, prog_first, prog.tool)) return Mismatch{prog.line, *d};
+    const SelectedOffsets& job_after = job.changed ? offsets_of(*job.changed) : job_first;
     if (prog.changed)
-        if (auto d = offsets_difference(job_after, *prog.changed, prog.tool)) return Mismatch{prog.changed_line, *d};
+        if (auto d = offsets_difference(job_after, offsets_of(*prog.changed), prog.tool)) return Mismatch{prog.changed_line, *d};
     if (job.changed && !prog.changed)
-        if (auto d = offsets_difference(*job.changed, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
+        if (auto d = offsets_difference(job_after, prog_first, prog.tool)) return Mismatch{prog.line, *d};
+    if (!job.changed && !prog.changed) same = {job.offsets, prog.offsets};
     return std::nullopt;
 }
 
 // The first difference between two items at the same place in their traces. `job_next` and
 // `prog_next`: the next path on each side (for messages).
 std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* job_next, const Path* prog_next,
-                                      const CompareTolerance& tol) {
+                                      const CompareTolerance& tol, SameOffsets& same_offsets) {
     if (a.kind != b.kind)
         return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
     switch (a.kind) {
@@ -534,7 +546,7 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
         case Item::Kind::path:
             if (a.path.rapid != b.path.rapid)
                 return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
-            if (auto m = compare_offsets(a.path, b.path)) return m;
+            if (auto m = compare_offsets(a.path, b.path, same_offsets)) return m;
             return compare_paths(a.path, b.path, job_next, prog_next, tol);
     }
     return std::nullopt;
@@ -601,16 +613,16 @@ std::optional<std::string> offsets_difference(const SelectedOffsets& job, const 
                                      ? (program.length_line > 0 ? fmt::format("with no tool length offset (cancelled at line {})",
                                                                               program.length_line)
                                                                 : std::string("with no tool length offset selected"))
-                                     : fmt::format("under the tool length offset {}{}", program.length, at(program.length_line));
+                                     : fmt::format("under the tool length offset {}{}", program.length.str(), at(program.length_line));
         return fmt::format("tool {} moves {} where the job's post selects {} for it: every position of the tool is off by "
                            "the difference between their lengths",
-                           tool, prog, job.length.empty() ? std::string("none") : job.length);
+                           tool, prog, job.length.empty() ? std::string("none") : job.length.str());
     }
     if (job.work != program.work) {
         const std::string prog = program.work.empty() ? std::string("in no work offset selected (the control's active one)")
-                                                      : fmt::format("in work offset {}{}", program.work, at(program.work_line));
+                                                      : fmt::format("in work offset {}{}", program.work.str(), at(program.work_line));
         const std::string expected = job.work.empty() ? std::string("none (the post selects none: the control's active one)")
-                                                      : job.work;
+                                                      : job.work.str();
         return fmt::format("tool {} moves {} where the job's work offset is {}: every position is off by the difference "
                            "between the two",
                            tool, prog, expected);
@@ -620,24 +632,29 @@ std::optional<std::string> offsets_difference(const SelectedOffsets& job, const 
 
 OffsetCheck::OffsetCheck(const Machine& machine, std::string work_offset, std::function<void(const Mismatch&, const Step&)> found)
     : machine_(machine), found_(std::move(found)) {
-    expected_.work = std::move(work_offset);
+    expected_.work = OffsetWord(work_offset);
 }
 
 void OffsetCheck::step(const Step& s) {
     if (s.kind == StepKind::tool_change) {
-        expected_.length = post_length_offset(machine_, s.tool);
+        expected_.length = OffsetWord(post_length_offset(machine_, s.tool));
         reported_.reset();
         return;
     }
     if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
-    if (s.offsets.same(expected_)) {
+    // The step's entry, looked up when it changes (a lookup takes the table's lock).
+    if (s.offsets != current_id_) {
+        current_ = offsets_of(s.offsets);
+        current_id_ = s.offsets;
+    }
+    if (current_.same(expected_)) {
         reported_.reset();
         return;
     }
     // Once for each run of moves under the same wrong offsets.
-    if (reported_ && reported_->same(s.offsets)) return;
-    reported_ = s.offsets;
-    if (auto d = offsets_difference(expected_, s.offsets, s.tool)) found_(Mismatch{s.line, *d}, s);
+    if (reported_ && reported_->same(current_)) return;
+    reported_ = current_;
+    if (auto d = offsets_difference(expected_, current_, s.tool)) found_(Mismatch{s.line, *d}, s);
 }
 
 CompareTolerance compare_tolerance(const Machine& machine, double position) {
@@ -669,7 +686,7 @@ public:
         advancing_ = true;
         while (!decided_) {
             if (job_.ready() && prog_.ready()) {
-                if (auto m = compare_items(job_.front(), prog_.front(), job_.next_path(), prog_.next_path(), tol_)) {
+                if (auto m = compare_items(job_.front(), prog_.front(), job_.next_path(), prog_.next_path(), tol_, same_offsets_)) {
                     decide(std::move(m));
                     break;
                 }
@@ -702,6 +719,7 @@ public:
     std::function<bool()> more_actual_;
     Side job_, prog_;
     bool advancing_ = false, decided_ = false;
+    SameOffsets same_offsets_;
     std::optional<Mismatch> mismatch_;
 };
 

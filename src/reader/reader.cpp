@@ -2,6 +2,8 @@
 // dialect's reader beside its post.
 #include <functional>
 #include <istream>
+#include <mutex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -26,6 +28,23 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 }
 
 }  // namespace reader
+
+OffsetWord::OffsetWord(std::string_view text) {
+    if (text.empty()) return;
+    // Looked up and added under a lock (readers may run in several threads); a word once in the
+    // set stays where it is, so the pointer is read without one.
+    static std::mutex lock;
+    static std::set<std::string, std::less<>> words;
+    const std::lock_guard guard(lock);
+    auto it = words.find(text);
+    if (it == words.end()) it = words.emplace(text).first;
+    text_ = &*it;
+}
+
+const std::string& OffsetWord::str() const {
+    static const std::string none;
+    return text_ ? *text_ : none;
+}
 
 void read_program(std::string_view text, const Machine& machine, const std::string& source, ReadEventSink& sink,
                   ReadResolution* resolution) {

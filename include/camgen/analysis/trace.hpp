@@ -23,6 +23,13 @@ enum class StepKind { rapid, feed, dwell, tool_change, spindle, stop };
 // One step of motion or machine state.
 struct Step {
     StepKind kind = StepKind::rapid;
+    // The tool length offset and work offset in force, as an index into the table of the offsets
+    // selected (offsets_of; 0: none): a program's as it selected them (ReadEvent::offsets), a
+    // job's those its post selects (post_length_offset for the tool, the job's workOffset:
+    // TraceOptions::work_offset). An int in the space after `kind`: a step is copied several
+    // times on its way to the comparison; with the offsets themselves (24 bytes more, 272) GCC
+    // copied it with rep movs instead of moves, 8 % of verify --job's time (200,000 holes).
+    int offsets = 0;
     Vec3 from;                       // rapid, feed: start (meaningless when !from_known)
     Vec3 to;                         // rapid, feed: end
     bool from_known = true;          // false: from the tool-change position, path unknown
@@ -40,11 +47,14 @@ struct Step {
     StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
     int line = 0;                    // program line (0: from a job)
     double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
-    // The tool length offset and work offset in force: a program's as it selected them
-    // (ReadEvent::offsets), a job's those its post selects (post_length_offset for the tool, the
-    // job's workOffset: TraceOptions::work_offset).
-    SelectedOffsets offsets;
 };
+
+// The table of the offsets selected, which steps name by index (Step::offsets): one entry for each
+// selection or cancel a trace met (the words and the lines that selected them), the same entry
+// for the same selection met again; 0 is none (SelectedOffsets{}). Kept for the process (a Trace
+// outlives its builder); a program adds an entry for each line that selects an offset.
+int offsets_id(const SelectedOffsets& offsets);
+const SelectedOffsets& offsets_of(int id);
 
 // A hole: a feed move down at one XY position that the tool leaves upwards again before it
 // moves in XY (canned or longhand drilling alike; a contour's plunge is no hole).
