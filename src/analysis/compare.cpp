@@ -72,14 +72,14 @@ struct Path {
     // (the first such: a work offset selected between two holes of a canned cycle).
     int tool = 0;
     int line = 0;  // of its first move (first_line: of its first segment, 0 without one)
-    int offsets = 0;             // Step::offsets: an entry of the table (offsets_of)
-    std::optional<int> changed;  // likewise
+    SelectedOffsets offsets;
+    std::optional<SelectedOffsets> changed;
     int changed_line = 0;
     Vec3 end() const { return segs.empty() ? start : segs.back().b; }
     int first_line() const { return segs.empty() ? 0 : segs.front().line; }
-    // A move at `line` under `o` (an entry of the table): the first change of offsets is kept.
-    void moves_under(int o, int at) {
-        if (!changed && o != offsets && !offsets_of(o).same(offsets_of(offsets))) {
+    // A move at `line` under `o`: the first change of offsets is kept.
+    void moves_under(const SelectedOffsets& o, int at) {
+        if (!changed && !o.same(offsets)) {
             changed = o;
             changed_line = at;
         }
@@ -491,35 +491,23 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     return std::nullopt;
 }
 
-// The entries of the table (the job's, the program's) last found the same along two paths: most
-// paths run under the offsets of the path before (and looking entries up takes the table's lock).
-struct SameOffsets {
-    int job = 0;
-    int prog = 0;
-};
-
 // The offsets in force along two paths at the same place in their traces: the same at their
 // first moves, and the same after a change (a program that selects another work offset between
 // two holes of a canned cycle changes it inside a rapid path; a job never does).
-// `same`: the entries last found the same, skipped and updated.
-std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog, SameOffsets& same) {
-    if (!job.changed && !prog.changed && job.offsets == same.job && prog.offsets == same.prog) return std::nullopt;
-    const SelectedOffsets& job_first = offsets_of(job.offsets);
-    const SelectedOffsets& prog_first = offsets_of(prog.offsets);
-    if (auto d = offsets_difference(job_first, prog_first, prog.tool)) return Mismatch{prog.line, *d};
-    const SelectedOffsets& job_after = job.changed ? offsets_of(*job.changed) : job_first;
+std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog) {
+    if (auto d = offsets_difference(job.offsets, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
+    const SelectedOffsets& job_after = job.changed ? *job.changed : job.offsets;
     if (prog.changed)
-        if (auto d = offsets_difference(job_after, offsets_of(*prog.changed), prog.tool)) return Mismatch{prog.changed_line, *d};
+        if (auto d = offsets_difference(job_after, *prog.changed, prog.tool)) return Mismatch{prog.changed_line, *d};
     if (job.changed && !prog.changed)
-        if (auto d = offsets_difference(job_after, prog_first, prog.tool)) return Mismatch{prog.line, *d};
-    if (!job.changed && !prog.changed) same = {job.offsets, prog.offsets};
+        if (auto d = offsets_difference(*job.changed, prog.offsets, prog.tool)) return Mismatch{prog.line, *d};
     return std::nullopt;
 }
 
 // The first difference between two items at the same place in their traces. `job_next` and
 // `prog_next`: the next path on each side (for messages).
 std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* job_next, const Path* prog_next,
-                                      const CompareTolerance& tol, SameOffsets& same_offsets) {
+                                      const CompareTolerance& tol) {
     if (a.kind != b.kind)
         return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
     switch (a.kind) {
@@ -546,7 +534,7 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
         case Item::Kind::path:
             if (a.path.rapid != b.path.rapid)
                 return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
-            if (auto m = compare_offsets(a.path, b.path, same_offsets)) return m;
+            if (auto m = compare_offsets(a.path, b.path)) return m;
             return compare_paths(a.path, b.path, job_next, prog_next, tol);
     }
     return std::nullopt;
@@ -642,19 +630,14 @@ void OffsetCheck::step(const Step& s) {
         return;
     }
     if (s.kind != StepKind::rapid && s.kind != StepKind::feed) return;
-    // The step's entry, looked up when it changes (a lookup takes the table's lock).
-    if (s.offsets != current_id_) {
-        current_ = offsets_of(s.offsets);
-        current_id_ = s.offsets;
-    }
-    if (current_.same(expected_)) {
+    if (s.offsets.same(expected_)) {
         reported_.reset();
         return;
     }
     // Once for each run of moves under the same wrong offsets.
-    if (reported_ && reported_->same(current_)) return;
-    reported_ = current_;
-    if (auto d = offsets_difference(expected_, current_, s.tool)) found_(Mismatch{s.line, *d}, s);
+    if (reported_ && reported_->same(s.offsets)) return;
+    reported_ = s.offsets;
+    if (auto d = offsets_difference(expected_, s.offsets, s.tool)) found_(Mismatch{s.line, *d}, s);
 }
 
 CompareTolerance compare_tolerance(const Machine& machine, double position) {
@@ -686,7 +669,7 @@ public:
         advancing_ = true;
         while (!decided_) {
             if (job_.ready() && prog_.ready()) {
-                if (auto m = compare_items(job_.front(), prog_.front(), job_.next_path(), prog_.next_path(), tol_, same_offsets_)) {
+                if (auto m = compare_items(job_.front(), prog_.front(), job_.next_path(), prog_.next_path(), tol_)) {
                     decide(std::move(m));
                     break;
                 }
@@ -719,7 +702,6 @@ public:
     std::function<bool()> more_actual_;
     Side job_, prog_;
     bool advancing_ = false, decided_ = false;
-    SameOffsets same_offsets_;
     std::optional<Mismatch> mismatch_;
 };
 

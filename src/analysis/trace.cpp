@@ -4,11 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <deque>
-#include <map>
-#include <mutex>
 #include <set>
 #include <string_view>
-#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -81,10 +78,7 @@ public:
     void add(const ReadEvent& e, bool job) {
         line_ = e.line;
         uncertainty_ = e.uncertainty;
-        if (!(e.offsets == offsets_)) {
-            offsets_ = e.offsets;
-            offsets_id_ = offsets_id(e.offsets);
-        }
+        offsets_ = e.offsets;
         visit_exhaustive(overloaded{
                        [&](const OperationStart& o) {
                            operation_path_ = o.path;
@@ -249,11 +243,11 @@ private:
         // A lathe's move under nose-radius compensation: the controlled point is the imaginary
         // tip, this far from the nose centre the control offsets (Z, radius), mm.
         std::optional<Vec2> tip;
-        int offsets = 0;  // in force where it was programmed (Step::offsets)
+        SelectedOffsets offsets;  // in force where it was programmed
     };
 
     Programmed programmed(StepKind kind, double feed, Movement movement, double pitch, bool from_unknown) const {
-        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt, std::nullopt, offsets_id_};
+        return Programmed{0, kind, feed, movement, pitch, from_unknown, line_, uncertainty_, std::nullopt, std::nullopt, offsets_};
     }
 
     Step base(StepKind kind) const {
@@ -262,7 +256,7 @@ private:
         s.tool = tool_;
         s.line = line_;
         s.uncertainty = uncertainty_;
-        s.offsets = offsets_id_;
+        s.offsets = offsets_;
         return s;
     }
 
@@ -511,7 +505,6 @@ private:
     int line_ = 0;
     double uncertainty_ = 0.0;
     SelectedOffsets offsets_;  // of the event being added
-    int offsets_id_ = 0;       // its entry in the table of offsets (offsets_of)
     double pitch_ = 0.0;  // while a tap is expanded
     double thread_rpm_ = 0.0;  // the spindle speed a thread-cutting move feeds by (lead x rpm)
     std::optional<DrillCycle> cycle_;
@@ -525,37 +518,6 @@ private:
     std::vector<std::string> notes_;
     std::set<int> noted_;  // the registers (and -1 - tool: a lathe tool's orientation) noted
 };
-
-namespace {
-// The table behind offsets_id and offsets_of: entries are added under the lock and never move
-// (a deque grows at its end), so a reference to one stays good.
-struct OffsetsTable {
-    std::mutex lock;
-    std::deque<SelectedOffsets> entries{SelectedOffsets{}};
-    // An entry's words (interned: their views stay good) and lines, to its index.
-    std::map<std::tuple<std::string_view, std::string_view, int, int>, int> index;
-};
-
-OffsetsTable& offsets_table() {
-    static OffsetsTable table;
-    return table;
-}
-}  // namespace
-
-int offsets_id(const SelectedOffsets& o) {
-    if (o == SelectedOffsets{}) return 0;
-    OffsetsTable& t = offsets_table();
-    const std::lock_guard guard(t.lock);
-    auto [it, added] = t.index.try_emplace({o.length.str(), o.work.str(), o.length_line, o.work_line}, static_cast<int>(t.entries.size()));
-    if (added) t.entries.push_back(o);
-    return it->second;
-}
-
-const SelectedOffsets& offsets_of(int id) {
-    OffsetsTable& t = offsets_table();
-    const std::lock_guard guard(t.lock);
-    return t.entries.at(static_cast<std::size_t>(id));
-}
 
 TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)
     : machine_(machine),

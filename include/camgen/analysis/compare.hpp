@@ -77,8 +77,6 @@ private:
     std::function<void(const Mismatch&, const Step&)> found_;
     SelectedOffsets expected_;
     std::optional<SelectedOffsets> reported_;  // the wrong offsets of the run told of last
-    SelectedOffsets current_;                  // those of the last move (Step::offsets: current_id_)
-    int current_id_ = 0;
 };
 
 class TraceComparer {

@@ -5,6 +5,7 @@
 // a backplot: arc type, decimal mark, formats and their scales, block style, comments.
 #include <iosfwd>
 #include <memory>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,27 +22,27 @@ namespace camgen {
 enum class Approach { z_first, xy_first };
 
 // A word naming an offset as the control's words name it ("G43 H1", "G54"; "": none), kept once
-// per process (a table of the words met, each stored once and never freed: a program names a
-// few, bounded by the distinct H, D, T and work offset numbers it writes). Copying and comparing
-// one is copying and comparing a pointer: every event read carries the offsets in force
+// per process in a table of the distinct words met (never freed: their number is bounded by the
+// distinct H, D, T and work offset numbers the programs write). Copying and comparing one is
+// copying and comparing 4 bytes: every event read carries the offsets in force
 // (SelectedOffsets), and as two std::string they took 5 % of verify --job's time (200,000 holes).
 class OffsetWord {
 public:
     OffsetWord() = default;  // ""
     explicit OffsetWord(std::string_view text);
     const std::string& str() const;
-    bool empty() const { return text_ == nullptr; }
-    friend bool operator==(OffsetWord a, OffsetWord b) { return a.text_ == b.text_; }
+    bool empty() const { return id_ == 0; }
+    friend bool operator==(OffsetWord a, OffsetWord b) { return a.id_ == b.id_; }
     friend bool operator==(OffsetWord a, std::string_view b) { return a.str() == b; }
 
 private:
-    const std::string* text_ = nullptr;  // in the table; nullptr: ""
+    std::uint32_t id_ = 0;  // the word's place in the table; 0: ""
 };
 
 // The offsets a program has selected, in force at an event: the tool length offset and the
 // work offset, as the control's words name them ("" where none is in force). verify --job
 // compares them with the ones camgen's post selects (compare.hpp), every move; reading a program
-// takes any of them. Trivially copied (two table pointers, two lines).
+// takes any of them. 16 bytes, trivially copied.
 struct SelectedOffsets {
     // The tool length offset: "G43 H1" (ISO mills, LinuxCNC's lathe), "T0101" (a turret's call,
     // its last two digits the offset), "D1" (Sinumerik's cutting edge, selected with T),
