@@ -601,16 +601,16 @@ std::optional<std::string> offsets_difference(const SelectedOffsets& job, const 
                                      ? (program.length_line > 0 ? fmt::format("with no tool length offset (cancelled at line {})",
                                                                               program.length_line)
                                                                 : std::string("with no tool length offset selected"))
-                                     : fmt::format("under the tool length offset {}{}", program.length, at(program.length_line));
+                                     : fmt::format("under the tool length offset {}{}", program.length.str(), at(program.length_line));
         return fmt::format("tool {} moves {} where the job's post selects {} for it: every position of the tool is off by "
                            "the difference between their lengths",
-                           tool, prog, job.length.empty() ? std::string("none") : job.length);
+                           tool, prog, job.length.empty() ? std::string("none") : job.length.str());
     }
     if (job.work != program.work) {
         const std::string prog = program.work.empty() ? std::string("in no work offset selected (the control's active one)")
-                                                      : fmt::format("in work offset {}{}", program.work, at(program.work_line));
+                                                      : fmt::format("in work offset {}{}", program.work.str(), at(program.work_line));
         const std::string expected = job.work.empty() ? std::string("none (the post selects none: the control's active one)")
-                                                      : job.work;
+                                                      : job.work.str();
         return fmt::format("tool {} moves {} where the job's work offset is {}: every position is off by the difference "
                            "between the two",
                            tool, prog, expected);
@@ -620,12 +620,12 @@ std::optional<std::string> offsets_difference(const SelectedOffsets& job, const 
 
 OffsetCheck::OffsetCheck(const Machine& machine, std::string work_offset, std::function<void(const Mismatch&, const Step&)> found)
     : machine_(machine), found_(std::move(found)) {
-    expected_.work = std::move(work_offset);
+    expected_.work = OffsetWord(work_offset);
 }
 
 void OffsetCheck::step(const Step& s) {
     if (s.kind == StepKind::tool_change) {
-        expected_.length = post_length_offset(machine_, s.tool);
+        expected_.length = OffsetWord(post_length_offset(machine_, s.tool));
         reported_.reset();
         return;
     }

@@ -521,7 +521,7 @@ private:
 
 TraceBuilder::TraceBuilder(const Machine& machine, TraceSink& sink, TraceOptions options)
     : machine_(machine),
-      job_offsets_{.length = {}, .work = options.work_offset},
+      job_offsets_{.length = {}, .work = OffsetWord(options.work_offset)},
       impl_(std::make_unique<Impl>(machine, sink, std::move(options))),
       stops_(std::make_unique<OperatorStops>(machine, job_events_)) {}
 
@@ -544,7 +544,7 @@ void TraceBuilder::add_stopped_event(const Event& e) {
     if (std::holds_alternative<ToolChange>(e) || std::holds_alternative<Stop>(e)) known_ = false;
     // The offsets the post selects: the tool's length offset from its change on, the job's
     // work offset from the start.
-    if (const auto* t = std::get_if<ToolChange>(&e)) job_offsets_.length = post_length_offset(machine_, t->number);
+    if (const auto* t = std::get_if<ToolChange>(&e)) job_offsets_.length = OffsetWord(post_length_offset(machine_, t->number));
     r.offsets = job_offsets_;
     if (std::holds_alternative<Rapid>(e)) {
         r.from_unknown = !known_;

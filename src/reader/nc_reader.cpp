@@ -184,12 +184,12 @@ void NcReader::select_work_offset(int g, const Word& text, BlockWords& w) {
         if (!machine_.has_work_offset(word)) fail(fmt::format("{}: machine {} has no work offset {}", word, machine_.name, word));
     }
     work_offset_ = word;
-    offsets_.work = word;
+    offsets_.work = OffsetWord(word);
     offsets_.work_line = line_;
 }
 
-void NcReader::select_length_offset(std::string description) {
-    offsets_.length = std::move(description);
+void NcReader::select_length_offset(std::string_view description) {
+    offsets_.length = OffsetWord(description);
     offsets_.length_line = line_;
 }
 

@@ -243,7 +243,7 @@ protected:
     void select_work_offset(int g, const Word& text, BlockWords& w);
     // The tool length offset the program selects from this line on, as SelectedOffsets::length
     // names it ("G43 H1"; "": cancelled). Every event after it carries it.
-    void select_length_offset(std::string description);
+    void select_length_offset(std::string_view description);
     // The feed mode a G word selects, where it is one of the machine's feed mode codes.
     std::optional<FeedMode> feed_mode_of(const Word& g) const;
     // The feed mode (frame feedModes) and an F word in it: per revolution the feed is F x S,

@@ -2,6 +2,9 @@
 // dialect's reader beside its post.
 #include <functional>
 #include <istream>
+#include <mutex>
+#include <deque>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -26,6 +29,39 @@ std::unique_ptr<NcReader> make_reader(const Machine& machine, std::string source
 }
 
 }  // namespace reader
+
+namespace {
+// The table behind OffsetWord: the words in the order met (a deque: an entry never moves, so a
+// reference to one stays good), and each word's place. Looked up and added under a lock (readers
+// may run in several threads).
+struct OffsetWords {
+    std::mutex lock;
+    std::deque<std::string> words{std::string()};
+    std::map<std::string, std::uint32_t, std::less<>> index;
+};
+OffsetWords& offset_words() {
+    static OffsetWords table;
+    return table;
+}
+}  // namespace
+
+OffsetWord::OffsetWord(std::string_view text) {
+    if (text.empty()) return;
+    OffsetWords& t = offset_words();
+    const std::lock_guard guard(t.lock);
+    auto it = t.index.find(text);
+    if (it == t.index.end()) {
+        it = t.index.emplace(std::string(text), static_cast<std::uint32_t>(t.words.size())).first;
+        t.words.emplace_back(text);
+    }
+    id_ = it->second;
+}
+
+const std::string& OffsetWord::str() const {
+    OffsetWords& t = offset_words();
+    const std::lock_guard guard(t.lock);
+    return t.words[id_];
+}
 
 void read_program(std::string_view text, const Machine& machine, const std::string& source, ReadEventSink& sink,
                   ReadResolution* resolution) {

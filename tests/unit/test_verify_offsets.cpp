@@ -293,7 +293,7 @@ TEST_CASE("controls without length offset registers or work offsets: Heidenhain,
             if (!std::holds_alternative<Rapid>(e.event) && !std::holds_alternative<Linear>(e.event)) continue;
             ++moves;
             CHECK(e.offsets.work == "");
-            if (machine == "heidenhain") CHECK(e.offsets.length.rfind("TOOL CALL ", 0) == 0);
+            if (machine == "heidenhain") CHECK(e.offsets.length.str().rfind("TOOL CALL ", 0) == 0);
             else CHECK(e.offsets.length == "");
         }
         CHECK(moves > 10);

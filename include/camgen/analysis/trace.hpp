@@ -22,29 +22,33 @@ enum class StepKind { rapid, feed, dwell, tool_change, spindle, stop };
 
 // One step of motion or machine state.
 struct Step {
+    // The small fields first, then the doubles: Step stays at 256 bytes, up to which GCC copies a
+    // struct with moves (a step is copied several times on its way to the comparison; at 272
+    // bytes every copy became rep movs, 8 % of verify --job's time on 200,000 holes).
     StepKind kind = StepKind::rapid;
-    Vec3 from;                       // rapid, feed: start (meaningless when !from_known)
-    Vec3 to;                         // rapid, feed: end
-    bool from_known = true;          // false: from the tool-change position, path unknown
-    double feed = 0.0;               // feed: mm/min as programmed
-    double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping, or a
-                                     // per-revolution feed, G95), else 0
     Movement movement = Movement::cutting;  // feed: as the job's events say; read back: plunge or ramp
                                             // where the motion shows it (straight down, down along XY)
-    std::optional<ArcGeometry> arc;  // feed: set for a circular move
-    double seconds = 0.0;            // dwell
-    int tool = 0;                    // the tool in the spindle (tool_change: the new one)
     SpindleState spindle = SpindleState::off;  // spindle
-    double rpm = 0.0;                // spindle; under a constant surface speed its limit
-    double surface_speed = 0.0;      // spindle: m/min under G96 (the rpm follows the radius |x|), else 0
     StopKind stop = StopKind::mandatory;  // stop: M0 or the optional M1
+    int tool = 0;                    // the tool in the spindle (tool_change: the new one)
     int line = 0;                    // program line (0: from a job)
-    double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
+    bool from_known = true;          // false: from the tool-change position, path unknown
     // The tool length offset and work offset in force: a program's as it selected them
     // (ReadEvent::offsets), a job's those its post selects (post_length_offset for the tool, the
     // job's workOffset: TraceOptions::work_offset).
     SelectedOffsets offsets;
+    Vec3 from;                       // rapid, feed: start (meaningless when !from_known)
+    Vec3 to;                         // rapid, feed: end
+    double feed = 0.0;               // feed: mm/min as programmed
+    double pitch = 0.0;              // feed: mm per spindle turn when the move follows the spindle (tapping, or a
+                                     // per-revolution feed, G95), else 0
+    std::optional<ArcGeometry> arc;  // feed: set for a circular move
+    double seconds = 0.0;            // dwell
+    double rpm = 0.0;                // spindle; under a constant surface speed its limit
+    double surface_speed = 0.0;      // spindle: m/min under G96 (the rpm follows the radius |x|), else 0
+    double uncertainty = 0.0;        // mm, see ReadEvent::uncertainty
 };
+static_assert(sizeof(Step) <= 256, "a Step over 256 bytes is copied with rep movs by GCC: see its comment");
 
 // A hole: a feed move down at one XY position that the tool leaves upwards again before it
 // moves in XY (canned or longhand drilling alike; a contour's plunge is no hole).

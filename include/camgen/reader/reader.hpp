@@ -5,6 +5,7 @@
 // a backplot: arc type, decimal mark, formats and their scales, block style, comments.
 #include <iosfwd>
 #include <memory>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,22 +21,42 @@ namespace camgen {
 // the height was still unknown (a tool touched off on the stock crosses the part).
 enum class Approach { z_first, xy_first };
 
+// A word naming an offset as the control's words name it ("G43 H1", "G54"; "": none), kept once
+// per process in a table of the distinct words met (never freed: their number is bounded by the
+// distinct H, D, T and work offset numbers the programs write). Copying and comparing one is
+// copying and comparing 4 bytes: every event read carries the offsets in force
+// (SelectedOffsets), and as two std::string they took 5 % of verify --job's time (200,000 holes).
+class OffsetWord {
+public:
+    OffsetWord() = default;  // ""
+    explicit OffsetWord(std::string_view text);
+    const std::string& str() const;
+    bool empty() const { return id_ == 0; }
+    friend bool operator==(OffsetWord a, OffsetWord b) { return a.id_ == b.id_; }
+    friend bool operator==(OffsetWord a, std::string_view b) { return a.str() == b; }
+
+private:
+    std::uint32_t id_ = 0;  // the word's place in the table; 0: ""
+};
+
 // The offsets a program has selected, in force at an event: the tool length offset and the
 // work offset, as the control's words name them ("" where none is in force). verify --job
 // compares them with the ones camgen's post selects (compare.hpp), every move; reading a program
-// takes any of them.
+// takes any of them. 16 bytes, trivially copied.
 struct SelectedOffsets {
     // The tool length offset: "G43 H1" (ISO mills, LinuxCNC's lathe), "T0101" (a turret's call,
     // its last two digits the offset), "D1" (Sinumerik's cutting edge, selected with T),
     // "TOOL CALL 1" (Heidenhain: the called tool's own length, no register of its own); "": none
     // (G49, or none selected; nccad and GRBL as camgen writes them have none).
-    std::string length;
+    OffsetWord length;
     // The work offset: "G54", "G54.1 P1"; "": none selected (the control's active one).
-    std::string work;
+    OffsetWord work;
     int length_line = 0;  // the line that selected (or cancelled) it; 0: none did
     int work_line = 0;
     // The same offsets (where they were selected aside).
     bool same(const SelectedOffsets& o) const { return length == o.length && work == o.work; }
+    // The same offsets selected by the same lines.
+    bool operator==(const SelectedOffsets&) const = default;
 };
 
 // One event read from a program. Canned drilling cycles come back as DrillCycle, DrillPoint
