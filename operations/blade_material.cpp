@@ -1,5 +1,6 @@
-// The rapids of turn-groove and turn-part against the material earlier operations keep
-// (registry.hpp: check_blade_material).
+// The rapids of turn-groove and turn-part, and the diameter a turn-thread is cut on, against the
+// material earlier operations keep and, with a bar, the bar's solid they left (registry.hpp:
+// check_blade_material).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,33 +53,86 @@ std::vector<BladeRapid> blade_rapids(const Op& op, const JobInput& in) {
     return out;
 }
 
-// Where a line at radius `level` along Z between `lo` and `hi` runs through the bar's solid
-// that none of `earlier` removed: the bar less its bore, less what earlier turn-faces,
-// turn-drills, internal turn-grooves and turn-profiles (above what they keep) took away.
-std::vector<ZSpan> bar_solid_at(const Stock& bar, const std::vector<const Operation*>& earlier,
-                                const std::vector<KeptMaterial>& kept, const JobInput& in, double level, double lo, double hi) {
-    if (level >= bar.diameter / 2 || level <= bar.bore_diameter.value_or(0.0) / 2) return {};
+// What the operations before one removed of the bar, each as the region it takes away (read by
+// bar_solid_at): made once as the operations are walked, in job order (material once removed
+// stays removed, so the order within it does not matter).
+struct BarRemoved {
+    // A turn-face: beyond Z `z` between `inner` and `outer` (radii).
+    struct Face {
+        double z, inner, outer;
+    };
+    // An internal groove: Z lo to hi, from the axis out to `bottom`.
+    struct Slot {
+        double lo, hi, bottom;
+    };
+    // Above an outline over its stretch of Z (a turn-profile's, a turn-rough's boundary, an
+    // external groove's or part-off's outline), up to `top` (a turn-rough's startX; else
+    // infinity).
+    struct Above {
+        KeptMaterial under;
+        double top;
+    };
+    std::vector<Face> faces;
+    std::vector<LatheHoleDesign> holes;  // turn-drills' bores
+    std::vector<Slot> slots;
+    std::vector<Above> above;
+
+    // What `op` takes away (nothing for the operations that cut no round: threads, mills' ...).
+    void add(const Operation& op, const Job& tools) {
+        constexpr double far = std::numeric_limits<double>::infinity();
+        if (const auto* f = std::get_if<TurnFaceOp>(&op)) faces.push_back({f->z, f->inner, f->outer});
+        if (const auto* d = std::get_if<TurnDrillOp>(&op)) {
+            LatheDesign design;
+            std::vector<std::string> unchecked;
+            design_turn_drill(*d, tools, design, unchecked);
+            for (LatheHoleDesign& h : design.holes) holes.push_back(std::move(h));
+        }
+        if (const auto* t = std::get_if<TurnProfileOp>(&op)) above.push_back({kept_by(*t), far});
+        if (const auto* r = std::get_if<TurnRoughOp>(&op); r && !r->boundary.segments.empty())
+            above.push_back({kept_under(r->boundary), r->stock_radius});
+        // An external groove's and a part-off's outline (design_turn_groove, design_turn_part):
+        // the blade's body stands out in +X, so all above it over its Z is gone.
+        if (const auto* g = std::get_if<TurnGrooveOp>(&op); g && g->side == GrooveSide::internal)
+            slots.push_back({g->z_left, g->z_right, g->bottom});
+        LatheDesign design;
+        std::vector<std::string> unchecked;
+        if (const auto* g = std::get_if<TurnGrooveOp>(&op); g && g->side == GrooveSide::external)
+            design_turn_groove(*g, tools, design, unchecked);
+        if (const auto* p = std::get_if<TurnPartOp>(&op)) design_turn_part(*p, tools, design, unchecked);
+        for (const LatheTurnDesign& d : design.profiles)
+            if (!d.profile.segments.empty()) above.push_back({kept_under(d.profile), far});
+    }
+};
+
+// Where the bar's solid that `removed` left lies along Z between `lo` and `hi`: inside
+// (`outward` false), on the line at radius `level` (an internal blade's edge, its body towards
+// the axis); outside (`outward`), anywhere on the ray from `level` out (an external blade's edge
+// and its body straight out in +X, or a thread's major): the bar less its bore, less what
+// earlier turn-faces, turn-drills, internal grooves, turn-roughs, turn-profiles, external
+// grooves and part-offs took away. Outside, a bore or drill counts for nothing (the ray meets
+// the wall around it) and a turn-face or turn-rough only where it took all out to the bar's
+// radius.
+std::vector<ZSpan> bar_solid_at(const Stock& bar, const BarRemoved& removed, double level, double lo, double hi, bool outward) {
+    const double radius = bar.diameter / 2;
+    if (level >= radius || (!outward && level <= bar.bore_diameter.value_or(0.0) / 2)) return {};
     lo = std::max(lo, bar.face_z - bar.length);
     hi = std::min(hi, bar.face_z);
     if (!(hi > lo)) return {};
     std::vector<ZSpan> air;
     constexpr double far = std::numeric_limits<double>::infinity();
-    Job tools;  // design_turn_drill reads the tool of the job
-    tools.tools = in.header().tools;
-    for (const Operation* op : earlier) {
-        if (const auto* f = std::get_if<TurnFaceOp>(op); f && f->inner <= level) air.push_back({f->z, far});
-        if (const auto* d = std::get_if<TurnDrillOp>(op)) {
-            LatheDesign design;
-            std::vector<std::string> unchecked;
-            design_turn_drill(*d, tools, design, unchecked);
-            for (const LatheHoleDesign& h : design.holes)
-                if (h.radius >= level) air.push_back({h.bottom_z + std::max(0.0, level - h.flat) * h.slope, far});
-        }
-        if (const auto* g = std::get_if<TurnGrooveOp>(op); g && g->side == GrooveSide::internal && level <= g->bottom)
-            air.push_back({g->z_left, g->z_right});
+    auto reaches_out = [&](double top) { return !outward || top >= radius - 1e-9; };
+    for (const BarRemoved::Face& f : removed.faces)
+        if (f.inner <= level && level <= f.outer && reaches_out(f.outer)) air.push_back({f.z, far});
+    if (!outward) {
+        for (const LatheHoleDesign& h : removed.holes)
+            if (h.radius >= level) air.push_back({h.bottom_z + std::max(0.0, level - h.flat) * h.slope, far});
+        for (const BarRemoved::Slot& g : removed.slots)
+            if (level <= g.bottom) air.push_back({g.lo, g.hi});
     }
-    // Above what a turn-profile keeps, over its stretch of Z, it took the material away.
-    for (const KeptMaterial& k : kept) {
+    // Above what an outline keeps, over its stretch of Z, the operation took the material away.
+    for (const BarRemoved::Above& a : removed.above) {
+        if (!(level < a.top) || !reaches_out(a.top)) continue;
+        const KeptMaterial& k = a.under;
         double from = k.u_min;
         for (const ZSpan& s : kept_inside_at(k, level)) {
             air.push_back({from, s.lo});
@@ -100,6 +154,79 @@ std::vector<ZSpan> bar_solid_at(const Stock& bar, const std::vector<const Operat
     return solid;
 }
 
+// The largest radius of the bar's solid that `removed` left outside, between Z `lo` and `hi` (for
+// the messages): at the span's ends, the corners of the outlines within it and 256 steps
+// between (exact where the material is straight along Z, as a turned diameter is).
+double bar_outer_most(const Stock& bar, const BarRemoved& removed, double lo, double hi) {
+    const double radius = bar.diameter / 2;
+    auto outer = [&](double z) {
+        double r = radius;
+        for (const BarRemoved::Face& f : removed.faces)
+            if (z > f.z && f.outer >= radius - 1e-9) r = std::min(r, std::max(0.0, f.inner));
+        for (const BarRemoved::Above& a : removed.above)
+            if (a.top >= radius - 1e-9 && z >= a.under.u_min && z <= a.under.u_max)
+                r = std::min(r, kept_largest_radius(a.under, z, z));
+        return r;
+    };
+    std::vector<double> at{lo, hi};
+    for (int i = 1; i < 256; ++i) at.push_back(lo + (hi - lo) * i / 256);
+    for (const BarRemoved::Above& a : removed.above)
+        for (const Vec2& p : a.under.ring)
+            if (p.x > lo && p.x < hi) at.push_back(p.x);
+    double most = 0.0;
+    for (double z : at) most = std::max(most, outer(z));
+    return most;
+}
+
+// A thread is cut into the diameter the operations before it leave: more than its major
+// (external; inside, a bore less than its minor) by more than this, radial, and its first pass
+// would take the excess with the threading insert, mm.
+constexpr double thread_material_tolerance = 0.05;
+
+// Refuses a turn-thread whose diameter is not there: outside, material beyond its major over its
+// length (what an earlier turn-profile keeps, or with a bar the bar's solid the operations
+// before it left); inside, with a bar, solid within its minor.
+void check_thread_material(const TurnThreadOp& t, const std::vector<KeptMaterial>& kept, const Stock* bar,
+                           const BarRemoved& removed, const JobInput& in) {
+    const bool outside = t.side == ThreadSide::external;
+    const std::string key = t.path + "/" + (!t.thread.empty() ? "thread" : outside ? "majorDiameter" : "minorDiameter");
+    const std::string what = t.thread.empty() ? std::string("the thread") : "the thread " + t.thread;
+    const double lo = t.end_z, hi = t.start_z;
+    if (outside) {
+        const double level = t.surface_radius() + thread_material_tolerance;
+        if (auto hit = first_kept_hit(kept, kept.size(), level, lo, hi, false))
+            json::fail(in.source(), key,
+                       fmt::format("{} (major diameter {}) is cut on the material that the profile of {} keeps: diameter "
+                                   "up to {} between Z {} and Z {}; its first pass would cut the excess with the threading "
+                                   "insert: turn the diameter to the thread's major first",
+                                   what, in.show(t.major), hit->kept->op->path,
+                                   in.show(2 * kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)),
+                                   in.show(hit->span.lo), in.show(hit->span.hi)));
+        if (!bar) return;
+        const std::vector<ZSpan> solid = bar_solid_at(*bar, removed, level, lo, hi, true);
+        if (solid.empty()) return;
+        json::fail(in.source(), key,
+                   fmt::format("{} (major diameter {}) is cut on the bar's solid between Z {} and Z {}: the operations "
+                               "before it left the bar (diameter {}) up to diameter {} there, none (a turn-face, turn-rough, "
+                               "turn-profile, groove or part-off) turned it down to the major; its first pass would cut the "
+                               "excess with the threading insert: turn the diameter to the thread's major first",
+                               what, in.show(t.major), in.show(solid.front().lo), in.show(solid.front().hi),
+                               in.show(bar->diameter),
+                               in.show(2 * bar_outer_most(*bar, removed, solid.front().lo, solid.front().hi))));
+    }
+    // Inside: only a bar says where solid is.
+    if (!bar) return;
+    const double level = t.surface_radius() - thread_material_tolerance;
+    const std::vector<ZSpan> solid = bar_solid_at(*bar, removed, level, lo, hi, false);
+    if (solid.empty()) return;
+    json::fail(in.source(), key,
+               fmt::format("{} (minor diameter {}) is cut into the bar's solid between Z {} and Z {}: nothing before it (the "
+                           "bar's bore, a turn-drill, a turn-face, an internal groove, a turn-profile) bored it out to the "
+                           "minor there; its first pass would cut the excess with the threading insert: bore the thread's "
+                           "minor diameter first",
+                           what, in.show(t.minor), in.show(solid.front().lo), in.show(solid.front().hi)));
+}
+
 }  // namespace
 
 void check_blade_material(const std::vector<Operation>& operations, const JobInput& in) {
@@ -107,7 +234,9 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
     const std::optional<Stock>& stock = in.header().stock;
     const Stock* bar = stock && stock->shape == StockShape::bar ? &*stock : nullptr;
     std::vector<KeptMaterial> kept;
-    std::vector<const Operation*> earlier;
+    BarRemoved removed;
+    Job tools;  // the designs of turn-drills, grooves and part-offs read the job's header and tools
+    static_cast<JobHeader&>(tools) = in.header();
     for (const Operation& operation : operations) {
         const auto* groove = std::get_if<TurnGrooveOp>(&operation);
         const auto* part = std::get_if<TurnPartOp>(&operation);
@@ -142,7 +271,18 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
                                                x(r.from.x), in.show(r.from.z), x(r.to.x), in.show(r.to.z), hit->kept->op->path,
                                                x(kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)),
                                                in.show(hit->span.lo), in.show(hit->span.hi)));
-                    continue;
+                    if (!bar) continue;
+                    const std::vector<ZSpan> solid = bar_solid_at(*bar, removed, x_lo + blade_level_tolerance, z_lo, clearance, true);
+                    if (solid.empty()) continue;
+                    json::fail(in.source(), path + "/z",
+                               fmt::format("the blade's rapid from X {} Z {} to X {} Z {} (its body above it, up to the "
+                                           "clearance) runs through the bar's solid between Z {} and Z {}: the operations "
+                                           "before it left the bar (X {}) up to X {} there, none (a turn-face, turn-rough, "
+                                           "turn-profile, groove or part-off) took it away down to X {}; the face groove must "
+                                           "lie in a face open above it",
+                                           x(r.from.x), in.show(r.from.z), x(r.to.x), in.show(r.to.z), in.show(solid.back().lo),
+                                           in.show(solid.back().hi), x(bar->diameter / 2),
+                                           x(bar_outer_most(*bar, removed, solid.back().lo, solid.back().hi)), x(x_lo)));
                 }
                 // External and internal: the blade's edge spans Z [left, left + w] at the
                 // programmed radius.
@@ -170,6 +310,20 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
                                                x(kept_largest_radius(*hit->kept, hit->span.lo, hit->span.hi)),
                                                in.show(hit->span.lo), in.show(hit->span.hi),
                                                x(groove ? groove->surface : part->surface), groove ? "groove" : "blade's width"));
+                    // With a bar: the bar's solid that the operations before it did not turn away.
+                    if (!bar) continue;
+                    const std::vector<ZSpan> solid = bar_solid_at(*bar, removed, radius + blade_level_tolerance, z_lo, z_hi, true);
+                    if (solid.empty()) continue;
+                    const ZSpan s = downwards ? solid.back() : solid.front();
+                    json::fail(in.source(), path + "/startX",
+                               fmt::format("the blade's rapid {} runs through the bar's solid between Z {} and Z {}: the "
+                                           "operations before it left the bar (X {}) up to X {} there, none (a turn-face, "
+                                           "turn-rough, turn-profile, groove or part-off) turned it down to X {}; startX ({}) "
+                                           "must be the largest X over the {}, its chamfers and approachDistance either side, "
+                                           "of what the operations before it leave",
+                                           along(), in.show(s.lo), in.show(s.hi), x(bar->diameter / 2),
+                                           x(bar_outer_most(*bar, removed, s.lo, s.hi)), x(radius),
+                                           x(groove ? groove->surface : part->surface), groove ? "groove" : "blade's width"));
                     continue;
                 }
                 // Internal: the edge faces +X, the blade and its bar lie inside it. Only a bar
@@ -177,7 +331,7 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
                 if (!bar) continue;
                 const double radius = std::max(r.from.x, r.to.x);
                 if (in_column && radius > air_level + blade_level_tolerance) continue;
-                const std::vector<ZSpan> solid = bar_solid_at(*bar, earlier, kept, in, radius - blade_level_tolerance, z_lo, z_hi);
+                const std::vector<ZSpan> solid = bar_solid_at(*bar, removed, radius - blade_level_tolerance, z_lo, z_hi, false);
                 if (solid.empty()) continue;
                 const ZSpan s = downwards ? solid.back() : solid.front();
                 json::fail(in.source(), path + "/startX",
@@ -189,10 +343,11 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
                                        in.show(groove->approach)));
             }
         }
+        if (const auto* t = std::get_if<TurnThreadOp>(&operation)) check_thread_material(*t, kept, bar, removed, in);
         if (const auto* t = std::get_if<TurnProfileOp>(&operation)) {
             kept.push_back(kept_by(*t));
         }
-        earlier.push_back(&operation);
+        removed.add(operation, tools);
     }
 }
 

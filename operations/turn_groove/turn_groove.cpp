@@ -59,7 +59,8 @@ constexpr KeySpec turn_groove_keys[] = {
     {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "X (as xValues) of the surface the groove is cut into, which must be the largest over the groove, its "
                     "chamfers and approachDistance either side: a rapid of the blade through the material an earlier "
-                    "turn-profile keeps is refused (default: the stock bar's diameter; required without a bar); internal: "
+                    "turn-profile keeps, or with a bar through the bar's solid that no operation before it turned away, is "
+                    "refused (default: the stock bar's diameter; required without a bar); internal: "
                     "the bore's X, the least over them, a rapid through the bar's solid that nothing before bored out "
                     "refused (default: the bar's bore); not for face"},
     {.key = "chamfer", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",

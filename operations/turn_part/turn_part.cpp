@@ -33,7 +33,8 @@ constexpr KeySpec turn_part_keys[] = {
     {.key = "startX", .quantity = Quantity::length, .min = Bound{0, false},
      .description = "X (as xValues) of the surface parted from, which must be the largest over the blade's width, the "
                     "chamfer and approachDistance either side: a rapid of the blade through the material an earlier turn-profile "
-                    "keeps is refused (default: the stock bar's diameter; required without a bar)"},
+                    "keeps, or with a bar through the bar's solid that no operation before it turned away, is refused "
+                    "(default: the stock bar's diameter; required without a bar)"},
     {.key = "toX", .quantity = Quantity::length, .min = Bound{0, true}, .default_json = "0",
      .description = "X (as xValues) the plunge ends at: 0 parts through; a small remainder (0.5 on the diameter) leaves a "
                     "pip to break off"},

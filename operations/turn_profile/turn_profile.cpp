@@ -681,10 +681,15 @@ void expand_own(const TurnProfileOp& op, const Context& ctx, EventSink& sink) {
 std::string default_name(const TurnProfileOp& op) { return op.comment.empty() ? "turn profile" : op.comment; }
 
 KeptMaterial kept_by(const TurnProfileOp& op) {
-    KeptMaterial k;
+    KeptMaterial k = kept_under(op.profile);
     k.op = &op;
-    k.ring = sample_profile(op.profile, sampling_tolerance);
-    const Vec2 start = op.profile.start, end = op.profile.segments.back().end;
+    return k;
+}
+
+KeptMaterial kept_under(const Profile& profile) {
+    KeptMaterial k;
+    k.ring = sample_profile(profile, sampling_tolerance);
+    const Vec2 start = profile.start, end = profile.segments.back().end;
     k.ring.push_back({end.x, 0.0});
     k.ring.push_back({start.x, 0.0});
     k.u_min = k.u_max = start.x;

@@ -1135,6 +1135,14 @@ private:
             result_.errors.push_back({s.line, op, s.tool,
                                       fmt::format("a rapid removes material (a crash): {} mm deep, {} mm^3",
                                                   number_text(acc.max_depth, 3), number_text(acc.volume, 3))});
+        } else if (s.kind == StepKind::feed && tool.threading && s.pitch > 0 && acc.max_depth > thread_pass_depth * s.pitch + 1e-6) {
+            result_.errors.push_back({s.line, op, s.tool,
+                                      fmt::format("a thread pass cuts {} mm deep (radial) in one pass, more than a thread of "
+                                                  "lead {} mm is deep ({} mm, a sharp 60-degree V): the threading insert is "
+                                                  "overloaded (a crash); turn the diameter to the thread's major (bore it to "
+                                                  "its minor) first",
+                                                  number_text(acc.max_depth, 3), number_text(s.pitch, 4),
+                                                  number_text(thread_pass_depth * s.pitch, 3))});
         } else if (s.kind == StepKind::feed && tool.flute_length && acc.flute_depth > *tool.flute_length + 1e-6) {
             result_.errors.push_back({s.line, op, s.tool,
                                       fmt::format("a feed cuts {} mm below the stock's surface, deeper than tool {}'s "
@@ -1231,6 +1239,7 @@ ToolShape tool_shape(const Tool& tool) {
         break;
     case ToolType::threading_tool:
         s.form = ToolForm::turning;
+        s.threading = true;
         s.nose_radius = tool.nose_radius;
         // A threading tool given no orientation: programmed at its nose's lowest point in X and
         // its -Z side (the root of an external thread), as orientation 2 is.

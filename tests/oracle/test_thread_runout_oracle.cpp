@@ -73,7 +73,7 @@ struct RunoutCase {
 
 std::string runout_job_text(const RunoutCase& c) {
     return fmt::format(
-        R"({{"clearance": 40, "stock": {{"bar": {{"diameter": 60, "length": 80, "faceZ": 0}}}},
+        R"({{"clearance": 40,
   "tools": [{{"number": 7, "type": "threading-tool", "noseRadius": 0.05, "profileAngle": 60, "rpm": 300}}],
   "operations": [{{"type": "turn-thread", "tool": 7, "thread": "{}", "side": "{}", "starts": {},
                    "startZ": {:.3f}, "endZ": {:.3f}, "infeed": "{}", "firstDepth": {:.3f},

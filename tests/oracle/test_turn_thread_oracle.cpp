@@ -76,7 +76,7 @@ std::string job_text(const Case& c) {
                                                  c.major, c.minor, c.pitch)
                                    : fmt::format(R"("thread": "{}")", c.thread);
     return fmt::format(
-        R"({{"clearance": 40, "stock": {{"bar": {{"diameter": 60, "length": 80, "faceZ": 0}}}},
+        R"({{"clearance": 40,
   "tools": [{{"number": 7, "type": "threading-tool", "noseRadius": 0.05, "profileAngle": 60, "rpm": 300,
               "direction": "{}"}}],
   "operations": [{{"type": "turn-thread", "tool": 7, {}, "side": "{}", "hand": "{}", "starts": {},

@@ -32,10 +32,12 @@ namespace {
 
 std::string fanuc_g76_job(const std::string& op, const std::string& units = "mm", int direction_ccw = 0) {
     const double s = units == "inch" ? 1 / 25.4 : 1.0;
-    return fmt::format(R"({{"units": "{}", "clearance": {}, "stock": {{"bar": {{"diameter": {}, "length": {}, "faceZ": 0}}}},
+    // No stock: a thread is cut on a diameter turned to its major, which a bar nothing turned is
+    // not (check_blade_material).
+    return fmt::format(R"({{"units": "{}", "clearance": {},
         "tools": [{{"number": 5, "type": "threading-tool", "noseRadius": {}, "profileAngle": 60, "rpm": 300{}}}],
         "operations": [{{"type": "turn-thread", "tool": 5, {}}}]}})",
-                       units, 20 * s, 60 * s, 80 * s, 0.1 * s, direction_ccw ? R"(, "direction": "ccw")" : "", op);
+                       units, 20 * s, 0.1 * s, direction_ccw ? R"(, "direction": "ccw")" : "", op);
 }
 
 struct FanucPosted {

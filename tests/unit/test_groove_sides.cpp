@@ -204,10 +204,12 @@ TEST_CASE("turn-groove sides: keys of another side and tools that do not fit are
           std::string::npos);
     CHECK(face(facer, R"(, "innerX": 22, "outerX": 30, "depth": 2, "chamfer": 12)").find("/operations/0/chamfer") !=
           std::string::npos);
-    // Its moves along X run at z + approachDistance: below the bar's face that is in the bar.
-    CHECK(refusal(bushing_job(facer, R"({"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": -3, "innerX": 22,
-                                        "outerX": 30, "depth": 2})"))
-              .find("/operations/0: it moves along X over the face groove at Z -2.000 mm, inside the bar") != std::string::npos);
+    // Below the bar's face its blade comes down through the bar (check_blade_material, before
+    // the check that its moves along X at z + approachDistance lie beyond the face).
+    const std::string below = refusal(bushing_job(facer, R"({"type": "turn-groove", "side": "face", "tool": 1, "feed": 30, "z": -3,
+                                        "innerX": 22, "outerX": 30, "depth": 2})"));
+    CHECK_MESSAGE(below.find("/operations/0/z: the blade's rapid from X ") != std::string::npos, below);
+    CHECK_MESSAGE(below.find("runs through the bar's solid between Z -2.000 mm and Z 0.000 mm") != std::string::npos, below);
     // A face groove's inner chamfer is entered approachDistance inside its start: not past the axis.
     const std::string near_axis = R"({"name": "t", "units": "mm", "clearance": 20, "stock": {"bar": {"diameter": 40, "length": 40, "faceZ": 0}},
  "tools": [{"number": 1, "type": "grooving-tool", "width": 3, "rpm": 600, "orientation": 7}],

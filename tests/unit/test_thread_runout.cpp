@@ -45,11 +45,13 @@ std::string runout_refusal(const std::string& text) {
     return "";
 }
 
-std::string runout_job(const std::string& op, double bar = 44) {
-    return fmt::format(R"({{"clearance": 20, "stock": {{"bar": {{"diameter": {}, "length": 70, "faceZ": 0}}}}, "tools": [
+// The thread alone: no stock (a thread is cut on a diameter turned to its major, which a bar
+// nothing turned is not: check_blade_material).
+std::string runout_job(const std::string& op) {
+    return fmt::format(R"({{"clearance": 20, "tools": [
  {{"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 500}}],
  "operations": [{{"type": "turn-thread", "tool": 5, {}}}]}})",
-                       bar, op);
+                       op);
 }
 
 struct RunoutPosted {

@@ -421,8 +421,9 @@ TEST_CASE("turning operations come in beyond the bar's face: the stock's faceZ, 
       "allowanceZ": 0.1, "start": [24, 0], "path": [{"line": [30, 0]}, {"line": [30, -20]}, {"line": [38, -20]}]})";
     const std::string profile = R"({"type": "turn-profile", "tool": 1, "feed": 100, "start": [24, 0], "retractX": 44,
       "path": [{"line": [30, 0]}, {"line": [30, -20]}, {"line": [40, -20]}]})";
-    const std::string thread = R"({"type": "turn-thread", "tool": 2, "thread": "M30x2", "startZ": 0, "endZ": -10,
-      "firstDepth": 0.3})";
+    // (A thread of the bar's diameter: one smaller would be cut on the bar nothing turned.)
+    const std::string thread = R"({"type": "turn-thread", "tool": 2, "majorDiameter": 40, "minorDiameter": 37.546, "pitch": 2,
+      "startZ": 0, "endZ": -10, "firstDepth": 0.3})";
     const auto job = [&](double face_z, const std::string& ops) {
         return fmt::format(R"({{"clearance": 20, "stock": {{"bar": {{"diameter": 40, "length": 80, "faceZ": {}}}}},
   "tools": [{}], "operations": [{}]}})",

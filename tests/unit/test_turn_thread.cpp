@@ -44,10 +44,14 @@ std::string refusal(const std::string& text) {
 const char* const thread_tool =
     R"({"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 60, "rpm": 500})";
 
-std::string job(const std::string& op, const std::string& tool = thread_tool) {
-    return R"({"clearance": 20, "stock": {"bar": {"diameter": 44, "length": 70, "faceZ": 0}}, "tools": [)" + tool +
-           R"(], "operations": [{"type": "turn-thread", "tool": 5, )" + op + "}]}";
+// The thread alone, without a stock (a thread is cut on a diameter turned to its major, which a
+// bar nothing turned is not: check_blade_material), or on `stock`.
+std::string job(const std::string& op, const std::string& tool = thread_tool, const std::string& stock = "") {
+    return R"({"clearance": 20, )" + stock + R"("tools": [)" + tool + R"(], "operations": [{"type": "turn-thread", "tool": 5, )" + op +
+           "}]}";
 }
+// A D20 bar 70 long, its face at Z0: an M20 is cut on it as it is.
+const std::string d20_bar = R"("stock": {"bar": {"diameter": 20, "length": 70, "faceZ": 0}}, )";
 
 }  // namespace
 
@@ -333,7 +337,7 @@ TEST_CASE("turn-thread: refusals name their key") {
               .find("/operations/0/pitch") != std::string::npos);
     CHECK(refusal(job(R"("majorDiameter": 20, "minorDiameter": 18, "pitch": -1, "startZ": 0, "endZ": -10, "firstDepth": 0.2)"))
               .find("/operations/0/pitch") != std::string::npos);
-    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -80, "firstDepth": 0.2)"))
+    CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -80, "firstDepth": 0.2)", thread_tool, d20_bar))
               .find("/operations/0/endZ: the thread ends at Z -80.000 mm, beyond the bar's far end (Z -70.000 mm)") != std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 0.2)",
                       R"({"number": 5, "type": "threading-tool", "noseRadius": 0.1, "profileAngle": 55, "rpm": 500})"))
@@ -351,7 +355,9 @@ TEST_CASE("turn-thread: refusals name their key") {
           std::string::npos);
     CHECK(refusal(job(R"("thread": "M20", "startZ": 0, "endZ": -10, "firstDepth": 3)")).find("/operations/0/firstDepth") !=
           std::string::npos);
-    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.5)")).find("/operations/0/thread: M48x5 has a major diameter of 48") !=
+    CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.5)", thread_tool,
+                      R"("stock": {"bar": {"diameter": 44, "length": 70, "faceZ": 0}}, )"))
+              .find("/operations/0/thread: M48x5 has a major diameter of 48") !=
           std::string::npos);
     CHECK(refusal(job(R"("thread": "M48", "startZ": 0, "endZ": -10, "firstDepth": 0.05)")).find("/operations/0/firstDepth: firstDepth 0.050 mm makes more than 200 passes") !=
           std::string::npos);

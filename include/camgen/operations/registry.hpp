@@ -94,9 +94,13 @@ void check_machine_kind(const Job& job, MachineKind kind, const std::string& mac
 // Refuses (InputError at "startX", a face groove's at "z") a turn-groove or turn-part one of
 // whose rapids (the approach along Z and in to the approach level, the moves along Z there
 // between plunges and to the chamfers, the way out) runs through material: that earlier
-// turn-profiles keep (external and face); with a stock bar, an internal groove's through the
-// bar's solid that its bore, earlier turn-faces, turn-drills, internal grooves and turn-profiles
-// did not remove. `operations` in job order.
+// turn-profiles keep (external and face); with a stock bar, the bar's solid that the operations
+// before it did not remove (outside: turn-faces, turn-roughs, turn-profiles, external grooves and
+// part-offs; inside also its bore, turn-drills and internal grooves). Refuses (InputError at
+// "thread", else "majorDiameter" or "minorDiameter") a turn-thread cut on more than its
+// diameter: outside, material beyond its major (what an earlier turn-profile keeps, or the bar's
+// solid left) over its length; inside, with a bar, solid within its minor. `operations` in job
+// order.
 void check_blade_material(const std::vector<Operation>& operations, const JobInput& input);
 
 // Reads a job from a file ("-" = standard input). Throws IoError when it cannot be read.

@@ -84,11 +84,20 @@ struct ToolShape {
     std::optional<double> flute_length;   // mm; a feed cutting deeper than this is an error
     bool thread_mill = false;             // a thread mill: made to cut a thread's depth, not stock (a note
                                           // above thread_mill_engagement)
+    bool threading = false;               // a lathe's threading tool: a pass deeper than thread_pass_depth
+                                          // of its lead is an error (an overloaded insert)
 };
 
 // The radial engagement (of the diameter) above which a thread mill's cut gets a note: a metric
 // thread's depth is 0.61 x its pitch, at most a few tenths of the tool's diameter.
 inline constexpr double thread_mill_engagement = 0.5;
+
+// The deepest a threading tool's pass following the spindle may cut in one go, radial, per mm of
+// its lead: the height of a sharp 60-degree V of that lead (sqrt(3)/2), deeper than the whole of
+// an ISO or unified thread (0.613 x the pitch). A pass deeper than that cuts into a diameter
+// larger than the thread's major (a bore less than its minor): the insert is overloaded, as good
+// as a crash.
+inline constexpr double thread_pass_depth = 0.8660254037844386;
 
 // The stock before the program runs.
 struct SimStock {

@@ -130,9 +130,12 @@ void check_turned_material(const std::vector<const TurnProfileOp*>& ops, const J
 struct KeptMaterial {
     std::vector<Vec2> ring;
     double u_min = 0.0, u_max = 0.0, v_max = 0.0;
-    const TurnProfileOp* op = nullptr;
+    const TurnProfileOp* op = nullptr;  // null: the material under another operation's outline (check_blade_material)
 };
 KeptMaterial kept_by(const TurnProfileOp& op);
+// The material under an outside profile in (Z, radius) (a turn-rough's boundary, a groove's
+// outline), closed through the spindle axis as kept_by closes a turn-profile's; `op` null.
+KeptMaterial kept_under(const Profile& profile);
 
 // An interval along Z, mm.
 struct ZSpan {
