@@ -527,6 +527,9 @@ Profile read_profile(Fields& f, const JobInput& in, std::string_view what, std::
     } else {
         read_elements(f, in, base, p, what, path_key);
     }
+    // An arc's end within arc_radius_tolerance of its circle: the exact arc through both ends,
+    // once, for every stage (make_arcs_exact, profile.hpp).
+    make_arcs_exact(p, arc_radius_tolerance);
     if (auto k = first_short_segment(p, min_profile_segment))
         json::fail(in.source(), base + "/" + std::to_string(*k), fmt::format("this element is shorter than {} mm: remove it", min_profile_segment));
     if (!is_simple(p))

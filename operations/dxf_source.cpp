@@ -11,6 +11,8 @@
 
 #include "camgen/common/error.hpp"
 #include "camgen/dxf/dxf.hpp"
+#include "camgen/geometry/arc.hpp"
+#include "camgen/geometry/profile.hpp"
 #include "camgen/geometry/transform.hpp"
 #include "camgen/geometry/vec.hpp"
 
@@ -236,6 +238,9 @@ DxfProfiles read_dxf_profiles(Fields& f, const JobInput& in, std::string_view ke
     DxfProfiles out;
     for (const dxf::Chain& c : chained.chains) {
         out.profiles.push_back(dxf_profile_to_work(r, c.profile));
+        // An arc whose end a join left within arc_radius_tolerance of its circle: the exact arc
+        // through both ends, as a job's (make_arcs_exact, profile.hpp).
+        make_arcs_exact(out.profiles.back(), arc_radius_tolerance);
         out.closed.push_back(c.closed);
         std::string words = dxf::describe(c.pieces.front()->origin);
         if (c.pieces.size() > 1 && !c.closed) words += " to " + dxf::describe(c.pieces.back()->origin);

@@ -197,6 +197,9 @@ Profile read_turned_profile(json::Fields& f, const JobInput& in, XValues xv) {
         profile.segments.push_back(s);
         at = s.end;
     }
+    // An arc's end within arc_radius_tolerance of its circle: the exact arc through both ends,
+    // once, for every stage (make_arcs_exact, profile.hpp).
+    make_arcs_exact(profile, arc_radius_tolerance);
     if (auto short_one = first_short_segment(profile))
         json::fail(in.source(), f.path_of("path") + "/" + std::to_string(*short_one),
                    "this element ends where it starts: it has no length");

@@ -1,6 +1,7 @@
 #include "camgen/geometry/profile.hpp"
 #include "camgen/geometry/vec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -169,6 +170,42 @@ Profile transformed(const Profile& profile, const Eigen::Isometry2d& t) {
         out.segments.push_back(m);
     }
     return out;
+}
+
+std::size_t make_arcs_exact(Profile& profile, double within) {
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < profile.segments.size(); ++i) {
+        ProfileSegment& s = profile.segments[i];
+        if (!s.centre) continue;
+        const Vec2 a = segment_start(profile, i), b = s.end, c = *s.centre;
+        const double r0 = distance(a, c), r1 = distance(b, c), chord = distance(a, b);
+        const double off = std::abs(r1 - r0);
+        if (off <= 1e-9 || off > within || chord <= profile_same_point) continue;
+        const Vec2 u = (b - a) * (1.0 / chord), mid = (a + b) * 0.5;
+        const Vec2 exact = c - u * dot(c - mid, u);
+        // The given arc as resolve_arc takes it (the start's radius, to the end's angle) and the
+        // exact one: the exact one's points against the given radius turning evenly about c.
+        const ArcGeometry given = arc_of(a, s);
+        ProfileSegment candidate = s;
+        candidate.centre = exact;
+        const ArcGeometry made = arc_of(a, candidate);
+        if (std::abs(made.sweep - given.sweep) > pi / 2) continue;
+        const double sign = s.direction == ArcDirection::ccw ? 1.0 : -1.0;
+        double worst = 0.0;
+        constexpr int samples = 64;
+        for (int k = 1; k < samples; ++k) {
+            const double t = static_cast<double>(k) / samples;
+            const Vec2 p = exact + unit_at(made.start_angle + sign * t * made.sweep) * made.radius;
+            // The angle turned about c from the start, near the given arc's t * sweep.
+            const double turned = sign * (std::atan2(p.y - c.y, p.x - c.x) - given.start_angle);
+            const double along = t * given.sweep + std::remainder(turned - t * given.sweep, two_pi);
+            worst = std::max(worst, std::abs(distance(p, c) - (r0 + (r1 - r0) * along / given.sweep)));
+        }
+        if (worst > within) continue;
+        s.centre = exact;
+        ++moved;
+    }
+    return moved;
 }
 
 Profile reversed(const Profile& profile) {

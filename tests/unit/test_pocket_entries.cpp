@@ -69,6 +69,9 @@ Profile entry_loop(const Json& o) {
         }
         p.segments.push_back(s);
     }
+    // As camgen reads it: an arc whose end is within 0.001 mm of its circle is the exact arc
+    // through its ends (case 0's outline arcs, centres to 0.001 mm, move by up to 0.0002 mm).
+    make_arcs_exact(p, arc_radius_tolerance);
     return p;
 }
 

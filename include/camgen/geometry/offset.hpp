@@ -60,7 +60,9 @@ struct OffsetResult {
 // simple paths; an open one its one-sided offset, from the start's offset to the end's where
 // those are not cut away. An arc whose given end is off its circle (its radius is the start's,
 // as resolve_arc) counts as the arc to its circle's end and a line on to the given end (a
-// drawing's slightly non-tangent joints). Zero-length segments are passed over; a distance <= 0 gives the
+// drawing's slightly non-tangent joints; a job's arcs within arc_radius_tolerance arrive made
+// exact by make_arcs_exact, profile.hpp, as that line can turn against a sharp corner and lose
+// the corner's arc). Zero-length segments are passed over; a distance <= 0 gives the
 // profile itself. Cost: about the number of segments times those within 2 distance of each.
 OffsetResult offset_profile(const Profile& profile, double distance, OffsetSide side);
 

@@ -76,4 +76,17 @@ Profile transformed(const Profile& profile, const Eigen::Isometry2d& transform);
 // The same path walked the other way round.
 Profile reversed(const Profile& profile);
 
+// An arc whose end lies off the circle through its start (a job's coordinates rounded; a job
+// may give an arc's end up to arc_radius_tolerance off) made exact, once, where the profile
+// enters: its centre moved along the perpendicular bisector of its ends to the point nearest
+// the given centre, so that both ends lie on its circle and every later stage (offsets, the
+// part guard, the posts, verify's comparison, simulate's design) takes the one arc. Only arcs
+// off by more than 1e-9 mm and at most `within` mm are moved, and only where the exact arc
+// lies within `within` of the arc as given (its radius turning evenly from the start's to the
+// end's); that leaves out only arcs turning past about 300 degrees, whose exact arc through
+// both ends lies further from the given one (nearly a full circle: the centre would move by
+// about the end's distance off over the chord's length times the radius), which stay as
+// given (src/geometry/curve.hpp's curves_of takes them). Returns how many arcs it moved.
+std::size_t make_arcs_exact(Profile& profile, double within);
+
 }  // namespace camgen
