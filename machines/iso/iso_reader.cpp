@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "machines/iso/iso_reader.hpp"
-#include "camgen/analysis/trace.hpp"
+#include "camgen/common/error.hpp"
 #include "machines/iso/iso_words.hpp"
 
 namespace camgen::reader {
