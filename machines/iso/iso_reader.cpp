@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "machines/iso/iso_reader.hpp"
+#include "camgen/common/error.hpp"
 #include "machines/iso/iso_words.hpp"
 
 namespace camgen::reader {
@@ -140,6 +141,7 @@ IsoReader::BlockCodes IsoReader::block_codes(const Block& b, BlockWords& w) {
                     if ((c.value == code(7)) != machine_.x_diameter)
                         fail(fmt::format("{}: machine {} {}", x.text, machine_.name,
                                          machine_.x_diameter ? "programs X as a diameter (G7)" : "programs X as a radius (G8)"));
+                    x_mode_selected_ = true;
                     break;
                 }
                 case code(20): case code(21): set_group(k.units, c); break;
@@ -228,24 +230,41 @@ void IsoReader::block(const Block& b) {
         if (!p) fail(fmt::format("{} without its time P", k.dwell->word->text));
         emit(Dwell{seconds(*p)});
     }
-    if (k.plane) plane_ = k.plane->value == code(17) ? Plane::xy : k.plane->value == code(18) ? Plane::xz : Plane::yz;
+    if (k.plane) {
+        const Plane p = k.plane->value == code(17) ? Plane::xy : k.plane->value == code(18) ? Plane::xz : Plane::yz;
+        // rs274 changes the plane before it reads the block's G40: a change under G41/G42 is refused.
+        if (comp_on_ && p != plane_)
+            fail(fmt::format("{}: cannot change planes with cutter radius compensation on (G41/G42 in force)",
+                             k.plane->word->text));
+        plane_ = p;
+    }
     if (k.units) set_units(k.units->value == code(20) ? Units::inch : Units::mm);
     if (k.comp) {
+        comp_on_ = k.comp->value != code(40);
         if (k.comp->value == code(40)) {
             emit(Compensation{CompensationSide::off});
         } else {
+            check_comp_plane(*k.comp->word);
+            if (!machine_.cutter_compensation)
+                fail(fmt::format("{}: machine {} has no cutter radius compensation (its cutterCompensation is false)",
+                                 k.comp->word->text, machine_.name));
             const Word* d = w.take('D');
             const CompensationSide side = k.comp->value == code(41) ? CompensationSide::left : CompensationSide::right;
             // A lathe's G41/G42 (nose-radius compensation) take the tool's own table entry or
             // offset (LinuxCNC: the tool table's D and Q; Fanuc T: the offset of T0101 with its
             // R and T): no D word, register 0 = the tool's number.
-            if (!d && machine_.kind == MachineKind::lathe) emit(Compensation{side, 0});
+            // LinuxCNC's mill G41/G42 without D takes the radius of the tool in the spindle
+            // (compensationWithoutD; rs274 offsets by the loaded tool's table diameter).
+            if (!d && (machine_.kind == MachineKind::lathe || settings_.compensation_without_d)) emit(Compensation{side, 0});
             else if (!d) fail(fmt::format("{} without its offset number D", k.comp->word->text));
             // The radius is the control's, in its offset register D (trace_program applies it).
             else emit(Compensation{side, integer_of(*d)});
         }
     }
     if (k.length_offset && k.length_offset->value == code(43)) {
+        if (!settings_.length_offset_h)
+            fail(fmt::format("{}: machine {} takes no tool length offset from a table (its lengthOffsetH is false)",
+                             k.length_offset->word->text, machine_.name));
         const Word* h = w.take('H');
         if (!h) fail(fmt::format("{} without its offset number H", k.length_offset->word->text));
         length_offset_ = fmt::format("G43 H{}", integer_of(*h));
@@ -254,6 +273,9 @@ void IsoReader::block(const Block& b) {
         length_offset_ = "G49";
         select_length_offset("");
     }
+    if (k.return_level && !settings_.return_levels)
+        fail(fmt::format("{}: machine {} has no canned cycle return levels (its returnLevels is false)",
+                         k.return_level->word->text, machine_.name));
     if (k.return_level) g98_ = k.return_level->value == code(98);
     if (k.motion) {
         if (k.motion->value == code(80)) {
@@ -280,6 +302,16 @@ void IsoReader::block(const Block& b) {
     }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || w.has('R') ||
                 w.has('Q') || w.unused('P');
+    if (w.has('X') && !x_mode_selected_) {
+        // LinuxCNC powers up in radius mode (G8) and keeps the mode of the program before: X
+        // means what the start block's G7/G8 says only once it is read.
+        const auto& start = machine_.frame.start_block;
+        for (const char* mode : {"G7", "G8"})
+            if (std::find(start.begin(), start.end(), mode) != start.end())
+                fail(fmt::format("X before {}: machine {} programs X as a {} from its start block's {} (LinuxCNC powers "
+                                 "up in radius mode, G8, and keeps the last program's)",
+                                 mode, machine_.name, machine_.x_diameter ? "diameter" : "radius", mode));
+    }
     if (axes && !k.machine_coords) {
         if (motion_ < 0 || motion_ == code(80))
             fail(motion_ < 0 ? "coordinates before any motion code (G0, G1, ...)" : "coordinates after G80 without a motion code");
@@ -321,6 +353,9 @@ void IsoReader::motion_block(int mode, BlockWords& w) {
     if (std::optional<ArcWords> a = move_or_arc(mode, plane_, w)) {
         a->r = w.length('R');
         if (const Word* pw = w.take('P')) {
+            if (!settings_.arc_turns)
+                fail(fmt::format("{} on an arc: machine {} takes no number of turns (its arcTurns is false)", pw->text,
+                                 machine_.name));
             // P on an arc: the number of turns (LinuxCNC), 1 for a plain arc.
             int p = integer_of(*pw);
             if (p < 1) fail(fmt::format("{}: an arc makes at least one turn", pw->text));
@@ -381,6 +416,22 @@ void IsoReader::cycle_block(int g, BlockWords& w) {
     if (spec.kind == CycleKind::tap || spec.kind == CycleKind::tap_left) {
         // A tap's feed is pitch x spindle speed.
         if (!(rpm_ > 0)) fail(fmt::format("{} without a spindle speed S", name));
+        // G84/G74 tap in with the spindle as it runs (rs274 refuses "Spindle turning clockwise in
+        // G74", "... counterclockwise in G84", "Spindle not turning in G74"): the posts write M4
+        // before G74.
+        const bool left = spec.kind == CycleKind::tap_left;
+        if (spindle_ == SpindleState::off)
+            fail(fmt::format("{} with the spindle off: the cycle taps with the running spindle ({})", name,
+                             left ? "M4 for a left-hand tap" : "M3"));
+        // A tap against its thread is the control's to refuse (LinuxCNC does; Fanuc's answer is
+        // unconfirmed): with --job it is the program's first difference (MISMATCH), not a read error.
+        if ((spindle_ == SpindleState::cw) == left)
+            throw ControlRefusal("", fmt::format("{} with the spindle turning {}: the cycle taps with the running spindle, so the tap would "
+                             "go in turning the wrong way ({} needs {})",
+                             name, left ? "clockwise (M3)" : "counterclockwise (M4)",
+                             left ? "a left-hand tap" : "a right-hand tap", left ? "M4" : "M3"),
+                                 line_, source_);
+        c.spindle_direction = left ? SpindleDirection::ccw : SpindleDirection::cw;
         p.set(DrillField::pitch, *feed_ / rpm_);
     } else {
         p.set(DrillField::plunging_feedrate, *feed_);
@@ -433,11 +484,28 @@ bool IsoReader::variant_tool_call(const Word&) { return false; }
 
 bool IsoReader::variant_cycle(const DrillingCycleSpec&, BlockWords&) { return false; }
 
+void IsoReader::check_comp_plane(const Word& g) const {
+    // The control compensates in one plane: camgen's mill posts in XY (G17), its lathe posts in XZ
+    // (G18). rs274 refuses a lathe tool's G41/G42 outside G18 and any outside XY and XZ, and offsets a
+    // mill's in XZ under G18: camgen reads neither.
+    const bool lathe = machine_.kind == MachineKind::lathe;
+    if (lathe && plane_ != Plane::xz)
+        fail(fmt::format("{} with lathe tool, but plane is not G18 (it is {})", g.text, plane_ == Plane::xy ? "G17" : "G19"));
+    if (!lathe && plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: the control would offset the tool in the {} plane; camgen reads cutter radius "
+                         "compensation in the XY plane (G17) only",
+                         g.text, plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "XZ" : "YZ"));
+}
+
 void IsoReader::check_cycle_plane(const std::string& name) const {
-    // A canned cycle drills along the plane's normal: on a lathe only G17 drills along Z.
-    if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
-        fail(fmt::format("{} under {}: it would drill along {} (a lathe drills on its axis under G17)", name,
-                         plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X"));
+    // A canned cycle drills along the plane's normal (rs274: G18 G83 drills along Y, G19 G81 along
+    // X): only G17 drills along Z, on a lathe (its axis) and on a mill (camgen's posts drill only
+    // under G17).
+    if (plane_ != Plane::xy)
+        fail(fmt::format("{} under {}: it would drill along {} ({})", name, plane_ == Plane::xz ? "G18" : "G19",
+                         plane_ == Plane::xz ? "Y" : "X",
+                         machine_.kind == MachineKind::lathe ? "a lathe drills on its axis under G17"
+                                                             : "camgen reads a drilling cycle along Z, under G17, only"));
 }
 
 std::unique_ptr<NcReader> make_iso_reader(const Machine& machine, std::string source) {

@@ -56,9 +56,11 @@ protected:
     virtual bool variant_tool_call(const Word& t);
     // A canned cycle of a style only the variant writes (Fanuc T's G74): true if read.
     virtual bool variant_cycle(const DrillingCycleSpec& spec, BlockWords& w);
-    // Refuses a canned cycle that would drill along another axis than Z in the current plane (on
-    // a lathe: one not under G17; a variant whose post writes no plane word lets it be).
+    // Refuses a canned cycle that would drill along another axis than Z in the current plane (one
+    // not under G17; a lathe variant whose post writes no plane word lets it be).
     virtual void check_cycle_plane(const std::string& name) const;
+    // Refuses G41/G42 (`g`) outside the plane camgen compensates in: G17 on a mill, G18 on a lathe.
+    void check_comp_plane(const Word& g) const;
     // A motion mode only the variant has (a lathe's thread-cutting G33/G32): its block read, true.
     virtual bool variant_motion(int mode, BlockWords& w);
     // Whether a block in motion mode `mode` takes F as its lead, not as a feed (Fanuc T's G32).
@@ -84,6 +86,8 @@ private:
     std::optional<IsoInsertTool> pending_insert_;
     int motion_ = -1;  // the modal motion code (tenths); -1: none yet
     Plane plane_ = Plane::xy;
+    bool comp_on_ = false;          // G41/G42 in force
+    bool x_mode_selected_ = false;  // G7/G8 read (LinuxCNC's lathe diameter mode)
     bool g98_ = true;  // return to the initial level (LinuxCNC's default)
     std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
     std::optional<double> initial_z_;  // Z when the current run of cycle blocks began

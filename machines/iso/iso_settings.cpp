@@ -52,6 +52,17 @@ constexpr KeySpec iso_keys[] = {
      .description = "how a stop's message is shown: comment (in its M0/M1 block) or msg (LinuxCNC's (MSG, message))"},
     {.key = "optionalStop", .type = JsonType::boolean, .default_json = "true",
      .description = "false: the control ignores M1 (GRBL), so an optional stop is written as M0"},
+    {.key = "lengthOffsetH", .type = JsonType::boolean, .default_json = "true",
+     .description = "the control takes G43 H (a length offset from its table); false: verify refuses G43 (GRBL has only "
+                    "G43.1); needs toolLengthOffset false"},
+    {.key = "returnLevels", .type = JsonType::boolean, .default_json = "true",
+     .description = "the control takes G98/G99 (a canned cycle's return level); false: verify refuses them (GRBL)"},
+    {.key = "arcTurns", .type = JsonType::boolean, .default_json = "true",
+     .description = "the control reads P on G2/G3 as the number of turns (LinuxCNC); false: verify refuses it (GRBL "
+                    "refuses the unused word)"},
+    {.key = "compensationWithoutD", .type = JsonType::boolean, .default_json = "false",
+     .description = "a mill's G41/G42 without D offsets by the radius of the tool in the spindle (LinuxCNC); false: "
+                    "verify refuses it"},
 };
 
 constexpr KeySpec lathe_only_keys[] = {
@@ -92,6 +103,12 @@ void read_iso(json::Fields& f, Settings& s) {
     if (s.end_code.empty()) f.fail("endCode", "the end of program must not be empty (M30, M2)");
     s.stop.msg = f.choice("stopMessage", stop_messages, s.stop.msg);
     s.stop.optional_stop = f.boolean("optionalStop", s.stop.optional_stop);
+    s.length_offset_h = f.boolean("lengthOffsetH", s.length_offset_h);
+    s.return_levels = f.boolean("returnLevels", s.return_levels);
+    s.arc_turns = f.boolean("arcTurns", s.arc_turns);
+    s.compensation_without_d = f.boolean("compensationWithoutD", s.compensation_without_d);
+    if (s.length_offset && !s.length_offset_h)
+        f.fail("toolLengthOffset", "toolLengthOffset writes G43 H, which the control does not take (lengthOffsetH is false)");
 }
 
 }  // namespace

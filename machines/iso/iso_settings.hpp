@@ -21,6 +21,11 @@ struct Settings : DialectSettings {
     ToolChangeStyle tool_change = ToolChangeStyle::m6;
     StopStyle stop;
     std::string end_code = "M30";
+    // What the control accepts that camgen's posts need not write (the reader refuses the rest).
+    bool length_offset_h = true;          // G43 H.. (GRBL: only G43.1)
+    bool return_levels = true;            // G98/G99, a canned cycle's return level
+    bool arc_turns = true;                // P on G2/G3: the number of turns
+    bool compensation_without_d = false;  // G41/G42 without D: the radius of the tool in the spindle (LinuxCNC)
 };
 
 // The settings of the ISO lathe variant (linuxcnc-lathe, fanuc-lathe): the ISO ones and these.

@@ -57,6 +57,7 @@ private:
     std::string active_edge_;    // the edge in force since then ("D1"; "": D0)
     bool comp_on_ = false;       // G41/G42 in force
     Units base_units_ = machine_.units;  // the control's base system: F's unit under G70/G71
+    bool diamon_ = false;        // DIAMON read (a lathe's X as a diameter)
     std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
@@ -119,11 +120,16 @@ void SinumerikReader::line(std::string_view text) {
         const auto& start = machine_.frame.start_block;
         if (std::find(start.begin(), start.end(), "DIAMON") == start.end() || !machine_.x_diameter)
             fail(fmt::format("DIAMON: machine {} does not program X as a diameter", machine_.name));
+        diamon_ = true;
         std::string rest(text);
         rest.erase(at, 6);
         NcReader::line(rest);
         return;
     }
+    if (text.find("DIAMOF") != std::string_view::npos)
+        fail(fmt::format("DIAMOF (X as a radius): camgen reads X {} on machine {}",
+                         machine_.x_diameter ? "as a diameter, under DIAMON," : "as the machine's xDiameterProg says",
+                         machine_.name));
     NcReader::line(text);
 }
 
@@ -469,7 +475,12 @@ void SinumerikReader::block(const Block& b) {
     if (m.spindle) switch_spindle(*m.spindle->word, "S");
     if (coolant) emit(Coolant{*coolant_of(*coolant->word), ""});
     if (work_offset) select_work_offset(work_offset->value, *work_offset->word, w);
-    if (plane) plane_ = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
+    if (plane) {
+        const Plane p = plane->value == code(17) ? Plane::xy : plane->value == code(18) ? Plane::xz : Plane::yz;
+        if (comp_on_ && p != plane_)
+            fail(fmt::format("{} under G41/G42: camgen reads a change of plane only with G40 in force", plane->word->text));
+        plane_ = p;
+    }
     if (units) {
         // G700/G710: positions and feeds in inch or mm. G70/G71 change the positions only, the F
         // stays in the control's base system (802D sl, 840D manuals: "feedrates ... are not
@@ -489,12 +500,31 @@ void SinumerikReader::block(const Block& b) {
         // is none, and the control would cut on the programmed path.
         if (comp->value != code(40) && active_tool_ && active_edge_.empty())
             fail(fmt::format("{} under D0: no cutting edge selected, no radius to offset by", comp->word->text));
+        // The control offsets in the active plane; camgen reads a mill's compensation in XY (G17)
+        // and a lathe's in XZ (G18) only.
+        const Plane comp_plane = machine_.kind == MachineKind::lathe ? Plane::xz : Plane::xy;
+        if (comp->value != code(40) && plane_ != comp_plane)
+            fail(fmt::format("{} under {}: the control would offset the tool in the {} plane; camgen reads {} "
+                             "compensation in the {} plane ({}) only",
+                             comp->word->text, plane_ == Plane::xy ? "G17" : plane_ == Plane::xz ? "G18" : "G19",
+                             plane_ == Plane::xy ? "XY" : plane_ == Plane::xz ? "XZ" : "YZ",
+                             machine_.kind == MachineKind::lathe ? "nose radius" : "cutter radius",
+                             machine_.kind == MachineKind::lathe ? "XZ" : "XY",
+                             machine_.kind == MachineKind::lathe ? "G18" : "G17"));
         comp_on_ = comp->value != code(40);
         emit(Compensation{comp->value == code(40)  ? CompensationSide::off
                           : comp->value == code(41) ? CompensationSide::left
                                                     : CompensationSide::right});
     }
     if (motion) motion_ = motion->value;
+    if (w.has('X') && !diamon_ && machine_.x_diameter) {
+        // X is a diameter only under DIAMON; the control's power-up mode is its machine data's
+        // (and the last program's DIAMON/DIAMOF stays in force).
+        const auto& start = machine_.frame.start_block;
+        if (std::find(start.begin(), start.end(), "DIAMON") != start.end())
+            fail(fmt::format("X before DIAMON: machine {} programs X as a diameter from its start block's DIAMON",
+                             machine_.name));
+    }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || cr;
     if (axes) {
         if (motion_ < 0) fail("coordinates before any motion code (G0, G1, ...)");
@@ -504,10 +534,13 @@ void SinumerikReader::block(const Block& b) {
                 fail(fmt::format("under the modal call {} of line {} camgen writes only G0 X Y hole positions",
                                  mcall_->name, mcall_->line));
             if (!position_known()) fail(fmt::format("{} from an unknown position", mcall_->name));
-            // The cycle drills along the plane's normal: on a lathe only G17 drills along Z.
-            if (machine_.kind == MachineKind::lathe && plane_ != Plane::xy)
-                fail(fmt::format("{} under {}: a lathe drills on its axis under G17", mcall_->name,
-                                 plane_ == Plane::xz ? "G18" : "G19"));
+            // The cycle drills along the plane's normal: only G17 drills along Z (a lathe's axis;
+            // camgen's mill posts drill only under G17).
+            if (plane_ != Plane::xy)
+                fail(fmt::format("{} under {}: it would drill along {} ({})", mcall_->name,
+                                 plane_ == Plane::xz ? "G18" : "G19", plane_ == Plane::xz ? "Y" : "X",
+                                 machine_.kind == MachineKind::lathe ? "a lathe drills on its axis under G17"
+                                                                     : "camgen reads a drilling cycle along Z, under G17, only"));
             std::optional<double> x = w.length('X'), y = w.length('Y');
             rapid_to(x, y, std::nullopt);
             DrillCycle c = cycle_now();

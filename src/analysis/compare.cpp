@@ -34,7 +34,11 @@ std::string num3(double v) {
     return nc::Format(spec).format(v);
 }
 
-std::string point(const Vec3& p) { return fmt::format("X{} Y{} Z{}", num3(p.x), num3(p.y), num3(p.z)); }
+// A point in the program's terms: on a lathe X and Z, X as a diameter where the machine programs it so.
+std::string point(const Vec3& p, const CompareTolerance& tol) {
+    if (tol.lathe) return fmt::format("X{} Z{}", num3(tol.x_diameter ? 2.0 * p.x : p.x), num3(p.z));
+    return fmt::format("X{} Y{} Z{}", num3(p.x), num3(p.y), num3(p.z));
+}
 
 double dist(const Vec3& a, const Vec3& b) { return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z)); }
 
@@ -364,12 +368,12 @@ Hit locate(const Seg& s, const Vec3& p, double t_min, double tol) {
 
 std::string describe_path(const Path& p) { return p.rapid ? "rapid" : "feed"; }
 
-std::string describe_seg(const Seg& s) {
+std::string describe_seg(const Seg& s, const CompareTolerance& tol) {
     if (!s.arc)
-        return fmt::format("{} move from {} to {}", s.kind == StepKind::rapid ? "rapid" : "feed", point(s.a), point(s.b));
+        return fmt::format("{} move from {} to {}", s.kind == StepKind::rapid ? "rapid" : "feed", point(s.a, tol), point(s.b, tol));
     const ArcGeometry& g = *s.arc;
-    return fmt::format("{} arc from {} to {} about {}", g.direction == ArcDirection::cw ? "cw" : "ccw", point(s.a), point(s.b),
-                       point(g.centre));
+    return fmt::format("{} arc from {} to {} about {}", g.direction == ArcDirection::cw ? "cw" : "ccw", point(s.a, tol), point(s.b, tol),
+                       point(g.centre, tol));
 }
 
 std::string describe_step(const Step& s) {
@@ -387,9 +391,9 @@ std::string describe_step(const Step& s) {
     }
 }
 
-std::string describe_item(const Item& i) {
+std::string describe_item(const Item& i, const CompareTolerance& tol) {
     if (i.kind != Item::Kind::path) return describe_step(i.step);
-    return fmt::format("{} moves to {}", describe_path(i.path), point(i.path.end()));
+    return fmt::format("{} moves to {}", describe_path(i.path), point(i.path.end(), tol));
 }
 
 // Finds every sample of `from` on `onto`, in order. `from_is_job` only changes the words.
@@ -439,7 +443,7 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                     const Seg& job = from_is_job ? *s.step : seg;
                     const Seg& prog = from_is_job ? seg : *s.step;
                     wrong_feed = Mismatch{prog.line, fmt::format("the program feeds at {} mm/min where the job feeds at {} mm/min (near {})",
-                                                                 num3(prog.feed), num3(job.feed), point(s.p))};
+                                                                 num3(prog.feed), num3(job.feed), point(s.p, tol))};
                 }
                 continue;
             }
@@ -462,9 +466,9 @@ std::optional<Mismatch> follow(const Path& from, const Path& onto, const Path* o
                           : onto.segs.empty()                     ? nullptr
                                                                   : &onto.segs.back();
         const Seg* mine = s.seg < from.segs.size() ? &from.segs[s.seg] : nullptr;
-        std::string what = mine ? describe_seg(*mine)
-                                : fmt::format("{} path from {}", describe_path(from), point(from.start));
-        std::string there = near ? describe_seg(*near) : fmt::format("{} path that stays at {}", describe_path(onto), point(onto.start));
+        std::string what = mine ? describe_seg(*mine, tol)
+                                : fmt::format("{} path from {}", describe_path(from), point(from.start, tol));
+        std::string there = near ? describe_seg(*near, tol) : fmt::format("{} path that stays at {}", describe_path(onto), point(onto.start, tol));
         if (from_is_job)
             return Mismatch{near ? near->line : from.first_line(),
                             fmt::format("the job's {} is not in the program (there the program has a {})", what, there)};
@@ -479,14 +483,14 @@ std::optional<Mismatch> compare_paths(const Path& job, const Path& prog, const P
     double prog_end_extra = prog.segs.empty() ? 0.0 : prog.segs.back().uncertainty;
     if (dist(job.start, prog.start) > tol.position + tiny + prog_start_extra) {
         return Mismatch{prog.first_line(), fmt::format("the program's {} path starts at {}, the job's at {}", describe_path(prog),
-                                                       point(prog.start), point(job.start))};
+                                                       point(prog.start, tol), point(job.start, tol))};
     }
     if (auto m = follow(job, prog, prog_next, true, tol)) return m;
     if (auto m = follow(prog, job, job_next, false, tol)) return m;
     if (dist(job.end(), prog.end()) > tol.position + prog_end_extra + tiny) {
         int line = prog.segs.empty() ? 0 : prog.segs.back().line;
-        return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end()),
-                                          point(job.end()))};
+        return Mismatch{line, fmt::format("the program's {} path ends at {}, the job's at {}", describe_path(prog), point(prog.end(), tol),
+                                          point(job.end(), tol))};
     }
     return std::nullopt;
 }
@@ -509,7 +513,7 @@ std::optional<Mismatch> compare_offsets(const Path& job, const Path& prog) {
 std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* job_next, const Path* prog_next,
                                       const CompareTolerance& tol) {
     if (a.kind != b.kind)
-        return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+        return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b, tol), describe_item(a, tol))};
     switch (a.kind) {
         case Item::Kind::tool:
             if (a.step.tool != b.step.tool)
@@ -533,7 +537,7 @@ std::optional<Mismatch> compare_items(const Item& a, const Item& b, const Path* 
             break;
         case Item::Kind::path:
             if (a.path.rapid != b.path.rapid)
-                return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b), describe_item(a))};
+                return Mismatch{b.line(), fmt::format("the program has {} where the job has {}", describe_item(b, tol), describe_item(a, tol))};
             if (auto m = compare_offsets(a.path, b.path)) return m;
             return compare_paths(a.path, b.path, job_next, prog_next, tol);
     }
@@ -653,6 +657,8 @@ CompareTolerance compare_tolerance(const Machine& machine, const ReadResolution&
     t.dwell = res.dwell;
     t.rpm = res.rpm;
     t.arcs = machine.arcs;
+    t.lathe = machine.kind == MachineKind::lathe;
+    t.x_diameter = machine.x_diameter;
     return t;
 }
 
@@ -678,10 +684,10 @@ public:
             } else if (job_.exhausted() && prog_.exhausted()) {
                 decide(std::nullopt);
             } else if (prog_.exhausted() && job_.has_items()) {
-                decide(Mismatch{prog_.last_line(), fmt::format("the program ends where the job still has {}", describe_item(job_.front()))});
+                decide(Mismatch{prog_.last_line(), fmt::format("the program ends where the job still has {}", describe_item(job_.front(), tol_))});
             } else if (job_.exhausted() && prog_.has_items()) {
                 decide(Mismatch{prog_.front().line(),
-                                fmt::format("the program has {} after the end of the job's motion", describe_item(prog_.front()))});
+                                fmt::format("the program has {} after the end of the job's motion", describe_item(prog_.front(), tol_))});
             } else if ((job_.ready() || job_.exhausted()) && !prog_.ended() && more_actual_) {
                 if (!more_actual_() && !prog_.ended()) throw std::logic_error("the actual trace ended without finishing");
             } else {

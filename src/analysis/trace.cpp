@@ -142,7 +142,7 @@ public:
                                                          "interprets a lathe's G41/G42 in G18 only)"
                                                        : "an arc outside the XY plane under cutter radius compensation (camgen "
                                                          "interprets G41/G42 in the XY plane only)",
-                                                0});
+                                                0, true});
                            end_compensation();
                            if (!known_) throw std::logic_error("arc from an unknown position");
                            arc(resolve_arc(pos_, a), a.to, p);
@@ -483,7 +483,7 @@ private:
         int line = line_;
         for (const Programmed& p : programmed_)
             if (p.source == err.source && err.source != 0) line = p.line;
-        const std::string detail = "the control refuses this: " + err.message;
+        const std::string detail = (err.unmodelled ? "camgen cannot model this: " : "the control refuses this: ") + err.message;
         if (line == 0) throw ControlRefusal(operation_path_, detail);
         throw ControlRefusal("", detail, line);
     }

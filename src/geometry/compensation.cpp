@@ -128,8 +128,8 @@ std::optional<CompError> CutterCompensation::entry(const CompMove& p) {
     if (p.kind == CompMove::Kind::arc) {
         if (distance(xy(tool_), xy(p.end)) <= radius_)
             return CompError{"Radius of cutter compensation entry arc is not greater than the tool radius", p.source};
-        return CompError{"an arc as the first move after G41/G42: camgen does not model this entry (write a straight entry move)",
-                         p.source};
+        return CompError{"an arc as the first move after G41/G42 (LinuxCNC runs it; write a straight entry move)",
+                         p.source, true};
     }
     const Vec2 c = xy(tool_), e = xy(p.end);
     if (distance(c, e) <= radius_)

@@ -201,10 +201,13 @@ TEST_CASE("machine file: dialect settings are read with the machine, each error 
     check_refused("wabeco", R"("underscoreLines": 2)", R"("underscoreLines": 1000000000)", "/settings/underscoreLines",
                   "underscoreLines must be between 0 and 100");
     check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "")", "/settings/endCode", "must not be empty");
+    // A control that takes no G43 H cannot be sent one.
+    check_refused("grbl", R"("toolLengthOffset": false)", R"("toolLengthOffset": true)", "/settings/toolLengthOffset",
+                  "toolLengthOffset writes G43 H, which the control does not take (lengthOffsetH is false)");
     // A setting of another dialect is named as such, not merely unknown.
     check_refused("fanuc", R"("endCode": "M30")", R"("endCode": "M30", "toolCall": "turret")", "/settings/toolCall",
                   "\"toolCall\" is a setting of dialect iso-lathe, not of this machine's dialect iso (which has "
-                  "programNumber, percentLines, toolLengthOffset, toolChange, endCode, stopMessage, optionalStop)");
+                  "programNumber, percentLines, toolLengthOffset, toolChange, endCode, stopMessage, optionalStop, lengthOffsetH, returnLevels, arcTurns, compensationWithoutD)");
     check_refused("wabeco", R"("homeAtEnd": true)", R"("homeAtEnd": true, "percentLines": false)", "/settings/percentLines",
                   "\"percentLines\" is a setting of dialect iso and iso-lathe, not of this machine's dialect nccad");
     check_refused("sinumerik", R"("settings": {})", R"("settings": {"underscoreLines": 1})", "/settings/underscoreLines",

@@ -268,14 +268,22 @@ TEST_CASE("verify --job: lathes: Fanuc T's turret offset digits, LinuxCNC's G43 
     }
 }
 
-TEST_CASE("verify --job: GRBL as camgen writes it has no tool length offset: a G43 is a mismatch") {
+TEST_CASE("verify --job: GRBL as camgen writes it has no tool length offset: a G43 H is refused") {
+    // GRBL 1.1 has only G43.1 (a dynamic offset): grbl.json's lengthOffsetH is false, and the
+    // reader refuses G43 H, with the job and without.
     const Setup s = posted("grbl", "plate", "grbl", "");
     check_matches(s);
     CHECK(line_of(s.program, "G43") == 0);
     const int z = line_of(s.program, "G0 Z10");
     REQUIRE(z > 0);
-    check_mismatch(s, replaced(s.program, "G0 Z10", "G0 G43 Z10 H1"), z + 1,
-                   {fmt::format("tool 1 moves under the tool length offset G43 H1 (line {})", z), "the job's post selects none"});
+    const std::string program = replaced(s.program, "G0 Z10", "G0 G43 Z10 H1");
+    Run v = verify(s, program, "edited.nc");
+    CHECK(v.code == 1);
+    const std::string refusal = fmt::format("edited.nc:{}: G43: machine grbl takes no tool length offset from a table", z);
+    CHECK_MESSAGE(v.err.find(refusal) != std::string::npos, v.out << v.err);
+    Run plain = run({"verify", (s.dir / "edited.nc").string(), "--machine", s.machine});
+    CHECK(plain.code == 1);
+    CHECK_MESSAGE(plain.err.find(refusal) != std::string::npos, plain.err);
 }
 
 TEST_CASE("controls without length offset registers or work offsets: Heidenhain, nccad (wabeco, kosy)") {

@@ -22,6 +22,10 @@ struct CompareTolerance {
     // that the post writes as one straight move (written_as_one_line: below minRadius or
     // minLength) is compared as that move, allowed to lie as far off as the arc strays from it.
     ArcSettings arcs;
+    // How messages name a point (compare_tolerance copies them): a lathe's as X and Z, X as a
+    // diameter where the machine programs it so, as the program writes it.
+    bool lathe = false;
+    bool x_diameter = false;
 };
 
 // Tolerances for comparing a job with a program for `machine`: `position` mm for end points

@@ -121,14 +121,8 @@ struct TraceOptions {
     std::string work_offset;
 };
 
-// The control refuses the program: cutter compensation it cannot apply without gouging, a
-// canned cycle or a tool change while it is on, in the control's own words ("the control
-// refuses this: ..."). At the program line (line()) of a program read back; for a job's events
-// at no line, with path() the operation's JSON path. Exit code 1, as any InputError.
-class ControlRefusal : public InputError {
-public:
-    using InputError::InputError;
-};
+// ControlRefusal (camgen/common/error.hpp): what the control refuses, thrown by the trace and by
+// the readers (a tap cycle against the running spindle).
 
 // Receives a trace as it is made: its steps in order, each hole once the tool has left it
 // (before the step that shows it has), then the end. The read-back's consumers (statistics,

@@ -72,4 +72,14 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The control refuses the program: cutter compensation it cannot apply without gouging, a
+// canned cycle or a tool change while it is on, a tap cycle against the running spindle (the
+// readers), in the control's own words ("the control
+// refuses this: ..."). At the program line (line()) of a program read back; for a job's events
+// at no line, with path() the operation's JSON path. Exit code 1, as any InputError.
+class ControlRefusal : public InputError {
+public:
+    using InputError::InputError;
+};
+
 }  // namespace camgen

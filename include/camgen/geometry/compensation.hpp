@@ -38,10 +38,11 @@ struct CompMove {
 
 enum class CompSide { off, left, right };
 
-// What the control refuses, and at which programmed move (its `source`).
+// What the control refuses (or camgen cannot follow: unmodelled), and at which programmed move (its `source`).
 struct CompError {
     std::string message;
     std::size_t source = 0;
+    bool unmodelled = false;  // the control may run it, camgen cannot follow it (not the control's refusal)
 };
 
 class CutterCompensation {
