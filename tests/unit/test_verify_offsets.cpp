@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include "camgen/reader/reader.hpp"
 #include "camgen/post/machine.hpp"
