@@ -347,7 +347,7 @@ void check_blade_material(const std::vector<Operation>& operations, const JobInp
         if (const auto* t = std::get_if<TurnProfileOp>(&operation)) {
             kept.push_back(kept_by(*t));
         }
-        removed.add(operation, tools);
+        if (bar) removed.add(operation, tools);  // read only with a bar
     }
 }
 

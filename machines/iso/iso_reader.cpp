@@ -311,6 +311,7 @@ void IsoReader::block(const Block& b) {
                 fail(fmt::format("X before {}: machine {} programs X as a {} from its start block's {} (LinuxCNC powers "
                                  "up in radius mode, G8, and keeps the last program's)",
                                  mode, machine_.name, machine_.x_diameter ? "diameter" : "radius", mode));
+        x_mode_selected_ = true;  // the machine selects no mode: X is as its xDiameterProg says
     }
     if (axes && !k.machine_coords) {
         if (motion_ < 0 || motion_ == code(80))

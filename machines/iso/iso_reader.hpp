@@ -87,7 +87,7 @@ private:
     int motion_ = -1;  // the modal motion code (tenths); -1: none yet
     Plane plane_ = Plane::xy;
     bool comp_on_ = false;          // G41/G42 in force
-    bool x_mode_selected_ = false;  // G7/G8 read (LinuxCNC's lathe diameter mode)
+    bool x_mode_selected_ = false;  // G7/G8 read (LinuxCNC's lathe diameter mode), or none to read
     bool g98_ = true;  // return to the initial level (LinuxCNC's default)
     std::optional<double> cycle_r_, cycle_z_, cycle_q_, cycle_p_;
     std::optional<double> initial_z_;  // Z when the current run of cycle blocks began

@@ -57,7 +57,7 @@ private:
     std::string active_edge_;    // the edge in force since then ("D1"; "": D0)
     bool comp_on_ = false;       // G41/G42 in force
     Units base_units_ = machine_.units;  // the control's base system: F's unit under G70/G71
-    bool diamon_ = false;        // DIAMON read (a lathe's X as a diameter)
+    bool diamon_ = false;        // DIAMON read (a lathe's X as a diameter), or none to read
     std::optional<double> lims_;  // LIMS=, rpm: the limit of a G96
     bool ended_ = false;
 };
@@ -524,6 +524,7 @@ void SinumerikReader::block(const Block& b) {
         if (std::find(start.begin(), start.end(), "DIAMON") != start.end())
             fail(fmt::format("X before DIAMON: machine {} programs X as a diameter from its start block's DIAMON",
                              machine_.name));
+        diamon_ = true;  // no DIAMON to read: X is as the machine's xDiameterProg says
     }
     bool axes = w.has('X') || w.has('Y') || w.has('Z') || w.has('I') || w.has('J') || w.has('K') || cr;
     if (axes) {
